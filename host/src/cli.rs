@@ -1,0 +1,405 @@
+//! The `dashpot` command line.
+
+use crate::config::{merge_params, parse_set, Config, Partner, Sphere, Wall};
+use crate::registry::{kind_str, Registry, SearchPath};
+use anyhow::{bail, Context, Result};
+use clap::{Args, Parser, Subcommand};
+use dashpot_sdk::{LawInfo, LawKind, Pair, ParamValue, Particle};
+use serde_json::json;
+use std::path::PathBuf;
+
+/// dashpot: contact and restitution laws for granular collisions, loaded as plugins at run time.
+#[derive(Parser, Debug)]
+#[command(name = "dashpot", version, about, long_about = None)]
+pub struct Cli {
+    #[command(flatten)]
+    pub plugins: PluginArgs,
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Where to find plugins.
+#[derive(Args, Debug, Clone, Default)]
+pub struct PluginArgs {
+    /// Directory to search for plugin libraries (repeatable; searched before DASHPOT_PLUGIN_PATH
+    /// and the directory of the dashpot executable).
+    #[arg(long = "plugin-dir", global = true, value_name = "DIR")]
+    pub plugin_dirs: Vec<PathBuf>,
+    /// A plugin library to load by path (repeatable; loaded before any directory is searched).
+    #[arg(long = "plugin", global = true, value_name = "FILE")]
+    pub plugin_files: Vec<PathBuf>,
+}
+
+impl PluginArgs {
+    /// Loads the registry.
+    pub fn registry(&self) -> Result<Registry> {
+        Ok(Registry::discover(&SearchPath::standard(
+            self.plugin_dirs.clone(),
+            self.plugin_files.clone(),
+        ))?)
+    }
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// List every law found: name, kind, plugin file, version and parameter schema.
+    Laws {
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Show one law's documentation and parameters.
+    Law {
+        /// The law's name.
+        name: String,
+        /// Machine-readable output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Evaluate a law once: a contact law's force F(δ, δ̇) or a restitution law's r(v).
+    Eval(EvalArgs),
+    /// The main job: reproduce what the drivers can so far from the two papers, into a folder.
+    Reproduce {
+        /// Output folder (created if needed).
+        #[arg(long, default_value = "results")]
+        out: PathBuf,
+    },
+}
+
+/// The two particles of a pair (identical spheres by default) or a particle and a wall.
+#[derive(Args, Debug, Clone)]
+pub struct ParticleArgs {
+    /// Particle diameter (m). Default: 0.01 (the MCC granule of Antypov & Elliott).
+    #[arg(long)]
+    pub diameter: Option<f64>,
+    /// Particle density (kg/m³). Default: 1500.
+    #[arg(long)]
+    pub density: Option<f64>,
+    /// Young's modulus (Pa). Default: 6e9.
+    #[arg(long)]
+    pub young: Option<f64>,
+    /// Poisson's ratio, in (-1, 0.5). Default: 0.3.
+    #[arg(long, allow_hyphen_values = true)]
+    pub poisson: Option<f64>,
+    /// The particle hits a flat rigid wall (infinite mass) instead of an identical sphere.
+    #[arg(long)]
+    pub wall: bool,
+}
+
+impl ParticleArgs {
+    /// The particle and the pair, from the command line over the file over the MCC defaults.
+    pub fn resolve(&self, cfg: &Config) -> Result<(Particle, Pair, String)> {
+        let d = Particle::MCC;
+        let f = &cfg.particle;
+        let p = Particle {
+            diameter: self.diameter.or(f.diameter).unwrap_or(d.diameter),
+            density: self.density.or(f.density).unwrap_or(d.density),
+            young: self.young.or(f.young).unwrap_or(d.young),
+            poisson: self.poisson.or(f.poisson).unwrap_or(d.poisson),
+        };
+        p.validate()?;
+        let partner: Box<dyn Partner> = if self.wall {
+            Box::new(Wall {})
+        } else {
+            match &cfg.partner {
+                Some(_) => {
+                    // Re-serialize the boxed partner to clone it (typetag objects are not Clone).
+                    let v = serde_json::to_value(cfg.partner.as_ref()).context("partner")?;
+                    serde_json::from_value(v).context("partner")?
+                }
+                None => Box::new(Sphere::default()),
+            }
+        };
+        let pair = partner.pair(&p)?;
+        Ok((p, pair, partner.describe(&p)))
+    }
+}
+
+/// `dashpot eval`.
+#[derive(Args, Debug)]
+pub struct EvalArgs {
+    /// The law (see `dashpot laws`); may come from --config instead.
+    #[arg(long)]
+    pub law: Option<String>,
+    /// Set a law parameter, NAME=VALUE (repeatable; overrides --config).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// TOML file with [law], [particle] and [partner] tables.
+    #[arg(long)]
+    pub config: Option<PathBuf>,
+    /// Overlap δ (m), for a contact law.
+    #[arg(long, allow_hyphen_values = true)]
+    pub delta: Option<f64>,
+    /// Overlap rate δ̇ (m/s, > 0 approaching), for a contact law.
+    #[arg(long, allow_hyphen_values = true)]
+    pub rate: Option<f64>,
+    /// Normal impact speed v (m/s), for a restitution law.
+    #[arg(long)]
+    pub speed: Option<f64>,
+    #[command(flatten)]
+    pub particle: ParticleArgs,
+    /// Machine-readable output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Runs the CLI; returns the process exit code.
+pub fn run() -> std::process::ExitCode {
+    let cli = Cli::parse();
+    match dispatch(cli) {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            std::process::ExitCode::from(1)
+        }
+    }
+}
+
+fn dispatch(cli: Cli) -> Result<()> {
+    let reg = cli.plugins.registry()?;
+    match cli.command {
+        Command::Laws { json } => laws(&reg, json),
+        Command::Law { name, json } => law(&reg, &name, json),
+        Command::Eval(a) => eval(&reg, &a),
+        Command::Reproduce { out } => crate::reproduce::run(&reg, &out),
+    }
+}
+
+/// The JSON description of a law, as `dashpot laws --json` prints it.
+pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
+    let plugin = reg.find(info.name.as_str()).map(|(_, p)| p).ok();
+    json!({
+        "name": info.name.as_str(),
+        "kind": kind_str(info.kind),
+        "summary": info.summary.as_str(),
+        "doc": info.doc.as_str(),
+        "end_criterion": info.end_criterion.into_option().map(|e| e.as_str()),
+        "plugin": plugin.map(|p| json!({
+            "file": p.path.display().to_string(),
+            "name": p.name,
+            "version": p.version,
+            "sdk_version": p.sdk_version,
+        })),
+        "params": info.params.iter().map(|s| json!({
+            "name": s.name.as_str(),
+            "unit": s.unit.as_str(),
+            "default": s.default.into_option(),
+            "range": s.range.to_string(),
+            "min": finite_or_null(s.range.min),
+            "max": finite_or_null(s.range.max),
+            "min_inclusive": s.range.min_inclusive,
+            "max_inclusive": s.range.max_inclusive,
+            "doc": s.doc.as_str(),
+        })).collect::<Vec<_>>(),
+    })
+}
+
+fn finite_or_null(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+fn laws(reg: &Registry, json_out: bool) -> Result<()> {
+    if json_out {
+        let v: Vec<_> = reg.laws.iter().map(|l| law_json(reg, &l.info)).collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({ "laws": v, "notes": reg.notes }))?
+        );
+        return Ok(());
+    }
+    if reg.laws.is_empty() {
+        bail!(
+            "no plugins found; searched: {}. Build them with `cargo build --release` or pass --plugin-dir.",
+            SearchPath::standard(vec![], vec![])
+                .all_dirs()
+                .iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+    }
+    for l in &reg.laws {
+        let p = &reg.plugins[l.plugin];
+        println!("{}  [{}]  {}", l.info.name, kind_str(l.info.kind), l.info.summary);
+        println!(
+            "    plugin: {} ({} {})",
+            p.path
+                .file_name()
+                .map(|f| f.to_string_lossy().to_string())
+                .unwrap_or_default(),
+            p.name,
+            p.version
+        );
+        for s in l.info.params.iter() {
+            let def = match s.default.into_option() {
+                Some(v) => format!("default {v}"),
+                None => "derived if unset".to_string(),
+            };
+            println!(
+                "    {:<6} [{}] {}, range {}: {}",
+                s.name, s.unit, def, s.range, s.doc
+            );
+        }
+    }
+    for n in &reg.notes {
+        println!("note: {n}");
+    }
+    Ok(())
+}
+
+fn law(reg: &Registry, name: &str, json_out: bool) -> Result<()> {
+    let (e, p) = reg.find(name)?;
+    if json_out {
+        println!("{}", serde_json::to_string_pretty(&law_json(reg, &e.info))?);
+        return Ok(());
+    }
+    let i = &e.info;
+    println!("{} ({} law)", i.name, kind_str(i.kind));
+    println!(
+        "plugin: {} ({} {}, sdk {})",
+        p.path.display(),
+        p.name,
+        p.version,
+        p.sdk_version
+    );
+    if let Some(c) = i.end_criterion.into_option() {
+        println!("calibrated for contact ending by: {}", c.as_str());
+    }
+    println!("\n{}\n", i.summary);
+    println!("{}\n", textwrap(i.doc.as_str(), 96));
+    println!("parameters:");
+    for s in i.params.iter() {
+        let def = match s.default.into_option() {
+            Some(v) => format!("default {v}"),
+            None => "derived if unset".to_string(),
+        };
+        println!(
+            "  {} [{}]  {}; valid {}\n      {}",
+            s.name, s.unit, def, s.range, s.doc
+        );
+    }
+    Ok(())
+}
+
+fn textwrap(s: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line = 0;
+    for w in s.split_whitespace() {
+        if line > 0 && line + 1 + w.chars().count() > width {
+            out.push('\n');
+            line = 0;
+        } else if line > 0 {
+            out.push(' ');
+            line += 1;
+        }
+        out.push_str(w);
+        line += w.chars().count();
+    }
+    out
+}
+
+fn finite(name: &str, unit: &str, v: f64) -> Result<f64> {
+    if !v.is_finite() {
+        bail!("--{name} = {v} {unit} is not a finite number");
+    }
+    Ok(v)
+}
+
+fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
+    let cfg = match &a.config {
+        Some(p) => Config::from_file(p)?,
+        None => Config::default(),
+    };
+    let name = a
+        .law
+        .clone()
+        .or(cfg.law.name.clone())
+        .context("no law given: use --law NAME (see `dashpot laws`) or a [law] name in --config")?;
+    let sets = a
+        .set
+        .iter()
+        .map(|s| parse_set(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let params: Vec<ParamValue> = merge_params(&cfg.law.params, &sets);
+    let (_particle, pair, partner) = a.particle.resolve(&cfg)?;
+    let (entry, plugin) = reg.find(&name)?;
+    let params_json: serde_json::Map<String, serde_json::Value> = params
+        .iter()
+        .map(|p| (p.name.to_string(), json!(p.value)))
+        .collect();
+    let pair_json =
+        json!({"mass": pair.mass, "radius": pair.radius, "young": pair.young, "partner": partner});
+    match entry.info.kind {
+        LawKind::Contact => {
+            if a.speed.is_some() {
+                bail!("'{name}' is a contact law: give --delta and --rate, not --speed");
+            }
+            let (Some(delta), Some(rate)) = (a.delta, a.rate) else {
+                bail!("'{name}' is a contact law: give both --delta (overlap, m) and --rate (overlap rate, m/s)");
+            };
+            let delta = finite("delta", "m", delta)?;
+            let rate = finite("rate", "m/s", rate)?;
+            let law = reg.contact(&name, &params)?;
+            let bound = law.bind(&pair)?;
+            let force = bound.force(delta, rate)?;
+            let coeffs = bound.coefficients()?;
+            if a.json {
+                let c: serde_json::Map<String, serde_json::Value> = coeffs
+                    .iter()
+                    .map(|c| (c.name.to_string(), json!(c.value)))
+                    .collect();
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&json!({
+                        "law": name, "kind": "contact", "plugin": plugin.path.display().to_string(),
+                        "params": params_json, "pair": pair_json, "coefficients": c,
+                        "delta": delta, "rate": rate, "force": force,
+                    }))?
+                );
+            } else {
+                println!("law: {name} (contact, {})", plugin.path.display());
+                println!(
+                    "pair: {partner}: m_eff = {:.6e} kg, r_eff = {:.6e} m, E_eff = {:.6e} Pa",
+                    pair.mass, pair.radius, pair.young
+                );
+                for c in &coeffs {
+                    println!(
+                        "  {:<13} = {:<14.8e} [{}]  {}",
+                        c.name.as_str(),
+                        c.value,
+                        c.unit,
+                        c.doc
+                    );
+                }
+                println!("F(delta = {delta:e} m, rate = {rate:e} m/s) = {force:.10e} N");
+            }
+        }
+        LawKind::Restitution => {
+            if a.delta.is_some() || a.rate.is_some() {
+                bail!("'{name}' is a restitution law: give --speed, not --delta/--rate");
+            }
+            let speed = a.speed.with_context(|| {
+                format!("'{name}' is a restitution law: give --speed (impact speed, m/s)")
+            })?;
+            let speed = finite("speed", "m/s", speed)?;
+            if speed < 0.0 {
+                bail!("--speed = {speed} m/s is out of range: an impact speed must be >= 0");
+            }
+            let law = reg.restitution(&name, &params)?;
+            let r = law.bind(&pair)?.restitution(speed)?;
+            if a.json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&json!({
+                        "law": name, "kind": "restitution", "plugin": plugin.path.display().to_string(),
+                        "params": params_json, "pair": pair_json, "speed": speed, "restitution": r,
+                    }))?
+                );
+            } else {
+                println!("law: {name} (restitution, {})", plugin.path.display());
+                println!("r(v = {speed} m/s) = {r:.10}");
+            }
+        }
+    }
+    Ok(())
+}

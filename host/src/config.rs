@@ -1,0 +1,231 @@
+//! Law and particle configuration from TOML files, with command-line overrides.
+//!
+//! ```toml
+//! [law]
+//! name = "hsd"
+//! params = { eps = 0.54 }
+//!
+//! [particle]            # SI units; any field omitted keeps the MCC default
+//! diameter = 0.01
+//! density = 1500.0
+//! young = 6.0e9
+//! poisson = 0.3
+//!
+//! [partner]             # what the particle hits: another sphere (default: an identical one) or a wall
+//! type = "wall"
+//! ```
+
+use dashpot_sdk::{LawError, Pair, ParamValue, Particle};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// What a particle collides with. New kinds of partner are new `typetag` implementations.
+#[typetag::serde(tag = "type")]
+pub trait Partner: std::fmt::Debug + Send + Sync {
+    /// The effective pair of `particle` and this partner.
+    fn pair(&self, particle: &Particle) -> Result<Pair, LawError>;
+    /// One line for reports.
+    fn describe(&self, particle: &Particle) -> String;
+}
+
+/// A second sphere; fields left out are those of the first particle.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Sphere {
+    /// Diameter (m).
+    pub diameter: Option<f64>,
+    /// Density (kg/m³).
+    pub density: Option<f64>,
+    /// Young's modulus (Pa).
+    pub young: Option<f64>,
+    /// Poisson's ratio.
+    pub poisson: Option<f64>,
+}
+
+impl Sphere {
+    fn resolve(&self, p: &Particle) -> Particle {
+        Particle {
+            diameter: self.diameter.unwrap_or(p.diameter),
+            density: self.density.unwrap_or(p.density),
+            young: self.young.unwrap_or(p.young),
+            poisson: self.poisson.unwrap_or(p.poisson),
+        }
+    }
+}
+
+#[typetag::serde(name = "sphere")]
+impl Partner for Sphere {
+    fn pair(&self, particle: &Particle) -> Result<Pair, LawError> {
+        Pair::spheres(particle, &self.resolve(particle))
+    }
+    fn describe(&self, particle: &Particle) -> String {
+        let q = self.resolve(particle);
+        if q == *particle {
+            "two identical spheres".to_string()
+        } else {
+            format!(
+                "sphere against sphere (d = {} m, ρ = {} kg/m³, E = {} Pa, ν = {})",
+                q.diameter, q.density, q.young, q.poisson
+            )
+        }
+    }
+}
+
+/// A flat rigid wall of infinite mass.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Wall {}
+
+#[typetag::serde(name = "wall")]
+impl Partner for Wall {
+    fn pair(&self, particle: &Particle) -> Result<Pair, LawError> {
+        Pair::wall(particle)
+    }
+    fn describe(&self, _particle: &Particle) -> String {
+        "sphere against a flat rigid wall".to_string()
+    }
+}
+
+/// Particle properties as they appear in a file (each optional).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ParticleConfig {
+    /// Diameter (m).
+    pub diameter: Option<f64>,
+    /// Density (kg/m³).
+    pub density: Option<f64>,
+    /// Young's modulus (Pa).
+    pub young: Option<f64>,
+    /// Poisson's ratio.
+    pub poisson: Option<f64>,
+}
+
+/// A law selection as it appears in a file.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LawConfig {
+    /// The law's name.
+    pub name: Option<String>,
+    /// Parameter values by name.
+    #[serde(default)]
+    pub params: BTreeMap<String, f64>,
+}
+
+/// A whole configuration file.
+#[derive(Debug, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Config {
+    /// The law.
+    #[serde(default)]
+    pub law: LawConfig,
+    /// The particle.
+    #[serde(default)]
+    pub particle: ParticleConfig,
+    /// The partner (default: an identical sphere).
+    pub partner: Option<Box<dyn Partner>>,
+}
+
+/// A configuration error (file unreadable, bad TOML, bad `--set`).
+#[derive(Debug, thiserror::Error)]
+pub enum ConfigError {
+    /// The file could not be read.
+    #[error("cannot read {path}: {source}")]
+    Read {
+        /// The file.
+        path: String,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The file is not valid for this schema.
+    #[error("{path} is not a valid dashpot configuration: {message}")]
+    Parse {
+        /// The file.
+        path: String,
+        /// The TOML parser's message, with line and column.
+        message: String,
+    },
+    /// A `--set` argument is malformed.
+    #[error("--set expects NAME=VALUE with a number VALUE, got '{0}'")]
+    BadSet(String),
+}
+
+impl Config {
+    /// Reads a TOML file.
+    pub fn from_file(path: &Path) -> Result<Config, ConfigError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+            path: path.display().to_string(),
+            source,
+        })?;
+        toml::from_str(&text).map_err(|e| ConfigError::Parse {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })
+    }
+}
+
+/// Parses `NAME=VALUE` (VALUE a number; NaN is accepted here and rejected by the law's range).
+pub fn parse_set(s: &str) -> Result<(String, f64), ConfigError> {
+    let (k, v) = s
+        .split_once('=')
+        .ok_or_else(|| ConfigError::BadSet(s.to_string()))?;
+    let k = k.trim();
+    let v: f64 = v.trim().parse().map_err(|_| ConfigError::BadSet(s.to_string()))?;
+    if k.is_empty() {
+        return Err(ConfigError::BadSet(s.to_string()));
+    }
+    Ok((k.to_string(), v))
+}
+
+/// File parameters overridden by `--set` values, in a stable order.
+pub fn merge_params(file: &BTreeMap<String, f64>, sets: &[(String, f64)]) -> Vec<ParamValue> {
+    let mut m = file.clone();
+    for (k, v) in sets {
+        m.insert(k.clone(), *v);
+    }
+    m.iter().map(|(k, v)| ParamValue::new(k, *v)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_file_with_a_wall_partner_parses() {
+        let c: Config = toml::from_str(
+            "[law]\nname = \"hsd\"\nparams = { eps = 0.3 }\n[particle]\ndiameter = 0.002\n[partner]\ntype = \"wall\"\n",
+        )
+        .unwrap();
+        assert_eq!(c.law.name.as_deref(), Some("hsd"));
+        let p = Particle {
+            diameter: 0.002,
+            ..Particle::MCC
+        };
+        let pair = c.partner.unwrap().pair(&p).unwrap();
+        assert_eq!(pair.radius, 0.001);
+    }
+
+    #[test]
+    fn unequal_spheres_use_the_effective_definitions() {
+        let c: Config = toml::from_str("[partner]\ntype = \"sphere\"\ndiameter = 0.03\n").unwrap();
+        let p = Particle::MCC;
+        let pair = c.partner.unwrap().pair(&p).unwrap();
+        assert!((pair.radius - 0.005 * 0.015 / 0.02).abs() < 1e-15);
+    }
+
+    #[test]
+    fn sets_override_file_values() {
+        let mut f = BTreeMap::new();
+        f.insert("eps".to_string(), 0.3);
+        let m = merge_params(&f, &[parse_set("eps=0.9").unwrap(), parse_set("k = 5").unwrap()]);
+        assert_eq!(m, vec![ParamValue::new("eps", 0.9), ParamValue::new("k", 5.0)]);
+        assert!(parse_set("eps").is_err());
+        assert!(parse_set("eps=abc").is_err());
+        assert!(parse_set("eps=nan").unwrap().1.is_nan());
+    }
+
+    #[test]
+    fn unknown_keys_are_rejected() {
+        assert!(toml::from_str::<Config>("[particle]\ndiamter = 1.0\n").is_err());
+    }
+}

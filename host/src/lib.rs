@@ -1,0 +1,11 @@
+//! # dashpot host
+//!
+//! Loads law plugins by name ([`registry`]) and runs the drivers; the `dashpot` CLI ([`cli`]).
+
+pub mod cli;
+pub mod config;
+pub mod output;
+pub mod registry;
+pub mod reproduce;
+
+pub use registry::{Registry, SearchPath};

@@ -1,0 +1,273 @@
+//! Finding plugin libraries and selecting laws by name.
+
+use dashpot_sdk::abi::{ContactLawHandle, LoadedPlugin, RestitutionLawHandle};
+use dashpot_sdk::{CalibrationTarget, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+
+/// The environment variable listing plugin directories (separated like `PATH`).
+pub const PLUGIN_PATH_ENV: &str = "DASHPOT_PLUGIN_PATH";
+
+/// The file extension of a shared library on this platform ("so", "dylib" or "dll").
+pub const DYLIB_EXT: &str = std::env::consts::DLL_EXTENSION;
+
+/// Where plugins are looked for, in order.
+#[derive(Debug, Clone, Default)]
+pub struct SearchPath {
+    /// Directories given on the command line (`--plugin-dir`), searched first.
+    pub dirs: Vec<PathBuf>,
+    /// Individual plugin files (`--plugin FILE`), loaded first of all.
+    pub files: Vec<PathBuf>,
+    /// Whether to add the directories of `DASHPOT_PLUGIN_PATH`.
+    pub use_env: bool,
+    /// Whether to add the default directories (next to the executable).
+    pub use_default: bool,
+}
+
+impl SearchPath {
+    /// Command-line dirs, then `DASHPOT_PLUGIN_PATH`, then the defaults.
+    pub fn standard(dirs: Vec<PathBuf>, files: Vec<PathBuf>) -> SearchPath {
+        SearchPath {
+            dirs,
+            files,
+            use_env: true,
+            use_default: true,
+        }
+    }
+
+    /// The default plugin directories: the executable's own directory (where `cargo build`
+    /// puts the plugin .so files next to `dashpot`) and its `deps/` subdirectory (where
+    /// `cargo test` leaves them), then `../lib/dashpot` for an installed layout.
+    pub fn default_dirs() -> Vec<PathBuf> {
+        let mut v = Vec::new();
+        if let Some(dir) = std::env::current_exe()
+            .ok()
+            .and_then(|p| p.parent().map(Path::to_path_buf))
+        {
+            v.push(dir.join("../lib/dashpot"));
+            v.push(dir.join("deps"));
+            v.insert(0, dir);
+        }
+        v
+    }
+
+    /// All directories to scan, in order.
+    pub fn all_dirs(&self) -> Vec<PathBuf> {
+        let mut v = self.dirs.clone();
+        if self.use_env {
+            if let Some(p) = std::env::var_os(PLUGIN_PATH_ENV) {
+                v.extend(std::env::split_paths(&p).filter(|p| !p.as_os_str().is_empty()));
+            }
+        }
+        if self.use_default {
+            v.extend(Self::default_dirs());
+        }
+        v
+    }
+}
+
+/// Where a law comes from.
+#[derive(Debug, Clone)]
+pub struct LawEntry {
+    /// The law's description.
+    pub info: LawInfo,
+    /// Index of its plugin in [`Registry::plugins`].
+    pub plugin: usize,
+}
+
+/// Loaded plugins and the laws they provide, selectable by name.
+#[derive(Debug, Default)]
+pub struct Registry {
+    /// Every plugin loaded, in search order.
+    pub plugins: Vec<LoadedPlugin>,
+    /// Every law, first occurrence of each name.
+    pub laws: Vec<LawEntry>,
+    /// Non-fatal findings while scanning (shadowed names, libraries that are not plugins).
+    pub notes: Vec<String>,
+}
+
+/// A shared library that is not one of cargo's hashed dependency artifacts
+/// (`libfoo-0123456789abcdef.so`, e.g. proc macros in `deps/`).
+fn is_candidate(p: &Path) -> bool {
+    let hashed = p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| {
+        s.rsplit_once('-')
+            .is_some_and(|(_, h)| h.len() == 16 && h.bytes().all(|b| b.is_ascii_hexdigit()))
+    });
+    p.extension().is_some_and(|e| e == DYLIB_EXT) && !hashed
+}
+
+/// Whether the library at `path` exports a dashpot/abi_stable root module, checked with a bare
+/// `dlopen` so that ordinary libraries in a plugin directory are skipped quietly.
+fn exports_root_module(path: &Path) -> bool {
+    // SAFETY: loading a library runs its initialisers; plugin directories are trusted input.
+    let Ok(lib) = (unsafe { libloading::Library::new(path) }) else {
+        return false;
+    };
+    let sym = dashpot_sdk::abi::__private::abi_stable::library::ROOT_MODULE_LOADER_NAME_WITH_NUL;
+    let found = unsafe { lib.get::<*const u8>(sym.as_bytes()) }.is_ok();
+    // Keep it loaded: abi_stable will open it again, and unloading Rust libraries is unsafe.
+    std::mem::forget(lib);
+    found
+}
+
+impl Registry {
+    /// An empty registry.
+    pub fn new() -> Registry {
+        Registry::default()
+    }
+
+    /// Loads every plugin found on `search`. Files are loaded once (by canonical path, and by
+    /// file name across directories so that a copy in `deps/` does not shadow its original).
+    /// Fails on a plugin file that was named explicitly and cannot be loaded, or on a library in
+    /// a plugin directory that looks like a plugin but is refused (wrong ABI version, layout).
+    pub fn discover(search: &SearchPath) -> Result<Registry, LawError> {
+        let mut reg = Registry::new();
+        let mut seen_paths = HashSet::new();
+        let mut seen_names = HashSet::new();
+        for f in &search.files {
+            reg.load_file(f)?;
+            if let Ok(c) = f.canonicalize() {
+                seen_paths.insert(c);
+            }
+        }
+        for dir in search.all_dirs() {
+            let Ok(rd) = std::fs::read_dir(&dir) else {
+                continue;
+            };
+            let mut files: Vec<PathBuf> = rd
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| is_candidate(p))
+                .collect();
+            files.sort();
+            for f in files {
+                let Ok(canon) = f.canonicalize() else { continue };
+                let fname = f.file_name().map(|n| n.to_os_string());
+                if !seen_paths.insert(canon) || fname.as_ref().is_some_and(|n| seen_names.contains(n)) {
+                    continue;
+                }
+                if !exports_root_module(&f) {
+                    continue;
+                }
+                reg.load_file(&f)?;
+                if let Some(n) = fname {
+                    seen_names.insert(n);
+                }
+            }
+        }
+        Ok(reg)
+    }
+
+    /// Loads one plugin file and registers its laws (a name already registered is shadowed,
+    /// with a note).
+    pub fn load_file(&mut self, path: &Path) -> Result<(), LawError> {
+        let plugin = LoadedPlugin::load(path)?;
+        let idx = self.plugins.len();
+        for info in &plugin.laws {
+            if let Some(prev) = self.laws.iter().find(|l| l.info.name == info.name) {
+                self.notes.push(format!(
+                    "law '{}' in {} is shadowed by the one in {}",
+                    info.name,
+                    plugin.path.display(),
+                    self.plugins[prev.plugin].path.display()
+                ));
+                continue;
+            }
+            self.laws.push(LawEntry {
+                info: info.clone(),
+                plugin: idx,
+            });
+        }
+        self.plugins.push(plugin);
+        Ok(())
+    }
+
+    /// The law called `name`, or an error listing the laws that exist.
+    pub fn find(&self, name: &str) -> Result<(&LawEntry, &LoadedPlugin), LawError> {
+        match self.laws.iter().find(|l| l.info.name == name) {
+            Some(e) => Ok((e, &self.plugins[e.plugin])),
+            None => Err(LawError::new(
+                ErrorKind::UnknownLaw,
+                format!("unknown law '{name}'; available laws: {}", self.names_or_hint()),
+            )),
+        }
+    }
+
+    fn names_or_hint(&self) -> String {
+        if self.laws.is_empty() {
+            "none found (build the plugins with `cargo build --release`, or point --plugin-dir or \
+             DASHPOT_PLUGIN_PATH at a directory of plugin libraries)"
+                .to_string()
+        } else {
+            self.laws
+                .iter()
+                .map(|l| format!("{} ({})", l.info.name, kind_str(l.info.kind)))
+                .collect::<Vec<_>>()
+                .join(", ")
+        }
+    }
+
+    /// Creates contact law `name` from `params`.
+    pub fn contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
+        let (e, p) = self.find(name)?;
+        if e.info.kind != LawKind::Contact {
+            return Err(LawError::new(
+                ErrorKind::UnknownLaw,
+                format!(
+                    "law '{name}' is a restitution law, but a contact law is needed here; contact laws: {}",
+                    self.names_of(LawKind::Contact)
+                ),
+            ));
+        }
+        p.new_contact(name, params)
+    }
+
+    /// Creates restitution law `name` from `params`.
+    pub fn restitution(&self, name: &str, params: &[ParamValue]) -> Result<RestitutionLawHandle, LawError> {
+        let (e, p) = self.find(name)?;
+        if e.info.kind != LawKind::Restitution {
+            return Err(LawError::new(
+                ErrorKind::UnknownLaw,
+                format!(
+                    "law '{name}' is a contact law, but a restitution law is needed here; restitution laws: {}",
+                    self.names_of(LawKind::Restitution)
+                ),
+            ));
+        }
+        p.new_restitution(name, params)
+    }
+
+    /// Closed-form calibration of contact law `name`, if it offers one.
+    pub fn calibrate(
+        &self,
+        name: &str,
+        target: &CalibrationTarget,
+        pair: &Pair,
+        fixed: &[ParamValue],
+    ) -> Result<Option<Vec<ParamValue>>, LawError> {
+        let (_, p) = self.find(name)?;
+        p.calibrate(name, target, pair, fixed)
+    }
+
+    /// Names of the laws of one kind, comma-separated.
+    pub fn names_of(&self, kind: LawKind) -> String {
+        let v: Vec<&str> = self
+            .laws
+            .iter()
+            .filter(|l| l.info.kind == kind)
+            .map(|l| l.info.name.as_str())
+            .collect();
+        if v.is_empty() {
+            "(none)".to_string()
+        } else {
+            v.join(", ")
+        }
+    }
+}
+
+/// "contact" or "restitution".
+pub fn kind_str(k: LawKind) -> &'static str {
+    match k {
+        LawKind::Contact => "contact",
+        LawKind::Restitution => "restitution",
+    }
+}

@@ -1,0 +1,142 @@
+//! Linear spring-dashpot (LSD): F = k δ + 2 γ m δ̇ (Antypov & Elliott 2011, eqs. 3–8).
+//!
+//! The damping γ follows from the restitution ε by eq. (8), γ = −ln ε / √(ln²ε + π²) · w0 with
+//! w0 = √(k/m), so that the collision ending when δ returns to 0 has restitution exactly ε,
+//! at every impact speed. The stiffness k defaults to the one that maps the Hertz spring of the
+//! same pair onto this one (k = (2/3) E_eff d for identical spheres; k = (8/3) E_eff r_eff in
+//! general, see [`Pair::mapped_linear_stiffness`]).
+
+use dashpot_sdk::{
+    BoundContact, CalibrationTarget, Coefficient, ContactLaw, EndCriterion, LawError, Pair, ParamSpec,
+    ParamValue, Params, Range,
+};
+use std::f64::consts::PI;
+
+/// The configured law: restitution `eps` and optional stiffness `k` (N/m).
+#[derive(Debug, Clone)]
+pub struct Lsd {
+    eps: f64,
+    k: Option<f64>,
+}
+
+/// The law bound to a pair.
+#[derive(Debug, Clone)]
+pub struct LsdBound {
+    /// Spring constant k (N/m).
+    pub k: f64,
+    /// Dashpot coefficient c = 2 γ m (N·s/m).
+    pub c: f64,
+    mass: f64,
+    eps: f64,
+}
+
+impl Lsd {
+    /// The law with restitution `eps` and stiffness `k` (None: derived from the pair).
+    pub fn with(eps: f64, k: Option<f64>) -> Lsd {
+        Lsd { eps, k }
+    }
+}
+
+impl ContactLaw for Lsd {
+    type Bound = LsdBound;
+    const NAME: &'static str = "lsd";
+    const SUMMARY: &'static str =
+        "linear spring-dashpot: F = k δ + 2γm δ̇, γ from ε by Antypov & Elliott eq. 8";
+    const DOC: &'static str = "Linear spring-dashpot (LSD) normal force F = k δ + 2 γ m δ̇ for δ ≥ 0, \
+        0 for δ < 0 (m: effective mass). The damping rate is \
+        γ = −ln ε / √(ln²ε + π²) · √(k/m) (Antypov & Elliott 2011, eq. 8), so a collision that ends \
+        when δ returns to 0 has restitution exactly ε and lasts τ = π/√(k/m − γ²), both independent \
+        of the impact speed. k defaults to (8/3) E_eff r_eff, which is the paper's k = (2/3) E_eff d \
+        for two identical spheres of diameter d: the stiffness whose phase trajectory maps onto \
+        the Hertz spring of the same pair (eq. 19). Calibration in closed form: ε sets eps; a \
+        contact time τ sets k = m (ln²ε + π²)/τ².";
+    const END_CRITERION: EndCriterion = EndCriterion::Overlap;
+
+    fn params() -> Vec<ParamSpec> {
+        vec![
+            ParamSpec::new(
+                "eps",
+                "1",
+                0.54,
+                Range::open_closed(0.0, 1.0),
+                "coefficient of restitution (contact ends when δ returns to 0)",
+            ),
+            ParamSpec::derived(
+                "k",
+                "N/m",
+                Range::positive(),
+                "spring constant; default (8/3) E_eff r_eff = (2/3) E_eff d for identical spheres",
+            ),
+        ]
+    }
+
+    fn new(p: &Params) -> Result<Self, LawError> {
+        Ok(Lsd {
+            eps: p.get("eps")?,
+            k: p.get_opt("k")?,
+        })
+    }
+
+    fn bind(&self, pair: &Pair) -> Result<LsdBound, LawError> {
+        let k = self.k.unwrap_or_else(|| pair.mapped_linear_stiffness());
+        let w0 = (k / pair.mass).sqrt();
+        let l = self.eps.ln();
+        let gamma = -l / (l * l + PI * PI).sqrt() * w0;
+        Ok(LsdBound {
+            k,
+            c: 2.0 * gamma * pair.mass,
+            mass: pair.mass,
+            eps: self.eps,
+        })
+    }
+
+    fn calibrate(
+        target: &CalibrationTarget,
+        pair: &Pair,
+        _fixed: &Params,
+    ) -> Result<Option<Vec<ParamValue>>, LawError> {
+        if target.end != EndCriterion::Overlap {
+            return Ok(None);
+        }
+        let eps = target.restitution;
+        let mut out = vec![ParamValue::new("eps", eps)];
+        if let Some(tau) = target.contact_time.into_option() {
+            let l = eps.ln();
+            out.push(ParamValue::new("k", pair.mass * (l * l + PI * PI) / (tau * tau)));
+        }
+        Ok(Some(out))
+    }
+}
+
+impl BoundContact for LsdBound {
+    #[inline(always)]
+    fn force(&self, delta: f64, rate: f64) -> f64 {
+        if delta < 0.0 {
+            0.0
+        } else {
+            self.k * delta + self.c * rate
+        }
+    }
+
+    fn coefficients(&self) -> Vec<Coefficient> {
+        let w0 = (self.k / self.mass).sqrt();
+        let gamma = self.c / (2.0 * self.mass);
+        let w1 = (w0 * w0 - gamma * gamma).sqrt();
+        vec![
+            Coefficient::new("k", "N/m", self.k, "spring constant"),
+            Coefficient::new("m", "kg", self.mass, "effective mass"),
+            Coefficient::new("w0", "1/s", w0, "undamped angular frequency √(k/m) (eq. 3)"),
+            Coefficient::new("gamma", "1/s", gamma, "damping rate −ln ε/√(ln²ε+π²)·w0 (eq. 8)"),
+            Coefficient::new("c", "N·s/m", self.c, "dashpot coefficient 2γm"),
+            Coefficient::new(
+                "eps",
+                "1",
+                self.eps,
+                "restitution under the overlap criterion (eq. 7)",
+            ),
+            Coefficient::new("contact_time", "s", PI / w1, "τ = π/√(w0² − γ²) (below eq. 8)"),
+        ]
+    }
+}
+
+dashpot_sdk::export_laws!(contact: [Lsd]);
