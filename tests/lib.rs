@@ -1,1 +1,126 @@
-//! Helpers shared by the integration tests.
+//! Helpers shared by the integration tests: where the real plugin libraries are, and how to
+//! build the out-of-workspace plugins (a deliberately incompatible one, the third-party example).
+
+use dashpot::{Registry, SearchPath};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::{Mutex, OnceLock};
+
+/// The workspace root.
+pub fn workspace_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("tests/ has a parent")
+        .to_path_buf()
+}
+
+/// The directory holding the test executable: `target/<profile>/deps`, where cargo leaves the
+/// plugin `.so` files it built as dev-dependencies of this crate.
+pub fn deps_dir() -> PathBuf {
+    let exe = std::env::current_exe().expect("current_exe");
+    exe.parent().expect("exe dir").to_path_buf()
+}
+
+/// The path of a plugin library by crate name (`dashpot_hsd` → `deps/libdashpot_hsd.so`).
+pub fn plugin_file(lib_name: &str) -> PathBuf {
+    deps_dir().join(format!(
+        "{}{lib_name}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    ))
+}
+
+/// The five seed plugins, by library name.
+pub const SEED_PLUGINS: [&str; 5] = [
+    "dashpot_lsd",
+    "dashpot_hsd",
+    "dashpot_kuwabara_kono",
+    "dashpot_mcnamara_falcon",
+    "dashpot_constant",
+];
+
+/// A registry of exactly the five seed plugins, loaded from their `.so` files.
+pub fn seed_registry() -> Registry {
+    let files = SEED_PLUGINS.iter().map(|n| plugin_file(n)).collect();
+    let sp = SearchPath {
+        dirs: vec![],
+        files,
+        use_env: false,
+        use_default: false,
+    };
+    Registry::discover(&sp).expect("the seed plugins load")
+}
+
+fn target_root() -> PathBuf {
+    // deps_dir() = <target>/<profile>/deps
+    deps_dir()
+        .parent()
+        .and_then(Path::parent)
+        .expect("target dir")
+        .to_path_buf()
+}
+
+/// Builds a crate outside the main build (its own target directory, so that a nested cargo
+/// never waits on the lock of the build running these tests) and returns its library file.
+/// `env` is set for the build only.
+pub fn build_external(manifest: &Path, package: &str, lib_name: &str, env: &[(&str, &str)]) -> PathBuf {
+    static LOCK: OnceLock<Mutex<()>> = OnceLock::new();
+    let _g = LOCK
+        .get_or_init(|| Mutex::new(()))
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    let target = target_root().join("external");
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let mut cmd = Command::new(cargo);
+    cmd.arg("build")
+        .arg("--quiet")
+        .arg("--manifest-path")
+        .arg(manifest)
+        .arg("-p")
+        .arg(package)
+        .arg("--target-dir")
+        .arg(&target)
+        .env_remove("DASHPOT_SDK_FAKE_ABI_VERSION");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    let status = cmd.status().expect("run cargo");
+    assert!(status.success(), "building {package} failed");
+    target.join("debug").join(format!(
+        "{}{lib_name}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    ))
+}
+
+/// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 0.99.0, copied
+/// to a file of its own (building the real plugin again would overwrite it).
+pub fn wrong_abi_plugin() -> PathBuf {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        let built = build_external(
+            &workspace_root().join("Cargo.toml"),
+            "dashpot-constant",
+            "dashpot_constant",
+            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.99.0")],
+        );
+        let dst = built.with_file_name(format!("libwrong_abi_constant{}", std::env::consts::DLL_SUFFIX));
+        std::fs::copy(&built, &dst).expect("copy the wrong-ABI plugin");
+        dst
+    })
+    .clone()
+}
+
+/// The third-party example plugin, built from its own workspace as an outside author would.
+pub fn third_party_plugin() -> PathBuf {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        build_external(
+            &workspace_root().join("examples/third-party-law/Cargo.toml"),
+            "dashpot-example-law",
+            "dashpot_example_law",
+            &[],
+        )
+    })
+    .clone()
+}

@@ -36,8 +36,8 @@ impl SearchPath {
     }
 
     /// The default plugin directories: the executable's own directory (where `cargo build`
-    /// puts the plugin .so files next to `dashpot`) and its `deps/` subdirectory (where
-    /// `cargo test` leaves them), then `../lib/dashpot` for an installed layout.
+    /// puts the plugin libraries next to `dashpot`), then `../lib/dashpot` beside it (an
+    /// installed layout).
     pub fn default_dirs() -> Vec<PathBuf> {
         let mut v = Vec::new();
         if let Some(dir) = std::env::current_exe()
@@ -45,13 +45,14 @@ impl SearchPath {
             .and_then(|p| p.parent().map(Path::to_path_buf))
         {
             v.push(dir.join("../lib/dashpot"));
-            v.push(dir.join("deps"));
             v.insert(0, dir);
         }
         v
     }
 
-    /// All directories to scan, in order.
+    /// All directories to scan, in order. The default directories are searched only when no
+    /// plugin directory, plugin file or `DASHPOT_PLUGIN_PATH` was given: an explicit choice
+    /// replaces the default rather than mixing with it.
     pub fn all_dirs(&self) -> Vec<PathBuf> {
         let mut v = self.dirs.clone();
         if self.use_env {
@@ -59,7 +60,7 @@ impl SearchPath {
                 v.extend(std::env::split_paths(&p).filter(|p| !p.as_os_str().is_empty()));
             }
         }
-        if self.use_default {
+        if self.use_default && v.is_empty() && self.files.is_empty() {
             v.extend(Self::default_dirs());
         }
         v
@@ -88,7 +89,7 @@ pub struct Registry {
 
 /// A shared library that is not one of cargo's hashed dependency artifacts
 /// (`libfoo-0123456789abcdef.so`, e.g. proc macros in `deps/`).
-fn is_candidate(p: &Path) -> bool {
+pub(crate) fn is_candidate(p: &Path) -> bool {
     let hashed = p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| {
         s.rsplit_once('-')
             .is_some_and(|(_, h)| h.len() == 16 && h.bytes().all(|b| b.is_ascii_hexdigit()))

@@ -232,15 +232,33 @@ pub mod __private {
 
     thread_local! {
         static LAST_PANIC: RefCell<String> = const { RefCell::new(String::new()) };
+        static PANIC_LOCATION: RefCell<String> = const { RefCell::new(String::new()) };
+    }
+
+    /// Called once when a plugin library is loaded (from its root-module constructor, so only in
+    /// the cdylib, whose standard library is its own): panics inside the plugin no longer print
+    /// to stderr; their message and location travel to the host as an error instead.
+    pub fn install_quiet_panic_hook() {
+        std::panic::set_hook(Box::new(|info| {
+            let loc = info
+                .location()
+                .map(|l| format!("{}:{}", l.file(), l.line()))
+                .unwrap_or_default();
+            PANIC_LOCATION.with(|s| *s.borrow_mut() = loc);
+        }));
     }
 
     fn panic_message(payload: Box<dyn std::any::Any + Send>) -> String {
-        if let Some(s) = payload.downcast_ref::<&str>() {
+        let msg = if let Some(s) = payload.downcast_ref::<&str>() {
             (*s).to_string()
         } else if let Some(s) = payload.downcast_ref::<String>() {
             s.clone()
         } else {
             "(non-string panic payload)".to_string()
+        };
+        match PANIC_LOCATION.with(|s| std::mem::take(&mut *s.borrow_mut())) {
+            loc if loc.is_empty() => msg,
+            loc => format!("{msg} (at {loc})"),
         }
     }
 
@@ -560,7 +578,7 @@ pub mod __private {
 
 /// Exports laws from a plugin crate (`crate-type = ["cdylib"]`). Use once per crate:
 ///
-/// ```ignore
+/// ```text
 /// dashpot_sdk::export_laws!(contact: [MyLaw]);
 /// dashpot_sdk::export_laws!(restitution: [MyRestitution]);
 /// dashpot_sdk::export_laws!(contact: [A, B], restitution: [C]);
@@ -614,6 +632,7 @@ macro_rules! export_laws {
             }
 
             fn root_module() -> abi::PluginModuleRef {
+                p::install_quiet_panic_hook();
                 abi::PluginModule {
                     name: RStr::from_str(env!("CARGO_PKG_NAME")),
                     version: RStr::from_str(env!("CARGO_PKG_VERSION")),

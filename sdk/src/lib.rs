@@ -14,7 +14,7 @@
 //! [`export_laws!`] once. The [`abi`] module defines the stable binary interface (abi_stable)
 //! and the host-side loader with its checks.
 //!
-//! ```ignore
+//! ```
 //! use dashpot_sdk::*;
 //!
 //! /// F = k δ (a plain Hooke spring).
@@ -36,6 +36,7 @@
 //!     fn force(&self, delta: f64, _rate: f64) -> f64 { self.k * delta.max(0.0) }
 //! }
 //! dashpot_sdk::export_laws!(contact: [Hooke]);
+//! # fn main() {}
 //! ```
 
 #![warn(missing_docs)]
