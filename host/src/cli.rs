@@ -70,13 +70,13 @@ pub enum Command {
 #[derive(Args, Debug, Clone)]
 pub struct ParticleArgs {
     /// Particle diameter (m). Default: 0.01 (the MCC granule of Antypov & Elliott).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub diameter: Option<f64>,
     /// Particle density (kg/m³). Default: 1500.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub density: Option<f64>,
     /// Young's modulus (Pa). Default: 6e9.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub young: Option<f64>,
     /// Poisson's ratio, in (-1, 0.5). Default: 0.3.
     #[arg(long, allow_hyphen_values = true)]
@@ -134,7 +134,7 @@ pub struct EvalArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub rate: Option<f64>,
     /// Normal impact speed v (m/s), for a restitution law.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub speed: Option<f64>,
     #[command(flatten)]
     pub particle: ParticleArgs,

@@ -7,6 +7,7 @@
 //!    (same minor while the major is 0), both directions, else the plugin is refused with both
 //!    versions named;
 //! 2. abi_stable's layout check of every type reachable from the root module;
+//!
 //! then it reads the list of laws. Libraries are never unloaded; every object is freed by the
 //! library that allocated it (through its vtable's `drop`).
 //!
@@ -20,8 +21,6 @@
 //! [`ErrorKind::Panic`] error in the host. The host-side handles ([`BoundContactHandle`],
 //! [`BoundRestitutionHandle`]) check every number a law returns and turn NaN or infinity into an
 //! [`ErrorKind::NonFinite`] error that names the inputs.
-
-#![allow(non_local_definitions)] // emitted by abi_stable's StableAbi derive
 
 use crate::error::{ErrorKind, FfiError, LawError};
 use crate::law::{
@@ -432,13 +431,16 @@ pub mod __private {
 
     // ---- law tables built by the export macro ----
 
+    /// A law's closed-form calibration, as stored in the export tables.
+    pub type CalibrateFn =
+        fn(&CalibrationTarget, &Pair, &[ParamValue]) -> Result<Option<Vec<ParamValue>>, LawError>;
+
     /// One exported contact law.
     pub struct ContactEntry {
         pub name: &'static str,
         pub info: fn() -> LawInfo,
         pub create: fn(&[ParamValue]) -> Result<FfiContactLaw, LawError>,
-        pub calibrate:
-            fn(&CalibrationTarget, &Pair, &[ParamValue]) -> Result<Option<Vec<ParamValue>>, LawError>,
+        pub calibrate: CalibrateFn,
     }
 
     impl ContactEntry {
@@ -849,7 +851,7 @@ pub const BATCH_CHUNK: usize = 2048;
 fn all_finite(x: &[f64]) -> bool {
     // Branch-free (vectorises): an f64 is non-finite iff its exponent bits are all set.
     const EXP: u64 = 0x7ff0_0000_0000_0000;
-    x.iter().fold(false, |bad, v| bad | (v.to_bits() & EXP == EXP)) == false
+    !x.iter().fold(false, |bad, v| bad | (v.to_bits() & EXP == EXP))
 }
 
 fn length_error(what: &str, lens: &[usize]) -> LawError {

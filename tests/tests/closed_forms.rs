@@ -172,7 +172,7 @@ fn kuwabara_kono_force_at_chosen_states() {
     let f = b.force(1e-5, 0.5).unwrap();
     assert_relative_eq!(
         f,
-        2.197802197802198e8 * (3.1622776601683794e-8 + 2.3717082451262845e-9),
+        2.197802197802198e8 * (3.162_277_660_168_38e-8 + 2.371_708_245_126_28e-9),
         max_relative = 1e-12
     );
 }

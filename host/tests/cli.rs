@@ -1,0 +1,378 @@
+//! The `dashpot` binary as a user runs it.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+const SEED: [&str; 5] = [
+    "dashpot_lsd",
+    "dashpot_hsd",
+    "dashpot_kuwabara_kono",
+    "dashpot_mcnamara_falcon",
+    "dashpot_constant",
+];
+
+fn lib(name: &str) -> PathBuf {
+    let deps = std::env::current_exe().unwrap().parent().unwrap().to_path_buf();
+    deps.join(format!(
+        "{}{name}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    ))
+}
+
+/// A plugin directory holding exactly the five seed plugins.
+fn plugin_dir() -> PathBuf {
+    static D: OnceLock<PathBuf> = OnceLock::new();
+    D.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("dashpot-cli-plugins-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        for n in SEED {
+            let src = lib(n);
+            std::fs::copy(&src, d.join(src.file_name().unwrap())).unwrap();
+        }
+        d
+    })
+    .clone()
+}
+
+fn dashpot(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .arg("--plugin-dir")
+        .arg(plugin_dir())
+        .args(args)
+        .env_remove("DASHPOT_PLUGIN_PATH")
+        .env_remove("RUST_BACKTRACE")
+        .output()
+        .unwrap()
+}
+
+fn ok_json(args: &[&str]) -> Value {
+    let o = dashpot(args);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// Runs a command that must fail: non-zero exit, an `error:` line containing every `needle`,
+/// and no panic or backtrace.
+fn fails(args: &[&str], needles: &[&str]) {
+    let o = dashpot(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{args:?} should fail");
+    assert!(err.contains("error"), "{args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: expected '{n}' in: {err}");
+    }
+    assert!(
+        !err.contains("panicked") && !err.contains("backtrace"),
+        "{args:?}: {err}"
+    );
+}
+
+#[test]
+fn laws_json_lists_the_five_laws_with_their_schemas() {
+    let v = ok_json(&["laws", "--json"]);
+    let laws = v["laws"].as_array().unwrap();
+    let mut names: Vec<&str> = laws.iter().map(|l| l["name"].as_str().unwrap()).collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["constant", "hsd", "kuwabara-kono", "lsd", "mcnamara-falcon"]
+    );
+    let get = |n: &str| laws.iter().find(|l| l["name"] == n).unwrap();
+    let hsd = get("hsd");
+    assert_eq!(hsd["kind"], "contact");
+    assert_eq!(hsd["end_criterion"], "overlap");
+    assert!(hsd["plugin"]["file"]
+        .as_str()
+        .unwrap()
+        .ends_with("libdashpot_hsd.so"));
+    assert_eq!(hsd["plugin"]["version"], "0.1.0");
+    let eps = &hsd["params"][0];
+    assert_eq!(
+        (eps["name"].as_str(), eps["unit"].as_str(), eps["range"].as_str()),
+        (Some("eps"), Some("1"), Some("(0, 1]"))
+    );
+    assert_eq!(eps["min_inclusive"], false);
+    assert_eq!(eps["max"], 1.0);
+    let lsd = get("lsd");
+    let k = lsd["params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == "k")
+        .unwrap();
+    assert!(k["default"].is_null(), "k is derived from the pair when unset");
+    assert_eq!(k["unit"], "N/m");
+    assert_eq!(get("kuwabara-kono")["params"][0]["unit"], "s");
+    assert_eq!(get("kuwabara-kono")["end_criterion"], "force");
+    let mf = get("mcnamara-falcon");
+    assert_eq!(mf["kind"], "restitution");
+    let names: Vec<&str> = mf["params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["r0", "vy"]);
+    assert_eq!(get("constant")["params"][0]["default"], 0.95);
+}
+
+#[test]
+fn law_shows_documentation() {
+    let o = dashpot(&["law", "hsd"]);
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success());
+    assert!(
+        s.contains("eq. 17") && s.contains("eps [1]") && s.contains("valid (0, 1]"),
+        "{s}"
+    );
+}
+
+#[test]
+fn eval_contact_law_gives_the_hsd_force() {
+    let v = ok_json(&[
+        "eval", "--law", "hsd", "--set", "eps=0.3", "--delta", "2e-5", "--rate", "0.4", "--json",
+    ]);
+    let (m, r, e) = (
+        v["pair"]["mass"].as_f64().unwrap(),
+        v["pair"]["radius"].as_f64().unwrap(),
+        v["pair"]["young"].as_f64().unwrap(),
+    );
+    let k = 4.0 / 3.0 * e * r.sqrt();
+    let l = f64::ln(0.3);
+    let alpha = -(5f64).sqrt() * l / (l * l + std::f64::consts::PI.powi(2)).sqrt();
+    let expected = k * 2e-5f64.powf(1.5) + alpha * (m * k).sqrt() * 2e-5f64.powf(0.25) * 0.4;
+    let f = v["force"].as_f64().unwrap();
+    assert!((f / expected - 1.0).abs() < 1e-13, "{f} vs {expected}");
+    assert_eq!(v["law"], "hsd");
+    // default pair: two 1 cm MCC spheres
+    assert!((r - 0.0025).abs() < 1e-15);
+}
+
+#[test]
+fn eval_restitution_law_and_wall() {
+    let v = ok_json(&["eval", "--law", "mcnamara-falcon", "--speed", "1", "--json"]);
+    let r = v["restitution"].as_f64().unwrap();
+    assert!((r - 0.95 * (1.0f64 / 0.3).powf(-0.25)).abs() < 1e-14);
+    let v = ok_json(&[
+        "eval",
+        "--law",
+        "lsd",
+        "--wall",
+        "--diameter",
+        "0.002",
+        "--delta",
+        "0",
+        "--rate",
+        "0",
+        "--json",
+    ]);
+    assert!((v["pair"]["radius"].as_f64().unwrap() - 0.001).abs() < 1e-18);
+    assert_eq!(v["force"], 0.0);
+}
+
+#[test]
+fn toml_config_with_set_override() {
+    let f = std::env::temp_dir().join(format!("dashpot-cfg-{}.toml", std::process::id()));
+    std::fs::write(
+        &f,
+        "[law]\nname = \"constant\"\nparams = { r = 0.4 }\n[particle]\ndiameter = 0.002\n",
+    )
+    .unwrap();
+    let fs = f.to_str().unwrap();
+    let v = ok_json(&["eval", "--config", fs, "--speed", "3", "--json"]);
+    assert_eq!(v["restitution"], 0.4);
+    let v = ok_json(&["eval", "--config", fs, "--set", "r=0.8", "--speed", "3", "--json"]);
+    assert_eq!(v["restitution"], 0.8);
+    std::fs::write(&f, "[law]\nname = \"constant\"\n[partical]\nd = 1\n").unwrap();
+    fails(
+        &["eval", "--config", fs, "--speed", "1"],
+        &["not a valid dashpot configuration", "partical"],
+    );
+    std::fs::remove_file(&f).ok();
+}
+
+#[test]
+fn bad_input_is_a_clear_error_with_nonzero_exit() {
+    fails(
+        &["eval", "--law", "hertz", "--speed", "1"],
+        &["unknown law 'hertz'", "hsd", "mcnamara-falcon"],
+    );
+    fails(
+        &[
+            "eval", "--law", "hsd", "--set", "eps=1.5", "--delta", "1e-5", "--rate", "1",
+        ],
+        &["'eps'", "1.5", "(0, 1]"],
+    );
+    fails(
+        &[
+            "eval", "--law", "hsd", "--set", "eps=0", "--delta", "1e-5", "--rate", "1",
+        ],
+        &["'eps'", "(0, 1]"],
+    );
+    fails(
+        &[
+            "eval", "--law", "hsd", "--set", "eps=nan", "--delta", "1e-5", "--rate", "1",
+        ],
+        &["NaN", "(0, 1]"],
+    );
+    fails(
+        &[
+            "eval", "--law", "hsd", "--set", "gamma=1", "--delta", "1e-5", "--rate", "1",
+        ],
+        &["no parameter 'gamma'", "eps"],
+    );
+    fails(
+        &[
+            "eval", "--law", "hsd", "--set", "eps", "--delta", "1e-5", "--rate", "1",
+        ],
+        &["NAME=VALUE"],
+    );
+    fails(
+        &[
+            "eval",
+            "--law",
+            "hsd",
+            "--poisson",
+            "0.5",
+            "--delta",
+            "1e-5",
+            "--rate",
+            "1",
+        ],
+        &["poisson = 0.5", "(-1, 0.5)"],
+    );
+    fails(
+        &[
+            "eval",
+            "--law",
+            "hsd",
+            "--poisson",
+            "-1",
+            "--delta",
+            "1e-5",
+            "--rate",
+            "1",
+        ],
+        &["poisson = -1"],
+    );
+    fails(
+        &[
+            "eval", "--law", "hsd", "--young", "0", "--delta", "1e-5", "--rate", "1",
+        ],
+        &["young = 0", "> 0"],
+    );
+    fails(
+        &[
+            "eval",
+            "--law",
+            "hsd",
+            "--density",
+            "-1500",
+            "--delta",
+            "1e-5",
+            "--rate",
+            "1",
+        ],
+        &["density = -1500"],
+    );
+    fails(
+        &[
+            "eval",
+            "--law",
+            "hsd",
+            "--diameter",
+            "nan",
+            "--delta",
+            "1e-5",
+            "--rate",
+            "1",
+        ],
+        &["diameter = NaN"],
+    );
+    fails(
+        &["eval", "--law", "hsd", "--delta", "nan", "--rate", "1"],
+        &["--delta = NaN"],
+    );
+    fails(&["eval", "--law", "hsd", "--delta", "1e-5"], &["--rate"]);
+    fails(
+        &["eval", "--law", "hsd", "--speed", "1"],
+        &["contact law", "--delta"],
+    );
+    fails(
+        &["eval", "--law", "constant", "--delta", "1", "--rate", "1"],
+        &["restitution law", "--speed"],
+    );
+    fails(
+        &["eval", "--law", "constant", "--speed", "-1"],
+        &["--speed = -1", ">= 0"],
+    );
+    fails(&["eval", "--speed", "1"], &["no law given"]);
+    fails(
+        &["eval", "--law", "hsd", "--delta", "abc", "--rate", "1"],
+        &["abc"],
+    );
+}
+
+#[test]
+fn a_panicking_plugin_is_an_error_in_the_cli() {
+    let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .args(["--plugin"])
+        .arg(lib("dashpot_fixture_faulty"))
+        .args(["eval", "--law", "panicky", "--delta", "1", "--rate", "0"])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("contact law 'panicky' panicked: deliberate panic at delta = 1"),
+        "{err}"
+    );
+    assert!(
+        err.contains("fixtures/faulty/src/lib.rs"),
+        "panic location is reported: {err}"
+    );
+}
+
+#[test]
+fn plugin_path_environment_variable() {
+    let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .args(["eval", "--law", "constant", "--speed", "1", "--json"])
+        .env("DASHPOT_PLUGIN_PATH", plugin_dir())
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["restitution"], 0.95);
+    // an empty plugin directory: a clear error naming where it looked
+    let empty = std::env::temp_dir().join(format!("dashpot-empty-{}", std::process::id()));
+    std::fs::create_dir_all(&empty).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .arg("--plugin-dir")
+        .arg(&empty)
+        .arg("laws")
+        .output()
+        .unwrap();
+    assert!(!o.status.success());
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no plugins found"));
+}
+
+#[test]
+fn reproduce_writes_the_report() {
+    let out = std::env::temp_dir().join(format!("dashpot-repro-{}", std::process::id()));
+    let o = dashpot(&["reproduce", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(md.contains("0.7031"), "r(1 m/s) in the report");
+    let csv = std::fs::read_to_string(out.join("mcnamara_falcon_fig1.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 242);
+    let laws: Value = serde_json::from_str(&std::fs::read_to_string(out.join("laws.json")).unwrap()).unwrap();
+    assert_eq!(laws.as_array().unwrap().len(), 5);
+    std::fs::remove_dir_all(&out).ok();
+}
