@@ -19,7 +19,8 @@
 //! # Panics and bad numbers
 //! Every function a plugin exports runs inside `catch_unwind`: a panicking law becomes an
 //! [`ErrorKind::Panic`] error in the host. The host-side handles ([`BoundContactHandle`],
-//! [`BoundRestitutionHandle`]) check every number a law returns and turn NaN or infinity into an
+//! [`BoundRestitutionHandle`]) check every number a law returns (batches inside the plugin, fused
+//! with the computation) and turn NaN or infinity into an
 //! [`ErrorKind::NonFinite`] error that names the inputs.
 
 use crate::error::{ErrorKind, FfiError, LawError};
@@ -68,6 +69,8 @@ pub enum CallStatus {
     Ok = 0,
     /// The law panicked; the message is available from the vtable's `take_panic`.
     Panic = 1,
+    /// A batch output is NaN or infinite; its index was written to `first_bad`.
+    NonFinite = 2,
 }
 
 /// The functions of a configured contact law (not yet bound to a pair).
@@ -96,13 +99,16 @@ pub struct FfiContactLaw {
 pub struct BoundContactVTable {
     /// `*out = F(delta, rate)` (N) for overlap `delta` (m) and rate `rate` (m/s).
     pub force: unsafe extern "C" fn(obj: *const c_void, delta: f64, rate: f64, out: *mut f64) -> CallStatus,
-    /// `out[i] = F(delta[i], rate[i])` for `i < n`.
+    /// `out[i] = F(delta[i], rate[i])` for `i < n`. The plugin checks the outputs as it goes
+    /// (fused with the computation, so the check is nearly free) and returns
+    /// [`CallStatus::NonFinite`] with the first bad index in `*first_bad`.
     pub force_batch: unsafe extern "C" fn(
         obj: *const c_void,
         delta: *const f64,
         rate: *const f64,
         out: *mut f64,
         n: usize,
+        first_bad: *mut usize,
     ) -> CallStatus,
     /// The bound law's derived constants.
     pub coefficients: unsafe extern "C" fn(obj: *const c_void) -> RResult<RVec<Coefficient>, FfiError>,
@@ -148,9 +154,14 @@ pub struct FfiRestitutionLaw {
 pub struct BoundRestitutionVTable {
     /// `*out = r(speed)` for normal impact speed `speed` (m/s).
     pub restitution: unsafe extern "C" fn(obj: *const c_void, speed: f64, out: *mut f64) -> CallStatus,
-    /// `out[i] = r(speed[i])` for `i < n`.
-    pub restitution_batch:
-        unsafe extern "C" fn(obj: *const c_void, speed: *const f64, out: *mut f64, n: usize) -> CallStatus,
+    /// `out[i] = r(speed[i])` for `i < n`; checked like `BoundContactVTable::force_batch`.
+    pub restitution_batch: unsafe extern "C" fn(
+        obj: *const c_void,
+        speed: *const f64,
+        out: *mut f64,
+        n: usize,
+        first_bad: *mut usize,
+    ) -> CallStatus,
     /// The message of the last panic caught on this thread by this plugin (empty if none).
     pub take_panic: extern "C" fn() -> RString,
     /// Frees `obj`.
@@ -320,25 +331,68 @@ pub mod __private {
         hot(|| unsafe { *out = (*(obj as *const B)).force(delta, rate) })
     }
 
+    /// Outputs are checked in blocks this small, right after they are computed: the block's
+    /// forces and its check then sit together in the CPU's out-of-order window, so the check
+    /// runs in the shadow of the law's arithmetic (square roots) instead of costing a second
+    /// pass. Measured on HSD: blocks of 256 cost ~8 % of the force, blocks of 16 ~1 %.
+    const CHECK_BLOCK: usize = 16;
+
+    /// Index of the first non-finite value of `o`, if any.
+    #[inline(always)]
+    fn first_non_finite(o: &[f64]) -> Option<usize> {
+        if super::all_finite(o) {
+            None
+        } else {
+            o.iter().position(|v| !v.is_finite())
+        }
+    }
+
     unsafe extern "C" fn bound_force_batch<B: BoundContact>(
         obj: *const c_void,
         delta: *const f64,
         rate: *const f64,
         out: *mut f64,
         n: usize,
+        first_bad: *mut usize,
     ) -> CallStatus {
-        hot(|| unsafe {
-            let (d, r, o) = if n == 0 {
-                (&[][..], &[][..], &mut [][..])
-            } else {
-                (
-                    std::slice::from_raw_parts(delta, n),
-                    std::slice::from_raw_parts(rate, n),
-                    std::slice::from_raw_parts_mut(out, n),
-                )
-            };
-            (*(obj as *const B)).force_batch(d, r, o)
-        })
+        let mut bad = None;
+        let st = hot(|| unsafe {
+            if n == 0 {
+                return;
+            }
+            let (d, r, o) = (
+                std::slice::from_raw_parts(delta, n),
+                std::slice::from_raw_parts(rate, n),
+                std::slice::from_raw_parts_mut(out, n),
+            );
+            let law = &*(obj as *const B);
+            for (k, ((d, r), o)) in d
+                .chunks(CHECK_BLOCK)
+                .zip(r.chunks(CHECK_BLOCK))
+                .zip(o.chunks_mut(CHECK_BLOCK))
+                .enumerate()
+            {
+                law.force_batch(d, r, o);
+                if let Some(i) = first_non_finite(o) {
+                    bad = Some(k * CHECK_BLOCK + i);
+                    return;
+                }
+            }
+        });
+        finish_batch(st, bad, first_bad)
+    }
+
+    #[inline(always)]
+    fn finish_batch(st: CallStatus, bad: Option<usize>, first_bad: *mut usize) -> CallStatus {
+        match (st, bad) {
+            (CallStatus::Ok, Some(i)) => {
+                if !first_bad.is_null() {
+                    unsafe { *first_bad = i };
+                }
+                CallStatus::NonFinite
+            }
+            (st, _) => st,
+        }
     }
 
     unsafe extern "C" fn bound_coefficients<B: BoundContact>(
@@ -397,18 +451,27 @@ pub mod __private {
         speed: *const f64,
         out: *mut f64,
         n: usize,
+        first_bad: *mut usize,
     ) -> CallStatus {
-        hot(|| unsafe {
-            let (v, o) = if n == 0 {
-                (&[][..], &mut [][..])
-            } else {
-                (
-                    std::slice::from_raw_parts(speed, n),
-                    std::slice::from_raw_parts_mut(out, n),
-                )
-            };
-            (*(obj as *const B)).restitution_batch(v, o)
-        })
+        let mut bad = None;
+        let st = hot(|| unsafe {
+            if n == 0 {
+                return;
+            }
+            let (v, o) = (
+                std::slice::from_raw_parts(speed, n),
+                std::slice::from_raw_parts_mut(out, n),
+            );
+            let law = &*(obj as *const B);
+            for (k, (v, o)) in v.chunks(CHECK_BLOCK).zip(o.chunks_mut(CHECK_BLOCK)).enumerate() {
+                law.restitution_batch(v, o);
+                if let Some(i) = first_non_finite(o) {
+                    bad = Some(k * CHECK_BLOCK + i);
+                    return;
+                }
+            }
+        });
+        finish_batch(st, bad, first_bad)
     }
 
     struct RestitutionVt<T>(T);
@@ -843,15 +906,20 @@ impl Drop for ContactLawHandle {
     }
 }
 
-/// Batch calls cross the boundary in chunks of this many pairs, so that the host's finiteness
-/// check reads outputs still in L1 cache.
-pub const BATCH_CHUNK: usize = 2048;
-
 #[inline]
 fn all_finite(x: &[f64]) -> bool {
-    // Branch-free (vectorises): an f64 is non-finite iff its exponent bits are all set.
-    const EXP: u64 = 0x7ff0_0000_0000_0000;
-    !x.iter().fold(false, |bad, v| bad | (v.to_bits() & EXP == EXP))
+    // v − v is 0 for a finite v and NaN for ±inf or NaN. Eight independent accumulators let the
+    // compiler vectorise with plain SSE2 (subpd/addpd), keeping the check to a fraction of a
+    // nanosecond per value.
+    let mut acc = [0.0f64; 8];
+    let mut it = x.chunks_exact(8);
+    for c in &mut it {
+        for j in 0..8 {
+            acc[j] += c[j] - c[j];
+        }
+    }
+    let tail = it.remainder().iter().fold(0.0, |a, v| a + (v - v));
+    acc.iter().sum::<f64>() + tail == 0.0
 }
 
 fn length_error(what: &str, lens: &[usize]) -> LawError {
@@ -897,7 +965,7 @@ impl BoundContactHandle {
         let mut out = 0.0;
         match unsafe { (self.ffi.vtable.force)(self.ffi.obj, delta, rate, &mut out) } {
             CallStatus::Ok if out.is_finite() => Ok(out),
-            CallStatus::Ok => Err(self.non_finite(out, delta, rate)),
+            CallStatus::Ok | CallStatus::NonFinite => Err(self.non_finite(out, delta, rate)),
             CallStatus::Panic => Err(self.panic_error()),
         }
     }
@@ -907,23 +975,25 @@ impl BoundContactHandle {
         if delta.len() != out.len() || rate.len() != out.len() {
             return Err(length_error("force_batch", &[delta.len(), rate.len(), out.len()]));
         }
-        for ((d, r), o) in delta
-            .chunks(BATCH_CHUNK)
-            .zip(rate.chunks(BATCH_CHUNK))
-            .zip(out.chunks_mut(BATCH_CHUNK))
-        {
-            let st = unsafe {
-                (self.ffi.vtable.force_batch)(self.ffi.obj, d.as_ptr(), r.as_ptr(), o.as_mut_ptr(), o.len())
-            };
-            if st == CallStatus::Panic {
-                return Err(self.panic_error());
-            }
-            if !all_finite(o) {
-                let i = o.iter().position(|v| !v.is_finite()).unwrap_or(0);
-                return Err(self.non_finite(o[i], d[i], r[i]));
+        let mut bad = 0usize;
+        let st = unsafe {
+            (self.ffi.vtable.force_batch)(
+                self.ffi.obj,
+                delta.as_ptr(),
+                rate.as_ptr(),
+                out.as_mut_ptr(),
+                out.len(),
+                &mut bad,
+            )
+        };
+        match st {
+            CallStatus::Ok => Ok(()),
+            CallStatus::Panic => Err(self.panic_error()),
+            CallStatus::NonFinite => {
+                let i = bad.min(out.len().saturating_sub(1));
+                Err(self.non_finite(out[i], delta[i], rate[i]))
             }
         }
-        Ok(())
     }
 
     /// The bound law's derived constants (stiffness, damping, ...).
@@ -1008,7 +1078,7 @@ impl BoundRestitutionHandle {
         let mut out = 0.0;
         match unsafe { (self.ffi.vtable.restitution)(self.ffi.obj, speed, &mut out) } {
             CallStatus::Ok if out.is_finite() => Ok(out),
-            CallStatus::Ok => Err(self.non_finite(out, speed)),
+            CallStatus::Ok | CallStatus::NonFinite => Err(self.non_finite(out, speed)),
             CallStatus::Panic => Err(self.panic_error()),
         }
     }
@@ -1018,19 +1088,24 @@ impl BoundRestitutionHandle {
         if speed.len() != out.len() {
             return Err(length_error("restitution_batch", &[speed.len(), out.len()]));
         }
-        for (v, o) in speed.chunks(BATCH_CHUNK).zip(out.chunks_mut(BATCH_CHUNK)) {
-            let st = unsafe {
-                (self.ffi.vtable.restitution_batch)(self.ffi.obj, v.as_ptr(), o.as_mut_ptr(), o.len())
-            };
-            if st == CallStatus::Panic {
-                return Err(self.panic_error());
-            }
-            if !all_finite(o) {
-                let i = o.iter().position(|x| !x.is_finite()).unwrap_or(0);
-                return Err(self.non_finite(o[i], v[i]));
+        let mut bad = 0usize;
+        let st = unsafe {
+            (self.ffi.vtable.restitution_batch)(
+                self.ffi.obj,
+                speed.as_ptr(),
+                out.as_mut_ptr(),
+                out.len(),
+                &mut bad,
+            )
+        };
+        match st {
+            CallStatus::Ok => Ok(()),
+            CallStatus::Panic => Err(self.panic_error()),
+            CallStatus::NonFinite => {
+                let i = bad.min(out.len().saturating_sub(1));
+                Err(self.non_finite(out[i], speed[i]))
             }
         }
-        Ok(())
     }
 }
 
