@@ -207,6 +207,9 @@ fn laws(reg: &Registry, json_out: bool) -> Result<()> {
         );
         return Ok(());
     }
+    for e in &reg.refused {
+        eprintln!("warning: {e}");
+    }
     if reg.laws.is_empty() {
         bail!(
             "no plugins found; searched: {}. Build them with `cargo build --release` or pass --plugin-dir.",

@@ -83,8 +83,12 @@ pub struct Registry {
     pub plugins: Vec<LoadedPlugin>,
     /// Every law, first occurrence of each name.
     pub laws: Vec<LawEntry>,
-    /// Non-fatal findings while scanning (shadowed names, libraries that are not plugins).
+    /// Non-fatal findings while scanning (shadowed law names).
     pub notes: Vec<String>,
+    /// Plugins found in a directory that were refused (wrong sdk version, stale layout, ...).
+    /// They do not stop the other plugins from loading; their errors are repeated whenever a
+    /// law cannot be found.
+    pub refused: Vec<LawError>,
 }
 
 /// A shared library that is not one of cargo's hashed dependency artifacts
@@ -119,8 +123,9 @@ impl Registry {
 
     /// Loads every plugin found on `search`. Files are loaded once (by canonical path, and by
     /// file name across directories so that a copy in `deps/` does not shadow its original).
-    /// Fails on a plugin file that was named explicitly and cannot be loaded, or on a library in
-    /// a plugin directory that looks like a plugin but is refused (wrong ABI version, layout).
+    /// Fails on a plugin file that was named explicitly and cannot be loaded; a plugin found in a
+    /// directory that is refused (wrong sdk version, stale layout) is recorded in
+    /// [`Registry::refused`] instead.
     pub fn discover(search: &SearchPath) -> Result<Registry, LawError> {
         let mut reg = Registry::new();
         let mut seen_paths = HashSet::new();
@@ -149,7 +154,10 @@ impl Registry {
                 if !exports_root_module(&f) {
                     continue;
                 }
-                reg.load_file(&f)?;
+                if let Err(e) = reg.load_file(&f) {
+                    reg.refused.push(e);
+                    continue;
+                }
                 if let Some(n) = fname {
                     seen_names.insert(n);
                 }
@@ -188,9 +196,26 @@ impl Registry {
             Some(e) => Ok((e, &self.plugins[e.plugin])),
             None => Err(LawError::new(
                 ErrorKind::UnknownLaw,
-                format!("unknown law '{name}'; available laws: {}", self.names_or_hint()),
+                format!(
+                    "unknown law '{name}'; available laws: {}{}",
+                    self.names_or_hint(),
+                    self.refused_note()
+                ),
             )),
         }
+    }
+
+    /// A note listing the refused plugins, or nothing.
+    pub fn refused_note(&self) -> String {
+        if self.refused.is_empty() {
+            return String::new();
+        }
+        let mut s = format!("\n{} plugin(s) found but refused:", self.refused.len());
+        for e in &self.refused {
+            s.push_str("\n  - ");
+            s.push_str(e.message.lines().next().unwrap_or(""));
+        }
+        s
     }
 
     fn names_or_hint(&self) -> String {

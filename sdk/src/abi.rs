@@ -757,6 +757,22 @@ impl std::fmt::Debug for LoadedPlugin {
     }
 }
 
+/// The verdict of abi_stable's layout comparison without its pages of type dumps (all of it
+/// with `DASHPOT_ABI_DETAILS=1`).
+fn layout_summary(full: &str) -> String {
+    if std::env::var_os("DASHPOT_ABI_DETAILS").is_some() {
+        return format!("Details:\n{full}");
+    }
+    let lines: Vec<&str> = full.lines().collect();
+    match lines.iter().position(|l| l.starts_with("Error:")) {
+        Some(i) => format!(
+            "First differences:\n{}\n(set DASHPOT_ABI_DETAILS=1 for the full layout comparison)",
+            lines[i..].iter().take(16).copied().collect::<Vec<_>>().join("\n")
+        ),
+        None => "(set DASHPOT_ABI_DETAILS=1 for the full layout comparison)".to_string(),
+    }
+}
+
 fn load_error(path: &Path, msg: impl std::fmt::Display) -> LawError {
     LawError::new(
         ErrorKind::Load,
@@ -799,7 +815,9 @@ impl LoadedPlugin {
                     path,
                     format!(
                         "its types do not have the layout this host expects (built against \
-                     dashpot-sdk {plugin_sdk}, host {ABI_VERSION}); rebuild it. Details: {e}"
+                         dashpot-sdk {plugin_sdk}, host {ABI_VERSION}): it is stale or was built \
+                         from a different sdk. Rebuild it. {}",
+                        layout_summary(&e.to_string())
                     ),
                 ),
                 other => load_error(path, other),

@@ -165,3 +165,25 @@ fn a_directory_scan_skips_libraries_that_are_not_plugins() {
         assert!(reg.find(n).is_ok(), "{n} missing");
     }
 }
+
+#[test]
+fn a_refused_plugin_in_a_directory_does_not_stop_the_others() {
+    let dir = std::env::temp_dir().join(format!("dashpot-mixed-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(wrong_abi_plugin(), dir.join("libdashpot_constant.so")).unwrap();
+    std::fs::copy(plugin_file("dashpot_hsd"), dir.join("libdashpot_hsd.so")).unwrap();
+    let reg = Registry::discover(&SearchPath {
+        dirs: vec![dir.clone()],
+        ..Default::default()
+    })
+    .unwrap();
+    assert!(reg.find("hsd").is_ok());
+    assert_eq!(reg.refused.len(), 1);
+    let e = reg.find("constant").unwrap_err();
+    assert!(
+        e.message.contains("unknown law 'constant'") && e.message.contains("0.99.0"),
+        "{}",
+        e.message
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
