@@ -5,6 +5,7 @@
 pub mod cli;
 pub mod config;
 pub mod output;
+pub mod plot;
 pub mod registry;
 pub mod reproduce;
 

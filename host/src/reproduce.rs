@@ -138,10 +138,30 @@ pub fn run(reg: &Registry, out: &Path) -> Result<()> {
             writeln!(csv, "{v:.6e},{r:.9}")?;
         }
         write_atomic(&out.join("mcnamara_falcon_fig1.csv"), csv.as_bytes())?;
+        use crate::plot::{Figure, Mark, Panel, Series};
+        Figure::single(Panel {
+            title: "McNamara & Falcon (2005) Fig. 1: r(v), r0 = 0.95, vy = 0.3 m/s".into(),
+            x_label: "impact speed v (m/s)".into(),
+            y_label: "coefficient of restitution r".into(),
+            log_x: true,
+            y_range: Some((0.0, 1.05)),
+            series: vec![
+                Series::new(
+                    "mcnamara-falcon plugin",
+                    speeds.iter().copied().zip(r.iter().copied()).collect(),
+                    Mark::Line,
+                    0,
+                ),
+                Series::new("v = vy", vec![(0.3, 0.0), (0.3, 1.05)], Mark::Dashed, 7),
+                Series::new("r = r0", vec![(1e-3, 0.95), (10.0, 0.95)], Mark::Dashed, 6),
+            ],
+            ..Default::default()
+        })
+        .save(out, "mcnamara_falcon_fig1")?;
         writeln!(
             md,
-            "\nThe paper states r(1 m/s) ≈ 0.7; the plugin gives {:.4}. The full curve (their Fig. 1) is in \
-             `mcnamara_falcon_fig1.csv`. The vibrated-bed driver will add Figs. 2–4.",
+            "\nThe paper states r(1 m/s) ≈ 0.7; the plugin gives {:.4}. The full curve (their Fig. 1) is \
+             `mcnamara_falcon_fig1.png` (and `.svg`, `.csv`). The vibrated-bed driver will add Figs. 2–4.",
             law.restitution(1.0)?
         )?;
     } else {
