@@ -925,6 +925,7 @@ impl Drop for ContactLawHandle {
 }
 
 #[inline]
+#[allow(clippy::eq_op)] // v − v is the point: it is NaN exactly when v is not finite
 fn all_finite(x: &[f64]) -> bool {
     // v − v is 0 for a finite v and NaN for ±inf or NaN. Eight independent accumulators let the
     // compiler vectorise with plain SSE2 (subpd/addpd), keeping the check to a fraction of a
