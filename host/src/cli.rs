@@ -58,6 +58,12 @@ pub enum Command {
     },
     /// Evaluate a law once: a contact law's force F(δ, δ̇) or a restitution law's r(v).
     Eval(EvalArgs),
+    /// Integrate one head-on collision under a contact law: restitution, contact time, maximum overlap.
+    Collide(crate::collide::cli::CollideArgs),
+    /// Collisions over a grid of impact speeds and law parameters, in parallel, to CSV.
+    Sweep(crate::collide::cli::SweepArgs),
+    /// The law parameters that reproduce a measured restitution (and contact time).
+    Calibrate(crate::collide::cli::CalibrateArgs),
     /// The main job: reproduce what the drivers can so far from the two papers, into a folder.
     Reproduce {
         /// Output folder (created if needed).
@@ -115,9 +121,9 @@ impl ParticleArgs {
     }
 }
 
-/// `dashpot eval`.
-#[derive(Args, Debug)]
-pub struct EvalArgs {
+/// A law chosen by name, its parameters, and the pair it acts on.
+#[derive(Args, Debug, Clone)]
+pub struct LawArgs {
     /// The law (see `dashpot laws`); may come from --config instead.
     #[arg(long)]
     pub law: Option<String>,
@@ -127,6 +133,76 @@ pub struct EvalArgs {
     /// TOML file with [law], [particle] and [partner] tables.
     #[arg(long)]
     pub config: Option<PathBuf>,
+    #[command(flatten)]
+    pub particle: ParticleArgs,
+}
+
+/// A resolved [`LawArgs`].
+#[derive(Debug, Clone)]
+pub struct Selection {
+    /// The law's name.
+    pub name: String,
+    /// Its parameters (file values overridden by --set).
+    pub params: Vec<ParamValue>,
+    /// The particle.
+    pub particle: Particle,
+    /// The effective pair.
+    pub pair: Pair,
+    /// What the particle hits, in words.
+    pub partner: String,
+}
+
+impl LawArgs {
+    /// Reads the config file, merges `--set`, resolves the particle and the pair.
+    pub fn resolve(&self) -> Result<Selection> {
+        let cfg = match &self.config {
+            Some(p) => Config::from_file(p)?,
+            None => Config::default(),
+        };
+        let name = self
+            .law
+            .clone()
+            .or(cfg.law.name.clone())
+            .context("no law given: use --law NAME (see `dashpot laws`) or a [law] name in --config")?;
+        let sets = self
+            .set
+            .iter()
+            .map(|s| parse_set(s))
+            .collect::<Result<Vec<_>, _>>()?;
+        let params = merge_params(&cfg.law.params, &sets);
+        let (particle, pair, partner) = self.particle.resolve(&cfg)?;
+        Ok(Selection {
+            name,
+            params,
+            particle,
+            pair,
+            partner,
+        })
+    }
+}
+
+impl Selection {
+    /// The parameters as a JSON object.
+    pub fn params_json(&self) -> serde_json::Value {
+        let m: serde_json::Map<String, serde_json::Value> = self
+            .params
+            .iter()
+            .map(|p| (p.name.to_string(), json!(p.value)))
+            .collect();
+        serde_json::Value::Object(m)
+    }
+
+    /// The pair as a JSON object.
+    pub fn pair_json(&self) -> serde_json::Value {
+        json!({"mass": self.pair.mass, "radius": self.pair.radius, "young": self.pair.young, "partner": self.partner})
+    }
+}
+
+/// `dashpot eval`.
+#[derive(Args, Debug)]
+pub struct EvalArgs {
+    #[command(flatten)]
+    pub law: LawArgs,
     /// Overlap δ (m), for a contact law.
     #[arg(long, allow_hyphen_values = true)]
     pub delta: Option<f64>,
@@ -136,8 +212,6 @@ pub struct EvalArgs {
     /// Normal impact speed v (m/s), for a restitution law.
     #[arg(long, allow_hyphen_values = true)]
     pub speed: Option<f64>,
-    #[command(flatten)]
-    pub particle: ParticleArgs,
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
@@ -161,6 +235,9 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Laws { json } => laws(&reg, json),
         Command::Law { name, json } => law(&reg, &name, json),
         Command::Eval(a) => eval(&reg, &a),
+        Command::Collide(a) => crate::collide::cli::run_collide(&reg, &a),
+        Command::Sweep(a) => crate::collide::cli::run_sweep(&reg, &a),
+        Command::Calibrate(a) => crate::collide::cli::run_calibrate(&reg, &a),
         Command::Reproduce { out } => crate::reproduce::run(&reg, &out),
     }
 }
@@ -301,7 +378,7 @@ fn textwrap(s: &str, width: usize) -> String {
     out
 }
 
-fn finite(name: &str, unit: &str, v: f64) -> Result<f64> {
+pub fn finite(name: &str, unit: &str, v: f64) -> Result<f64> {
     if !v.is_finite() {
         bail!("--{name} = {v} {unit} is not a finite number");
     }
@@ -309,29 +386,10 @@ fn finite(name: &str, unit: &str, v: f64) -> Result<f64> {
 }
 
 fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
-    let cfg = match &a.config {
-        Some(p) => Config::from_file(p)?,
-        None => Config::default(),
-    };
-    let name = a
-        .law
-        .clone()
-        .or(cfg.law.name.clone())
-        .context("no law given: use --law NAME (see `dashpot laws`) or a [law] name in --config")?;
-    let sets = a
-        .set
-        .iter()
-        .map(|s| parse_set(s))
-        .collect::<Result<Vec<_>, _>>()?;
-    let params: Vec<ParamValue> = merge_params(&cfg.law.params, &sets);
-    let (_particle, pair, partner) = a.particle.resolve(&cfg)?;
-    let (entry, plugin) = reg.find(&name)?;
-    let params_json: serde_json::Map<String, serde_json::Value> = params
-        .iter()
-        .map(|p| (p.name.to_string(), json!(p.value)))
-        .collect();
-    let pair_json =
-        json!({"mass": pair.mass, "radius": pair.radius, "young": pair.young, "partner": partner});
+    let sel = a.law.resolve()?;
+    let (name, params, pair, partner) = (&sel.name, &sel.params, sel.pair, &sel.partner);
+    let (entry, plugin) = reg.find(name)?;
+    let (params_json, pair_json) = (sel.params_json(), sel.pair_json());
     match entry.info.kind {
         LawKind::Contact => {
             if a.speed.is_some() {
@@ -342,7 +400,7 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
             };
             let delta = finite("delta", "m", delta)?;
             let rate = finite("rate", "m/s", rate)?;
-            let law = reg.contact(&name, &params)?;
+            let law = reg.contact(name, params)?;
             let bound = law.bind(&pair)?;
             let force = bound.force(delta, rate)?;
             let coeffs = bound.coefficients()?;
@@ -388,7 +446,7 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
             if speed < 0.0 {
                 bail!("--speed = {speed} m/s is out of range: an impact speed must be >= 0");
             }
-            let law = reg.restitution(&name, &params)?;
+            let law = reg.restitution(name, params)?;
             let r = law.bind(&pair)?.restitution(speed)?;
             if a.json {
                 println!(

@@ -3,6 +3,7 @@
 //! Loads law plugins by name ([`registry`]) and runs the drivers; the `dashpot` CLI ([`cli`]).
 
 pub mod cli;
+pub mod collide;
 pub mod config;
 pub mod output;
 pub mod plot;

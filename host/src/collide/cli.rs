@@ -1,0 +1,420 @@
+//! `dashpot collide`, `dashpot sweep` and `dashpot calibrate`.
+
+use super::calibrate::{calibrate, CalibrateSpec};
+use super::grid::parse_grid;
+use super::two_body::{collide, Collision, Options};
+use crate::cli::{LawArgs, Selection};
+use crate::output::write_atomic;
+use crate::registry::Registry;
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use dashpot_sdk::{EndCriterion, Pair, ParamValue};
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde_json::json;
+use std::path::PathBuf;
+
+/// When a contact ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum EndArg {
+    /// The overlap returns to 0 (Antypov & Elliott's convention).
+    Overlap,
+    /// The total force returns to 0 on rebound (no attraction).
+    Force,
+}
+
+impl From<EndArg> for EndCriterion {
+    fn from(e: EndArg) -> Self {
+        match e {
+            EndArg::Overlap => EndCriterion::Overlap,
+            EndArg::Force => EndCriterion::Force,
+        }
+    }
+}
+
+/// Integration options shared by the collision commands.
+#[derive(Args, Debug, Clone)]
+pub struct IntegrationArgs {
+    /// When contact ends: when the overlap returns to 0, or when the force does. Default:
+    /// overlap (for `calibrate`: the criterion the law declares it is calibrated for).
+    #[arg(long, value_enum)]
+    pub end: Option<EndArg>,
+    /// Relative tolerance per step, in [1e-14, 1e-3]; the realized restitution is accurate to
+    /// about 20× this.
+    #[arg(long, default_value_t = 1e-11)]
+    pub rtol: f64,
+}
+
+impl IntegrationArgs {
+    /// Validated options.
+    pub fn options(&self) -> Result<Options> {
+        if !(1e-14..=1e-3).contains(&self.rtol) {
+            bail!(
+                "--rtol = {} is out of range: it must lie in [1e-14, 1e-3]",
+                self.rtol
+            );
+        }
+        Ok(Options {
+            rtol: self.rtol,
+            ..Options::default()
+        })
+    }
+
+    /// The end criterion, `default` if none was given.
+    pub fn end_or(&self, default: EndCriterion) -> EndCriterion {
+        self.end.map(EndCriterion::from).unwrap_or(default)
+    }
+}
+
+/// `dashpot collide`.
+#[derive(Args, Debug)]
+pub struct CollideArgs {
+    #[command(flatten)]
+    pub law: LawArgs,
+    /// Impact speed v0 (m/s): the relative normal speed at first contact.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub v0: f64,
+    #[command(flatten)]
+    pub integration: IntegrationArgs,
+    /// Write the trajectory (t, δ, δ̇, F at every step and event) to this CSV file.
+    #[arg(long, value_name = "FILE.csv")]
+    pub trajectory: Option<PathBuf>,
+    /// Machine-readable output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn check_v0(v0: f64) -> Result<f64> {
+    if !(v0.is_finite() && v0 > 0.0) {
+        bail!("--v0 = {v0} m/s is out of range: the impact speed must be finite and > 0");
+    }
+    Ok(v0)
+}
+
+/// One collision of the selected law.
+pub fn run_one(
+    reg: &Registry,
+    sel: &Selection,
+    v0: f64,
+    end: EndCriterion,
+    opt: &Options,
+) -> Result<Collision> {
+    let law = reg.contact(&sel.name, &sel.params)?;
+    let bound = law.bind(&sel.pair)?;
+    collide(&bound, sel.pair.mass, v0, end, opt).with_context(|| {
+        format!(
+            "collision of '{}' at v0 = {v0} m/s (end: {})",
+            sel.name,
+            end.as_str()
+        )
+    })
+}
+
+/// The CSV of a trajectory.
+pub fn trajectory_csv(c: &Collision) -> Result<Vec<u8>> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(["t_s", "delta_m", "rate_m_per_s", "force_N"])?;
+    for s in &c.trajectory {
+        w.write_record(&[
+            s.t.to_string(),
+            s.delta.to_string(),
+            s.rate.to_string(),
+            s.force.to_string(),
+        ])?;
+    }
+    Ok(w.into_inner().context("csv")?)
+}
+
+/// `dashpot collide`.
+pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
+    let v0 = check_v0(a.v0)?;
+    let sel = a.law.resolve()?;
+    let mut opt = a.integration.options()?;
+    opt.record = a.trajectory.is_some();
+    if opt.record {
+        opt.max_step_fraction = 0.01;
+    }
+    let end = a.integration.end_or(EndCriterion::Overlap);
+    let c = run_one(reg, &sel, v0, end, &opt)?;
+    if let Some(p) = &a.trajectory {
+        write_atomic(p, &trajectory_csv(&c)?).with_context(|| format!("cannot write {}", p.display()))?;
+    }
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({
+                "law": sel.name, "params": sel.params_json(), "pair": sel.pair_json(),
+                "v0": v0, "end": end.as_str(),
+                "restitution": c.restitution, "contact_time": c.contact_time,
+                "max_overlap": c.max_overlap, "max_overlap_time": c.max_overlap_time,
+                "steps": c.steps, "force_evals": c.force_evals, "rtol": opt.rtol,
+            }))?
+        );
+    } else {
+        println!("law: {} {}", sel.name, sel.params_json());
+        println!(
+            "pair: {}: m_eff = {:.6e} kg, r_eff = {:.6e} m, E_eff = {:.6e} Pa",
+            sel.partner, sel.pair.mass, sel.pair.radius, sel.pair.young
+        );
+        println!("impact speed v0       = {v0} m/s");
+        println!(
+            "end of contact        : {} ({})",
+            end.as_str(),
+            match end {
+                EndCriterion::Overlap => "overlap returns to 0",
+                EndCriterion::Force => "force returns to 0",
+            }
+        );
+        println!("restitution           = {:.12}", c.restitution);
+        println!("contact time          = {:.10e} s", c.contact_time);
+        println!(
+            "maximum overlap       = {:.10e} m at t = {:.10e} s",
+            c.max_overlap, c.max_overlap_time
+        );
+        println!("steps, force calls    = {}, {}", c.steps, c.force_evals);
+        if let Some(p) = &a.trajectory {
+            println!(
+                "trajectory            : {} ({} points)",
+                p.display(),
+                c.trajectory.len()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// `dashpot sweep`.
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    #[command(flatten)]
+    pub law: LawArgs,
+    /// Impact speeds (m/s): START:STOP:COUNT[:log|lin] or a list, e.g. 1e-3:10:41.
+    #[arg(long, default_value = "1e-3:10:41")]
+    pub v0: String,
+    /// Also vary a law parameter: NAME=GRID (repeatable; the sweep is the full product).
+    #[arg(long, value_name = "NAME=GRID")]
+    pub vary: Vec<String>,
+    #[command(flatten)]
+    pub integration: IntegrationArgs,
+    /// Output CSV file.
+    #[arg(long, default_value = "sweep.csv")]
+    pub out: PathBuf,
+}
+
+/// One row of a sweep.
+#[derive(Debug, Clone)]
+pub struct SweepRow {
+    /// The parameters of this collision.
+    pub params: Vec<ParamValue>,
+    /// The collision.
+    pub collision: Collision,
+}
+
+/// Runs collisions over the product of `v0s` and `varied` grids in parallel, with a progress bar
+/// on stderr when it is a terminal.
+pub fn sweep(
+    reg: &Registry,
+    name: &str,
+    base: &[ParamValue],
+    pair: &Pair,
+    v0s: &[f64],
+    varied: &[(String, Vec<f64>)],
+    end: EndCriterion,
+    opt: &Options,
+) -> Result<Vec<SweepRow>> {
+    let mut combos: Vec<Vec<ParamValue>> = vec![base.to_vec()];
+    for (n, g) in varied {
+        combos = combos
+            .into_iter()
+            .flat_map(|c| {
+                g.iter().map(move |&v| {
+                    let mut c = c.clone();
+                    match c.iter_mut().find(|p| p.name == n.as_str()) {
+                        Some(p) => p.value = v,
+                        None => c.push(ParamValue::new(n, v)),
+                    }
+                    c
+                })
+            })
+            .collect();
+    }
+    // validate every parameter set once, before the long run
+    for c in &combos {
+        reg.contact(name, c)?.bind(pair)?;
+    }
+    let tasks: Vec<(usize, f64)> = (0..combos.len())
+        .flat_map(|i| v0s.iter().map(move |&v| (i, v)))
+        .collect();
+    let pb = ProgressBar::new(tasks.len() as u64);
+    pb.set_style(
+        ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} collisions, {elapsed} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    pb.set_prefix("sweep");
+    let rows: Vec<SweepRow> = tasks
+        .par_iter()
+        .map(|&(i, v0)| -> Result<SweepRow> {
+            let law = reg.contact(name, &combos[i])?.bind(pair)?;
+            let c = collide(&law, pair.mass, v0, end, opt)
+                .with_context(|| format!("collision at v0 = {v0} m/s with {:?}", combos[i]))?;
+            pb.inc(1);
+            Ok(SweepRow {
+                params: combos[i].clone(),
+                collision: c,
+            })
+        })
+        .collect::<Result<_>>()?;
+    pb.finish_and_clear();
+    Ok(rows)
+}
+
+/// `dashpot sweep`.
+pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
+    let sel = a.law.resolve()?;
+    let v0s = parse_grid(&a.v0)?;
+    for &v in &v0s {
+        check_v0(v)?;
+    }
+    let mut varied = Vec::new();
+    for spec in &a.vary {
+        let (n, g) = spec
+            .split_once('=')
+            .with_context(|| format!("--vary expects NAME=GRID, got '{spec}'"))?;
+        varied.push((n.trim().to_string(), parse_grid(g)?));
+    }
+    let opt = a.integration.options()?;
+    let end = a.integration.end_or(EndCriterion::Overlap);
+    let rows = sweep(reg, &sel.name, &sel.params, &sel.pair, &v0s, &varied, end, &opt)?;
+    let names: Vec<String> = rows
+        .first()
+        .map(|r| r.params.iter().map(|p| p.name.to_string()).collect())
+        .unwrap_or_default();
+    let mut w = csv::Writer::from_writer(Vec::new());
+    let mut header = vec!["law".to_string()];
+    header.extend(names.iter().cloned());
+    header.extend(
+        [
+            "v0_m_per_s",
+            "end",
+            "restitution",
+            "contact_time_s",
+            "max_overlap_m",
+            "max_overlap_time_s",
+        ]
+        .map(String::from),
+    );
+    w.write_record(&header)?;
+    for r in &rows {
+        let c = &r.collision;
+        let mut rec = vec![sel.name.clone()];
+        rec.extend(r.params.iter().map(|p| p.value.to_string()));
+        rec.extend([
+            c.v0.to_string(),
+            c.end.as_str().to_string(),
+            c.restitution.to_string(),
+            c.contact_time.to_string(),
+            c.max_overlap.to_string(),
+            c.max_overlap_time.to_string(),
+        ]);
+        w.write_record(&rec)?;
+    }
+    write_atomic(&a.out, &w.into_inner().context("csv")?)
+        .with_context(|| format!("cannot write {}", a.out.display()))?;
+    println!("wrote {} collisions to {}", rows.len(), a.out.display());
+    Ok(())
+}
+
+/// `dashpot calibrate`.
+#[derive(Args, Debug)]
+pub struct CalibrateArgs {
+    #[command(flatten)]
+    pub law: LawArgs,
+    /// Measured coefficient of restitution, in (0, 1].
+    #[arg(long, allow_hyphen_values = true)]
+    pub restitution: f64,
+    /// Measured contact time (s); fits the stiffness too (k, or else the Young's modulus).
+    #[arg(long, allow_hyphen_values = true)]
+    pub contact_time: Option<f64>,
+    /// Impact speed of the measurement (m/s).
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub v0: f64,
+    /// The law parameter to fit to the restitution (default: `eps`, or the law's only parameter).
+    #[arg(long)]
+    pub fit: Option<String>,
+    #[command(flatten)]
+    pub integration: IntegrationArgs,
+    /// Machine-readable output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `dashpot calibrate`.
+pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
+    let sel = a.law.resolve()?;
+    let declared = reg
+        .find(&sel.name)?
+        .0
+        .info
+        .end_criterion
+        .into_option()
+        .unwrap_or(EndCriterion::Overlap);
+    let spec = CalibrateSpec {
+        law: sel.name.clone(),
+        fixed: sel.params.clone(),
+        pair: sel.pair,
+        restitution: a.restitution,
+        contact_time: a.contact_time,
+        v0: a.v0,
+        end: a.integration.end_or(declared),
+        fit: a.fit.clone(),
+        options: a.integration.options()?,
+    };
+    let c = calibrate(reg, &spec)?;
+    let young = sel.particle.young * c.young_factor;
+    if a.json {
+        let params: serde_json::Map<String, serde_json::Value> =
+            c.params.iter().map(|(k, v)| (k.clone(), json!(v))).collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({
+                "law": sel.name, "method": c.method, "params": params,
+                "young": young, "effective_young": c.effective_young, "v0": a.v0,
+                "end": spec.end.as_str(),
+                "target_restitution": a.restitution, "target_contact_time": a.contact_time,
+                "restitution": c.realized.restitution, "contact_time": c.realized.contact_time,
+                "max_overlap": c.realized.max_overlap,
+                "restitution_residual": c.restitution_residual,
+                "contact_time_residual": c.contact_time_residual,
+                "collisions": c.collisions,
+            }))?
+        );
+    } else {
+        println!(
+            "law: {} ({}; end of contact: {})",
+            sel.name,
+            c.method,
+            spec.end.as_str()
+        );
+        for (k, v) in &c.params {
+            println!("  {k} = {v:.12e}");
+        }
+        if let (Some(t), true) = (a.contact_time, c.young_factor != 1.0) {
+            println!(
+                "  Young's modulus E = {young:.10e} Pa (E_eff = {:.10e} Pa), fitted to the contact time {t:e} s",
+                c.effective_young
+            );
+        }
+        println!(
+            "check at v0 = {} m/s: restitution {:.12} (residual {:+.2e}), contact time {:.10e} s{}",
+            a.v0,
+            c.realized.restitution,
+            c.restitution_residual,
+            c.realized.contact_time,
+            c.contact_time_residual
+                .map(|r| format!(" (residual {r:+.2e} s)"))
+                .unwrap_or_default()
+        );
+        println!("collisions integrated: {}", c.collisions);
+    }
+    Ok(())
+}

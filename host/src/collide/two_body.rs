@@ -1,0 +1,524 @@
+//! The head-on collision of two particles (or a particle and a wall) under any contact law:
+//! m δ̈ = −F(δ, δ̇), δ(0) = 0, δ̇(0) = v0.
+//!
+//! # Why three phases
+//! The contact laws of granular physics are not smooth at δ = 0 (δ^{1/4}, √δ, δ^{3/2} terms), so
+//! near the start and the end of a contact the solution is not smooth in time and no
+//! step-size control recovers the order of a Runge–Kutta method there. Near δ = 0 the speed is
+//! far from zero, so the overlap itself can serve as the clock: with u = δ^{1/4} as independent
+//! variable,
+//!
+//! dv/du = 4u³ a(u⁴, v)/v,   dt/du = 4u³/v,   a = −F/m,
+//!
+//! and every power δ^{k/4} becomes a polynomial in u: the system is smooth again. So:
+//! 1. **compression start** in u, from u = 0 until the speed has fallen to half of v0;
+//! 2. **around maximum compression** in t (smooth there, δ > 0), locating the maximum overlap
+//!    (δ̇ = 0) and, under the force criterion, the instant the force returns to 0;
+//! 3. **rebound end** in u again, from half the maximum overlap down to u = 0 exactly: the
+//!    "overlap returns to 0" event is the end of the integration interval, not a root to find.
+//!
+//! Events inside a step are located by root finding on the step size with fresh steps, so the
+//! located state has the method's full accuracy.
+
+use super::rk::{locate, step, step_factor, RhsError, System, Tolerance};
+use dashpot_sdk::{abi::BoundContactHandle, BoundContact, EndCriterion, LawError};
+
+/// A bound contact law as the integrator sees it: F(δ, δ̇) in newtons, or an error.
+pub trait ContactForce: Sync {
+    /// The normal force (N) at overlap `delta` (m) and rate `rate` (m/s).
+    fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError>;
+}
+
+impl ContactForce for BoundContactHandle {
+    #[inline]
+    fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
+        BoundContactHandle::force(self, delta, rate)
+    }
+}
+
+/// A law compiled into the host (for benchmarks and tests), checked for NaN like a plugin.
+pub struct Static<B>(pub B);
+
+impl<B: BoundContact> ContactForce for Static<B> {
+    #[inline]
+    fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
+        let f = self.0.force(delta, rate);
+        if f.is_finite() {
+            Ok(f)
+        } else {
+            Err(LawError::new(
+                dashpot_sdk::ErrorKind::NonFinite,
+                format!("contact law returned force {f} at delta = {delta:e} m, rate = {rate:e} m/s"),
+            ))
+        }
+    }
+}
+
+impl<C: ContactForce + ?Sized> ContactForce for &C {
+    #[inline]
+    fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
+        (**self).force(delta, rate)
+    }
+}
+
+/// Integration settings.
+#[derive(Debug, Clone, Copy)]
+pub struct Options {
+    /// Relative tolerance of each step (the realized restitution is accurate to about 10× this).
+    pub rtol: f64,
+    /// Record the trajectory (every accepted step and event).
+    pub record: bool,
+    /// Largest time step as a fraction of the contact-time scale (smaller: smoother trajectories).
+    pub max_step_fraction: f64,
+    /// Give up after this many steps in one phase.
+    pub max_steps: usize,
+    /// Give up when the contact lasts longer than this many contact-time scales.
+    pub max_time_factor: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            rtol: 1e-11,
+            record: false,
+            max_step_fraction: 0.25,
+            max_steps: 200_000,
+            max_time_factor: 1.0e4,
+        }
+    }
+}
+
+/// One point of the phase trajectory.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Sample {
+    /// Time since first contact (s).
+    pub t: f64,
+    /// Overlap δ (m).
+    pub delta: f64,
+    /// Overlap rate δ̇ (m/s).
+    pub rate: f64,
+    /// Normal force (N).
+    pub force: f64,
+}
+
+/// The observables of one collision.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Collision {
+    /// Impact speed v0 (m/s).
+    pub v0: f64,
+    /// Realized restitution −δ̇(τ)/v0.
+    pub restitution: f64,
+    /// Contact time τ (s).
+    pub contact_time: f64,
+    /// Maximum overlap (m).
+    pub max_overlap: f64,
+    /// Time of the maximum overlap (s).
+    pub max_overlap_time: f64,
+    /// The criterion that ended the contact.
+    pub end: EndCriterion,
+    /// Accepted steps (all phases).
+    pub steps: usize,
+    /// Force evaluations.
+    pub force_evals: usize,
+    /// The phase trajectory (if recorded).
+    #[serde(skip)]
+    pub trajectory: Vec<Sample>,
+}
+
+/// Why a collision could not be computed.
+#[derive(Debug, thiserror::Error)]
+pub enum CollideError {
+    /// v0 is not a positive finite number.
+    #[error("impact speed v0 = {0} m/s is out of range: it must be finite and > 0")]
+    BadSpeed(f64),
+    /// The effective mass is not a positive finite number.
+    #[error("effective mass {0} kg is out of range: it must be finite and > 0")]
+    BadMass(f64),
+    /// The law failed (error, panic, NaN).
+    #[error(transparent)]
+    Law(#[from] LawError),
+    /// The law's force is too weak to stop the particles within a 1 m overlap.
+    #[error(
+        "the contact law cannot stop the particles: at v0 = {v0} m/s its force stays below the \
+         kinetic-energy scale m v0²/δ for every overlap up to 1 m (F(1 m, 0) = {f_at_1m} N)"
+    )]
+    NoStop {
+        /// Impact speed (m/s).
+        v0: f64,
+        /// F(δ = 1 m, δ̇ = 0) (N).
+        f_at_1m: f64,
+    },
+    /// The particles did not separate within the limits.
+    #[error(
+        "the contact law did not return the particles: after {steps} steps, at t = {t:e} s \
+         ({factor:.0} contact-time scales) the overlap is δ = {delta:e} m and δ̇ = {rate:e} m/s; \
+         stopped by the integration limit ({why})"
+    )]
+    NoReturn {
+        /// Time reached (s).
+        t: f64,
+        /// Overlap there (m).
+        delta: f64,
+        /// Rate there (m/s).
+        rate: f64,
+        /// Steps taken.
+        steps: usize,
+        /// t over the contact-time scale.
+        factor: f64,
+        /// Which limit.
+        why: &'static str,
+    },
+}
+
+impl From<RhsError> for CollideError {
+    fn from(e: RhsError) -> Self {
+        match e {
+            RhsError::Law(l) => CollideError::Law(l),
+            RhsError::OutOfDomain => CollideError::Law(LawError::new(
+                dashpot_sdk::ErrorKind::Other,
+                "event location left the domain of the integrator",
+            )),
+        }
+    }
+}
+
+/// The overlap scale δ* where F(δ*, 0)·δ* = m v0² (the kinetic energy in force × overlap).
+pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64, CollideError> {
+    let target = mass * v0 * v0;
+    let g = |d: f64| -> Result<f64, LawError> { Ok(law.force(d, 0.0)?.abs() * d - target) };
+    let f1 = law.force(1.0, 0.0)?;
+    if f1.abs() < target {
+        return Err(CollideError::NoStop { v0, f_at_1m: f1 });
+    }
+    let (mut lo, mut hi) = (-60.0f64, 0.0f64); // log10 δ
+    if g(10f64.powf(lo))? >= 0.0 {
+        return Ok(10f64.powf(lo));
+    }
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if g(10f64.powf(mid))? >= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+        if hi - lo < 1e-3 {
+            break;
+        }
+    }
+    Ok(10f64.powf(hi))
+}
+
+/// Phases 1 and 3: u = δ^{1/4} is the independent variable, the state is (v, t).
+struct UPhase<'a, C> {
+    law: &'a C,
+    inv_m: f64,
+    /// The speed must keep this sign and stay above `vmin` in magnitude.
+    sign: f64,
+    vmin: f64,
+    evals: usize,
+}
+
+impl<C: ContactForce> System<2> for UPhase<'_, C> {
+    #[inline]
+    fn rhs(&mut self, u: f64, y: &[f64; 2]) -> Result<[f64; 2], RhsError> {
+        let v = y[0];
+        if self.sign * v <= self.vmin || !v.is_finite() {
+            return Err(RhsError::OutOfDomain);
+        }
+        let u = u.max(0.0);
+        let u2 = u * u;
+        let d = u2 * u2;
+        self.evals += 1;
+        let a = -self.law.force(d, v)? * self.inv_m;
+        let q = 4.0 * u2 * u / v;
+        Ok([q * a, q])
+    }
+}
+
+/// Phase 2: time is the independent variable, the state is (δ, v).
+struct TPhase<'a, C> {
+    law: &'a C,
+    inv_m: f64,
+    evals: usize,
+}
+
+impl<C: ContactForce> System<2> for TPhase<'_, C> {
+    #[inline]
+    fn rhs(&mut self, _t: f64, y: &[f64; 2]) -> Result<[f64; 2], RhsError> {
+        self.evals += 1;
+        Ok([y[1], -self.law.force(y[0], y[1])? * self.inv_m])
+    }
+}
+
+/// Integrates one collision. `mass` is the effective mass (kg), `v0` the normal impact speed (m/s).
+pub fn collide<C: ContactForce>(
+    law: &C,
+    mass: f64,
+    v0: f64,
+    end: EndCriterion,
+    opt: &Options,
+) -> Result<Collision, CollideError> {
+    if !(v0.is_finite() && v0 > 0.0) {
+        return Err(CollideError::BadSpeed(v0));
+    }
+    if !(mass.is_finite() && mass > 0.0) {
+        return Err(CollideError::BadMass(mass));
+    }
+    let dstar = overlap_scale(law, mass, v0)?;
+    let tstar = dstar / v0;
+    let inv_m = 1.0 / mass;
+    let rtol = opt.rtol;
+    let mut traj = Vec::new();
+    let mut steps = 0usize;
+    let mut evals = 0usize;
+    let record = |traj: &mut Vec<Sample>, t: f64, d: f64, v: f64| -> Result<(), LawError> {
+        if opt.record {
+            traj.push(Sample {
+                t,
+                delta: d,
+                rate: v,
+                force: law.force(d, v)?,
+            });
+        }
+        Ok(())
+    };
+    let no_return = |t: f64, d: f64, v: f64, steps: usize, why: &'static str| CollideError::NoReturn {
+        t,
+        delta: d,
+        rate: v,
+        steps,
+        factor: t / tstar,
+        why,
+    };
+
+    // ---- phase 1: compression start, u from 0 while v > v0/2 ----
+    let mut ph = UPhase {
+        law,
+        inv_m,
+        sign: 1.0,
+        vmin: 0.05 * v0,
+        evals: 0,
+    };
+    let tol_u = Tolerance {
+        rtol,
+        atol: [1e-3 * rtol * v0, 1e-300],
+    };
+    let (mut u, mut y) = (0.0f64, [v0, 0.0f64]);
+    let mut k = ph.rhs(u, &y)?;
+    let mut h = 0.05 * dstar.powf(0.25);
+    record(&mut traj, 0.0, 0.0, v0)?;
+    let mut n = 0;
+    while y[0] > 0.5 * v0 {
+        n += 1;
+        if n > opt.max_steps {
+            return Err(no_return(
+                y[1],
+                u.powi(4),
+                y[0],
+                steps,
+                "too many steps in the compression phase",
+            ));
+        }
+        let s = match step(&mut ph, u, &y, &k, h) {
+            Ok(s) => s,
+            Err(RhsError::OutOfDomain) => {
+                h *= 0.25;
+                continue;
+            }
+            Err(e) => return Err(e.into()),
+        };
+        let e = tol_u.norm(&y, &s.y, &s.err);
+        if e <= 1.0 {
+            u += h;
+            y = s.y;
+            k = s.f;
+            steps += 1;
+            record(&mut traj, y[1], u.powi(4), y[0])?;
+        }
+        h *= step_factor(e);
+    }
+    evals += ph.evals;
+
+    // ---- phase 2: around maximum compression, in time ----
+    let mut tp = TPhase { law, inv_m, evals: 0 };
+    let tol_t = Tolerance {
+        rtol,
+        atol: [1e-3 * rtol * dstar, 1e-3 * rtol * v0],
+    };
+    let mut t = y[1];
+    let mut z = [u.powi(4), y[0]];
+    let mut kz = tp.rhs(t, &z)?;
+    let hmax = opt.max_step_fraction * tstar;
+    let mut h = (0.05 * tstar).min(hmax);
+    let t_limit = opt.max_time_factor * tstar;
+    let mut max_overlap: Option<(f64, f64)> = None;
+    let mut force_end: Option<(f64, f64, f64)> = None; // (t, δ, v)
+    let mut f_now = law.force(z[0], z[1])?;
+    evals += 1;
+    let mut n = 0;
+    loop {
+        if max_overlap.is_some_and(|(_, dm)| z[1] < 0.0 && z[0] <= 0.5 * dm) {
+            break;
+        }
+        n += 1;
+        if n > opt.max_steps {
+            return Err(no_return(
+                t,
+                z[0],
+                z[1],
+                steps,
+                "too many steps around maximum compression",
+            ));
+        }
+        if t > t_limit {
+            return Err(no_return(t, z[0], z[1], steps, "contact time limit"));
+        }
+        h = h.min(hmax);
+        let s = step(&mut tp, t, &z, &kz, h)?;
+        let e = tol_t.norm(&z, &s.y, &s.err);
+        if e > 1.0 {
+            h *= step_factor(e);
+            continue;
+        }
+        // accepted: events inside [t, t + h]
+        let mut s_from = 0.0;
+        if max_overlap.is_none() && s.y[1] <= 0.0 {
+            let (t0, z0, k0) = (t, z, kz);
+            let (sm, zm) = locate(0.0, z[1], h, s.y[1], |sv| {
+                let st = step(&mut tp, t0, &z0, &k0, sv)?;
+                Ok((st.y[1], st.y))
+            })?;
+            max_overlap = Some((t + sm, zm[0]));
+            record(&mut traj, t + sm, zm[0], 0.0)?;
+            s_from = sm;
+        }
+        let f_new = law.force(s.y[0], s.y[1])?;
+        evals += 1;
+        if end == EndCriterion::Force && max_overlap.is_some() && s.y[1] < 0.0 && f_new <= 0.0 {
+            let f_from = if s_from > 0.0 {
+                let st = step(&mut tp, t, &z, &kz, s_from)?;
+                law.force(st.y[0], st.y[1])?
+            } else {
+                f_now
+            };
+            let (t0, z0, k0) = (t, z, kz);
+            let (sf, zf) = locate(s_from, f_from, h, f_new, |sv| {
+                let st = step(&mut tp, t0, &z0, &k0, sv)?;
+                Ok((law.force(st.y[0], st.y[1])?, st.y))
+            })?;
+            force_end = Some((t + sf, zf[0], zf[1]));
+            record(&mut traj, t + sf, zf[0], zf[1])?;
+            steps += 1;
+            break;
+        }
+        t += h;
+        z = s.y;
+        kz = s.f;
+        f_now = f_new;
+        steps += 1;
+        record(&mut traj, t, z[0], z[1])?;
+        h *= step_factor(e);
+    }
+    evals += tp.evals;
+    let (max_overlap_time, max_overlap) = max_overlap.unwrap_or((t, z[0]));
+
+    if let Some((tf, _df, vf)) = force_end {
+        return Ok(Collision {
+            v0,
+            restitution: -vf / v0,
+            contact_time: tf,
+            max_overlap,
+            max_overlap_time,
+            end,
+            steps,
+            force_evals: evals,
+            trajectory: traj,
+        });
+    }
+
+    // ---- phase 3: rebound end, u from (δ)^{1/4} down to 0 ----
+    let mut ph = UPhase {
+        law,
+        inv_m,
+        sign: -1.0,
+        vmin: 1e-9 * v0,
+        evals: 0,
+    };
+    let mut u = z[0].powf(0.25);
+    let mut y = [z[1], t];
+    let mut k = ph.rhs(u, &y)?;
+    let mut h = -0.1 * u;
+    let mut f_now = law.force(z[0], z[1])?;
+    let mut n = 0;
+    let mut ended_by_force = false;
+    while u > 0.0 {
+        n += 1;
+        if n > opt.max_steps {
+            return Err(no_return(
+                y[1],
+                u.powi(4),
+                y[0],
+                steps,
+                "too many steps in the rebound phase",
+            ));
+        }
+        if y[1] > t_limit {
+            return Err(no_return(y[1], u.powi(4), y[0], steps, "contact time limit"));
+        }
+        let last = u + h <= 0.0;
+        let hh = if last { -u } else { h };
+        let s = match step(&mut ph, u, &y, &k, hh) {
+            Ok(s) => s,
+            Err(RhsError::OutOfDomain) => {
+                h *= 0.25;
+                continue;
+            }
+            Err(e) => return Err(e.into()),
+        };
+        let e = tol_u.norm(&y, &s.y, &s.err);
+        if e > 1.0 {
+            h = hh * step_factor(e);
+            continue;
+        }
+        let un = if last { 0.0 } else { u + hh };
+        if end == EndCriterion::Force {
+            let f_new = law.force(un.powi(4), s.y[0])?;
+            evals += 1;
+            if f_new <= 0.0 && f_now > 0.0 {
+                let (u0, y0, k0) = (u, y, k);
+                let (sf, yf) = locate(0.0, f_now, hh, f_new, |sv| {
+                    let st = step(&mut ph, u0, &y0, &k0, sv)?;
+                    Ok((law.force((u0 + sv).max(0.0).powi(4), st.y[0])?, st.y))
+                })?;
+                u += sf;
+                y = yf;
+                steps += 1;
+                record(&mut traj, y[1], u.max(0.0).powi(4), y[0])?;
+                ended_by_force = true;
+                break;
+            }
+            f_now = f_new;
+        }
+        u = un;
+        y = s.y;
+        k = s.f;
+        steps += 1;
+        record(&mut traj, y[1], u.powi(4), y[0])?;
+        if !last {
+            h = hh * step_factor(e);
+        }
+    }
+    let _ = ended_by_force;
+    evals += ph.evals;
+    Ok(Collision {
+        v0,
+        restitution: -y[0] / v0,
+        contact_time: y[1],
+        max_overlap,
+        max_overlap_time,
+        end,
+        steps,
+        force_evals: evals,
+        trajectory: traj,
+    })
+}
