@@ -430,20 +430,18 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
                 )?;
             }
         }
-    } else if let Some(tau) = spec.contact_time {
-        // a closed form that could not place the contact time is completed numerically
-        let c = model.run(&params, young_factor)?;
-        if (c.contact_time / tau - 1.0).abs() > 1e-9 {
+    }
+    let mut realized = model.run(&params, young_factor)?;
+    if let (Some(tau), "closed form") = (spec.contact_time, method) {
+        // a closed form that did not place the contact time is completed numerically
+        if (realized.contact_time / tau - 1.0).abs() > 1e-9 {
             let base = params.clone();
             young_factor = solve("young", "contact time", Range::positive(), 1.0, tau, |s| {
                 Ok(model.run(&base, s)?.contact_time)
             })?;
+            realized = model.run(&params, young_factor)?;
         }
     }
-
-    let realized = model.run(&params, young_factor)?;
-    let law = reg.contact(&spec.law, &params)?;
-    let _ = law; // validated
     let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
     for s in &schema {
         if !full.iter().any(|(n, _)| n == s.name.as_str()) {

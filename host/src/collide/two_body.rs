@@ -140,12 +140,12 @@ pub enum CollideError {
     /// The law's force is too weak to stop the particles within a 1 m overlap.
     #[error(
         "the contact law cannot stop the particles: at v0 = {v0} m/s its force stays below the \
-         kinetic-energy scale m v0²/δ for every overlap up to 1 m (F(1 m, 0) = {f_at_1m} N)"
+         kinetic-energy scale m v0²/δ for every overlap up to 1 m (F(1 m, v0) = {f_at_1m} N)"
     )]
     NoStop {
         /// Impact speed (m/s).
         v0: f64,
-        /// F(δ = 1 m, δ̇ = 0) (N).
+        /// F(δ = 1 m, δ̇ = v0) (N).
         f_at_1m: f64,
     },
     /// The particles did not separate within the limits.
@@ -182,13 +182,18 @@ impl From<RhsError> for CollideError {
     }
 }
 
-/// The overlap scale δ* where F(δ*, 0)·δ* = m v0² (the kinetic energy in force × overlap).
+/// The overlap scale δ* where F·δ* = m v0² (the kinetic energy in force × overlap), with
+/// F = max(|F(δ*, 0)|, |F(δ*, v0)|) so that purely dissipative laws have a scale too.
 pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64, CollideError> {
     let target = mass * v0 * v0;
-    let g = |d: f64| -> Result<f64, LawError> { Ok(law.force(d, 0.0)?.abs() * d - target) };
-    let f1 = law.force(1.0, 0.0)?;
-    if f1.abs() < target {
-        return Err(CollideError::NoStop { v0, f_at_1m: f1 });
+    let g = |d: f64| -> Result<f64, LawError> {
+        Ok(law.force(d, 0.0)?.abs().max(law.force(d, v0)?.abs()) * d - target)
+    };
+    if g(1.0)? < 0.0 {
+        return Err(CollideError::NoStop {
+            v0,
+            f_at_1m: law.force(1.0, v0)?,
+        });
     }
     let (mut lo, mut hi) = (-60.0f64, 0.0f64); // log10 δ
     if g(10f64.powf(lo))? >= 0.0 {
