@@ -379,14 +379,18 @@ fn reproduce_writes_the_report() {
 
 #[test]
 fn collide_reports_the_observables_in_json() {
-    let v = ok_json(&["collide", "--law", "hsd", "--set", "eps=0.54", "--v0", "1", "--json"]);
+    let v = ok_json(&[
+        "collide", "--law", "hsd", "--set", "eps=0.54", "--v0", "1", "--json",
+    ]);
     for k in ["restitution", "contact_time", "max_overlap", "law", "v0", "end"] {
         assert!(!v[k].is_null(), "key {k} missing");
     }
     assert!((v["restitution"].as_f64().unwrap() - 0.54).abs() < 1e-9);
     assert_eq!(v["end"], "overlap");
     assert_eq!(v["law"], "hsd");
-    let f = ok_json(&["collide", "--law", "hsd", "--set", "eps=0.54", "--v0", "1", "--end", "force", "--json"]);
+    let f = ok_json(&[
+        "collide", "--law", "hsd", "--set", "eps=0.54", "--v0", "1", "--end", "force", "--json",
+    ]);
     assert_eq!(f["end"], "force");
     assert!(f["restitution"].as_f64().unwrap() > 0.54);
     // a wall: the particle's own mass
@@ -397,12 +401,22 @@ fn collide_reports_the_observables_in_json() {
 #[test]
 fn collide_writes_a_trajectory() {
     let f = std::env::temp_dir().join(format!("dashpot-traj-{}.csv", std::process::id()));
-    let o = dashpot(&["collide", "--law", "lsd", "--v0", "0.5", "--trajectory", f.to_str().unwrap()]);
+    let o = dashpot(&[
+        "collide",
+        "--law",
+        "lsd",
+        "--v0",
+        "0.5",
+        "--trajectory",
+        f.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(&f).unwrap();
     let mut lines = csv.lines();
     assert_eq!(lines.next(), Some("t_s,delta_m,rate_m_per_s,force_N"));
-    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
     assert!(rows.len() > 100);
     assert_eq!(rows[0][1], 0.0);
     assert!((rows[0][2] - 0.5).abs() < 1e-15);
@@ -415,9 +429,18 @@ fn collide_bad_input() {
     fails(&["collide", "--law", "hsd", "--v0", "0"], &["--v0 = 0", "> 0"]);
     fails(&["collide", "--law", "hsd", "--v0", "-2"], &["--v0 = -2"]);
     fails(&["collide", "--law", "hsd", "--v0", "nan"], &["--v0 = NaN"]);
-    fails(&["collide", "--law", "nope", "--v0", "1"], &["unknown law 'nope'", "hsd"]);
-    fails(&["collide", "--law", "mcnamara-falcon", "--v0", "1"], &["restitution law", "contact law is needed", "lsd"]);
-    fails(&["collide", "--law", "hsd", "--rtol", "1"], &["--rtol = 1", "[1e-14, 1e-3]"]);
+    fails(
+        &["collide", "--law", "nope", "--v0", "1"],
+        &["unknown law 'nope'", "hsd"],
+    );
+    fails(
+        &["collide", "--law", "mcnamara-falcon", "--v0", "1"],
+        &["restitution law", "contact law is needed", "lsd"],
+    );
+    fails(
+        &["collide", "--law", "hsd", "--rtol", "1"],
+        &["--rtol = 1", "[1e-14, 1e-3]"],
+    );
     fails(&["collide", "--law", "hsd", "--end", "sideways"], &["sideways"]);
     // a law that never pushes the particles apart: a clear error, not a hang
     let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
@@ -428,13 +451,26 @@ fn collide_bad_input() {
         .unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1));
-    assert!(err.contains("did not return the particles") && err.contains("limit"), "{err}");
+    assert!(
+        err.contains("did not return the particles") && err.contains("limit"),
+        "{err}"
+    );
 }
 
 #[test]
 fn sweep_and_calibrate() {
     let f = std::env::temp_dir().join(format!("dashpot-sweep-{}.csv", std::process::id()));
-    let o = dashpot(&["sweep", "--law", "hsd", "--v0", "0.01:1:3", "--vary", "eps=0.2,0.8", "--out", f.to_str().unwrap()]);
+    let o = dashpot(&[
+        "sweep",
+        "--law",
+        "hsd",
+        "--v0",
+        "0.01:1:3",
+        "--vary",
+        "eps=0.2,0.8",
+        "--out",
+        f.to_str().unwrap(),
+    ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(&f).unwrap();
     assert_eq!(csv.lines().count(), 7);
@@ -447,13 +483,48 @@ fn sweep_and_calibrate() {
     std::fs::remove_file(&f).ok();
     fails(&["sweep", "--law", "hsd", "--v0", "1:2:x"], &["invalid grid"]);
 
-    let v = ok_json(&["calibrate", "--law", "kuwabara-kono", "--restitution", "0.8", "--v0", "0.5", "--json"]);
+    let v = ok_json(&[
+        "calibrate",
+        "--law",
+        "kuwabara-kono",
+        "--restitution",
+        "0.8",
+        "--v0",
+        "0.5",
+        "--json",
+    ]);
     assert_eq!(v["method"], "numerical");
-    assert_eq!(v["end"], "force", "KK is calibrated under the criterion it declares");
+    assert_eq!(
+        v["end"], "force",
+        "KK is calibrated under the criterion it declares"
+    );
     assert!(v["restitution_residual"].as_f64().unwrap().abs() < 1e-9);
-    let v = ok_json(&["calibrate", "--law", "lsd", "--restitution", "0.5", "--contact-time", "1e-4", "--json"]);
+    let v = ok_json(&[
+        "calibrate",
+        "--law",
+        "lsd",
+        "--restitution",
+        "0.5",
+        "--contact-time",
+        "1e-4",
+        "--json",
+    ]);
     assert_eq!(v["method"], "closed form");
     assert!(v["contact_time_residual"].as_f64().unwrap().abs() < 1e-14);
-    fails(&["calibrate", "--law", "hsd", "--restitution", "0"], &["--restitution = 0", "(0, 1]"]);
-    fails(&["calibrate", "--law", "hsd", "--restitution", "0.5", "--contact-time", "-1"], &["--contact-time = -1"]);
+    fails(
+        &["calibrate", "--law", "hsd", "--restitution", "0"],
+        &["--restitution = 0", "(0, 1]"],
+    );
+    fails(
+        &[
+            "calibrate",
+            "--law",
+            "hsd",
+            "--restitution",
+            "0.5",
+            "--contact-time",
+            "-1",
+        ],
+        &["--contact-time = -1"],
+    );
 }

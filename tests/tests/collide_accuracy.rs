@@ -397,3 +397,36 @@ fn a_law_that_never_returns_the_particles_is_a_clear_error() {
     let e = collide(&b, pair.mass, -1.0, EndCriterion::Overlap, &Options::default()).unwrap_err();
     assert!(e.to_string().contains("v0 = -1"), "{e}");
 }
+
+#[test]
+fn runge_kutta_and_extrapolation_agree() {
+    use dashpot::collide::two_body::Method;
+    let reg = seed_registry();
+    let pair = mcc();
+    for (law, p, end) in [
+        ("kuwabara-kono", [ParamValue::new("A", 3e-6)], EndCriterion::Force),
+        ("hsd", eps(0.2), EndCriterion::Overlap),
+        ("lsd", eps(0.7), EndCriterion::Force),
+    ] {
+        let rk = Options {
+            method: Method::DormandPrince5,
+            rtol: 1e-12,
+            ..Options::default()
+        };
+        let ex = Options {
+            method: Method::Extrapolation(5),
+            rtol: 1e-12,
+            ..Options::default()
+        };
+        let a = run(&reg, law, &p, &pair, 0.3, end, &rk);
+        let b = run(&reg, law, &p, &pair, 0.3, end, &ex);
+        assert!(
+            (a.restitution - b.restitution).abs() < 1e-10,
+            "{law}: {} vs {}",
+            a.restitution,
+            b.restitution
+        );
+        assert!((a.contact_time / b.contact_time - 1.0).abs() < 1e-10, "{law}");
+        assert!((a.max_overlap / b.max_overlap - 1.0).abs() < 1e-10, "{law}");
+    }
+}

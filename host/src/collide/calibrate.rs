@@ -150,7 +150,8 @@ fn solve(
     mut f: impl FnMut(f64) -> Result<f64, CalibrateError>,
 ) -> Result<f64, CalibrateError> {
     let log = range.min >= 0.0 && range.max.is_infinite();
-    let (to, from): (Box<dyn Fn(f64) -> f64>, Box<dyn Fn(f64) -> f64>) = if log {
+    type Map = Box<dyn Fn(f64) -> f64>;
+    let (to, from): (Map, Map) = if log {
         (Box::new(|x: f64| x.ln()), Box::new(|y: f64| y.exp()))
     } else {
         (Box::new(|x| x), Box::new(|y| y))

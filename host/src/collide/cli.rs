@@ -122,7 +122,7 @@ pub fn trajectory_csv(c: &Collision) -> Result<Vec<u8>> {
             s.force.to_string(),
         ])?;
     }
-    Ok(w.into_inner().context("csv")?)
+    w.into_inner().context("csv")
 }
 
 /// `dashpot collide`.
@@ -210,18 +210,37 @@ pub struct SweepRow {
     pub collision: Collision,
 }
 
+/// What a sweep runs: one law on one pair, over impact speeds and parameter grids.
+#[derive(Debug, Clone)]
+pub struct SweepSpec<'a> {
+    /// The contact law.
+    pub law: &'a str,
+    /// Its fixed parameters.
+    pub base: &'a [ParamValue],
+    /// The pair.
+    pub pair: &'a Pair,
+    /// Impact speeds (m/s).
+    pub v0s: &'a [f64],
+    /// Parameters varied over grids (the sweep is the full product).
+    pub varied: &'a [(String, Vec<f64>)],
+    /// End of contact.
+    pub end: EndCriterion,
+    /// Integrator settings.
+    pub options: Options,
+}
+
 /// Runs collisions over the product of `v0s` and `varied` grids in parallel, with a progress bar
 /// on stderr when it is a terminal.
-pub fn sweep(
-    reg: &Registry,
-    name: &str,
-    base: &[ParamValue],
-    pair: &Pair,
-    v0s: &[f64],
-    varied: &[(String, Vec<f64>)],
-    end: EndCriterion,
-    opt: &Options,
-) -> Result<Vec<SweepRow>> {
+pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
+    let (name, base, pair, v0s, varied, end, opt) = (
+        spec.law,
+        spec.base,
+        spec.pair,
+        spec.v0s,
+        spec.varied,
+        spec.end,
+        &spec.options,
+    );
     let mut combos: Vec<Vec<ParamValue>> = vec![base.to_vec()];
     for (n, g) in varied {
         combos = combos
@@ -284,7 +303,18 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
     }
     let opt = a.integration.options()?;
     let end = a.integration.end_or(EndCriterion::Overlap);
-    let rows = sweep(reg, &sel.name, &sel.params, &sel.pair, &v0s, &varied, end, &opt)?;
+    let rows = sweep(
+        reg,
+        &SweepSpec {
+            law: &sel.name,
+            base: &sel.params,
+            pair: &sel.pair,
+            v0s: &v0s,
+            varied: &varied,
+            end,
+            options: opt,
+        },
+    )?;
     let names: Vec<String> = rows
         .first()
         .map(|r| r.params.iter().map(|p| p.name.to_string()).collect())

@@ -4,6 +4,7 @@
 
 pub mod calibrate;
 pub mod cli;
+pub mod extrap;
 pub mod grid;
 pub mod rk;
 pub mod tabulate;

@@ -28,6 +28,15 @@ impl From<LawError> for RhsError {
 pub trait System<const N: usize> {
     /// f(x, y).
     fn rhs(&mut self, x: f64, y: &[f64; N]) -> Result<[f64; N], RhsError>;
+
+    /// `out[i] = f(x[i], y[i])` for independent points (at most 16). Systems whose evaluation
+    /// is a batch call (a contact law through its plugin) override this.
+    fn rhs_many(&mut self, x: &[f64], y: &[[f64; N]], out: &mut [[f64; N]]) -> Result<(), RhsError> {
+        for i in 0..x.len() {
+            out[i] = self.rhs(x[i], &y[i])?;
+        }
+        Ok(())
+    }
 }
 
 // Dormand & Prince (1980), RK5(4)7M: nodes, stage weights, 5th-order weights (the last stage is

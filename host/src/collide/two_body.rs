@@ -20,19 +20,33 @@
 //! Events inside a step are located by root finding on the step size with fresh steps, so the
 //! located state has the method's full accuracy.
 
-use super::rk::{locate, step, step_factor, RhsError, System, Tolerance};
+use super::rk::{locate, RhsError, Step, System, Tolerance};
+use super::{extrap, rk};
 use dashpot_sdk::{abi::BoundContactHandle, BoundContact, EndCriterion, LawError};
 
 /// A bound contact law as the integrator sees it: F(δ, δ̇) in newtons, or an error.
 pub trait ContactForce: Sync {
     /// The normal force (N) at overlap `delta` (m) and rate `rate` (m/s).
     fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError>;
+
+    /// `out[i] = F(delta[i], rate[i])`: the integrator evaluates independent states together.
+    fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
+        for ((o, &d), &r) in out.iter_mut().zip(delta).zip(rate) {
+            *o = self.force(d, r)?;
+        }
+        Ok(())
+    }
 }
 
 impl ContactForce for BoundContactHandle {
     #[inline]
     fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
         BoundContactHandle::force(self, delta, rate)
+    }
+
+    #[inline]
+    fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
+        BoundContactHandle::force_batch(self, delta, rate, out)
     }
 }
 
@@ -59,6 +73,46 @@ impl<C: ContactForce + ?Sized> ContactForce for &C {
     fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
         (**self).force(delta, rate)
     }
+
+    #[inline]
+    fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
+        (**self).force_batch(delta, rate, out)
+    }
+}
+
+/// The one-step method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Dormand–Prince 5(4): robust, for loose tolerances.
+    DormandPrince5,
+    /// Gragg–Bulirsch–Stoer extrapolation with this many columns (order twice that): the
+    /// default, several times fewer force evaluations at tight tolerances.
+    Extrapolation(usize),
+}
+
+impl Method {
+    #[inline]
+    fn step<S: System<2>>(
+        self,
+        sys: &mut S,
+        x: f64,
+        y: &[f64; 2],
+        f: &[f64; 2],
+        h: f64,
+    ) -> Result<Step<2>, RhsError> {
+        match self {
+            Method::DormandPrince5 => rk::step(sys, x, y, f, h),
+            Method::Extrapolation(k) => extrap::step(sys, x, y, f, h, k),
+        }
+    }
+
+    #[inline]
+    fn factor(self, e: f64) -> f64 {
+        match self {
+            Method::DormandPrince5 => rk::step_factor(e),
+            Method::Extrapolation(k) => extrap::step_factor(e, k),
+        }
+    }
 }
 
 /// Integration settings.
@@ -66,6 +120,8 @@ impl<C: ContactForce + ?Sized> ContactForce for &C {
 pub struct Options {
     /// Relative tolerance of each step (the realized restitution is accurate to about 10× this).
     pub rtol: f64,
+    /// The one-step method.
+    pub method: Method,
     /// Record the trajectory (every accepted step and event).
     pub record: bool,
     /// Largest time step as a fraction of the contact-time scale (smaller: smoother trajectories).
@@ -80,8 +136,9 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             rtol: 1e-11,
+            method: Method::Extrapolation(5),
             record: false,
-            max_step_fraction: 0.25,
+            max_step_fraction: 1.0,
             max_steps: 200_000,
             max_time_factor: 1.0e4,
         }
@@ -195,22 +252,20 @@ pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64
             f_at_1m: law.force(1.0, v0)?,
         });
     }
-    let (mut lo, mut hi) = (-60.0f64, 0.0f64); // log10 δ
-    if g(10f64.powf(lo))? >= 0.0 {
-        return Ok(10f64.powf(lo));
+    // bisection on a log scale (geometric means), to within a factor 1.01
+    let (mut lo, mut hi) = (1e-60f64, 1.0f64);
+    if g(lo)? >= 0.0 {
+        return Ok(lo);
     }
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if g(10f64.powf(mid))? >= 0.0 {
+    while hi > 1.01 * lo {
+        let mid = (lo * hi).sqrt();
+        if g(mid)? >= 0.0 {
             hi = mid;
         } else {
             lo = mid;
         }
-        if hi - lo < 1e-3 {
-            break;
-        }
     }
-    Ok(10f64.powf(hi))
+    Ok(hi)
 }
 
 /// Phases 1 and 3: u = δ^{1/4} is the independent variable, the state is (v, t).
@@ -238,7 +293,33 @@ impl<C: ContactForce> System<2> for UPhase<'_, C> {
         let q = 4.0 * u2 * u / v;
         Ok([q * a, q])
     }
+
+    #[inline]
+    fn rhs_many(&mut self, x: &[f64], y: &[[f64; 2]], out: &mut [[f64; 2]]) -> Result<(), RhsError> {
+        let n = x.len();
+        let (mut d, mut v, mut f) = ([0.0; MAX_BATCH], [0.0; MAX_BATCH], [0.0; MAX_BATCH]);
+        for i in 0..n {
+            let (u, vi) = (x[i].max(0.0), y[i][0]);
+            if self.sign * vi <= self.vmin || !vi.is_finite() {
+                return Err(RhsError::OutOfDomain);
+            }
+            let u2 = u * u;
+            d[i] = u2 * u2;
+            v[i] = vi;
+        }
+        self.evals += n;
+        self.law.force_batch(&d[..n], &v[..n], &mut f[..n])?;
+        for i in 0..n {
+            let u = x[i].max(0.0);
+            let q = 4.0 * u * u * u / v[i];
+            out[i] = [-q * f[i] * self.inv_m, q];
+        }
+        Ok(())
+    }
 }
+
+/// The most states evaluated together (the extrapolation method's columns).
+const MAX_BATCH: usize = 16;
 
 /// Phase 2: time is the independent variable, the state is (δ, v).
 struct TPhase<'a, C> {
@@ -253,6 +334,78 @@ impl<C: ContactForce> System<2> for TPhase<'_, C> {
         self.evals += 1;
         Ok([y[1], -self.law.force(y[0], y[1])? * self.inv_m])
     }
+
+    #[inline]
+    fn rhs_many(&mut self, _x: &[f64], y: &[[f64; 2]], out: &mut [[f64; 2]]) -> Result<(), RhsError> {
+        let n = y.len();
+        let (mut d, mut v, mut f) = ([0.0; MAX_BATCH], [0.0; MAX_BATCH], [0.0; MAX_BATCH]);
+        for i in 0..n {
+            d[i] = y[i][0];
+            v[i] = y[i][1];
+        }
+        self.evals += n;
+        self.law.force_batch(&d[..n], &v[..n], &mut f[..n])?;
+        for i in 0..n {
+            out[i] = [v[i], -f[i] * self.inv_m];
+        }
+        Ok(())
+    }
+}
+
+/// Locates δ̇ = 0 inside the accepted step `s` of length `h` from `(t, z)`: a cubic Hermite
+/// guess, then Newton's method on fresh steps (the derivative of δ̇ is the acceleration, which
+/// every trial step returns), with a regula-falsi fallback.
+fn locate_speed_zero<S: System<2>>(
+    m: Method,
+    sys: &mut S,
+    t: f64,
+    z: &[f64; 2],
+    kz: &[f64; 2],
+    h: f64,
+    s: &Step<2>,
+) -> Result<(f64, [f64; 2]), RhsError> {
+    let (v0, a0, v1, a1) = (z[1], kz[1], s.y[1], s.f[1]);
+    if v1 == 0.0 {
+        return Ok((h, s.y));
+    }
+    // cubic Hermite of v on [0, 1] (in units of h), root by bisection
+    let herm = |x: f64| {
+        let (x2, x3) = (x * x, x * x * x);
+        (2.0 * x3 - 3.0 * x2 + 1.0) * v0
+            + (x3 - 2.0 * x2 + x) * h * a0
+            + (-2.0 * x3 + 3.0 * x2) * v1
+            + (x3 - x2) * h * a1
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..30 {
+        let mid = 0.5 * (lo + hi);
+        if herm(mid) > 0.0 {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let mut sv = 0.5 * (lo + hi) * h;
+    for _ in 0..8 {
+        let st = m.step(sys, t, z, kz, sv)?;
+        let (v, a) = (st.y[1], st.f[1]);
+        if v == 0.0 || a == 0.0 {
+            return Ok((sv, st.y));
+        }
+        let next = sv - v / a;
+        if !(next > 0.0 && next <= h) {
+            break;
+        }
+        if (next - sv).abs() <= 4.0 * f64::EPSILON * (t + sv).abs() {
+            let st = m.step(sys, t, z, kz, next)?;
+            return Ok((next, st.y));
+        }
+        sv = next;
+    }
+    locate(0.0, v0, h, v1, |sv| {
+        let st = m.step(sys, t, z, kz, sv)?;
+        Ok((st.y[1], st.y))
+    })
 }
 
 /// Integrates one collision. `mass` is the effective mass (kg), `v0` the normal impact speed (m/s).
@@ -313,7 +466,11 @@ pub fn collide<C: ContactForce>(
     let mut h = 0.05 * dstar.powf(0.25);
     record(&mut traj, 0.0, 0.0, v0)?;
     let mut n = 0;
-    while y[0] > 0.5 * v0 {
+    while y[0] > 0.9 * v0 {
+        // do not aim far past the switch: near δ̇ = 0 this formulation is singular
+        if k[0] < 0.0 {
+            h = h.min(1.5 * (y[0] - 0.4 * v0) / -k[0]).max(0.0);
+        }
         n += 1;
         if n > opt.max_steps {
             return Err(no_return(
@@ -324,7 +481,7 @@ pub fn collide<C: ContactForce>(
                 "too many steps in the compression phase",
             ));
         }
-        let s = match step(&mut ph, u, &y, &k, h) {
+        let s = match opt.method.step(&mut ph, u, &y, &k, h) {
             Ok(s) => s,
             Err(RhsError::OutOfDomain) => {
                 h *= 0.25;
@@ -340,7 +497,7 @@ pub fn collide<C: ContactForce>(
             steps += 1;
             record(&mut traj, y[1], u.powi(4), y[0])?;
         }
-        h *= step_factor(e);
+        h *= opt.method.factor(e);
     }
     evals += ph.evals;
 
@@ -379,20 +536,16 @@ pub fn collide<C: ContactForce>(
             return Err(no_return(t, z[0], z[1], steps, "contact time limit"));
         }
         h = h.min(hmax);
-        let s = step(&mut tp, t, &z, &kz, h)?;
+        let s = opt.method.step(&mut tp, t, &z, &kz, h)?;
         let e = tol_t.norm(&z, &s.y, &s.err);
         if e > 1.0 {
-            h *= step_factor(e);
+            h *= opt.method.factor(e);
             continue;
         }
         // accepted: events inside [t, t + h]
         let mut s_from = 0.0;
         if max_overlap.is_none() && s.y[1] <= 0.0 {
-            let (t0, z0, k0) = (t, z, kz);
-            let (sm, zm) = locate(0.0, z[1], h, s.y[1], |sv| {
-                let st = step(&mut tp, t0, &z0, &k0, sv)?;
-                Ok((st.y[1], st.y))
-            })?;
+            let (sm, zm) = locate_speed_zero(opt.method, &mut tp, t, &z, &kz, h, &s)?;
             max_overlap = Some((t + sm, zm[0]));
             record(&mut traj, t + sm, zm[0], 0.0)?;
             s_from = sm;
@@ -401,14 +554,14 @@ pub fn collide<C: ContactForce>(
         evals += 1;
         if end == EndCriterion::Force && max_overlap.is_some() && s.y[1] < 0.0 && f_new <= 0.0 {
             let f_from = if s_from > 0.0 {
-                let st = step(&mut tp, t, &z, &kz, s_from)?;
+                let st = opt.method.step(&mut tp, t, &z, &kz, s_from)?;
                 law.force(st.y[0], st.y[1])?
             } else {
                 f_now
             };
             let (t0, z0, k0) = (t, z, kz);
             let (sf, zf) = locate(s_from, f_from, h, f_new, |sv| {
-                let st = step(&mut tp, t0, &z0, &k0, sv)?;
+                let st = opt.method.step(&mut tp, t0, &z0, &k0, sv)?;
                 Ok((law.force(st.y[0], st.y[1])?, st.y))
             })?;
             force_end = Some((t + sf, zf[0], zf[1]));
@@ -422,7 +575,7 @@ pub fn collide<C: ContactForce>(
         f_now = f_new;
         steps += 1;
         record(&mut traj, t, z[0], z[1])?;
-        h *= step_factor(e);
+        h *= opt.method.factor(e);
     }
     evals += tp.evals;
     let (max_overlap_time, max_overlap) = max_overlap.unwrap_or((t, z[0]));
@@ -472,7 +625,7 @@ pub fn collide<C: ContactForce>(
         }
         let last = u + h <= 0.0;
         let hh = if last { -u } else { h };
-        let s = match step(&mut ph, u, &y, &k, hh) {
+        let s = match opt.method.step(&mut ph, u, &y, &k, hh) {
             Ok(s) => s,
             Err(RhsError::OutOfDomain) => {
                 h *= 0.25;
@@ -482,7 +635,7 @@ pub fn collide<C: ContactForce>(
         };
         let e = tol_u.norm(&y, &s.y, &s.err);
         if e > 1.0 {
-            h = hh * step_factor(e);
+            h = hh * opt.method.factor(e);
             continue;
         }
         let un = if last { 0.0 } else { u + hh };
@@ -492,7 +645,7 @@ pub fn collide<C: ContactForce>(
             if f_new <= 0.0 && f_now > 0.0 {
                 let (u0, y0, k0) = (u, y, k);
                 let (sf, yf) = locate(0.0, f_now, hh, f_new, |sv| {
-                    let st = step(&mut ph, u0, &y0, &k0, sv)?;
+                    let st = opt.method.step(&mut ph, u0, &y0, &k0, sv)?;
                     Ok((law.force((u0 + sv).max(0.0).powi(4), st.y[0])?, st.y))
                 })?;
                 u += sf;
@@ -510,7 +663,7 @@ pub fn collide<C: ContactForce>(
         steps += 1;
         record(&mut traj, y[1], u.powi(4), y[0])?;
         if !last {
-            h = hh * step_factor(e);
+            h = hh * opt.method.factor(e);
         }
     }
     let _ = ended_by_force;

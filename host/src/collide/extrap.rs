@@ -1,0 +1,124 @@
+//! Gragg–Bulirsch–Stoer extrapolation: the modified midpoint rule over a step H with
+//! n = 2, 4, 6, … substeps, extrapolated to zero substep size (Aitken–Neville in h²).
+//!
+//! With k columns the result has order 2k, at a cost of Σ(n_j − 1) + 1 = k² + 1 evaluations
+//! per step; at the tight tolerances of collision calibration (10⁻¹⁰ and below) that is several
+//! times fewer evaluations than a fifth-order Runge–Kutta method, provided the right-hand side
+//! is smooth, which the u = δ^{1/4} formulation of the collision guarantees.
+
+use super::rk::{RhsError, Step, System};
+
+/// The substep counts n_j = 2j.
+const MAX_COLUMNS: usize = 10;
+
+/// One extrapolated step of size `h` (either sign) from `(x, y)` with `f0 = f(x, y)`, using `k`
+/// columns (order 2k). `err` estimates the error of the result from the last two columns.
+pub fn step<S: System<N>, const N: usize>(
+    sys: &mut S,
+    x: f64,
+    y: &[f64; N],
+    f0: &[f64; N],
+    h: f64,
+    k: usize,
+) -> Result<Step<N>, RhsError> {
+    let k = k.clamp(2, MAX_COLUMNS);
+    // The k modified-midpoint sequences (n_j = 2(j + 1) substeps) are independent: they advance
+    // in lockstep and their right-hand sides are evaluated together, one batch per substep
+    // index m, for sequences j ≥ m/2 (those with n_j > m).
+    let mut hs = [0.0f64; MAX_COLUMNS];
+    let mut z0 = [[0.0f64; N]; MAX_COLUMNS];
+    let mut z1 = [[0.0f64; N]; MAX_COLUMNS];
+    for j in 0..k {
+        hs[j] = h / (2 * (j + 1)) as f64;
+        z0[j] = *y;
+        for i in 0..N {
+            z1[j][i] = y[i] + hs[j] * f0[i];
+        }
+    }
+    let mut xs = [0.0f64; MAX_COLUMNS];
+    let mut fs = [[0.0f64; N]; MAX_COLUMNS];
+    for m in 1..2 * k {
+        let j0 = m / 2;
+        for j in j0..k {
+            xs[j] = x + m as f64 * hs[j];
+        }
+        sys.rhs_many(&xs[j0..k], &z1[j0..k], &mut fs[j0..k])?;
+        for j in j0..k {
+            for i in 0..N {
+                let z2 = z0[j][i] + 2.0 * hs[j] * fs[j][i];
+                z0[j][i] = z1[j][i];
+                z1[j][i] = z2;
+            }
+        }
+    }
+    let mut t = z1;
+    neville(&mut t, k, k);
+    let mut u = z1;
+    neville(&mut u, k, k - 1);
+    let mut err = [0.0f64; N];
+    for ((e, a), b) in err.iter_mut().zip(&t[k - 1]).zip(&u[k - 1]) {
+        *e = a - b;
+    }
+    let y1 = t[k - 1];
+    let f1 = sys.rhs(x + h, &y1)?;
+    Ok(Step { y: y1, f: f1, err })
+}
+
+/// Aitken–Neville in h² over rows 0..k, up to column `columns − 1`, in place: afterwards
+/// `t[k − 1]` is T[k−1][columns−1]. T[j][l] = T[j][l−1] + (T[j][l−1] − T[j−1][l−1]) / ((n_j/n_{j−l})² − 1).
+fn neville<const N: usize>(t: &mut [[f64; N]; MAX_COLUMNS], k: usize, columns: usize) {
+    for l in 1..columns {
+        for j in (l..k).rev() {
+            let ratio = ((j + 1) as f64 / (j + 1 - l) as f64).powi(2) - 1.0;
+            let (lo, hi) = t.split_at_mut(j);
+            for (a, b) in hi[0].iter_mut().zip(&lo[j - 1]) {
+                *a += (*a - b) / ratio;
+            }
+        }
+    }
+}
+
+/// The step-size factor after a step with error norm `e` for `k` columns.
+#[inline]
+pub fn step_factor(e: f64, k: usize) -> f64 {
+    if e == 0.0 {
+        return 4.0;
+    }
+    (0.94 * (0.65 / e).powf(1.0 / (2 * k - 1) as f64)).clamp(0.1, 4.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    struct Osc;
+    impl System<2> for Osc {
+        fn rhs(&mut self, _x: f64, y: &[f64; 2]) -> Result<[f64; 2], RhsError> {
+            Ok([y[1], -y[0]])
+        }
+    }
+
+    #[test]
+    fn extrapolation_has_order_2k() {
+        for k in [3usize, 5] {
+            let err = |n: usize| {
+                let h = 2.0 * std::f64::consts::PI / n as f64;
+                let (mut x, mut y) = (0.0, [0.0, 1.0]);
+                let mut f = Osc.rhs(x, &y).unwrap();
+                for _ in 0..n {
+                    let s = step(&mut Osc, x, &y, &f, h, k).unwrap();
+                    x += h;
+                    y = s.y;
+                    f = s.f;
+                }
+                (y[0] - x.sin()).abs().max((y[1] - x.cos()).abs())
+            };
+            let (e1, e2) = (err(8), err(16));
+            let order = (e1 / e2).log2();
+            assert!(
+                (order - 2.0 * k as f64).abs() < 0.6,
+                "k = {k}: observed order {order} ({e1:e}, {e2:e})"
+            );
+        }
+    }
+}

@@ -1,0 +1,175 @@
+//! Collisions per CPU second through the plugins (HSD and Kuwabara–Kono) at the tolerance that
+//! meets the accuracy target (realized restitution within 1e-9 of eps for HSD), the same with the
+//! laws compiled in, and, side by side in the same run, SciPy's `solve_ivp(method="DOP853")`.
+//!
+//! Run: `DASHPOT_PYTHON=/path/to/venv/bin/python cargo bench -p dashpot-tests --bench collide`
+//! (the venv needs scipy and numpy: see tests/benches/collide_scipy.py). Without
+//! DASHPOT_PYTHON it tries `python3`, and reports if SciPy is missing.
+
+use dashpot::collide::{collide, ContactForce, Options, Static};
+use dashpot_sdk::{ContactLaw, EndCriterion, Pair, ParamValue, Particle};
+use dashpot_tests::seed_registry;
+use std::process::Command;
+use std::time::Instant;
+
+const RTOL: f64 = 1e-9;
+
+struct Case {
+    eps: f64,
+    v0: f64,
+}
+
+fn cases(n: usize) -> Vec<Case> {
+    let mut x = 0x2545_f491_4f6c_dd1d_u64;
+    let mut rnd = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    (0..n)
+        .map(|_| Case {
+            eps: 0.01 + 0.98 * rnd(),
+            v0: 10f64.powf(-3.0 + 4.0 * rnd()),
+        })
+        .collect()
+}
+
+/// Runs all cases (law bound per case, as a calibration loop would), returns (collisions per CPU
+/// second, worst |ε − eps|).
+fn measure<C: ContactForce>(
+    cases: &[Case],
+    mass: f64,
+    end: EndCriterion,
+    make: impl Fn(f64) -> C,
+    check: bool,
+) -> (f64, f64) {
+    let opt = Options {
+        rtol: RTOL,
+        ..Options::default()
+    };
+    let laws: Vec<C> = cases.iter().map(|c| make(c.eps)).collect();
+    let mut worst: f64 = 0.0;
+    let t = cpu_time();
+    for (c, law) in cases.iter().zip(&laws) {
+        let r = collide(law, mass, c.v0, end, &opt).expect("collision");
+        if check {
+            worst = worst.max((r.restitution - c.eps).abs());
+        }
+    }
+    let dt = cpu_time() - t;
+    (cases.len() as f64 / dt, worst)
+}
+
+fn cpu_time() -> f64 {
+    // process CPU time (user + system), so the figure is per core even on a busy machine
+    let mut ts = libc_timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    unsafe { clock_gettime(2, &mut ts) }; // CLOCK_PROCESS_CPUTIME_ID
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+#[repr(C)]
+struct libc_timespec {
+    tv_sec: i64,
+    tv_nsec: i64,
+}
+
+extern "C" {
+    fn clock_gettime(clk: i32, ts: *mut libc_timespec) -> i32;
+}
+
+fn main() {
+    let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).expect("pair");
+    let reg = seed_registry();
+    let cs = cases(20_000);
+    let _ = Instant::now();
+
+    let (hsd_plugin, hsd_err) = measure(
+        &cs,
+        pair.mass,
+        EndCriterion::Overlap,
+        |e| {
+            reg.contact("hsd", &[ParamValue::new("eps", e)])
+                .expect("law")
+                .bind(&pair)
+                .expect("bind")
+        },
+        true,
+    );
+    let (hsd_static, _) = measure(
+        &cs,
+        pair.mass,
+        EndCriterion::Overlap,
+        |e| Static(dashpot_hsd::Hsd::with(e).bind(&pair).expect("bind")),
+        false,
+    );
+    // KK: A chosen so that ε spans roughly the same range; restitution is not a parameter here
+    let (kk_plugin, _) = measure(
+        &cs,
+        pair.mass,
+        EndCriterion::Force,
+        |e| {
+            reg.contact("kuwabara-kono", &[ParamValue::new("A", 1e-5 * (1.0 - e))])
+                .expect("law")
+                .bind(&pair)
+                .expect("bind")
+        },
+        false,
+    );
+    let (kk_static, _) = measure(
+        &cs,
+        pair.mass,
+        EndCriterion::Force,
+        |e| {
+            Static(
+                dashpot_kuwabara_kono::KuwabaraKono::with(1e-5 * (1.0 - e))
+                    .bind(&pair)
+                    .expect("bind"),
+            )
+        },
+        false,
+    );
+
+    println!("Two-body collisions, MCC spheres, eps in [0.01, 0.99], v0 in [1e-3, 10] m/s, rtol {RTOL:e}, one core");
+    println!("  HSD through the plugin      {hsd_plugin:10.0} collisions/CPU s   worst |ε − eps| = {hsd_err:.1e} (target ≤ 1e-9)");
+    println!(
+        "  HSD compiled in             {hsd_static:10.0} collisions/CPU s   (plugin/static speed {:.3})",
+        hsd_plugin / hsd_static
+    );
+    println!("  KK  through the plugin      {kk_plugin:10.0} collisions/CPU s   (end: force)");
+    println!(
+        "  KK  compiled in             {kk_static:10.0} collisions/CPU s   (plugin/static speed {:.3})",
+        kk_plugin / kk_static
+    );
+
+    let python = std::env::var("DASHPOT_PYTHON").unwrap_or_else(|_| "python3".into());
+    let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/collide_scipy.py");
+    match Command::new(&python)
+        .arg(&script)
+        .args(["--rtol", &RTOL.to_string(), "--seconds", "10"])
+        .output()
+    {
+        Ok(o) if o.status.success() => {
+            let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("scipy json");
+            let rate = v["collisions_per_second"].as_f64().unwrap_or(f64::NAN);
+            println!(
+                "  SciPy solve_ivp DOP853      {rate:10.1} collisions/CPU s   worst |ε − eps| = {:.1e} ({} collisions)",
+                v["max_eps_error"].as_f64().unwrap_or(f64::NAN),
+                v["collisions"]
+            );
+            println!(
+                "  speed ratio dashpot HSD plugin / SciPy: {:.0}x   (target >= 1000x)",
+                hsd_plugin / rate
+            );
+        }
+        Ok(o) => println!(
+            "  SciPy baseline not run ({python} failed: {}); install it as described in {}",
+            String::from_utf8_lossy(&o.stderr).lines().last().unwrap_or(""),
+            script.display()
+        ),
+        Err(e) => println!("  SciPy baseline not run: cannot start {python}: {e}"),
+    }
+}
