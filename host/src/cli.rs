@@ -64,10 +64,26 @@ pub enum Command {
     Sweep(crate::collide::cli::SweepArgs),
     /// The law parameters that reproduce a measured restitution (and contact time).
     Calibrate(crate::collide::cli::CalibrateArgs),
+    /// Reproduce the papers' figures (PNG, SVG, CSV and a markdown report) into a folder.
+    Figures {
+        #[command(subcommand)]
+        set: FigureSet,
+    },
     /// The main job: reproduce what the drivers can so far from the two papers, into a folder.
     Reproduce {
         /// Output folder (created if needed).
         #[arg(long, default_value = "results")]
+        out: PathBuf,
+    },
+}
+
+/// Which figures.
+#[derive(Subcommand, Debug)]
+pub enum FigureSet {
+    /// Antypov & Elliott Figs. 1–3 and the Kuwabara–Kono ε(v0) under both end criteria.
+    Collide {
+        /// Output folder (created if needed).
+        #[arg(long, default_value = "figures")]
         out: PathBuf,
     },
 }
@@ -238,6 +254,14 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Collide(a) => crate::collide::cli::run_collide(&reg, &a),
         Command::Sweep(a) => crate::collide::cli::run_sweep(&reg, &a),
         Command::Calibrate(a) => crate::collide::cli::run_calibrate(&reg, &a),
+        Command::Figures {
+            set: FigureSet::Collide { out },
+        } => {
+            let md = crate::collide::figures::collide_figures(&reg, &out)?;
+            crate::output::write_atomic(&out.join("collide.md"), md.as_bytes())?;
+            println!("{md}\nwrote figures and {}", out.join("collide.md").display());
+            Ok(())
+        }
         Command::Reproduce { out } => crate::reproduce::run(&reg, &out),
     }
 }

@@ -213,6 +213,26 @@ impl Figure {
     }
 }
 
+/// A tick label: plain decimals on linear axes, compact powers of ten on log axes.
+fn tick(v: f64, log: bool) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let a = v.abs();
+    if log || !(1e-3..1e5).contains(&a) {
+        let e = a.log10().floor();
+        let m = v / 10f64.powf(e);
+        if (m.abs() - 1.0).abs() < 1e-9 {
+            format!("1e{e}")
+        } else {
+            format!("{m:.0}e{e}")
+        }
+    } else {
+        let s = format!("{v:.6}");
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
 fn bounds(panel: &Panel) -> ((f64, f64), (f64, f64)) {
     let pts = panel.series.iter().flat_map(|s| s.points.iter()).copied();
     let disk_pts = panel
@@ -262,10 +282,14 @@ fn draw_panel<DB: DrawingBackend>(
     macro_rules! finish {
         ($chart:expr) => {{
             let mut chart = $chart;
+            let xf = |v: &f64| tick(*v, panel.log_x);
+            let yf = |v: &f64| tick(*v, panel.log_y);
             chart
                 .configure_mesh()
                 .x_desc(&panel.x_label)
                 .y_desc(&panel.y_label)
+                .x_label_formatter(&xf)
+                .y_label_formatter(&yf)
                 .label_style((FONT, 14))
                 .axis_desc_style((FONT, 16))
                 .light_line_style(RGBColor(235, 235, 235))
@@ -297,8 +321,20 @@ fn draw_panel<DB: DrawingBackend>(
                 };
                 if !s.label.is_empty() {
                     any_label = true;
+                    let mark = s.mark;
                     anno.label(s.label.clone())
-                        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)));
+                        .legend(move |(x, y)| -> DynElement<'static, _, _> {
+                            match mark {
+                                Mark::Line => {
+                                    PathElement::new(vec![(x, y), (x + 18, y)], c.stroke_width(2)).into_dyn()
+                                }
+                                Mark::Dashed => {
+                                    PathElement::new(vec![(x, y), (x + 7, y)], c.stroke_width(2)).into_dyn()
+                                }
+                                Mark::Circles => Circle::new((x + 9, y), 4, c.stroke_width(2)).into_dyn(),
+                                Mark::Dots => Circle::new((x + 9, y), 3, c.filled()).into_dyn(),
+                            }
+                        });
                 }
             }
             if any_label {

@@ -104,11 +104,8 @@ pub fn run(reg: &Registry, out: &Path) -> Result<()> {
             writeln!(csv, "{eps},{},{g},{tau},{}", coeff(&hc, "alpha"), tau / tau1)?;
         }
         write_atomic(&out.join("antypov_elliott_closed_forms.csv"), csv.as_bytes())?;
-        writeln!(
-            md,
-            "\nThe collision driver (two-body integrator) will add Figs. 1–3: phase trajectories, \
-             collision times and their ε dependence.\n"
-        )?;
+        writeln!(md)?;
+        md.push_str(&crate::collide::figures::collide_figures(reg, out)?);
     } else {
         writeln!(md, "(the lsd and hsd plugins were not found)\n")?;
     }

@@ -5,6 +5,7 @@
 pub mod calibrate;
 pub mod cli;
 pub mod extrap;
+pub mod figures;
 pub mod grid;
 pub mod rk;
 pub mod tabulate;
