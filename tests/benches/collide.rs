@@ -149,7 +149,11 @@ fn main() {
     let script = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches/collide_scipy.py");
     // SciPy at the reference tolerance (1e-10, where its ε error is ~1e-9) and at ours.
     for (label, rtol) in [("accuracy-matched", 1e-10), ("same rtol", RTOL)] {
-        match Command::new(&python).arg(&script).args(["--rtol", &rtol.to_string(), "--seconds", "10"]).output() {
+        match Command::new(&python)
+            .arg(&script)
+            .args(["--rtol", &rtol.to_string(), "--seconds", "10"])
+            .output()
+        {
             Ok(o) if o.status.success() => {
                 let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("scipy json");
                 let rate = v["collisions_per_second"].as_f64().unwrap_or(f64::NAN);
@@ -158,7 +162,10 @@ fn main() {
                     v["max_eps_error"].as_f64().unwrap_or(f64::NAN),
                     v["collisions"]
                 );
-                println!("  speed ratio dashpot HSD plugin / SciPy ({label}): {:.0}x   (target >= 1000x)", hsd_plugin / rate);
+                println!(
+                    "  speed ratio dashpot HSD plugin / SciPy ({label}): {:.0}x   (target >= 1000x)",
+                    hsd_plugin / rate
+                );
             }
             Ok(o) => {
                 println!(

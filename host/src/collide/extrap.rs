@@ -69,14 +69,30 @@ pub fn step<S: System<N>, const N: usize>(
 fn neville<const N: usize>(t: &mut [[f64; N]; MAX_COLUMNS], k: usize, columns: usize) {
     for l in 1..columns {
         for j in (l..k).rev() {
-            let ratio = ((j + 1) as f64 / (j + 1 - l) as f64).powi(2) - 1.0;
+            let w = NEVILLE_WEIGHT[j][l];
             let (lo, hi) = t.split_at_mut(j);
             for (a, b) in hi[0].iter_mut().zip(&lo[j - 1]) {
-                *a += (*a - b) / ratio;
+                *a += (*a - b) * w;
             }
         }
     }
 }
+
+/// 1/((n_j/n_{j−l})² − 1) with n_j = 2(j + 1), computed at compile time.
+const NEVILLE_WEIGHT: [[f64; MAX_COLUMNS]; MAX_COLUMNS] = {
+    let mut w = [[0.0; MAX_COLUMNS]; MAX_COLUMNS];
+    let mut j = 1;
+    while j < MAX_COLUMNS {
+        let mut l = 1;
+        while l <= j {
+            let (a, b) = ((j + 1) as f64, (j + 1 - l) as f64);
+            w[j][l] = (b * b) / (a * a - b * b);
+            l += 1;
+        }
+        j += 1;
+    }
+    w
+};
 
 /// The step-size factor after a step with error norm `e` for `k` columns.
 #[inline]

@@ -53,6 +53,13 @@ impl ContactForce for BoundContactHandle {
 /// A law compiled into the host (for benchmarks and tests), checked for NaN like a plugin.
 pub struct Static<B>(pub B);
 
+fn non_finite(f: f64, delta: f64, rate: f64) -> LawError {
+    LawError::new(
+        dashpot_sdk::ErrorKind::NonFinite,
+        format!("contact law returned force {f} at delta = {delta:e} m, rate = {rate:e} m/s"),
+    )
+}
+
 impl<B: BoundContact> ContactForce for Static<B> {
     #[inline]
     fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
@@ -60,11 +67,18 @@ impl<B: BoundContact> ContactForce for Static<B> {
         if f.is_finite() {
             Ok(f)
         } else {
-            Err(LawError::new(
-                dashpot_sdk::ErrorKind::NonFinite,
-                format!("contact law returned force {f} at delta = {delta:e} m, rate = {rate:e} m/s"),
-            ))
+            Err(non_finite(f, delta, rate))
         }
+    }
+
+    #[inline]
+    fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
+        self.0.force_batch(delta, rate, out);
+        if out.iter().fold(true, |ok, f| ok & f.is_finite()) {
+            return Ok(());
+        }
+        let i = out.iter().position(|f| !f.is_finite()).unwrap_or(0);
+        Err(non_finite(out[i], delta[i], rate[i]))
     }
 }
 
@@ -126,6 +140,8 @@ pub struct Options {
     pub record: bool,
     /// Largest time step as a fraction of the contact-time scale (smaller: smoother trajectories).
     pub max_step_fraction: f64,
+    /// First step of each phase as a fraction of its natural scale.
+    pub h0_fraction: f64,
     /// Give up after this many steps in one phase.
     pub max_steps: usize,
     /// Give up when the contact lasts longer than this many contact-time scales.
@@ -139,6 +155,7 @@ impl Default for Options {
             method: Method::Extrapolation(5),
             record: false,
             max_step_fraction: 1.0,
+            h0_fraction: 0.05,
             max_steps: 200_000,
             max_time_factor: 1.0e4,
         }
@@ -319,7 +336,7 @@ impl<C: ContactForce> System<2> for UPhase<'_, C> {
 }
 
 /// The most states evaluated together (the extrapolation method's columns).
-const MAX_BATCH: usize = 16;
+const MAX_BATCH: usize = 10;
 
 /// Phase 2: time is the independent variable, the state is (δ, v).
 struct TPhase<'a, C> {
@@ -396,9 +413,12 @@ fn locate_speed_zero<S: System<2>>(
         if !(next > 0.0 && next <= h) {
             break;
         }
-        if (next - sv).abs() <= 4.0 * f64::EPSILON * (t + sv).abs() {
-            let st = m.step(sys, t, z, kz, next)?;
-            return Ok((next, st.y));
+        // Newton converges quadratically: once the correction is below 1e-7 of the step, the
+        // next one would be below round-off, and the state at `next` follows from the one at
+        // `sv` to second order (δ̇ ≈ 0 there): no further step is needed.
+        if (next - sv).abs() <= 1e-7 * h {
+            let dt = next - sv;
+            return Ok((next, [st.y[0] + v * dt + 0.5 * a * dt * dt, 0.0]));
         }
         sv = next;
     }
@@ -463,7 +483,7 @@ pub fn collide<C: ContactForce>(
     };
     let (mut u, mut y) = (0.0f64, [v0, 0.0f64]);
     let mut k = ph.rhs(u, &y)?;
-    let mut h = 0.05 * dstar.powf(0.25);
+    let mut h = opt.h0_fraction * dstar.powf(0.25);
     record(&mut traj, 0.0, 0.0, v0)?;
     let mut n = 0;
     while y[0] > 0.9 * v0 {
@@ -511,7 +531,7 @@ pub fn collide<C: ContactForce>(
     let mut z = [u.powi(4), y[0]];
     let mut kz = tp.rhs(t, &z)?;
     let hmax = opt.max_step_fraction * tstar;
-    let mut h = (0.05 * tstar).min(hmax);
+    let mut h = (opt.h0_fraction * tstar).min(hmax);
     let t_limit = opt.max_time_factor * tstar;
     let mut max_overlap: Option<(f64, f64)> = None;
     let mut force_end: Option<(f64, f64, f64)> = None; // (t, δ, v)
@@ -605,7 +625,7 @@ pub fn collide<C: ContactForce>(
     let mut u = z[0].powf(0.25);
     let mut y = [z[1], t];
     let mut k = ph.rhs(u, &y)?;
-    let mut h = -0.1 * u;
+    let mut h = -2.0 * opt.h0_fraction * u;
     let mut f_now = law.force(z[0], z[1])?;
     let mut n = 0;
     let mut ended_by_force = false;
