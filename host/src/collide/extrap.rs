@@ -66,6 +66,7 @@ pub fn step<S: System<N>, const N: usize>(
 
 /// Aitken–Neville in h² over rows 0..k, up to column `columns − 1`, in place: afterwards
 /// `t[k − 1]` is T[k−1][columns−1]. T[j][l] = T[j][l−1] + (T[j][l−1] − T[j−1][l−1]) / ((n_j/n_{j−l})² − 1).
+#[allow(clippy::needless_range_loop)] // rows and columns of a triangular table
 fn neville<const N: usize>(t: &mut [[f64; N]; MAX_COLUMNS], k: usize, columns: usize) {
     for l in 1..columns {
         for j in (l..k).rev() {
