@@ -111,6 +111,12 @@ struct Model<'a> {
     runs: usize,
 }
 
+impl From<super::rk::RhsError> for CalibrateError {
+    fn from(e: super::rk::RhsError) -> Self {
+        CalibrateError::Collide(e.into())
+    }
+}
+
 impl Model<'_> {
     fn run(&mut self, params: &[ParamValue], young_factor: f64) -> Result<Collision, CalibrateError> {
         let pair = Pair::new(
@@ -254,44 +260,13 @@ fn solve(
 }
 
 fn illinois(
-    mut a: f64,
-    mut fa: f64,
-    mut b: f64,
-    mut fb: f64,
+    a: f64,
+    fa: f64,
+    b: f64,
+    fb: f64,
     mut f: impl FnMut(f64) -> Result<f64, CalibrateError>,
 ) -> Result<f64, CalibrateError> {
-    let mut side = 0;
-    let mut best = if fa.abs() < fb.abs() { a } else { b };
-    for _ in 0..200 {
-        let mut s = (a * fb - b * fa) / (fb - fa);
-        if !s.is_finite() || (s - a) * (s - b) > 0.0 {
-            s = 0.5 * (a + b);
-        }
-        let fs = f(s)?;
-        best = s;
-        if fs == 0.0 || (b - a).abs() <= 1e-14 * s.abs().max(1e-300) {
-            break;
-        }
-        if (fs > 0.0) == (fb > 0.0) {
-            b = s;
-            fb = fs;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = s;
-            fa = fs;
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        }
-        if fs.abs() < 1e-14 {
-            break;
-        }
-    }
-    Ok(best)
+    super::rk::locate(a, fa, b, fb, |x| Ok((f(x)?, x))).map(|(x, _)| x)
 }
 
 /// Calibrates `spec.law`.

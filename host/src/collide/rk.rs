@@ -161,9 +161,10 @@ pub fn step_factor(e: f64) -> f64 {
 /// opposite signs (or one of them zero), by the Illinois variant of regula falsi. `g(s)` returns
 /// the event function and a payload (typically the state at `s`); the payload of the last
 /// evaluation, at the root, is returned with it.
-pub fn locate<T, G>(a: f64, ga: f64, b: f64, gb: f64, mut g: G) -> Result<(f64, T), RhsError>
+pub fn locate<T, E, G>(a: f64, ga: f64, b: f64, gb: f64, mut g: G) -> Result<(f64, T), E>
 where
-    G: FnMut(f64) -> Result<(f64, T), RhsError>,
+    G: FnMut(f64) -> Result<(f64, T), E>,
+    E: From<RhsError>,
 {
     let (mut a, mut fa, mut b, mut fb) = (a, ga, b, gb);
     let scale = a.abs().max(b.abs()).max(f64::MIN_POSITIVE);
@@ -204,7 +205,7 @@ where
             break;
         }
     }
-    best.ok_or(RhsError::OutOfDomain)
+    best.ok_or_else(|| RhsError::OutOfDomain.into())
 }
 
 #[cfg(test)]

@@ -422,7 +422,7 @@ fn locate_speed_zero<S: System<2>>(
         }
         sv = next;
     }
-    locate(0.0, v0, h, v1, |sv| {
+    locate::<_, RhsError, _>(0.0, v0, h, v1, |sv| {
         let st = m.step(sys, t, z, kz, sv)?;
         Ok((st.y[1], st.y))
     })
@@ -580,7 +580,7 @@ pub fn collide<C: ContactForce>(
                 f_now
             };
             let (t0, z0, k0) = (t, z, kz);
-            let (sf, zf) = locate(s_from, f_from, h, f_new, |sv| {
+            let (sf, zf) = locate::<_, RhsError, _>(s_from, f_from, h, f_new, |sv| {
                 let st = opt.method.step(&mut tp, t0, &z0, &k0, sv)?;
                 Ok((law.force(st.y[0], st.y[1])?, st.y))
             })?;
@@ -664,7 +664,7 @@ pub fn collide<C: ContactForce>(
             evals += 1;
             if f_new <= 0.0 && f_now > 0.0 {
                 let (u0, y0, k0) = (u, y, k);
-                let (sf, yf) = locate(0.0, f_now, hh, f_new, |sv| {
+                let (sf, yf) = locate::<_, RhsError, _>(0.0, f_now, hh, f_new, |sv| {
                     let st = opt.method.step(&mut ph, u0, &y0, &k0, sv)?;
                     Ok((law.force((u0 + sv).max(0.0).powi(4), st.y[0])?, st.y))
                 })?;
