@@ -250,7 +250,7 @@ mod tests {
     #[test]
     fn locate_finds_the_zero_of_sine() {
         // event: sin crosses zero between 3 and 3.5 (at π)
-        let (s, v) = locate(0.0, 3f64.sin(), 0.5, 3.5f64.sin(), |s| {
+        let (s, v) = locate::<_, RhsError, _>(0.0, 3f64.sin(), 0.5, 3.5f64.sin(), |s| {
             Ok(((3.0 + s).sin(), 3.0 + s))
         })
         .unwrap();
