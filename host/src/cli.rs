@@ -64,6 +64,13 @@ pub enum Command {
         #[arg(long, default_value = "results")]
         out: PathBuf,
     },
+    /// The vibrated bed of McNamara & Falcon (2005): one event-driven run, lid pressure and more.
+    Bed(crate::bed::cli::BedArgs),
+    /// Scaling exponents θ of the vibrated bed over a grid of layers and frequencies.
+    Scaling(crate::bed::cli::ScalingArgs),
+    /// Reproduce a paper's figures, with a report.
+    #[command(subcommand)]
+    Figures(crate::bed::cli::FiguresCommand),
 }
 
 /// The two particles of a pair (identical spheres by default) or a particle and a wall.
@@ -162,6 +169,9 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Law { name, json } => law(&reg, &name, json),
         Command::Eval(a) => eval(&reg, &a),
         Command::Reproduce { out } => crate::reproduce::run(&reg, &out),
+        Command::Bed(a) => crate::bed::cli::bed(&reg, &a),
+        Command::Scaling(a) => crate::bed::cli::scaling(&reg, &a),
+        Command::Figures(c) => crate::bed::cli::figures(&reg, &c),
     }
 }
 

@@ -18,12 +18,13 @@
 //! implementation of that trait.
 
 pub mod cells;
-
+pub mod cli;
 pub mod engine;
 pub mod events;
-
+pub mod figures;
 pub mod observables;
 pub mod piston;
+pub mod scaling;
 
 pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};
 
