@@ -62,55 +62,57 @@ pub fn pair_contact(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64) -> Option<f
 
 /// A tournament (winner) tree over a fixed set of keys: one pending event time per disk.
 ///
-/// `update(i, t)` is O(log N) with no allocation; `top()` is O(1). Ties go to the lower index,
-/// so the event order is deterministic.
+/// Each node holds the (key, index) of the smallest key below it, so a replay reads one small
+/// array; `update(i, t)` is O(log N) and stops as soon as a node's winner is unchanged; `top()`
+/// is O(1). Ties go to the lower index, so the event order is deterministic.
 #[derive(Debug, Clone)]
 pub struct Tournament {
     size: usize,
-    keys: Vec<f64>,
-    node: Vec<u32>,
+    node: Vec<(f64, u32)>,
 }
 
 impl Tournament {
     /// A tree of `n` keys, all +∞.
     pub fn new(n: usize) -> Tournament {
         let size = n.max(1).next_power_of_two();
-        let mut t = Tournament {
-            size,
-            keys: vec![f64::INFINITY; size],
-            node: vec![0; 2 * size],
-        };
+        let mut node = vec![(f64::INFINITY, 0u32); 2 * size];
         for i in 0..size {
-            t.node[size + i] = i as u32;
+            node[size + i] = (f64::INFINITY, i as u32);
         }
         for k in (1..size).rev() {
-            t.node[k] = t.node[2 * k];
+            node[k] = node[2 * k];
         }
-        t
+        Tournament { size, node }
     }
 
     /// The index with the smallest key, and that key.
     #[inline]
     pub fn top(&self) -> (usize, f64) {
-        let i = self.node[1] as usize;
-        (i, self.keys[i])
+        let (t, i) = self.node[1];
+        (i as usize, t)
     }
 
     /// The key of `i`.
     #[inline]
     pub fn key(&self, i: usize) -> f64 {
-        self.keys[i]
+        self.node[self.size + i].0
     }
 
-    /// Sets the key of `i` to `t` and replays its path to the root.
+    /// Sets the key of `i` to `t` and replays its path towards the root.
     #[inline]
     pub fn update(&mut self, i: usize, t: f64) {
-        self.keys[i] = t;
-        let mut k = (self.size + i) >> 1;
+        let mut k = self.size + i;
+        self.node[k].0 = t;
+        k >>= 1;
         while k >= 1 {
             let (a, b) = (self.node[2 * k], self.node[2 * k + 1]);
-            let (ka, kb) = (self.keys[a as usize], self.keys[b as usize]);
-            self.node[k] = if kb < ka { b } else { a };
+            // ties: the left child holds the lower indices
+            let w = if b.0 < a.0 { b } else { a };
+            let old = self.node[k];
+            if w.1 == old.1 && w.0.to_bits() == old.0.to_bits() {
+                break;
+            }
+            self.node[k] = w;
             k >>= 1;
         }
     }
@@ -122,9 +124,10 @@ mod tests {
 
     #[test]
     fn tiny_gap_gives_an_accurate_tiny_root() {
-        // g0 = 1e-12 m closing at 1 m/s under a small acceleration: τ = 1e-12 s to full precision
+        // g0 = 1e-12 m closing at 1 m/s under gravity: τ = g0 − 4.9 g0² + ... to full precision
         let t = first_contact(1e-12, -1.0, -9.8).unwrap();
-        assert!((t - 1e-12).abs() < 1e-27, "{t:e}");
+        let exact = 1e-12 - 4.9e-24 - 2.0 * 4.9 * 4.9 * 1e-36;
+        assert!((t - exact).abs() < 1e-15 * exact, "{t:e}");
         // a receding touching pair under a restoring acceleration meets again at 2v/|a|
         let t = first_contact(0.0, 2.0, -10.0).unwrap();
         assert!((t - 0.4).abs() < 1e-15);
@@ -141,9 +144,13 @@ mod tests {
     #[test]
     fn pair_roots_are_cancellation_free() {
         let s2 = 4e-6; // d = 2 mm
-                       // head-on at 1 m/s from a gap of 1e-13 m
+                       // head-on at 1 m/s from a gap of 1e-13 m: accurate to the rounding of |r|² (the
+                       // textbook root −b − √(b² − v²c) would lose everything below ulp(0.002) ≈ 4e-19 s)
         let t = pair_contact(0.002 + 1e-13, 0.0, -1.0, 0.0, s2).unwrap();
-        assert!((t - 1e-13).abs() < 1e-20, "{t:e}");
+        assert!((t - 1e-13).abs() < 1e-18, "{t:e}");
+        // a gap given exactly: r = 1 + 2^-30 against σ = 1 closing at 1 m/s, τ = 2^-30 (1 − 2^-31)
+        let t = pair_contact(1.0 + 2f64.powi(-30), 0.0, -1.0, 0.0, 1.0).unwrap();
+        assert!((t - 2f64.powi(-30)).abs() < 1e-18, "{t:e}");
         assert_eq!(pair_contact(0.002, 0.0, 1.0, 0.0, s2), None);
         assert_eq!(pair_contact(0.002, 0.0, -1.0, 0.0, s2), Some(0.0));
         // grazing miss
