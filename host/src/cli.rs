@@ -63,6 +63,9 @@ pub enum Command {
         /// Output folder (created if needed).
         #[arg(long, default_value = "results")]
         out: PathBuf,
+        /// Tiny driver runs (seconds, for tests): the numbers are noisy, the pipeline complete.
+        #[arg(long)]
+        quick: bool,
     },
     /// The vibrated bed of McNamara & Falcon (2005): one event-driven run, lid pressure and more.
     Bed(crate::bed::cli::BedArgs),
@@ -168,7 +171,7 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Laws { json } => laws(&reg, json),
         Command::Law { name, json } => law(&reg, &name, json),
         Command::Eval(a) => eval(&reg, &a),
-        Command::Reproduce { out } => crate::reproduce::run(&reg, &out),
+        Command::Reproduce { out, quick } => crate::reproduce::run(&reg, &out, quick),
         Command::Bed(a) => crate::bed::cli::bed(&reg, &a),
         Command::Scaling(a) => crate::bed::cli::scaling(&reg, &a),
         Command::Figures(c) => crate::bed::cli::figures(&reg, &c),

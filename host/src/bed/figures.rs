@@ -71,6 +71,20 @@ impl Size {
         }
     }
 
+    /// Tiny runs for tests of the pipeline (seconds; the numbers are noisy).
+    pub fn tiny() -> Size {
+        Size {
+            name: "tiny",
+            fig2_layers: vec![0.5, 1.0, 2.0],
+            fig2_freqs: vec![10.0, 30.0],
+            fig2_periods: (2.0, 4.0),
+            fig3_transient: 3.0,
+            fig4_layers: vec![0.5, 2.0],
+            fig4_freqs: vec![10.0, 20.0, 30.0],
+            fig4_periods: (2.0, 4.0),
+        }
+    }
+
     /// The size `dashpot reproduce` uses: a few minutes on two cores.
     pub fn reproduce() -> Size {
         Size {
