@@ -180,7 +180,8 @@ pub fn theta_panel(rows: &[ScalingRow], title: &str) -> Panel {
             .collect()
     }
     let mut series = Vec::new();
-    let which: [(&str, fn(&ScalingRow) -> Option<PowerFit>); 4] = [
+    type Pick = fn(&ScalingRow) -> Option<PowerFit>;
+    let which: [(&str, Pick); 4] = [
         ("T", |r| r.temperature),
         ("Nc", |r| r.lid_collision_rate),
         ("ΔI", |r| r.mean_impulse),
