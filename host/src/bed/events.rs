@@ -30,9 +30,7 @@ pub fn first_contact(g0: f64, v: f64, acc: f64) -> Option<f64> {
     }
     let (r1, r2) = (q / half, g0 / q);
     let (lo, hi) = if r1 <= r2 { (r1, r2) } else { (r2, r1) };
-    [lo, hi]
-        .into_iter()
-        .find(|&r| r >= 0.0 && v + acc * r < 0.0)
+    [lo, hi].into_iter().find(|&r| r >= 0.0 && v + acc * r < 0.0)
 }
 
 /// The first τ ≥ 0 (s) at which two disks at relative position (rx, ry) (m), moving with
