@@ -170,9 +170,12 @@ pub enum FiguresCommand {
         /// Output folder.
         #[arg(long, default_value = "results/bed")]
         out: PathBuf,
-        /// A small grid and short runs (about a minute), instead of the paper's.
+        /// A small grid and short runs (seconds), instead of the paper's.
         #[arg(long)]
         quick: bool,
+        /// Only these figures (2, 3, 4; comma separated). Default: all.
+        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u8).range(2..=4))]
+        only: Vec<u8>,
     },
 }
 
@@ -451,13 +454,13 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
 /// `dashpot figures ...`.
 pub fn figures(reg: &Registry, cmd: &FiguresCommand) -> Result<()> {
     match cmd {
-        FiguresCommand::Bed { out, quick } => {
+        FiguresCommand::Bed { out, quick, only } => {
             let size = if *quick {
                 super::figures::Size::quick()
             } else {
                 super::figures::Size::paper()
             };
-            let md = super::figures::run(reg, out, &size)?;
+            let md = super::figures::run_only(reg, out, &size, only)?;
             write_atomic(&out.join("report.md"), md.as_bytes())?;
             println!("wrote {}", out.join("report.md").display());
             Ok(())
