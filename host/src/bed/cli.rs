@@ -2,14 +2,13 @@
 //! `dashpot figures bed` commands (delegated to from [`crate::cli`]).
 
 use super::engine::{Bed, BedConfig, BedReport};
-use super::{plugin_laws, scaling, Laws};
+use super::{resolve, scaling, DynRestitution, Laws};
 use crate::config::parse_set;
 use crate::output::write_atomic;
 use crate::plot::{Figure, Mark, Panel, Series};
 use crate::registry::Registry;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Subcommand};
-use dashpot_sdk::abi::BoundRestitutionHandle;
 use dashpot_sdk::ParamValue;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
@@ -90,14 +89,14 @@ impl PhysArgs {
     }
 
     /// Loads the law and binds it to the bed's pairs.
-    pub fn laws(&self, reg: &Registry) -> Result<Laws<BoundRestitutionHandle>> {
+    pub fn laws(&self, reg: &Registry) -> Result<Laws<DynRestitution>> {
         if !(self.diameter.is_finite() && self.diameter > 0.0) {
             bail!("diameter d = {} m is out of range: d must be > 0", self.diameter);
         }
         if !(self.mass.is_finite() && self.mass > 0.0) {
             bail!("mass m = {} kg is out of range: m must be > 0", self.mass);
         }
-        Ok(plugin_laws(
+        Ok(resolve(
             reg,
             &self.restitution,
             &self.params()?,
@@ -124,6 +123,7 @@ impl PhysArgs {
 /// `dashpot bed`.
 #[derive(Args, Debug)]
 pub struct BedArgs {
+    /// The law and the bed.
     #[command(flatten)]
     pub phys: PhysArgs,
     /// Number of layers n = N d / L (N = 100 n disks at the defaults).
@@ -146,6 +146,7 @@ pub struct BedArgs {
 /// `dashpot scaling`.
 #[derive(Args, Debug)]
 pub struct ScalingArgs {
+    /// The law and the bed.
     #[command(flatten)]
     pub phys: PhysArgs,
     /// Layers, comma separated, e.g. 0.5,1,2,3.

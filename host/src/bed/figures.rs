@@ -4,11 +4,10 @@
 use super::cli::snapshot_panel;
 use super::engine::{Bed, BedConfig, BedReport};
 use super::scaling::{fit_all, run_grid, theta_panel, write_fit_csv, write_grid_csv, Grid, ScalingRow};
-use super::{plugin_laws, Laws};
+use super::{resolve, DynRestitution, Laws};
 use crate::plot::{Figure, Mark, Panel, Series, PALETTE};
 use crate::registry::Registry;
 use anyhow::{Context, Result};
-use dashpot_sdk::abi::BoundRestitutionHandle;
 use dashpot_sdk::ParamValue;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -100,11 +99,11 @@ impl Size {
     }
 }
 
-type Plug = Laws<BoundRestitutionHandle>;
+type Plug = Laws<DynRestitution>;
 
 fn law(reg: &Registry, name: &str, params: &[ParamValue]) -> Result<Plug> {
     let c = BedConfig::paper(1.0, 20.0);
-    Ok(plugin_laws(reg, name, params, c.diameter, c.mass)?)
+    Ok(resolve(reg, name, params, c.diameter, c.mass)?)
 }
 
 /// The three laws of the paper: r(v) (eq. 1), r = 0.95, r = 0.7.
@@ -114,7 +113,7 @@ struct Three {
     r70: Plug,
 }
 
-fn refs(l: &Plug) -> Laws<&BoundRestitutionHandle> {
+fn refs(l: &Plug) -> Laws<&DynRestitution> {
     Laws {
         disk: &l.disk,
         wall: &l.wall,

@@ -1,4 +1,5 @@
 //! # The vibrated bed: an event-driven engine for 2D inelastic hard disks
+#![warn(missing_docs)]
 //!
 //! McNamara & Falcon (PRE 71, 031302, 2005), Sec. II: `N = n L/d` disks of diameter `d` and mass
 //! `m` in a box of width `L`, periodic horizontally, between a fixed lid and a piston driven by
@@ -6,11 +7,11 @@
 //! instantaneous and binary; the normal restitution comes from a [`Restitution`] law evaluated at
 //! the normal relative impact speed; the lid and the piston are partners of infinite mass.
 //!
-//! Geometry (all heights in m, from the piston's *highest* position... shifted so that the piston
-//! oscillates in z ∈ [−A/2, A/2]): the lid is at `A/2 + h0 + (h − h0)` with `h0 = n·d`, the
-//! height of `n` layers of disks of diameter `d` stacked square. The paper does not define `h0`
-//! beyond "the height of the bed at rest"; `n·d` is our reading (a 2D random packing of `n`
-//! layers is about 0.9 `n d` high, a 2 % change of the box height at n = 3).
+//! Geometry: heights y in m, with the piston oscillating in z ∈ [−A/2, A/2]. As in the paper,
+//! the box height h is measured from the piston at its highest position: the lid is at
+//! `A/2 + h0 + (h − h0)` with `h0 = n·d`, the height of `n` layers of disks of diameter `d`
+//! stacked square. The paper does not define `h0` beyond "the height of the bed at rest"; `n·d`
+//! is our reading (a 2D random packing of `n` layers is somewhat lower, about 0.9 `n d`).
 //!
 //! The engine ([`engine::Bed`]) is generic over [`Restitution`], implemented for a plugin's
 //! [`BoundRestitutionHandle`] and, through [`Compiled`], for any law compiled into the program;
@@ -42,6 +43,13 @@ impl Restitution for BoundRestitutionHandle {
     #[inline]
     fn r(&self, v: f64) -> Result<f64, LawError> {
         self.restitution(v)
+    }
+}
+
+impl<T: Restitution + ?Sized> Restitution for Box<T> {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        (**self).r(v)
     }
 }
 
@@ -118,6 +126,27 @@ pub fn plugin_laws(
     Ok(Laws {
         disk: law.bind(&pp)?,
         wall: law.bind(&pw)?,
+    })
+}
+
+/// A restitution of any kind, chosen by name at run time.
+pub type DynRestitution = Box<dyn Restitution + Send>;
+
+/// The restitution named `name` with `params`, bound to the bed's pairs (disks of diameter `d`
+/// (m) and mass `m` (kg)): what `dashpot bed`, `scaling` and `figures bed` use. Today every name
+/// is a restitution-law plugin; another source of restitution (a contact law integrated over a
+/// collision, say) is one more [`Restitution`] implementation returned from here.
+pub fn resolve(
+    reg: &crate::Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    d: f64,
+    m: f64,
+) -> Result<Laws<DynRestitution>, LawError> {
+    let l = plugin_laws(reg, name, params, d, m)?;
+    Ok(Laws {
+        disk: Box::new(l.disk),
+        wall: Box::new(l.wall),
     })
 }
 
