@@ -72,6 +72,7 @@ fn rough_disks_with_reversing_tangential_restitution_conserve_energy_with_rotati
     let e1 = bed.kinetic_energy();
     assert!(((e1 - e0) / e0).abs() < 1e-11, "{:e}", (e1 - e0) / e0);
     assert!((0..bed.len()).any(|i| bed.spin(i).abs() > 1.0), "disks spin");
+    assert!(bed.counters.max_overlap <= 1e-9 * 0.002);
     // r_t = 0 dissipates (the most)
     let mut bed = Bed::new(
         BedConfig {
@@ -153,6 +154,7 @@ fn a_disk_bouncing_on_a_fixed_floor_follows_the_analytic_heights() {
         assert!((hk - h * r.powi(2 * k as i32 + 2)).abs() < 1e-12 * h);
         t_expect += 2.0 * r * v / g;
     }
+    assert!(bed.counters.max_overlap <= 1e-9 * 0.002);
 }
 
 #[test]
@@ -170,6 +172,7 @@ fn the_lid_receives_m_one_plus_r_times_the_normal_speed() {
     assert!((bed.window.lid_impulse - expect).abs() < 1e-15 * expect);
     let (_, _, vx, vy) = bed.state_at(0, bed.now());
     assert!((vy + r * v).abs() < 1e-14 && vx == 0.4);
+    assert!(bed.counters.max_overlap <= 1e-9 * 0.002);
 }
 
 #[test]
