@@ -1278,3 +1278,57 @@ const SAME_INSTANT_LIMIT: u32 = 64;
 const LID: u32 = u32::MAX - 1;
 /// Partner code of the piston in `last_partner`.
 const PISTON: u32 = u32::MAX - 2;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bed::Compiled;
+
+    /// r = const, compiled in.
+    struct Fixed(f64);
+    impl dashpot_sdk::BoundRestitution for Fixed {
+        fn restitution(&self, _speed: f64) -> f64 {
+            self.0
+        }
+    }
+
+    fn dropped(r: f64) -> Bed<Compiled<Fixed>> {
+        let cfg = BedConfig {
+            amplitude: 0.0,
+            headroom: 0.2,
+            ..BedConfig::paper(0.01, 20.0)
+        };
+        let laws = Laws {
+            disk: Compiled(Fixed(r)),
+            wall: Compiled(Fixed(r)),
+        };
+        let mut bed = Bed::new(cfg, laws).unwrap();
+        bed.set_state(&[(0.1, 0.051)], &[(0.0, 0.0)]).unwrap();
+        bed
+    }
+
+    #[test]
+    fn the_rate_guard_stops_a_collapse_while_time_still_advances() {
+        // r = 0.99: the bounce intervals shrink by 1 % a bounce; long before they reach the
+        // resolution of the clock, a block of events spans less than the guard's limit
+        let mut bed = dropped(0.99);
+        bed.block_len = 1_000;
+        let t_star = (0.1f64 / 9.8).sqrt() * (1.0 + 2.0 * 0.99 / 0.01);
+        let err = bed.run_until(2.0 * t_star, &mut |_| {}).unwrap_err().to_string();
+        assert!(err.contains("event rate exploded at t = "), "{err}");
+        assert!(err.contains("disk 0 ("), "{err}");
+        // at the analytic collapse time t* = t1 (1 + 2r/(1 − r)), to roundoff
+        assert!(
+            (bed.now() - t_star).abs() < 1e-9 * t_star,
+            "{} vs {t_star}",
+            bed.now()
+        );
+    }
+
+    #[test]
+    fn a_law_outside_zero_one_is_refused() {
+        let mut bed = dropped(1.2);
+        let err = bed.run_until(1.0, &mut |_| {}).unwrap_err().to_string();
+        assert!(err.contains("r = 1.2") && err.contains("[0, 1]"), "{err}");
+    }
+}
