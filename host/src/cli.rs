@@ -64,17 +64,22 @@ pub enum Command {
     Sweep(crate::collide::cli::SweepArgs),
     /// The law parameters that reproduce a measured restitution (and contact time).
     Calibrate(crate::collide::cli::CalibrateArgs),
-    /// Reproduce the papers' figures (PNG, SVG, CSV and a markdown report) into a folder.
-    Figures {
-        #[command(subcommand)]
-        set: FigureSet,
-    },
+    /// Reproduce a paper's figures (PNG, SVG, CSV and a markdown report) into a folder.
+    #[command(subcommand)]
+    Figures(FigureSet),
     /// The main job: reproduce what the drivers can so far from the two papers, into a folder.
     Reproduce {
         /// Output folder (created if needed).
         #[arg(long, default_value = "results")]
         out: PathBuf,
+        /// Tiny driver runs (seconds, for tests): the numbers are noisy, the pipeline complete.
+        #[arg(long)]
+        quick: bool,
     },
+    /// The vibrated bed of McNamara & Falcon (2005): one event-driven run, lid pressure and more.
+    Bed(crate::bed::cli::BedArgs),
+    /// Scaling exponents θ of the vibrated bed over a grid of layers and frequencies.
+    Scaling(crate::bed::cli::ScalingArgs),
 }
 
 /// Which figures.
@@ -83,9 +88,11 @@ pub enum FigureSet {
     /// Antypov & Elliott Figs. 1–3 and the Kuwabara–Kono ε(v0) under both end criteria.
     Collide {
         /// Output folder (created if needed).
-        #[arg(long, default_value = "figures")]
+        #[arg(long, default_value = "results/collide")]
         out: PathBuf,
     },
+    #[command(flatten)]
+    Bed(crate::bed::cli::FiguresCommand),
 }
 
 /// The two particles of a pair (identical spheres by default) or a particle and a wall.
@@ -254,15 +261,16 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Collide(a) => crate::collide::cli::run_collide(&reg, &a),
         Command::Sweep(a) => crate::collide::cli::run_sweep(&reg, &a),
         Command::Calibrate(a) => crate::collide::cli::run_calibrate(&reg, &a),
-        Command::Figures {
-            set: FigureSet::Collide { out },
-        } => {
+        Command::Figures(FigureSet::Collide { out }) => {
             let md = crate::collide::figures::collide_figures(&reg, &out)?;
             crate::output::write_atomic(&out.join("collide.md"), md.as_bytes())?;
             println!("{md}\nwrote figures and {}", out.join("collide.md").display());
             Ok(())
         }
-        Command::Reproduce { out } => crate::reproduce::run(&reg, &out),
+        Command::Figures(FigureSet::Bed(c)) => crate::bed::cli::figures(&reg, &c),
+        Command::Reproduce { out, quick } => crate::reproduce::run(&reg, &out, quick),
+        Command::Bed(a) => crate::bed::cli::bed(&reg, &a),
+        Command::Scaling(a) => crate::bed::cli::scaling(&reg, &a),
     }
 }
 

@@ -1,8 +1,9 @@
 //! The main job: reproduce the two papers' results with the laws loaded as plugins.
 //!
-//! So far (before the collision and bed drivers) it reproduces what the laws give directly:
-//! the closed forms of Antypov & Elliott (eqs. 8, 9, 10, 17, 21, 25) for the paper's MCC granule,
-//! and the restitution curve of McNamara & Falcon (eq. 1, their Fig. 1).
+//! It reproduces what the laws give directly: the closed forms of Antypov & Elliott (eqs. 8, 9,
+//! 10, 17, 21, 25) for the paper's MCC granule, and the restitution curve of McNamara & Falcon
+//! (eq. 1, their Fig. 1); then the vibrated bed of McNamara & Falcon (Figs. 2-4, on a reduced
+//! grid, [`crate::bed::figures::Size::reproduce`]).
 
 use crate::cli::law_json;
 use crate::output::write_atomic;
@@ -19,8 +20,8 @@ fn coeff(c: &[dashpot_sdk::Coefficient], name: &str) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
-/// Writes `report.md`, `laws.json` and CSV tables into `out`.
-pub fn run(reg: &Registry, out: &Path) -> Result<()> {
+/// Writes `report.md`, `laws.json` and CSV tables into `out`; `quick`: tiny driver runs.
+pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut md = String::new();
     writeln!(md, "# dashpot: reproduction report\n")?;
@@ -158,11 +159,39 @@ pub fn run(reg: &Registry, out: &Path) -> Result<()> {
         writeln!(
             md,
             "\nThe paper states r(1 m/s) ≈ 0.7; the plugin gives {:.4}. The full curve (their Fig. 1) is \
-             `mcnamara_falcon_fig1.png` (and `.svg`, `.csv`). The vibrated-bed driver will add Figs. 2–4.",
+             `mcnamara_falcon_fig1.png` (and `.svg`, `.csv`).",
             law.restitution(1.0)?
         )?;
     } else {
         writeln!(md, "(the mcnamara-falcon plugin was not found)")?;
+    }
+
+    // ---- McNamara & Falcon: the vibrated bed (Figs. 2-4) ----
+    writeln!(md, "\n## McNamara & Falcon (2005): the vibrated bed\n")?;
+    if reg.find("mcnamara-falcon").is_ok() && reg.find("constant").is_ok() {
+        let bed_dir = out.join("bed");
+        let size = if quick {
+            crate::bed::figures::Size::tiny()
+        } else {
+            crate::bed::figures::Size::reproduce()
+        };
+        let bed_md = crate::bed::figures::run(reg, &bed_dir, &size)?;
+        write_atomic(&bed_dir.join("report.md"), bed_md.as_bytes())?;
+        // the bed report's sections, one level down
+        for line in bed_md.lines().skip(1) {
+            if line.starts_with('#') {
+                writeln!(md, "#{line}")?;
+            } else {
+                writeln!(md, "{line}")?;
+            }
+        }
+        writeln!(
+            md,
+            "\nFigures and CSV files in `bed/`. This is a reduced grid (a few minutes on two \
+             cores); `dashpot figures bed --out DIR` runs the paper's."
+        )?;
+    } else {
+        writeln!(md, "(the mcnamara-falcon and constant plugins are needed)")?;
     }
     write_atomic(&out.join("report.md"), md.as_bytes())?;
     println!("{md}");

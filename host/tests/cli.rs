@@ -366,10 +366,16 @@ fn plugin_path_environment_variable() {
 #[test]
 fn reproduce_writes_the_report() {
     let out = std::env::temp_dir().join(format!("dashpot-repro-{}", std::process::id()));
-    let o = dashpot(&["reproduce", "--out", out.to_str().unwrap()]);
+    let o = dashpot(&["reproduce", "--quick", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("0.7031"), "r(1 m/s) in the report");
+    assert!(md.contains("## McNamara & Falcon (2005): the vibrated bed"));
+    assert!(md.contains("### Fig. 4 a–d"));
+    for f in ["fig2_pressure", "fig3_snapshots", "fig4_theta"] {
+        assert!(out.join("bed").join(format!("{f}.png")).exists(), "{f}");
+        assert!(out.join("bed").join(format!("{f}.svg")).exists(), "{f}");
+    }
     let csv = std::fs::read_to_string(out.join("mcnamara_falcon_fig1.csv")).unwrap();
     assert_eq!(csv.lines().count(), 242);
     let laws: Value = serde_json::from_str(&std::fs::read_to_string(out.join("laws.json")).unwrap()).unwrap();

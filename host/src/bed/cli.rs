@@ -1,0 +1,471 @@
+//! The bed's command-line arguments and the `dashpot bed`, `dashpot scaling` and
+//! `dashpot figures bed` commands (delegated to from [`crate::cli`]).
+
+use super::engine::{Bed, BedConfig, BedReport};
+use super::{resolve, scaling, DynRestitution, Laws};
+use crate::config::parse_set;
+use crate::output::write_atomic;
+use crate::plot::{Figure, Mark, Panel, Series};
+use crate::registry::Registry;
+use anyhow::{bail, Context, Result};
+use clap::{Args, Subcommand};
+use dashpot_sdk::ParamValue;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde_json::json;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+/// The physics shared by `dashpot bed` and `dashpot scaling` (defaults: McNamara & Falcon).
+#[derive(Args, Debug, Clone)]
+pub struct PhysArgs {
+    /// The restitution law (see `dashpot laws`), e.g. mcnamara-falcon or constant; or any
+    /// contact law as `from:NAME` (e.g. from:kuwabara-kono), its r(v) from the collision driver.
+    #[arg(long)]
+    pub restitution: String,
+    /// Set a law parameter, NAME=VALUE (repeatable), e.g. --set r=0.7.
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// Gravity g (m/s², 0 for none).
+    #[arg(long, default_value_t = 9.8, allow_hyphen_values = true)]
+    pub gravity: f64,
+    /// Piston amplitude A, peak to peak (m).
+    #[arg(long, default_value_t = 0.025, allow_hyphen_values = true)]
+    pub amplitude: f64,
+    /// Box width L (m), periodic.
+    #[arg(long, default_value_t = 0.2, allow_hyphen_values = true)]
+    pub width: f64,
+    /// Disk diameter d (m).
+    #[arg(long, default_value_t = 0.002, allow_hyphen_values = true)]
+    pub diameter: f64,
+    /// Disk mass m (kg).
+    #[arg(long, default_value_t = 3.27e-5, allow_hyphen_values = true)]
+    pub mass: f64,
+    /// Headroom h − h0 (m): the lid is this far above n layers (h0 = n d) over the piston's top.
+    #[arg(long, default_value_t = 0.015, allow_hyphen_values = true)]
+    pub headroom: f64,
+    /// Measured piston periods C, after the transient.
+    #[arg(long, default_value_t = 200.0, allow_hyphen_values = true)]
+    pub cycles: f64,
+    /// Transient periods C0, not measured.
+    #[arg(long, default_value_t = 50.0, allow_hyphen_values = true)]
+    pub transient: f64,
+    /// Rough disks: tangential restitution r_t in [-1, 1] (-1 smooth, 1 fully reversing).
+    #[arg(long, allow_hyphen_values = true)]
+    pub tangential: Option<f64>,
+    /// The TC model: a collision of a disk that collided less than SECONDS ago is elastic.
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
+    pub tc: Option<f64>,
+    /// Seed of the initial state.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+impl PhysArgs {
+    /// The law's parameters from `--set`.
+    pub fn params(&self) -> Result<Vec<ParamValue>> {
+        let sets = self
+            .set
+            .iter()
+            .map(|s| parse_set(s))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(crate::config::merge_params(&Default::default(), &sets))
+    }
+
+    /// The configuration at `layers` and `freq` (Hz).
+    pub fn config(&self, layers: f64, freq: f64) -> BedConfig {
+        BedConfig {
+            layers,
+            freq,
+            gravity: self.gravity,
+            amplitude: self.amplitude,
+            width: self.width,
+            diameter: self.diameter,
+            mass: self.mass,
+            headroom: self.headroom,
+            tangential: self.tangential,
+            tc: self.tc,
+            seed: self.seed,
+            ..BedConfig::paper(layers, freq)
+        }
+    }
+
+    /// Loads the law and binds it to the bed's pairs.
+    pub fn laws(&self, reg: &Registry) -> Result<Laws<DynRestitution>> {
+        if !(self.diameter.is_finite() && self.diameter > 0.0) {
+            bail!("diameter d = {} m is out of range: d must be > 0", self.diameter);
+        }
+        if !(self.mass.is_finite() && self.mass > 0.0) {
+            bail!("mass m = {} kg is out of range: m must be > 0", self.mass);
+        }
+        Ok(resolve(
+            reg,
+            &self.restitution,
+            &self.params()?,
+            self.diameter,
+            self.mass,
+        )?)
+    }
+
+    /// Checks the protocol's lengths.
+    pub fn check_cycles(&self) -> Result<()> {
+        if !(self.cycles.is_finite() && self.cycles > 0.0) {
+            bail!("--cycles = {} is out of range: must be > 0 periods", self.cycles);
+        }
+        if !(self.transient.is_finite() && self.transient >= 0.0) {
+            bail!(
+                "--transient = {} is out of range: must be >= 0 periods",
+                self.transient
+            );
+        }
+        Ok(())
+    }
+}
+
+/// `dashpot bed`.
+#[derive(Args, Debug)]
+pub struct BedArgs {
+    /// The law and the bed.
+    #[command(flatten)]
+    pub phys: PhysArgs,
+    /// Number of layers n = N d / L (N = 100 n disks at the defaults).
+    #[arg(long, allow_hyphen_values = true)]
+    pub layers: f64,
+    /// Piston frequency f (Hz).
+    #[arg(long, allow_hyphen_values = true)]
+    pub freq: f64,
+    /// Machine-readable output.
+    #[arg(long)]
+    pub json: bool,
+    /// Draw the disks at the end of the run (piston at its lowest) into FILE.png (and .svg).
+    #[arg(long, value_name = "FILE.png")]
+    pub snapshot: Option<PathBuf>,
+    /// Write the sampled time series (64 samples per period) to FILE.csv.
+    #[arg(long, value_name = "FILE.csv")]
+    pub trace: Option<PathBuf>,
+}
+
+/// `dashpot scaling`.
+#[derive(Args, Debug)]
+pub struct ScalingArgs {
+    /// The law and the bed.
+    #[command(flatten)]
+    pub phys: PhysArgs,
+    /// Layers, comma separated, e.g. 0.5,1,2,3.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, required = true)]
+    pub layers: Vec<f64>,
+    /// Frequencies FROM:TO:COUNT (Hz), evenly spaced, e.g. 10:30:11.
+    #[arg(long, default_value = "10:30:11")]
+    pub freqs: String,
+    /// Output folder for scaling.csv, grid.csv and theta.png/.svg.
+    #[arg(long, default_value = "scaling")]
+    pub out: PathBuf,
+    /// Machine-readable output.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// `dashpot figures ...`: the figures of one driver.
+#[derive(Subcommand, Debug)]
+pub enum FiguresCommand {
+    /// McNamara & Falcon (2005) Figs. 2 b–d, 3 and 4 a–d, with a report.
+    Bed {
+        /// Output folder.
+        #[arg(long, default_value = "results/bed")]
+        out: PathBuf,
+        /// A small grid and short runs (seconds), instead of the paper's.
+        #[arg(long)]
+        quick: bool,
+        /// Only these figures (2, 3, 4; comma separated). Default: all.
+        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u8).range(2..=4))]
+        only: Vec<u8>,
+    },
+}
+
+/// A progress bar on stderr, hidden when stderr is not a terminal.
+pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
+    let target = if std::io::stderr().is_terminal() {
+        ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::hidden()
+    };
+    let pb = ProgressBar::with_draw_target(Some(len), target);
+    if let Ok(style) = ProgressStyle::with_template(&format!(
+        "{what} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {{msg}} (eta {{eta}})"
+    )) {
+        pb.set_style(style);
+    }
+    pb
+}
+
+/// Parses FROM:TO:COUNT into COUNT evenly spaced values.
+pub fn parse_range(s: &str) -> Result<Vec<f64>> {
+    let parts: Vec<&str> = s.split(':').collect();
+    let bad = || anyhow::anyhow!("--freqs '{s}' is not FROM:TO:COUNT (e.g. 10:30:11, frequencies in Hz)");
+    if parts.len() != 3 {
+        return Err(bad());
+    }
+    let a: f64 = parts[0].trim().parse().map_err(|_| bad())?;
+    let b: f64 = parts[1].trim().parse().map_err(|_| bad())?;
+    let k: usize = parts[2].trim().parse().map_err(|_| bad())?;
+    if k == 0 || !a.is_finite() || !b.is_finite() {
+        return Err(bad());
+    }
+    if k == 1 {
+        return Ok(vec![a]);
+    }
+    Ok((0..k).map(|i| a + (b - a) * i as f64 / (k - 1) as f64).collect())
+}
+
+/// `dashpot bed`.
+pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
+    a.phys.check_cycles()?;
+    let cfg = a.phys.config(a.layers, a.freq);
+    cfg.validate()?;
+    let laws = a.phys.laws(reg)?;
+    let mut bed = Bed::new(cfg, laws)?;
+    if a.trace.is_some() {
+        bed.enable_trace();
+    }
+    let total = (a.phys.transient + a.phys.cycles) / a.freq;
+    let pb = progress_bar((total * 1000.0).ceil() as u64, "bed (ms simulated)");
+    let report = bed
+        .run_protocol(a.phys.transient, a.phys.cycles, &mut |t| {
+            pb.set_position((t * 1000.0) as u64)
+        })
+        .with_context(|| {
+            format!(
+                "bed n = {}, f = {} Hz, law {}",
+                a.layers, a.freq, a.phys.restitution
+            )
+        })?;
+    pb.finish_and_clear();
+    if let Some(p) = &a.trace {
+        write_trace(p, &bed)?;
+    }
+    if let Some(p) = &a.snapshot {
+        let title = format!(
+            "{} n = {}, f = {} Hz, g = {} m/s², t = {:.3} s",
+            a.phys.restitution,
+            a.layers,
+            a.freq,
+            a.phys.gravity,
+            bed.now()
+        );
+        snapshot_figure(&bed, &title).save_as(p)?;
+    }
+    let params = a.phys.params()?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report_json(&a.phys.restitution, &params, &report))?
+        );
+    } else {
+        print_report(&a.phys.restitution, &params, &report);
+    }
+    Ok(())
+}
+
+/// The JSON of a bed report, with the law.
+pub fn report_json(law: &str, params: &[ParamValue], r: &BedReport) -> serde_json::Value {
+    let p: serde_json::Map<String, serde_json::Value> = params
+        .iter()
+        .map(|p| (p.name.to_string(), json!(p.value)))
+        .collect();
+    let mut v = serde_json::to_value(r).unwrap_or_else(|_| json!({}));
+    if let Some(o) = v.as_object_mut() {
+        o.insert("restitution".into(), json!({ "law": law, "params": p }));
+        o.insert(
+            "max_overlap_diameters".into(),
+            json!(r.max_overlap / r.config.diameter),
+        );
+    }
+    v
+}
+
+fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
+    let c = &r.config;
+    let ps: Vec<String> = params.iter().map(|p| format!("{}={}", p.name, p.value)).collect();
+    println!(
+        "bed: law {law} {}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
+        ps.join(" "),
+        c.layers,
+        r.disks,
+        c.freq,
+        r.piston_speed,
+        c.gravity,
+        r.lid
+    );
+    println!("measured over {:.3} s after the transient:", r.measured_time);
+    println!("  pressure P = Nc ΔI / L      {:.6e} N/m", r.pressure);
+    println!("  lid collision rate Nc       {:.6e} 1/s", r.lid_collision_rate);
+    println!("  mean impulse ΔI             {:.6e} N·s", r.mean_impulse);
+    println!("  temperature T               {:.6e} J", r.temperature);
+    println!(
+        "run: {} events ({} collisions, {} cell crossings), {:.3e} events/s, {:.3e} collisions/s, {:.3} s wall ({:.4} s per simulated s)",
+        r.events,
+        r.collisions,
+        r.counters.cell_crossings,
+        r.events_per_second,
+        r.collisions_per_second,
+        r.wall_seconds,
+        r.wall_per_simulated_second
+    );
+    println!(
+        "  TC firings {} ({:.2} % of collisions), largest overlap {:.3e} m ({:.3e} d)",
+        r.tc_firings,
+        100.0 * r.tc_share,
+        r.max_overlap,
+        r.max_overlap / c.diameter
+    );
+}
+
+fn write_trace<R: super::Restitution>(p: &Path, bed: &Bed<R>) -> Result<()> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    for row in bed.trace() {
+        w.serialize(row)?;
+    }
+    let bytes = w.into_inner().context("trace csv")?;
+    write_atomic(p, &bytes).with_context(|| format!("cannot write {}", p.display()))
+}
+
+/// A snapshot of the disks (m), the lid, the piston and the periodic boundaries.
+pub fn snapshot_panel<R: super::Restitution>(bed: &Bed<R>, title: &str) -> Panel {
+    let c = bed.config();
+    let r = 0.5 * c.diameter;
+    let z = bed.piston().state(bed.now()).z;
+    let (l, lid) = (c.width, bed.lid());
+    Panel {
+        title: title.to_string(),
+        x_label: "x (m)".into(),
+        y_label: "y (m)".into(),
+        equal_aspect: true,
+        x_range: Some((-0.005, l + 0.005)),
+        y_range: Some((-0.5 * c.amplitude - 0.003, lid + 0.003)),
+        disks: bed.positions().into_iter().map(|(x, y)| (x, y, r)).collect(),
+        series: vec![
+            Series::new("", vec![(0.0, lid), (l, lid)], Mark::Line, 6),
+            Series::new("", vec![(0.0, z), (l, z)], Mark::Line, 6),
+            Series::new("", vec![(0.0, z), (0.0, lid)], Mark::Dashed, 7),
+            Series::new("", vec![(l, z), (l, lid)], Mark::Dashed, 7),
+        ],
+        ..Default::default()
+    }
+}
+
+fn snapshot_figure<R: super::Restitution>(bed: &Bed<R>, title: &str) -> Figure {
+    let c = bed.config();
+    let mut f = Figure::single(snapshot_panel(bed, title));
+    let h = (bed.lid() + 0.5 * c.amplitude + 0.006) / (c.width + 0.01);
+    f.panel_size = (1400, ((1400.0 * h) as u32 + 120).clamp(200, 1400));
+    f
+}
+
+/// Saving a figure by its PNG path.
+pub trait SaveAs {
+    /// Writes `path` (.png) and the same name with .svg.
+    fn save_as(&self, path: &Path) -> Result<()>;
+}
+
+impl SaveAs for Figure {
+    fn save_as(&self, path: &Path) -> Result<()> {
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let stem = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().to_string())
+            .with_context(|| format!("--snapshot {}: not a file name", path.display()))?;
+        self.save(dir, &stem)?;
+        Ok(())
+    }
+}
+
+/// `dashpot scaling`.
+pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
+    a.phys.check_cycles()?;
+    let freqs = parse_range(&a.freqs)?;
+    if a.layers.is_empty() {
+        bail!("--layers: give at least one number of layers");
+    }
+    for &n in &a.layers {
+        a.phys.config(n, 20.0).validate()?;
+    }
+    for &f in &freqs {
+        a.phys.config(1.0, f).validate()?;
+    }
+    let laws = a.phys.laws(reg)?;
+    let laws = Laws {
+        disk: &laws.disk,
+        wall: &laws.wall,
+    };
+    let grid = scaling::Grid {
+        layers: a.layers.clone(),
+        freqs,
+        transient: a.phys.transient,
+        cycles: a.phys.cycles,
+    };
+    let pb = progress_bar(grid.len() as u64, "scaling (runs)");
+    let runs = scaling::run_grid(&laws, &|n, f| a.phys.config(n, f), &grid, &|| pb.inc(1))?;
+    pb.finish_and_clear();
+    let rows = scaling::fit_all(&grid, &runs);
+    std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
+    scaling::write_grid_csv(&a.out.join("grid.csv"), &runs)?;
+    scaling::write_fit_csv(&a.out.join("scaling.csv"), &rows)?;
+    let title = format!(
+        "θ(n): {} {}, g = {} m/s²",
+        a.phys.restitution,
+        a.phys.set.join(" "),
+        a.phys.gravity
+    );
+    Figure::single(scaling::theta_panel(&rows, &title)).save(&a.out, "theta")?;
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&rows)?);
+    } else {
+        println!(
+            "scaling exponents θ of X ∝ V^θ, least squares of ln X on ln V over {} frequencies (max |residual| in ln units)",
+            grid.freqs.len()
+        );
+        println!(
+            "{:>6} {:>16} {:>16} {:>16} {:>16}",
+            "n", "θ_P", "θ_T", "θ_Nc", "θ_ΔI"
+        );
+        for r in &rows {
+            let c = |f: &Option<super::observables::PowerFit>| match f {
+                Some(f) => format!("{:7.3} ({:.3})", f.theta, f.max_residual),
+                None => "-".to_string(),
+            };
+            println!(
+                "{:>6} {:>16} {:>16} {:>16} {:>16}",
+                r.layers,
+                c(&r.pressure),
+                c(&r.temperature),
+                c(&r.lid_collision_rate),
+                c(&r.mean_impulse)
+            );
+        }
+        println!(
+            "wrote {}, {} and theta.png/.svg",
+            a.out.join("scaling.csv").display(),
+            a.out.join("grid.csv").display()
+        );
+    }
+    Ok(())
+}
+
+/// `dashpot figures ...`.
+pub fn figures(reg: &Registry, cmd: &FiguresCommand) -> Result<()> {
+    match cmd {
+        FiguresCommand::Bed { out, quick, only } => {
+            let size = if *quick {
+                super::figures::Size::quick()
+            } else {
+                super::figures::Size::paper()
+            };
+            let md = super::figures::run_only(reg, out, &size, only)?;
+            write_atomic(&out.join("report.md"), md.as_bytes())?;
+            println!("wrote {}", out.join("report.md").display());
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,216 @@
+//! # The vibrated bed: an event-driven engine for 2D inelastic hard disks
+#![warn(missing_docs)]
+//!
+//! McNamara & Falcon (PRE 71, 031302, 2005), Sec. II: `N = n L/d` disks of diameter `d` and mass
+//! `m` in a box of width `L`, periodic horizontally, between a fixed lid and a piston driven by
+//! two joined parabolas ([`piston`]), under gravity `g` (or none). Every collision is
+//! instantaneous and binary; the normal restitution comes from a [`Restitution`] law evaluated at
+//! the normal relative impact speed; the lid and the piston are partners of infinite mass.
+//!
+//! Geometry: heights y in m, with the piston oscillating in z ∈ [−A/2, A/2]. As in the paper,
+//! the box height h is measured from the piston at its highest position: the lid is at
+//! `A/2 + h0 + (h − h0)` with `h0 = n·d`, the height of `n` layers of disks of diameter `d`
+//! stacked square. The paper does not define `h0` beyond "the height of the bed at rest"; `n·d`
+//! is our reading (a 2D random packing of `n` layers is somewhat lower, about 0.9 `n d`).
+//!
+//! The engine ([`engine::Bed`]) is generic over [`Restitution`], implemented for a plugin's
+//! [`BoundRestitutionHandle`] and, through [`Compiled`], for any law compiled into the program;
+//! another kind of law (a contact law integrated into a restitution, say) needs only one more
+//! implementation of that trait.
+
+pub mod cells;
+pub mod cli;
+pub mod engine;
+pub mod events;
+pub mod figures;
+pub mod observables;
+pub mod piston;
+pub mod scaling;
+
+pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};
+
+use dashpot_sdk::abi::BoundRestitutionHandle;
+use dashpot_sdk::{BoundRestitution, LawError, Pair, Particle};
+
+/// A coefficient of normal restitution as a function of the normal impact speed: what the engine
+/// needs from a law.
+pub trait Restitution: Sync {
+    /// r(v) (dimensionless, expected in [0, 1]) at normal relative impact speed `v` ≥ 0 (m/s).
+    fn r(&self, v: f64) -> Result<f64, LawError>;
+}
+
+impl Restitution for BoundRestitutionHandle {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        self.restitution(v)
+    }
+}
+
+impl<T: Restitution + ?Sized> Restitution for Box<T> {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        (**self).r(v)
+    }
+}
+
+impl<T: Restitution + ?Sized> Restitution for &T {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        (**self).r(v)
+    }
+}
+
+/// A restitution law compiled into the program (no plugin), e.g.
+/// `Compiled(dashpot_mcnamara_falcon::McNamaraFalcon { r0: 0.95, vy: 0.3 })`.
+#[derive(Debug, Clone, Copy)]
+pub struct Compiled<B>(pub B);
+
+impl<B: BoundRestitution> Restitution for Compiled<B> {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        let r = self.0.restitution(v);
+        if r.is_finite() {
+            Ok(r)
+        } else {
+            Err(LawError::new(
+                dashpot_sdk::ErrorKind::NonFinite,
+                format!("restitution law returned {r} at impact speed {v:e} m/s"),
+            ))
+        }
+    }
+}
+
+/// The restitution of the two kinds of pair in the bed: two disks, and a disk against a wall
+/// (the lid or the piston, of infinite mass).
+#[derive(Debug, Clone, Copy)]
+pub struct Laws<R> {
+    /// Disk against disk.
+    pub disk: R,
+    /// Disk against the lid or the piston.
+    pub wall: R,
+}
+
+/// Young's modulus (Pa) given to the bed's disks when a law is bound to them: stainless steel.
+/// Restitution laws of the paper do not use it.
+pub const STEEL_YOUNG: f64 = 2.0e11;
+/// Poisson's ratio given to the bed's disks: stainless steel.
+pub const STEEL_POISSON: f64 = 0.3;
+
+/// The particle a law is bound to: a sphere of diameter `d` (m) and mass `m` (kg) (the paper's
+/// disks stand for 2 mm steel spheres), of steel's elastic moduli.
+pub fn bed_particle(d: f64, m: f64) -> Particle {
+    Particle {
+        diameter: d,
+        density: m / (std::f64::consts::PI / 6.0 * d * d * d),
+        young: STEEL_YOUNG,
+        poisson: STEEL_POISSON,
+    }
+}
+
+/// The disk–disk and disk–wall pairs of the bed's particle.
+pub fn bed_pairs(d: f64, m: f64) -> Result<(Pair, Pair), LawError> {
+    let p = bed_particle(d, m);
+    Ok((Pair::spheres(&p, &p)?, Pair::wall(&p)?))
+}
+
+/// Loads restitution law `name` from the registry with `params` and binds it to the bed's pairs.
+pub fn plugin_laws(
+    reg: &crate::Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    d: f64,
+    m: f64,
+) -> Result<Laws<BoundRestitutionHandle>, LawError> {
+    let law = reg.restitution(name, params)?;
+    let (pp, pw) = bed_pairs(d, m)?;
+    Ok(Laws {
+        disk: law.bind(&pp)?,
+        wall: law.bind(&pw)?,
+    })
+}
+
+/// A restitution of any kind, chosen by name at run time.
+pub type DynRestitution = Box<dyn Restitution + Send>;
+
+/// The restitution named `name` with `params`, bound to the bed's pairs (disks of diameter `d`
+/// (m) and mass `m` (kg)): what `dashpot bed`, `scaling` and `figures bed` use. Today every name
+/// is a restitution-law plugin; another source of restitution (a contact law integrated over a
+/// collision, say) is one more [`Restitution`] implementation returned from here.
+pub fn resolve(
+    reg: &crate::Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    d: f64,
+    m: f64,
+) -> Result<Laws<DynRestitution>, LawError> {
+    if let Some(contact) = name.strip_prefix(FROM_CONTACT) {
+        let l = contact_laws(reg, contact, params, d, m)?;
+        return Ok(Laws {
+            disk: Box::new(Compiled(l.disk)),
+            wall: Box::new(Compiled(l.wall)),
+        });
+    }
+    let l = plugin_laws(reg, name, params, d, m)?;
+    Ok(Laws {
+        disk: Box::new(l.disk),
+        wall: Box::new(l.wall),
+    })
+}
+
+/// The prefix that selects a contact law as a restitution law: `--restitution from:hsd`.
+pub const FROM_CONTACT: &str = "from:";
+
+/// Contact law `name` with `params`, turned into restitution laws for the bed's disk–disk and
+/// disk–wall pairs: r(v) is the restitution the collision driver realizes at impact speed v,
+/// under the end-of-contact criterion the law declares, tabulated on a log grid over
+/// [1e-4, 20] m/s to within 1e-6 (power-law tails outside).
+pub fn contact_laws(
+    reg: &crate::Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    d: f64,
+    m: f64,
+) -> Result<Laws<crate::collide::TabulatedRestitution>, LawError> {
+    use crate::collide::{CollideError, Options, TabulatedRestitution};
+    let law = reg.contact(name, params)?;
+    let end = reg
+        .find(name)?
+        .0
+        .info
+        .end_criterion
+        .into_option()
+        .unwrap_or(dashpot_sdk::EndCriterion::Overlap);
+    let (pp, pw) = bed_pairs(d, m)?;
+    let opt = Options {
+        rtol: 1e-10,
+        ..Options::default()
+    };
+    let table = |pair: &Pair| -> Result<TabulatedRestitution, LawError> {
+        let b = law.bind(pair)?;
+        TabulatedRestitution::build(&b, pair.mass, end, 1e-4, 20.0, 1e-6, &opt).map_err(|e| match e {
+            CollideError::Law(l) => l,
+            other => LawError::new(
+                dashpot_sdk::ErrorKind::Other,
+                format!("contact law '{name}' as a restitution law: {other}"),
+            ),
+        })
+    };
+    Ok(Laws {
+        disk: table(&pp)?,
+        wall: table(&pw)?,
+    })
+}
+
+/// What can go wrong in a bed run.
+#[derive(Debug, thiserror::Error)]
+pub enum BedError {
+    /// A parameter out of its valid range.
+    #[error("{0}")]
+    Invalid(String),
+    /// The law failed (or returned a coefficient outside [0, 1]).
+    #[error("restitution law: {0}")]
+    Law(#[from] LawError),
+    /// The event rate exploded in simulated time (inelastic collapse, or disks crushed).
+    #[error("{0}")]
+    Collapse(String),
+}

@@ -1,0 +1,205 @@
+//! Scaling exponents: a grid of runs over layers n and frequencies f, in parallel, and the
+//! least-squares exponents θ of X ∝ V^θ for X = P, T, Nc, ΔI at each n (the paper's Fig. 4).
+
+use super::engine::{Bed, BedConfig, BedReport};
+use super::observables::{fit_power, PowerFit};
+use super::{BedError, Laws, Restitution};
+use crate::output::write_atomic;
+use crate::plot::{Mark, Panel, Series};
+use anyhow::{Context, Result};
+use rayon::prelude::*;
+use serde::Serialize;
+use std::path::Path;
+
+/// A grid of runs: every n with every f, each `transient` periods then `cycles` measured.
+#[derive(Debug, Clone)]
+pub struct Grid {
+    /// Layers n.
+    pub layers: Vec<f64>,
+    /// Frequencies f (Hz).
+    pub freqs: Vec<f64>,
+    /// Transient periods.
+    pub transient: f64,
+    /// Measured periods.
+    pub cycles: f64,
+}
+
+impl Grid {
+    /// Number of runs.
+    pub fn len(&self) -> usize {
+        self.layers.len() * self.freqs.len()
+    }
+
+    /// True if the grid has no run.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The (n, f) of run `k` (row-major: n outer).
+    pub fn point(&self, k: usize) -> (f64, f64) {
+        (
+            self.layers[k / self.freqs.len()],
+            self.freqs[k % self.freqs.len()],
+        )
+    }
+}
+
+/// Runs every point of `grid` in parallel (rayon) with the configuration `cfg(n, f)`; `tick` is
+/// called after each run. Results in grid order (n outer, f inner).
+pub fn run_grid<R: Restitution>(
+    laws: &Laws<R>,
+    cfg: &(dyn Fn(f64, f64) -> BedConfig + Sync),
+    grid: &Grid,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<BedReport>, BedError> {
+    // longest runs first (many disks, low frequency: more simulated time), for load balance
+    let mut order: Vec<usize> = (0..grid.len()).collect();
+    let cost = |k: usize| {
+        let (n, f) = grid.point(k);
+        n / f
+    };
+    order.sort_by(|&a, &b| cost(b).total_cmp(&cost(a)));
+    let mut done: Vec<(usize, BedReport)> = order
+        .par_iter()
+        .map(|&k| {
+            let (n, f) = grid.point(k);
+            let mut bed = Bed::new(
+                cfg(n, f),
+                Laws {
+                    disk: &laws.disk,
+                    wall: &laws.wall,
+                },
+            )?;
+            let r = bed
+                .run_protocol(grid.transient, grid.cycles, &mut |_| {})
+                .map_err(|e| match e {
+                    BedError::Collapse(m) => BedError::Collapse(format!("n = {n}, f = {f} Hz: {m}")),
+                    e => e,
+                })?;
+            tick();
+            Ok((k, r))
+        })
+        .collect::<Result<Vec<_>, BedError>>()?;
+    done.sort_by_key(|(k, _)| *k);
+    Ok(done.into_iter().map(|(_, r)| r).collect())
+}
+
+/// The four exponents at one n.
+#[derive(Debug, Clone, Serialize)]
+pub struct ScalingRow {
+    /// Layers n.
+    pub layers: f64,
+    /// θ of the lid pressure P.
+    pub pressure: Option<PowerFit>,
+    /// θ of the temperature T.
+    pub temperature: Option<PowerFit>,
+    /// θ of the lid collision rate Nc.
+    pub lid_collision_rate: Option<PowerFit>,
+    /// θ of the mean impulse ΔI.
+    pub mean_impulse: Option<PowerFit>,
+    /// Largest TC share of collisions over the frequencies at this n.
+    pub tc_share: f64,
+}
+
+/// Fits θ for each n of `grid` from the runs (in grid order).
+pub fn fit_all(grid: &Grid, runs: &[BedReport]) -> Vec<ScalingRow> {
+    let nf = grid.freqs.len();
+    grid.layers
+        .iter()
+        .enumerate()
+        .map(|(a, &n)| {
+            let rs = &runs[a * nf..(a + 1) * nf];
+            let fit = |f: &dyn Fn(&BedReport) -> f64| {
+                fit_power(&rs.iter().map(|r| (r.piston_speed, f(r))).collect::<Vec<_>>())
+            };
+            ScalingRow {
+                layers: n,
+                pressure: fit(&|r| r.pressure),
+                temperature: fit(&|r| r.temperature),
+                lid_collision_rate: fit(&|r| r.lid_collision_rate),
+                mean_impulse: fit(&|r| r.mean_impulse),
+                tc_share: rs.iter().map(|r| r.tc_share).fold(0.0, f64::max),
+            }
+        })
+        .collect()
+}
+
+/// Writes every run of the grid as CSV.
+pub fn write_grid_csv(path: &Path, runs: &[BedReport]) -> Result<()> {
+    let mut s = String::from(
+        "layers,freq_hz,piston_speed_m_s,pressure_n_m,lid_collision_rate_per_s,mean_impulse_n_s,temperature_j,events,collisions,tc_share,max_overlap_m,wall_s\n",
+    );
+    for r in runs {
+        s.push_str(&format!(
+            "{},{},{},{:e},{:e},{:e},{:e},{},{},{:e},{:e},{:.3}\n",
+            r.config.layers,
+            r.config.freq,
+            r.piston_speed,
+            r.pressure,
+            r.lid_collision_rate,
+            r.mean_impulse,
+            r.temperature,
+            r.events,
+            r.collisions,
+            r.tc_share,
+            r.max_overlap,
+            r.wall_seconds
+        ));
+    }
+    write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// Writes the exponents as CSV (theta and max |residual| of each observable).
+pub fn write_fit_csv(path: &Path, rows: &[ScalingRow]) -> Result<()> {
+    let mut s =
+        String::from("layers,theta_p,resid_p,theta_t,resid_t,theta_nc,resid_nc,theta_di,resid_di,tc_share\n");
+    let c = |f: &Option<PowerFit>| match f {
+        Some(f) => format!("{},{}", f.theta, f.max_residual),
+        None => ",".to_string(),
+    };
+    for r in rows {
+        s.push_str(&format!(
+            "{},{},{},{},{},{}\n",
+            r.layers,
+            c(&r.pressure),
+            c(&r.temperature),
+            c(&r.lid_collision_rate),
+            c(&r.mean_impulse),
+            r.tc_share
+        ));
+    }
+    write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
+}
+
+/// θ(n) for the four observables; points whose fit is not a power law (a residual ≥ 0.25, the
+/// paper's rule) are left out.
+pub fn theta_panel(rows: &[ScalingRow], title: &str) -> Panel {
+    fn pick(rows: &[ScalingRow], f: fn(&ScalingRow) -> Option<PowerFit>) -> Vec<(f64, f64)> {
+        rows.iter()
+            .filter_map(|r| f(r).filter(|p| p.is_power_law()).map(|p| (r.layers, p.theta)))
+            .collect()
+    }
+    let mut series = Vec::new();
+    type Pick = fn(&ScalingRow) -> Option<PowerFit>;
+    let which: [(&str, Pick); 4] = [
+        ("T", |r| r.temperature),
+        ("Nc", |r| r.lid_collision_rate),
+        ("ΔI", |r| r.mean_impulse),
+        ("P", |r| r.pressure),
+    ];
+    for (k, (name, f)) in which.into_iter().enumerate() {
+        let pts = pick(rows, f);
+        series.push(Series::new(name, pts.clone(), Mark::Line, k));
+        series.push(Series::new("", pts, Mark::Circles, k));
+    }
+    let xmax = rows.iter().map(|r| r.layers).fold(1.0, f64::max);
+    Panel {
+        title: title.to_string(),
+        x_label: "n (layers)".into(),
+        y_label: "θ".into(),
+        x_range: Some((0.0, xmax * 1.05)),
+        y_range: Some((-0.5, 2.5)),
+        series,
+        ..Default::default()
+    }
+}

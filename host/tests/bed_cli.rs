@@ -1,0 +1,299 @@
+//! `dashpot bed`, `dashpot scaling` and `dashpot figures bed` as a user runs them.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+fn lib(name: &str) -> PathBuf {
+    let deps = std::env::current_exe().unwrap().parent().unwrap().to_path_buf();
+    deps.join(format!(
+        "{}{name}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    ))
+}
+
+/// A plugin directory holding the two restitution plugins and one contact law.
+fn plugin_dir() -> PathBuf {
+    static D: OnceLock<PathBuf> = OnceLock::new();
+    D.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("dashpot-bed-cli-plugins-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        for n in [
+            "dashpot_mcnamara_falcon",
+            "dashpot_constant",
+            "dashpot_hsd",
+            "dashpot_kuwabara_kono",
+        ] {
+            let src = lib(n);
+            std::fs::copy(&src, d.join(src.file_name().unwrap())).unwrap();
+        }
+        d
+    })
+    .clone()
+}
+
+fn dashpot(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .arg("--plugin-dir")
+        .arg(plugin_dir())
+        .args(args)
+        .env_remove("DASHPOT_PLUGIN_PATH")
+        .env_remove("RUST_BACKTRACE")
+        .output()
+        .unwrap()
+}
+
+fn fails(args: &[&str], needles: &[&str]) {
+    let o = dashpot(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{args:?} should fail");
+    assert!(err.contains("error"), "{args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: expected '{n}' in: {err}");
+    }
+    assert!(
+        !err.contains("panicked") && !err.contains("backtrace"),
+        "{args:?}: {err}"
+    );
+}
+
+#[test]
+fn bed_json_reports_the_observables_and_writes_snapshot_and_trace() {
+    let dir = std::env::temp_dir().join(format!("dashpot-bed-cli-{}", std::process::id()));
+    let snap = dir.join("snap.png");
+    let trace = dir.join("trace.csv");
+    let o = dashpot(&[
+        "bed",
+        "--restitution",
+        "mcnamara-falcon",
+        "--layers",
+        "1",
+        "--freq",
+        "25",
+        "--transient",
+        "5",
+        "--cycles",
+        "10",
+        "--json",
+        "--snapshot",
+        snap.to_str().unwrap(),
+        "--trace",
+        trace.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    for k in [
+        "pressure",
+        "lid_collision_rate",
+        "mean_impulse",
+        "temperature",
+        "events",
+        "collisions",
+        "events_per_second",
+        "tc_firings",
+        "max_overlap",
+    ] {
+        assert!(v.get(k).is_some(), "missing {k}: {v}");
+    }
+    let (p, nc, di) = (
+        v["pressure"].as_f64().unwrap(),
+        v["lid_collision_rate"].as_f64().unwrap(),
+        v["mean_impulse"].as_f64().unwrap(),
+    );
+    assert!(p > 0.0 && (p - nc * di / 0.2).abs() < 1e-12 * p);
+    assert_eq!(v["disks"], 100);
+    assert!(v["collisions"].as_u64().unwrap() < v["events"].as_u64().unwrap());
+    // measured over exactly 10 periods
+    assert!((v["measured_time"].as_f64().unwrap() - 10.0 / 25.0).abs() < 1e-12);
+    assert!(std::fs::read(&snap).unwrap().starts_with(b"\x89PNG"));
+    assert!(dir.join("snap.svg").exists());
+    let csv = std::fs::read_to_string(&trace).unwrap();
+    assert!(csv.starts_with("t,piston_z,kinetic_energy,mean_height,lid_collisions,lid_impulse"));
+    // 64 samples per period over 15 periods, plus the one at t = 0
+    assert_eq!(csv.lines().count() - 1, 64 * 15 + 1);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn scaling_fits_the_classical_exponents_without_gravity_and_constant_r() {
+    let dir = std::env::temp_dir().join(format!("dashpot-scaling-cli-{}", std::process::id()));
+    let o = dashpot(&[
+        "scaling",
+        "--restitution",
+        "constant",
+        "--set",
+        "r=0.95",
+        "--tc",
+        "1e-5",
+        "--gravity",
+        "0",
+        "--layers",
+        "0.5",
+        "--freqs",
+        "10:30:3",
+        "--transient",
+        "5",
+        "--cycles",
+        "10",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    // with g = 0 and constant r, V is the only time scale: P ∝ V², Nc ∝ V, ΔI ∝ V
+    let th = |k: &str| v[0][k]["theta"].as_f64().unwrap();
+    assert!((th("pressure") - 2.0).abs() < 0.15, "{v}");
+    assert!((th("lid_collision_rate") - 1.0).abs() < 0.15, "{v}");
+    assert!((th("mean_impulse") - 1.0).abs() < 0.15, "{v}");
+    let csv = std::fs::read_to_string(dir.join("scaling.csv")).unwrap();
+    assert!(csv.starts_with("layers,theta_p,resid_p"));
+    assert_eq!(
+        std::fs::read_to_string(dir.join("grid.csv"))
+            .unwrap()
+            .lines()
+            .count(),
+        4
+    );
+    assert!(dir.join("theta.png").exists() && dir.join("theta.svg").exists());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn bad_bed_input_is_a_clear_error() {
+    let base = ["bed", "--restitution", "mcnamara-falcon"];
+    let with = |extra: &[&'static str]| -> Vec<&'static str> {
+        base.iter().copied().chain(extra.iter().copied()).collect()
+    };
+    fails(
+        &with(&["--layers", "-1", "--freq", "20"]),
+        &["layers n = -1", "n must be > 0"],
+    );
+    fails(
+        &with(&["--layers", "1", "--freq", "0"]),
+        &["f = 0 Hz", "f must be > 0"],
+    );
+    fails(&with(&["--layers", "1", "--freq", "-3"]), &["f = -3 Hz"]);
+    fails(
+        &with(&["--layers", "1", "--freq", "20", "--width", "0.004"]),
+        &["box is too small", "width L = 0.004"],
+    );
+    fails(
+        &with(&["--layers", "40", "--freq", "20", "--headroom", "-0.07"]),
+        &["box is too small"],
+    );
+    fails(
+        &with(&["--layers", "1", "--freq", "20", "--tangential", "2"]),
+        &["r_t = 2", "[-1, 1]"],
+    );
+    fails(
+        &with(&["--layers", "1", "--freq", "20", "--cycles", "0"]),
+        &["--cycles = 0"],
+    );
+    fails(
+        &["bed", "--restitution", "nope", "--layers", "1", "--freq", "20"],
+        &["nope", "mcnamara-falcon"],
+    );
+    fails(
+        &["bed", "--restitution", "hsd", "--layers", "1", "--freq", "20"],
+        &["restitution law is needed"],
+    );
+    fails(
+        &[
+            "bed",
+            "--restitution",
+            "constant",
+            "--set",
+            "r=1.5",
+            "--layers",
+            "1",
+            "--freq",
+            "20",
+        ],
+        &["1.5"],
+    );
+    fails(
+        &[
+            "scaling",
+            "--restitution",
+            "constant",
+            "--layers",
+            "1",
+            "--freqs",
+            "10:30",
+        ],
+        &["FROM:TO:COUNT"],
+    );
+    fails(
+        &[
+            "scaling",
+            "--restitution",
+            "constant",
+            "--layers",
+            "1,-2",
+            "--freqs",
+            "10:30:3",
+        ],
+        &["layers n = -2"],
+    );
+}
+
+#[test]
+fn a_contact_law_runs_the_bed_as_a_restitution_law() {
+    let run = |law: &str, set: &str| -> Value {
+        let o = dashpot(&[
+            "bed",
+            "--restitution",
+            law,
+            "--set",
+            set,
+            "--layers",
+            "0.5",
+            "--freq",
+            "25",
+            "--transient",
+            "2",
+            "--cycles",
+            "4",
+            "--json",
+        ]);
+        assert!(
+            o.status.success(),
+            "{law}: {}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        serde_json::from_slice(&o.stdout).unwrap()
+    };
+    let v = run("from:kuwabara-kono", "A=2e-6");
+    assert!(v["pressure"].as_f64().unwrap() > 0.0);
+    assert!(v["collisions"].as_u64().unwrap() > 100);
+    // HSD realizes its eps at every speed: as a restitution law it is the constant eps
+    let h = run("from:hsd", "eps=0.8");
+    assert!(h["pressure"].as_f64().unwrap() > 0.0);
+    fails(
+        &[
+            "bed",
+            "--restitution",
+            "from:constant",
+            "--layers",
+            "1",
+            "--freq",
+            "20",
+        ],
+        &["restitution law, but a contact law is needed"],
+    );
+    fails(
+        &[
+            "bed",
+            "--restitution",
+            "from:nope",
+            "--layers",
+            "1",
+            "--freq",
+            "20",
+        ],
+        &["unknown law 'nope'"],
+    );
+}

@@ -1,0 +1,122 @@
+//! The vibrated bed at n = 3, f = 30 Hz, g = 9.8 m/s², r(v), N = 300: CPU seconds per simulated
+//! second with the restitution law loaded as a plugin and compiled in, side by side in one run.
+//!
+//! Run: `cargo bench -p dashpot-tests --bench bed`
+
+use dashpot::bed::{plugin_laws, Bed, BedConfig, Compiled, Laws, Restitution};
+use dashpot_mcnamara_falcon::McNamaraFalcon;
+use dashpot_tests::seed_registry;
+
+const REPS: usize = 7;
+/// Transient before timing (s of simulated time) and timed span (s).
+const TRANSIENT: f64 = 1.0;
+const SPAN: f64 = 6.0;
+
+/// CPU time (s) of this thread, from the kernel's thread CPU clock (exact to the ns at the
+/// call, unlike /proc's tick-updated counters); None where the clock is missing.
+fn cpu_seconds() -> Option<f64> {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes one timespec into the valid pointer we pass.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    (rc == 0).then_some(ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9)
+}
+
+struct Run {
+    cpu: f64,
+    wall: f64,
+    events: u64,
+    collisions: u64,
+    pressure: f64,
+}
+
+fn run<R: Restitution>(laws: Laws<R>) -> Run {
+    let cfg = BedConfig::paper(3.0, 30.0);
+    let mut bed = Bed::new(cfg, laws).expect("bed");
+    bed.run_until(TRANSIENT, &mut |_| {}).expect("transient");
+    bed.start_window();
+    let (e0, c0) = (bed.counters.events, bed.counters.collisions);
+    let cpu0 = cpu_seconds().unwrap_or(f64::NAN);
+    let t0 = std::time::Instant::now();
+    bed.run_until(TRANSIENT + SPAN, &mut |_| {}).expect("run");
+    let wall = t0.elapsed().as_secs_f64();
+    let cpu = cpu_seconds().map(|c| c - cpu0).unwrap_or(wall);
+    assert!(cpu.is_finite(), "no CPU clock");
+    let rep = bed.report(wall);
+    Run {
+        cpu,
+        wall,
+        events: bed.counters.events - e0,
+        collisions: bed.counters.collisions - c0,
+        pressure: rep.pressure,
+    }
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let reg = seed_registry();
+    let plugin = plugin_laws(&reg, "mcnamara-falcon", &[], 0.002, 3.27e-5).expect("plugin");
+    let law = McNamaraFalcon { r0: 0.95, vy: 0.3 };
+    let stat = Laws {
+        disk: Compiled(law),
+        wall: Compiled(law),
+    };
+    let mut p = Vec::new();
+    let mut s = Vec::new();
+    for _ in 0..REPS {
+        p.push(run(Laws {
+            disk: &plugin.disk,
+            wall: &plugin.wall,
+        }));
+        s.push(run(Laws {
+            disk: &stat.disk,
+            wall: &stat.wall,
+        }));
+    }
+    // the same law through both paths: the same trajectory, bit for bit
+    assert_eq!(p[0].events, s[0].events, "plugin and static runs differ");
+    assert_eq!(p[0].pressure.to_bits(), s[0].pressure.to_bits());
+    let per = |v: &[Run], f: &dyn Fn(&Run) -> f64| -> (f64, f64) {
+        let x: Vec<f64> = v.iter().map(f).collect();
+        (x.iter().cloned().fold(f64::INFINITY, f64::min), median(x))
+    };
+    let cpu_p = per(&p, &|r| r.cpu / SPAN);
+    let cpu_s = per(&s, &|r| r.cpu / SPAN);
+    let wall_p = per(&p, &|r| r.wall / SPAN);
+    let wall_s = per(&s, &|r| r.wall / SPAN);
+    let r0 = &s[0];
+    println!(
+        "vibrated bed n = 3, f = 30 Hz, g = 9.8, r(v), N = 300: {SPAN} s simulated after {TRANSIENT} s, {REPS} interleaved runs (min | median)"
+    );
+    println!(
+        "  events per simulated second {:.0}, collisions {:.0} ({:.0} % of events)",
+        r0.events as f64 / SPAN,
+        r0.collisions as f64 / SPAN,
+        100.0 * r0.collisions as f64 / r0.events as f64
+    );
+    println!(
+        "  static (compiled in)  {:.4} | {:.4} CPU s per simulated s ({:.4} | {:.4} wall)",
+        cpu_s.0, cpu_s.1, wall_s.0, wall_s.1
+    );
+    println!(
+        "  plugin                {:.4} | {:.4} CPU s per simulated s ({:.4} | {:.4} wall)",
+        cpu_p.0, cpu_p.1, wall_p.0, wall_p.1
+    );
+    println!(
+        "  plugin cost (CPU): {:+.2} % (min) | {:+.2} % (median)   target <= 5 %",
+        100.0 * (cpu_p.0 / cpu_s.0 - 1.0),
+        100.0 * (cpu_p.1 / cpu_s.1 - 1.0)
+    );
+    println!(
+        "  collisions per CPU second: {:.3e} (plugin, median) | {:.3e} (static, median)",
+        r0.collisions as f64 / (cpu_p.1 * SPAN),
+        r0.collisions as f64 / (cpu_s.1 * SPAN)
+    );
+    println!("  target <= 0.058 s per simulated s (C reference: 0.087, 5.6e5 collisions per CPU s)");
+}

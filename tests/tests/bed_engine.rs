@@ -1,0 +1,287 @@
+//! The event-driven bed against exact invariants and closed forms, through the real plugins.
+
+use dashpot::bed::{plugin_laws, Bed, BedConfig, Kind, Laws};
+use dashpot_sdk::abi::BoundRestitutionHandle;
+use dashpot_sdk::ParamValue;
+use dashpot_tests::seed_registry;
+
+fn constant(r: f64) -> Laws<BoundRestitutionHandle> {
+    plugin_laws(
+        &seed_registry(),
+        "constant",
+        &[ParamValue::new("r", r)],
+        0.002,
+        3.27e-5,
+    )
+    .expect("constant law")
+}
+
+fn mcnamara_falcon() -> Laws<BoundRestitutionHandle> {
+    plugin_laws(&seed_registry(), "mcnamara-falcon", &[], 0.002, 3.27e-5).expect("r(v)")
+}
+
+/// One disk in a tall box over a fixed floor (A = 0).
+fn single(g: f64, headroom: f64) -> BedConfig {
+    BedConfig {
+        layers: 0.01, // N = n L/d = 1
+        amplitude: 0.0,
+        gravity: g,
+        headroom,
+        ..BedConfig::paper(0.01, 20.0)
+    }
+}
+
+#[test]
+fn elastic_disks_without_gravity_conserve_energy_over_a_million_events() {
+    let cfg = BedConfig {
+        gravity: 0.0,
+        amplitude: 0.0, // the piston at rest
+        ..BedConfig::paper(1.0, 20.0)
+    };
+    let mut bed = Bed::new(cfg, constant(1.0)).unwrap();
+    let e0 = bed.kinetic_energy();
+    bed.run_events(1_000_000).unwrap();
+    assert_eq!(bed.counters.events, 1_000_000);
+    let e1 = bed.kinetic_energy();
+    assert!(
+        ((e1 - e0) / e0).abs() < 1e-10,
+        "relative energy drift {:e}",
+        (e1 - e0) / e0
+    );
+    // both kinds of event occur: collisions and cell crossings
+    assert!(bed.counters.disk_collisions > 10_000 && bed.counters.cell_crossings > 10_000);
+    assert!(
+        bed.counters.max_overlap <= 1e-9 * 0.002,
+        "{:e}",
+        bed.counters.max_overlap
+    );
+    assert!(bed.overlap_now() <= 1e-9 * 0.002);
+}
+
+#[test]
+fn rough_disks_with_reversing_tangential_restitution_conserve_energy_with_rotation() {
+    let cfg = BedConfig {
+        gravity: 0.0,
+        amplitude: 0.0,
+        tangential: Some(1.0),
+        ..BedConfig::paper(1.0, 20.0)
+    };
+    let mut bed = Bed::new(cfg, constant(1.0)).unwrap();
+    let e0 = bed.kinetic_energy();
+    bed.run_events(200_000).unwrap();
+    let e1 = bed.kinetic_energy();
+    assert!(((e1 - e0) / e0).abs() < 1e-11, "{:e}", (e1 - e0) / e0);
+    assert!((0..bed.len()).any(|i| bed.spin(i).abs() > 1.0), "disks spin");
+    assert!(bed.counters.max_overlap <= 1e-9 * 0.002);
+    // r_t = 0 dissipates (the most)
+    let mut bed = Bed::new(
+        BedConfig {
+            tangential: Some(0.0),
+            ..cfg
+        },
+        constant(1.0),
+    )
+    .unwrap();
+    bed.run_events(200_000).unwrap();
+    assert!(bed.kinetic_energy() < 0.9 * e0);
+}
+
+#[test]
+fn smooth_limit_of_rough_disks_is_the_smooth_bed() {
+    let cfg = BedConfig {
+        tangential: Some(-1.0),
+        ..BedConfig::paper(0.5, 25.0)
+    };
+    let mut a = Bed::new(cfg, mcnamara_falcon()).unwrap();
+    let mut b = Bed::new(
+        BedConfig {
+            tangential: None,
+            ..cfg
+        },
+        mcnamara_falcon(),
+    )
+    .unwrap();
+    a.enable_log();
+    b.enable_log();
+    a.run_events(50_000).unwrap();
+    b.run_events(50_000).unwrap();
+    assert_eq!(a.log(), b.log());
+    assert!((0..a.len()).all(|i| a.spin(i) == 0.0));
+}
+
+#[test]
+fn the_same_seed_gives_the_same_event_sequence() {
+    let cfg = BedConfig::paper(1.5, 25.0);
+    let run = |seed: u64| {
+        let mut bed = Bed::new(BedConfig { seed, ..cfg }, mcnamara_falcon()).unwrap();
+        bed.enable_log();
+        bed.run_until(0.4, &mut |_| {}).unwrap();
+        assert!(bed.counters.max_overlap <= 1e-9 * 0.002);
+        bed.log().to_vec()
+    };
+    let (a, b, c) = (run(7), run(7), run(8));
+    assert!(a.len() > 10_000);
+    assert_eq!(a, b, "same seed, same events, bit for bit");
+    assert_ne!(a, c, "another seed, another run");
+}
+
+#[test]
+fn a_disk_bouncing_on_a_fixed_floor_follows_the_analytic_heights() {
+    let (g, r, h) = (9.8, 0.8, 0.05);
+    let mut bed = Bed::new(single(g, 0.2), constant(r)).unwrap();
+    bed.enable_log();
+    let rad = 0.001;
+    bed.set_state(&[(0.1, rad + h)], &[(0.0, 0.0)]).unwrap();
+    let v0 = (2.0 * g * h).sqrt();
+    let t1 = (2.0 * h / g).sqrt();
+    // the bounces accumulate at t* = t1 (1 + 2r/(1 − r)); stop well before
+    bed.run_until(t1 * (1.0 + 2.0 * r * (1.0 - r.powi(25)) / (1.0 - r)), &mut |_| {})
+        .unwrap();
+    let hits: Vec<_> = bed.log().iter().filter(|e| e.kind == Kind::Piston).collect();
+    assert!(hits.len() >= 25, "{} bounces", hits.len());
+    let mut t_expect = t1;
+    for (k, e) in hits.iter().take(25).enumerate() {
+        let v = v0 * r.powi(k as i32);
+        assert!((e.speed - v).abs() < 1e-12 * v0, "bounce {k}: {} vs {v}", e.speed);
+        assert!(
+            (e.t - t_expect).abs() < 1e-12,
+            "bounce {k} at {} vs {t_expect}",
+            e.t
+        );
+        assert_eq!(e.r, r);
+        // rebound height h_k = (r v)²/(2g) = r^(2k+2) h
+        let hk = (r * e.speed).powi(2) / (2.0 * g);
+        assert!((hk - h * r.powi(2 * k as i32 + 2)).abs() < 1e-12 * h);
+        t_expect += 2.0 * r * v / g;
+    }
+    assert!(bed.counters.max_overlap <= 1e-9 * 0.002);
+}
+
+#[test]
+fn the_lid_receives_m_one_plus_r_times_the_normal_speed() {
+    let (r, v) = (0.8, 1.3);
+    let mut bed = Bed::new(single(0.0, 0.015), constant(r)).unwrap();
+    bed.set_state(&[(0.05, 0.01)], &[(0.4, v)]).unwrap();
+    bed.start_window();
+    let lid = bed.lid();
+    // reaches the lid at (lid − R − y)/v; stop before it comes back down to the floor
+    bed.run_until((lid - 0.001 - 0.01) / v + 0.001, &mut |_| {})
+        .unwrap();
+    assert_eq!(bed.window.lid_collisions, 1);
+    let expect = 3.27e-5 * (1.0 + r) * v;
+    assert!((bed.window.lid_impulse - expect).abs() < 1e-15 * expect);
+    let (_, _, vx, vy) = bed.state_at(0, bed.now());
+    assert!((vy + r * v).abs() < 1e-14 && vx == 0.4);
+    assert!(bed.counters.max_overlap <= 1e-9 * 0.002);
+}
+
+#[test]
+fn the_paper_bed_never_overlaps_and_measures_positive_observables() {
+    let mut bed = Bed::new(BedConfig::paper(3.0, 30.0), mcnamara_falcon()).unwrap();
+    // no missed collision: no pair ever found overlapping, period after period
+    for k in 1..=5 {
+        bed.run_until(k as f64 / 30.0, &mut |_| {}).unwrap();
+        assert!(bed.overlap_now() <= 1e-9 * 0.002, "{:e}", bed.overlap_now());
+    }
+    let rep = bed.run_protocol(0.0, 10.0, &mut |_| {}).unwrap();
+    assert!(rep.max_overlap <= 1e-9 * 0.002, "{:e}", rep.max_overlap);
+    assert!(bed.overlap_now() <= 1e-9 * 0.002);
+    assert!(rep.pressure > 0.0 && rep.temperature > 0.0 && rep.lid_collision_rate > 0.0);
+    // P = Nc ΔI / L by definition
+    assert!((rep.pressure - rep.lid_collision_rate * rep.mean_impulse / 0.2).abs() < 1e-12 * rep.pressure);
+    assert_eq!(rep.disks, 300);
+    assert_eq!(rep.tc_firings, 0);
+}
+
+#[test]
+fn inelastic_collapse_on_the_floor_stops_with_a_clear_error_and_tc_prevents_it() {
+    // one disk dropped on a fixed floor with constant r: infinitely many bounces before
+    // t* = t1 (1 + 2r/(1 − r)) (inelastic collapse against a wall)
+    let (g, r, h): (f64, f64, f64) = (9.8, 0.8, 0.05);
+    let t1 = (2.0 * h / g).sqrt();
+    let t_star = t1 * (1.0 + 2.0 * r / (1.0 - r));
+    let mut bed = Bed::new(single(g, 0.2), constant(r)).unwrap();
+    bed.set_state(&[(0.1, 0.001 + h)], &[(0.0, 0.0)]).unwrap();
+    let err = bed.run_until(2.0 * t_star, &mut |_| {}).unwrap_err().to_string();
+    assert!(err.contains("disk 0"), "{err}");
+    let t_err: f64 = err
+        .split("t = ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap();
+    assert!(
+        (t_err - t_star).abs() < 1e-6,
+        "stopped at {t_err}, collapse at {t_star}"
+    );
+    // with TC (t_c = 1 ms) the bounces shorter than t_c are elastic: the disk keeps bouncing
+    let mut bed = Bed::new(
+        BedConfig {
+            tc: Some(1e-3),
+            ..single(g, 0.2)
+        },
+        constant(r),
+    )
+    .unwrap();
+    bed.set_state(&[(0.1, 0.001 + h)], &[(0.0, 0.0)]).unwrap();
+    bed.run_until(2.0 * t_star, &mut |_| {}).unwrap();
+    let rep = bed.report(1.0);
+    assert!(rep.tc_firings > 0 && rep.tc_share > 0.5, "{rep:?}");
+    assert!(rep.max_overlap <= 1e-9 * 0.002);
+}
+
+#[test]
+fn tc_makes_a_share_of_collisions_elastic_in_one_layer_with_constant_r() {
+    let cfg = BedConfig {
+        gravity: 0.0,
+        tc: Some(1e-5),
+        ..BedConfig::paper(1.0, 30.0)
+    };
+    let mut bed = Bed::new(cfg, constant(0.7)).unwrap();
+    let rep = bed.run_protocol(2.0, 3.0, &mut |_| {}).unwrap();
+    assert!(
+        rep.tc_firings > 0 && rep.tc_share > 0.0 && rep.tc_share < 1.0,
+        "{rep:?}"
+    );
+    assert!(rep.max_overlap <= 1e-9 * 0.002, "{:e}", rep.max_overlap);
+}
+
+#[test]
+fn bad_input_is_a_clear_error() {
+    let laws = || constant(0.9);
+    let msg = |cfg: BedConfig| match Bed::new(cfg, laws()) {
+        Ok(_) => panic!("accepted {cfg:?}"),
+        Err(e) => e.to_string(),
+    };
+    let p = BedConfig::paper(1.0, 20.0);
+    assert!(msg(BedConfig { layers: -1.0, ..p }).contains("layers n = -1"));
+    assert!(msg(BedConfig { freq: 0.0, ..p }).contains("f must be > 0"));
+    assert!(msg(BedConfig { freq: -5.0, ..p }).contains("f = -5 Hz"));
+    assert!(msg(BedConfig { width: 0.004, ..p }).contains("box is too small"));
+    assert!(msg(BedConfig {
+        headroom: -0.0015,
+        ..p
+    })
+    .contains("box is too small"));
+    assert!(msg(BedConfig {
+        layers: 40.0,
+        headroom: -0.07,
+        ..p
+    })
+    .contains("box is too small"));
+    assert!(msg(BedConfig {
+        tangential: Some(1.5),
+        ..p
+    })
+    .contains("[-1, 1]"));
+    let e = plugin_laws(&seed_registry(), "no-such-law", &[], 0.002, 3.27e-5)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("no-such-law") && e.contains("mcnamara-falcon"), "{e}");
+    let e = plugin_laws(&seed_registry(), "hsd", &[], 0.002, 3.27e-5)
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("restitution law is needed"), "{e}");
+}
