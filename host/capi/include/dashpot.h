@@ -357,8 +357,8 @@ void dashpot_contact_free(struct DashpotContactLaw *law);
 /*
  Binds a contact law to a pair: every constant of the force is computed here, once.
 
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a pair field not finite and
- > 0), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair), `DASHPOT_ERR_PANIC`.
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a pair field not finite or not
+ positive), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair), `DASHPOT_ERR_PANIC`.
  Ownership: `*out_bound` is owned by the caller (free with `dashpot_bound_contact_free`) and
  may outlive the law. Thread-safe.
 
