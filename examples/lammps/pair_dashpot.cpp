@@ -240,8 +240,17 @@ void PairDashpot::compute(int eflag, int vflag)
     int *ilist = list->ilist, *numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
 
-    ci.clear(); cj.clear(); ckey.clear();
-    cdx.clear(); cdy.clear(); cdz.clear(); crinv.clear(); cdelta.clear(); crate.clear();
+    // Room for every neighbor pair and every wall contact: the gather below writes by index.
+    size_t cap = (size_t) (wall_flag ? nlocal : 0);
+    for (int ii = 0; ii < inum; ii++) cap += (size_t) numneigh[ilist[ii]];
+    if (ci.size() < cap) {
+        for (auto *vec : {&ci, &cj, &ckey}) vec->resize(cap);
+        for (auto *vec : {&cdx, &cdy, &cdz, &crinv, &cdelta, &crate, &cforce}) vec->resize(cap);
+    }
+    int *pi = ci.data(), *pj = cj.data(), *pk = ckey.data();
+    double *pdx = cdx.data(), *pdy = cdy.data(), *pdz = cdz.data(), *pri = crinv.data();
+    double *pd = cdelta.data(), *pr = crate.data();
+    size_t n = 0;
     int first_key = -1;
     bool one_key = true;
 
@@ -249,9 +258,11 @@ void PairDashpot::compute(int eflag, int vflag)
     for (int ii = 0; ii < inum; ii++) {
         int i = ilist[ii];
         double xi = x[i][0], yi = x[i][1], zi = x[i][2], ri = radius[i];
+        double vxi = v[i][0], vyi = v[i][1], vzi = v[i][2];
         int si = atom_species[i];
         int *jlist = firstneigh[i];
-        for (int jj = 0; jj < numneigh[i]; jj++) {
+        int jnum = numneigh[i];
+        for (int jj = 0; jj < jnum; jj++) {
             int j = jlist[jj] & NEIGHMASK;
             double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
             double rsq = dx * dx + dy * dy + dz * dz;
@@ -259,14 +270,15 @@ void PairDashpot::compute(int eflag, int vflag)
             if (rsq >= radsum * radsum) continue;
             double r = std::sqrt(rsq);
             double rinv = 1.0 / r;
-            double rate = -(dx * (v[i][0] - v[j][0]) + dy * (v[i][1] - v[j][1]) + dz * (v[i][2] - v[j][2])) * rinv;
             int sj = atom_species[j];
             int key = si <= sj ? si * MAX_SPECIES + sj : sj * MAX_SPECIES + si;
             if (first_key < 0) first_key = key;
             one_key = one_key && key == first_key;
-            ci.push_back(i); cj.push_back(j); ckey.push_back(key);
-            cdx.push_back(dx); cdy.push_back(dy); cdz.push_back(dz); crinv.push_back(rinv);
-            cdelta.push_back(radsum - r); crate.push_back(rate);
+            pi[n] = i; pj[n] = j; pk[n] = key;
+            pdx[n] = dx; pdy[n] = dy; pdz[n] = dz; pri[n] = rinv;
+            pd[n] = radsum - r;
+            pr[n] = -(dx * (vxi - v[j][0]) + dy * (vyi - v[j][1]) + dz * (vzi - v[j][2])) * rinv;
+            n++;
         }
     }
     if (wall_flag) {
@@ -276,13 +288,13 @@ void PairDashpot::compute(int eflag, int vflag)
             int key = MAX_SPECIES * MAX_SPECIES + atom_species[i];
             if (first_key < 0) first_key = key;
             one_key = one_key && key == first_key;
-            ci.push_back(i); cj.push_back(-1); ckey.push_back(key);
-            cdx.push_back(0.0); cdy.push_back(0.0); cdz.push_back(1.0); crinv.push_back(1.0);
-            cdelta.push_back(radius[i] - gap); crate.push_back(-v[i][2]);
+            pi[n] = i; pj[n] = -1; pk[n] = key;
+            pdx[n] = 0.0; pdy[n] = 0.0; pdz[n] = 1.0; pri[n] = 1.0;
+            pd[n] = radius[i] - gap;
+            pr[n] = -v[i][2];
+            n++;
         }
     }
-    size_t n = ci.size();
-    cforce.resize(n);
 
     // 2. Normal forces: one batch call per kind of pair present.
     if (n > 0 && one_key) {
