@@ -43,3 +43,14 @@ pub use pair::*;
 pub use registry::*;
 pub use restitution::*;
 pub use version::*;
+
+// The thread-safety promises of the header, checked by the compiler: every handle may be shared
+// between threads.
+const _: () = {
+    const fn shareable<T: Send + Sync>() {}
+    shareable::<DashpotRegistry>();
+    shareable::<DashpotContactLaw>();
+    shareable::<DashpotBoundContact>();
+    shareable::<DashpotRestitutionLaw>();
+    shareable::<DashpotBoundRestitution>();
+};
