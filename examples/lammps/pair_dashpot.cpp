@@ -301,27 +301,42 @@ void PairDashpot::compute(int eflag, int vflag)
         check(dashpot_contact_force_batch(bound_for(first_key), cdelta.data(), n, crate.data(), n, cforce.data(), n),
               "dashpot_contact_force_batch");
     } else if (n > 0) {
-        int nkeys = MAX_SPECIES * MAX_SPECIES + MAX_SPECIES;
-        start.assign(nkeys + 1, 0);
-        for (size_t k = 0; k < n; k++) start[ckey[k] + 1]++;
-        for (int k = 0; k < nkeys; k++) start[k + 1] += start[k];
+        // Counting sort over the kinds of pair present in this step (usually a handful).
+        if (slot_of_key.empty()) slot_of_key.assign(MAX_SPECIES * MAX_SPECIES + MAX_SPECIES, -1);
+        used_keys.clear();
+        start.clear();
+        for (size_t k = 0; k < n; k++) {
+            int &slot = slot_of_key[ckey[k]];
+            if (slot < 0) {
+                slot = (int) used_keys.size();
+                used_keys.push_back(ckey[k]);
+                start.push_back(0);
+            }
+            start[slot]++;
+        }
+        int nslots = (int) used_keys.size();
+        fill.resize(nslots);
+        for (int sl = 0, acc = 0; sl < nslots; sl++) {
+            fill[sl] = acc;
+            acc += start[sl];
+        }
         order.resize(n);
         pdelta.resize(n); prate.resize(n); pforce.resize(n);
-        std::vector<int> fill(start.begin(), start.end() - 1);
         for (size_t k = 0; k < n; k++) {
-            int p = fill[ckey[k]]++;
+            int p = fill[slot_of_key[ckey[k]]]++;
             order[p] = (int) k;
             pdelta[p] = cdelta[k];
             prate[p] = crate[k];
         }
-        for (size_t p = 0; p < n;) {
-            int key = ckey[order[p]];
-            size_t m = (size_t) (start[key + 1] - start[key]);
-            check(dashpot_contact_force_batch(bound_for(key), &pdelta[p], m, &prate[p], m, &pforce[p], m),
+        size_t p = 0;
+        for (int sl = 0; sl < nslots; sl++) {
+            size_t m = (size_t) start[sl];
+            check(dashpot_contact_force_batch(bound_for(used_keys[sl]), &pdelta[p], m, &prate[p], m, &pforce[p], m),
                   "dashpot_contact_force_batch");
             p += m;
         }
-        for (size_t p = 0; p < n; p++) cforce[order[p]] = pforce[p];
+        for (size_t q = 0; q < n; q++) cforce[order[q]] = pforce[q];
+        for (int key : used_keys) slot_of_key[key] = -1;
     }
 
     // 3. Apply them along the line of centres (repulsive F > 0 pushes i away from j).

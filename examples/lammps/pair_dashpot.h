@@ -56,7 +56,8 @@ class PairDashpot : public Pair {
     std::vector<DashpotBoundContact *> bound;   // MAX_SPECIES^2 pair slots + MAX_SPECIES wall slots
 
     // this step's contacts
-    std::vector<int> ci, cj, ckey, order, start;
+    std::vector<int> ci, cj, ckey, order, start, fill, used_keys;
+    std::vector<int> slot_of_key;    // per pair slot: its place among this step's kinds, or -1
     std::vector<double> cdx, cdy, cdz, crinv, cdelta, crate, cforce, pdelta, prate, pforce;
 
     void allocate();
