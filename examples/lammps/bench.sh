@@ -15,6 +15,7 @@ nsteps="${1:-1000}"
 repeats="${2:-3}"
 nx="${BENCH_NX:-20}"
 nz="${BENCH_NZ:-50}"
+d2="${BENCH_D2:-0.01}"   # 0.008: a bidisperse pile (half the spheres 8 mm)
 plugin="$("$here/build.sh" "$root/target/lammps" | tail -n1)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -24,14 +25,14 @@ cd "$work"
 run() {
     local ranks="$1" style="$2" log="$work/$2.$1.log"
     "$venv/bin/mpirun" -np "$ranks" "$venv/bin/lmp" -log none -in "$here/in.pile" \
-        -var style "$style" -var wall fix -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" \
+        -var style "$style" -var wall fix -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" -var d2 "$d2" \
         -var plugin "$plugin" -var plugin_dir "$root/target/release" >"$log" 2>&1 ||
         { cat "$log" >&2; exit 1; }
     awk '/^Loop time of/ { t = $4; n = $9; a = $12 } /^Pair  *\|/ { p = $5 }
          END { printf "%.6g %.6g %.6g\n", a * n / t, p, t }' "$log"
 }
 
-echo "settling pile: $((nx * nx * nz)) spheres, $nsteps steps, best of $repeats; $(nproc) cores"
+echo "settling pile: $((nx * nx * nz)) spheres (d2 = $d2 m), $nsteps steps, best of $repeats; $(nproc) cores"
 printf "%-6s %-10s %16s %10s %10s\n" ranks style particle-steps/s pair_s loop_s
 for ranks in 1 2; do
     best_g=0 best_d=0
