@@ -91,14 +91,21 @@ pub struct Registry {
     pub refused: Vec<LawError>,
 }
 
+/// The file stem of dashpot's own C library (`libdashpot_capi.so`), which sits beside the
+/// plugins in `target/<profile>/` but is never one: the scan does not even open it (loading it
+/// again into a program that already links it statically would only waste memory).
+pub const C_LIBRARY_STEM: &str = "libdashpot_capi";
+
 /// A shared library that is not one of cargo's hashed dependency artifacts
-/// (`libfoo-0123456789abcdef.so`, e.g. proc macros in `deps/`).
+/// (`libfoo-0123456789abcdef.so`, e.g. proc macros in `deps/`), nor dashpot's C library.
 pub(crate) fn is_candidate(p: &Path) -> bool {
-    let hashed = p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| {
+    let stem = p.file_stem().and_then(|s| s.to_str());
+    let hashed = stem.is_some_and(|s| {
         s.rsplit_once('-')
             .is_some_and(|(_, h)| h.len() == 16 && h.bytes().all(|b| b.is_ascii_hexdigit()))
     });
-    p.extension().is_some_and(|e| e == DYLIB_EXT) && !hashed
+    let c_library = stem.is_some_and(|s| s == C_LIBRARY_STEM || s == "dashpot_capi");
+    p.extension().is_some_and(|e| e == DYLIB_EXT) && !hashed && !c_library
 }
 
 /// Whether the library at `path` exports a dashpot/abi_stable root module, checked with a bare
@@ -295,5 +302,19 @@ pub fn kind_str(k: LawKind) -> &'static str {
     match k {
         LawKind::Contact => "contact",
         LawKind::Restitution => "restitution",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_scan_skips_cargo_artifacts_and_the_c_library() {
+        let f = |stem: &str| PathBuf::from(format!("/x/{stem}.{DYLIB_EXT}"));
+        assert!(is_candidate(&f("libdashpot_hsd")));
+        assert!(!is_candidate(&f("libdashpot_capi")));
+        assert!(!is_candidate(&f("libserde_derive-0123456789abcdef")));
+        assert!(!is_candidate(Path::new("/x/libdashpot_capi.a")));
     }
 }
