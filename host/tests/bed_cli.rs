@@ -1,63 +1,9 @@
 //! `dashpot bed`, `dashpot scaling` and `dashpot figures bed` as a user runs them.
 
+mod common;
+
+use common::{dashpot, fails};
 use serde_json::Value;
-use std::path::PathBuf;
-use std::process::{Command, Output};
-use std::sync::OnceLock;
-
-fn lib(name: &str) -> PathBuf {
-    let deps = std::env::current_exe().unwrap().parent().unwrap().to_path_buf();
-    deps.join(format!(
-        "{}{name}{}",
-        std::env::consts::DLL_PREFIX,
-        std::env::consts::DLL_SUFFIX
-    ))
-}
-
-/// A plugin directory holding the two restitution plugins and one contact law.
-fn plugin_dir() -> PathBuf {
-    static D: OnceLock<PathBuf> = OnceLock::new();
-    D.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dashpot-bed-cli-plugins-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
-        for n in [
-            "dashpot_mcnamara_falcon",
-            "dashpot_constant",
-            "dashpot_hsd",
-            "dashpot_kuwabara_kono",
-        ] {
-            let src = lib(n);
-            std::fs::copy(&src, d.join(src.file_name().unwrap())).unwrap();
-        }
-        d
-    })
-    .clone()
-}
-
-fn dashpot(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dashpot"))
-        .arg("--plugin-dir")
-        .arg(plugin_dir())
-        .args(args)
-        .env_remove("DASHPOT_PLUGIN_PATH")
-        .env_remove("RUST_BACKTRACE")
-        .output()
-        .unwrap()
-}
-
-fn fails(args: &[&str], needles: &[&str]) {
-    let o = dashpot(args);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(!o.status.success(), "{args:?} should fail");
-    assert!(err.contains("error"), "{args:?}: {err}");
-    for n in needles {
-        assert!(err.contains(n), "{args:?}: expected '{n}' in: {err}");
-    }
-    assert!(
-        !err.contains("panicked") && !err.contains("backtrace"),
-        "{args:?}: {err}"
-    );
-}
 
 #[test]
 fn bed_json_reports_the_observables_and_writes_snapshot_and_trace() {

@@ -1,0 +1,77 @@
+//! Helpers shared by the CLI tests: the seed plugins in a private directory, and the `dashpot`
+//! binary run against them.
+#![allow(dead_code)] // each test file uses its own subset
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use std::sync::OnceLock;
+
+pub const SEED: [&str; 5] = [
+    "dashpot_lsd",
+    "dashpot_hsd",
+    "dashpot_kuwabara_kono",
+    "dashpot_mcnamara_falcon",
+    "dashpot_constant",
+];
+
+pub fn lib(name: &str) -> PathBuf {
+    let deps = std::env::current_exe().unwrap().parent().unwrap().to_path_buf();
+    deps.join(format!(
+        "{}{name}{}",
+        std::env::consts::DLL_PREFIX,
+        std::env::consts::DLL_SUFFIX
+    ))
+}
+
+/// A plugin directory holding exactly the five seed plugins.
+pub fn plugin_dir() -> PathBuf {
+    static D: OnceLock<PathBuf> = OnceLock::new();
+    D.get_or_init(|| {
+        let d = std::env::temp_dir().join(format!("dashpot-cli-plugins-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        for n in SEED {
+            let src = lib(n);
+            std::fs::copy(&src, d.join(src.file_name().unwrap())).unwrap();
+        }
+        d
+    })
+    .clone()
+}
+
+pub fn dashpot(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .arg("--plugin-dir")
+        .arg(plugin_dir())
+        .args(args)
+        .env_remove("DASHPOT_PLUGIN_PATH")
+        .env_remove("RUST_BACKTRACE")
+        .output()
+        .unwrap()
+}
+
+pub fn ok_json(args: &[&str]) -> Value {
+    let o = dashpot(args);
+    assert!(
+        o.status.success(),
+        "{args:?}: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// Runs a command that must fail: non-zero exit, an `error:` line containing every `needle`,
+/// and no panic or backtrace.
+pub fn fails(args: &[&str], needles: &[&str]) {
+    let o = dashpot(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success(), "{args:?} should fail");
+    assert!(err.contains("error"), "{args:?}: {err}");
+    for n in needles {
+        assert!(err.contains(n), "{args:?}: expected '{n}' in: {err}");
+    }
+    assert!(
+        !err.contains("panicked") && !err.contains("backtrace"),
+        "{args:?}: {err}"
+    );
+}
