@@ -14,7 +14,7 @@ fn deps_dir() -> PathBuf {
     exe.parent().expect("exe dir").to_path_buf()
 }
 
-/// `target/<profile>`: where cargo puts `libdashpot_capi.so`.
+/// `target/<profile>`: where the compiled test programs go.
 fn lib_dir() -> PathBuf {
     deps_dir().parent().expect("profile dir").to_path_buf()
 }
@@ -65,7 +65,9 @@ fn run(cmd: &mut Command) -> Output {
 }
 
 fn link_args(cmd: &mut Command) {
-    let lib = lib_dir();
+    // `cargo test` builds this crate's cdylib for its integration tests into `deps/` (it is
+    // uplifted to `target/<profile>` only by `cargo build`): link the fresh one there.
+    let lib = deps_dir();
     cmd.arg(format!("-L{}", lib.display()))
         .arg("-ldashpot_capi")
         .arg(format!("-Wl,-rpath,{}", lib.display()))

