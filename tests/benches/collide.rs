@@ -10,7 +10,6 @@ use dashpot::collide::{collide, ContactForce, Options, Static};
 use dashpot_sdk::{ContactLaw, EndCriterion, Pair, ParamValue, Particle};
 use dashpot_tests::seed_registry;
 use std::process::Command;
-use std::time::Instant;
 
 const RTOL: f64 = 1e-9;
 
@@ -85,7 +84,6 @@ fn main() {
     let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).expect("pair");
     let reg = seed_registry();
     let cs = cases(20_000);
-    let _ = Instant::now();
 
     let (hsd_plugin, hsd_err) = measure(
         &cs,

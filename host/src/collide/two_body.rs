@@ -628,7 +628,6 @@ pub fn collide<C: ContactForce>(
     let mut h = -2.0 * opt.h0_fraction * u;
     let mut f_now = law.force(z[0], z[1])?;
     let mut n = 0;
-    let mut ended_by_force = false;
     while u > 0.0 {
         n += 1;
         if n > opt.max_steps {
@@ -672,7 +671,6 @@ pub fn collide<C: ContactForce>(
                 y = yf;
                 steps += 1;
                 record(&mut traj, y[1], u.max(0.0).powi(4), y[0])?;
-                ended_by_force = true;
                 break;
             }
             f_now = f_new;
@@ -686,7 +684,6 @@ pub fn collide<C: ContactForce>(
             h = hh * opt.method.factor(e);
         }
     }
-    let _ = ended_by_force;
     evals += ph.evals;
     Ok(Collision {
         v0,
