@@ -64,6 +64,17 @@ fn target_root() -> PathBuf {
 /// never waits on the lock of the build running these tests) and returns its library file.
 /// `env` is set for the build only.
 pub fn build_external(manifest: &Path, package: &str, lib_name: &str, env: &[(&str, &str)]) -> PathBuf {
+    build_external_with(manifest, package, lib_name, env, &[])
+}
+
+/// [`build_external`] with extra cargo arguments (e.g. `--features`).
+pub fn build_external_with(
+    manifest: &Path,
+    package: &str,
+    lib_name: &str,
+    env: &[(&str, &str)],
+    extra: &[&str],
+) -> PathBuf {
     static LOCK: OnceLock<Mutex<()>> = OnceLock::new();
     let _g = LOCK
         .get_or_init(|| Mutex::new(()))
@@ -80,6 +91,7 @@ pub fn build_external(manifest: &Path, package: &str, lib_name: &str, env: &[(&s
         .arg(package)
         .arg("--target-dir")
         .arg(&target)
+        .args(extra)
         .env_remove("DASHPOT_SDK_FAKE_ABI_VERSION");
     for (k, v) in env {
         cmd.env(k, v);
@@ -106,6 +118,28 @@ pub fn wrong_abi_plugin() -> PathBuf {
         );
         let dst = built.with_file_name(format!("libwrong_abi_constant{}", std::env::consts::DLL_SUFFIX));
         std::fs::copy(&built, &dst).expect("copy the wrong-ABI plugin");
+        dst
+    })
+    .clone()
+}
+
+/// The `constant` plugin rebuilt against a dashpot-sdk of the same version whose `Pair` has an
+/// extra field: a stale or mismatched build that only the layout check can catch.
+pub fn wrong_layout_plugin() -> PathBuf {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        let built = build_external_with(
+            &workspace_root().join("Cargo.toml"),
+            "dashpot-constant",
+            "dashpot_constant",
+            &[],
+            &["--features", "dashpot-sdk/__layout_skew_for_tests"],
+        );
+        let dst = built.with_file_name(format!(
+            "libwrong_layout_constant{}",
+            std::env::consts::DLL_SUFFIX
+        ));
+        std::fs::copy(&built, &dst).expect("copy the wrong-layout plugin");
         dst
     })
     .clone()

@@ -765,10 +765,20 @@ fn layout_summary(full: &str) -> String {
     }
     let lines: Vec<&str> = full.lines().collect();
     match lines.iter().position(|l| l.starts_with("Error:")) {
-        Some(i) => format!(
-            "First differences:\n{}\n(set DASHPOT_ABI_DETAILS=1 for the full layout comparison)",
-            lines[i..].iter().take(16).copied().collect::<Vec<_>>().join("\n")
-        ),
+        Some(i) => {
+            // the innermost type whose layouts were being compared when the first error was found
+            let ty = lines[..i]
+                .iter()
+                .rposition(|l| l.contains("--- Type Layout ---"))
+                .and_then(|j| lines.get(j + 1))
+                .map(|l| l.trim().trim_start_matches("type:").trim())
+                .filter(|t| !t.is_empty());
+            format!(
+                "First differences{}:\n{}\n(set DASHPOT_ABI_DETAILS=1 for the full layout comparison)",
+                ty.map(|t| format!(", in type {t}")).unwrap_or_default(),
+                lines[i..].iter().take(16).copied().collect::<Vec<_>>().join("\n")
+            )
+        }
         None => "(set DASHPOT_ABI_DETAILS=1 for the full layout comparison)".to_string(),
     }
 }

@@ -86,6 +86,10 @@ pub struct Pair {
     pub radius: f64,
     /// Effective Young's modulus, 1/E = (1 − ν1²)/E1 + (1 − ν2²)/E2 (Pa).
     pub young: f64,
+    /// Test-suite only (feature `__layout_skew_for_tests`): changes the layout on purpose.
+    #[cfg(feature = "__layout_skew_for_tests")]
+    #[doc(hidden)]
+    pub layout_skew: f64,
 }
 
 impl Pair {
@@ -113,7 +117,13 @@ impl Pair {
         check_positive("effective mass", "kg", mass)?;
         check_positive("effective radius", "m", radius)?;
         check_positive("effective Young's modulus", "Pa", young)?;
-        Ok(Pair { mass, radius, young })
+        Ok(Pair {
+            mass,
+            radius,
+            young,
+            #[cfg(feature = "__layout_skew_for_tests")]
+            layout_skew: 0.0,
+        })
     }
 
     /// Checks the fields of a pair built by hand (or received through an ABI).

@@ -34,6 +34,27 @@ fn a_plugin_built_against_another_sdk_version_is_refused_naming_both() {
 }
 
 #[test]
+fn a_plugin_whose_types_have_another_layout_is_refused() {
+    let err = LoadedPlugin::load(&dashpot_tests::wrong_layout_plugin()).unwrap_err();
+    assert_eq!(err.kind, ErrorKind::Load);
+    assert!(
+        err.message.contains("do not have the layout this host expects"),
+        "{}",
+        err.message
+    );
+    assert!(
+        err.message.contains("Pair"),
+        "the message names the type: {}",
+        err.message
+    );
+    assert!(
+        err.message.lines().count() < 40,
+        "a summary, not pages of dumps:\n{}",
+        err.message
+    );
+}
+
+#[test]
 fn a_library_that_is_not_a_plugin_is_refused() {
     // libc is a shared library with no dashpot root module.
     let err = LoadedPlugin::load(std::path::Path::new("libc.so.6")).unwrap_err();
