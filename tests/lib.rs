@@ -64,16 +64,19 @@ fn target_root() -> PathBuf {
 /// never waits on the lock of the build running these tests) and returns its library file.
 /// `env` is set for the build only.
 pub fn build_external(manifest: &Path, package: &str, lib_name: &str, env: &[(&str, &str)]) -> PathBuf {
-    build_external_with(manifest, package, lib_name, env, &[])
+    build_external_with(manifest, package, lib_name, env, &[], None)
 }
 
-/// [`build_external`] with extra cargo arguments (e.g. `--features`).
+/// [`build_external`] with extra cargo arguments (e.g. `--features`); with `copy_as`, the
+/// library is copied to that file name beside it before the build lock is released (builds of
+/// the same crate with other settings overwrite the original).
 pub fn build_external_with(
     manifest: &Path,
     package: &str,
     lib_name: &str,
     env: &[(&str, &str)],
     extra: &[&str],
+    copy_as: Option<&str>,
 ) -> PathBuf {
     static LOCK: OnceLock<Mutex<()>> = OnceLock::new();
     let _g = LOCK
@@ -98,11 +101,19 @@ pub fn build_external_with(
     }
     let status = cmd.status().expect("run cargo");
     assert!(status.success(), "building {package} failed");
-    target.join("debug").join(format!(
+    let built = target.join("debug").join(format!(
         "{}{lib_name}{}",
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
-    ))
+    ));
+    match copy_as {
+        Some(name) => {
+            let dst = built.with_file_name(format!("lib{name}{}", std::env::consts::DLL_SUFFIX));
+            std::fs::copy(&built, &dst).expect("copy the built plugin");
+            dst
+        }
+        None => built,
+    }
 }
 
 /// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 0.99.0, copied
@@ -110,15 +121,14 @@ pub fn build_external_with(
 pub fn wrong_abi_plugin() -> PathBuf {
     static P: OnceLock<PathBuf> = OnceLock::new();
     P.get_or_init(|| {
-        let built = build_external(
+        build_external_with(
             &workspace_root().join("Cargo.toml"),
             "dashpot-constant",
             "dashpot_constant",
             &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.99.0")],
-        );
-        let dst = built.with_file_name(format!("libwrong_abi_constant{}", std::env::consts::DLL_SUFFIX));
-        std::fs::copy(&built, &dst).expect("copy the wrong-ABI plugin");
-        dst
+            &[],
+            Some("wrong_abi_constant"),
+        )
     })
     .clone()
 }
@@ -128,19 +138,14 @@ pub fn wrong_abi_plugin() -> PathBuf {
 pub fn wrong_layout_plugin() -> PathBuf {
     static P: OnceLock<PathBuf> = OnceLock::new();
     P.get_or_init(|| {
-        let built = build_external_with(
+        build_external_with(
             &workspace_root().join("Cargo.toml"),
             "dashpot-constant",
             "dashpot_constant",
             &[],
             &["--features", "dashpot-sdk/__layout_skew_for_tests"],
-        );
-        let dst = built.with_file_name(format!(
-            "libwrong_layout_constant{}",
-            std::env::consts::DLL_SUFFIX
-        ));
-        std::fs::copy(&built, &dst).expect("copy the wrong-layout plugin");
-        dst
+            Some("wrong_layout_constant"),
+        )
     })
     .clone()
 }
