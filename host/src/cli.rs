@@ -127,17 +127,11 @@ impl ParticleArgs {
             poisson: self.poisson.or(f.poisson).unwrap_or(d.poisson),
         };
         p.validate()?;
-        let partner: Box<dyn Partner> = if self.wall {
-            Box::new(Wall {})
+        let (wall, sphere) = (Wall {}, Sphere::default());
+        let partner: &dyn Partner = if self.wall {
+            &wall
         } else {
-            match &cfg.partner {
-                Some(_) => {
-                    // Re-serialize the boxed partner to clone it (typetag objects are not Clone).
-                    let v = serde_json::to_value(cfg.partner.as_ref()).context("partner")?;
-                    serde_json::from_value(v).context("partner")?
-                }
-                None => Box::new(Sphere::default()),
-            }
+            cfg.partner.as_deref().unwrap_or(&sphere)
         };
         let pair = partner.pair(&p)?;
         Ok((p, pair, partner.describe(&p)))
@@ -322,8 +316,7 @@ fn laws(reg: &Registry, json_out: bool) -> Result<()> {
     if reg.laws.is_empty() {
         bail!(
             "no plugins found; searched: {}. Build them with `cargo build --release` or pass --plugin-dir.",
-            SearchPath::standard(vec![], vec![])
-                .all_dirs()
+            reg.searched
                 .iter()
                 .map(|d| d.display().to_string())
                 .collect::<Vec<_>>()

@@ -89,6 +89,8 @@ pub struct Registry {
     /// They do not stop the other plugins from loading; their errors are repeated whenever a
     /// law cannot be found.
     pub refused: Vec<LawError>,
+    /// The directories that were scanned, in order.
+    pub searched: Vec<PathBuf>,
 }
 
 /// The file stem of dashpot's own C library (`libdashpot_capi.so`), which sits beside the
@@ -143,7 +145,8 @@ impl Registry {
                 seen_paths.insert(c);
             }
         }
-        for dir in search.all_dirs() {
+        reg.searched = search.all_dirs();
+        for dir in reg.searched.clone() {
             let Ok(rd) = std::fs::read_dir(&dir) else {
                 continue;
             };
