@@ -1,9 +1,9 @@
 //! `dashpot figures bed`: McNamara & Falcon's Figs. 2 b–d, 3 and 4 a–d, and a report that
 //! compares each with the paper's statements, backed by the numbers.
 
-use super::cli::snapshot_panel;
 use super::engine::{Bed, BedConfig, BedReport};
 use super::scaling::{fit_all, run_grid, theta_panel, write_fit_csv, write_grid_csv, Grid, ScalingRow};
+use super::view::{progress_bar, snapshot_panel};
 use super::{resolve, DynRestitution, Laws};
 use crate::plot::{Figure, Mark, Panel, Series, PALETTE};
 use crate::registry::Registry;
@@ -131,7 +131,7 @@ fn cfg_for(constant: bool, gravity: f64) -> impl Fn(f64, f64) -> BedConfig + Syn
 }
 
 fn grid_runs(l: &Plug, constant: bool, gravity: f64, grid: &Grid, what: &str) -> Result<Vec<BedReport>> {
-    let pb = super::cli::progress_bar(grid.len() as u64, what);
+    let pb = progress_bar(grid.len() as u64, what);
     let r = run_grid(&refs(l), &cfg_for(constant, gravity), grid, &|| pb.inc(1))
         .with_context(|| what.to_string())?;
     pb.finish_and_clear();

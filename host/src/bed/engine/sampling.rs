@@ -1,0 +1,215 @@
+//! Sampling: the measuring window, the observables and the report.
+
+use super::{Bed, BedConfig};
+use crate::bed::{BedError, Restitution};
+use serde::Serialize;
+
+/// Counters and running sums of a run.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Counters {
+    /// Executed events (collisions, cell crossings, horizon re-predictions).
+    pub events: u64,
+    /// Collisions: disk–disk + disk–lid + disk–piston.
+    pub collisions: u64,
+    /// Disk–disk collisions.
+    pub disk_collisions: u64,
+    /// Disk–lid collisions.
+    pub lid_collisions: u64,
+    /// Disk–piston collisions.
+    pub piston_collisions: u64,
+    /// Cell crossings.
+    pub cell_crossings: u64,
+    /// Events found stale at the top of the queue (partner moved on) and predicted again.
+    pub invalidated: u64,
+    /// Collisions made elastic by the TC model.
+    pub tc_firings: u64,
+    /// Largest overlap seen at any collision (m).
+    pub max_overlap: f64,
+}
+
+/// Averages over the measuring window, accumulated after the transient.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Window {
+    /// Start of the window (s).
+    pub start: f64,
+    /// Lid collisions in the window.
+    pub lid_collisions: u64,
+    /// Sum of the impulses given to the lid (N·s).
+    pub lid_impulse: f64,
+    /// Sum of the sampled mean kinetic energies per disk (J).
+    pub ke_sum: f64,
+    /// Number of kinetic energy samples.
+    pub ke_samples: u64,
+}
+
+/// The results of a run, averaged after the transient.
+#[derive(Debug, Clone, Serialize)]
+pub struct BedReport {
+    /// The configuration.
+    pub config: BedConfig,
+    /// Number of disks N.
+    pub disks: usize,
+    /// Lid height (m).
+    pub lid: f64,
+    /// Piston peak speed V = 4Af (m/s).
+    pub piston_speed: f64,
+    /// Measured time (s) after the transient.
+    pub measured_time: f64,
+    /// Lid pressure P = Nc ΔI / L (N/m).
+    pub pressure: f64,
+    /// Lid collision frequency Nc (1/s).
+    pub lid_collision_rate: f64,
+    /// Mean impulse per lid collision ΔI (N·s).
+    pub mean_impulse: f64,
+    /// Granular temperature T: time-averaged translational kinetic energy per disk (J).
+    pub temperature: f64,
+    /// Events executed over the whole run (collisions and cell crossings).
+    pub events: u64,
+    /// Collisions over the whole run (disk–disk, lid, piston).
+    pub collisions: u64,
+    /// Events per second of wall time.
+    pub events_per_second: f64,
+    /// Collisions per second of wall time.
+    pub collisions_per_second: f64,
+    /// Wall time (s).
+    pub wall_seconds: f64,
+    /// Wall seconds per simulated second.
+    pub wall_per_simulated_second: f64,
+    /// Collisions made elastic by the TC model.
+    pub tc_firings: u64,
+    /// Share of all collisions made elastic by the TC model.
+    pub tc_share: f64,
+    /// Largest overlap ever seen at a collision (m).
+    pub max_overlap: f64,
+    /// All counters.
+    pub counters: Counters,
+}
+
+/// How many kinetic energy samples per piston period.
+pub const SAMPLES_PER_PERIOD: usize = 64;
+/// One sample of the time series (`--trace`).
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct TraceRow {
+    /// Time (s).
+    pub t: f64,
+    /// Piston height (m).
+    pub piston_z: f64,
+    /// Mean translational kinetic energy per disk (J).
+    pub kinetic_energy: f64,
+    /// Mean disk height (m).
+    pub mean_height: f64,
+    /// Lid collisions since the start of the window.
+    pub lid_collisions: u64,
+    /// Impulse given to the lid since the start of the window (N·s).
+    pub lid_impulse: f64,
+}
+
+impl<R: Restitution> Bed<R> {
+    pub(super) fn sample(&mut self, t: f64) {
+        let mut ke = 0.0;
+        let mut ym = 0.0;
+        for i in 0..self.n {
+            let (_, y, vx, vy) = self.state_at(i, t);
+            ke += vx * vx + vy * vy;
+            ym += y;
+        }
+        let ke = 0.5 * self.cfg.mass * ke / self.n as f64;
+        if self.measuring {
+            self.window.ke_sum += ke;
+            self.window.ke_samples += 1;
+        }
+        if let Some(tr) = self.trace.as_mut() {
+            tr.push(TraceRow {
+                t,
+                piston_z: self.piston.state(t).z,
+                kinetic_energy: ke,
+                mean_height: ym / self.n as f64,
+                lid_collisions: self.window.lid_collisions,
+                lid_impulse: self.window.lid_impulse,
+            });
+        }
+    }
+
+    /// Runs until time `t_end` (s); all disks are then brought to `t_end`. `progress` is called
+    /// now and then with the current time.
+    /// Starts the measuring window now.
+    pub fn start_window(&mut self) {
+        self.measuring = true;
+        self.window = Window {
+            start: self.now,
+            ..Window::default()
+        };
+    }
+
+    /// The paper's protocol: `transient` periods, then `cycles` periods of measurement; the
+    /// run ends with the piston at its lowest position. `wall` is the wall-clock time to report
+    /// (s) — measured by the caller around this call, or 0 to measure here.
+    pub fn run_protocol(
+        &mut self,
+        transient: f64,
+        cycles: f64,
+        progress: &mut dyn FnMut(f64),
+    ) -> Result<BedReport, BedError> {
+        if !(transient >= 0.0 && transient.is_finite()) {
+            return Err(BedError::Invalid(format!(
+                "transient = {transient} periods is out of range: must be >= 0"
+            )));
+        }
+        if !(cycles > 0.0 && cycles.is_finite()) {
+            return Err(BedError::Invalid(format!(
+                "cycles = {cycles} periods is out of range: must be > 0"
+            )));
+        }
+        let clock = std::time::Instant::now();
+        let period = 1.0 / self.cfg.freq;
+        self.run_until(self.now + transient * period, progress)?;
+        self.start_window();
+        self.run_until(self.now + cycles * period, progress)?;
+        Ok(self.report(clock.elapsed().as_secs_f64()))
+    }
+
+    /// The report of the measuring window, with `wall` seconds of wall time for the rates.
+    pub fn report(&self, wall: f64) -> BedReport {
+        let tm = self.now - self.window.start;
+        let nc = if tm > 0.0 {
+            self.window.lid_collisions as f64 / tm
+        } else {
+            0.0
+        };
+        let di = if self.window.lid_collisions > 0 {
+            self.window.lid_impulse / self.window.lid_collisions as f64
+        } else {
+            0.0
+        };
+        let c = &self.counters;
+        BedReport {
+            config: self.cfg,
+            disks: self.n,
+            lid: self.lid,
+            piston_speed: self.piston.peak_speed(),
+            measured_time: tm,
+            pressure: nc * di / self.width,
+            lid_collision_rate: nc,
+            mean_impulse: di,
+            temperature: if self.window.ke_samples > 0 {
+                self.window.ke_sum / self.window.ke_samples as f64
+            } else {
+                0.0
+            },
+            events: c.events,
+            collisions: c.collisions,
+            events_per_second: c.events as f64 / wall.max(1e-12),
+            collisions_per_second: c.collisions as f64 / wall.max(1e-12),
+            wall_seconds: wall,
+            wall_per_simulated_second: wall / self.now.max(1e-300),
+            tc_firings: c.tc_firings,
+            tc_share: if c.collisions > 0 {
+                c.tc_firings as f64 / c.collisions as f64
+            } else {
+                0.0
+            },
+            max_overlap: c.max_overlap,
+            counters: c.clone(),
+        }
+    }
+}
