@@ -214,4 +214,7 @@ pub enum BedError {
     /// The event rate exploded in simulated time (inelastic collapse, or disks crushed).
     #[error("{0}")]
     Collapse(String),
+    /// Two disks, or a disk and a wall, overlap by more than the limit: a contact was missed.
+    #[error("{0}")]
+    Overlap(String),
 }

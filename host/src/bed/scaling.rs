@@ -74,6 +74,7 @@ pub fn run_grid<R: Restitution>(
                 .run_protocol(grid.transient, grid.cycles, &mut |_| {})
                 .map_err(|e| match e {
                     BedError::Collapse(m) => BedError::Collapse(format!("n = {n}, f = {f} Hz: {m}")),
+                    BedError::Overlap(m) => BedError::Overlap(format!("n = {n}, f = {f} Hz: {m}")),
                     e => e,
                 })?;
             tick();

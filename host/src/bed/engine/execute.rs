@@ -2,9 +2,13 @@
 
 use super::guards::{LID, PISTON};
 use super::predict::Scope;
-use super::{Bed, EventRecord, Kind};
+use super::{Bed, EventRecord, Kind, FREE};
 use crate::bed::cells::NONE;
 use crate::bed::{BedError, Restitution};
+
+/// A disk whose rebound off the pressing piston is slower than this times √((g + a_p) d) is put
+/// at rest on it (see [`Bed::maybe_ride`]): a rebound height below 5·10⁻¹³ d.
+pub const RIDE_SPEED: f64 = 1e-6;
 
 impl<R: Restitution> Bed<R> {
     /// Moves disk `i`'s clock to now.
@@ -16,6 +20,59 @@ impl<R: Restitution> Bed<R> {
         self.d[i].vx = vx;
         self.d[i].vy = vy;
         self.d[i].tl = self.now;
+    }
+
+    /// Disk `i` (its clock at now) leaves the piston, if it was riding on it: free flight.
+    #[inline]
+    pub(super) fn unride(&mut self, i: usize) {
+        if self.ride[i] != FREE {
+            self.ride[i] = FREE;
+            self.d[i].ay = -self.g;
+        }
+    }
+
+    /// After a piston collision that leaves disk `i` (its clock at now) with relative rebound
+    /// speed `rebound` (m/s): chattering ends in the locked state. While the piston presses
+    /// (its acceleration a_p > −g), a disk bouncing on it with r < 1 makes infinitely many ever
+    /// shorter bounces that end, after a finite time, with the disk at rest on the piston (Luck
+    /// & Mehta, PRE 48, 3988 (1993): "chattering" then "locking"); an event-driven run can only
+    /// follow it until roundoff makes the disk sink into the piston. So once the rebound is
+    /// below `RIDE_SPEED` √((g + a_p) d) the disk is put at rest on the piston and rides with
+    /// it (acceleration a_p) until the piston decelerates faster than g, when it flies off
+    /// with the piston's velocity. What this drops: bounces of height below 5·10⁻¹³ d and a
+    /// remaining chattering time below ~10⁻⁶ √(d/(g + a_p))/(1 − r).
+    pub(super) fn maybe_ride(&mut self, i: usize, rebound: f64) {
+        let k = self.piston.piece(self.now);
+        let p = self.piston.state_on(k, self.now);
+        let press = self.g + p.a;
+        if press > 0.0 && rebound < RIDE_SPEED * (press * self.cfg.diameter).sqrt() {
+            self.ride[i] = k;
+            self.d[i].y = p.z + self.radius;
+            self.d[i].vy = p.v;
+            self.d[i].ay = p.a;
+            self.counters.rides += 1;
+        }
+    }
+
+    /// Disk `i` rides on the piston and its piece has ended (now): it rides on with the next
+    /// piece while the piston presses it (g + a_p > 0), or else flies off with the piston's
+    /// velocity. Its trajectory changes either way: its counter moves, so that the predictions
+    /// of others against it are re-checked.
+    pub(super) fn ride_on(&mut self, i: usize) {
+        let k = self.ride[i] + 1;
+        let p = self.piston.state_on(k, self.now);
+        self.d[i].x += self.d[i].vx * (self.now - self.d[i].tl);
+        self.d[i].tl = self.now;
+        self.d[i].y = p.z + self.radius;
+        self.d[i].vy = p.v;
+        if self.g + p.a > 0.0 {
+            self.ride[i] = k;
+            self.d[i].ay = p.a;
+        } else {
+            self.ride[i] = FREE;
+            self.d[i].ay = -self.g;
+        }
+        self.count[i] = self.count[i].wrapping_add(1);
     }
 
     // ---------------------------------------------------------------- execution
@@ -63,6 +120,9 @@ impl<R: Restitution> Bed<R> {
         self.guard_same_instant(j)?;
         self.advance(i);
         self.advance(j);
+        // a disk riding on the piston that is hit leaves it (it may come straight back)
+        self.unride(i);
+        self.unride(j);
         let dx = self.wrap(self.d[i].x - self.d[j].x);
         let dy = self.d[i].y - self.d[j].y;
         let dist = (dx * dx + dy * dy).sqrt();
@@ -70,6 +130,7 @@ impl<R: Restitution> Bed<R> {
         if overlap > self.counters.max_overlap {
             self.counters.max_overlap = overlap;
         }
+        self.guard_overlap(i, j as u32, overlap)?;
         let (nx, ny) = (dx / dist, dy / dist);
         let vn = (self.d[i].vx - self.d[j].vx) * nx + (self.d[i].vy - self.d[j].vy) * ny;
         let u = (-vn).max(0.0);
@@ -121,6 +182,9 @@ impl<R: Restitution> Bed<R> {
         if -gap > self.counters.max_overlap {
             self.counters.max_overlap = -gap;
         }
+        self.guard_overlap(i, if ny > 0.0 { PISTON } else { LID }, -gap)?;
+        // at contact exactly (the gap is roundoff)
+        self.d[i].y -= gap * ny;
         let u = (-(self.d[i].vy - vw) * ny).max(0.0);
         let r = self.restitution(i, None, u, true)?;
         self.d[i].vy += (1.0 + r) * u * ny;
@@ -147,7 +211,7 @@ impl<R: Restitution> Bed<R> {
             return Ok(false);
         }
         while self.next_sample <= t && self.next_sample <= t_end {
-            self.sample(self.next_sample);
+            self.sample(self.next_sample)?;
             self.next_sample += self.sample_dt;
         }
         self.now = t;
@@ -180,6 +244,7 @@ impl<R: Restitution> Bed<R> {
                 let gap = self.d[i].y - self.radius - p.z;
                 let (u, r) = self.collide_wall(i, 1.0, p.v, gap)?;
                 self.counters.piston_collisions += 1;
+                self.maybe_ride(i, r * u);
                 self.last_partner[i] = PISTON;
                 self.record(Kind::Piston, i, NONE, u, r);
                 self.predict(i);
@@ -225,6 +290,9 @@ impl<R: Restitution> Bed<R> {
             }
             Kind::Horizon => {
                 self.record(Kind::Horizon, i, NONE, 0.0, 0.0);
+                if self.ride[i] != FREE {
+                    self.ride_on(i);
+                }
                 self.predict(i);
             }
             Kind::Never => return Ok(false),
@@ -248,7 +316,7 @@ impl<R: Restitution> Bed<R> {
             }
         }
         while self.next_sample <= t_end {
-            self.sample(self.next_sample);
+            self.sample(self.next_sample)?;
             self.next_sample += self.sample_dt;
         }
         if t_end > self.now {

@@ -89,6 +89,9 @@ pub struct Bed<R> {
     // disk state at its own clock `tl`, packed so that a neighbour is one cache line
     d: Vec<DiskState>,
     w: Vec<f64>,
+    /// The piston piece a disk rides on (at rest on the piston), or FREE.
+    ride: Vec<i64>,
+    samples_taken: u64,
     count: Vec<u32>,
     last_coll: Vec<f64>,
     last_partner: Vec<u32>,
@@ -184,6 +187,7 @@ impl<R: Restitution> Bed<R> {
                 vx: vx[k],
                 vy: vy[k],
                 tl: 0.0,
+                ay: -cfg.gravity,
             })
             .collect();
         let mut bed = Bed {
@@ -202,6 +206,8 @@ impl<R: Restitution> Bed<R> {
             tc: cfg.tc.unwrap_or(-1.0),
             d: disks,
             w: vec![0.0; n],
+            ride: vec![FREE; n],
+            samples_taken: 0,
             count: vec![0; n],
             last_coll: vec![f64::NEG_INFINITY; n],
             last_partner: vec![NONE; n],
@@ -280,6 +286,8 @@ impl<R: Restitution> Bed<R> {
             (self.d[i].vx, self.d[i].vy) = vel[i];
             self.w[i] = 0.0;
             self.d[i].tl = self.now;
+            self.d[i].ay = -self.g;
+            self.ride[i] = FREE;
             let c = self.cells.locate(self.d[i].x, self.d[i].y);
             self.cells.insert(i, c);
         }
@@ -356,10 +364,15 @@ impl<R: Restitution> Bed<R> {
         let dt = t - self.d[i].tl;
         (
             self.d[i].x + self.d[i].vx * dt,
-            self.d[i].y + (self.d[i].vy - 0.5 * self.g * dt) * dt,
+            self.d[i].y + (self.d[i].vy + 0.5 * self.d[i].ay * dt) * dt,
             self.d[i].vx,
-            self.d[i].vy - self.g * dt,
+            self.d[i].vy + self.d[i].ay * dt,
         )
+    }
+
+    /// Whether disk `i` is at rest on the piston, riding with it (see [`Bed`]'s guards).
+    pub fn riding(&self, i: usize) -> bool {
+        self.ride[i] != FREE
     }
 
     /// Angular velocity of disk `i` (rad/s, counter-clockwise).
@@ -407,7 +420,7 @@ impl<R: Restitution> Bed<R> {
     }
 }
 
-/// A disk's position (m) and velocity (m/s) at its own clock `tl` (s).
+/// A disk's position (m), velocity (m/s) and acceleration at its own clock `tl` (s).
 #[derive(Debug, Clone, Copy, Default)]
 #[repr(C)]
 struct DiskState {
@@ -416,7 +429,12 @@ struct DiskState {
     vx: f64,
     vy: f64,
     tl: f64,
+    /// Vertical acceleration (m/s²): −g in free flight, the piston's while riding on it.
+    ay: f64,
 }
+
+/// `ride[i]` of a disk in free flight.
+const FREE: i64 = i64::MIN;
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,7 +2,8 @@
 
 use super::{Bed, Kind};
 use crate::bed::cells::NONE;
-use crate::bed::events::{first_contact, pair_contact};
+use super::FREE;
+use crate::bed::events::{accel_pair_contact, first_contact, pair_contact};
 use crate::bed::Restitution;
 
 impl<R: Restitution> Bed<R> {
@@ -23,6 +24,14 @@ impl<R: Restitution> Bed<R> {
         let now = self.now;
         let (xi, yi, vxi, vyi) = self.state_at(i, now);
         let g = self.g;
+        let ayi = self.d[i].ay;
+        let rides = self.ride[i] != FREE;
+        // a disk riding on the piston stops at the end of its piece (it is re-anchored or leaves)
+        let ride_end = if rides {
+            self.piston.piece_start(self.ride[i] + 1) - now
+        } else {
+            f64::INFINITY
+        };
         let c = self.cells.cell[i] as usize;
         let (nx, ny) = (self.cells.nx, self.cells.ny);
         let (cx, cy) = (c % nx, c / nx);
@@ -38,7 +47,13 @@ impl<R: Restitution> Bed<R> {
         };
         let yb = self.cells.y0 + cy as f64 * self.cells.wy;
         // the lid, from the top row only (rows are at least one diameter high)
-        if cy + 1 == ny && matches!(scope, Scope::All | Scope::Row(1)) {
+        if rides {
+            if ride_end < best {
+                best = ride_end.max(0.0);
+                kind = Kind::Horizon;
+                partner = NONE;
+            }
+        } else if cy + 1 == ny && matches!(scope, Scope::All | Scope::Row(1)) {
             if let Some(t) = first_contact(self.lid - self.radius - yi, -vyi, g) {
                 if t < best {
                     best = t;
@@ -48,7 +63,7 @@ impl<R: Restitution> Bed<R> {
             }
         }
         // the piston, piece by piece, only from rows it can reach
-        if yb < self.piston_reach && matches!(scope, Scope::All | Scope::Row(-1)) {
+        if !rides && yb < self.piston_reach && matches!(scope, Scope::All | Scope::Row(-1)) {
             let k0 = self.piston.piece(now);
             let mut settled = false;
             for k in k0..k0 + 4 {
@@ -103,12 +118,25 @@ impl<R: Restitution> Bed<R> {
                     if ju != i {
                         let dtj = now - self.d[ju].tl;
                         let xj = self.d[ju].x + self.d[ju].vx * dtj;
-                        let yj = self.d[ju].y + (self.d[ju].vy - 0.5 * g * dtj) * dtj;
-                        let vyj = self.d[ju].vy - g * dtj;
+                        let ayj = self.d[ju].ay;
+                        let yj = self.d[ju].y + (self.d[ju].vy + 0.5 * ayj * dtj) * dtj;
+                        let vyj = self.d[ju].vy + ayj * dtj;
                         let rxij = self.wrap(xi - xj);
-                        if let Some(t) =
-                            pair_contact(rxij, yi - yj, vxi - self.d[ju].vx, vyi - vyj, self.sigma2)
-                        {
+                        let (ry, vx, vy) = (yi - yj, vxi - self.d[ju].vx, vyi - vyj);
+                        let hit = if ayj == ayi {
+                            pair_contact(rxij, ry, vx, vy, self.sigma2)
+                        } else {
+                            // one of the two rides on the piston: search up to its ride's end
+                            let end = if rides {
+                                ride_end
+                            } else if self.ride[ju] != FREE {
+                                self.piston.piece_start(self.ride[ju] + 1) - now
+                            } else {
+                                f64::INFINITY
+                            };
+                            accel_pair_contact(rxij, ry, vx, vy, ayi - ayj, self.sigma2, best.min(end))
+                        };
+                        if let Some(t) = hit {
                             if t < best {
                                 best = t;
                                 kind = Kind::Disk;
@@ -138,7 +166,7 @@ impl<R: Restitution> Bed<R> {
             kx = Kind::CellLeft;
         }
         if cy + 1 < ny {
-            if let Some(t) = first_contact(yb + self.cells.wy - yi, -vyi, g) {
+            if let Some(t) = first_contact(yb + self.cells.wy - yi, -vyi, -ayi) {
                 if t < bx {
                     bx = t;
                     kx = Kind::CellUp;
@@ -146,7 +174,7 @@ impl<R: Restitution> Bed<R> {
             }
         }
         if cy > 0 {
-            if let Some(t) = first_contact(yi - yb, vyi, -g) {
+            if let Some(t) = first_contact(yi - yb, vyi, ayi) {
                 if t < bx {
                     bx = t;
                     kx = Kind::CellDown;

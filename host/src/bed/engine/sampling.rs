@@ -25,6 +25,8 @@ pub struct Counters {
     pub tc_firings: u64,
     /// Largest overlap seen at any collision (m).
     pub max_overlap: f64,
+    /// Times a disk came to rest on the piston and rode with it (chattering ended).
+    pub rides: u64,
 }
 
 /// Averages over the measuring window, accumulated after the transient.
@@ -105,7 +107,7 @@ pub struct TraceRow {
 }
 
 impl<R: Restitution> Bed<R> {
-    pub(super) fn sample(&mut self, t: f64) {
+    pub(super) fn sample(&mut self, t: f64) -> Result<(), BedError> {
         let mut ke = 0.0;
         let mut ym = 0.0;
         for i in 0..self.n {
@@ -128,10 +130,14 @@ impl<R: Restitution> Bed<R> {
                 lid_impulse: self.window.lid_impulse,
             });
         }
+        // once a period, every pair of neighbours and every disk against the walls
+        self.samples_taken += 1;
+        if self.samples_taken % SAMPLES_PER_PERIOD as u64 == 0 {
+            self.guard_scan(t)?;
+        }
+        Ok(())
     }
 
-    /// Runs until time `t_end` (s); all disks are then brought to `t_end`. `progress` is called
-    /// now and then with the current time.
     /// Starts the measuring window now.
     pub fn start_window(&mut self) {
         self.measuring = true;
@@ -165,6 +171,7 @@ impl<R: Restitution> Bed<R> {
         self.run_until(self.now + transient * period, progress)?;
         self.start_window();
         self.run_until(self.now + cycles * period, progress)?;
+        self.guard_scan(self.now)?;
         Ok(self.report(clock.elapsed().as_secs_f64()))
     }
 
