@@ -4,6 +4,7 @@
 use super::engine::{Bed, BedConfig, BedReport};
 use super::view::{progress_bar, snapshot_figure, SaveAs};
 use super::{resolve, scaling, DynRestitution, Laws};
+
 use crate::config::parse_set;
 use crate::output::write_atomic;
 use crate::plot::Figure;
@@ -57,6 +58,15 @@ pub struct PhysArgs {
     /// Seed of the initial state.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+}
+
+/// Independent seeds for `dashpot bed`.
+#[derive(Args, Debug, Clone)]
+pub struct SeedArgs {
+    /// Run K independent seeds (SEED, SEED+1, ...) in parallel and report their mean, with
+    /// standard errors from their spread (K = 1: batch means over the measured periods).
+    #[arg(long, default_value_t = 1, value_name = "K")]
+    pub seeds: usize,
 }
 
 impl PhysArgs {
@@ -141,6 +151,9 @@ pub struct BedArgs {
     /// Write the sampled time series (64 samples per period) to FILE.csv.
     #[arg(long, value_name = "FILE.csv")]
     pub trace: Option<PathBuf>,
+    /// Independent seeds.
+    #[command(flatten)]
+    pub seeds: SeedArgs,
 }
 
 /// `dashpot scaling`.
@@ -205,22 +218,68 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
     let cfg = a.phys.config(a.layers, a.freq);
     cfg.validate()?;
     let laws = a.phys.laws(reg)?;
-    let mut bed = Bed::new(cfg, laws)?;
+    let k = a.seeds.seeds;
+    if k == 0 {
+        bail!("--seeds = 0 is out of range: give at least 1 seed");
+    }
+    let mut bed = Bed::new(
+        cfg,
+        Laws {
+            disk: &laws.disk,
+            wall: &laws.wall,
+        },
+    )?;
     if a.trace.is_some() {
         bed.enable_trace();
     }
     let total = (a.phys.transient + a.phys.cycles) / a.freq;
     let pb = progress_bar((total * 1000.0).ceil() as u64, "bed (ms simulated)");
-    let report = bed
-        .run_protocol(a.phys.transient, a.phys.cycles, &mut |t| {
-            pb.set_position((t * 1000.0) as u64)
-        })
-        .with_context(|| {
-            format!(
-                "bed n = {}, f = {} Hz, law {}",
-                a.layers, a.freq, a.phys.restitution
-            )
-        })?;
+    let context = || {
+        format!(
+            "bed n = {}, f = {} Hz, law {}",
+            a.layers, a.freq, a.phys.restitution
+        )
+    };
+    // the other seeds in parallel with the first (which draws the snapshot and the trace)
+    let (first, others) = rayon::join(
+        || {
+            bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |t| {
+                pb.set_position((t * 1000.0) as u64)
+            })
+        },
+        || {
+            use rayon::prelude::*;
+            (1..k as u64)
+                .into_par_iter()
+                .map(|s| {
+                    let cfg = BedConfig {
+                        seed: cfg.seed.wrapping_add(s),
+                        ..cfg
+                    };
+                    Bed::new(
+                        cfg,
+                        Laws {
+                            disk: &laws.disk,
+                            wall: &laws.wall,
+                        },
+                    )?
+                    .run_protocol(a.phys.transient, a.phys.cycles, &mut |_| {})
+                    .map_err(|e| match e {
+                        super::BedError::Collapse(m) => {
+                            super::BedError::Collapse(format!("seed {}: {m}", cfg.seed))
+                        }
+                        super::BedError::Overlap(m) => {
+                            super::BedError::Overlap(format!("seed {}: {m}", cfg.seed))
+                        }
+                        e => e,
+                    })
+                })
+                .collect::<Result<Vec<BedReport>, _>>()
+        },
+    );
+    let mut runs = vec![first.with_context(context)?];
+    runs.extend(others.with_context(context)?);
+    let report = BedReport::combine(&runs).context("no run")?;
     pb.finish_and_clear();
     if let Some(p) = &a.trace {
         write_trace(p, &bed)?;
@@ -279,10 +338,39 @@ fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
         r.lid
     );
     println!("measured over {:.3} s after the transient:", r.measured_time);
-    println!("  pressure P = Nc ΔI / L      {:.6e} N/m", r.pressure);
-    println!("  lid collision rate Nc       {:.6e} 1/s", r.lid_collision_rate);
-    println!("  mean impulse ΔI             {:.6e} N·s", r.mean_impulse);
-    println!("  temperature T               {:.6e} J", r.temperature);
+    let pm = |v: f64, e: Option<f64>| match e {
+        Some(e) => format!("{v:.6e} ± {e:.2e}"),
+        None => format!("{v:.6e}"),
+    };
+    println!(
+        "  (± one standard error: {})",
+        if r.seeds > 1 {
+            format!("spread of {} independent seeds", r.seeds)
+        } else {
+            "batch means over the measured periods".to_string()
+        }
+    );
+    println!(
+        "  pressure P = Nc ΔI / L      {} N/m",
+        pm(r.pressure, r.pressure_stderr)
+    );
+    println!(
+        "  lid collision rate Nc       {} 1/s",
+        pm(r.lid_collision_rate, r.lid_collision_rate_stderr)
+    );
+    println!(
+        "  mean impulse ΔI             {} N·s",
+        pm(r.mean_impulse, r.mean_impulse_stderr)
+    );
+    println!(
+        "  temperature T               {} J",
+        pm(r.temperature, r.temperature_stderr)
+    );
+    println!(
+        "  piston pressure             {} N/m (P + N m g / L = {:.6e})",
+        pm(r.piston_pressure, r.piston_pressure_stderr),
+        r.pressure + r.disks as f64 * c.mass * c.gravity / c.width
+    );
     println!(
         "run: {} events ({} collisions, {} cell crossings), {:.3e} events/s, {:.3e} collisions/s, {:.3} s wall ({:.4} s per simulated s)",
         r.events,

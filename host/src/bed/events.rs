@@ -271,8 +271,8 @@ mod tests {
     #[test]
     fn a_flying_disk_meets_a_riding_disk_at_the_root_of_the_quartic() {
         let s2 = 4e-6; // d = 2 mm
-        // disk j rides on a piston accelerating upward at 160 m/s², disk i falls onto it from
-        // 1 mm above contact, head on: relative acceleration −(160 + 9.8), closing at 0.3 m/s
+                       // disk j rides on a piston accelerating upward at 160 m/s², disk i falls onto it from
+                       // 1 mm above contact, head on: relative acceleration −(160 + 9.8), closing at 0.3 m/s
         let (a, v, gap) = (-169.8, -0.3, 1e-3);
         let t = accel_pair_contact(0.0, 0.002 + gap, 0.0, v, a, s2, 1.0).unwrap();
         let exact = first_contact(gap, v, a).unwrap();
@@ -287,12 +287,18 @@ mod tests {
         }
         // a brief graze that a coarse sampling would miss: the disks pass within σ for ~1 µs
         let t = accel_pair_contact(0.001999, 0.0, 0.0, 0.0, -1.0, s2, 1.0);
-        assert!(t.is_none(), "receding along x? no: at rest, accelerating apart in y");
+        assert!(
+            t.is_none(),
+            "receding along x? no: at rest, accelerating apart in y"
+        );
         // touching and receding, but accelerated back: the later contact
         let t = accel_pair_contact(0.0, 0.002, 0.0, 0.1, -10.0, s2, 1.0).unwrap();
         assert!((t - 0.02).abs() < 1e-12, "{t}");
         // touching at rest and pressed together: now
-        assert_eq!(accel_pair_contact(0.0, 0.002, 0.0, 0.0, -10.0, s2, 1.0), Some(0.0));
+        assert_eq!(
+            accel_pair_contact(0.0, 0.002, 0.0, 0.0, -10.0, s2, 1.0),
+            Some(0.0)
+        );
         // beyond the horizon: none
         assert_eq!(accel_pair_contact(0.0, 0.002, 0.0, 0.1, -10.0, s2, 0.01), None);
     }

@@ -26,6 +26,7 @@ impl<R: Restitution> Bed<R> {
     #[inline]
     pub(super) fn unride(&mut self, i: usize) {
         if self.ride[i] != FREE {
+            self.ride_impulse(i, self.d[i].vy);
             self.ride[i] = FREE;
             self.d[i].ay = -self.g;
         }
@@ -50,6 +51,7 @@ impl<R: Restitution> Bed<R> {
             self.d[i].y = p.z + self.radius;
             self.d[i].vy = p.v;
             self.d[i].ay = p.a;
+            self.ride_from[i] = (self.now, p.v);
             self.counters.rides += 1;
         }
     }
@@ -65,14 +67,27 @@ impl<R: Restitution> Bed<R> {
         self.d[i].tl = self.now;
         self.d[i].y = p.z + self.radius;
         self.d[i].vy = p.v;
+        self.ride_impulse(i, p.v);
         if self.g + p.a > 0.0 {
             self.ride[i] = k;
             self.d[i].ay = p.a;
+            self.ride_from[i] = (self.now, p.v);
         } else {
             self.ride[i] = FREE;
             self.d[i].ay = -self.g;
         }
         self.count[i] = self.count[i].wrapping_add(1);
+    }
+
+    /// The impulse (N·s) the piston gave disk `i` while it rode on it, from the start of the ride
+    /// to now, when its velocity is `v` (m/s): m (Δv + g Δt), added to the window.
+    fn ride_impulse(&mut self, i: usize, v: f64) {
+        let (t0, v0) = self.ride_from[i];
+        if self.measuring && t0 >= self.window.start {
+            let j = self.cfg.mass * (v - v0 + self.g * (self.now - t0));
+            self.window.piston_impulse += j;
+            self.window.current.piston_impulse += j;
+        }
     }
 
     // ---------------------------------------------------------------- execution
@@ -233,6 +248,8 @@ impl<R: Restitution> Bed<R> {
                 if self.measuring {
                     self.window.lid_collisions += 1;
                     self.window.lid_impulse += self.cfg.mass * (1.0 + r) * u;
+                    self.window.current.lid_collisions += 1;
+                    self.window.current.lid_impulse += self.cfg.mass * (1.0 + r) * u;
                 }
                 self.last_partner[i] = LID;
                 self.record(Kind::Lid, i, NONE, u, r);
@@ -244,6 +261,11 @@ impl<R: Restitution> Bed<R> {
                 let gap = self.d[i].y - self.radius - p.z;
                 let (u, r) = self.collide_wall(i, 1.0, p.v, gap)?;
                 self.counters.piston_collisions += 1;
+                if self.measuring {
+                    let j = self.cfg.mass * (1.0 + r) * u;
+                    self.window.piston_impulse += j;
+                    self.window.current.piston_impulse += j;
+                }
                 self.maybe_ride(i, r * u);
                 self.last_partner[i] = PISTON;
                 self.record(Kind::Piston, i, NONE, u, r);

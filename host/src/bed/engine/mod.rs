@@ -22,7 +22,9 @@ mod predict;
 mod sampling;
 
 pub use config::BedConfig;
-pub use sampling::{BedReport, Counters, TraceRow, Window, SAMPLES_PER_PERIOD};
+pub use sampling::{
+    batch_stderr, stderr_of, Batch, BedReport, Counters, TraceRow, Window, SAMPLES_PER_PERIOD,
+};
 
 use super::cells::{Cells, NONE};
 use super::events::Tournament;
@@ -91,6 +93,8 @@ pub struct Bed<R> {
     w: Vec<f64>,
     /// The piston piece a disk rides on (at rest on the piston), or FREE.
     ride: Vec<i64>,
+    /// When each ride began (s) and the piston's velocity then (m/s): the impulse it took.
+    ride_from: Vec<(f64, f64)>,
     samples_taken: u64,
     count: Vec<u32>,
     last_coll: Vec<f64>,
@@ -207,6 +211,7 @@ impl<R: Restitution> Bed<R> {
             d: disks,
             w: vec![0.0; n],
             ride: vec![FREE; n],
+            ride_from: vec![(0.0, 0.0); n],
             samples_taken: 0,
             count: vec![0; n],
             last_coll: vec![f64::NEG_INFINITY; n],

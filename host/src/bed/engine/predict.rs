@@ -1,8 +1,8 @@
 //! Prediction: the next event of each disk.
 
+use super::FREE;
 use super::{Bed, Kind};
 use crate::bed::cells::NONE;
-use super::FREE;
 use crate::bed::events::{accel_pair_contact, first_contact, pair_contact};
 use crate::bed::Restitution;
 
