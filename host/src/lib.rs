@@ -2,6 +2,7 @@
 //!
 //! Loads law plugins by name ([`registry`]) and runs the drivers; the `dashpot` CLI ([`cli`]).
 
+pub mod ae_statements;
 pub mod bed;
 pub mod cli;
 pub mod collide;

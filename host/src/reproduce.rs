@@ -107,6 +107,7 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
         write_atomic(&out.join("antypov_elliott_closed_forms.csv"), csv.as_bytes())?;
         writeln!(md)?;
         md.push_str(&crate::collide::figures::collide_figures(reg, out)?);
+        md.push_str(&crate::ae_statements::report(reg)?);
     } else {
         writeln!(md, "(the lsd and hsd plugins were not found)\n")?;
     }

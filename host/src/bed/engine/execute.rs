@@ -274,8 +274,8 @@ impl<R: Restitution> Bed<R> {
             k @ (Kind::CellRight | Kind::CellLeft | Kind::CellUp | Kind::CellDown) => {
                 self.advance(i);
                 let nx = self.cells.nx;
-                let c = self.cells.cell[i] as usize;
-                let (mut cx, mut cy) = (c % nx, c / nx);
+                let (cx, cy) = self.cells.col_row[i];
+                let (mut cx, mut cy) = (cx as usize, cy as usize);
                 match k {
                     Kind::CellRight => {
                         cx += 1;
@@ -295,7 +295,7 @@ impl<R: Restitution> Bed<R> {
                     Kind::CellUp => cy += 1,
                     _ => cy -= 1,
                 }
-                self.cells.moveto(i, (cy * nx + cx) as u32);
+                self.cells.moveto_xy(i, cx, cy);
                 self.counters.cell_crossings += 1;
                 self.record(k, i, NONE, 0.0, 0.0);
                 let scope = if !self.cache_valid(i) {

@@ -32,9 +32,9 @@ impl<R: Restitution> Bed<R> {
         } else {
             f64::INFINITY
         };
-        let c = self.cells.cell[i] as usize;
         let (nx, ny) = (self.cells.nx, self.cells.ny);
-        let (cx, cy) = (c % nx, c / nx);
+        let (cx, cy) = self.cells.col_row[i];
+        let (cx, cy) = (cx as usize, cy as usize);
         // the best event that is not a cell crossing: from the cache or from scratch
         let (mut best, mut kind, mut partner, mut pcount) = match scope {
             Scope::All => (f64::INFINITY, Kind::Never, NONE, 0),
@@ -111,7 +111,14 @@ impl<R: Restitution> Bed<R> {
                 continue;
             }
             for dx in cols.clone() {
-                let rx = (cx as i64 + dx).rem_euclid(nx as i64) as usize;
+                let rx = cx as i64 + dx;
+                let rx = if rx < 0 {
+                    (rx + nx as i64) as usize
+                } else if rx as usize >= nx {
+                    rx as usize - nx
+                } else {
+                    rx as usize
+                };
                 let mut j = self.cells.head(ry as usize * nx + rx);
                 while j != NONE {
                     let ju = j as usize;
