@@ -31,6 +31,7 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
     )?;
 
     // ---- laws ----
+    eprintln!("reproduce: the laws loaded");
     writeln!(
         md,
         "## Laws loaded\n\n| law | kind | plugin | parameters |\n|---|---|---|---|"
@@ -60,6 +61,7 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
     )?;
 
     // ---- Antypov & Elliott: MCC granule ----
+    eprintln!("reproduce: Antypov & Elliott, closed forms, Figs. 1-3 and the statements");
     let mcc = Particle::MCC;
     let pair = Pair::spheres(&mcc, &mcc)?;
     writeln!(
@@ -113,6 +115,7 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
     }
 
     // ---- McNamara & Falcon: r(v) ----
+    eprintln!("reproduce: McNamara & Falcon, r(v) (Fig. 1)");
     writeln!(
         md,
         "## McNamara & Falcon (2005): restitution against impact speed (eq. 1, Fig. 1)\n"
@@ -176,6 +179,10 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
         } else {
             crate::bed::figures::Size::reproduce()
         };
+        eprintln!(
+            "reproduce: the vibrated bed, Figs. 2-4 and the other statements (size {})",
+            size.name
+        );
         let bed_md = crate::bed::figures::run(reg, &bed_dir, &size)?;
         write_atomic(&bed_dir.join("report.md"), bed_md.as_bytes())?;
         // the bed report's sections, one level down

@@ -60,6 +60,30 @@ pub fn pair_contact(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64) -> Option<f
     Some(c / (-b + disc.sqrt()))
 }
 
+/// [`pair_contact`], but only if the contact comes before `before` (s): a pair that cannot meet
+/// that soon is rejected without a square root, since τ ≥ c/(−2b) (the prediction of a disk
+/// only needs contacts earlier than the best event it has found so far).
+#[inline]
+pub fn pair_contact_before(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64, before: f64) -> Option<f64> {
+    let b = rx * vx + ry * vy;
+    if b >= 0.0 {
+        return None;
+    }
+    let c = rx * rx + ry * ry - sigma2;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    if c >= -2.0 * b * before {
+        return None;
+    }
+    let vv = vx * vx + vy * vy;
+    let disc = b * b - vv * c;
+    if disc < 0.0 {
+        return None;
+    }
+    Some(c / (-b + disc.sqrt()))
+}
+
 /// The first τ in [0, `horizon`] (s) at which two disks at relative position (rx, ry) (m), with
 /// relative velocity (vx, vy) (m/s) and relative vertical acceleration `ay` (m/s²) (one disk
 /// rides on the piston, the other flies under gravity), are at distance √`sigma2` while
@@ -212,19 +236,26 @@ impl Tournament {
     /// Sets the key of `i` to `t` and replays its path towards the root.
     #[inline]
     pub fn update(&mut self, i: usize, t: f64) {
+        assert!(i < self.size, "tournament index {i} out of range");
+        let node = self.node.as_mut_ptr();
         let mut k = self.size + i;
-        self.node[k].0 = t;
-        k >>= 1;
-        while k >= 1 {
-            let (a, b) = (self.node[2 * k], self.node[2 * k + 1]);
-            // ties: the left child holds the lower indices
-            let w = if b.0 < a.0 { b } else { a };
-            let old = self.node[k];
-            if w.1 == old.1 && w.0.to_bits() == old.0.to_bits() {
-                break;
-            }
-            self.node[k] = w;
+        // SAFETY: k < 2 size = node.len() on entry (checked above), and every step halves it
+        // while reading the children 2k, 2k + 1 < 2 size of a node k < size.
+        unsafe {
+            (*node.add(k)).0 = t;
             k >>= 1;
+            while k >= 1 {
+                // ties: the left child holds the lower indices; the winner is picked by index,
+                // not by a branch, which would be mispredicted half the time
+                let (a, b) = (*node.add(2 * k), *node.add(2 * k + 1));
+                let w = if b.0 < a.0 { b } else { a };
+                let old = *node.add(k);
+                if w.1 == old.1 && w.0.to_bits() == old.0.to_bits() {
+                    break;
+                }
+                *node.add(k) = w;
+                k >>= 1;
+            }
         }
     }
 }

@@ -35,6 +35,8 @@ pub struct Size {
     pub fig4_freqs: Vec<f64>,
     /// Fig. 4: transient and measured periods.
     pub fig4_periods: (f64, f64),
+    /// The other statements of the paper (Secs. III A–C).
+    pub statements: super::statements::StatementSize,
 }
 
 fn steps(a: f64, b: f64, k: usize) -> Vec<f64> {
@@ -54,6 +56,7 @@ impl Size {
             fig4_layers: vec![0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0],
             fig4_freqs: steps(10.0, 30.0, 11),
             fig4_periods: (50.0, 200.0),
+            statements: super::statements::StatementSize::standard(),
         }
     }
 
@@ -68,6 +71,7 @@ impl Size {
             fig4_layers: vec![0.5, 1.0, 2.0, 3.0],
             fig4_freqs: steps(10.0, 30.0, 5),
             fig4_periods: (10.0, 30.0),
+            statements: super::statements::StatementSize::tiny(),
         }
     }
 
@@ -82,6 +86,7 @@ impl Size {
             fig4_layers: vec![0.5, 2.0],
             fig4_freqs: vec![10.0, 20.0, 30.0],
             fig4_periods: (2.0, 4.0),
+            statements: super::statements::StatementSize::tiny(),
         }
     }
 
@@ -97,6 +102,7 @@ impl Size {
             fig4_layers: vec![0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0],
             fig4_freqs: steps(10.0, 30.0, 11),
             fig4_periods: (30.0, 100.0),
+            statements: super::statements::StatementSize::standard(),
         }
     }
 }
@@ -164,17 +170,21 @@ pub fn run_only(reg: &Registry, out: &Path, size: &Size, only: &[u8]) -> Result<
          these runs; the CSV files beside this report hold them all.\n",
         size.name, FIGURE_TC
     )?;
+    let stage = |s: &str| eprintln!("figures bed ({}): {s}", size.name);
     if want(2) {
+        stage("Fig. 2, P(n) for r(v), r = 0.95, r = 0.7");
         let t = std::time::Instant::now();
         fig2(&laws, out, size, &mut md)?;
         writeln!(md, "Fig. 2 wall time: {:.0} s.\n", t.elapsed().as_secs_f64())?;
     }
     if want(3) {
+        stage("Fig. 3, snapshots at n = 3, f = 30 Hz");
         let t = std::time::Instant::now();
         fig3(&laws, out, size, &mut md)?;
         writeln!(md, "Fig. 3 wall time: {:.0} s.\n", t.elapsed().as_secs_f64())?;
     }
     if want(4) {
+        stage("Fig. 4, the exponents θ(n), four panels");
         let t = std::time::Instant::now();
         fig4(&laws, out, size, &mut md)?;
         writeln!(
@@ -184,6 +194,18 @@ pub fn run_only(reg: &Registry, out: &Path, size: &Size, only: &[u8]) -> Result<
             4 * size.fig4_layers.len() * size.fig4_freqs.len()
         )?;
     }
+    if want(5) {
+        stage("the other statements (g, headroom, h0, L, r_t, A/10 with 10 f)");
+        let t = std::time::Instant::now();
+        md.push_str(&super::statements::run(
+            &laws.rv,
+            &laws.r95,
+            FIGURE_TC,
+            &size.statements,
+        )?);
+        writeln!(md, "Statements wall time: {:.0} s.\n", t.elapsed().as_secs_f64())?;
+    }
+    stage("done");
     writeln!(
         md,
         "\nTotal wall time: {:.0} s on {} threads.",

@@ -26,6 +26,7 @@ pub mod figures;
 pub mod observables;
 pub mod piston;
 pub mod scaling;
+pub mod statements;
 pub mod view;
 
 pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};

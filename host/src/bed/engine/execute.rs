@@ -222,7 +222,8 @@ impl<R: Restitution> Bed<R> {
     /// is later (and then nothing happened).
     pub(super) fn step(&mut self, t_end: f64) -> Result<bool, BedError> {
         let (i, t) = self.queue.top();
-        if t > t_end {
+        if t > t_end || t == f64::INFINITY {
+            // nothing left to happen before t_end (or ever: no sampling towards infinity)
             return Ok(false);
         }
         while self.next_sample <= t && self.next_sample <= t_end {

@@ -153,11 +153,13 @@ impl<R: Restitution> Bed<R> {
                 .collect();
             return Err(BedError::Collapse(format!(
                 "the event rate exploded at t = {:.9} s: {} events in {:.3e} s of simulated time \
-                 (inelastic collapse, or disks pinned against a wall); most involved: {}. \
-                 Use the TC model (--tc SECONDS, e.g. 1e-5) or a restitution that tends to 1 at low speed",
+                 (inelastic collapse, or disks pinned against a wall; largest overlap so far \
+                 {:.3e} d); most involved: {}. Use the TC model (--tc SECONDS, e.g. --tc 1e-5) \
+                 or a restitution that tends to 1 at low speed",
                 self.now,
                 self.block_events,
                 dt,
+                self.counters.max_overlap / self.cfg.diameter,
                 worst.join(", ")
             )));
         }

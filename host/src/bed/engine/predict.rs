@@ -3,7 +3,7 @@
 use super::FREE;
 use super::{Bed, Kind};
 use crate::bed::cells::NONE;
-use crate::bed::events::{accel_pair_contact, first_contact, pair_contact};
+use crate::bed::events::{accel_pair_contact, first_contact, pair_contact_before};
 use crate::bed::Restitution;
 
 impl<R: Restitution> Bed<R> {
@@ -62,43 +62,6 @@ impl<R: Restitution> Bed<R> {
                 }
             }
         }
-        // the piston, piece by piece, only from rows it can reach
-        if !rides && yb < self.piston_reach && matches!(scope, Scope::All | Scope::Row(-1)) {
-            let k0 = self.piston.piece(now);
-            let mut settled = false;
-            for k in k0..k0 + 4 {
-                let start = self.piston.piece_start(k).max(now);
-                if start - now >= best {
-                    settled = true;
-                    break;
-                }
-                let end = self.piston.piece_start(k + 1);
-                let dt = start - now;
-                let y0 = yi + (vyi - 0.5 * g * dt) * dt;
-                let v0 = vyi - g * dt;
-                let p = self.piston.state_on(k, start);
-                if let Some(t) = first_contact(y0 - self.radius - p.z, v0 - p.v, -g - p.a) {
-                    if start + t <= end {
-                        let tt = start + t - now;
-                        if tt < best {
-                            best = tt;
-                            kind = Kind::Piston;
-                            partner = NONE;
-                        }
-                        settled = true;
-                        break;
-                    }
-                }
-            }
-            if !settled {
-                let h = self.piston.piece_start(k0 + 4) - now;
-                if h < best {
-                    best = h;
-                    kind = Kind::Horizon;
-                    partner = NONE;
-                }
-            }
-        }
         // disks of this and the eight neighbouring cells (or of the three new ones)
         let (rows, cols) = match scope {
             Scope::All => (-1i64..=1, -1i64..=1),
@@ -131,7 +94,7 @@ impl<R: Restitution> Bed<R> {
                         let rxij = self.wrap(xi - xj);
                         let (ry, vx, vy) = (yi - yj, vxi - self.d[ju].vx, vyi - vyj);
                         let hit = if ayj == ayi {
-                            pair_contact(rxij, ry, vx, vy, self.sigma2)
+                            pair_contact_before(rxij, ry, vx, vy, self.sigma2, best)
                         } else {
                             // one of the two rides on the piston: search up to its ride's end
                             let end = if rides {
@@ -153,6 +116,52 @@ impl<R: Restitution> Bed<R> {
                         }
                     }
                     j = self.cells.next(ju);
+                }
+            }
+        }
+        // the piston, piece by piece, only from rows it can reach, only from when the disk can
+        // be down at the piston's highest, and only if that is before the best event so far
+        if !rides && yb < self.piston_reach && matches!(scope, Scope::All | Scope::Row(-1)) {
+            let above = yi - self.piston_reach;
+            let reach = if above <= 0.0 {
+                Some(0.0)
+            } else {
+                first_contact(above, vyi, -g)
+            };
+            if let Some(tmin) = reach.filter(|&t| t < best) {
+                let k0 = self.piston.piece(now + tmin).max(self.piston.piece(now));
+                let mut settled = false;
+                for k in k0..k0 + 4 {
+                    let start = self.piston.piece_start(k).max(now);
+                    if start - now >= best {
+                        settled = true;
+                        break;
+                    }
+                    let end = self.piston.piece_start(k + 1);
+                    let dt = start - now;
+                    let y0 = yi + (vyi - 0.5 * g * dt) * dt;
+                    let v0 = vyi - g * dt;
+                    let p = self.piston.state_on(k, start);
+                    if let Some(t) = first_contact(y0 - self.radius - p.z, v0 - p.v, -g - p.a) {
+                        if start + t <= end {
+                            let tt = start + t - now;
+                            if tt < best {
+                                best = tt;
+                                kind = Kind::Piston;
+                                partner = NONE;
+                            }
+                            settled = true;
+                            break;
+                        }
+                    }
+                }
+                if !settled {
+                    let h = self.piston.piece_start(k0 + 4) - now;
+                    if h < best {
+                        best = h;
+                        kind = Kind::Horizon;
+                        partner = NONE;
+                    }
                 }
             }
         }
