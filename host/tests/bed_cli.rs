@@ -95,7 +95,7 @@ fn scaling_fits_the_classical_exponents_without_gravity_and_constant_r() {
     assert!((th("lid_collision_rate") - 1.0).abs() < 0.15, "{v}");
     assert!((th("mean_impulse") - 1.0).abs() < 0.15, "{v}");
     let csv = std::fs::read_to_string(dir.join("scaling.csv")).unwrap();
-    assert!(csv.starts_with("layers,theta_p,resid_p"));
+    assert!(csv.starts_with("layers,theta_p,theta_p_stderr,resid_p"));
     assert_eq!(
         std::fs::read_to_string(dir.join("grid.csv"))
             .unwrap()
@@ -203,6 +203,10 @@ fn a_contact_law_runs_the_bed_as_a_restitution_law() {
             "2",
             "--cycles",
             "4",
+            // a dissipative contact law chatters disks to rest on disks that ride on the piston,
+            // which the engine stops on: the TC model prevents it
+            "--tc",
+            "1e-5",
             "--json",
         ]);
         assert!(
