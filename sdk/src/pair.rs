@@ -188,9 +188,16 @@ impl Pair {
         )
     }
 
-    /// The materials of this pair for a law that also needs the shear modulus, given it.
-    pub fn with_shear(&self, shear: f64) -> Result<MaterialPair, LawError> {
-        MaterialPair::new(self.young, shear)
+    /// The materials of this pair when both bodies (or the body and the wall) have Poisson's
+    /// ratio `poisson`: then G_eff / E_eff = (1 − ν)/(2(2 − ν)) exactly, for two spheres and
+    /// for a sphere on a rigid wall alike.
+    pub fn materials(&self, poisson: f64) -> Result<MaterialPair, LawError> {
+        if !(poisson > -1.0 && poisson < 0.5) {
+            return Err(LawError::invalid_pair(format!(
+                "poisson = {poisson} is out of range: Poisson's ratio must lie in (-1, 0.5)"
+            )));
+        }
+        MaterialPair::new(self.young, self.young * (1.0 - poisson) / (2.0 * (2.0 - poisson)))
     }
 
     /// The pair of a sphere and a flat, rigid wall of infinite mass.
@@ -266,6 +273,39 @@ mod tests {
             pair.mapped_linear_stiffness(),
             2.0 / 3.0 * e_eff * d,
             max_relative = 1e-14
+        );
+    }
+
+    #[test]
+    fn material_pairs_of_equal_poisson_ratios() {
+        let p = Particle::MCC;
+        let q = Particle {
+            diameter: 0.02,
+            density: 900.0,
+            ..p
+        };
+        for (pair, mat) in [
+            (
+                Pair::spheres(&p, &q).unwrap(),
+                MaterialPair::spheres(&p, &q).unwrap(),
+            ),
+            (Pair::wall(&p).unwrap(), MaterialPair::wall(&p).unwrap()),
+        ] {
+            let m = pair.materials(p.poisson).unwrap();
+            assert_relative_eq!(m.young, mat.young, max_relative = 1e-15);
+            assert_relative_eq!(m.shear, mat.shear, max_relative = 1e-14);
+        }
+        // Mindlin: 1/G_eff = (2 − ν1)/G1 + (2 − ν2)/G2, G = E/(2(1 + ν))
+        let g = p.young / (2.0 * 1.3);
+        assert_relative_eq!(
+            MaterialPair::spheres(&p, &p).unwrap().shear,
+            g / (2.0 * 1.7),
+            max_relative = 1e-15
+        );
+        assert_relative_eq!(
+            MaterialPair::wall(&p).unwrap().shear,
+            g / 1.7,
+            max_relative = 1e-15
         );
     }
 

@@ -32,7 +32,14 @@ pub struct LoadedPlugin {
     pub series: SdkSeries,
     /// The laws it exports.
     pub laws: Vec<LawInfo>,
-    module: PluginModuleRef,
+    module: Module,
+}
+
+/// A root module of either series.
+#[derive(Clone, Copy)]
+enum Module {
+    V1(v1::PluginModuleRef),
+    V2(PluginModuleRef),
 }
 
 impl std::fmt::Debug for LoadedPlugin {
@@ -127,13 +134,14 @@ impl LoadedPlugin {
         let legacy = series(&plugin_sdk) == Some((0, 1)) && series(ABI_VERSION) != Some((0, 1));
         let module = if legacy {
             // abi_stable would refuse every type of a 0.1 plugin for its package version alone
-            // (0.1 and 0.2 are different semver series). Run its full layout comparison and
-            // accept exactly that difference: every field of every type must still match.
+            // (0.1 and 0.2 are different semver series). Run its full layout comparison against
+            // the frozen 0.1 root module and accept exactly that difference: every field of
+            // every type must still match.
             let Some(layout) = header.layout() else {
                 return Err(load_error(path, "it records no type layout to check"));
             };
             if let Err(e) =
-                check_layout_compatibility(<PluginModuleRef as abi_stable::StableAbi>::LAYOUT, layout)
+                check_layout_compatibility(<v1::PluginModuleRef as abi_stable::StableAbi>::LAYOUT, layout)
             {
                 let only_versions = e.errors.iter().all(|err| {
                     err.errs
@@ -145,41 +153,49 @@ impl LoadedPlugin {
                 }
             }
             // SAFETY: the layout was checked just above, to the package version.
-            unsafe { header.unchecked_layout::<PluginModuleRef>() }.map_err(|e| load_error(path, e))?
+            Module::V1(
+                unsafe { header.unchecked_layout::<v1::PluginModuleRef>() }
+                    .map_err(|e| load_error(path, e))?,
+            )
         } else {
-            header
-                .init_root_module::<PluginModuleRef>()
-                .map_err(|e| match e {
-                    LibraryError::AbiInstability(_) => stale_error(path, &plugin_sdk, &e.to_string()),
-                    other => load_error(path, other),
-                })?
+            Module::V2(
+                header
+                    .init_root_module::<PluginModuleRef>()
+                    .map_err(|e| match e {
+                        LibraryError::AbiInstability(_) => stale_error(path, &plugin_sdk, &e.to_string()),
+                        other => load_error(path, other),
+                    })?,
+            )
         };
-        let (series, laws) = if legacy {
-            let laws = match (module.laws())() {
-                RResult::ROk(v) => v.into_iter().map(from_v1_info).collect(),
-                RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
-            };
-            (SdkSeries::V0_1, laws)
-        } else {
-            let Some(laws2) = module.laws2() else {
-                return Err(load_error(path, "its root module lacks the sdk 0.2 law list"));
-            };
-            match laws2() {
-                RResult::ROk(v) => (SdkSeries::V0_2, v.into_vec()),
-                RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
+        let (series, laws, name, version, sdk_version) = match module {
+            Module::V1(m) => {
+                let laws = match (m.laws())() {
+                    RResult::ROk(v) => v.into_iter().map(from_v1_info).collect(),
+                    RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
+                };
+                (SdkSeries::V0_1, laws, m.name(), m.version(), m.sdk_version())
+            }
+            Module::V2(m) => {
+                let Some(laws2) = m.laws2() else {
+                    return Err(load_error(path, "its root module lacks the sdk 0.2 law list"));
+                };
+                let laws = match laws2() {
+                    RResult::ROk(v) => v.into_vec(),
+                    RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
+                };
+                (SdkSeries::V0_2, laws, m.name(), m.version(), m.sdk_version())
             }
         };
         Ok(LoadedPlugin {
             path: path.to_path_buf(),
-            name: module.name().to_string(),
-            version: module.version().to_string(),
-            sdk_version: module.sdk_version().to_string(),
+            name: name.to_string(),
+            version: version.to_string(),
+            sdk_version: sdk_version.to_string(),
             series,
             laws,
             module,
         })
     }
-
     /// The description of law `name`, if this plugin exports it.
     pub fn info(&self, name: &str) -> Option<&LawInfo> {
         self.laws.iter().find(|l| l.name == name)
@@ -189,19 +205,16 @@ impl LoadedPlugin {
     pub fn new_contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
         let info = self.expect(name, LawKind::Contact)?;
         let (n, p) = (RStr::from_str(name), RSlice::from_slice(params));
-        let inner = match self.series {
-            SdkSeries::V0_1 => match (self.module.new_contact())(n, p) {
+        let inner = match self.module {
+            Module::V1(m) => match (m.new_contact())(n, p) {
                 RResult::ROk(ffi) => ContactInner::V1(Arc::new(V1Law {
                     ffi,
                     bound: Mutex::new(Vec::new()),
                 })),
                 RResult::RErr(e) => return Err(e.into()),
             },
-            SdkSeries::V0_2 => {
-                let f = self
-                    .module
-                    .new_contact2()
-                    .ok_or_else(|| missing(name, "new_contact2"))?;
+            Module::V2(m) => {
+                let f = m.new_contact2().ok_or_else(|| missing(name, "new_contact2"))?;
                 match f(n, p) {
                     RResult::ROk(ffi) => ContactInner::V2(ffi),
                     RResult::RErr(e) => return Err(e.into()),
@@ -218,8 +231,10 @@ impl LoadedPlugin {
     /// Creates tangential law `name` from `params`.
     pub fn new_tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
         let info = self.expect(name, LawKind::Tangential)?;
-        let f = self
-            .module
+        let Module::V2(m) = self.module else {
+            return Err(missing(name, "new_tangential"));
+        };
+        let f = m
             .new_tangential()
             .ok_or_else(|| missing(name, "new_tangential"))?;
         match f(RStr::from_str(name), RSlice::from_slice(params)) {
@@ -235,7 +250,11 @@ impl LoadedPlugin {
         params: &[ParamValue],
     ) -> Result<RestitutionLawHandle, LawError> {
         let info = self.expect(name, LawKind::Restitution)?;
-        match (self.module.new_restitution())(RStr::from_str(name), RSlice::from_slice(params)) {
+        let f = match self.module {
+            Module::V1(m) => m.new_restitution(),
+            Module::V2(m) => m.new_restitution(),
+        };
+        match f(RStr::from_str(name), RSlice::from_slice(params)) {
             RResult::ROk(ffi) => Ok(RestitutionLawHandle { ffi, info }),
             RResult::RErr(e) => Err(e.into()),
         }
@@ -250,7 +269,11 @@ impl LoadedPlugin {
         fixed: &[ParamValue],
     ) -> Result<Option<Vec<ParamValue>>, LawError> {
         self.expect(name, LawKind::Contact)?;
-        match (self.module.calibrate())(RStr::from_str(name), target, pair, RSlice::from_slice(fixed)) {
+        let f = match self.module {
+            Module::V1(m) => m.calibrate(),
+            Module::V2(m) => m.calibrate(),
+        };
+        match f(RStr::from_str(name), target, pair, RSlice::from_slice(fixed)) {
             RResult::ROk(v) => Ok(v.into_option().map(RVec::into_vec)),
             RResult::RErr(e) => Err(e.into()),
         }
@@ -301,7 +324,7 @@ fn from_v1_info(i: v1::LawInfo) -> LawInfo {
 /// radius: sdk 0.1 had no per-contact geometry).
 struct V1Law {
     ffi: v1::FfiContactLaw,
-    bound: Mutex<Vec<(u64, u64, u64, Arc<V1Bound>)>>,
+    bound: Mutex<Vec<V1Entry>>,
 }
 
 impl Drop for V1Law {
@@ -309,6 +332,9 @@ impl Drop for V1Law {
         unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
     }
 }
+
+/// (mass, radius, young) bits and the 0.1 law bound to that pair.
+type V1Entry = (u64, u64, u64, Arc<V1Bound>);
 
 struct V1Bound {
     ffi: v1::FfiBoundContact,
@@ -416,6 +442,141 @@ fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> Law
     )
 }
 
+fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError {
+    LawError::new(
+        ErrorKind::NonFinite,
+        format!(
+            "contact law '{name}' returned force {value} at delta = {:e} m, rate = {:e} m/s \
+             (effective mass {:e} kg, radius {:e} m)",
+            c.delta, c.rate, c.mass, c.radius
+        ),
+    )
+}
+
+/// Runs a checked normal batch through `call` (a plugin's vtable entry, or the same trampoline
+/// compiled into the host) and turns its status into a result. Lengths are checked by the
+/// caller.
+fn run_normal_batch(
+    name: &str,
+    b: NormalBatch<'_>,
+    call: impl FnOnce(&FfiNormalBatch, &mut BatchFault) -> Result<BatchStatus, RString>,
+) -> Result<(), LawError> {
+    let n = b.force.len();
+    let ffi = FfiNormalBatch {
+        n,
+        slots: b.slots,
+        delta: b.delta.as_ptr(),
+        rate: b.rate.as_ptr(),
+        mass: b.mass.as_ptr(),
+        radius: b.radius.as_ptr(),
+        history: b.history.as_mut_ptr(),
+        force: b.force.as_mut_ptr(),
+    };
+    let mut fault = BatchFault::default();
+    let st = call(&ffi, &mut fault)
+        .map_err(|msg| LawError::new(ErrorKind::Panic, format!("contact law '{name}' panicked: {msg}")))?;
+    if st == BatchStatus::Ok {
+        return Ok(());
+    }
+    let i = fault.index.min(n - 1);
+    let c = Contact {
+        delta: b.delta[i],
+        rate: b.rate[i],
+        mass: b.mass[i],
+        radius: b.radius[i],
+    };
+    if st == BatchStatus::NonFiniteOutput {
+        return Err(normal_non_finite(name, b.force[i], c));
+    }
+    let v = match fault.field {
+        BatchFault::DELTA => c.delta,
+        BatchFault::RATE => c.rate,
+        BatchFault::MASS => c.mass,
+        _ => c.radius,
+    };
+    Err(bad_input("contact", name, fault.field, i, v))
+}
+
+fn check_normal_lengths(name: &str, slots: usize, b: &NormalBatch<'_>) -> Result<(), LawError> {
+    let n = b.force.len();
+    if b.delta.len() != n || b.rate.len() != n || b.mass.len() != n || b.radius.len() != n {
+        return Err(length_error(
+            "force_batch",
+            format!(
+                "delta {}, rate {}, mass {}, radius {}, force {}",
+                b.delta.len(),
+                b.rate.len(),
+                b.mass.len(),
+                b.radius.len(),
+                n
+            ),
+        ));
+    }
+    if b.slots != slots || b.history.len() != n * slots {
+        return Err(length_error(
+            "force_batch",
+            format!(
+                "history has {} values for {n} contacts of {} slots (law '{name}' keeps {slots})",
+                b.history.len(),
+                b.slots,
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// A contact law compiled into the host (tests, benchmarks, baselines), bound to a pair of
+/// materials, and called through the very trampoline a plugin exports: the same input and
+/// output checks, statically dispatched.
+pub struct StaticContact<B> {
+    law: B,
+    name: String,
+    slots: usize,
+}
+
+impl<B: crate::law::BoundContact> StaticContact<B> {
+    /// Binds law `L` (configured as `law`) to `materials`.
+    pub fn bind<L: crate::law::ContactLaw<Bound = B>>(
+        law: &L,
+        materials: &MaterialPair,
+    ) -> Result<Self, LawError> {
+        materials.validate()?;
+        Ok(StaticContact {
+            law: law.bind(materials)?,
+            name: L::NAME.to_string(),
+            slots: L::HISTORY.len(),
+        })
+    }
+
+    /// The law's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// History slots per contact.
+    pub fn history_slots(&self) -> usize {
+        self.slots
+    }
+
+    /// The bound law.
+    pub fn law(&self) -> &B {
+        &self.law
+    }
+
+    /// As [`ContactModelHandle::force_batch`].
+    #[inline]
+    pub fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
+        check_normal_lengths(&self.name, self.slots, &b)?;
+        let obj = &self.law as *const B as *const c_void;
+        run_normal_batch(&self.name, b, |ffi, fault| unsafe {
+            match super::plugin::model_force_batch::<B>(obj, ffi, fault) {
+                BatchStatus::Panic => Err(super::plugin::take_panic()),
+                st => Ok(st),
+            }
+        })
+    }
+}
+
 /// A contact law bound to a pair of materials: the hot path, per-contact geometry and history,
 /// every input and output checked.
 pub struct ContactModelHandle {
@@ -442,85 +603,18 @@ impl ContactModelHandle {
         )
     }
 
-    fn non_finite(&self, value: f64, c: Contact) -> LawError {
-        LawError::new(
-            ErrorKind::NonFinite,
-            format!(
-                "contact law '{}' returned force {value} at delta = {:e} m, rate = {:e} m/s \
-                 (effective mass {:e} kg, radius {:e} m)",
-                self.name, c.delta, c.rate, c.mass, c.radius
-            ),
-        )
-    }
-
     /// Evaluates every contact of `b` (see [`NormalBatch`]): forces into `b.force`, history
     /// updated in place. A non-finite input (or a mass or radius not > 0) is an error naming the
     /// contact, before anything of its block is computed; so is a non-finite output.
     pub fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
-        let n = b.force.len();
-        if b.delta.len() != n || b.rate.len() != n || b.mass.len() != n || b.radius.len() != n {
-            return Err(length_error(
-                "force_batch",
-                format!(
-                    "delta {}, rate {}, mass {}, radius {}, force {}",
-                    b.delta.len(),
-                    b.rate.len(),
-                    b.mass.len(),
-                    b.radius.len(),
-                    n
-                ),
-            ));
-        }
-        if b.slots != self.slots || b.history.len() != n * self.slots {
-            return Err(length_error(
-                "force_batch",
-                format!(
-                    "history has {} values for {n} contacts of {} slots (law '{}' keeps {})",
-                    b.history.len(),
-                    b.slots,
-                    self.name,
-                    self.slots
-                ),
-            ));
-        }
+        check_normal_lengths(&self.name, self.slots, &b)?;
         match &self.inner {
-            ModelInner::V2(m) => {
-                let ffi = FfiNormalBatch {
-                    n,
-                    slots: self.slots,
-                    delta: b.delta.as_ptr(),
-                    rate: b.rate.as_ptr(),
-                    mass: b.mass.as_ptr(),
-                    radius: b.radius.as_ptr(),
-                    history: b.history.as_mut_ptr(),
-                    force: b.force.as_mut_ptr(),
-                };
-                let mut fault = BatchFault::default();
-                match unsafe { (m.vtable.force_batch)(m.obj, &ffi, &mut fault) } {
-                    BatchStatus::Ok => Ok(()),
-                    BatchStatus::Panic => Err(self.panic_error((m.vtable.take_panic)())),
-                    st => {
-                        let i = fault.index.min(n - 1);
-                        let c = Contact {
-                            delta: b.delta[i],
-                            rate: b.rate[i],
-                            mass: b.mass[i],
-                            radius: b.radius[i],
-                        };
-                        if st == BatchStatus::NonFiniteOutput {
-                            Err(self.non_finite(b.force[i], c))
-                        } else {
-                            let v = match fault.field {
-                                BatchFault::DELTA => c.delta,
-                                BatchFault::RATE => c.rate,
-                                BatchFault::MASS => c.mass,
-                                _ => c.radius,
-                            };
-                            Err(bad_input("contact", &self.name, fault.field, i, v))
-                        }
-                    }
+            ModelInner::V2(m) => run_normal_batch(&self.name, b, |ffi, fault| unsafe {
+                match (m.vtable.force_batch)(m.obj, ffi, fault) {
+                    BatchStatus::Panic => Err((m.vtable.take_panic)()),
+                    st => Ok(st),
                 }
-            }
+            }),
             ModelInner::V1 { law, young } => self.force_batch_v1(law, *young, b),
         }
     }
@@ -578,7 +672,7 @@ impl ContactModelHandle {
                         mass: m,
                         radius: r,
                     };
-                    return Err(self.non_finite(b.force[i], c));
+                    return Err(normal_non_finite(&self.name, b.force[i], c));
                 }
             }
             lo = hi;
@@ -683,85 +777,142 @@ impl TangentialModelHandle {
 
     /// Evaluates every contact of `b` (see [`TangentialBatch`]).
     pub fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
-        let n = b.force.len();
-        let lens = [
-            b.normal.len(),
-            b.velocity.len(),
-            b.normal_force.len(),
-            b.delta.len(),
-            b.mass.len(),
-            b.radius.len(),
-        ];
-        if lens.iter().any(|&l| l != n) {
-            return Err(length_error(
-                "tangential force_batch",
-                format!("normal, velocity, normal_force, delta, mass, radius {lens:?}, force {n}"),
-            ));
-        }
-        if b.slots != self.slots || b.history.len() != n * self.slots {
-            return Err(length_error(
-                "tangential force_batch",
-                format!(
-                    "history has {} values for {n} contacts of {} slots (law '{}' keeps {})",
-                    b.history.len(),
-                    b.slots,
-                    self.name,
-                    self.slots
-                ),
-            ));
-        }
-        let ffi = FfiTangentialBatch {
-            n,
-            slots: self.slots,
-            dt: b.dt,
-            normal: b.normal.as_ptr() as *const f64,
-            velocity: b.velocity.as_ptr() as *const f64,
-            normal_force: b.normal_force.as_ptr(),
-            delta: b.delta.as_ptr(),
-            mass: b.mass.as_ptr(),
-            radius: b.radius.as_ptr(),
-            history: b.history.as_mut_ptr(),
-            force: b.force.as_mut_ptr() as *mut f64,
-        };
-        let mut fault = BatchFault::default();
-        match unsafe { (self.ffi.vtable.force_batch)(self.ffi.obj, &ffi, &mut fault) } {
-            BatchStatus::Ok => Ok(()),
-            BatchStatus::Panic => Err(LawError::new(
-                ErrorKind::Panic,
-                format!(
-                    "tangential law '{}' panicked: {}",
-                    self.name,
-                    (self.ffi.vtable.take_panic)()
-                ),
-            )),
-            BatchStatus::NonFiniteOutput => {
-                let i = fault.index.min(n - 1);
-                Err(LawError::new(
-                    ErrorKind::NonFinite,
-                    format!(
-                        "tangential law '{}' returned force {:?} on contact {i} (normal force {:e} N, \
-                         overlap {:e} m, velocity {:?} m/s)",
-                        self.name, b.force[i], b.normal_force[i], b.delta[i], b.velocity[i]
-                    ),
-                ))
+        let ffi = &self.ffi;
+        run_tangential_batch(&self.name, self.slots, b, |fb, fault| unsafe {
+            match (ffi.vtable.force_batch)(ffi.obj, fb, fault) {
+                BatchStatus::Panic => Err((ffi.vtable.take_panic)()),
+                st => Ok(st),
             }
-            BatchStatus::BadInput => {
-                let i = fault.index.min(n - 1);
-                let v = match fault.field {
-                    BatchFault::NORMAL => {
-                        return Err(bad_vec("normal", &self.name, i, b.normal[i]));
-                    }
-                    BatchFault::VELOCITY => {
-                        return Err(bad_vec("velocity", &self.name, i, b.velocity[i]));
-                    }
-                    BatchFault::NORMAL_FORCE => b.normal_force[i],
-                    BatchFault::DELTA => b.delta[i],
-                    BatchFault::MASS => b.mass[i],
-                    BatchFault::RADIUS => b.radius[i],
-                    _ => b.dt,
-                };
-                Err(bad_input("tangential", &self.name, fault.field, i, v))
+        })
+    }
+}
+
+/// A tangential law compiled into the host, called through the trampoline a plugin exports.
+pub struct StaticTangential<B> {
+    law: B,
+    name: String,
+    slots: usize,
+}
+
+impl<B: crate::law::BoundTangential> StaticTangential<B> {
+    /// Binds law `L` (configured as `law`) to `materials`.
+    pub fn bind<L: crate::law::TangentialLaw<Bound = B>>(
+        law: &L,
+        materials: &MaterialPair,
+    ) -> Result<Self, LawError> {
+        materials.validate()?;
+        Ok(StaticTangential {
+            law: law.bind(materials)?,
+            name: L::NAME.to_string(),
+            slots: L::HISTORY.len(),
+        })
+    }
+
+    /// The law's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// History slots per contact.
+    pub fn history_slots(&self) -> usize {
+        self.slots
+    }
+
+    /// As [`TangentialModelHandle::force_batch`].
+    #[inline]
+    pub fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
+        let obj = &self.law as *const B as *const c_void;
+        run_tangential_batch(&self.name, self.slots, b, |fb, fault| unsafe {
+            match super::plugin::tangential_force_batch::<B>(obj, fb, fault) {
+                BatchStatus::Panic => Err(super::plugin::take_panic()),
+                st => Ok(st),
             }
+        })
+    }
+}
+
+fn run_tangential_batch(
+    name: &str,
+    slots: usize,
+    b: TangentialBatch<'_>,
+    call: impl FnOnce(&FfiTangentialBatch, &mut BatchFault) -> Result<BatchStatus, RString>,
+) -> Result<(), LawError> {
+    let n = b.force.len();
+    let lens = [
+        b.normal.len(),
+        b.velocity.len(),
+        b.normal_force.len(),
+        b.delta.len(),
+        b.mass.len(),
+        b.radius.len(),
+    ];
+    if lens.iter().any(|&l| l != n) {
+        return Err(length_error(
+            "tangential force_batch",
+            format!("normal, velocity, normal_force, delta, mass, radius {lens:?}, force {n}"),
+        ));
+    }
+    if b.slots != slots || b.history.len() != n * slots {
+        return Err(length_error(
+            "tangential force_batch",
+            format!(
+                "history has {} values for {n} contacts of {} slots (law '{}' keeps {})",
+                b.history.len(),
+                b.slots,
+                name,
+                slots
+            ),
+        ));
+    }
+    let ffi = FfiTangentialBatch {
+        n,
+        slots,
+        dt: b.dt,
+        normal: b.normal.as_ptr() as *const f64,
+        velocity: b.velocity.as_ptr() as *const f64,
+        normal_force: b.normal_force.as_ptr(),
+        delta: b.delta.as_ptr(),
+        mass: b.mass.as_ptr(),
+        radius: b.radius.as_ptr(),
+        history: b.history.as_mut_ptr(),
+        force: b.force.as_mut_ptr() as *mut f64,
+    };
+    let mut fault = BatchFault::default();
+    let st = call(&ffi, &mut fault).map_err(|msg| {
+        LawError::new(
+            ErrorKind::Panic,
+            format!("tangential law '{name}' panicked: {msg}"),
+        )
+    })?;
+    match st {
+        BatchStatus::Ok => Ok(()),
+        BatchStatus::NonFiniteOutput | BatchStatus::Panic => {
+            let i = fault.index.min(n - 1);
+            Err(LawError::new(
+                ErrorKind::NonFinite,
+                format!(
+                    "tangential law '{}' returned force {:?} on contact {i} (normal force {:e} N, \
+                     overlap {:e} m, velocity {:?} m/s)",
+                    name, b.force[i], b.normal_force[i], b.delta[i], b.velocity[i]
+                ),
+            ))
+        }
+        BatchStatus::BadInput => {
+            let i = fault.index.min(n - 1);
+            let v = match fault.field {
+                BatchFault::NORMAL => {
+                    return Err(bad_vec("normal", name, i, b.normal[i]));
+                }
+                BatchFault::VELOCITY => {
+                    return Err(bad_vec("velocity", name, i, b.velocity[i]));
+                }
+                BatchFault::NORMAL_FORCE => b.normal_force[i],
+                BatchFault::DELTA => b.delta[i],
+                BatchFault::MASS => b.mass[i],
+                BatchFault::RADIUS => b.radius[i],
+                _ => b.dt,
+            };
+            Err(bad_input("tangential", name, fault.field, i, v))
         }
     }
 }

@@ -44,7 +44,7 @@ pub mod v1;
 
 pub use host::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
-    SdkSeries, TangentialLawHandle, TangentialModelHandle,
+    SdkSeries, StaticContact, StaticTangential, TangentialLawHandle, TangentialModelHandle,
 };
 #[doc(hidden)]
 pub use plugin as __private;

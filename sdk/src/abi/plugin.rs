@@ -142,7 +142,11 @@ fn check_normal_inputs(d: &[f64], r: &[f64], m: &[f64], a: &[f64]) -> Option<(us
     None
 }
 
-unsafe extern "C" fn model_force_batch<B: BoundContact>(
+/// The batch trampoline of a contact model (what a plugin exports for `B`).
+///
+/// # Safety
+/// `obj` points to a `B`; the batch's pointers are valid for its lengths.
+pub unsafe extern "C" fn model_force_batch<B: BoundContact>(
     obj: *const c_void,
     b: &FfiNormalBatch,
     fault: &mut BatchFault,
@@ -252,7 +256,11 @@ unsafe extern "C" fn tangential_bind<T: TangentialLaw>(
     })
 }
 
-unsafe extern "C" fn tangential_force_batch<B: BoundTangential>(
+/// The batch trampoline of a tangential model (what a plugin exports for `B`).
+///
+/// # Safety
+/// `obj` points to a `B`; the batch's pointers are valid for its lengths.
+pub unsafe extern "C" fn tangential_force_batch<B: BoundTangential>(
     obj: *const c_void,
     b: &FfiTangentialBatch,
     fault: &mut BatchFault,

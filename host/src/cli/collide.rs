@@ -1,14 +1,14 @@
 //! `dashpot collide`, `dashpot sweep` and `dashpot calibrate`.
 
-use super::calibrate::{calibrate, CalibrateSpec};
 use super::grid::parse_grid;
-use super::two_body::{collide, Collision, Options};
 use crate::cli::{LawArgs, Selection};
+use crate::collide::calibrate::{calibrate, CalibrateSpec};
+use crate::collide::two_body::{collide, Collision, Options, PairLaw};
 use crate::output::write_atomic;
 use crate::registry::Registry;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use dashpot_sdk::{EndCriterion, Pair, ParamValue};
+use dashpot_sdk::{EndCriterion, MaterialPair, Pair, ParamValue};
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde_json::json;
@@ -100,7 +100,7 @@ pub fn run_one(
     opt: &Options,
 ) -> Result<Collision> {
     let law = reg.contact(&sel.name, &sel.params)?;
-    let bound = law.bind(&sel.pair)?;
+    let bound = PairLaw::new(law.bind(&sel.materials)?, sel.pair.mass, sel.pair.radius);
     collide(&bound, sel.pair.mass, v0, end, opt).with_context(|| {
         format!(
             "collision of '{}' at v0 = {v0} m/s (end: {})",
@@ -219,6 +219,8 @@ pub struct SweepSpec<'a> {
     pub base: &'a [ParamValue],
     /// The pair.
     pub pair: &'a Pair,
+    /// Its effective moduli.
+    pub materials: &'a MaterialPair,
     /// Impact speeds (m/s).
     pub v0s: &'a [f64],
     /// Parameters varied over grids (the sweep is the full product).
@@ -259,7 +261,7 @@ pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
     }
     // validate every parameter set once, before the long run
     for c in &combos {
-        reg.contact(name, c)?.bind(pair)?;
+        reg.contact(name, c)?.bind(spec.materials)?;
     }
     let tasks: Vec<(usize, f64)> = (0..combos.len())
         .flat_map(|i| v0s.iter().map(move |&v| (i, v)))
@@ -273,7 +275,11 @@ pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
     let rows: Vec<SweepRow> = tasks
         .par_iter()
         .map(|&(i, v0)| -> Result<SweepRow> {
-            let law = reg.contact(name, &combos[i])?.bind(pair)?;
+            let law = PairLaw::new(
+                reg.contact(name, &combos[i])?.bind(spec.materials)?,
+                pair.mass,
+                pair.radius,
+            );
             let c = collide(&law, pair.mass, v0, end, opt)
                 .with_context(|| format!("collision at v0 = {v0} m/s with {:?}", combos[i]))?;
             pb.inc(1);
@@ -309,6 +315,7 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
             law: &sel.name,
             base: &sel.params,
             pair: &sel.pair,
+            materials: &sel.materials,
             v0s: &v0s,
             varied: &varied,
             end,
@@ -392,6 +399,7 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
         law: sel.name.clone(),
         fixed: sel.params.clone(),
         pair: sel.pair,
+        shear: sel.materials.shear,
         restitution: a.restitution,
         contact_time: a.contact_time,
         v0: a.v0,
