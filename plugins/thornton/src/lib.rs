@@ -31,7 +31,7 @@
 //! sphere of density ρ on a wall, Thornton's 1.56 √(p_y⁵/(E⁴ρ))).
 //!
 //! History: one slot, `delta_max` (m), zero at first touch. Each call uses
-//! δ_max = max(history[0], δ) and writes it back: the force is a pure function of the contact
+//! δ_max = max(`history[0]`, δ) and writes it back: the force is a pure function of the contact
 //! and the history passed in, so a trial evaluation on a scratch copy is safe. δ ≤ 0 leaves the
 //! history unchanged (the dent stays while the caller keeps the contact).
 

@@ -19,7 +19,7 @@
 //! [`BoundContact::coefficients`].
 //!
 //! History: one slot, `delta_max` (m), zero at first touch. Each call uses
-//! δ_max = max(history[0], δ) and writes it back: the force is a pure function of the contact
+//! δ_max = max(`history[0]`, δ) and writes it back: the force is a pure function of the contact
 //! and the history passed in, so a trial evaluation on a scratch copy is safe. The law never
 //! forgets a plastic dent while the caller keeps the history (δ ≤ 0 leaves it unchanged); the
 //! caller drops it when the contact ends.
