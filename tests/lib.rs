@@ -39,6 +39,30 @@ pub const SEED_PLUGINS: [&str; 5] = [
     "dashpot_constant",
 ];
 
+/// The laws added with sdk 0.2 (tangential and plastic), by library name.
+pub const SDK02_PLUGINS: [&str; 4] = [
+    "dashpot_mindlin",
+    "dashpot_linear_history",
+    "dashpot_thornton",
+    "dashpot_walton_braun",
+];
+
+/// A registry of every plugin of the workspace (the seed laws and those of sdk 0.2).
+pub fn full_registry() -> Registry {
+    let files = SEED_PLUGINS
+        .iter()
+        .chain(SDK02_PLUGINS.iter())
+        .map(|n| plugin_file(n))
+        .collect();
+    let sp = SearchPath {
+        dirs: vec![],
+        files,
+        use_env: false,
+        use_default: false,
+    };
+    Registry::discover(&sp).expect("the plugins load")
+}
+
 /// A registry of exactly the five seed plugins, loaded from their `.so` files.
 pub fn seed_registry() -> Registry {
     let files = SEED_PLUGINS.iter().map(|n| plugin_file(n)).collect();
@@ -162,4 +186,132 @@ pub fn third_party_plugin() -> PathBuf {
         )
     })
     .clone()
+}
+
+/// A plugin contact law bound to one pair, as the two-body tests use it: `force(δ, δ̇)`,
+/// `force_batch`, `coefficients()` ([`dashpot::collide::ContactForce`] must be in scope).
+pub type PluginPair = dashpot::collide::PairLaw<dashpot_sdk::abi::ContactModelHandle>;
+
+/// Binds a plugin contact law to a [`dashpot_sdk::Pair`] (both bodies of Poisson's ratio 0.3,
+/// which only the shear modulus depends on).
+pub trait BindPair {
+    /// The law bound to `pair`.
+    fn bind_pair(&self, pair: &dashpot_sdk::Pair) -> Result<PluginPair, dashpot_sdk::LawError>;
+}
+
+impl BindPair for dashpot_sdk::abi::ContactLawHandle {
+    fn bind_pair(&self, pair: &dashpot_sdk::Pair) -> Result<PluginPair, dashpot_sdk::LawError> {
+        dashpot::collide::PairLaw::bind(self, pair, 0.3)
+    }
+}
+
+/// The commit of this repository whose tree is dashpot-sdk 0.1.0: the last release before
+/// sdk 0.2. Plugins built from it are what users of 0.1 have on disk.
+pub const SDK_0_1_COMMIT: &str = "32de0ccd4878fc8a8166c3337f6dc30793566041";
+
+/// The seed plugins built from the sources of [`SDK_0_1_COMMIT`] (extracted with `git archive`,
+/// built in a target directory of their own, in `profile` "debug" or "release"), by library
+/// name. `None`, with the reason printed, when this is not a git checkout holding that commit
+/// (a fatal error under `CI=true`).
+pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
+    static LOCK: OnceLock<Mutex<()>> = OnceLock::new();
+    let _g = LOCK
+        .get_or_init(|| Mutex::new(()))
+        .lock()
+        .unwrap_or_else(|e| e.into_inner());
+    let root = workspace_root();
+    let base = target_root().join("sdk-0.1");
+    let src = base.join("src");
+    let stamp = src.join(".dashpot-commit");
+    let have = std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == SDK_0_1_COMMIT);
+    if !have {
+        let ok = Command::new("git")
+            .arg("-C")
+            .arg(&root)
+            .args(["cat-file", "-e", &format!("{SDK_0_1_COMMIT}^{{commit}}")])
+            .status()
+            .is_ok_and(|s| s.success());
+        if !ok {
+            let msg = format!(
+                "the sdk 0.1 sources (commit {SDK_0_1_COMMIT}) are not in this checkout's git history"
+            );
+            assert!(std::env::var_os("CI").is_none(), "{msg}");
+            eprintln!("skipped: {msg}");
+            return None;
+        }
+        let _ = std::fs::remove_dir_all(&src);
+        std::fs::create_dir_all(&src).expect("create the sdk 0.1 source dir");
+        let archive = Command::new("git")
+            .arg("-C")
+            .arg(&root)
+            .args(["archive", "--format=tar", SDK_0_1_COMMIT])
+            .output()
+            .expect("run git archive");
+        assert!(archive.status.success(), "git archive {SDK_0_1_COMMIT} failed");
+        let mut tar = Command::new("tar")
+            .arg("-x")
+            .arg("-C")
+            .arg(&src)
+            .stdin(std::process::Stdio::piped())
+            .spawn()
+            .expect("run tar");
+        {
+            use std::io::Write;
+            tar.stdin
+                .take()
+                .expect("tar stdin")
+                .write_all(&archive.stdout)
+                .expect("feed tar");
+        }
+        assert!(tar.wait().expect("tar").success(), "tar failed");
+        std::fs::write(&stamp, SDK_0_1_COMMIT).expect("stamp");
+    }
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
+    let mut cmd = Command::new(cargo);
+    cmd.arg("build")
+        .arg("--quiet")
+        .arg("--locked")
+        .arg("--manifest-path")
+        .arg(src.join("Cargo.toml"))
+        .args([
+            "-p",
+            "dashpot-lsd",
+            "-p",
+            "dashpot-hsd",
+            "-p",
+            "dashpot-kuwabara-kono",
+        ])
+        .args(["-p", "dashpot-mcnamara-falcon", "-p", "dashpot-constant"])
+        .arg("--target-dir")
+        .arg(base.join("target"))
+        .env_remove("DASHPOT_SDK_FAKE_ABI_VERSION")
+        .env_remove("RUSTFLAGS");
+    if profile == "release" {
+        cmd.arg("--release");
+    }
+    let status = cmd.status().expect("run cargo");
+    assert!(status.success(), "building the sdk 0.1 plugins failed");
+    Some(base.join("target").join(profile))
+}
+
+/// A registry holding only the five seed plugins as built from the sdk 0.1 sources.
+pub fn sdk01_registry(profile: &str) -> Option<Registry> {
+    let dir = sdk01_plugins(profile)?;
+    let files = SEED_PLUGINS
+        .iter()
+        .map(|n| {
+            dir.join(format!(
+                "{}{n}{}",
+                std::env::consts::DLL_PREFIX,
+                std::env::consts::DLL_SUFFIX
+            ))
+        })
+        .collect();
+    let sp = SearchPath {
+        dirs: vec![],
+        files,
+        use_env: false,
+        use_default: false,
+    };
+    Some(Registry::discover(&sp).expect("the sdk 0.1 plugins load in the 0.2 host"))
 }

@@ -7,7 +7,7 @@
 //! gives or through the two-body collision driver (δ returns to 0, the paper's criterion, at
 //! rtol 1e-11, whose error is below 1e-9: that is the uncertainty of the driver's numbers).
 
-use crate::collide::{collide, Options};
+use crate::collide::two_body::{collide, Options, PairLaw};
 use crate::registry::Registry;
 use anyhow::Result;
 use dashpot_sdk::{EndCriterion, Pair, ParamValue, Particle};
@@ -28,7 +28,11 @@ fn verdict(ok: bool) -> &'static str {
 
 /// One collision through the driver: (restitution, contact time (s), maximum overlap (m)).
 fn driver(reg: &Registry, law: &str, eps: f64, pair: &Pair, v0: f64) -> Result<(f64, f64, f64)> {
-    let b = reg.contact(law, &[ParamValue::new("eps", eps)])?.bind(pair)?;
+    let b = PairLaw::bind(
+        &reg.contact(law, &[ParamValue::new("eps", eps)])?,
+        pair,
+        Particle::MCC.poisson,
+    )?;
     let opt = Options {
         rtol: 1e-11,
         ..Options::default()

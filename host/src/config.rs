@@ -15,7 +15,7 @@
 //! type = "wall"
 //! ```
 
-use dashpot_sdk::{LawError, Pair, ParamValue, Particle};
+use dashpot_sdk::{LawError, MaterialPair, Pair, ParamValue, Particle};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -25,6 +25,8 @@ use std::path::Path;
 pub trait Partner: std::fmt::Debug + Send + Sync {
     /// The effective pair of `particle` and this partner.
     fn pair(&self, particle: &Particle) -> Result<Pair, LawError>;
+    /// The effective moduli of `particle` and this partner.
+    fn materials(&self, particle: &Particle) -> Result<MaterialPair, LawError>;
     /// One line for reports.
     fn describe(&self, particle: &Particle) -> String;
 }
@@ -59,6 +61,9 @@ impl Partner for Sphere {
     fn pair(&self, particle: &Particle) -> Result<Pair, LawError> {
         Pair::spheres(particle, &self.resolve(particle))
     }
+    fn materials(&self, particle: &Particle) -> Result<MaterialPair, LawError> {
+        MaterialPair::spheres(particle, &self.resolve(particle))
+    }
     fn describe(&self, particle: &Particle) -> String {
         let q = self.resolve(particle);
         if q == *particle {
@@ -81,6 +86,9 @@ pub struct Wall {}
 impl Partner for Wall {
     fn pair(&self, particle: &Particle) -> Result<Pair, LawError> {
         Pair::wall(particle)
+    }
+    fn materials(&self, particle: &Particle) -> Result<MaterialPair, LawError> {
+        MaterialPair::wall(particle)
     }
     fn describe(&self, _particle: &Particle) -> String {
         "sphere against a flat rigid wall".to_string()

@@ -61,6 +61,12 @@ impl LawError {
     pub fn unsupported(message: impl Into<String>) -> Self {
         Self::new(ErrorKind::Unsupported, message)
     }
+
+    /// The same error with its message rewritten by `f`.
+    pub fn with_message(mut self, f: impl FnOnce(&str) -> String) -> Self {
+        self.message = f(&self.message);
+        self
+    }
 }
 
 /// The FFI-safe form of [`LawError`].

@@ -1,11 +1,12 @@
 //! The two kinds of law and what a law author implements.
 //!
-//! Both kinds have two stages, as in every DEM code: *configure* (from validated named
-//! parameters) and *bind* (to a [`Pair`], once), so that the hot path is a pure function of the
-//! contact state with every constant precomputed.
+//! Every kind has two stages, as in every DEM code: *configure* (from validated named
+//! parameters) and *bind* (once, to what does not change from contact to contact: a
+//! [`MaterialPair`] for contact and tangential laws, a [`Pair`] for restitution laws), so that
+//! the hot path is a pure function of the contact state with every constant precomputed.
 
 use crate::error::LawError;
-use crate::pair::Pair;
+use crate::pair::{MaterialPair, Pair};
 use crate::params::{ParamSpec, ParamValue, Params};
 use abi_stable::{
     std_types::{ROption, RString, RVec},
@@ -17,10 +18,12 @@ use abi_stable::{
 #[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum LawKind {
-    /// A normal contact force F(δ, δ̇) (N).
+    /// A normal contact force F(δ, δ̇) (N), possibly with per-contact history.
     Contact = 1,
     /// A restitution coefficient r(v) at normal impact speed v.
     Restitution = 2,
+    /// A tangential (friction) force at the contact point (N), with per-contact history (sdk 0.2).
+    Tangential = 3,
 }
 
 /// When a two-body contact is over. Realized restitution and contact time depend on it, so every
@@ -62,6 +65,48 @@ pub struct LawInfo {
     pub params: RVec<ParamSpec>,
     /// For a contact law: the end-of-contact criterion its closed-form calibration assumes.
     pub end_criterion: ROption<EndCriterion>,
+    /// The per-contact history slots the law keeps (f64 each; empty for a memoryless law).
+    pub history: RVec<HistorySlot>,
+}
+
+/// One per-contact history slot, as published by a law (the caller stores the value).
+#[repr(C)]
+#[derive(StableAbi, Debug, Clone, PartialEq, serde::Serialize)]
+pub struct HistorySlot {
+    /// Short name, e.g. `"delta_max"` or `"xi_x"`.
+    pub name: RString,
+    /// SI unit of the stored value.
+    pub unit: RString,
+    /// One line: what the slot holds.
+    pub doc: RString,
+}
+
+/// A history slot as a law author declares it (`const HISTORY: &[History] = &[...]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct History {
+    /// Short name.
+    pub name: &'static str,
+    /// SI unit.
+    pub unit: &'static str,
+    /// One line.
+    pub doc: &'static str,
+}
+
+impl History {
+    /// A slot declaration.
+    pub const fn new(name: &'static str, unit: &'static str, doc: &'static str) -> History {
+        History { name, unit, doc }
+    }
+}
+
+fn history_slots(h: &[History]) -> RVec<HistorySlot> {
+    h.iter()
+        .map(|h| HistorySlot {
+            name: h.name.into(),
+            unit: h.unit.into(),
+            doc: h.doc.into(),
+        })
+        .collect()
 }
 
 /// A derived constant of a bound law (for example a damping coefficient), for display and tests.
@@ -105,26 +150,175 @@ pub struct CalibrationTarget {
     pub end: EndCriterion,
 }
 
-/// A contact law bound to a pair: the normal force on the hot path.
+/// The state of one contact as a normal law sees it: overlap, its rate and the contact's own
+/// effective geometry. All SI.
+///
+/// Sign convention: δ ≥ 0 is the overlap (m), δ̇ its rate (m/s, > 0 while approaching).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Overlap δ (m); δ < 0 means no contact (a law returns 0 there).
+    pub delta: f64,
+    /// Overlap rate δ̇ (m/s), positive while the particles approach.
+    pub rate: f64,
+    /// Effective mass m1 m2/(m1 + m2) of this contact (kg); the particle's mass against a wall.
+    pub mass: f64,
+    /// Effective radius r1 r2/(r1 + r2) of this contact (m); the particle's radius against a
+    /// flat wall.
+    pub radius: f64,
+}
+
+/// Every contact of one kind of material pair, structure of arrays: what one batch call
+/// evaluates. All slices have length `n = force.len()`, except `history` (`n × slots`, contact
+/// `i` owning `history[i*slots .. (i+1)*slots]`).
+///
+/// History: zero at a contact's first touch; the law reads it and writes the updated value in
+/// place. The caller owns the storage, keeps what the law wrote when it accepts the step (a DEM
+/// step), or hands a scratch copy for a trial evaluation (an integrator's stage), and drops it
+/// when the contact ends.
+#[derive(Debug)]
+pub struct NormalBatch<'a> {
+    /// Overlaps δ (m).
+    pub delta: &'a [f64],
+    /// Overlap rates δ̇ (m/s), > 0 approaching.
+    pub rate: &'a [f64],
+    /// Effective masses (kg), per contact.
+    pub mass: &'a [f64],
+    /// Effective radii (m), per contact.
+    pub radius: &'a [f64],
+    /// History slots per contact (the law's `HISTORY.len()`).
+    pub slots: usize,
+    /// Per-contact history, `n × slots`, read and updated in place.
+    pub history: &'a mut [f64],
+    /// Output: the normal force on each contact (N), positive when repulsive.
+    pub force: &'a mut [f64],
+}
+
+/// A contact law bound to a material pair: the normal force on the hot path.
+///
+/// Everything that depends only on the materials and the parameters is computed at
+/// [`ContactLaw::bind`]; the contact's own effective mass and radius arrive with each call, so a
+/// polydisperse packing needs one binding per pair of materials, not per pair of sizes.
 ///
 /// Sign convention: δ ≥ 0 is the overlap (m), δ̇ its rate (m/s, > 0 while approaching), and the
 /// returned force (N) is positive when repulsive. For δ < 0 (no contact) a law returns 0.
 pub trait BoundContact: Send + Sync + 'static {
-    /// The normal force F(δ, δ̇) (N) at overlap `delta` (m) and overlap rate `rate` (m/s).
-    fn force(&self, delta: f64, rate: f64) -> f64;
+    /// The normal force (N) on contact `c`. `history` has the law's `HISTORY.len()` slots
+    /// (empty for a memoryless law): read it, and write the updated value back.
+    fn force(&self, c: Contact, history: &mut [f64]) -> f64;
 
-    /// `out[i] = force(delta[i], rate[i])`. The three slices have the same length (the caller
-    /// guarantees it). Override only if a hand-vectorised form is faster than this loop.
+    /// `b.force[i]` for every contact of the batch (see [`NormalBatch`]; the caller guarantees
+    /// the lengths). Override only if a hand-vectorised form is faster than this loop.
     #[inline]
-    fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) {
-        for ((o, &d), &r) in out.iter_mut().zip(delta).zip(rate) {
-            *o = self.force(d, r);
+    fn force_batch(&self, b: NormalBatch<'_>) {
+        let n = b.force.len();
+        if b.slots == 0 {
+            for i in 0..n {
+                let c = Contact {
+                    delta: b.delta[i],
+                    rate: b.rate[i],
+                    mass: b.mass[i],
+                    radius: b.radius[i],
+                };
+                b.force[i] = self.force(c, &mut []);
+            }
+        } else {
+            for (i, h) in b.history.chunks_exact_mut(b.slots).take(n).enumerate() {
+                let c = Contact {
+                    delta: b.delta[i],
+                    rate: b.rate[i],
+                    mass: b.mass[i],
+                    radius: b.radius[i],
+                };
+                b.force[i] = self.force(c, h);
+            }
         }
     }
 
-    /// Derived constants of the bound law (stiffness, damping coefficient, ...).
-    fn coefficients(&self) -> Vec<Coefficient> {
+    /// Derived constants of the law bound to a contact of effective `mass` (kg) and `radius`
+    /// (m): stiffness, damping coefficient, ...
+    fn coefficients(&self, _mass: f64, _radius: f64) -> Vec<Coefficient> {
         Vec::new()
+    }
+}
+
+/// The state of one contact as a tangential law sees it. Vectors are 3D (a 2D caller sets the
+/// third components to 0); `normal` is the unit normal pointing from the partner to the
+/// particle the force acts on.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialContact {
+    /// Unit contact normal n̂, from partner j to particle i.
+    pub normal: [f64; 3],
+    /// Relative velocity (m/s) of i's contact point with respect to j's, ω × r terms included;
+    /// the law uses its part in the tangent plane.
+    pub velocity: [f64; 3],
+    /// The normal force on the contact (N, > 0 repulsive), from the normal law this step.
+    pub normal_force: f64,
+    /// Overlap δ (m).
+    pub delta: f64,
+    /// Effective mass (kg).
+    pub mass: f64,
+    /// Effective radius (m).
+    pub radius: f64,
+    /// The time step (s) over which the history advances.
+    pub dt: f64,
+}
+
+/// Every contact of one kind of material pair for a tangential law, structure of arrays.
+/// Vectors are `[x, y, z]` triples; `history` is `n × slots` as in [`NormalBatch`].
+#[derive(Debug)]
+pub struct TangentialBatch<'a> {
+    /// Time step (s) over which the history advances.
+    pub dt: f64,
+    /// Unit normals n̂ (from partner to particle).
+    pub normal: &'a [[f64; 3]],
+    /// Relative velocities of the contact points (m/s).
+    pub velocity: &'a [[f64; 3]],
+    /// Normal forces (N, > 0 repulsive).
+    pub normal_force: &'a [f64],
+    /// Overlaps (m).
+    pub delta: &'a [f64],
+    /// Effective masses (kg).
+    pub mass: &'a [f64],
+    /// Effective radii (m).
+    pub radius: &'a [f64],
+    /// History slots per contact.
+    pub slots: usize,
+    /// Per-contact history, read and updated in place.
+    pub history: &'a mut [f64],
+    /// Output: the tangential force on the particle (N), in the tangent plane.
+    pub force: &'a mut [[f64; 3]],
+}
+
+/// A tangential (friction) law bound to a material pair.
+///
+/// It returns the tangential force on particle i, capped by Coulomb's μ|F_n|, and advances the
+/// history (for a spring: its displacement, rotated into the current tangent plane) by `dt`.
+pub trait BoundTangential: Send + Sync + 'static {
+    /// The tangential force (N) on contact `c`, updating `history` in place.
+    fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3];
+
+    /// `b.force[i]` for every contact of the batch.
+    #[inline]
+    fn force_batch(&self, b: TangentialBatch<'_>) {
+        let n = b.force.len();
+        let mut empty: [f64; 0] = [];
+        for i in 0..n {
+            let c = TangentialContact {
+                normal: b.normal[i],
+                velocity: b.velocity[i],
+                normal_force: b.normal_force[i],
+                delta: b.delta[i],
+                mass: b.mass[i],
+                radius: b.radius[i],
+                dt: b.dt,
+            };
+            let h = if b.slots == 0 {
+                &mut empty[..]
+            } else {
+                &mut b.history[i * b.slots..(i + 1) * b.slots]
+            };
+            b.force[i] = self.force(&c, h);
+        }
     }
 }
 
@@ -155,6 +349,8 @@ pub trait ContactLaw: Sized + Send + Sync + 'static {
     const DOC: &'static str;
     /// The end-of-contact criterion the law's calibration (its `eps`, say) refers to.
     const END_CRITERION: EndCriterion;
+    /// The per-contact history the law keeps (none by default).
+    const HISTORY: &'static [History] = &[];
 
     /// The parameter schema.
     fn params() -> Vec<ParamSpec>;
@@ -162,8 +358,9 @@ pub trait ContactLaw: Sized + Send + Sync + 'static {
     /// Creates the law from parameters already validated against [`ContactLaw::params`].
     fn new(params: &Params) -> Result<Self, LawError>;
 
-    /// Binds to a pair (already validated): precompute everything the force needs.
-    fn bind(&self, pair: &Pair) -> Result<Self::Bound, LawError>;
+    /// Binds to a pair of materials (already validated): precompute everything that depends
+    /// only on the materials and the parameters. Per-contact geometry comes with each call.
+    fn bind(&self, materials: &MaterialPair) -> Result<Self::Bound, LawError>;
 
     /// Parameters that reproduce `target` for `pair` in closed form, or `Ok(None)` if the law
     /// has no closed form for it (hosts then fit numerically). `fixed` are values the user set.
@@ -184,6 +381,7 @@ pub trait ContactLaw: Sized + Send + Sync + 'static {
             doc: Self::DOC.into(),
             params: Self::params().into(),
             end_criterion: ROption::RSome(Self::END_CRITERION),
+            history: history_slots(Self::HISTORY),
         }
     }
 }
@@ -218,6 +416,44 @@ pub trait RestitutionLaw: Sized + Send + Sync + 'static {
             doc: Self::DOC.into(),
             params: Self::params().into(),
             end_criterion: ROption::RNone,
+            history: RVec::new(),
+        }
+    }
+}
+
+/// A configurable tangential (friction) law, composable at run time with any contact law.
+/// Implement this, then export with [`export_laws!`](crate::export_laws).
+pub trait TangentialLaw: Sized + Send + Sync + 'static {
+    /// The law bound to a material pair.
+    type Bound: BoundTangential;
+    /// The name users select it by.
+    const NAME: &'static str;
+    /// One line.
+    const SUMMARY: &'static str;
+    /// The formula, conventions and references.
+    const DOC: &'static str;
+    /// The per-contact history the law keeps (a spring: its three displacement components).
+    const HISTORY: &'static [History];
+
+    /// The parameter schema.
+    fn params() -> Vec<ParamSpec>;
+
+    /// Creates the law from parameters already validated against [`TangentialLaw::params`].
+    fn new(params: &Params) -> Result<Self, LawError>;
+
+    /// Binds to a pair of materials (already validated).
+    fn bind(&self, materials: &MaterialPair) -> Result<Self::Bound, LawError>;
+
+    /// The law's description, for registries.
+    fn info() -> LawInfo {
+        LawInfo {
+            name: Self::NAME.into(),
+            kind: LawKind::Tangential,
+            summary: Self::SUMMARY.into(),
+            doc: Self::DOC.into(),
+            params: Self::params().into(),
+            end_criterion: ROption::RNone,
+            history: history_slots(Self::HISTORY),
         }
     }
 }

@@ -1,18 +1,29 @@
 //! # dashpot-sdk: the contract between dashpot hosts and law plugins
 //!
-//! A *law* is either
-//! - a **contact law**: the normal force F(δ, δ̇) (N) between two particles (or a particle and a
-//!   wall) at overlap δ (m) and overlap rate δ̇ (m/s), or
+//! A *law* is one of
+//! - a **contact law**: the normal force F (N) between two particles (or a particle and a wall)
+//!   at overlap δ (m) and overlap rate δ̇ (m/s), for a contact of effective mass m (kg) and
+//!   radius r (m), possibly remembering something per contact (a plastic law: its largest
+//!   overlap);
+//! - a **tangential law** (sdk 0.2): the friction force at the contact point (N), capped by
+//!   Coulomb's μ|F_n|, from the contact points' relative velocity and a per-contact history (a
+//!   spring's displacement), composable at run time with any contact law;
 //! - a **restitution law**: the coefficient of restitution r(v) at normal impact speed v (m/s).
 //!
 //! Each law publishes a parameter schema ([`ParamSpec`]: name, unit, default, range, doc), is
-//! configured from named values ([`Params`], validated by the sdk), then *bound* once to a
-//! [`Pair`] (effective mass, radius and modulus) so that the hot path, per pair or in batches,
-//! is a pure function with every constant precomputed.
+//! configured from named values ([`Params`], validated by the sdk), then *bound* once to what
+//! does not change from contact to contact: a [`MaterialPair`] (effective Young's and shear
+//! moduli) for contact and tangential laws, a [`Pair`] for restitution laws. The hot path is a
+//! batch call over structure-of-arrays ([`NormalBatch`], [`TangentialBatch`]) in which every
+//! contact carries its own effective mass and radius and its own history slots, which the
+//! caller stores (zero at first touch) and the law updates in place: laws stay stateless and
+//! `Send + Sync`, and a DEM code with a continuous size distribution binds once per pair of
+//! materials, not per pair of sizes.
 //!
-//! A plugin is a `cdylib` crate that implements [`ContactLaw`] or [`RestitutionLaw`] and calls
-//! [`export_laws!`] once. The [`abi`] module defines the stable binary interface (abi_stable)
-//! and the host-side loader with its checks.
+//! A plugin is a `cdylib` crate that implements [`ContactLaw`], [`TangentialLaw`] or
+//! [`RestitutionLaw`] and calls [`export_laws!`] once. The [`abi`] module defines the stable
+//! binary interface (abi_stable) and the host-side loader with its checks; a host of sdk 0.2
+//! still loads plugins built against sdk 0.1.
 //!
 //! ```
 //! use dashpot_sdk::*;
@@ -30,10 +41,10 @@
 //!         vec![ParamSpec::new("k", "N/m", 1e5, Range::positive(), "spring constant")]
 //!     }
 //!     fn new(p: &Params) -> Result<Self, LawError> { Ok(Hooke { k: p.get("k")? }) }
-//!     fn bind(&self, _pair: &Pair) -> Result<Self, LawError> { Ok(Hooke { k: self.k }) }
+//!     fn bind(&self, _materials: &MaterialPair) -> Result<Self, LawError> { Ok(Hooke { k: self.k }) }
 //! }
 //! impl BoundContact for Hooke {
-//!     fn force(&self, delta: f64, _rate: f64) -> f64 { self.k * delta.max(0.0) }
+//!     fn force(&self, c: Contact, _history: &mut [f64]) -> f64 { self.k * c.delta.max(0.0) }
 //! }
 //! dashpot_sdk::export_laws!(contact: [Hooke]);
 //! # fn main() {}
@@ -46,13 +57,15 @@ mod error;
 mod law;
 mod pair;
 mod params;
+pub mod physics;
 
 pub use error::{ErrorKind, FfiError, LawError};
 pub use law::{
-    BoundContact, BoundRestitution, CalibrationTarget, Coefficient, ContactLaw, EndCriterion, LawInfo,
-    LawKind, RestitutionLaw,
+    BoundContact, BoundRestitution, BoundTangential, CalibrationTarget, Coefficient, Contact, ContactLaw,
+    EndCriterion, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw, TangentialBatch,
+    TangentialContact, TangentialLaw,
 };
-pub use pair::{Pair, Particle};
+pub use pair::{MaterialPair, Pair, Particle};
 pub use params::{ParamSpec, ParamValue, Params, Range};
 
 /// Re-exported so plugins need no direct dependency on abi_stable.

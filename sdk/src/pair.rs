@@ -62,6 +62,88 @@ impl Particle {
     pub fn plane_strain_modulus(&self) -> f64 {
         self.young / (1.0 - self.poisson * self.poisson)
     }
+
+    /// The shear modulus G = E/(2(1 + ν)) (Pa).
+    pub fn shear_modulus(&self) -> f64 {
+        self.young / (2.0 * (1.0 + self.poisson))
+    }
+
+    /// G/(2 − ν) (Pa): this particle's share of the Mindlin effective shear modulus.
+    pub fn mindlin_shear_modulus(&self) -> f64 {
+        self.shear_modulus() / (2.0 - self.poisson)
+    }
+}
+
+/// What a contact law may precompute for a pair of *materials*: the effective moduli. Sizes and
+/// masses are per contact and travel with each batch call, so a polydisperse packing binds a
+/// law once per pair of materials.
+///
+/// - `young`: 1/E = (1 − ν1²)/E1 + (1 − ν2²)/E2 (Pa); against a rigid wall E = E1/(1 − ν1²);
+/// - `shear`: 1/G = (2 − ν1)/G1 + (2 − ν2)/G2 (Pa, Mindlin's tangential modulus, G = E/(2(1 + ν)));
+///   against a rigid wall G = G1/(2 − ν1).
+///
+/// `#[repr(C)]`: this struct crosses the plugin boundary and the C ABI by reference.
+#[repr(C)]
+#[derive(StableAbi, Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct MaterialPair {
+    /// Effective Young's modulus E_eff (Pa).
+    pub young: f64,
+    /// Effective shear modulus G_eff (Pa) of Mindlin's tangential stiffness 8 G_eff a.
+    pub shear: f64,
+}
+
+impl MaterialPair {
+    /// The materials of two particles (only `young` and `poisson` are used).
+    pub fn spheres(a: &Particle, b: &Particle) -> Result<MaterialPair, LawError> {
+        a.validate()?;
+        b.validate()?;
+        MaterialPair::new(
+            1.0 / (1.0 / a.plane_strain_modulus() + 1.0 / b.plane_strain_modulus()),
+            1.0 / (1.0 / a.mindlin_shear_modulus() + 1.0 / b.mindlin_shear_modulus()),
+        )
+    }
+
+    /// A particle against a rigid wall.
+    pub fn wall(a: &Particle) -> Result<MaterialPair, LawError> {
+        a.validate()?;
+        MaterialPair::new(a.plane_strain_modulus(), a.mindlin_shear_modulus())
+    }
+
+    /// From Young's moduli (Pa) and Poisson's ratios of two materials; `None` for a rigid wall.
+    pub fn of_moduli(
+        young1: f64,
+        poisson1: f64,
+        other: Option<(f64, f64)>,
+    ) -> Result<MaterialPair, LawError> {
+        let p = |young, poisson| Particle {
+            diameter: 1.0,
+            density: 1.0,
+            young,
+            poisson,
+        };
+        match other {
+            Some((e2, nu2)) => MaterialPair::spheres(&p(young1, poisson1), &p(e2, nu2)),
+            None => MaterialPair::wall(&p(young1, poisson1)),
+        }
+    }
+
+    /// Effective moduli, checked: both finite and > 0.
+    pub fn new(young: f64, shear: f64) -> Result<MaterialPair, LawError> {
+        check_positive("effective Young's modulus", "Pa", young)?;
+        check_positive("effective shear modulus", "Pa", shear)?;
+        Ok(MaterialPair { young, shear })
+    }
+
+    /// Checks the fields of a material pair built by hand (or received through an ABI).
+    pub fn validate(&self) -> Result<(), LawError> {
+        MaterialPair::new(self.young, self.shear).map(|_| ())
+    }
+
+    /// The Hertz stiffness K = (4/3) E_eff √r (N/m^{3/2}) of a contact of effective radius `r`.
+    #[inline]
+    pub fn hertz_stiffness(&self, radius: f64) -> f64 {
+        4.0 / 3.0 * self.young * radius.sqrt()
+    }
 }
 
 fn check_positive(name: &str, unit: &str, v: f64) -> Result<(), LawError> {
@@ -104,6 +186,18 @@ impl Pair {
             ra * rb / (ra + rb),
             1.0 / (1.0 / a.plane_strain_modulus() + 1.0 / b.plane_strain_modulus()),
         )
+    }
+
+    /// The materials of this pair when both bodies (or the body and the wall) have Poisson's
+    /// ratio `poisson`: then G_eff / E_eff = (1 − ν)/(2(2 − ν)) exactly, for two spheres and
+    /// for a sphere on a rigid wall alike.
+    pub fn materials(&self, poisson: f64) -> Result<MaterialPair, LawError> {
+        if !(poisson > -1.0 && poisson < 0.5) {
+            return Err(LawError::invalid_pair(format!(
+                "poisson = {poisson} is out of range: Poisson's ratio must lie in (-1, 0.5)"
+            )));
+        }
+        MaterialPair::new(self.young, self.young * (1.0 - poisson) / (2.0 * (2.0 - poisson)))
     }
 
     /// The pair of a sphere and a flat, rigid wall of infinite mass.
@@ -179,6 +273,39 @@ mod tests {
             pair.mapped_linear_stiffness(),
             2.0 / 3.0 * e_eff * d,
             max_relative = 1e-14
+        );
+    }
+
+    #[test]
+    fn material_pairs_of_equal_poisson_ratios() {
+        let p = Particle::MCC;
+        let q = Particle {
+            diameter: 0.02,
+            density: 900.0,
+            ..p
+        };
+        for (pair, mat) in [
+            (
+                Pair::spheres(&p, &q).unwrap(),
+                MaterialPair::spheres(&p, &q).unwrap(),
+            ),
+            (Pair::wall(&p).unwrap(), MaterialPair::wall(&p).unwrap()),
+        ] {
+            let m = pair.materials(p.poisson).unwrap();
+            assert_relative_eq!(m.young, mat.young, max_relative = 1e-15);
+            assert_relative_eq!(m.shear, mat.shear, max_relative = 1e-14);
+        }
+        // Mindlin: 1/G_eff = (2 − ν1)/G1 + (2 − ν2)/G2, G = E/(2(1 + ν))
+        let g = p.young / (2.0 * 1.3);
+        assert_relative_eq!(
+            MaterialPair::spheres(&p, &p).unwrap().shear,
+            g / (2.0 * 1.7),
+            max_relative = 1e-15
+        );
+        assert_relative_eq!(
+            MaterialPair::wall(&p).unwrap().shear,
+            g / 1.7,
+            max_relative = 1e-15
         );
     }
 

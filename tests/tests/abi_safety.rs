@@ -1,8 +1,10 @@
 //! What the host does with plugins that are incompatible or misbehave.
 
+use dashpot::collide::ContactForce as _;
 use dashpot::{Registry, SearchPath};
 use dashpot_sdk::abi::LoadedPlugin;
 use dashpot_sdk::{ErrorKind, Pair, ParamValue, Particle};
+use dashpot_tests::BindPair as _;
 use dashpot_tests::{plugin_file, seed_registry, wrong_abi_plugin};
 
 fn pair() -> Pair {
@@ -68,7 +70,7 @@ fn a_library_that_is_not_a_plugin_is_refused() {
 fn a_panicking_law_is_an_error_and_the_host_goes_on() {
     let p = faulty();
     let law = p.new_contact("panicky", &[ParamValue::new("at", 1e-6)]).unwrap();
-    let b = law.bind(&pair()).unwrap();
+    let b = law.bind_pair(&pair()).unwrap();
     assert_eq!(b.force(1e-7, 1.0).unwrap(), 1e-7);
     let e = b.force(1e-5, 1.0).unwrap_err();
     assert_eq!(e.kind, ErrorKind::Panic);
@@ -88,7 +90,7 @@ fn a_panicking_law_is_an_error_and_the_host_goes_on() {
     let law = p
         .new_contact("panicky", &[ParamValue::new("bind_panics", 1.0)])
         .unwrap();
-    let e = law.bind(&pair()).err().expect("bind panics");
+    let e = law.bind_pair(&pair()).err().expect("bind panics");
     assert_eq!(e.kind, ErrorKind::Panic);
     assert!(e.message.contains("deliberate panic in bind"), "{}", e.message);
     // and other laws still work in this process
@@ -96,7 +98,7 @@ fn a_panicking_law_is_an_error_and_the_host_goes_on() {
     let f = reg
         .contact("hsd", &[])
         .unwrap()
-        .bind(&pair())
+        .bind_pair(&pair())
         .unwrap()
         .force(1e-5, 0.0)
         .unwrap();
@@ -109,7 +111,7 @@ fn a_law_returning_nan_is_reported_with_its_inputs() {
     let b = p
         .new_contact("nan-force", &[ParamValue::new("at", 1e-6)])
         .unwrap()
-        .bind(&pair())
+        .bind_pair(&pair())
         .unwrap();
     let e = b.force(2e-6, 0.25).unwrap_err();
     assert_eq!(e.kind, ErrorKind::NonFinite);
@@ -159,10 +161,10 @@ fn bad_requests_are_errors_not_crashes() {
         radius: 1.0,
         young: 1.0,
     };
-    let e = reg.contact("hsd", &[]).unwrap().bind(&bad).err().unwrap();
+    let e = reg.contact("hsd", &[]).unwrap().bind_pair(&bad).err().unwrap();
     assert_eq!(e.kind, ErrorKind::InvalidPair);
     // slices of different lengths
-    let b = reg.contact("hsd", &[]).unwrap().bind(&pair()).unwrap();
+    let b = reg.contact("hsd", &[]).unwrap().bind_pair(&pair()).unwrap();
     let mut out = vec![0.0; 2];
     assert!(b.force_batch(&[0.0; 3], &[0.0; 3], &mut out).is_err());
 }

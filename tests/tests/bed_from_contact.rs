@@ -4,6 +4,7 @@ use dashpot::bed::{contact_laws, resolve, FROM_CONTACT};
 use dashpot::collide::{collide, Options};
 use dashpot_sdk::{BoundRestitution, EndCriterion, ParamValue};
 use dashpot_tests::seed_registry;
+use dashpot_tests::BindPair as _;
 
 #[test]
 fn hsd_as_a_restitution_law_is_its_eps_at_every_speed() {
@@ -41,7 +42,7 @@ fn kuwabara_kono_as_a_restitution_law_matches_the_collision_driver() {
     let (pp, pw) = dashpot::bed::bed_pairs(0.002, 3.27e-5).unwrap();
     let law = reg.contact("kuwabara-kono", &p).unwrap();
     for (pair, table) in [(pp, &l.disk), (pw, &l.wall)] {
-        let b = law.bind(&pair).unwrap();
+        let b = law.bind_pair(&pair).unwrap();
         for v in [3e-4, 0.02, 0.7, 4.0] {
             let exact = collide(&b, pair.mass, v, EndCriterion::Force, &Options::default())
                 .unwrap()

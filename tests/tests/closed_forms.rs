@@ -2,8 +2,10 @@
 //! The expected values are computed here from the equations, independently of the plugins.
 
 use approx::assert_relative_eq;
+use dashpot::collide::ContactForce as _;
 use dashpot_sdk::{Coefficient, Pair, ParamValue, Particle};
 use dashpot_tests::seed_registry;
+use dashpot_tests::BindPair as _;
 use std::f64::consts::PI;
 
 fn coeff(c: &[Coefficient], name: &str) -> f64 {
@@ -41,7 +43,7 @@ fn lsd_force_and_damping_follow_eq_8() {
         let l: f64 = f64::ln(eps);
         let gamma = -l / (l * l + PI * PI).sqrt() * w0; // eq. (8)
         let law = reg.contact("lsd", &[ParamValue::new("eps", eps)]).unwrap();
-        let b = law.bind(&pair).unwrap();
+        let b = law.bind_pair(&pair).unwrap();
         let c = b.coefficients().unwrap();
         assert_relative_eq!(coeff(&c, "k"), k, max_relative = 1e-14);
         assert_relative_eq!(coeff(&c, "gamma"), gamma, max_relative = 1e-13, epsilon = 1e-300);
@@ -64,7 +66,7 @@ fn lsd_force_and_damping_follow_eq_8() {
     let b = reg
         .contact("lsd", &[ParamValue::new("k", 1e5)])
         .unwrap()
-        .bind(&pair)
+        .bind_pair(&pair)
         .unwrap();
     assert_eq!(coeff(&b.coefficients().unwrap(), "k"), 1e5);
 }
@@ -74,7 +76,7 @@ fn lsd_against_a_wall_uses_the_particles_mass_and_radius() {
     let reg = seed_registry();
     let p = Particle::MCC;
     let wall = Pair::wall(&p).unwrap();
-    let b = reg.contact("lsd", &[]).unwrap().bind(&wall).unwrap();
+    let b = reg.contact("lsd", &[]).unwrap().bind_pair(&wall).unwrap();
     let c = b.coefficients().unwrap();
     let m = PI / 6.0 * 1500.0 * 1e-6;
     assert_relative_eq!(coeff(&c, "m"), m, max_relative = 1e-14);
@@ -98,7 +100,7 @@ fn hsd_force_and_damping_follow_eqs_9_10_17() {
         let b = reg
             .contact("hsd", &[ParamValue::new("eps", eps)])
             .unwrap()
-            .bind(&pair)
+            .bind_pair(&pair)
             .unwrap();
         let c = b.coefficients().unwrap();
         assert_relative_eq!(coeff(&c, "K"), big_k, max_relative = 1e-14);
@@ -130,14 +132,14 @@ fn hsd_alpha_is_the_lsd_damping_through_the_mapping() {
         let l = reg
             .contact("lsd", &p)
             .unwrap()
-            .bind(&pair)
+            .bind_pair(&pair)
             .unwrap()
             .coefficients()
             .unwrap();
         let h = reg
             .contact("hsd", &p)
             .unwrap()
-            .bind(&pair)
+            .bind_pair(&pair)
             .unwrap()
             .coefficients()
             .unwrap();
@@ -158,7 +160,7 @@ fn kuwabara_kono_force_at_chosen_states() {
         let b = reg
             .contact("kuwabara-kono", &[ParamValue::new("A", a)])
             .unwrap()
-            .bind(&pair)
+            .bind_pair(&pair)
             .unwrap();
         for (delta, rate) in STATES {
             let f = b.force(delta, rate).unwrap();
@@ -168,7 +170,11 @@ fn kuwabara_kono_force_at_chosen_states() {
     }
     // A hand-checked value: δ = 1e-5 m, δ̇ = 0.5 m/s, A = 1e-6 s:
     // K = 2.1978022e8 N/m^1.5; δ^1.5 = 3.16227766e-8; (3/2) A √δ δ̇ = 1.5e-6 · 3.16227766e-3 · 0.5
-    let b = reg.contact("kuwabara-kono", &[]).unwrap().bind(&pair).unwrap();
+    let b = reg
+        .contact("kuwabara-kono", &[])
+        .unwrap()
+        .bind_pair(&pair)
+        .unwrap();
     let f = b.force(1e-5, 0.5).unwrap();
     assert_relative_eq!(
         f,
@@ -245,7 +251,7 @@ fn batch_equals_per_pair_for_every_contact_law() {
     let delta: Vec<f64> = (0..n).map(|i| 1e-4 * ((i as f64 * 0.37).sin())).collect();
     let rate: Vec<f64> = (0..n).map(|i| 2.0 * ((i as f64 * 0.11).cos())).collect();
     for name in ["lsd", "hsd", "kuwabara-kono"] {
-        let b = reg.contact(name, &[]).unwrap().bind(&pair).unwrap();
+        let b = reg.contact(name, &[]).unwrap().bind_pair(&pair).unwrap();
         let mut out = vec![f64::NAN; n];
         b.force_batch(&delta, &rate, &mut out).unwrap();
         for i in 0..n {

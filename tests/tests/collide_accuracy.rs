@@ -5,6 +5,7 @@ use dashpot::collide::{collide, Collision, Options};
 use dashpot::Registry;
 use dashpot_sdk::{EndCriterion, Pair, ParamValue, Particle};
 use dashpot_tests::seed_registry;
+use dashpot_tests::BindPair as _;
 use std::f64::consts::PI;
 
 fn mcc() -> Pair {
@@ -20,7 +21,7 @@ fn run(
     end: EndCriterion,
     opt: &Options,
 ) -> Collision {
-    let b = reg.contact(law, params).unwrap().bind(pair).unwrap();
+    let b = reg.contact(law, params).unwrap().bind_pair(pair).unwrap();
     collide(&b, pair.mass, v0, end, opt).unwrap()
 }
 
@@ -404,7 +405,7 @@ fn a_law_that_never_returns_the_particles_is_a_clear_error() {
     let p =
         dashpot_sdk::abi::LoadedPlugin::load(&dashpot_tests::plugin_file("dashpot_fixture_faulty")).unwrap();
     let pair = mcc();
-    let b = p.new_contact("sticky", &[]).unwrap().bind(&pair).unwrap();
+    let b = p.new_contact("sticky", &[]).unwrap().bind_pair(&pair).unwrap();
     let e = collide(&b, pair.mass, 1.0, EndCriterion::Overlap, &Options::default()).unwrap_err();
     let msg = e.to_string();
     assert!(

@@ -5,6 +5,7 @@ use dashpot::collide::{collide, Options, TabulatedRestitution};
 use dashpot::{Registry, SearchPath};
 use dashpot_sdk::{BoundRestitution, EndCriterion, Pair, ParamValue, Particle};
 use dashpot_tests::seed_registry;
+use dashpot_tests::BindPair as _;
 
 fn mcc() -> Pair {
     Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap()
@@ -15,6 +16,7 @@ fn spec(law: &str, e: f64, tau: Option<f64>, end: EndCriterion) -> CalibrateSpec
         law: law.into(),
         fixed: vec![],
         pair: mcc(),
+        shear: mcc().materials(0.3).unwrap().shear,
         restitution: e,
         contact_time: tau,
         v0: 1.0,
@@ -56,7 +58,7 @@ fn kuwabara_kono_dissipation_constant_is_fitted_numerically() {
         let b = reg
             .contact("kuwabara-kono", &[ParamValue::new("A", param(&c, "A"))])
             .unwrap()
-            .bind(&mcc())
+            .bind_pair(&mcc())
             .unwrap();
         let r = collide(&b, mcc().mass, 1.0, end, &Options::default()).unwrap();
         assert!((r.restitution - 0.75).abs() < 1e-9);
@@ -70,7 +72,7 @@ fn hsd_contact_time_fixes_the_modulus_by_the_hertz_scaling() {
     let tau0 = collide(
         &reg.contact("hsd", &[ParamValue::new("eps", 0.3)])
             .unwrap()
-            .bind(&mcc())
+            .bind_pair(&mcc())
             .unwrap(),
         mcc().mass,
         1.0,
@@ -100,7 +102,7 @@ fn hsd_under_the_force_criterion_needs_a_smaller_eps() {
     let b = reg
         .contact("lsd", &[ParamValue::new("eps", param(&c, "eps"))])
         .unwrap()
-        .bind(&mcc())
+        .bind_pair(&mcc())
         .unwrap();
     let l = collide(&b, mcc().mass, 3.0, EndCriterion::Force, &Options::default()).unwrap();
     assert!((l.restitution - 0.54).abs() < 1e-8);
@@ -128,7 +130,7 @@ fn a_contact_law_tabulated_as_a_restitution_law_is_within_1e6() {
     let b = reg
         .contact("kuwabara-kono", &[ParamValue::new("A", 2e-6)])
         .unwrap()
-        .bind(&pair)
+        .bind_pair(&pair)
         .unwrap();
     let opt = Options {
         rtol: 1e-10,
@@ -151,7 +153,7 @@ fn a_contact_law_tabulated_as_a_restitution_law_is_within_1e6() {
     let h = reg
         .contact("hsd", &[ParamValue::new("eps", 0.4)])
         .unwrap()
-        .bind(&pair)
+        .bind_pair(&pair)
         .unwrap();
     let t =
         TabulatedRestitution::build(&h, pair.mass, EndCriterion::Overlap, 1e-3, 10.0, 1e-6, &opt).unwrap();
@@ -176,7 +178,7 @@ fn the_third_party_plugin_runs_through_collide_and_calibrate_unchanged() {
     let b = reg
         .contact("hertz-linear-damping", &[ParamValue::new("eta", 5.0)])
         .unwrap()
-        .bind(&pair)
+        .bind_pair(&pair)
         .unwrap();
     let c = collide(&b, pair.mass, 1.0, EndCriterion::Force, &Options::default()).unwrap();
     assert!(c.restitution > 0.0 && c.restitution < 1.0);

@@ -1,8 +1,10 @@
 //! The example third-party law, built from its own workspace and loaded by path.
 
 use approx::assert_relative_eq;
+use dashpot::collide::ContactForce as _;
 use dashpot::{Registry, SearchPath};
 use dashpot_sdk::{Pair, ParamValue, Particle};
+use dashpot_tests::BindPair as _;
 
 #[test]
 fn the_example_plugin_builds_out_of_tree_and_loads_by_path() {
@@ -19,7 +21,7 @@ fn the_example_plugin_builds_out_of_tree_and_loads_by_path() {
     let b = reg
         .contact("hertz-linear-damping", &[ParamValue::new("eta", 2.0)])
         .unwrap()
-        .bind(&pair)
+        .bind_pair(&pair)
         .unwrap();
     let k = 4.0 / 3.0 * pair.young * pair.radius.sqrt();
     assert_relative_eq!(

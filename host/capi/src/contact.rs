@@ -7,7 +7,8 @@
 use crate::error::{arg, guard, out, slice, slice_mut, string, CError, DashpotStatus, DashpotStatus::*};
 use crate::pair::DashpotPair;
 use crate::registry::{params, DashpotRegistry};
-use dashpot_sdk::abi::{BoundContactHandle, ContactLawHandle};
+use dashpot_sdk::abi::{ContactLawHandle, ContactModelHandle};
+use dashpot_sdk::{Contact, NormalBatch};
 use std::ffi::c_char;
 
 /// A configured contact law (opaque).
@@ -17,7 +18,76 @@ pub struct DashpotContactLaw {
 
 /// A contact law bound to a pair (opaque): the hot path.
 pub struct DashpotBoundContact {
-    pub(crate) bound: BoundContactHandle,
+    pub(crate) model: ContactModelHandle,
+    pub(crate) mass: f64,
+    pub(crate) radius: f64,
+}
+
+/// Contacts per call of the law in the pair-bound batch (stack arrays of the pair's geometry).
+const CHUNK: usize = 64;
+
+impl DashpotBoundContact {
+    fn force(&self, delta: f64, rate: f64) -> Result<f64, dashpot_sdk::LawError> {
+        let c = Contact {
+            delta,
+            rate,
+            mass: self.mass,
+            radius: self.radius,
+        };
+        self.model.force(c, &mut [])
+    }
+
+    fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), dashpot_sdk::LawError> {
+        let (m, r) = ([self.mass; CHUNK], [self.radius; CHUNK]);
+        for (k, ((d, v), o)) in delta
+            .chunks(CHUNK)
+            .zip(rate.chunks(CHUNK))
+            .zip(out.chunks_mut(CHUNK))
+            .enumerate()
+        {
+            let n = o.len();
+            self.model
+                .force_batch(NormalBatch {
+                    delta: d,
+                    rate: v,
+                    mass: &m[..n],
+                    radius: &r[..n],
+                    slots: 0,
+                    history: &mut [],
+                    force: o,
+                })
+                .map_err(|e| {
+                    // report indices of the caller's arrays, not of the chunk
+                    e.with_message(|msg| shift_indices(msg, k * CHUNK))
+                })?;
+        }
+        Ok(())
+    }
+}
+
+/// Rewrites "name[i]" in a batch error to "name[i + offset]".
+fn shift_indices(msg: &str, offset: usize) -> String {
+    if offset == 0 {
+        return msg.to_string();
+    }
+    let mut out = String::with_capacity(msg.len());
+    let mut rest = msg;
+    while let Some(i) = rest.find('[') {
+        out.push_str(&rest[..=i]);
+        rest = &rest[i + 1..];
+        match rest
+            .find(']')
+            .and_then(|j| rest[..j].parse::<usize>().ok().map(|v| (j, v)))
+        {
+            Some((j, v)) => {
+                out.push_str(&(v + offset).to_string());
+                rest = &rest[j..];
+            }
+            None => {}
+        }
+    }
+    out.push_str(rest);
+    out
 }
 
 /// Creates contact law `name` from `n_params` named values (parameters left out take their
@@ -67,8 +137,14 @@ pub unsafe extern "C" fn dashpot_contact_free(law: *mut DashpotContactLaw) {
 
 /// Binds a contact law to a pair: every constant of the force is computed here, once.
 ///
+/// The pair carries no shear modulus; this binding takes the one of two bodies of Poisson's
+/// ratio 0.3 (no normal law of the project uses it). A law with per-contact history (e.g.
+/// `thornton`) cannot be bound to a pair: use the material binding of the sdk 0.2 functions,
+/// which carry each contact's history.
+///
 /// Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a pair field not finite or not
-/// positive), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair), `DASHPOT_ERR_PANIC`.
+/// positive), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair, or keeps history),
+/// `DASHPOT_ERR_PANIC`.
 /// Ownership: `*out_bound` is owned by the caller (free with `dashpot_bound_contact_free`) and
 /// may outlive the law. Thread-safe.
 ///
@@ -84,8 +160,23 @@ pub unsafe extern "C" fn dashpot_contact_bind(
         let l = unsafe { arg(law, "law") }?;
         let p = unsafe { arg(pair, "pair") }?.to_pair()?;
         let o = unsafe { out(out_bound, "out_bound") }?;
-        let bound = l.law.bind(&p)?;
-        *o = Box::into_raw(Box::new(DashpotBoundContact { bound }));
+        let slots = l.law.info().history.len();
+        if slots > 0 {
+            return Err(CError::new(
+                DASHPOT_ERR_INVALID_PARAMETER,
+                format!(
+                    "contact law '{}' keeps per-contact history ({slots} slots), which a pair-bound \
+                     law has nowhere to store: bind it to materials and pass the history with each batch",
+                    l.law.info().name
+                ),
+            ));
+        }
+        let model = l.law.bind(&p.materials(0.3)?)?;
+        *o = Box::into_raw(Box::new(DashpotBoundContact {
+            model,
+            mass: p.mass,
+            radius: p.radius,
+        }));
         Ok(())
     })
 }
@@ -122,14 +213,16 @@ pub unsafe extern "C" fn dashpot_contact_force(
     guard(|| {
         let b = unsafe { arg(bound, "bound") }?;
         let o = unsafe { out(out_force, "out_force") }?;
-        *o = b.bound.force(delta, rate)?;
+        *o = b.force(delta, rate)?;
         Ok(())
     })
 }
 
 /// `out_force[i] = F(delta[i], rate[i])` (N) for every i: the call a DEM code makes once per
 /// step (per kind of pair) with all its contacts. The three lengths must be equal. Every
-/// output is checked for NaN and infinity inside the plugin, fused with the computation.
+/// input and output is checked for NaN and infinity inside the plugin, fused with the
+/// computation: a non-finite overlap or rate is refused with `DASHPOT_ERR_NON_FINITE` naming its
+/// index and value.
 ///
 /// Errors: `DASHPOT_ERR_NULL_POINTER` (a handle, or an array whose length is > 0),
 /// `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE` (the message names the first bad
@@ -163,7 +256,7 @@ pub unsafe extern "C" fn dashpot_contact_force_batch(
         let d = unsafe { slice(delta, n_delta, "delta") }?;
         let r = unsafe { slice(rate, n_rate, "rate") }?;
         let o = unsafe { slice_mut(out_force, n_out, "out_force") }?;
-        b.bound.force_batch(d, r, o)?;
+        b.force_batch(d, r, o)?;
         Ok(())
     })
 }
@@ -185,7 +278,7 @@ pub unsafe extern "C" fn dashpot_contact_coefficient(
         let b = unsafe { arg(bound, "bound") }?;
         let name = unsafe { string(name, "name") }?;
         let o = unsafe { out(out_value, "out_value") }?;
-        let all = b.bound.coefficients()?;
+        let all = b.model.coefficients(b.mass, b.radius)?;
         match all.iter().find(|c| c.name == name) {
             Some(c) => {
                 *o = c.value;
@@ -195,7 +288,7 @@ pub unsafe extern "C" fn dashpot_contact_coefficient(
                 DASHPOT_ERR_INVALID_ARGUMENT,
                 format!(
                     "contact law '{}' has no coefficient '{name}'; it has: {}",
-                    b.bound.name(),
+                    b.model.name(),
                     all.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(", ")
                 ),
             )),

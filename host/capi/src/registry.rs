@@ -1,7 +1,7 @@
 //! The registry: plugin directories in, laws and their parameter schemas out.
 
 use crate::error::{arg, guard, out, slice, string, CError, DashpotStatus, DashpotStatus::*};
-use dashpot::{Registry, SearchPath};
+use dashpot_core::{Registry, SearchPath};
 use dashpot_sdk::{EndCriterion, LawInfo, LawKind, ParamValue};
 use std::ffi::{c_char, c_int, CString};
 use std::path::PathBuf;
@@ -15,6 +15,8 @@ pub enum DashpotLawKind {
     DASHPOT_CONTACT = 1,
     /// A restitution coefficient r(v).
     DASHPOT_RESTITUTION = 2,
+    /// A tangential (friction) force with per-contact history (sdk 0.2).
+    DASHPOT_TANGENTIAL = 3,
 }
 
 /// When a two-body contact is over (realized restitution depends on it).
@@ -297,6 +299,7 @@ pub unsafe extern "C" fn dashpot_registry_law_info(
             kind: match info.kind {
                 LawKind::Contact => DashpotLawKind::DASHPOT_CONTACT,
                 LawKind::Restitution => DashpotLawKind::DASHPOT_RESTITUTION,
+                LawKind::Tangential => DashpotLawKind::DASHPOT_TANGENTIAL,
             },
             summary: s.summary.as_ptr(),
             doc: s.doc.as_ptr(),

@@ -187,8 +187,14 @@ pub fn contact_laws(
         rtol: 1e-10,
         ..Options::default()
     };
+    let p = bed_particle(d, m);
+    let (mp, mw) = (
+        dashpot_sdk::MaterialPair::spheres(&p, &p)?,
+        dashpot_sdk::MaterialPair::wall(&p)?,
+    );
     let table = |pair: &Pair| -> Result<TabulatedRestitution, LawError> {
-        let b = law.bind(pair)?;
+        let materials = if pair.radius == pp.radius { &mp } else { &mw };
+        let b = crate::collide::PairLaw::new(law.bind(materials)?, pair.mass, pair.radius);
         TabulatedRestitution::build(&b, pair.mass, end, 1e-4, 20.0, 1e-6, &opt).map_err(|e| match e {
             CollideError::Law(l) => l,
             other => LawError::new(

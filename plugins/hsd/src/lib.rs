@@ -2,15 +2,13 @@
 //! (Antypov & Elliott 2011, eqs. 9–11, 17).
 
 use dashpot_sdk::{
-    BoundContact, CalibrationTarget, Coefficient, ContactLaw, EndCriterion, LawError, Pair, ParamSpec,
-    ParamValue, Params, Range,
+    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, LawError, MaterialPair,
+    Pair, ParamSpec, ParamValue, Params, Range,
 };
-use std::f64::consts::PI;
 
 /// The exact Tsuji damping factor α(ε) = −√5 ln ε / √(ln²ε + π²) (Antypov & Elliott eq. 17).
 pub fn alpha(eps: f64) -> f64 {
-    let l = eps.ln();
-    -(5.0f64).sqrt() * l / (l * l + PI * PI).sqrt()
+    dashpot_sdk::physics::tsuji_alpha(eps)
 }
 
 /// The configured law: restitution `eps`.
@@ -26,14 +24,17 @@ impl Hsd {
     }
 }
 
-/// HSD bound to a pair.
+/// HSD bound to a pair of materials. Per contact of effective mass m and radius r:
+/// K = (4/3) E √r, so K δ^{3/2} = a √(rδ) δ and α √(mK) δ^{1/4} = b √(m √(rδ)), with the
+/// constants a = (4/3) E and b = α √((4/3) E): two square roots per contact, as when bound to
+/// one pair.
 #[derive(Debug, Clone)]
 pub struct HsdBound {
-    /// Hertz stiffness K = (4/3) E_eff √r_eff (N/m^{3/2}).
-    pub k: f64,
-    /// Damping coefficient α √(mK) (N·s/m^{5/4}).
-    pub c: f64,
-    mass: f64,
+    /// (4/3) E_eff (Pa).
+    pub a: f64,
+    /// α √((4/3) E_eff) (√Pa).
+    pub b: f64,
+    young: f64,
     alpha: f64,
 }
 
@@ -65,14 +66,14 @@ impl ContactLaw for Hsd {
         Ok(Hsd { eps: p.get("eps")? })
     }
 
-    fn bind(&self, pair: &Pair) -> Result<HsdBound, LawError> {
-        let k = pair.hertz_stiffness();
-        let a = alpha(self.eps);
+    fn bind(&self, materials: &MaterialPair) -> Result<HsdBound, LawError> {
+        let a = 4.0 / 3.0 * materials.young;
+        let alpha = alpha(self.eps);
         Ok(HsdBound {
-            k,
-            c: a * (pair.mass * k).sqrt(),
-            mass: pair.mass,
-            alpha: a,
+            a,
+            b: alpha * a.sqrt(),
+            young: materials.young,
+            alpha,
         })
     }
 
@@ -91,34 +92,31 @@ impl ContactLaw for Hsd {
 
 impl BoundContact for HsdBound {
     #[inline(always)]
-    fn force(&self, delta: f64, rate: f64) -> f64 {
-        let d = delta.max(0.0);
-        let s = d.sqrt();
-        self.k * d * s + self.c * s.sqrt() * rate
+    fn force(&self, c: Contact, _history: &mut [f64]) -> f64 {
+        let d = c.delta.max(0.0);
+        let s1 = (c.radius * d).sqrt();
+        let s2 = (c.mass * s1).sqrt();
+        self.a * s1 * d + self.b * s2 * c.rate
     }
 
-    fn coefficients(&self) -> Vec<Coefficient> {
+    fn coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
+        let k = 4.0 / 3.0 * self.young * radius.sqrt();
         vec![
-            Coefficient::new(
-                "K",
-                "N/m^(3/2)",
-                self.k,
-                "Hertz stiffness (4/3) E_eff √r_eff (eq. 9)",
-            ),
-            Coefficient::new("m", "kg", self.mass, "effective mass"),
+            Coefficient::new("K", "N/m^(3/2)", k, "Hertz stiffness (4/3) E_eff √r_eff (eq. 9)"),
+            Coefficient::new("m", "kg", mass, "effective mass"),
             Coefficient::new(
                 "alpha",
                 "1",
                 self.alpha,
                 "Tsuji factor −√5 ln ε/√(ln²ε+π²) (eq. 17)",
             ),
-            Coefficient::new("c", "N·s/m^(5/4)", self.c, "damping coefficient α√(mK) (eq. 10)"),
             Coefficient::new(
-                "Omega0",
-                "1/(s·m^(1/4))",
-                (self.k / self.mass).sqrt(),
-                "√(K/m) (eq. 11)",
+                "c",
+                "N·s/m^(5/4)",
+                self.alpha * (mass * k).sqrt(),
+                "damping coefficient α√(mK) (eq. 10)",
             ),
+            Coefficient::new("Omega0", "1/(s·m^(1/4))", (k / mass).sqrt(), "√(K/m) (eq. 11)"),
         ]
     }
 }

@@ -2,7 +2,8 @@
 //! (Kuwabara & Kono 1987; Brilliantov, Spahn, Hertzsch & Pöschel, PRE 53, 5382, 1996).
 
 use dashpot_sdk::{
-    BoundContact, Coefficient, ContactLaw, EndCriterion, LawError, Pair, ParamSpec, Params, Range,
+    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, LawError, MaterialPair, ParamSpec, Params,
+    Range,
 };
 
 /// The configured law: dissipative time constant `a` (s).
@@ -21,11 +22,10 @@ impl KuwabaraKono {
 /// Kuwabara–Kono bound to a pair.
 #[derive(Debug, Clone)]
 pub struct KuwabaraKonoBound {
-    /// Hertz stiffness K = (4/3) E_eff √r_eff (N/m^{3/2}).
-    pub k: f64,
-    /// Dissipative constant A (s).
+    /// (4/3) E_eff (Pa): K = a √r for a contact of effective radius r.
     pub a: f64,
-    ka15: f64,
+    /// The dissipative time constant A (s).
+    pub time: f64,
 }
 
 impl ContactLaw for KuwabaraKono {
@@ -56,32 +56,31 @@ impl ContactLaw for KuwabaraKono {
         Ok(KuwabaraKono { a: p.get("A")? })
     }
 
-    fn bind(&self, pair: &Pair) -> Result<KuwabaraKonoBound, LawError> {
-        let k = pair.hertz_stiffness();
+    fn bind(&self, materials: &MaterialPair) -> Result<KuwabaraKonoBound, LawError> {
         Ok(KuwabaraKonoBound {
-            k,
-            a: self.a,
-            ka15: 1.5 * k * self.a,
+            a: 4.0 / 3.0 * materials.young,
+            time: self.a,
         })
     }
 }
 
 impl BoundContact for KuwabaraKonoBound {
+    /// K √δ (δ + (3/2) A δ̇) = a √(rδ) (δ + (3/2) A δ̇): one square root per contact.
     #[inline(always)]
-    fn force(&self, delta: f64, rate: f64) -> f64 {
-        let d = delta.max(0.0);
-        let s = d.sqrt();
-        s * (self.k * d + self.ka15 * rate)
+    fn force(&self, c: Contact, _history: &mut [f64]) -> f64 {
+        let d = c.delta.max(0.0);
+        self.a * (c.radius * d).sqrt() * (d + 1.5 * self.time * c.rate)
     }
 
-    fn coefficients(&self) -> Vec<Coefficient> {
+    fn coefficients(&self, _mass: f64, radius: f64) -> Vec<Coefficient> {
+        let k = self.a * radius.sqrt();
         vec![
-            Coefficient::new("K", "N/m^(3/2)", self.k, "Hertz stiffness (4/3) E_eff √r_eff"),
-            Coefficient::new("A", "s", self.a, "dissipative time constant"),
+            Coefficient::new("K", "N/m^(3/2)", k, "Hertz stiffness (4/3) E_eff √r_eff"),
+            Coefficient::new("A", "s", self.time, "dissipative time constant"),
             Coefficient::new(
                 "c",
                 "N·s/m^(3/2)",
-                self.ka15,
+                1.5 * k * self.time,
                 "damping coefficient (3/2) K A of √δ δ̇",
             ),
         ]

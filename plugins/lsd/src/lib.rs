@@ -7,8 +7,8 @@
 //! general, see [`Pair::mapped_linear_stiffness`]).
 
 use dashpot_sdk::{
-    BoundContact, CalibrationTarget, Coefficient, ContactLaw, EndCriterion, LawError, Pair, ParamSpec,
-    ParamValue, Params, Range,
+    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, LawError, MaterialPair,
+    Pair, ParamSpec, ParamValue, Params, Range,
 };
 use std::f64::consts::PI;
 
@@ -19,15 +19,26 @@ pub struct Lsd {
     k: Option<f64>,
 }
 
-/// The law bound to a pair.
+/// The law bound to a pair of materials.
 #[derive(Debug, Clone)]
 pub struct LsdBound {
-    /// Spring constant k (N/m).
-    pub k: f64,
-    /// Dashpot coefficient c = 2 γ m (N·s/m).
-    pub c: f64,
-    mass: f64,
+    /// The spring constant k (N/m) if given; otherwise (8/3) E_eff r per contact.
+    pub k: Option<f64>,
+    /// (8/3) E_eff (Pa): the mapped stiffness per metre of effective radius.
+    pub k_per_radius: f64,
+    /// 2 ζ(ε) with ζ the damping ratio of eq. 8: the dashpot is 2 ζ √(k m).
+    pub two_zeta: f64,
     eps: f64,
+}
+
+impl LsdBound {
+    #[inline(always)]
+    fn stiffness(&self, radius: f64) -> f64 {
+        match self.k {
+            Some(k) => k,
+            None => self.k_per_radius * radius,
+        }
+    }
 }
 
 impl Lsd {
@@ -77,15 +88,11 @@ impl ContactLaw for Lsd {
         })
     }
 
-    fn bind(&self, pair: &Pair) -> Result<LsdBound, LawError> {
-        let k = self.k.unwrap_or_else(|| pair.mapped_linear_stiffness());
-        let w0 = (k / pair.mass).sqrt();
-        let l = self.eps.ln();
-        let gamma = -l / (l * l + PI * PI).sqrt() * w0;
+    fn bind(&self, materials: &MaterialPair) -> Result<LsdBound, LawError> {
         Ok(LsdBound {
-            k,
-            c: 2.0 * gamma * pair.mass,
-            mass: pair.mass,
+            k: self.k,
+            k_per_radius: 8.0 / 3.0 * materials.young,
+            two_zeta: 2.0 * dashpot_sdk::physics::lsd_damping_ratio(self.eps),
             eps: self.eps,
         })
     }
@@ -110,24 +117,26 @@ impl ContactLaw for Lsd {
 
 impl BoundContact for LsdBound {
     #[inline(always)]
-    fn force(&self, delta: f64, rate: f64) -> f64 {
-        if delta < 0.0 {
+    fn force(&self, c: Contact, _history: &mut [f64]) -> f64 {
+        if c.delta < 0.0 {
             0.0
         } else {
-            self.k * delta + self.c * rate
+            let k = self.stiffness(c.radius);
+            k * c.delta + self.two_zeta * (k * c.mass).sqrt() * c.rate
         }
     }
 
-    fn coefficients(&self) -> Vec<Coefficient> {
-        let w0 = (self.k / self.mass).sqrt();
-        let gamma = self.c / (2.0 * self.mass);
+    fn coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
+        let k = self.stiffness(radius);
+        let w0 = (k / mass).sqrt();
+        let gamma = 0.5 * self.two_zeta * w0;
         let w1 = (w0 * w0 - gamma * gamma).sqrt();
         vec![
-            Coefficient::new("k", "N/m", self.k, "spring constant"),
-            Coefficient::new("m", "kg", self.mass, "effective mass"),
+            Coefficient::new("k", "N/m", k, "spring constant"),
+            Coefficient::new("m", "kg", mass, "effective mass"),
             Coefficient::new("w0", "1/s", w0, "undamped angular frequency √(k/m) (eq. 3)"),
             Coefficient::new("gamma", "1/s", gamma, "damping rate −ln ε/√(ln²ε+π²)·w0 (eq. 8)"),
-            Coefficient::new("c", "N·s/m", self.c, "dashpot coefficient 2γm"),
+            Coefficient::new("c", "N·s/m", 2.0 * gamma * mass, "dashpot coefficient 2γm"),
             Coefficient::new(
                 "eps",
                 "1",

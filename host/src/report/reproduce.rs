@@ -5,7 +5,8 @@
 //! (eq. 1, their Fig. 1); then the vibrated bed of McNamara & Falcon (Figs. 2-4, on a reduced
 //! grid, [`crate::bed::figures::Size::reproduce`]).
 
-use crate::cli::law_json;
+use crate::collide::PairLaw;
+use crate::output::law_json;
 use crate::output::write_atomic;
 use crate::registry::Registry;
 use anyhow::{Context, Result};
@@ -78,12 +79,21 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
         )?;
         let mut csv = String::from("eps,alpha_hsd,gamma_lsd_per_s,tau_lsd_s,tau_ratio_lsd\n");
         let tau1 = {
-            let b = reg.contact("lsd", &[ParamValue::new("eps", 1.0)])?.bind(&pair)?;
+            let b = reg.contact("lsd", &[ParamValue::new("eps", 1.0)])?;
+            let b = PairLaw::bind(&b, &pair, mcc.poisson)?;
             coeff(&b.coefficients()?, "contact_time")
         };
         for eps in [0.01, 0.1, 0.3, 0.54, 0.7, 0.9, 0.99, 1.0] {
-            let lsd = reg.contact("lsd", &[ParamValue::new("eps", eps)])?.bind(&pair)?;
-            let hsd = reg.contact("hsd", &[ParamValue::new("eps", eps)])?.bind(&pair)?;
+            let lsd = PairLaw::bind(
+                &reg.contact("lsd", &[ParamValue::new("eps", eps)])?,
+                &pair,
+                mcc.poisson,
+            )?;
+            let hsd = PairLaw::bind(
+                &reg.contact("hsd", &[ParamValue::new("eps", eps)])?,
+                &pair,
+                mcc.poisson,
+            )?;
             let (lc, hc) = (lsd.coefficients()?, hsd.coefficients()?);
             let (k, g, tau, w0) = (
                 coeff(&lc, "k"),
@@ -108,7 +118,7 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
         }
         write_atomic(&out.join("antypov_elliott_closed_forms.csv"), csv.as_bytes())?;
         writeln!(md)?;
-        md.push_str(&crate::collide::figures::collide_figures(reg, out)?);
+        md.push_str(&crate::report::collide::collide_figures(reg, out)?);
         md.push_str(&crate::ae_statements::report(reg)?);
     } else {
         writeln!(md, "(the lsd and hsd plugins were not found)\n")?;

@@ -1,10 +1,13 @@
 //! The `dashpot` command line.
 
+pub mod collide;
+pub mod grid;
+
 use crate::config::{merge_params, parse_set, Config, Partner, Sphere, Wall};
 use crate::registry::{kind_str, Registry, SearchPath};
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
-use dashpot_sdk::{LawInfo, LawKind, Pair, ParamValue, Particle};
+use dashpot_sdk::{Contact, LawKind, MaterialPair, Pair, ParamValue, Particle};
 use serde_json::json;
 use std::path::PathBuf;
 
@@ -59,11 +62,11 @@ pub enum Command {
     /// Evaluate a law once: a contact law's force F(δ, δ̇) or a restitution law's r(v).
     Eval(EvalArgs),
     /// Integrate one head-on collision under a contact law: restitution, contact time, maximum overlap.
-    Collide(crate::collide::cli::CollideArgs),
+    Collide(crate::cli::collide::CollideArgs),
     /// Collisions over a grid of impact speeds and law parameters, in parallel, to CSV.
-    Sweep(crate::collide::cli::SweepArgs),
+    Sweep(crate::cli::collide::SweepArgs),
     /// The law parameters that reproduce a measured restitution (and contact time).
-    Calibrate(crate::collide::cli::CalibrateArgs),
+    Calibrate(crate::cli::collide::CalibrateArgs),
     /// Reproduce a paper's figures (PNG, SVG, CSV and a markdown report) into a folder.
     #[command(subcommand)]
     Figures(FigureSet),
@@ -117,7 +120,7 @@ pub struct ParticleArgs {
 
 impl ParticleArgs {
     /// The particle and the pair, from the command line over the file over the MCC defaults.
-    pub fn resolve(&self, cfg: &Config) -> Result<(Particle, Pair, String)> {
+    pub fn resolve(&self, cfg: &Config) -> Result<(Particle, Pair, MaterialPair, String)> {
         let d = Particle::MCC;
         let f = &cfg.particle;
         let p = Particle {
@@ -134,7 +137,8 @@ impl ParticleArgs {
             cfg.partner.as_deref().unwrap_or(&sphere)
         };
         let pair = partner.pair(&p)?;
-        Ok((p, pair, partner.describe(&p)))
+        let materials = partner.materials(&p)?;
+        Ok((p, pair, materials, partner.describe(&p)))
     }
 }
 
@@ -165,6 +169,8 @@ pub struct Selection {
     pub particle: Particle,
     /// The effective pair.
     pub pair: Pair,
+    /// The pair's effective moduli (what a contact or tangential law binds to).
+    pub materials: MaterialPair,
     /// What the particle hits, in words.
     pub partner: String,
 }
@@ -187,12 +193,13 @@ impl LawArgs {
             .map(|s| parse_set(s))
             .collect::<Result<Vec<_>, _>>()?;
         let params = merge_params(&cfg.law.params, &sets);
-        let (particle, pair, partner) = self.particle.resolve(&cfg)?;
+        let (particle, pair, materials, partner) = self.particle.resolve(&cfg)?;
         Ok(Selection {
             name,
             params,
             particle,
             pair,
+            materials,
             partner,
         })
     }
@@ -252,11 +259,11 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Laws { json } => laws(&reg, json),
         Command::Law { name, json } => law(&reg, &name, json),
         Command::Eval(a) => eval(&reg, &a),
-        Command::Collide(a) => crate::collide::cli::run_collide(&reg, &a),
-        Command::Sweep(a) => crate::collide::cli::run_sweep(&reg, &a),
-        Command::Calibrate(a) => crate::collide::cli::run_calibrate(&reg, &a),
+        Command::Collide(a) => crate::cli::collide::run_collide(&reg, &a),
+        Command::Sweep(a) => crate::cli::collide::run_sweep(&reg, &a),
+        Command::Calibrate(a) => crate::cli::collide::run_calibrate(&reg, &a),
         Command::Figures(FigureSet::Collide { out }) => {
-            let md = crate::collide::figures::collide_figures(&reg, &out)?;
+            let md = crate::report::collide::collide_figures(&reg, &out)?;
             crate::output::write_atomic(&out.join("collide.md"), md.as_bytes())?;
             println!("{md}\nwrote figures and {}", out.join("collide.md").display());
             Ok(())
@@ -269,37 +276,7 @@ fn dispatch(cli: Cli) -> Result<()> {
 }
 
 /// The JSON description of a law, as `dashpot laws --json` prints it.
-pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
-    let plugin = reg.find(info.name.as_str()).map(|(_, p)| p).ok();
-    json!({
-        "name": info.name.as_str(),
-        "kind": kind_str(info.kind),
-        "summary": info.summary.as_str(),
-        "doc": info.doc.as_str(),
-        "end_criterion": info.end_criterion.into_option().map(|e| e.as_str()),
-        "plugin": plugin.map(|p| json!({
-            "file": p.path.display().to_string(),
-            "name": p.name,
-            "version": p.version,
-            "sdk_version": p.sdk_version,
-        })),
-        "params": info.params.iter().map(|s| json!({
-            "name": s.name.as_str(),
-            "unit": s.unit.as_str(),
-            "default": s.default.into_option(),
-            "range": s.range.to_string(),
-            "min": finite_or_null(s.range.min),
-            "max": finite_or_null(s.range.max),
-            "min_inclusive": s.range.min_inclusive,
-            "max_inclusive": s.range.max_inclusive,
-            "doc": s.doc.as_str(),
-        })).collect::<Vec<_>>(),
-    })
-}
-
-fn finite_or_null(x: f64) -> Option<f64> {
-    x.is_finite().then_some(x)
-}
+pub use crate::output::law_json;
 
 fn laws(reg: &Registry, json_out: bool) -> Result<()> {
     if json_out {
@@ -426,9 +403,16 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
             let delta = finite("delta", "m", delta)?;
             let rate = finite("rate", "m/s", rate)?;
             let law = reg.contact(name, params)?;
-            let bound = law.bind(&pair)?;
-            let force = bound.force(delta, rate)?;
-            let coeffs = bound.coefficients()?;
+            let bound = law.bind(&sel.materials)?;
+            let mut history = vec![0.0; bound.history_slots()];
+            let contact = Contact {
+                delta,
+                rate,
+                mass: pair.mass,
+                radius: pair.radius,
+            };
+            let force = bound.force(contact, &mut history)?;
+            let coeffs = bound.coefficients(pair.mass, pair.radius)?;
             if a.json {
                 let c: serde_json::Map<String, serde_json::Value> = coeffs
                     .iter()
@@ -459,6 +443,12 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
                 }
                 println!("F(delta = {delta:e} m, rate = {rate:e} m/s) = {force:.10e} N");
             }
+        }
+        LawKind::Tangential => {
+            bail!(
+                "'{name}' is a tangential law: it acts together with a contact law, in \
+                 `dashpot collide --law NORMAL --tangential {name} --angle DEG`"
+            );
         }
         LawKind::Restitution => {
             if a.delta.is_some() || a.rate.is_some() {

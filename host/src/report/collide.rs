@@ -1,7 +1,7 @@
 //! Antypov & Elliott's figures 1–3 and the Kuwabara–Kono restitution curve, computed through the
 //! law plugins, as PNG + SVG + CSV with a markdown report of the numbers behind them.
 
-use super::two_body::{collide, Collision, Options};
+use crate::collide::two_body::{collide, Collision, Options, PairLaw};
 use crate::output::write_atomic;
 use crate::plot::{Figure, Mark, Panel, Series};
 use crate::registry::Registry;
@@ -19,7 +19,7 @@ fn hit(
     end: EndCriterion,
     opt: &Options,
 ) -> Result<Collision> {
-    let b = reg.contact(law, params)?.bind(pair)?;
+    let b = PairLaw::bind(&reg.contact(law, params)?, pair, Particle::MCC.poisson)?;
     collide(&b, pair.mass, v0, end, opt).with_context(|| format!("{law} at v0 = {v0} m/s"))
 }
 

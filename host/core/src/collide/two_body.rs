@@ -22,63 +22,179 @@
 
 use super::rk::{locate, RhsError, Step, System, Tolerance};
 use super::{extrap, rk};
-use dashpot_sdk::{abi::BoundContactHandle, BoundContact, EndCriterion, LawError};
+use crate::laws::NormalLaw;
+use dashpot_sdk::{Contact, EndCriterion, LawError, NormalBatch};
+use std::sync::Mutex;
 
-/// A bound contact law as the integrator sees it: F(δ, δ̇) in newtons, or an error.
+/// A contact law as the integrator sees it: F(δ, δ̇) in newtons for the collision's fixed pair,
+/// or an error.
 pub trait ContactForce: Sync {
-    /// The normal force (N) at overlap `delta` (m) and rate `rate` (m/s).
+    /// The normal force (N) at overlap `delta` (m) and rate `rate` (m/s), from the committed
+    /// history (which it does not change).
     fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError>;
 
-    /// `out[i] = F(delta[i], rate[i])`: the integrator evaluates independent states together.
+    /// `out[i] = F(delta[i], rate[i])`: the integrator evaluates independent states together,
+    /// each from the committed history.
     fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
         for ((o, &d), &r) in out.iter_mut().zip(delta).zip(rate) {
             *o = self.force(d, r)?;
         }
         Ok(())
     }
-}
 
-impl ContactForce for BoundContactHandle {
-    #[inline]
-    fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
-        BoundContactHandle::force(self, delta, rate)
+    /// Whether the law keeps per-contact history (then the integrator commits it at accepted
+    /// states, and restarts its step at the maximum overlap).
+    fn has_history(&self) -> bool {
+        false
     }
 
-    #[inline]
-    fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
-        BoundContactHandle::force_batch(self, delta, rate, out)
+    /// Makes the history the law writes at state (δ, δ̇) the committed one.
+    fn commit(&self, _delta: f64, _rate: f64) -> Result<(), LawError> {
+        Ok(())
     }
 }
 
-/// A law compiled into the host (for benchmarks and tests), checked for NaN like a plugin.
-pub struct Static<B>(pub B);
-
-fn non_finite(f: f64, delta: f64, rate: f64) -> LawError {
-    LawError::new(
-        dashpot_sdk::ErrorKind::NonFinite,
-        format!("contact law returned force {f} at delta = {delta:e} m, rate = {rate:e} m/s"),
-    )
+/// A law bound to a collision's pair: its [`NormalLaw`] with the pair's effective mass (kg) and
+/// radius (m) for every call, and the contact's committed history (zero at first touch).
+pub struct PairLaw<L> {
+    law: L,
+    mass: f64,
+    radius: f64,
+    slots: usize,
+    committed: Mutex<Vec<f64>>,
 }
 
-impl<B: BoundContact> ContactForce for Static<B> {
-    #[inline]
-    fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
-        let f = self.0.force(delta, rate);
-        if f.is_finite() {
-            Ok(f)
-        } else {
-            Err(non_finite(f, delta, rate))
+impl<L: NormalLaw> PairLaw<L> {
+    /// `law` for a contact of effective `mass` (kg) and `radius` (m), history zero.
+    pub fn new(law: L, mass: f64, radius: f64) -> PairLaw<L> {
+        let slots = law.history_slots();
+        PairLaw {
+            law,
+            mass,
+            radius,
+            slots,
+            committed: Mutex::new(vec![0.0; slots]),
         }
     }
 
+    /// The law.
+    pub fn law(&self) -> &L {
+        &self.law
+    }
+
+    /// The committed history.
+    pub fn history(&self) -> Vec<f64> {
+        self.committed.lock().unwrap_or_else(|p| p.into_inner()).clone()
+    }
+
+    /// Forgets the history (a new first touch).
+    pub fn reset(&self) {
+        let mut h = self.committed.lock().unwrap_or_else(|p| p.into_inner());
+        h.iter_mut().for_each(|v| *v = 0.0);
+    }
+}
+
+impl PairLaw<dashpot_sdk::abi::ContactModelHandle> {
+    /// Plugin law `law` bound to `pair`, both bodies of Poisson's ratio `poisson` (which sets
+    /// the shear modulus; no normal law of the project uses it).
+    pub fn bind(
+        law: &dashpot_sdk::abi::ContactLawHandle,
+        pair: &dashpot_sdk::Pair,
+        poisson: f64,
+    ) -> Result<Self, LawError> {
+        Ok(PairLaw::new(
+            law.bind(&pair.materials(poisson)?)?,
+            pair.mass,
+            pair.radius,
+        ))
+    }
+
+    /// The law's derived constants for this pair.
+    pub fn coefficients(&self) -> Result<Vec<dashpot_sdk::Coefficient>, LawError> {
+        self.law.coefficients(self.mass, self.radius)
+    }
+}
+
+/// Contacts evaluated per call of the law (stack arrays for the constant geometry).
+const PAIR_CHUNK: usize = 16;
+
+impl<L: NormalLaw> ContactForce for PairLaw<L> {
+    #[inline]
+    fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
+        let mut out = [0.0];
+        self.force_batch(&[delta], &[rate], &mut out)?;
+        Ok(out[0])
+    }
+
     #[inline]
     fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
-        self.0.force_batch(delta, rate, out);
-        if out.iter().fold(true, |ok, f| ok & f.is_finite()) {
+        let mass = [self.mass; PAIR_CHUNK];
+        let radius = [self.radius; PAIR_CHUNK];
+        if self.slots == 0 {
+            for ((d, r), o) in delta
+                .chunks(PAIR_CHUNK)
+                .zip(rate.chunks(PAIR_CHUNK))
+                .zip(out.chunks_mut(PAIR_CHUNK))
+            {
+                let n = o.len();
+                self.law.force_batch(NormalBatch {
+                    delta: d,
+                    rate: r,
+                    mass: &mass[..n],
+                    radius: &radius[..n],
+                    slots: 0,
+                    history: &mut [],
+                    force: o,
+                })?;
+            }
             return Ok(());
         }
-        let i = out.iter().position(|f| !f.is_finite()).unwrap_or(0);
-        Err(non_finite(out[i], delta[i], rate[i]))
+        // every state from the committed history, on a scratch copy
+        let committed = self.history();
+        let mut scratch = Vec::with_capacity(PAIR_CHUNK * self.slots);
+        for ((d, r), o) in delta
+            .chunks(PAIR_CHUNK)
+            .zip(rate.chunks(PAIR_CHUNK))
+            .zip(out.chunks_mut(PAIR_CHUNK))
+        {
+            let n = o.len();
+            scratch.clear();
+            for _ in 0..n {
+                scratch.extend_from_slice(&committed);
+            }
+            self.law.force_batch(NormalBatch {
+                delta: d,
+                rate: r,
+                mass: &mass[..n],
+                radius: &radius[..n],
+                slots: self.slots,
+                history: &mut scratch,
+                force: o,
+            })?;
+        }
+        Ok(())
+    }
+
+    fn has_history(&self) -> bool {
+        self.slots > 0
+    }
+
+    fn commit(&self, delta: f64, rate: f64) -> Result<(), LawError> {
+        if self.slots == 0 {
+            return Ok(());
+        }
+        let mut h = self.history();
+        self.law.force(
+            Contact {
+                delta,
+                rate,
+                mass: self.mass,
+                radius: self.radius,
+            },
+            &mut h,
+        )?;
+        *self.committed.lock().unwrap_or_else(|p| p.into_inner()) = h;
+        Ok(())
     }
 }
 
@@ -91,6 +207,14 @@ impl<C: ContactForce + ?Sized> ContactForce for &C {
     #[inline]
     fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
         (**self).force_batch(delta, rate, out)
+    }
+
+    fn has_history(&self) -> bool {
+        (**self).has_history()
+    }
+
+    fn commit(&self, delta: f64, rate: f64) -> Result<(), LawError> {
+        (**self).commit(delta, rate)
     }
 }
 
@@ -515,6 +639,7 @@ pub fn collide<C: ContactForce>(
             y = s.y;
             k = s.f;
             steps += 1;
+            law.commit(u.powi(4), y[0])?;
             record(&mut traj, y[1], u.powi(4), y[0])?;
         }
         h *= opt.method.factor(e);
@@ -538,6 +663,12 @@ pub fn collide<C: ContactForce>(
                                                        // In this phase the force at a step's ends is −m times the acceleration the stepper already
                                                        // evaluated there: the force-criterion event needs no extra law calls.
     let mut f_now = -mass * kz[1];
+    // "The force returns to 0" is located as the force falling through this tiny threshold
+    // (1e-13 of the force scale m v0²/δ*): a law that clamps its force to exactly 0 (plastic
+    // unloading) then has a unique first crossing, and the located state is not one reached by
+    // a step across the clamp's kink. It shifts the end by 1e-13 of the contact's scale.
+    let f_eps = 1e-13 * mass * v0 * v0 / dstar;
+    let mut force_zero_passed = false;
     let mut n = 0;
     loop {
         if max_overlap.is_some_and(|(_, dm)| z[1] < 0.0 && z[0] <= 0.5 * dm) {
@@ -569,10 +700,26 @@ pub fn collide<C: ContactForce>(
             let (sm, zm) = locate_speed_zero(opt.method, &mut tp, t, &z, &kz, h, &s)?;
             max_overlap = Some((t + sm, zm[0]));
             record(&mut traj, t + sm, zm[0], 0.0)?;
+            if law.has_history() {
+                // a law with memory changes branch at the maximum (loading → unloading):
+                // restart there with the history of the maximum, instead of stepping across
+                t += sm;
+                z = [zm[0], 0.0];
+                law.commit(z[0], 0.0)?;
+                kz = tp.rhs(t, &z)?;
+                f_now = -mass * kz[1];
+                steps += 1;
+                continue;
+            }
             s_from = sm;
         }
         let f_new = -mass * s.f[1];
-        if end == EndCriterion::Force && max_overlap.is_some() && s.y[1] < 0.0 && f_new <= 0.0 {
+        // The force returns to 0 on rebound: the end of contact under the force criterion; for
+        // a law with memory (plastic unloading to a residual overlap, where the force is
+        // clamped to 0: a kink the step-size control does not see) a point to restart from.
+        let force_zero = max_overlap.is_some() && s.y[1] < 0.0 && f_new <= 0.0;
+        let restart_at_zero = law.has_history() && !force_zero_passed && f_now > 0.0;
+        if force_zero && (end == EndCriterion::Force || restart_at_zero) {
             let f_from = if s_from > 0.0 {
                 let st = opt.method.step(&mut tp, t, &z, &kz, s_from)?;
                 law.force(st.y[0], st.y[1])?
@@ -580,20 +727,30 @@ pub fn collide<C: ContactForce>(
                 f_now
             };
             let (t0, z0, k0) = (t, z, kz);
-            let (sf, zf) = locate::<_, RhsError, _>(s_from, f_from, h, f_new, |sv| {
+            let (sf, zf) = locate::<_, RhsError, _>(s_from, f_from - f_eps, h, f_new - f_eps, |sv| {
                 let st = opt.method.step(&mut tp, t0, &z0, &k0, sv)?;
-                Ok((law.force(st.y[0], st.y[1])?, st.y))
+                Ok((law.force(st.y[0], st.y[1])? - f_eps, st.y))
             })?;
-            force_end = Some((t + sf, zf[0], zf[1]));
             record(&mut traj, t + sf, zf[0], zf[1])?;
             steps += 1;
-            break;
+            if end == EndCriterion::Force {
+                force_end = Some((t + sf, zf[0], zf[1]));
+                break;
+            }
+            force_zero_passed = true;
+            t += sf;
+            z = zf;
+            law.commit(z[0], z[1])?;
+            kz = tp.rhs(t, &z)?;
+            f_now = -mass * kz[1];
+            continue;
         }
         t += h;
         z = s.y;
         kz = s.f;
         f_now = f_new;
         steps += 1;
+        law.commit(z[0], z[1])?;
         record(&mut traj, t, z[0], z[1])?;
         h *= opt.method.factor(e);
     }
@@ -663,9 +820,9 @@ pub fn collide<C: ContactForce>(
             evals += 1;
             if f_new <= 0.0 && f_now > 0.0 {
                 let (u0, y0, k0) = (u, y, k);
-                let (sf, yf) = locate::<_, RhsError, _>(0.0, f_now, hh, f_new, |sv| {
+                let (sf, yf) = locate::<_, RhsError, _>(0.0, f_now - f_eps, hh, f_new - f_eps, |sv| {
                     let st = opt.method.step(&mut ph, u0, &y0, &k0, sv)?;
-                    Ok((law.force((u0 + sv).max(0.0).powi(4), st.y[0])?, st.y))
+                    Ok((law.force((u0 + sv).max(0.0).powi(4), st.y[0])? - f_eps, st.y))
                 })?;
                 u += sf;
                 y = yf;
@@ -679,6 +836,7 @@ pub fn collide<C: ContactForce>(
         y = s.y;
         k = s.f;
         steps += 1;
+        law.commit(u.powi(4), y[0])?;
         record(&mut traj, y[1], u.powi(4), y[0])?;
         if !last {
             h = hh * opt.method.factor(e);

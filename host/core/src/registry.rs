@@ -1,6 +1,6 @@
 //! Finding plugin libraries and selecting laws by name.
 
-use dashpot_sdk::abi::{ContactLawHandle, LoadedPlugin, RestitutionLawHandle};
+use dashpot_sdk::abi::{ContactLawHandle, LoadedPlugin, RestitutionLawHandle, TangentialLawHandle};
 use dashpot_sdk::{CalibrationTarget, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -242,34 +242,46 @@ impl Registry {
         }
     }
 
-    /// Creates contact law `name` from `params`.
-    pub fn contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
+    /// The plugin of law `name`, checking that the law is of `kind`.
+    fn find_kind(&self, name: &str, kind: LawKind) -> Result<&LoadedPlugin, LawError> {
         let (e, p) = self.find(name)?;
-        if e.info.kind != LawKind::Contact {
+        if e.info.kind != kind {
+            let hint = if kind == LawKind::Restitution && e.info.kind == LawKind::Contact {
+                format!(
+                    " (a contact law serves as a restitution law as 'from:{name}' where a driver offers it)"
+                )
+            } else {
+                String::new()
+            };
             return Err(LawError::new(
                 ErrorKind::UnknownLaw,
                 format!(
-                    "law '{name}' is a restitution law, but a contact law is needed here; contact laws: {}",
-                    self.names_of(LawKind::Contact)
+                    "law '{name}' is a {} law, but a {} law is needed here{hint}; {} laws: {}",
+                    kind_str(e.info.kind),
+                    kind_str(kind),
+                    kind_str(kind),
+                    self.names_of(kind)
                 ),
             ));
         }
-        p.new_contact(name, params)
+        Ok(p)
+    }
+
+    /// Creates contact law `name` from `params`.
+    pub fn contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
+        self.find_kind(name, LawKind::Contact)?.new_contact(name, params)
+    }
+
+    /// Creates tangential law `name` from `params`.
+    pub fn tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
+        self.find_kind(name, LawKind::Tangential)?
+            .new_tangential(name, params)
     }
 
     /// Creates restitution law `name` from `params`.
     pub fn restitution(&self, name: &str, params: &[ParamValue]) -> Result<RestitutionLawHandle, LawError> {
-        let (e, p) = self.find(name)?;
-        if e.info.kind != LawKind::Restitution {
-            return Err(LawError::new(
-                ErrorKind::UnknownLaw,
-                format!(
-                    "law '{name}' is a contact law, but a restitution law is needed here; restitution laws: {}",
-                    self.names_of(LawKind::Restitution)
-                ),
-            ));
-        }
-        p.new_restitution(name, params)
+        self.find_kind(name, LawKind::Restitution)?
+            .new_restitution(name, params)
     }
 
     /// Closed-form calibration of contact law `name`, if it offers one.
@@ -300,11 +312,12 @@ impl Registry {
     }
 }
 
-/// "contact" or "restitution".
+/// "contact", "restitution" or "tangential".
 pub fn kind_str(k: LawKind) -> &'static str {
     match k {
         LawKind::Contact => "contact",
         LawKind::Restitution => "restitution",
+        LawKind::Tangential => "tangential",
     }
 }
 

@@ -2,7 +2,7 @@
 //! and interpolated by a cubic spline in ln v, refined until the interpolation error, checked
 //! against the integrator at every interval midpoint, is below the tolerance.
 
-use super::two_body::{collide, CollideError, ContactForce, Options};
+use crate::collide::two_body::{collide, CollideError, ContactForce, Options};
 use dashpot_sdk::{BoundRestitution, EndCriterion};
 use rayon::prelude::*;
 

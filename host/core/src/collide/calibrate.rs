@@ -5,9 +5,11 @@
 //! restitution and its stiffness (a parameter `k`, or else the pair's Young's modulus) for the
 //! contact time, alternating until both match to 1e-9 relative.
 
-use super::two_body::{collide, CollideError, Collision, Options};
+use super::two_body::{collide, CollideError, Collision, Options, PairLaw};
 use crate::registry::Registry;
-use dashpot_sdk::{CalibrationTarget, EndCriterion, LawError, LawKind, Pair, ParamValue, ROption, Range};
+use dashpot_sdk::{
+    CalibrationTarget, EndCriterion, LawError, LawKind, MaterialPair, Pair, ParamValue, ROption, Range,
+};
 
 /// What to calibrate.
 #[derive(Debug, Clone)]
@@ -18,6 +20,8 @@ pub struct CalibrateSpec {
     pub fixed: Vec<ParamValue>,
     /// The pair (its Young's modulus may be fitted).
     pub pair: Pair,
+    /// The pair's effective shear modulus G_eff (Pa), scaled with the Young's modulus.
+    pub shear: f64,
     /// Measured restitution, in (0, 1].
     pub restitution: f64,
     /// Measured contact time (s), if any.
@@ -124,7 +128,9 @@ impl Model<'_> {
             self.spec.pair.radius,
             self.spec.pair.young * young_factor,
         )?;
-        let law = self.reg.contact(&self.spec.law, params)?.bind(&pair)?;
+        let materials = MaterialPair::new(pair.young, self.spec.shear * young_factor)?;
+        let model = self.reg.contact(&self.spec.law, params)?.bind(&materials)?;
+        let law = PairLaw::new(model, pair.mass, pair.radius);
         self.runs += 1;
         Ok(collide(
             &law,

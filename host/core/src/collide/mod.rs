@@ -1,0 +1,12 @@
+//! The two-body collision driver: integrate a head-on collision under any contact law (with or
+//! without per-contact history) and report what experimentalists measure (restitution, contact
+//! time, maximum overlap); numerical calibration.
+
+pub mod calibrate;
+pub mod extrap;
+pub mod oblique;
+pub mod rk;
+pub mod two_body;
+
+pub use oblique::{oblique, Body, Impact, ObliqueCollision, ObliqueError, Target};
+pub use two_body::{collide, CollideError, Collision, ContactForce, Options, PairLaw, Sample};

@@ -1,0 +1,192 @@
+//! The law-facing traits every driver uses: the only module that names ABI handles.
+//!
+//! A driver is generic over [`NormalLaw`] (and [`TangentialForce`] where it has friction), so
+//! the same driver code runs a plugin's handle or a law compiled into the program (benchmark
+//! baselines, tests) through the very same checked trampoline.
+
+use dashpot_sdk::abi::{ContactModelHandle, StaticContact, StaticTangential, TangentialModelHandle};
+use dashpot_sdk::{
+    BoundContact, BoundTangential, Coefficient, Contact, ContactLaw, LawError, MaterialPair, NormalBatch,
+    TangentialBatch, TangentialLaw,
+};
+
+pub use dashpot_sdk::abi::SdkSeries;
+
+/// A contact law bound to a pair of materials: normal forces for batches of contacts, each with
+/// its own effective mass and radius and history.
+pub trait NormalLaw: Send + Sync {
+    /// The law's name.
+    fn name(&self) -> &str;
+
+    /// History slots per contact (0 for a memoryless law).
+    fn history_slots(&self) -> usize;
+
+    /// Evaluates every contact of `b`: forces into `b.force` (N), history updated in place;
+    /// a non-finite input or output is an error naming the contact.
+    fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError>;
+
+    /// The normal force (N) on one contact, history updated in place.
+    fn force(&self, c: Contact, history: &mut [f64]) -> Result<f64, LawError> {
+        let mut out = [0.0];
+        self.force_batch(NormalBatch {
+            delta: &[c.delta],
+            rate: &[c.rate],
+            mass: &[c.mass],
+            radius: &[c.radius],
+            slots: self.history_slots(),
+            history,
+            force: &mut out,
+        })?;
+        Ok(out[0])
+    }
+
+    /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
+    fn coefficients(&self, _mass: f64, _radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        Ok(Vec::new())
+    }
+}
+
+impl NormalLaw for ContactModelHandle {
+    fn name(&self) -> &str {
+        ContactModelHandle::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        ContactModelHandle::history_slots(self)
+    }
+    #[inline]
+    fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
+        ContactModelHandle::force_batch(self, b)
+    }
+    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        ContactModelHandle::coefficients(self, mass, radius)
+    }
+}
+
+impl<B: BoundContact> NormalLaw for StaticContact<B> {
+    fn name(&self) -> &str {
+        StaticContact::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        StaticContact::history_slots(self)
+    }
+    #[inline]
+    fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
+        StaticContact::force_batch(self, b)
+    }
+    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        Ok(self.law().coefficients(mass, radius))
+    }
+}
+
+impl<L: NormalLaw + ?Sized> NormalLaw for &L {
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+    fn history_slots(&self) -> usize {
+        (**self).history_slots()
+    }
+    #[inline]
+    fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
+        (**self).force_batch(b)
+    }
+    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        (**self).coefficients(mass, radius)
+    }
+}
+
+impl<L: NormalLaw + ?Sized> NormalLaw for Box<L> {
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+    fn history_slots(&self) -> usize {
+        (**self).history_slots()
+    }
+    #[inline]
+    fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
+        (**self).force_batch(b)
+    }
+    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        (**self).coefficients(mass, radius)
+    }
+}
+
+/// A tangential law bound to a pair of materials.
+pub trait TangentialForce: Send + Sync {
+    /// The law's name.
+    fn name(&self) -> &str;
+
+    /// History slots per contact.
+    fn history_slots(&self) -> usize;
+
+    /// Evaluates every contact of `b`: tangential forces into `b.force` (N), history advanced
+    /// by `b.dt` in place.
+    fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError>;
+}
+
+impl TangentialForce for TangentialModelHandle {
+    fn name(&self) -> &str {
+        TangentialModelHandle::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        TangentialModelHandle::history_slots(self)
+    }
+    #[inline]
+    fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
+        TangentialModelHandle::force_batch(self, b)
+    }
+}
+
+impl<B: BoundTangential> TangentialForce for StaticTangential<B> {
+    fn name(&self) -> &str {
+        StaticTangential::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        StaticTangential::history_slots(self)
+    }
+    #[inline]
+    fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
+        StaticTangential::force_batch(self, b)
+    }
+}
+
+impl<L: TangentialForce + ?Sized> TangentialForce for &L {
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+    fn history_slots(&self) -> usize {
+        (**self).history_slots()
+    }
+    #[inline]
+    fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
+        (**self).force_batch(b)
+    }
+}
+
+impl<L: TangentialForce + ?Sized> TangentialForce for Box<L> {
+    fn name(&self) -> &str {
+        (**self).name()
+    }
+    fn history_slots(&self) -> usize {
+        (**self).history_slots()
+    }
+    #[inline]
+    fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
+        (**self).force_batch(b)
+    }
+}
+
+/// A law compiled into the program, bound to `materials` (benchmark baselines and tests).
+pub fn compiled<L: ContactLaw>(
+    law: &L,
+    materials: &MaterialPair,
+) -> Result<StaticContact<L::Bound>, LawError> {
+    StaticContact::bind(law, materials)
+}
+
+/// A tangential law compiled into the program, bound to `materials`.
+pub fn compiled_tangential<L: TangentialLaw>(
+    law: &L,
+    materials: &MaterialPair,
+) -> Result<StaticTangential<L::Bound>, LawError> {
+    StaticTangential::bind(law, materials)
+}

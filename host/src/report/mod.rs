@@ -1,0 +1,5 @@
+//! Figures, plots and reports: what `figures` and `reproduce` write.
+
+pub mod collide;
+pub mod plot;
+pub mod reproduce;
