@@ -278,6 +278,11 @@ fn trusted_or_clear_error(law: &str, set: &[&str]) {
             o.stdout.is_empty(),
             "{args:?}: a result was printed beside the error"
         );
+        assert!(err.contains("error") && !err.contains("panicked"), "{err}");
+        if err.contains("as a restitution law") {
+            // the contact law could not be turned into r(v) at all: refused before the run
+            return;
+        }
         for needle in ["error", "disk ", "t = ", "--tc"] {
             assert!(err.contains(needle), "{args:?}: no '{needle}' in: {err}");
         }
@@ -298,7 +303,14 @@ fn the_issue_cases_finish_without_overlap_or_stop_with_a_clear_error() {
 
 #[test]
 fn every_seed_contact_law_as_a_restitution_law_is_trusted_or_stops() {
-    for law in ["from:lsd", "from:hsd", "from:kuwabara-kono"] {
+    for law in [
+        "from:lsd",
+        "from:hsd",
+        "from:kuwabara-kono",
+        "from:thornton",
+        // from:walton-braun is left out: tabulating it takes 40 s in a debug build, and its
+        // table gives r > 1 near 1 m/s, which the bed refuses with a clear error
+    ] {
         trusted_or_clear_error(law, &[]);
     }
     trusted_or_clear_error("mcnamara-falcon", &[]);
