@@ -135,6 +135,7 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
         opt.max_step_fraction = 0.01;
     }
     let end = a.integration.end_or(EndCriterion::Overlap);
+    let prov = sel.provenance(reg)?;
     let c = run_one(reg, &sel, v0, end, &opt)?;
     if let Some(p) = &a.trajectory {
         write_atomic(p, &trajectory_csv(&c)?).with_context(|| format!("cannot write {}", p.display()))?;
@@ -143,15 +144,16 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
         println!(
             "{}",
             serde_json::to_string_pretty(&json!({
-                "law": sel.name, "params": sel.params_json(), "pair": sel.pair_json(),
+                "law": sel.name, "params": prov.params_json(), "pair": sel.pair_json(),
                 "v0": v0, "end": end.as_str(),
                 "restitution": c.restitution, "contact_time": c.contact_time,
                 "max_overlap": c.max_overlap, "max_overlap_time": c.max_overlap_time,
                 "steps": c.steps, "force_evals": c.force_evals, "rtol": opt.rtol,
+                "provenance": prov.json(),
             }))?
         );
     } else {
-        println!("law: {} {}", sel.name, sel.params_json());
+        prov.lines().iter().for_each(|l| println!("{l}"));
         println!(
             "pair: {}: m_eff = {:.6e} kg, r_eff = {:.6e} m, E_eff = {:.6e} Pa",
             sel.partner, sel.pair.mass, sel.pair.radius, sel.pair.young
@@ -309,6 +311,7 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
     }
     let opt = a.integration.options()?;
     let end = a.integration.end_or(EndCriterion::Overlap);
+    let prov = sel.provenance(reg)?;
     let rows = sweep(
         reg,
         &SweepSpec {
@@ -355,7 +358,8 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
         ]);
         w.write_record(&rec)?;
     }
-    write_atomic(&a.out, &w.into_inner().context("csv")?)
+    let csv = [prov.csv_comment().into_bytes(), w.into_inner().context("csv")?].concat();
+    write_atomic(&a.out, &csv)
         .with_context(|| format!("cannot write {}", a.out.display()))?;
     println!("wrote {} collisions to {}", rows.len(), a.out.display());
     Ok(())
@@ -375,7 +379,8 @@ pub struct CalibrateArgs {
     /// Impact speed of the measurement (m/s).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub v0: f64,
-    /// The law parameter to fit to the restitution (default: `eps`, or the law's only parameter).
+    /// The law parameter to fit to the restitution. Default: `eps` if the law has one, else its
+    /// only parameter other than `k`; a law with several others needs --fit NAME.
     #[arg(long)]
     pub fit: Option<String>,
     #[command(flatten)]
@@ -408,6 +413,9 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
         options: a.integration.options()?,
     };
     let c = calibrate(reg, &spec)?;
+    let fitted: Vec<ParamValue> = c.params.iter().map(|(k, v)| ParamValue::new(k, *v)).collect();
+    let prov = crate::output::Provenance::of(reg, &sel.name, &fitted)?;
+    prov.warn_if_shadowed();
     let young = sel.particle.young * c.young_factor;
     if a.json {
         let params: serde_json::Map<String, serde_json::Value> =
@@ -423,7 +431,7 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
                 "max_overlap": c.realized.max_overlap,
                 "restitution_residual": c.restitution_residual,
                 "contact_time_residual": c.contact_time_residual,
-                "collisions": c.collisions,
+                "collisions": c.collisions, "provenance": prov.json(),
             }))?
         );
     } else {
@@ -453,6 +461,7 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
                 .unwrap_or_default()
         );
         println!("collisions integrated: {}", c.collisions);
+        prov.lines().iter().skip(1).for_each(|l| println!("{l}"));
     }
     Ok(())
 }
