@@ -286,6 +286,7 @@ fn plugin_path_environment_variable() {
     let empty = std::env::temp_dir().join(format!("dashpot-empty-{}", std::process::id()));
     std::fs::create_dir_all(&empty).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .arg("--no-default-plugins")
         .arg("--plugin-dir")
         .arg(&empty)
         .arg("laws")
@@ -410,7 +411,15 @@ fn sweep_and_calibrate() {
         f.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let csv = std::fs::read_to_string(&f).unwrap();
+    let text = std::fs::read_to_string(&f).unwrap();
+    // provenance first, as comment lines: the law with every parameter, the plugin file
+    let (comments, rows): (Vec<&str>, Vec<&str>) = text.lines().partition(|l| l.starts_with('#'));
+    assert!(
+        comments[0].starts_with("# law: hsd (contact): eps = 0.54 (default)"),
+        "{text}"
+    );
+    assert!(comments[1].contains("libdashpot_hsd.so") && comments[1].contains("dashpot 0.2.0"));
+    let csv = rows.join("\n");
     assert_eq!(csv.lines().count(), 7);
     assert!(csv.starts_with("law,eps,v0_m_per_s,end,restitution,contact_time_s"));
     for l in csv.lines().skip(1) {
