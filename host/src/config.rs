@@ -168,9 +168,7 @@ pub enum ConfigError {
         value: String,
     },
     /// The same parameter was set twice.
-    #[error(
-        "--set {name} is given twice ({first} and {second}); give each parameter once"
-    )]
+    #[error("--set {name} is given twice ({first} and {second}); give each parameter once")]
     Duplicate {
         /// The parameter.
         name: String,
@@ -217,9 +215,9 @@ pub fn set_arg(s: &str) -> Result<String, String> {
     parse_set(s).map(|_| s.to_string()).map_err(|e| {
         // clap prefixes "invalid value '...' for '--set <NAME=VALUE>': "
         match e {
-            ConfigError::BadValue { name, value } => format!(
-                "'{value}' is not a number (write plain SI values without units, e.g. {name}=1e6)"
-            ),
+            ConfigError::BadValue { name, value } => {
+                format!("'{value}' is not a number (write plain SI values without units, e.g. {name}=1e6)")
+            }
             _ => "expected NAME=VALUE with a number VALUE (e.g. eps=0.5 or k=1e6)".to_string(),
         }
     })
@@ -297,8 +295,14 @@ mod tests {
         let e = parse_sets(&["eps=0.3".into(), "k=1".into(), "eps=0.5".into()])
             .unwrap_err()
             .to_string();
-        assert_eq!(e, "--set eps is given twice (0.3 and 0.5); give each parameter once");
-        assert_eq!(parse_sets(&["eps=0.3".into()]).unwrap(), [("eps".to_string(), 0.3)]);
+        assert_eq!(
+            e,
+            "--set eps is given twice (0.3 and 0.5); give each parameter once"
+        );
+        assert_eq!(
+            parse_sets(&["eps=0.3".into()]).unwrap(),
+            [("eps".to_string(), 0.3)]
+        );
     }
 
     #[test]

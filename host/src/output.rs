@@ -166,11 +166,7 @@ impl Provenance {
             host_sdk: dashpot_sdk::abi::ABI_VERSION,
             dashpot: env!("CARGO_PKG_VERSION"),
             params,
-            hidden: reg
-                .hidden(name)
-                .iter()
-                .map(|p| p.display().to_string())
-                .collect(),
+            hidden: reg.hidden(name).iter().map(|p| p.display().to_string()).collect(),
         })
     }
 

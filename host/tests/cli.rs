@@ -323,7 +323,10 @@ fn reproduce_writes_the_report() {
     let csv = std::fs::read_to_string(out.join("mcnamara_falcon_fig1.csv")).unwrap();
     assert_eq!(csv.lines().count(), 242);
     let laws: Value = serde_json::from_str(&std::fs::read_to_string(out.join("laws.json")).unwrap()).unwrap();
-    assert_eq!(laws.as_array().unwrap().len(), 5);
+    assert_eq!(laws.as_array().unwrap().len(), common::SEED.len());
+    // the laws table names each plugin file and the sdk it was built against
+    assert!(md.contains("| law | kind | plugin | sdk | file | parameters |"), "{md}");
+    assert!(md.contains("libdashpot_hsd.so`"), "{md}");
     std::fs::remove_dir_all(&out).ok();
 }
 
@@ -363,6 +366,9 @@ fn collide_writes_a_trajectory() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(&f).unwrap();
     let mut lines = csv.lines();
+    // provenance first, as comment lines
+    assert!(lines.next().unwrap().starts_with("# law: lsd (contact): eps = "));
+    assert!(lines.next().unwrap().starts_with("# plugin: "));
     assert_eq!(lines.next(), Some("t_s,delta_m,rate_m_per_s,force_N"));
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())

@@ -61,7 +61,10 @@ fn json(o: &Output) -> Value {
 fn refused(o: &Output, code: i32, needles: &[&str]) -> String {
     let err = stderr(o);
     assert_eq!(o.status.code(), Some(code), "{err}");
-    assert!(!err.contains("RUST_BACKTRACE") && !err.contains("thread 'main'"), "{err}");
+    assert!(
+        !err.contains("RUST_BACKTRACE") && !err.contains("thread 'main'"),
+        "{err}"
+    );
     for n in needles {
         assert!(err.contains(n), "expected '{n}' in: {err}");
     }
@@ -87,7 +90,9 @@ fn installed() -> PathBuf {
 
 fn run_installed(args: &[&str], env: Option<&Path>) -> Output {
     let mut c = Command::new(installed());
-    c.args(args).env_remove("DASHPOT_PLUGIN_PATH").env_remove("RUST_BACKTRACE");
+    c.args(args)
+        .env_remove("DASHPOT_PLUGIN_PATH")
+        .env_remove("RUST_BACKTRACE");
     if let Some(p) = env {
         c.env("DASHPOT_PLUGIN_PATH", p);
     }
@@ -112,7 +117,14 @@ fn law_names(v: &Value) -> Vec<String> {
 fn a_law_valid_below_1_mm_is_only_probed_below_it() {
     let lp = limited();
     let v = json(&dashpot(&[
-        "--plugin", s(&lp), "collide", "--law", "hooke-limited", "--v0", "1", "--json",
+        "--plugin",
+        s(&lp),
+        "collide",
+        "--law",
+        "hooke-limited",
+        "--v0",
+        "1",
+        "--json",
     ]));
     let m = v["pair"]["mass"].as_f64().unwrap();
     let dmax = (m / 1e6).sqrt(); // undamped linear spring: δ_max = v0 √(m/k)
@@ -124,7 +136,13 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
 
     // calibrate: the default --fit of a law without eps is its only parameter other than k
     let v = json(&dashpot(&[
-        "--plugin", s(&lp), "calibrate", "--law", "hooke-limited", "--restitution", "0.7",
+        "--plugin",
+        s(&lp),
+        "calibrate",
+        "--law",
+        "hooke-limited",
+        "--restitution",
+        "0.7",
         "--json",
     ]));
     assert!(v["restitution_residual"].as_f64().unwrap().abs() < 1e-9, "{v}");
@@ -133,8 +151,21 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
 
     // the bed's r(v) from the law, tabulated over 1e-4 … 20 m/s, and printed (item 6)
     let o = dashpot(&[
-        "--plugin", s(&lp), "bed", "--restitution", "from:hooke-limited", "--set", "c=0.001",
-        "--layers", "1", "--freq", "20", "--cycles", "1", "--transient", "0",
+        "--plugin",
+        s(&lp),
+        "bed",
+        "--restitution",
+        "from:hooke-limited",
+        "--set",
+        "c=0.001",
+        "--layers",
+        "1",
+        "--freq",
+        "20",
+        "--cycles",
+        "1",
+        "--transient",
+        "0",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
@@ -142,7 +173,10 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
         out.contains("restitution used (from:hooke-limited, tabulated from the collision driver)"),
         "{out}"
     );
-    assert!(out.contains("r disk-disk") && out.contains("r disk-wall"), "{out}");
+    assert!(
+        out.contains("r disk-disk") && out.contains("r disk-wall"),
+        "{out}"
+    );
     let row = out.lines().find(|l| l.trim_start().starts_with("1 ")).unwrap();
     let r: Vec<f64> = row.split_whitespace().map(|x| x.parse().unwrap()).collect();
     assert!(r[1] > 0.0 && r[1] < 1.0 && r[2] > 0.0 && r[2] < 1.0, "{row}");
@@ -150,7 +184,15 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
     // a collision that really goes past 1 mm: the error names the overlap, not a probe's 1 m
     let err = refused(
         &dashpot(&[
-            "--plugin", s(&lp), "collide", "--law", "hooke-limited", "--set", "k=1", "--v0", "1",
+            "--plugin",
+            s(&lp),
+            "collide",
+            "--law",
+            "hooke-limited",
+            "--set",
+            "k=1",
+            "--v0",
+            "1",
         ]),
         1,
         &["beyond what this law supports (1 mm)"],
@@ -163,7 +205,17 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
 #[test]
 fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     let lp = limited();
-    let seed = ["constant", "hsd", "kuwabara-kono", "lsd", "mcnamara-falcon"];
+    let seed = [
+        "constant",
+        "hsd",
+        "kuwabara-kono",
+        "linear-history",
+        "lsd",
+        "mcnamara-falcon",
+        "mindlin",
+        "thornton",
+        "walton-braun",
+    ];
     let mut all: Vec<String> = seed.iter().map(|s| s.to_string()).collect();
     all.push("hooke-limited".into());
     all.sort();
@@ -188,14 +240,22 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     );
     // --help says so
     let h = String::from_utf8_lossy(&run_installed(&["--help"], None).stdout).to_string();
-    assert!(h.contains("--no-default-plugins") && h.contains("stay loaded"), "{h}");
+    assert!(
+        h.contains("--no-default-plugins") && h.contains("stay loaded"),
+        "{h}"
+    );
 
     // reproduce cannot do its job without the built-in laws: it fails and says why
     let out = std::env::temp_dir().join(format!("dashpot-repro-none-{}", std::process::id()));
     refused(
         &run_installed(
             &[
-                "--no-default-plugins", "--plugin", s(&lp), "reproduce", "--quick", "--out",
+                "--no-default-plugins",
+                "--plugin",
+                s(&lp),
+                "reproduce",
+                "--quick",
+                "--out",
                 s(&out),
             ],
             None,
@@ -214,7 +274,16 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
 #[test]
 fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     let sh = shadow_hsd();
-    let o = dashpot(&["--plugin", s(&sh), "collide", "--law", "hsd", "--v0", "1", "--json"]);
+    let o = dashpot(&[
+        "--plugin",
+        s(&sh),
+        "collide",
+        "--law",
+        "hsd",
+        "--v0",
+        "1",
+        "--json",
+    ]);
     let v = json(&o);
     let err = stderr(&o);
     let builtin = plugin_dir().join("libdashpot_hsd.so");
@@ -233,14 +302,20 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     assert_eq!(p["plugin"]["sdk_version"], "0.2.0");
     assert_eq!(p["shadows"][0], s(&builtin));
     assert_eq!(p["dashpot_version"], env!("CARGO_PKG_VERSION"));
-    assert!((v["restitution"].as_f64().unwrap() - 1.0).abs() < 1e-9, "the elastic impostor");
+    assert!(
+        (v["restitution"].as_f64().unwrap() - 1.0).abs() < 1e-9,
+        "the elastic impostor"
+    );
 
     // every parameter, including those left at their defaults or derived
     let v = json(&dashpot(&[
         "collide", "--law", "lsd", "--set", "eps=0.5", "--v0", "1", "--json",
     ]));
     assert_eq!(v["params"]["eps"], 0.5);
-    assert!(v["params"]["k"].is_null() && v["params"].as_object().unwrap().len() == 2, "{v}");
+    assert!(
+        v["params"]["k"].is_null() && v["params"].as_object().unwrap().len() == 2,
+        "{v}"
+    );
     let p = &v["provenance"];
     assert_eq!(p["param_sources"]["eps"], "given");
     assert_eq!(p["param_sources"]["k"], "derived from the pair");
@@ -268,11 +343,32 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     );
     // eval, calibrate and the bed too
     for args in [
-        vec!["eval", "--law", "kuwabara-kono", "--delta", "1e-6", "--rate", "0", "--json"],
+        vec![
+            "eval",
+            "--law",
+            "kuwabara-kono",
+            "--delta",
+            "1e-6",
+            "--rate",
+            "0",
+            "--json",
+        ],
         vec!["calibrate", "--law", "hsd", "--restitution", "0.5", "--json"],
         vec![
-            "bed", "--restitution", "constant", "--tc", "1e-5", "--layers", "1", "--freq", "20",
-            "--cycles", "1", "--transient", "0", "--json",
+            "bed",
+            "--restitution",
+            "constant",
+            "--tc",
+            "1e-5",
+            "--layers",
+            "1",
+            "--freq",
+            "20",
+            "--cycles",
+            "1",
+            "--transient",
+            "0",
+            "--json",
         ],
     ] {
         let v = json(&dashpot(&args));
@@ -355,9 +451,7 @@ fn a_bare_file_name_is_the_file_in_the_current_directory() {
 fn misuses_are_answered_with_the_value_and_the_remedy() {
     // the same --set twice, a value with a unit: malformed command lines, exit status 2
     refused(
-        &dashpot(&[
-            "collide", "--law", "hsd", "--set", "eps=0.3", "--set", "eps=0.5",
-        ]),
+        &dashpot(&["collide", "--law", "hsd", "--set", "eps=0.3", "--set", "eps=0.5"]),
         2,
         &["--set eps is given twice (0.3 and 0.5); give each parameter once"],
     );
@@ -367,8 +461,19 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
         &["'1e6N' is not a number (write plain SI values without units, e.g. k=1e6)"],
     );
     refused(
-        &dashpot(&["bed", "--restitution", "constant", "--set", "r=0.5", "--set", "r=0.6",
-            "--layers", "1", "--freq", "20"]),
+        &dashpot(&[
+            "bed",
+            "--restitution",
+            "constant",
+            "--set",
+            "r=0.5",
+            "--set",
+            "r=0.6",
+            "--layers",
+            "1",
+            "--freq",
+            "20",
+        ]),
         2,
         &["--set r is given twice"],
     );
@@ -384,29 +489,62 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
     );
     // the bed's header without parameters
     let o = dashpot(&[
-        "bed", "--restitution", "mcnamara-falcon", "--layers", "1", "--freq", "20", "--cycles",
-        "1", "--transient", "0",
+        "bed",
+        "--restitution",
+        "mcnamara-falcon",
+        "--layers",
+        "1",
+        "--freq",
+        "20",
+        "--cycles",
+        "1",
+        "--transient",
+        "0",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.starts_with("bed: law mcnamara-falcon, n = 1 (N = 100)"), "{out}");
+    assert!(
+        out.starts_with("bed: law mcnamara-falcon, n = 1 (N = 100)"),
+        "{out}"
+    );
     // an overdamped law under --end overlap: the error says so and suggests --end force
     let lp = limited();
     refused(
         &dashpot(&[
-            "--plugin", s(&lp), "collide", "--law", "hooke-limited", "--set", "c=100", "--v0", "1",
+            "--plugin",
+            s(&lp),
+            "collide",
+            "--law",
+            "hooke-limited",
+            "--set",
+            "c=100",
+            "--v0",
+            "1",
         ]),
         1,
         &["the law may be overdamped", "With --end force"],
     );
     let v = json(&dashpot(&[
-        "--plugin", s(&lp), "collide", "--law", "hooke-limited", "--set", "c=100", "--v0", "1",
-        "--end", "force", "--json",
+        "--plugin",
+        s(&lp),
+        "collide",
+        "--law",
+        "hooke-limited",
+        "--set",
+        "c=100",
+        "--v0",
+        "1",
+        "--end",
+        "force",
+        "--json",
     ]));
     assert!(v["restitution"].as_f64().unwrap() < 0.1, "{v}");
     // the default of --fit is documented where the user looks
     let h = String::from_utf8_lossy(&dashpot(&["calibrate", "--help"]).stdout).to_string();
-    assert!(h.contains("Default: `eps` if the law has one, else its only parameter other than `k`"), "{h}");
+    assert!(
+        h.contains("Default: `eps` if the law has one, else its only parameter other than `k`"),
+        "{h}"
+    );
 }
 
 /// Item 7: the sdk pulls in nothing a law does not use (abi_stable without its default
@@ -415,7 +553,16 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
 fn the_sdk_pulls_in_only_what_a_law_needs() {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
     let o = Command::new(cargo)
-        .args(["tree", "--offline", "-e", "normal", "--prefix", "none", "-p", "dashpot-sdk"])
+        .args([
+            "tree",
+            "--offline",
+            "-e",
+            "normal",
+            "--prefix",
+            "none",
+            "-p",
+            "dashpot-sdk",
+        ])
         .arg("--manifest-path")
         .arg(ext::workspace_root().join("Cargo.toml"))
         .output()
@@ -423,6 +570,9 @@ fn the_sdk_pulls_in_only_what_a_law_needs() {
     assert!(o.status.success(), "{}", stderr(&o));
     let tree = String::from_utf8_lossy(&o.stdout);
     for unwanted in ["crossbeam-channel", "serde_json"] {
-        assert!(!tree.contains(unwanted), "dashpot-sdk depends on {unwanted}:\n{tree}");
+        assert!(
+            !tree.contains(unwanted),
+            "dashpot-sdk depends on {unwanted}:\n{tree}"
+        );
     }
 }

@@ -62,8 +62,7 @@ pub struct PhysArgs {
 impl PhysArgs {
     /// The law's parameters from `--set`.
     pub fn params(&self) -> Result<Vec<ParamValue>> {
-        let sets = crate::config::parse_sets(&self.set)
-            .map_err(|e| crate::cli::UsageError(e.to_string()))?;
+        let sets = crate::config::parse_sets(&self.set).map_err(|e| crate::cli::UsageError(e.to_string()))?;
         Ok(crate::config::merge_params(&Default::default(), &sets))
     }
 
@@ -220,11 +219,8 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
     let laws = a.phys.laws(reg)?;
     // provenance, and the r(v) actually used when it comes from a contact law (issue 10)
     let law_name = a.phys.restitution.strip_prefix(super::FROM_CONTACT);
-    let prov = crate::output::Provenance::of(
-        reg,
-        law_name.unwrap_or(&a.phys.restitution),
-        &a.phys.params()?,
-    )?;
+    let prov =
+        crate::output::Provenance::of(reg, law_name.unwrap_or(&a.phys.restitution), &a.phys.params()?)?;
     prov.warn_if_shadowed();
     let r_used = match law_name {
         Some(_) => Some(r_samples(&laws)?),
@@ -324,10 +320,13 @@ pub fn report_json(law: &str, params: &[ParamValue], r: &BedReport) -> serde_jso
 
 fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
     let c = &r.config;
-    let ps: Vec<String> = params.iter().map(|p| format!(" {}={}", p.name, p.value)).collect();
+    let ps: Vec<String> = params
+        .iter()
+        .map(|p| format!(" {}={}", p.name, p.value))
+        .collect();
     println!(
         "bed: law {law}{}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
-        ps.join(" "),
+        ps.concat(),
         c.layers,
         r.disks,
         c.freq,

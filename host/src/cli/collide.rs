@@ -157,7 +157,8 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
     let prov = sel.provenance(reg)?;
     let c = run_one(reg, &sel, v0, end, &opt)?;
     if let Some(p) = &a.trajectory {
-        write_atomic(p, &trajectory_csv(&c)?).with_context(|| format!("cannot write {}", p.display()))?;
+        let csv = [prov.csv_comment().into_bytes(), trajectory_csv(&c)?].concat();
+        write_atomic(p, &csv).with_context(|| format!("cannot write {}", p.display()))?;
     }
     if a.json {
         println!(
@@ -378,8 +379,7 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
         w.write_record(&rec)?;
     }
     let csv = [prov.csv_comment().into_bytes(), w.into_inner().context("csv")?].concat();
-    write_atomic(&a.out, &csv)
-        .with_context(|| format!("cannot write {}", a.out.display()))?;
+    write_atomic(&a.out, &csv).with_context(|| format!("cannot write {}", a.out.display()))?;
     println!("wrote {} collisions to {}", rows.len(), a.out.display());
     Ok(())
 }
@@ -594,6 +594,11 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
     };
     let c = oblique(&model, tmodel.as_ref(), &particle, &target, &impact)
         .with_context(|| format!("oblique impact of '{}' at v0 = {v0} m/s, {}°", sel.name, a.angle))?;
+    let prov = sel.provenance(reg)?;
+    let tprov = match &a.tangential {
+        Some(t) => Some(crate::output::Provenance::of(reg, t, &tparams)?),
+        None => None,
+    };
     let tjson: serde_json::Map<String, serde_json::Value> =
         tparams.iter().map(|p| (p.name.to_string(), json!(p.value))).collect();
     if a.json {
@@ -615,6 +620,7 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
                 "contact_point_velocity_out": c.contact_point_velocity_out,
                 "sliding_share": c.sliding_share,
                 "dt": c.dt, "steps": c.steps,
+                "provenance": prov.json(), "tangential_provenance": tprov.as_ref().map(|p| p.json()),
             }))?
         );
     } else {
@@ -644,6 +650,10 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
             "contact time           = {:.8e} s ({} velocity-Verlet steps of {:.3e} s)",
             c.contact_time, c.steps, c.dt
         );
+        let tlines = tprov.iter().flat_map(|p| p.lines());
+        for l in prov.lines().into_iter().chain(tlines) {
+            println!("{l}");
+        }
     }
     Ok(())
 }

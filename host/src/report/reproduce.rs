@@ -41,7 +41,14 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
             if missing.len() == 1 {
                 format!("'{}' was", missing[0])
             } else {
-                format!("{} were", missing.iter().map(|m| format!("'{m}'")).collect::<Vec<_>>().join(", "))
+                format!(
+                    "{} were",
+                    missing
+                        .iter()
+                        .map(|m| format!("'{m}'"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
             },
             reg.searched
                 .iter()
@@ -90,7 +97,11 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
     for n in &reg.notes {
         writeln!(md, "\nNote: {n}.")?;
     }
-    for s in reg.shadowed.iter().filter(|s| REQUIRED.contains(&s.name.as_str())) {
+    for s in reg
+        .shadowed
+        .iter()
+        .filter(|s| REQUIRED.contains(&s.name.as_str()))
+    {
         eprintln!(
             "warning: law '{}' is taken from {}; it shadows the one in {}",
             s.name,
