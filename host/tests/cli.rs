@@ -325,7 +325,10 @@ fn reproduce_writes_the_report() {
     let laws: Value = serde_json::from_str(&std::fs::read_to_string(out.join("laws.json")).unwrap()).unwrap();
     assert_eq!(laws.as_array().unwrap().len(), common::SEED.len());
     // the laws table names each plugin file and the sdk it was built against
-    assert!(md.contains("| law | kind | plugin | sdk | file | parameters |"), "{md}");
+    assert!(
+        md.contains("| law | kind | plugin | sdk | file | parameters |"),
+        "{md}"
+    );
     assert!(md.contains("libdashpot_hsd.so`"), "{md}");
     std::fs::remove_dir_all(&out).ok();
 }

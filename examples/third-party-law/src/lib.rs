@@ -18,12 +18,17 @@ impl ContactLaw for HertzLinearDamping {
     type Bound = Bound;
     const NAME: &'static str = "hertz-linear-damping";
     const SUMMARY: &'static str = "Hertz spring + constant dashpot: F = K δ^{3/2} + η δ̇";
-    const DOC: &'static str =
-        "F = K δ^{3/2} + η δ̇ for δ ≥ 0, 0 for δ < 0, K = (4/3) E_eff √r_eff.";
+    const DOC: &'static str = "F = K δ^{3/2} + η δ̇ for δ ≥ 0, 0 for δ < 0, K = (4/3) E_eff √r_eff.";
     const END_CRITERION: EndCriterion = EndCriterion::Force;
 
     fn params() -> Vec<ParamSpec> {
-        vec![ParamSpec::new("eta", "N*s/m", 1.0, Range::non_negative(), "dashpot coefficient")]
+        vec![ParamSpec::new(
+            "eta",
+            "N*s/m",
+            1.0,
+            Range::non_negative(),
+            "dashpot coefficient",
+        )]
     }
 
     fn new(p: &Params) -> Result<Self, LawError> {
@@ -31,7 +36,10 @@ impl ContactLaw for HertzLinearDamping {
     }
 
     fn bind(&self, materials: &MaterialPair) -> Result<Bound, LawError> {
-        Ok(Bound { eta: self.eta, materials: *materials })
+        Ok(Bound {
+            eta: self.eta,
+            materials: *materials,
+        })
     }
 }
 
