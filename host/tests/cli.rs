@@ -330,6 +330,9 @@ fn reproduce_writes_the_report() {
         "{md}"
     );
     assert!(md.contains("libdashpot_hsd.so`"), "{md}");
+    for f in ["thornton_vs_mcnamara_falcon", "oblique_test4", "oblique_test5"] {
+        assert!(out.join(format!("{f}.png")).exists(), "{f}");
+    }
     std::fs::remove_dir_all(&out).ok();
 }
 

@@ -30,7 +30,10 @@ fn walton_braun_realizes_sqrt_k1_over_k2_at_every_speed() {
     let pair = Pair::wall(&p).unwrap();
     let (k1, k2) = (2.0e6, 5.0e6);
     let law = reg
-        .contact("walton-braun", &[ParamValue::new("k1", k1), ParamValue::new("k2", k2)])
+        .contact(
+            "walton-braun",
+            &[ParamValue::new("k1", k1), ParamValue::new("k2", k2)],
+        )
         .unwrap();
     assert_eq!(law.info().history.len(), 1);
     for v0 in [0.01, 1.0, 30.0] {
@@ -45,7 +48,11 @@ fn walton_braun_realizes_sqrt_k1_over_k2_at_every_speed() {
         // the contact ends at the residual overlap δ_p = δ_max (1 − k1/k2), force 0
         assert!(b.history()[0] > 0.0);
         let dmax = v0 * (pair.mass / k1).sqrt();
-        assert!((c.max_overlap / dmax - 1.0).abs() < 1e-9, "{} vs {dmax}", c.max_overlap);
+        assert!(
+            (c.max_overlap / dmax - 1.0).abs() < 1e-9,
+            "{} vs {dmax}",
+            c.max_overlap
+        );
     }
 }
 
@@ -161,8 +168,16 @@ fn gross_sliding_obeys_coulombs_closed_form() {
         let m_eff = if wall { 1.0 } else { 0.5 };
         let want_dv = mu * (1.0 + o.e) * o.vn;
         let want_w = m_eff * 2.5 * mu * (1.0 + o.e) * o.vn / r;
-        assert!((o.dvt / want_dv - 1.0).abs() < 1e-3, "{wall} {angle}: Δv_t = {} vs {want_dv}", o.dvt);
-        assert!((o.omega / want_w - 1.0).abs() < 1e-3, "{wall} {angle}: ω = {} vs {want_w}", o.omega);
+        assert!(
+            (o.dvt / want_dv - 1.0).abs() < 1e-3,
+            "{wall} {angle}: Δv_t = {} vs {want_dv}",
+            o.dvt
+        );
+        assert!(
+            (o.omega / want_w - 1.0).abs() < 1e-3,
+            "{wall} {angle}: ω = {} vs {want_w}",
+            o.omega
+        );
     }
 }
 
@@ -195,9 +210,16 @@ fn the_sticking_regime_collapses_in_maws_variables() {
             assert!((p1 - psi1).abs() < 1e-9);
             got.push(p2);
         }
-        assert!((got[0] - got[1]).abs() < 2e-3 * (1.0 + got[0].abs()), "Ψ1 = {psi1}: {got:?}");
+        assert!(
+            (got[0] - got[1]).abs() < 2e-3 * (1.0 + got[0].abs()),
+            "Ψ1 = {psi1}: {got:?}"
+        );
         if psi1 > 2.0 * chi {
-            assert!((got[0] - (psi1 - 2.0 * chi)).abs() < 2e-3 * psi1, "sliding: Ψ2 = {}", got[0]);
+            assert!(
+                (got[0] - (psi1 - 2.0 * chi)).abs() < 2e-3 * psi1,
+                "sliding: Ψ2 = {}",
+                got[0]
+            );
         }
     }
 }

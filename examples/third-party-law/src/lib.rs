@@ -3,15 +3,16 @@
 
 use dashpot_sdk::*;
 
-/// The law: damping coefficient η (N·s/m). K comes from the pair.
+/// The law: damping coefficient η (N·s/m).
 pub struct HertzLinearDamping {
     eta: f64,
 }
 
-/// The law bound to a pair of materials: η and the effective Young's modulus.
+/// The law bound to a pair of materials: K = a √r for a contact of effective radius r.
 pub struct Bound {
     eta: f64,
-    materials: MaterialPair,
+    /// (4/3) E_eff (Pa).
+    a: f64,
 }
 
 impl ContactLaw for HertzLinearDamping {
@@ -22,13 +23,7 @@ impl ContactLaw for HertzLinearDamping {
     const END_CRITERION: EndCriterion = EndCriterion::Force;
 
     fn params() -> Vec<ParamSpec> {
-        vec![ParamSpec::new(
-            "eta",
-            "N*s/m",
-            1.0,
-            Range::non_negative(),
-            "dashpot coefficient",
-        )]
+        vec![ParamSpec::new("eta", "N*s/m", 1.0, Range::non_negative(), "dashpot coefficient")]
     }
 
     fn new(p: &Params) -> Result<Self, LawError> {
@@ -36,10 +31,7 @@ impl ContactLaw for HertzLinearDamping {
     }
 
     fn bind(&self, materials: &MaterialPair) -> Result<Bound, LawError> {
-        Ok(Bound {
-            eta: self.eta,
-            materials: *materials,
-        })
+        Ok(Bound { eta: self.eta, a: 4.0 / 3.0 * materials.young })
     }
 }
 
@@ -48,8 +40,7 @@ impl BoundContact for Bound {
         if c.delta < 0.0 {
             return 0.0;
         }
-        let k = self.materials.hertz_stiffness(c.radius);
-        k * c.delta * c.delta.sqrt() + self.eta * c.rate
+        self.a * (c.radius * c.delta).sqrt() * c.delta + self.eta * c.rate
     }
 }
 

@@ -549,7 +549,10 @@ fn split_sets(
 fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
     use crate::collide::oblique::{oblique, Body, Impact, Target};
     if !(a.angle.is_finite() && (0.0..90.0).contains(&a.angle)) {
-        bail!("--angle = {}° is out of range: the angle of incidence must lie in [0, 90)", a.angle);
+        bail!(
+            "--angle = {}° is out of range: the angle of incidence must lie in [0, 90)",
+            a.angle
+        );
     }
     if a.trajectory.is_some() {
         bail!("--trajectory is for head-on collisions; an oblique impact reports its end state");
@@ -599,8 +602,10 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
         Some(t) => Some(crate::output::Provenance::of(reg, t, &tparams)?),
         None => None,
     };
-    let tjson: serde_json::Map<String, serde_json::Value> =
-        tparams.iter().map(|p| (p.name.to_string(), json!(p.value))).collect();
+    let tjson: serde_json::Map<String, serde_json::Value> = tparams
+        .iter()
+        .map(|p| (p.name.to_string(), json!(p.value)))
+        .collect();
     if a.json {
         println!(
             "{}",
@@ -644,8 +649,14 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
         println!("tangential velocity out= {:.8} m/s", c.tangential_velocity_out);
         println!("angular velocity out   = {:.8} rad/s", c.angular_velocity_out);
         println!("rebound angle          = {:.6}°", c.rebound_angle);
-        println!("contact-point velocity = {:.8} m/s (tangential, after)", c.contact_point_velocity_out);
-        println!("sliding share          = {:.4} of the steps in contact", c.sliding_share);
+        println!(
+            "contact-point velocity = {:.8} m/s (tangential, after)",
+            c.contact_point_velocity_out
+        );
+        println!(
+            "sliding share          = {:.4} of the steps in contact",
+            c.sliding_share
+        );
         println!(
             "contact time           = {:.8e} s ({} velocity-Verlet steps of {:.3e} s)",
             c.contact_time, c.steps, c.dt

@@ -28,7 +28,7 @@ pub fn lib(name: &str) -> PathBuf {
     ))
 }
 
-/// A plugin directory holding exactly the five seed plugins.
+/// A plugin directory holding exactly the plugins of the workspace.
 pub fn plugin_dir() -> PathBuf {
     static D: OnceLock<PathBuf> = OnceLock::new();
     D.get_or_init(|| {

@@ -196,13 +196,20 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
     let ex = Vector3::new(1.0, 0.0, 0.0);
     let ez = Vector3::new(0.0, 0.0, 1.0);
     // positions: the partner at the origin, the particle touching it
-    let mut x1 = if wall { Vector3::new(0.0, 0.0, r1) } else { Vector3::new(0.0, 0.0, r1 + r2) };
+    let mut x1 = if wall {
+        Vector3::new(0.0, 0.0, r1)
+    } else {
+        Vector3::new(0.0, 0.0, r1 + r2)
+    };
     let mut x2 = Vector3::zeros();
     let mut v1 = vt * ex - vn * ez;
     let mut v2 = Vector3::zeros();
     let mut w1 = Vector3::new(0.0, impact.spin, 0.0);
     let mut w2 = Vector3::zeros();
-    let (sn, st) = (normal.history_slots(), tangential.map_or(0, |t| t.history_slots()));
+    let (sn, st) = (
+        normal.history_slots(),
+        tangential.map_or(0, |t| t.history_slots()),
+    );
     let mut hn = vec![0.0; sn];
     let mut ht = vec![0.0; st];
     let (mut f1, mut t1, mut t2) = (Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
@@ -292,11 +299,7 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
             break;
         }
         if steps > max_steps {
-            return Err(ObliqueError::NoReturn {
-                limit,
-                delta,
-                rate,
-            });
+            return Err(ObliqueError::NoReturn { limit, delta, rate });
         }
     }
     let vr = v1 - v2;
