@@ -219,7 +219,10 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     let mut all: Vec<String> = seed.iter().map(|s| s.to_string()).collect();
     all.push("hooke-limited".into());
     all.sort();
-    let dir = lp.parent().unwrap();
+    // a directory holding only this plugin (target/external holds other test plugins too)
+    let dir = &std::env::temp_dir().join(format!("dashpot-limited-{}", std::process::id()));
+    std::fs::create_dir_all(dir).unwrap();
+    std::fs::copy(&lp, dir.join(lp.file_name().unwrap())).unwrap();
     for args in [
         vec!["--plugin", s(&lp), "laws", "--json"],
         vec!["--plugin-dir", s(dir), "laws", "--json"],
