@@ -4,8 +4,6 @@
 use super::engine::{Bed, BedConfig, BedReport};
 use super::view::{progress_bar, snapshot_figure, SaveAs};
 use super::{resolve, scaling, DynRestitution, Laws};
-
-use crate::config::parse_set;
 use crate::output::write_atomic;
 use crate::plot::Figure;
 use crate::registry::Registry;
@@ -23,7 +21,7 @@ pub struct PhysArgs {
     #[arg(long)]
     pub restitution: String,
     /// Set a law parameter, NAME=VALUE (repeatable), e.g. --set r=0.7.
-    #[arg(long = "set", value_name = "NAME=VALUE")]
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::config::set_arg)]
     pub set: Vec<String>,
     /// Gravity g (m/s², 0 for none).
     #[arg(long, default_value_t = 9.8, allow_hyphen_values = true)]
@@ -72,11 +70,7 @@ pub struct SeedArgs {
 impl PhysArgs {
     /// The law's parameters from `--set`.
     pub fn params(&self) -> Result<Vec<ParamValue>> {
-        let sets = self
-            .set
-            .iter()
-            .map(|s| parse_set(s))
-            .collect::<Result<Vec<_>, _>>()?;
+        let sets = crate::config::parse_sets(&self.set).map_err(|e| crate::cli::UsageError(e.to_string()))?;
         Ok(crate::config::merge_params(&Default::default(), &sets))
     }
 
@@ -219,6 +213,15 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
     let cfg = a.phys.config(a.layers, a.freq);
     cfg.validate()?;
     let laws = a.phys.laws(reg)?;
+    // provenance, and the r(v) actually used when it comes from a contact law (issue 10)
+    let law_name = a.phys.restitution.strip_prefix(super::FROM_CONTACT);
+    let prov =
+        crate::output::Provenance::of(reg, law_name.unwrap_or(&a.phys.restitution), &a.phys.params()?)?;
+    prov.warn_if_shadowed();
+    let r_used = match law_name {
+        Some(_) => Some(r_samples(&laws)?),
+        None => None,
+    };
     let k = a.seeds.seeds;
     if k == 0 {
         bail!("--seeds = 0 is out of range: give at least 1 seed");
@@ -298,14 +301,46 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
     }
     let params = a.phys.params()?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report_json(&a.phys.restitution, &params, &report))?
-        );
+        let mut v = report_json(&a.phys.restitution, &params, &report);
+        if let Some(o) = v.as_object_mut() {
+            o.insert("provenance".into(), prov.json());
+            if let Some(t) = &r_used {
+                let rows: Vec<_> = t
+                    .iter()
+                    .map(|(v, d, w)| json!({"speed": v, "disk_disk": d, "disk_wall": w}))
+                    .collect();
+                o.insert("restitution_used".into(), json!(rows));
+            }
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print_report(&a.phys.restitution, &params, &report);
+        prov.lines().iter().for_each(|l| println!("{l}"));
+        if let Some(t) = &r_used {
+            print_r_samples(&a.phys.restitution, t);
+        }
     }
     Ok(())
+}
+
+/// Impact speeds (m/s) at which the bed prints the r(v) it used for a `from:LAW` restitution.
+pub const R_SAMPLE_SPEEDS: [f64; 5] = [0.001, 0.01, 0.1, 1.0, 10.0];
+
+/// r(v) at [`R_SAMPLE_SPEEDS`] for the disk–disk and disk–wall pairs: (v, r_disk, r_wall).
+fn r_samples(laws: &Laws<DynRestitution>) -> Result<Vec<(f64, f64, f64)>> {
+    use super::Restitution as _;
+    R_SAMPLE_SPEEDS
+        .iter()
+        .map(|&v| Ok((v, laws.disk.r(v)?, laws.wall.r(v)?)))
+        .collect()
+}
+
+fn print_r_samples(name: &str, t: &[(f64, f64, f64)]) {
+    println!("restitution used ({name}, tabulated from the collision driver):");
+    println!("  v (m/s)      r disk-disk     r disk-wall");
+    for (v, d, w) in t {
+        println!("  {v:<10}   {d:.9}     {w:.9}");
+    }
 }
 
 /// The JSON of a bed report, with the law.
@@ -327,10 +362,13 @@ pub fn report_json(law: &str, params: &[ParamValue], r: &BedReport) -> serde_jso
 
 fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
     let c = &r.config;
-    let ps: Vec<String> = params.iter().map(|p| format!("{}={}", p.name, p.value)).collect();
+    let ps: Vec<String> = params
+        .iter()
+        .map(|p| format!(" {}={}", p.name, p.value))
+        .collect();
     println!(
-        "bed: law {law} {}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
-        ps.join(" "),
+        "bed: law {law}{}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
+        ps.concat(),
         c.layers,
         r.disks,
         c.freq,

@@ -21,21 +21,59 @@ fn coeff(c: &[dashpot_sdk::Coefficient], name: &str) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
+/// The laws the report is made of.
+pub const REQUIRED: [&str; 5] = ["lsd", "hsd", "kuwabara-kono", "mcnamara-falcon", "constant"];
+
 /// Writes `report.md`, `laws.json` and CSV tables into `out`; `quick`: tiny driver runs.
 pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
+    // the papers need these laws: without one, the report would be incomplete, not a result
+    let missing: Vec<&str> = REQUIRED
+        .iter()
+        .copied()
+        .filter(|n| reg.find(n).is_err())
+        .collect();
+    if !missing.is_empty() {
+        anyhow::bail!(
+            "reproduce needs the built-in laws {}, but {} not found (searched: {}){}. Build them \
+             with `cargo build --release`, and do not pass --no-default-plugins; plugins given \
+             with --plugin, --plugin-dir or DASHPOT_PLUGIN_PATH are loaded in addition to them",
+            REQUIRED.join(", "),
+            if missing.len() == 1 {
+                format!("'{}' was", missing[0])
+            } else {
+                format!(
+                    "{} were",
+                    missing
+                        .iter()
+                        .map(|m| format!("'{m}'"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            },
+            reg.searched
+                .iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            reg.refused_note()
+        );
+    }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut md = String::new();
     writeln!(md, "# dashpot: reproduction report\n")?;
     writeln!(
         md,
-        "Every number below was computed by the law plugins loaded at run time (`dashpot laws`).\n"
+        "Every number below was computed by the law plugins loaded at run time (`dashpot laws`), \
+         by dashpot {} (dashpot-sdk {}).\n",
+        env!("CARGO_PKG_VERSION"),
+        dashpot_sdk::abi::ABI_VERSION
     )?;
 
     // ---- laws ----
     eprintln!("reproduce: the laws loaded");
     writeln!(
         md,
-        "## Laws loaded\n\n| law | kind | plugin | parameters |\n|---|---|---|---|"
+        "## Laws loaded\n\n| law | kind | plugin | sdk | file | parameters |\n|---|---|---|---|---|---|"
     )?;
     for l in &reg.laws {
         let p = &reg.plugins[l.plugin];
@@ -47,13 +85,30 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
             .collect();
         writeln!(
             md,
-            "| {} | {} | {} {} | {} |",
+            "| {} | {} | {} {} | {} | `{}` | {} |",
             l.info.name,
             crate::registry::kind_str(l.info.kind),
             p.name,
             p.version,
+            p.sdk_version,
+            p.path.display(),
             params.join("; ")
         )?;
+    }
+    for n in &reg.notes {
+        writeln!(md, "\nNote: {n}.")?;
+    }
+    for s in reg
+        .shadowed
+        .iter()
+        .filter(|s| REQUIRED.contains(&s.name.as_str()))
+    {
+        eprintln!(
+            "warning: law '{}' is taken from {}; it shadows the one in {}",
+            s.name,
+            s.used.display(),
+            s.hidden.display()
+        );
     }
     let laws: Vec<_> = reg.laws.iter().map(|l| law_json(reg, &l.info)).collect();
     write_atomic(
