@@ -67,19 +67,27 @@ impl TabulatedRestitution {
         }
         let eps =
             |v: f64| -> Result<f64, CollideError> { Ok(collide(law, mass, v, end, options)?.restitution) };
+        // a law with memory holds one collision's history at a time: its collisions run one
+        // after the other
+        let serial = law.has_history();
+        let many = |xs: Vec<f64>| -> Result<Vec<f64>, CollideError> {
+            if serial {
+                xs.into_iter().map(|x| eps(x.exp())).collect()
+            } else {
+                xs.into_par_iter().map(|x| eps(x.exp())).collect()
+            }
+        };
         let (x0, x1) = (v_min.ln(), v_max.ln());
         let mut n = 33usize;
-        let mut r: Vec<f64> = (0..n)
-            .into_par_iter()
-            .map(|i| eps((x0 + (x1 - x0) * i as f64 / (n - 1) as f64).exp()))
-            .collect::<Result<_, _>>()?;
+        let mut r: Vec<f64> = many(
+            (0..n)
+                .map(|i| x0 + (x1 - x0) * i as f64 / (n - 1) as f64)
+                .collect(),
+        )?;
         loop {
             let dx = (x1 - x0) / (n - 1) as f64;
             let m = spline_second_derivatives(&r, dx);
-            let mids: Vec<f64> = (0..n - 1)
-                .into_par_iter()
-                .map(|i| eps((x0 + (i as f64 + 0.5) * dx).exp()))
-                .collect::<Result<_, _>>()?;
+            let mids: Vec<f64> = many((0..n - 1).map(|i| x0 + (i as f64 + 0.5) * dx).collect())?;
             let t = TabulatedRestitution::from_nodes(x0, dx, r.clone(), m, v_min, v_max, end);
             let err = mids
                 .iter()

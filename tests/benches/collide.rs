@@ -6,8 +6,9 @@
 //! (the venv needs scipy and numpy: see tests/benches/collide_scipy.py). Without
 //! DASHPOT_PYTHON it tries `python3`, and reports if SciPy is missing.
 
-use dashpot::collide::{collide, ContactForce, Options, Static};
-use dashpot_sdk::{ContactLaw, EndCriterion, Pair, ParamValue, Particle};
+use dashpot::collide::{collide, ContactForce, Options, PairLaw};
+use dashpot::laws::compiled;
+use dashpot_sdk::{EndCriterion, MaterialPair, Pair, ParamValue, Particle};
 use dashpot_tests::seed_registry;
 use std::process::Command;
 
@@ -82,6 +83,7 @@ extern "C" {
 
 fn main() {
     let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).expect("pair");
+    let mat = MaterialPair::spheres(&Particle::MCC, &Particle::MCC).expect("materials");
     let reg = seed_registry();
     let cs = cases(20_000);
 
@@ -90,10 +92,12 @@ fn main() {
         pair.mass,
         EndCriterion::Overlap,
         |e| {
-            reg.contact("hsd", &[ParamValue::new("eps", e)])
-                .expect("law")
-                .bind(&pair)
-                .expect("bind")
+            PairLaw::bind(
+                &reg.contact("hsd", &[ParamValue::new("eps", e)]).expect("law"),
+                &pair,
+                Particle::MCC.poisson,
+            )
+            .expect("bind")
         },
         true,
     );
@@ -101,7 +105,13 @@ fn main() {
         &cs,
         pair.mass,
         EndCriterion::Overlap,
-        |e| Static(dashpot_hsd::Hsd::with(e).bind(&pair).expect("bind")),
+        |e| {
+            PairLaw::new(
+                compiled(&dashpot_hsd::Hsd::with(e), &mat).expect("bind"),
+                pair.mass,
+                pair.radius,
+            )
+        },
         false,
     );
     // KK: A chosen so that ε spans roughly the same range; restitution is not a parameter here
@@ -110,10 +120,13 @@ fn main() {
         pair.mass,
         EndCriterion::Force,
         |e| {
-            reg.contact("kuwabara-kono", &[ParamValue::new("A", 1e-5 * (1.0 - e))])
-                .expect("law")
-                .bind(&pair)
-                .expect("bind")
+            PairLaw::bind(
+                &reg.contact("kuwabara-kono", &[ParamValue::new("A", 1e-5 * (1.0 - e))])
+                    .expect("law"),
+                &pair,
+                Particle::MCC.poisson,
+            )
+            .expect("bind")
         },
         false,
     );
@@ -122,10 +135,10 @@ fn main() {
         pair.mass,
         EndCriterion::Force,
         |e| {
-            Static(
-                dashpot_kuwabara_kono::KuwabaraKono::with(1e-5 * (1.0 - e))
-                    .bind(&pair)
-                    .expect("bind"),
+            PairLaw::new(
+                compiled(&dashpot_kuwabara_kono::KuwabaraKono::with(1e-5 * (1.0 - e)), &mat).expect("bind"),
+                pair.mass,
+                pair.radius,
             )
         },
         false,

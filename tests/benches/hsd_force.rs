@@ -76,7 +76,10 @@ fn contacts() -> Contacts {
     for _ in 0..N {
         // steel spheres of diameters 4-8 mm (a `fix pour ... diam range` packing)
         let (d1, d2) = (0.004 + 0.004 * rnd(), 0.004 + 0.004 * rnd());
-        let (m1, m2) = (7800.0 * 0.5236 * d1 * d1 * d1, 7800.0 * 0.5236 * d2 * d2 * d2);
+        let (m1, m2) = (
+            7800.0 * std::f64::consts::FRAC_PI_6 * d1 * d1 * d1,
+            7800.0 * std::f64::consts::FRAC_PI_6 * d2 * d2 * d2,
+        );
         c.radius.push(0.25 * d1 * d2 / (0.5 * (d1 + d2)));
         c.mass.push(m1 * m2 / (m1 + m2));
         c.delta.push(1e-5 * rnd());
@@ -222,13 +225,19 @@ fn main() {
                 .expect("0.1 hsd")
                 .bind(&mat)
                 .expect("bind");
-            let pair01 = m01
-                .v1_bound_pair_batch(c.mass[0], c.radius[0])
-                .expect("a 0.1 law")
-                .expect("bind the pair");
             let (mut o3, mut o4) = (vec![0.0; N], vec![0.0; N]);
             let r = race(&mut [
-                &mut || pair01(black_box(&c.delta), black_box(&c.rate), &mut o3).expect("0.1 batch"),
+                &mut || {
+                    m01.v1_bound_pair_batch(
+                        c.mass[0],
+                        c.radius[0],
+                        black_box(&c.delta),
+                        black_box(&c.rate),
+                        &mut o3,
+                    )
+                    .expect("a 0.1 law")
+                    .expect("0.1 batch")
+                },
                 &mut || normal_step(&hsd_p, &c, 0, &mut [], &mut o4),
             ]);
             println!("3. HSD normal force: sdk 0.2 per-contact geometry vs sdk 0.1 bound-pair batch (both plugins)");

@@ -689,34 +689,39 @@ impl ContactModelHandle {
         &self,
         mass: f64,
         radius: f64,
-    ) -> Option<Result<impl Fn(&[f64], &[f64], &mut [f64]) -> Result<(), LawError> + '_, LawError>> {
+        d: &[f64],
+        r: &[f64],
+        o: &mut [f64],
+    ) -> Option<Result<(), LawError>> {
         let ModelInner::V1 { law, young } = &self.inner else {
             return None;
         };
-        Some(law.bound(mass, radius, *young).map(move |b| {
-            move |d: &[f64], r: &[f64], o: &mut [f64]| {
-                let mut bad = 0usize;
-                if d.len() != o.len() || r.len() != o.len() {
-                    return Err(length_error(
-                        "force_batch",
-                        format!("{} {} {}", d.len(), r.len(), o.len()),
-                    ));
-                }
-                match unsafe {
-                    (b.ffi.vtable.force_batch)(
-                        b.ffi.obj,
-                        d.as_ptr(),
-                        r.as_ptr(),
-                        o.as_mut_ptr(),
-                        o.len(),
-                        &mut bad,
-                    )
-                } {
-                    v1::CallStatus::Ok => Ok(()),
-                    _ => Err(LawError::new(ErrorKind::Other, "0.1 batch failed")),
-                }
-            }
-        }))
+        let b = match law.bound(mass, radius, *young) {
+            Ok(b) => b,
+            Err(e) => return Some(Err(e)),
+        };
+        if d.len() != o.len() || r.len() != o.len() {
+            return Some(Err(length_error(
+                "force_batch",
+                format!("{} {} {}", d.len(), r.len(), o.len()),
+            )));
+        }
+        let mut bad = 0usize;
+        Some(
+            match unsafe {
+                (b.ffi.vtable.force_batch)(
+                    b.ffi.obj,
+                    d.as_ptr(),
+                    r.as_ptr(),
+                    o.as_mut_ptr(),
+                    o.len(),
+                    &mut bad,
+                )
+            } {
+                v1::CallStatus::Ok => Ok(()),
+                _ => Err(LawError::new(ErrorKind::Other, "the 0.1 batch failed")),
+            },
+        )
     }
 
     /// The normal force (N) on one contact, history updated in place.

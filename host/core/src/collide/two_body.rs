@@ -52,6 +52,10 @@ pub trait ContactForce: Sync {
     fn commit(&self, _delta: f64, _rate: f64) -> Result<(), LawError> {
         Ok(())
     }
+
+    /// Forgets the history: a new first touch. [`collide`] calls it first; a law with history
+    /// holds the state of one collision at a time, so it must not serve concurrent collisions.
+    fn reset(&self) {}
 }
 
 /// A law bound to a collision's pair: its [`NormalLaw`] with the pair's effective mass (kg) and
@@ -85,12 +89,6 @@ impl<L: NormalLaw> PairLaw<L> {
     /// The committed history.
     pub fn history(&self) -> Vec<f64> {
         self.committed.lock().unwrap_or_else(|p| p.into_inner()).clone()
-    }
-
-    /// Forgets the history (a new first touch).
-    pub fn reset(&self) {
-        let mut h = self.committed.lock().unwrap_or_else(|p| p.into_inner());
-        h.iter_mut().for_each(|v| *v = 0.0);
     }
 }
 
@@ -180,6 +178,13 @@ impl<L: NormalLaw> ContactForce for PairLaw<L> {
         self.slots > 0
     }
 
+    fn reset(&self) {
+        if self.slots > 0 {
+            let mut h = self.committed.lock().unwrap_or_else(|p| p.into_inner());
+            h.iter_mut().for_each(|v| *v = 0.0);
+        }
+    }
+
     fn commit(&self, delta: f64, rate: f64) -> Result<(), LawError> {
         if self.slots == 0 {
             return Ok(());
@@ -216,6 +221,10 @@ impl<C: ContactForce + ?Sized> ContactForce for &C {
 
     fn commit(&self, delta: f64, rate: f64) -> Result<(), LawError> {
         (**self).commit(delta, rate)
+    }
+
+    fn reset(&self) {
+        (**self).reset()
     }
 }
 
@@ -639,6 +648,7 @@ pub fn collide<C: ContactForce>(
     if !(mass.is_finite() && mass > 0.0) {
         return Err(CollideError::BadMass(mass));
     }
+    law.reset();
     let dstar = overlap_scale(law, mass, v0)?;
     let tstar = dstar / v0;
     let inv_m = 1.0 / mass;
