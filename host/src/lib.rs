@@ -11,6 +11,7 @@
 pub mod bed;
 pub mod cli;
 pub mod config;
+pub mod dem;
 pub mod output;
 pub mod report;
 pub mod tabulate;
