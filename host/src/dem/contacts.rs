@@ -160,12 +160,16 @@ impl ContactSet {
     }
 
     /// Replaces `self` by the contacts of the current state, carrying history over from `self`.
+    /// Overlap rates come from the predicted velocities `vpred`, the contact points' slip from
+    /// the step's velocities `vel`, `omega` (over the step: velocity Verlet's half-step ones, so
+    /// that slip × dt is the tangential displacement of the step).
     #[allow(clippy::too_many_arguments)]
     pub fn gather_pairs<const D: usize>(
         &mut self,
         dom: &Domain<D>,
         nb: &Neighbours<D>,
         pos: &[VecD<D>],
+        vpred: &[VecD<D>],
         vel: &[VecD<D>],
         omega: &[Vec3],
         radius: &[f64],
@@ -198,8 +202,8 @@ impl ContactSet {
                             });
                         }
                         let nv = to3(&(d / dist));
+                        let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
                         let dv = to3(&(vel[i] - vel[ju]));
-                        let rate = -dv.dot(&nv);
                         let v = dv - (omega[i] * radius[i] + omega[ju] * radius[ju]).cross(&nv);
                         let (mi, mj) = (mass[i], mass[ju]);
                         out.push(
@@ -235,6 +239,7 @@ impl ContactSet {
         &mut self,
         walls: &[WallState<D>],
         pos: &[VecD<D>],
+        vpred: &[VecD<D>],
         vel: &[VecD<D>],
         omega: &[Vec3],
         radius: &[f64],
@@ -264,8 +269,8 @@ impl ContactSet {
                                 });
                             }
                             let nv = to3(&ws.normal);
+                            let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
                             let dv = to3(&(vel[i] - ws.velocity));
-                            let rate = -dv.dot(&nv);
                             let v = dv - (omega[i] * radius[i]).cross(&nv);
                             out.push(prev, i, w as u32, delta, rate, mass[i], radius[i], nv, v);
                         }

@@ -1,11 +1,12 @@
 //! The engine and its step.
 //!
 //! Scheme: velocity Verlet (kick–drift–kick), second order and symplectic for conservative
-//! forces, with one addition for the rate-dependent ones (damping, friction): they are evaluated
-//! at the end of the step with the *predicted* velocity v(t) + dt·a(t) (and ω likewise) rather
-//! than the half-step one, whose lag of dt/2 makes the dissipated energy first-order in dt. With
-//! the prediction the dissipation error is second order, as the conservative part is; with an
-//! elastic law the scheme is exactly velocity Verlet.
+//! forces, with one addition for the rate-dependent normal force (damping): the overlap rate at
+//! the end of the step comes from the *predicted* velocity v(t) + dt·a(t) rather than the
+//! half-step one, whose lag of dt/2 makes the dissipated energy first order in dt. The tangential
+//! laws get the slip of the contact points over the step (half-step v and ω), so that slip × dt
+//! is the step's tangential displacement exactly (the Mindlin plugin's stated convention). With
+//! an elastic law and no friction the scheme is exactly velocity Verlet.
 //!
 //! Time step: unless given, τ/`steps_per_collision` where τ is the contact time of the smallest
 //! particle against an equal one and against a wall at the largest expected impact speed, found
@@ -93,7 +94,6 @@ pub struct Engine<const D: usize> {
     /// Particle–wall contacts of the last evaluation.
     pub wall_contacts: ContactSet,
     vpred: Vec<VecD<D>>,
-    wpred: Vec<Vec3>,
     bufs: Vec<(Vec<VecD<D>>, Vec<Vec3>)>,
     /// Impulse (N·s) given to each wall since the last reset (force on the wall × dt, summed).
     pub wall_impulse: Vec<VecD<D>>,
@@ -222,7 +222,6 @@ impl<const D: usize> Engine<D> {
         );
         let mut e = Engine {
             vpred: p.vel.clone(),
-            wpred: p.omega.clone(),
             p,
             walls,
             laws,
@@ -310,12 +309,13 @@ impl<const D: usize> Engine<D> {
             &self.nb,
             &p.pos,
             &self.vpred,
-            &self.wpred,
+            &p.vel,
+            &p.omega,
             &p.radius,
             &p.mass,
         )?;
         self.wall_contacts
-            .gather_walls(&ws, &p.pos, &self.vpred, &self.wpred, &p.radius, &p.mass)?;
+            .gather_walls(&ws, &p.pos, &self.vpred, &p.vel, &p.omega, &p.radius, &p.mass)?;
         self.pairs
             .evaluate(&*self.laws.pair, self.laws.pair_tangential.as_deref(), self.dt)?;
         self.wall_contacts
@@ -417,16 +417,14 @@ impl<const D: usize> Engine<D> {
                 .zip(vel.par_iter_mut())
                 .zip(omega.par_iter_mut())
                 .zip(self.vpred.par_iter_mut())
-                .zip(self.wpred.par_iter_mut())
                 .enumerate()
-                .for_each(|(i, ((((x, v), w), vp), wp))| {
+                .for_each(|(i, (((x, v), w), vp))| {
                     let a = force[i] / mass[i] + g;
                     let al = torque[i] / inertia[i];
                     *v += a * h;
                     *x += *v * dt;
                     *w += al * h;
                     *vp = *v + a * h;
-                    *wp = *w + al * h;
                 });
         }
         self.t += dt;
