@@ -272,6 +272,10 @@ fn elastic_energy_is_conserved_over_1e5_steps() {
 
 /// Launched sliding without spin, a particle ends rolling at m/(m + I/R²) of its launch speed.
 fn rolls_at<const D: usize>(disk_mass: DiskMass, expected: f64) {
+    rolls_with::<D>(disk_mass, expected, false)
+}
+
+fn rolls_with<const D: usize>(disk_mass: DiskMass, expected: f64, mindlin: bool) {
     let mat = soft(disk_mass);
     let r = 0.5 * D2;
     let (m, _) = mat.mass_inertia(D, D2);
@@ -300,7 +304,14 @@ fn rolls_at<const D: usize>(disk_mass: DiskMass, expected: f64) {
     let kn = 1.5 * k * delta_eq.sqrt();
     let mu = 0.3;
     let friction = CundallStrack { kt: kn, mu };
-    let mut e = Engine::new(cfg, &[b], vec![floor], laws(&mat, 0.5, Some(friction))).unwrap();
+    let mut l = laws(&mat, 0.5, Some(friction));
+    if mindlin {
+        // the workspace's Mindlin–Deresiewicz law (linked as an rlib, called through the trampoline)
+        let m = dashpot_mindlin::Mindlin::with(mu, 0.0);
+        let pw = MaterialPair::wall(&mat.particle(1.0)).unwrap();
+        l.wall_tangential = Some(Box::new(compiled_tangential(&m, &pw).unwrap()));
+    }
+    let mut e = Engine::new(cfg, &[b], vec![floor], l).unwrap();
     // sliding lasts v0 (1 − expected)/(μ g); run three times that, then average over a window
     let t_slide = v0 * (1.0 - expected) / (mu * g);
     e.run_until(3.0 * t_slide, 0, &mut |_| {}).unwrap();
@@ -335,6 +346,8 @@ fn a_sphere_launched_sliding_ends_rolling_at_five_sevenths() {
     rolls_at::<3>(DiskMass::Sphere, 5.0 / 7.0);
     // a 2D disk carrying a sphere's mass and inertia (the paper's convention) rolls as a sphere
     rolls_at::<2>(DiskMass::Sphere, 5.0 / 7.0);
+    // and with the Mindlin law (stiffness 8 G a) instead of the test's linear spring
+    rolls_with::<3>(DiskMass::Sphere, 5.0 / 7.0, true);
 }
 
 /// An oblique collision with friction: in the middle of a periodic box with a neighbour list

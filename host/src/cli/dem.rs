@@ -13,8 +13,11 @@ use std::path::PathBuf;
 #[derive(Args, Debug)]
 pub struct DemArgs {
     /// The scene (TOML; see `examples/dem/` and the `dem::scene` docs).
-    #[arg(long)]
-    pub scene: PathBuf,
+    #[arg(long, required_unless_present = "bed", conflicts_with = "bed")]
+    pub scene: Option<PathBuf>,
+    /// McNamara & Falcon's vibrated bed on the DEM engine instead of a scene.
+    #[command(flatten)]
+    pub bed: DemBedArgs,
     /// Print the final state as JSON (particles, dt, steps, time, energy, contacts, ...).
     #[arg(long)]
     pub json: bool,
@@ -23,21 +26,166 @@ pub struct DemArgs {
     pub out: Option<PathBuf>,
 }
 
+/// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws.
+#[derive(Args, Debug)]
+pub struct DemBedArgs {
+    /// Run the vibrated bed (the event-driven bed's geometry) with contact laws.
+    #[arg(long)]
+    pub bed: bool,
+    /// Number of layers n (N = n L/d disks).
+    #[arg(long, requires = "bed", allow_hyphen_values = true)]
+    pub layers: Option<f64>,
+    /// Piston frequency f (Hz).
+    #[arg(long, requires = "bed", allow_hyphen_values = true)]
+    pub freq: Option<f64>,
+    /// The contact law (see `dashpot laws`).
+    #[arg(long, requires = "bed")]
+    pub law: Option<String>,
+    /// A contact-law parameter NAME=VALUE (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE", requires = "bed")]
+    pub set: Vec<String>,
+    /// A tangential law (friction), e.g. mindlin.
+    #[arg(long, requires = "bed")]
+    pub tangential: Option<String>,
+    /// A tangential-law parameter NAME=VALUE (repeatable), e.g. mu=0.3.
+    #[arg(long = "tset", value_name = "NAME=VALUE", requires = "bed")]
+    pub tset: Vec<String>,
+    /// Young's modulus of the disks (Pa); default steel, 2e11.
+    #[arg(long, allow_hyphen_values = true)]
+    pub young: Option<f64>,
+    /// Poisson's ratio; default 0.3.
+    #[arg(long, allow_hyphen_values = true)]
+    pub poisson: Option<f64>,
+    /// The step (s); default: the law's contact time at the largest impact speed / 50.
+    #[arg(long, allow_hyphen_values = true)]
+    pub dt: Option<f64>,
+    /// Gravity (m/s²).
+    #[arg(long, default_value_t = 9.8, allow_hyphen_values = true)]
+    pub gravity: f64,
+    /// Transient periods (not measured).
+    #[arg(long, default_value_t = 50.0, allow_hyphen_values = true)]
+    pub transient: f64,
+    /// Measured periods.
+    #[arg(long, default_value_t = 200.0, allow_hyphen_values = true)]
+    pub cycles: f64,
+    /// Seed of the initial state.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
 /// Runs `dashpot dem`.
 pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
-    let text = std::fs::read_to_string(&a.scene)
-        .with_context(|| format!("reading --scene {}", a.scene.display()))?;
-    let file = SceneFile::parse(&text).with_context(|| format!("in {}", a.scene.display()))?;
+    let Some(path) = &a.scene else {
+        return run_bed(reg, &a.bed, a.json);
+    };
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading --scene {}", path.display()))?;
+    let file = SceneFile::parse(&text).with_context(|| format!("in {}", path.display()))?;
     match file.dimension()? {
-        2 => run_dim::<2>(reg, a, &file),
-        _ => run_dim::<3>(reg, a, &file),
+        2 => run_dim::<2>(reg, a, path, &file),
+        _ => run_dim::<3>(reg, a, path, &file),
     }
 }
 
-fn run_dim<const D: usize>(reg: &Registry, a: &DemArgs, file: &SceneFile) -> Result<()> {
+fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
+    use crate::config::{merge_params, parse_set};
+    let layers = b.layers.context("--bed needs --layers N")?;
+    let freq = b.freq.context("--bed needs --freq HZ")?;
+    let law = b
+        .law
+        .clone()
+        .context("--bed needs --law NAME (a contact law, e.g. hsd)")?;
+    let mut bed = crate::dem::bed::DemBed::paper(layers, freq);
+    bed.bed.gravity = b.gravity;
+    bed.bed.seed = b.seed;
+    bed.dt = b.dt;
+    if let Some(e) = b.young {
+        bed.material.young = e;
+    }
+    if let Some(nu) = b.poisson {
+        bed.material.poisson = nu;
+    }
+    let sets = b
+        .set
+        .iter()
+        .map(|s| parse_set(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let params = merge_params(&Default::default(), &sets);
+    let tsets = b
+        .tset
+        .iter()
+        .map(|s| parse_set(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let tparams = merge_params(&Default::default(), &tsets);
+    let load = || {
+        Laws::from_registry(
+            reg,
+            (law.as_str(), params.as_slice()),
+            b.tangential.as_deref().map(|t| (t, tparams.as_slice())),
+            &bed.material,
+        )
+    };
+    let c = bed.engine(load()?)?.step_choice;
+    eprintln!(
+        "DEM bed: E = {:.3e} Pa, dt = {:.4e} s, contact time {:.4e} s at {:.3} m/s{}",
+        bed.material.young,
+        c.dt,
+        c.collision_time,
+        c.impact_speed,
+        if c.given { " (dt given)" } else { "" }
+    );
+    let total = (b.transient + b.cycles) / freq;
+    let pb = progress((total * 1000.0).ceil() as u64);
+    let r = bed
+        .run(load()?, b.transient, b.cycles, &mut |t| {
+            pb.set_position((t * 1000.0) as u64)
+        })
+        .with_context(|| format!("DEM bed n = {layers}, f = {freq} Hz, law {law}"))?;
+    pb.finish_and_clear();
+    let mut v = serde_json::to_value(&r)?;
+    v["engine"] = serde_json::json!("dem");
+    v["law"] = serde_json::json!(law);
+    v["params"] = serde_json::json!(params
+        .iter()
+        .map(|p| (p.name.to_string(), p.value))
+        .collect::<std::collections::BTreeMap<_, _>>());
+    v["tangential"] = serde_json::json!(b.tangential);
+    if json {
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!(
+            "DEM bed, law {law}{}: n = {layers}, f = {freq} Hz, {} disks",
+            b.tangential
+                .as_ref()
+                .map(|t| format!(" + {t}"))
+                .unwrap_or_default(),
+            r.disks
+        );
+        println!(
+            "lid pressure P = {:.5e} ± {:.1e} N/m",
+            r.pressure, r.pressure_error
+        );
+        println!(
+            "lid collision rate {:.5e} /s, mean impulse {:.5e} N·s, temperature {:.5e} J",
+            r.lid_collision_rate, r.mean_impulse, r.temperature
+        );
+        println!(
+            "{} steps of {:.4e} s over {:.3} s measured, {:.1} s wall",
+            r.steps, r.dt, r.measured_time, r.wall_seconds
+        );
+    }
+    Ok(())
+}
+
+fn run_dim<const D: usize>(
+    reg: &Registry,
+    a: &DemArgs,
+    path: &std::path::Path,
+    file: &SceneFile,
+) -> Result<()> {
     let scene = file
         .scene::<D>()
-        .with_context(|| format!("in {}", a.scene.display()))?;
+        .with_context(|| format!("in {}", path.display()))?;
     let normal = file.law.param_values();
     let tang = file
         .tangential

@@ -135,7 +135,7 @@ impl<const D: usize> Neighbours<D> {
         for k in 0..D {
             dims[k] = ((hi[k] - lo[k]) / size).floor().max(1.0) as usize;
             csize[k] = (hi[k] - lo[k]) / dims[k] as f64;
-            if !(csize[k] > 0.0) {
+            if csize[k].is_nan() || csize[k] <= 0.0 {
                 csize[k] = size;
             }
         }

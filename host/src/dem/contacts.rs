@@ -193,7 +193,7 @@ impl ContactSet {
                         let dist = r2.sqrt();
                         let delta = sum - dist;
                         let rmin = radius[i].min(radius[ju]);
-                        if !(delta <= MAX_OVERLAP * rmin) {
+                        if delta.is_nan() || delta > MAX_OVERLAP * rmin {
                             return Err(DemError::Overlap {
                                 i,
                                 partner: format!("particle {ju}"),
@@ -260,7 +260,7 @@ impl ContactSet {
                             if delta <= 0.0 {
                                 continue;
                             }
-                            if !(delta <= MAX_OVERLAP * radius[i]) {
+                            if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
                                 return Err(DemError::Overlap {
                                     i,
                                     partner: format!("wall {w}"),

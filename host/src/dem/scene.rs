@@ -273,7 +273,7 @@ impl SceneFile {
             let lo = vector::<D>("box.lo", &b.lo)?;
             let hi = vector::<D>("box.hi", &b.hi)?;
             for k in 0..D {
-                if !(hi[k] > lo[k]) {
+                if hi[k] <= lo[k] {
                     return Err(bad(format!(
                         "box: hi[{k}] = {} must exceed lo[{k}] = {}",
                         hi[k], lo[k]
@@ -301,7 +301,7 @@ impl SceneFile {
         for (k, w) in self.wall.iter().enumerate() {
             let point = vector::<D>(&format!("wall[{k}].point"), &w.point)?;
             let normal = vector::<D>(&format!("wall[{k}].normal"), &w.normal)?;
-            if !(normal.norm() > 0.0) {
+            if normal.norm() == 0.0 {
                 return Err(bad(format!(
                     "wall[{k}].normal = {:?} must be a non-zero vector",
                     w.normal
