@@ -322,11 +322,7 @@ impl ContactSet {
             .zip(split_rows(hist_t, st, n))
             .enumerate()
             .collect();
-        let run = |(c, (((f, ft), hn), ht)): (
-            usize,
-            (((&mut [f64], &mut [[f64; 3]]), &mut [f64]), &mut [f64]),
-        )|
-         -> Result<(), DemError> {
+        let run = |(c, (((f, ft), hn), ht)): Task<'_>| -> Result<(), DemError> {
             let a = c * LAW_CHUNK;
             let b = a + f.len();
             normal.force_batch(NormalBatch {
@@ -361,6 +357,16 @@ impl ContactSet {
         }
     }
 }
+
+/// One parallel task of [`ContactSet::evaluate`]: chunk index, normal forces, tangential forces,
+/// normal and tangential history rows.
+type Task<'a> = (
+    usize,
+    (
+        ((&'a mut [f64], &'a mut [[f64; 3]]), &'a mut [f64]),
+        &'a mut [f64],
+    ),
+);
 
 /// `hist` cut into the history rows of successive [`LAW_CHUNK`]s of `n` contacts.
 fn split_rows(mut hist: &mut [f64], slots: usize, n: usize) -> Vec<&mut [f64]> {

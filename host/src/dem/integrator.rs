@@ -152,7 +152,7 @@ impl<const D: usize> Engine<D> {
         let dmin = p.radius.iter().cloned().fold(f64::INFINITY, f64::min) * 2.0;
         let dmax = p.radius.iter().cloned().fold(0.0, f64::max) * 2.0;
         let skin = cfg.skin.unwrap_or(0.3 * dmin);
-        if !(skin.is_finite() && skin > 0.0) && !bodies.is_empty() {
+        if !bodies.is_empty() && (skin.is_nan() || skin.is_infinite() || skin <= 0.0) {
             return Err(DemError::Invalid(format!(
                 "skin = {skin} m is out of range: it must be finite and > 0"
             )));
@@ -508,7 +508,7 @@ impl<const D: usize> Engine<D> {
     /// The mean over particles of `to3(v)` (m/s): a helper for observables.
     pub fn mean_velocity(&self) -> Vec3 {
         let n = self.p.len().max(1) as f64;
-        self.p.vel.iter().map(|v| to3(v)).sum::<Vec3>() / n
+        self.p.vel.iter().map(to3).sum::<Vec3>() / n
     }
 }
 

@@ -63,10 +63,7 @@ impl Laws {
             dashpot_sdk::MaterialPair::wall(&p)?,
         );
         let n = reg.contact(normal.0, normal.1)?;
-        let (pair_tangential, wall_tangential): (
-            Option<Box<dyn TangentialForce>>,
-            Option<Box<dyn TangentialForce>>,
-        ) = match tangential {
+        let (pair_tangential, wall_tangential): (OptTangential, OptTangential) = match tangential {
             Some((name, params)) => {
                 let t = reg.tangential(name, params)?;
                 (Some(Box::new(t.bind(&pp)?)), Some(Box::new(t.bind(&pw)?)))
@@ -81,6 +78,9 @@ impl Laws {
         })
     }
 }
+
+/// A tangential law, if any.
+type OptTangential = Option<Box<dyn TangentialForce>>;
 
 /// Why a DEM run stopped.
 #[derive(Debug, thiserror::Error)]
