@@ -154,8 +154,29 @@ pub enum ConfigError {
         message: String,
     },
     /// A `--set` argument is malformed.
-    #[error("--set expects NAME=VALUE with a number VALUE, got '{0}'")]
+    #[error("--set expects NAME=VALUE with a number VALUE (e.g. eps=0.5 or k=1e6), got '{0}'")]
     BadSet(String),
+    /// A `--set` value is not a number.
+    #[error(
+        "--set {name}={value}: '{value}' is not a number (write plain SI values without units, \
+         e.g. {name}=1e6)"
+    )]
+    BadValue {
+        /// The parameter.
+        name: String,
+        /// What was given.
+        value: String,
+    },
+    /// The same parameter was set twice.
+    #[error("--set {name} is given twice ({first} and {second}); give each parameter once")]
+    Duplicate {
+        /// The parameter.
+        name: String,
+        /// The first value.
+        first: f64,
+        /// The second value.
+        second: f64,
+    },
 }
 
 impl Config {
@@ -178,11 +199,46 @@ pub fn parse_set(s: &str) -> Result<(String, f64), ConfigError> {
         .split_once('=')
         .ok_or_else(|| ConfigError::BadSet(s.to_string()))?;
     let k = k.trim();
-    let v: f64 = v.trim().parse().map_err(|_| ConfigError::BadSet(s.to_string()))?;
     if k.is_empty() {
         return Err(ConfigError::BadSet(s.to_string()));
     }
+    let v: f64 = v.trim().parse().map_err(|_| ConfigError::BadValue {
+        name: k.to_string(),
+        value: v.trim().to_string(),
+    })?;
     Ok((k.to_string(), v))
+}
+
+/// The command-line parser of one `--set` (clap's `value_parser`): a malformed `NAME=VALUE`
+/// is a malformed command line (exit status 2, with the usage line).
+pub fn set_arg(s: &str) -> Result<String, String> {
+    parse_set(s).map(|_| s.to_string()).map_err(|e| {
+        // clap prefixes "invalid value '...' for '--set <NAME=VALUE>': "
+        match e {
+            ConfigError::BadValue { name, value } => {
+                format!("'{value}' is not a number (write plain SI values without units, e.g. {name}=1e6)")
+            }
+            _ => "expected NAME=VALUE with a number VALUE (e.g. eps=0.5 or k=1e6)".to_string(),
+        }
+    })
+}
+
+/// Parses every `--set`, refusing a parameter given twice (as the sdk's own resolver refuses a
+/// duplicate: the last one silently winning would hide a typo).
+pub fn parse_sets(sets: &[String]) -> Result<Vec<(String, f64)>, ConfigError> {
+    let mut out: Vec<(String, f64)> = Vec::with_capacity(sets.len());
+    for s in sets {
+        let (k, v) = parse_set(s)?;
+        if let Some((_, first)) = out.iter().find(|(n, _)| *n == k) {
+            return Err(ConfigError::Duplicate {
+                name: k,
+                first: *first,
+                second: v,
+            });
+        }
+        out.push((k, v));
+    }
+    Ok(out)
 }
 
 /// File parameters overridden by `--set` values, in a stable order.
@@ -230,6 +286,23 @@ mod tests {
         assert!(parse_set("eps").is_err());
         assert!(parse_set("eps=abc").is_err());
         assert!(parse_set("eps=nan").unwrap().1.is_nan());
+        let e = parse_set("k=1e6N").unwrap_err().to_string();
+        assert!(e.contains("'1e6N' is not a number"), "{e}");
+    }
+
+    #[test]
+    fn a_parameter_set_twice_is_refused() {
+        let e = parse_sets(&["eps=0.3".into(), "k=1".into(), "eps=0.5".into()])
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "--set eps is given twice (0.3 and 0.5); give each parameter once"
+        );
+        assert_eq!(
+            parse_sets(&["eps=0.3".into()]).unwrap(),
+            [("eps".to_string(), 0.3)]
+        );
     }
 
     #[test]

@@ -8,6 +8,7 @@
 //! Dependency rule: `cli` → `report` → drivers (`collide`, `bed`) → `laws` → sdk; nothing
 //! imports `cli`.
 
+pub mod ae_statements;
 pub mod bed;
 pub mod cli;
 pub mod config;

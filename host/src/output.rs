@@ -1,7 +1,7 @@
 //! Result files are written whole or not at all.
 
 use crate::registry::{kind_str, Registry};
-use dashpot_sdk::LawInfo;
+use dashpot_sdk::{LawError, LawInfo, ParamValue};
 use serde_json::json;
 use std::io::Write;
 use std::path::Path;
@@ -77,4 +77,187 @@ pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
 
 fn finite_or_null(x: f64) -> Option<f64> {
     x.is_finite().then_some(x)
+}
+
+/// Where a result came from: the law, the plugin file that provided it, the versions, and every
+/// parameter value including those left at their defaults. Every command that computes with a
+/// law builds one ([`Provenance::of`]) and prints it with its result: JSON (`"provenance"`),
+/// CSV (`#` comment lines before the header), text and reports ([`Provenance::lines`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Provenance {
+    /// The law's name.
+    pub law: String,
+    /// "contact", "restitution" or "tangential".
+    pub kind: &'static str,
+    /// The plugin library the law was taken from.
+    pub plugin_file: String,
+    /// The plugin crate's name.
+    pub plugin_name: String,
+    /// The plugin crate's version.
+    pub plugin_version: String,
+    /// The dashpot-sdk version the plugin was built against.
+    pub plugin_sdk: String,
+    /// The dashpot-sdk version of this host.
+    pub host_sdk: &'static str,
+    /// dashpot's version.
+    pub dashpot: &'static str,
+    /// Every parameter of the schema, in schema order: (name, value, where it came from).
+    /// The value is `None` for a parameter the law derives from the pair when unset.
+    pub params: Vec<(String, Option<f64>, ParamSource)>,
+    /// Plugin files that also provide a law of this name, hidden by the one used.
+    pub hidden: Vec<String>,
+}
+
+/// Where a parameter value came from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ParamSource {
+    /// Given by the user (`--set`, a config file, a calibration).
+    Given,
+    /// The schema's default.
+    Default,
+    /// Left unset: the law derives it from the pair.
+    Derived,
+}
+
+impl ParamSource {
+    /// "given", "default" or "derived".
+    pub fn as_str(self) -> &'static str {
+        match self {
+            ParamSource::Given => "given",
+            ParamSource::Default => "default",
+            ParamSource::Derived => "derived from the pair",
+        }
+    }
+}
+
+impl Provenance {
+    /// The provenance of law `name` used with the parameters `given` (the rest at their
+    /// defaults).
+    pub fn of(reg: &Registry, name: &str, given: &[ParamValue]) -> Result<Provenance, LawError> {
+        let (entry, plugin) = reg.find(name)?;
+        let mut params: Vec<(String, Option<f64>, ParamSource)> = entry
+            .info
+            .params
+            .iter()
+            .map(|s| {
+                let n = s.name.to_string();
+                match given.iter().find(|p| p.name == s.name.as_str()) {
+                    Some(p) => (n, Some(p.value), ParamSource::Given),
+                    None => match s.default.into_option() {
+                        Some(d) => (n, Some(d), ParamSource::Default),
+                        None => (n, None, ParamSource::Derived),
+                    },
+                }
+            })
+            .collect();
+        // names outside the schema (the law refuses them; kept so nothing given is hidden)
+        for p in given {
+            if !params.iter().any(|(n, _, _)| n == p.name.as_str()) {
+                params.push((p.name.to_string(), Some(p.value), ParamSource::Given));
+            }
+        }
+        Ok(Provenance {
+            law: name.to_string(),
+            kind: kind_str(entry.info.kind),
+            plugin_file: plugin.path.display().to_string(),
+            plugin_name: plugin.name.clone(),
+            plugin_version: plugin.version.clone(),
+            plugin_sdk: plugin.sdk_version.clone(),
+            host_sdk: dashpot_sdk::abi::ABI_VERSION,
+            dashpot: env!("CARGO_PKG_VERSION"),
+            params,
+            hidden: reg.hidden(name).iter().map(|p| p.display().to_string()).collect(),
+        })
+    }
+
+    /// Every parameter as a JSON object, name → value (null: derived from the pair).
+    pub fn params_json(&self) -> serde_json::Value {
+        let m: serde_json::Map<String, serde_json::Value> = self
+            .params
+            .iter()
+            .map(|(n, v, _)| (n.clone(), json!(v)))
+            .collect();
+        serde_json::Value::Object(m)
+    }
+
+    /// The whole provenance as JSON.
+    pub fn json(&self) -> serde_json::Value {
+        let sources: serde_json::Map<String, serde_json::Value> = self
+            .params
+            .iter()
+            .map(|(n, _, s)| (n.clone(), json!(s.as_str())))
+            .collect();
+        json!({
+            "law": self.law,
+            "kind": self.kind,
+            "plugin": {
+                "file": self.plugin_file,
+                "name": self.plugin_name,
+                "version": self.plugin_version,
+                "sdk_version": self.plugin_sdk,
+            },
+            "params": self.params_json(),
+            "param_sources": sources,
+            "shadows": self.hidden,
+            "dashpot_version": self.dashpot,
+            "host_sdk_version": self.host_sdk,
+        })
+    }
+
+    /// The parameters in one line: `eps = 0.5 (given), k = derived from the pair`.
+    pub fn params_line(&self) -> String {
+        if self.params.is_empty() {
+            return "(no parameters)".to_string();
+        }
+        self.params
+            .iter()
+            .map(|(n, v, s)| match v {
+                Some(v) => format!("{n} = {v} ({})", s.as_str()),
+                None => format!("{n} = {}", s.as_str()),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
+    /// Human-readable lines: law and parameters, plugin file and versions, dashpot's version,
+    /// and the hidden plugins if the name is shadowed.
+    pub fn lines(&self) -> Vec<String> {
+        let mut v = vec![
+            format!("law: {} ({}): {}", self.law, self.kind, self.params_line()),
+            format!(
+                "plugin: {} ({} {}, built against dashpot-sdk {}); dashpot {} (sdk {})",
+                self.plugin_file,
+                self.plugin_name,
+                self.plugin_version,
+                self.plugin_sdk,
+                self.dashpot,
+                self.host_sdk
+            ),
+        ];
+        for h in &self.hidden {
+            v.push(format!(
+                "note: this '{}' shadows the law of the same name in {h}",
+                self.law
+            ));
+        }
+        v
+    }
+
+    /// The lines as CSV comments (`# ...`), each ending in a newline, to put before the header.
+    pub fn csv_comment(&self) -> String {
+        self.lines().iter().map(|l| format!("# {l}\n")).collect()
+    }
+
+    /// Warns on stderr when the law's name is shadowed: the result comes from a plugin other
+    /// than a user expecting the usual one would think.
+    pub fn warn_if_shadowed(&self) {
+        for h in &self.hidden {
+            eprintln!(
+                "warning: law '{}' is taken from {}; it shadows the law of the same name in {h} \
+                 (the first plugin found wins: --plugin files, then --plugin-dir, \
+                 DASHPOT_PLUGIN_PATH, the built-in directory; see `dashpot laws`)",
+                self.law, self.plugin_file
+            );
+        }
+    }
 }

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{dashpot, fails};
+use common::{dashpot, fails, ok_json};
 use serde_json::Value;
 
 #[test]
@@ -95,7 +95,7 @@ fn scaling_fits_the_classical_exponents_without_gravity_and_constant_r() {
     assert!((th("lid_collision_rate") - 1.0).abs() < 0.15, "{v}");
     assert!((th("mean_impulse") - 1.0).abs() < 0.15, "{v}");
     let csv = std::fs::read_to_string(dir.join("scaling.csv")).unwrap();
-    assert!(csv.starts_with("layers,theta_p,resid_p"));
+    assert!(csv.starts_with("layers,theta_p,theta_p_stderr,resid_p"));
     assert_eq!(
         std::fs::read_to_string(dir.join("grid.csv"))
             .unwrap()
@@ -203,6 +203,10 @@ fn a_contact_law_runs_the_bed_as_a_restitution_law() {
             "2",
             "--cycles",
             "4",
+            // a dissipative contact law chatters disks to rest on disks that ride on the piston,
+            // which the engine stops on: the TC model prevents it
+            "--tc",
+            "1e-5",
             "--json",
         ]);
         assert!(
@@ -241,5 +245,119 @@ fn a_contact_law_runs_the_bed_as_a_restitution_law() {
             "20",
         ],
         &["unknown law 'nope'"],
+    );
+}
+
+/// A run that exits 0 reports no overlap beyond 1e-9 d; one that does not names the disk, the
+/// time, and the remedy. Never a result with a larger overlap.
+fn trusted_or_clear_error(law: &str, set: &[&str]) {
+    let mut args = vec!["bed", "--restitution", law];
+    for s in set {
+        args.extend(["--set", s]);
+    }
+    args.extend([
+        "--layers",
+        "1",
+        "--freq",
+        "20",
+        "--transient",
+        "1",
+        "--cycles",
+        "2",
+        "--json",
+    ]);
+    let o = dashpot(&args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    if o.status.success() {
+        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        let ov = v["max_overlap_diameters"].as_f64().unwrap();
+        assert!(ov <= 1e-9, "{args:?}: exit 0 with an overlap of {ov:e} d");
+        assert!(v["pressure"].as_f64().unwrap() > 0.0);
+    } else {
+        assert!(
+            o.stdout.is_empty(),
+            "{args:?}: a result was printed beside the error"
+        );
+        assert!(err.contains("error") && !err.contains("panicked"), "{err}");
+        if err.contains("as a restitution law") {
+            // the contact law could not be turned into r(v) at all: refused before the run
+            return;
+        }
+        for needle in ["error", "disk ", "t = ", "--tc"] {
+            assert!(err.contains(needle), "{args:?}: no '{needle}' in: {err}");
+        }
+        assert!(
+            err.contains("overlap") && (err.contains(" d") || err.contains(" d)")),
+            "{args:?}: the error states the overlap: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+#[test]
+fn the_issue_cases_finish_without_overlap_or_stop_with_a_clear_error() {
+    trusted_or_clear_error("from:hsd", &["eps=0.8"]);
+    trusted_or_clear_error("from:kuwabara-kono", &["A=1e-6"]);
+    trusted_or_clear_error("constant", &["r=0.8"]);
+}
+
+#[test]
+fn every_seed_contact_law_as_a_restitution_law_is_trusted_or_stops() {
+    for law in [
+        "from:lsd",
+        "from:hsd",
+        "from:kuwabara-kono",
+        "from:thornton",
+        // from:walton-braun is left out: tabulating it takes 40 s in a debug build, and its
+        // table gives r > 1 near 1 m/s, which the bed refuses with a clear error
+    ] {
+        trusted_or_clear_error(law, &[]);
+    }
+    trusted_or_clear_error("mcnamara-falcon", &[]);
+    trusted_or_clear_error("constant", &[]);
+}
+
+#[test]
+fn seeds_run_in_parallel_and_report_standard_errors() {
+    let v = ok_json(&[
+        "bed",
+        "--restitution",
+        "mcnamara-falcon",
+        "--layers",
+        "0.5",
+        "--freq",
+        "25",
+        "--transient",
+        "2",
+        "--cycles",
+        "10",
+        "--seeds",
+        "3",
+        "--json",
+    ]);
+    assert_eq!(v["seeds"], 3);
+    for k in [
+        "pressure",
+        "lid_collision_rate",
+        "mean_impulse",
+        "temperature",
+        "piston_pressure",
+    ] {
+        let (x, e) = (v[k].as_f64().unwrap(), v[format!("{k}_stderr")].as_f64().unwrap());
+        assert!(x > 0.0 && e > 0.0 && e < x, "{k} = {x} ± {e}");
+    }
+    fails(
+        &[
+            "bed",
+            "--restitution",
+            "mcnamara-falcon",
+            "--layers",
+            "1",
+            "--freq",
+            "20",
+            "--seeds",
+            "0",
+        ],
+        &["--seeds = 0"],
     );
 }

@@ -297,6 +297,7 @@ fn plugin_path_environment_variable() {
     let empty = std::env::temp_dir().join(format!("dashpot-empty-{}", std::process::id()));
     std::fs::create_dir_all(&empty).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .arg("--no-default-plugins")
         .arg("--plugin-dir")
         .arg(&empty)
         .arg("laws")
@@ -322,7 +323,16 @@ fn reproduce_writes_the_report() {
     let csv = std::fs::read_to_string(out.join("mcnamara_falcon_fig1.csv")).unwrap();
     assert_eq!(csv.lines().count(), 242);
     let laws: Value = serde_json::from_str(&std::fs::read_to_string(out.join("laws.json")).unwrap()).unwrap();
-    assert_eq!(laws.as_array().unwrap().len(), 5);
+    assert_eq!(laws.as_array().unwrap().len(), common::SEED.len());
+    // the laws table names each plugin file and the sdk it was built against
+    assert!(
+        md.contains("| law | kind | plugin | sdk | file | parameters |"),
+        "{md}"
+    );
+    assert!(md.contains("libdashpot_hsd.so`"), "{md}");
+    for f in ["thornton_vs_mcnamara_falcon", "oblique_test4", "oblique_test5"] {
+        assert!(out.join(format!("{f}.png")).exists(), "{f}");
+    }
     std::fs::remove_dir_all(&out).ok();
 }
 
@@ -362,6 +372,9 @@ fn collide_writes_a_trajectory() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(&f).unwrap();
     let mut lines = csv.lines();
+    // provenance first, as comment lines
+    assert!(lines.next().unwrap().starts_with("# law: lsd (contact): eps = "));
+    assert!(lines.next().unwrap().starts_with("# plugin: "));
     assert_eq!(lines.next(), Some("t_s,delta_m,rate_m_per_s,force_N"));
     let rows: Vec<Vec<f64>> = lines
         .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
@@ -421,7 +434,15 @@ fn sweep_and_calibrate() {
         f.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let csv = std::fs::read_to_string(&f).unwrap();
+    let text = std::fs::read_to_string(&f).unwrap();
+    // provenance first, as comment lines: the law with every parameter, the plugin file
+    let (comments, rows): (Vec<&str>, Vec<&str>) = text.lines().partition(|l| l.starts_with('#'));
+    assert!(
+        comments[0].starts_with("# law: hsd (contact): eps = 0.54 (default)"),
+        "{text}"
+    );
+    assert!(comments[1].contains("libdashpot_hsd.so") && comments[1].contains("dashpot 0.2.0"));
+    let csv = rows.join("\n");
     assert_eq!(csv.lines().count(), 7);
     assert!(csv.starts_with("law,eps,v0_m_per_s,end,restitution,contact_time_s"));
     for l in csv.lines().skip(1) {

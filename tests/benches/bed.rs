@@ -1,5 +1,8 @@
 //! The vibrated bed at n = 3, f = 30 Hz, g = 9.8 m/s², r(v), N = 300: CPU seconds per simulated
-//! second with the restitution law loaded as a plugin and compiled in, side by side in one run.
+//! second with the restitution law loaded as a plugin and compiled in, side by side in one run;
+//! then against the independent C reference `edref` (built here from its source, found in
+//! `$DASHPOT_EDREF` or `../shared/peers/edref` beside the workspace; skipped with a reason when
+//! absent) on the same case and protocol, 300 measured periods after 50, interleaved runs.
 //!
 //! Run: `cargo bench -p dashpot-tests --bench bed`
 
@@ -57,6 +60,111 @@ fn run<R: Restitution>(laws: Laws<R>) -> Run {
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
+}
+
+/// The C reference's source directory, or why there is none.
+fn edref_dir() -> Result<std::path::PathBuf, String> {
+    let dir = match std::env::var_os("DASHPOT_EDREF") {
+        Some(d) => std::path::PathBuf::from(d),
+        None => dashpot_tests::workspace_root().join("../shared/peers/edref"),
+    };
+    if dir.join("edref.c").is_file() {
+        Ok(dir)
+    } else {
+        Err(format!(
+            "no edref.c in {} (set DASHPOT_EDREF to the reference's directory)",
+            dir.display()
+        ))
+    }
+}
+
+/// Builds edref with the flags of its Makefile (gcc -O2 -std=c11) into target/edref/.
+fn build_edref(dir: &std::path::Path) -> Result<std::path::PathBuf, String> {
+    let out = dashpot_tests::workspace_root().join("target/edref");
+    std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
+    let exe = out.join("edref");
+    let cc = std::env::var("CC").unwrap_or_else(|_| "cc".into());
+    let st = std::process::Command::new(&cc)
+        .args(["-O2", "-std=c11", "-o"])
+        .arg(&exe)
+        .arg(dir.join("edref.c"))
+        .arg("-lm")
+        .status()
+        .map_err(|e| format!("cannot run {cc}: {e}"))?;
+    if st.success() {
+        Ok(exe)
+    } else {
+        Err(format!("{cc} failed to build edref ({st})"))
+    }
+}
+
+/// One edref run of the case: (CPU s per simulated s over the measured periods, P).
+fn run_edref(exe: &std::path::Path) -> (f64, f64) {
+    let o = std::process::Command::new(exe)
+        .args([
+            "n=3",
+            "f=30",
+            "g=9.8",
+            "law=mf",
+            "cycles=300",
+            "trans=50",
+            "seed=1",
+            "tc=0",
+        ])
+        .output()
+        .expect("edref runs");
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("edref prints JSON");
+    assert_eq!(v["aborted"], 0, "edref aborted: {v}");
+    let cpu = v["cpu_s"].as_f64().expect("cpu_s");
+    (cpu / (300.0 / 30.0), v["P"].as_f64().expect("P"))
+}
+
+/// One dashpot run of the same case: (CPU s per simulated s over the 300 measured periods, P).
+fn run_protocol<R: Restitution>(laws: Laws<R>) -> (f64, f64) {
+    let mut bed = Bed::new(BedConfig::paper(3.0, 30.0), laws).expect("bed");
+    bed.run_until(50.0 / 30.0, &mut |_| {}).expect("transient");
+    bed.start_window();
+    let cpu0 = cpu_seconds().expect("thread CPU clock");
+    bed.run_until(350.0 / 30.0, &mut |_| {}).expect("run");
+    let cpu = cpu_seconds().expect("thread CPU clock") - cpu0;
+    (cpu / 10.0, bed.report(1.0).pressure)
+}
+
+fn versus_edref(plugin: &Laws<dashpot_sdk::abi::BoundRestitutionHandle>) {
+    let exe = match edref_dir().and_then(|d| build_edref(&d)) {
+        Ok(e) => e,
+        Err(why) => {
+            println!("edref comparison skipped: {why}");
+            return;
+        }
+    };
+    const R: usize = 5;
+    let (mut ours, mut theirs) = (Vec::new(), Vec::new());
+    let (mut p_ours, mut p_theirs) = (0.0, 0.0);
+    for _ in 0..R {
+        let (c, p) = run_edref(&exe);
+        theirs.push(c);
+        p_theirs = p;
+        let (c, p) = run_protocol(Laws {
+            disk: &plugin.disk,
+            wall: &plugin.wall,
+        });
+        ours.push(c);
+        p_ours = p;
+    }
+    let (mo, mt) = (median(ours.clone()), median(theirs.clone()));
+    let mino = ours.iter().cloned().fold(f64::INFINITY, f64::min);
+    let mint = theirs.iter().cloned().fold(f64::INFINITY, f64::min);
+    println!(
+        "against edref (C, gcc -O2), n = 3, f = 30 Hz, g = 9.8, r(v), 300 periods after 50, seed 1, {R} interleaved runs (min | median)"
+    );
+    println!("  edref    {mint:.4} | {mt:.4} CPU s per simulated s   P = {p_theirs:.4} N/m");
+    println!("  dashpot  {mino:.4} | {mo:.4} CPU s per simulated s   P = {p_ours:.4} N/m (plugin law, all guards on)");
+    println!(
+        "  speed ratio dashpot / edref: {:.2}x (min) | {:.2}x (median)   target >= 1.5x",
+        mint / mino,
+        mt / mo
+    );
 }
 
 fn main() {
@@ -118,5 +226,5 @@ fn main() {
         r0.collisions as f64 / (cpu_p.1 * SPAN),
         r0.collisions as f64 / (cpu_s.1 * SPAN)
     );
-    println!("  target <= 0.058 s per simulated s (C reference: 0.087, 5.6e5 collisions per CPU s)");
+    versus_edref(&plugin);
 }

@@ -249,12 +249,29 @@ fn hsd_contact_time_scales_as_v0_to_the_minus_one_fifth() {
 #[test]
 fn elastic_hertz_contact_time_is_eq_23() {
     // τ = 2 (δ_max/v0) ∫₀¹ dx/√(1 − x^{5/2}), ∫ = (2/5) B(2/5, 1/2) = (2/5) Γ(2/5) Γ(1/2)/Γ(9/10);
-    // for identical spheres this is τ = C (ρ/E_eff)^{2/5} d v0^{-1/5} with C = 2.2143..., the
-    // paper's 2.214.
+    // for identical spheres this is τ = C (ρ/E_eff)^{2/5} d v0^{-1/5} with
+    // C = 2.214 210 104 143 49…, the paper's 2.214.
     const GAMMA_2_5: f64 = 2.218_159_543_757_688;
     const GAMMA_9_10: f64 = 1.068_628_702_119_319_4;
     let integral = 0.4 * GAMMA_2_5 * PI.sqrt() / GAMMA_9_10;
     let c_exact = 2.0 * integral * (5.0 * PI / 32.0).powf(0.4);
+    // tight enough to tell the exact constant from a wrong one in the 5th digit (2.21433…)
+    assert!(
+        (c_exact - 2.214_210_104_143_494).abs() < 1e-13,
+        "eq. 23's constant: {c_exact}"
+    );
+    assert_eq!(c_exact, dashpot::ae_statements::EQ23_CONSTANT);
+    // the integral itself, by quadrature independent of the Gamma values: with x = 1 − s², the
+    // integrand 2s/√(1 − (1 − s²)^{5/2}) is smooth on (0, 1]
+    let n = 200_000;
+    let quad: f64 = (0..n)
+        .map(|k| {
+            let s = (k as f64 + 0.5) / n as f64;
+            2.0 * s / (1.0 - (1.0 - s * s).powf(2.5)).sqrt()
+        })
+        .sum::<f64>()
+        / n as f64;
+    assert!((quad / integral - 1.0).abs() < 1e-9, "{quad} vs {integral}");
     assert!(
         (c_exact - 2.214).abs() < 5e-4,
         "the paper's constant is {c_exact} rounded"

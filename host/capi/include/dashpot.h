@@ -111,6 +111,10 @@ typedef enum DashpotLawKind {
    A restitution coefficient r(v).
    */
   DASHPOT_RESTITUTION = 2,
+  /*
+   A tangential (friction) force with per-contact history (sdk 0.2).
+   */
+  DASHPOT_TANGENTIAL = 3,
 } DashpotLawKind;
 
 /*
@@ -357,8 +361,14 @@ void dashpot_contact_free(struct DashpotContactLaw *law);
 /*
  Binds a contact law to a pair: every constant of the force is computed here, once.
 
+ The pair carries no shear modulus; this binding takes the one of two bodies of Poisson's
+ ratio 0.3 (no normal law of the project uses it). A law with per-contact history (e.g.
+ `thornton`) cannot be bound to a pair: use the material binding of the sdk 0.2 functions,
+ which carry each contact's history.
+
  Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a pair field not finite or not
- positive), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair), `DASHPOT_ERR_PANIC`.
+ positive), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair, or keeps history),
+ `DASHPOT_ERR_PANIC`.
  Ownership: `*out_bound` is owned by the caller (free with `dashpot_bound_contact_free`) and
  may outlive the law. Thread-safe.
 
@@ -395,7 +405,9 @@ enum DashpotStatus dashpot_contact_force(const struct DashpotBoundContact *bound
 /*
  `out_force[i] = F(delta[i], rate[i])` (N) for every i: the call a DEM code makes once per
  step (per kind of pair) with all its contacts. The three lengths must be equal. Every
- output is checked for NaN and infinity inside the plugin, fused with the computation.
+ input and output is checked for NaN and infinity inside the plugin, fused with the
+ computation: a non-finite overlap or rate is refused with `DASHPOT_ERR_NON_FINITE` naming its
+ index and value.
 
  Errors: `DASHPOT_ERR_NULL_POINTER` (a handle, or an array whose length is > 0),
  `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE` (the message names the first bad

@@ -20,7 +20,7 @@ pub struct SearchPath {
     pub files: Vec<PathBuf>,
     /// Whether to add the directories of `DASHPOT_PLUGIN_PATH`.
     pub use_env: bool,
-    /// Whether to add the default directories (next to the executable).
+    /// Whether to add the default directories (next to the executable), after all the others.
     pub use_default: bool,
 }
 
@@ -50,9 +50,10 @@ impl SearchPath {
         v
     }
 
-    /// All directories to scan, in order. The default directories are searched only when no
-    /// plugin directory, plugin file or `DASHPOT_PLUGIN_PATH` was given: an explicit choice
-    /// replaces the default rather than mixing with it.
+    /// All directories to scan, in order: the command-line ones, those of
+    /// `DASHPOT_PLUGIN_PATH`, then (with `use_default`) the default ones. Plugin files and
+    /// directories given by the user add to the built-in laws, they do not replace them; a name
+    /// they share with a built-in law shadows it (and [`Registry::shadowed`] says so).
     pub fn all_dirs(&self) -> Vec<PathBuf> {
         let mut v = self.dirs.clone();
         if self.use_env {
@@ -60,7 +61,7 @@ impl SearchPath {
                 v.extend(std::env::split_paths(&p).filter(|p| !p.as_os_str().is_empty()));
             }
         }
-        if self.use_default && v.is_empty() && self.files.is_empty() {
+        if self.use_default {
             v.extend(Self::default_dirs());
         }
         v
@@ -76,6 +77,17 @@ pub struct LawEntry {
     pub plugin: usize,
 }
 
+/// A law name provided by two plugins: the first found is used, the other is hidden.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Shadowed {
+    /// The law's name.
+    pub name: String,
+    /// The plugin file whose law is used.
+    pub used: PathBuf,
+    /// The plugin file whose law of the same name is hidden.
+    pub hidden: PathBuf,
+}
+
 /// Loaded plugins and the laws they provide, selectable by name.
 #[derive(Debug, Default)]
 pub struct Registry {
@@ -83,8 +95,10 @@ pub struct Registry {
     pub plugins: Vec<LoadedPlugin>,
     /// Every law, first occurrence of each name.
     pub laws: Vec<LawEntry>,
-    /// Non-fatal findings while scanning (shadowed law names).
+    /// Non-fatal findings while scanning (shadowed law names), as sentences.
     pub notes: Vec<String>,
+    /// Law names provided by more than one plugin.
+    pub shadowed: Vec<Shadowed>,
     /// Plugins found in a directory that were refused (wrong sdk version, stale layout, ...).
     /// They do not stop the other plugins from loading; their errors are repeated whenever a
     /// law cannot be found.
@@ -140,7 +154,8 @@ impl Registry {
         let mut seen_paths = HashSet::new();
         let mut seen_names = HashSet::new();
         for f in &search.files {
-            reg.load_file(f)?;
+            let f = explicit_file(f)?;
+            reg.load_file(&f)?;
             if let Ok(c) = f.canonicalize() {
                 seen_paths.insert(c);
             }
@@ -177,18 +192,41 @@ impl Registry {
     }
 
     /// Loads one plugin file and registers its laws (a name already registered is shadowed,
-    /// with a note).
+    /// with a note). A plugin that exports one name twice is refused: which of the two a user
+    /// would get is not theirs to guess.
     pub fn load_file(&mut self, path: &Path) -> Result<(), LawError> {
         let plugin = LoadedPlugin::load(path)?;
+        let mut names = HashSet::new();
+        for info in &plugin.laws {
+            if !names.insert(info.name.as_str()) {
+                return Err(LawError::new(
+                    ErrorKind::Load,
+                    format!(
+                        "cannot load plugin {}: it exports the law name '{}' twice (plugin {} {}); \
+                         each law of a plugin needs its own NAME. Rename one of them and rebuild.",
+                        plugin.path.display(),
+                        info.name,
+                        plugin.name,
+                        plugin.version
+                    ),
+                ));
+            }
+        }
         let idx = self.plugins.len();
         for info in &plugin.laws {
             if let Some(prev) = self.laws.iter().find(|l| l.info.name == info.name) {
+                let used = self.plugins[prev.plugin].path.clone();
                 self.notes.push(format!(
                     "law '{}' in {} is shadowed by the one in {}",
                     info.name,
                     plugin.path.display(),
-                    self.plugins[prev.plugin].path.display()
+                    used.display()
                 ));
+                self.shadowed.push(Shadowed {
+                    name: info.name.to_string(),
+                    used,
+                    hidden: plugin.path.clone(),
+                });
                 continue;
             }
             self.laws.push(LawEntry {
@@ -213,6 +251,15 @@ impl Registry {
                 ),
             )),
         }
+    }
+
+    /// The plugin files whose law `name` is hidden by the one in use.
+    pub fn hidden(&self, name: &str) -> Vec<&Path> {
+        self.shadowed
+            .iter()
+            .filter(|s| s.name == name)
+            .map(|s| s.hidden.as_path())
+            .collect()
     }
 
     /// A note listing the refused plugins, or nothing.
@@ -248,7 +295,8 @@ impl Registry {
         if e.info.kind != kind {
             let hint = if kind == LawKind::Restitution && e.info.kind == LawKind::Contact {
                 format!(
-                    " (a contact law serves as a restitution law as 'from:{name}' where a driver offers it)"
+                    ". A contact law serves as a restitution law as 'from:{name}' (its r(v) from \
+                     the collision driver), e.g. `dashpot bed --restitution from:{name}`"
                 )
             } else {
                 String::new()
@@ -256,7 +304,7 @@ impl Registry {
             return Err(LawError::new(
                 ErrorKind::UnknownLaw,
                 format!(
-                    "law '{name}' is a {} law, but a {} law is needed here{hint}; {} laws: {}",
+                    "law '{name}' is a {} law, but a {} law is needed here{hint}; {} laws loaded: {}",
                     kind_str(e.info.kind),
                     kind_str(kind),
                     kind_str(kind),
@@ -305,11 +353,60 @@ impl Registry {
             .map(|l| l.info.name.as_str())
             .collect();
         if v.is_empty() {
-            "(none)".to_string()
+            "none".to_string()
         } else {
             v.join(", ")
         }
     }
+}
+
+/// A plugin file the user named (`--plugin FILE`), checked before the dynamic loader sees it:
+/// it must exist and be a shared library. A relative path is made absolute, so that a bare file
+/// name means the file in the current directory (the dynamic loader would search the system's
+/// library paths for a name without a slash).
+pub fn explicit_file(path: &Path) -> Result<PathBuf, LawError> {
+    let refuse = |why: String| {
+        LawError::new(
+            ErrorKind::Load,
+            format!("cannot load plugin {}: {why}", path.display()),
+        )
+    };
+    let abs = std::path::absolute(path).map_err(|e| refuse(e.to_string()))?;
+    let meta = std::fs::metadata(&abs).map_err(|e| {
+        if e.kind() == std::io::ErrorKind::NotFound {
+            refuse(format!(
+                "no such file ({} does not exist; --plugin takes the path of a plugin library, \
+                 e.g. target/release/libmy_law.{DYLIB_EXT})",
+                abs.display()
+            ))
+        } else {
+            refuse(e.to_string())
+        }
+    })?;
+    if meta.is_dir() {
+        return Err(refuse(
+            "it is a directory; use --plugin-dir DIR for a directory of plugins".to_string(),
+        ));
+    }
+    let mut magic = [0u8; 4];
+    let n = std::fs::File::open(&abs)
+        .and_then(|mut f| std::io::Read::read(&mut f, &mut magic))
+        .map_err(|e| refuse(e.to_string()))?;
+    let shared_library = n == 4
+        && (magic == *b"\x7fELF"
+            || magic[..2] == *b"MZ"
+            || matches!(
+                u32::from_le_bytes(magic),
+                0xfeed_face | 0xfeed_facf | 0xcefa_edfe | 0xcffa_edfe | 0xcafe_babe | 0xbeba_feca
+            ));
+    if !shared_library {
+        return Err(refuse(format!(
+            "it is not a shared library ({} bytes, not an ELF, Mach-O or PE file); a plugin is the \
+             .{DYLIB_EXT} file that `cargo build` writes for a crate with crate-type = [\"cdylib\"]",
+            meta.len()
+        )));
+    }
+    Ok(abs)
 }
 
 /// "contact", "restitution" or "tangential".

@@ -25,6 +25,8 @@ pub struct Cells {
     prev: Vec<u32>,
     /// The cell of each disk.
     pub cell: Vec<u32>,
+    /// The column and row of each disk's cell (so that no prediction divides).
+    pub col_row: Vec<(u32, u32)>,
 }
 
 impl Cells {
@@ -43,6 +45,7 @@ impl Cells {
             next: vec![NONE; n],
             prev: vec![NONE; n],
             cell: vec![NONE; n],
+            col_row: vec![(0, 0); n],
         }
     }
 
@@ -76,6 +79,23 @@ impl Cells {
         }
         self.head[c as usize] = i as u32;
         self.cell[i] = c;
+        self.col_row[i] = (c % self.nx as u32, c / self.nx as u32);
+    }
+
+    /// Moves disk `i` to the cell of column `cx` and row `cy`.
+    #[inline]
+    pub fn moveto_xy(&mut self, i: usize, cx: usize, cy: usize) {
+        self.remove(i);
+        let c = (cy * self.nx + cx) as u32;
+        let h = self.head[c as usize];
+        self.next[i] = h;
+        self.prev[i] = NONE;
+        if h != NONE {
+            self.prev[h as usize] = i as u32;
+        }
+        self.head[c as usize] = i as u32;
+        self.cell[i] = c;
+        self.col_row[i] = (cx as u32, cy as u32);
     }
 
     /// Takes disk `i` out of its cell.

@@ -2,17 +2,15 @@
 //! `dashpot figures bed` commands (delegated to from [`crate::cli`]).
 
 use super::engine::{Bed, BedConfig, BedReport};
+use super::view::{progress_bar, snapshot_figure, SaveAs};
 use super::{resolve, scaling, DynRestitution, Laws};
-use crate::config::parse_set;
 use crate::output::write_atomic;
-use crate::plot::{Figure, Mark, Panel, Series};
+use crate::plot::Figure;
 use crate::registry::Registry;
 use anyhow::{bail, Context, Result};
 use clap::{Args, Subcommand};
 use dashpot_sdk::ParamValue;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde_json::json;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
 /// The physics shared by `dashpot bed` and `dashpot scaling` (defaults: McNamara & Falcon).
@@ -23,7 +21,7 @@ pub struct PhysArgs {
     #[arg(long)]
     pub restitution: String,
     /// Set a law parameter, NAME=VALUE (repeatable), e.g. --set r=0.7.
-    #[arg(long = "set", value_name = "NAME=VALUE")]
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::config::set_arg)]
     pub set: Vec<String>,
     /// Gravity g (m/s², 0 for none).
     #[arg(long, default_value_t = 9.8, allow_hyphen_values = true)]
@@ -60,14 +58,19 @@ pub struct PhysArgs {
     pub seed: u64,
 }
 
+/// Independent seeds for `dashpot bed`.
+#[derive(Args, Debug, Clone)]
+pub struct SeedArgs {
+    /// Run K independent seeds (SEED, SEED+1, ...) in parallel and report their mean, with
+    /// standard errors from their spread (K = 1: batch means over the measured periods).
+    #[arg(long, default_value_t = 1, value_name = "K")]
+    pub seeds: usize,
+}
+
 impl PhysArgs {
     /// The law's parameters from `--set`.
     pub fn params(&self) -> Result<Vec<ParamValue>> {
-        let sets = self
-            .set
-            .iter()
-            .map(|s| parse_set(s))
-            .collect::<Result<Vec<_>, _>>()?;
+        let sets = crate::config::parse_sets(&self.set).map_err(|e| crate::cli::UsageError(e.to_string()))?;
         Ok(crate::config::merge_params(&Default::default(), &sets))
     }
 
@@ -142,6 +145,9 @@ pub struct BedArgs {
     /// Write the sampled time series (64 samples per period) to FILE.csv.
     #[arg(long, value_name = "FILE.csv")]
     pub trace: Option<PathBuf>,
+    /// Independent seeds.
+    #[command(flatten)]
+    pub seeds: SeedArgs,
 }
 
 /// `dashpot scaling`.
@@ -175,26 +181,11 @@ pub enum FiguresCommand {
         /// A small grid and short runs (seconds), instead of the paper's.
         #[arg(long)]
         quick: bool,
-        /// Only these figures (2, 3, 4; comma separated). Default: all.
-        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u8).range(2..=4))]
+        /// Only these figures (2, 3, 4, and 5 for the other statements of the paper; comma
+        /// separated). Default: all.
+        #[arg(long, value_delimiter = ',', value_parser = clap::value_parser!(u8).range(2..=5))]
         only: Vec<u8>,
     },
-}
-
-/// A progress bar on stderr, hidden when stderr is not a terminal.
-pub fn progress_bar(len: u64, what: &str) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let pb = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(style) = ProgressStyle::with_template(&format!(
-        "{what} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {{msg}} (eta {{eta}})"
-    )) {
-        pb.set_style(style);
-    }
-    pb
 }
 
 /// Parses FROM:TO:COUNT into COUNT evenly spaced values.
@@ -222,22 +213,77 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
     let cfg = a.phys.config(a.layers, a.freq);
     cfg.validate()?;
     let laws = a.phys.laws(reg)?;
-    let mut bed = Bed::new(cfg, laws)?;
+    // provenance, and the r(v) actually used when it comes from a contact law (issue 10)
+    let law_name = a.phys.restitution.strip_prefix(super::FROM_CONTACT);
+    let prov =
+        crate::output::Provenance::of(reg, law_name.unwrap_or(&a.phys.restitution), &a.phys.params()?)?;
+    prov.warn_if_shadowed();
+    let r_used = match law_name {
+        Some(_) => Some(r_samples(&laws)?),
+        None => None,
+    };
+    let k = a.seeds.seeds;
+    if k == 0 {
+        bail!("--seeds = 0 is out of range: give at least 1 seed");
+    }
+    let mut bed = Bed::new(
+        cfg,
+        Laws {
+            disk: &laws.disk,
+            wall: &laws.wall,
+        },
+    )?;
     if a.trace.is_some() {
         bed.enable_trace();
     }
     let total = (a.phys.transient + a.phys.cycles) / a.freq;
     let pb = progress_bar((total * 1000.0).ceil() as u64, "bed (ms simulated)");
-    let report = bed
-        .run_protocol(a.phys.transient, a.phys.cycles, &mut |t| {
-            pb.set_position((t * 1000.0) as u64)
-        })
-        .with_context(|| {
-            format!(
-                "bed n = {}, f = {} Hz, law {}",
-                a.layers, a.freq, a.phys.restitution
-            )
-        })?;
+    let context = || {
+        format!(
+            "bed n = {}, f = {} Hz, law {}",
+            a.layers, a.freq, a.phys.restitution
+        )
+    };
+    // the other seeds in parallel with the first (which draws the snapshot and the trace)
+    let (first, others) = rayon::join(
+        || {
+            bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |t| {
+                pb.set_position((t * 1000.0) as u64)
+            })
+        },
+        || {
+            use rayon::prelude::*;
+            (1..k as u64)
+                .into_par_iter()
+                .map(|s| {
+                    let cfg = BedConfig {
+                        seed: cfg.seed.wrapping_add(s),
+                        ..cfg
+                    };
+                    Bed::new(
+                        cfg,
+                        Laws {
+                            disk: &laws.disk,
+                            wall: &laws.wall,
+                        },
+                    )?
+                    .run_protocol(a.phys.transient, a.phys.cycles, &mut |_| {})
+                    .map_err(|e| match e {
+                        super::BedError::Collapse(m) => {
+                            super::BedError::Collapse(format!("seed {}: {m}", cfg.seed))
+                        }
+                        super::BedError::Overlap(m) => {
+                            super::BedError::Overlap(format!("seed {}: {m}", cfg.seed))
+                        }
+                        e => e,
+                    })
+                })
+                .collect::<Result<Vec<BedReport>, _>>()
+        },
+    );
+    let mut runs = vec![first.with_context(context)?];
+    runs.extend(others.with_context(context)?);
+    let report = BedReport::combine(&runs).context("no run")?;
     pb.finish_and_clear();
     if let Some(p) = &a.trace {
         write_trace(p, &bed)?;
@@ -255,14 +301,46 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
     }
     let params = a.phys.params()?;
     if a.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report_json(&a.phys.restitution, &params, &report))?
-        );
+        let mut v = report_json(&a.phys.restitution, &params, &report);
+        if let Some(o) = v.as_object_mut() {
+            o.insert("provenance".into(), prov.json());
+            if let Some(t) = &r_used {
+                let rows: Vec<_> = t
+                    .iter()
+                    .map(|(v, d, w)| json!({"speed": v, "disk_disk": d, "disk_wall": w}))
+                    .collect();
+                o.insert("restitution_used".into(), json!(rows));
+            }
+        }
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print_report(&a.phys.restitution, &params, &report);
+        prov.lines().iter().for_each(|l| println!("{l}"));
+        if let Some(t) = &r_used {
+            print_r_samples(&a.phys.restitution, t);
+        }
     }
     Ok(())
+}
+
+/// Impact speeds (m/s) at which the bed prints the r(v) it used for a `from:LAW` restitution.
+pub const R_SAMPLE_SPEEDS: [f64; 5] = [0.001, 0.01, 0.1, 1.0, 10.0];
+
+/// r(v) at [`R_SAMPLE_SPEEDS`] for the disk–disk and disk–wall pairs: (v, r_disk, r_wall).
+fn r_samples(laws: &Laws<DynRestitution>) -> Result<Vec<(f64, f64, f64)>> {
+    use super::Restitution as _;
+    R_SAMPLE_SPEEDS
+        .iter()
+        .map(|&v| Ok((v, laws.disk.r(v)?, laws.wall.r(v)?)))
+        .collect()
+}
+
+fn print_r_samples(name: &str, t: &[(f64, f64, f64)]) {
+    println!("restitution used ({name}, tabulated from the collision driver):");
+    println!("  v (m/s)      r disk-disk     r disk-wall");
+    for (v, d, w) in t {
+        println!("  {v:<10}   {d:.9}     {w:.9}");
+    }
 }
 
 /// The JSON of a bed report, with the law.
@@ -284,10 +362,13 @@ pub fn report_json(law: &str, params: &[ParamValue], r: &BedReport) -> serde_jso
 
 fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
     let c = &r.config;
-    let ps: Vec<String> = params.iter().map(|p| format!("{}={}", p.name, p.value)).collect();
+    let ps: Vec<String> = params
+        .iter()
+        .map(|p| format!(" {}={}", p.name, p.value))
+        .collect();
     println!(
-        "bed: law {law} {}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
-        ps.join(" "),
+        "bed: law {law}{}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
+        ps.concat(),
         c.layers,
         r.disks,
         c.freq,
@@ -296,10 +377,39 @@ fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
         r.lid
     );
     println!("measured over {:.3} s after the transient:", r.measured_time);
-    println!("  pressure P = Nc ΔI / L      {:.6e} N/m", r.pressure);
-    println!("  lid collision rate Nc       {:.6e} 1/s", r.lid_collision_rate);
-    println!("  mean impulse ΔI             {:.6e} N·s", r.mean_impulse);
-    println!("  temperature T               {:.6e} J", r.temperature);
+    let pm = |v: f64, e: Option<f64>| match e {
+        Some(e) => format!("{v:.6e} ± {e:.2e}"),
+        None => format!("{v:.6e}"),
+    };
+    println!(
+        "  (± one standard error: {})",
+        if r.seeds > 1 {
+            format!("spread of {} independent seeds", r.seeds)
+        } else {
+            "batch means over the measured periods".to_string()
+        }
+    );
+    println!(
+        "  pressure P = Nc ΔI / L      {} N/m",
+        pm(r.pressure, r.pressure_stderr)
+    );
+    println!(
+        "  lid collision rate Nc       {} 1/s",
+        pm(r.lid_collision_rate, r.lid_collision_rate_stderr)
+    );
+    println!(
+        "  mean impulse ΔI             {} N·s",
+        pm(r.mean_impulse, r.mean_impulse_stderr)
+    );
+    println!(
+        "  temperature T               {} J",
+        pm(r.temperature, r.temperature_stderr)
+    );
+    println!(
+        "  piston pressure             {} N/m (P + N m g / L = {:.6e})",
+        pm(r.piston_pressure, r.piston_pressure_stderr),
+        r.pressure + r.disks as f64 * c.mass * c.gravity / c.width
+    );
     println!(
         "run: {} events ({} collisions, {} cell crossings), {:.3e} events/s, {:.3e} collisions/s, {:.3} s wall ({:.4} s per simulated s)",
         r.events,
@@ -326,59 +436,6 @@ fn write_trace<R: super::Restitution>(p: &Path, bed: &Bed<R>) -> Result<()> {
     }
     let bytes = w.into_inner().context("trace csv")?;
     write_atomic(p, &bytes).with_context(|| format!("cannot write {}", p.display()))
-}
-
-/// A snapshot of the disks (m), the lid, the piston and the periodic boundaries.
-pub fn snapshot_panel<R: super::Restitution>(bed: &Bed<R>, title: &str) -> Panel {
-    let c = bed.config();
-    let r = 0.5 * c.diameter;
-    let z = bed.piston().state(bed.now()).z;
-    let (l, lid) = (c.width, bed.lid());
-    Panel {
-        title: title.to_string(),
-        x_label: "x (m)".into(),
-        y_label: "y (m)".into(),
-        equal_aspect: true,
-        x_range: Some((-0.005, l + 0.005)),
-        y_range: Some((-0.5 * c.amplitude - 0.003, lid + 0.003)),
-        disks: bed.positions().into_iter().map(|(x, y)| (x, y, r)).collect(),
-        series: vec![
-            Series::new("", vec![(0.0, lid), (l, lid)], Mark::Line, 6),
-            Series::new("", vec![(0.0, z), (l, z)], Mark::Line, 6),
-            Series::new("", vec![(0.0, z), (0.0, lid)], Mark::Dashed, 7),
-            Series::new("", vec![(l, z), (l, lid)], Mark::Dashed, 7),
-        ],
-        ..Default::default()
-    }
-}
-
-fn snapshot_figure<R: super::Restitution>(bed: &Bed<R>, title: &str) -> Figure {
-    let c = bed.config();
-    let mut f = Figure::single(snapshot_panel(bed, title));
-    let h = (bed.lid() + 0.5 * c.amplitude + 0.006) / (c.width + 0.01);
-    f.panel_size = (1400, ((1400.0 * h) as u32 + 120).clamp(200, 1400));
-    f
-}
-
-/// Saving a figure by its PNG path.
-pub trait SaveAs {
-    /// Writes `path` (.png) and the same name with .svg.
-    fn save_as(&self, path: &Path) -> Result<()>;
-}
-
-impl SaveAs for Figure {
-    fn save_as(&self, path: &Path) -> Result<()> {
-        let dir = path
-            .parent()
-            .filter(|d| !d.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
-        let stem = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().to_string())
-            .with_context(|| format!("--snapshot {}: not a file name", path.display()))?;
-        self.save(dir, &stem)?;
-        Ok(())
-    }
 }
 
 /// `dashpot scaling`.

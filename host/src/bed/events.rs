@@ -9,12 +9,17 @@
 ///
 /// A touching or overlapping pair (g0 ≤ 0) that is approaching (v < 0) collides now (τ = 0);
 /// a touching pair that is receding (v > 0) does not, and its next contact (if the acceleration
-/// brings it back) is the later root. Units: g0 in m, v in m/s, acc in m/s².
+/// brings it back) is the later root, as if g0 were 0 (an overlap here is roundoff: an
+/// accelerated pair that seemed to stay overlapping would otherwise never collide again and
+/// would pass through each other). At rest and pressed together (v = 0, acc < 0): now. Units: g0 in m, v in m/s, acc in m/s².
 #[inline]
 pub fn first_contact(g0: f64, v: f64, acc: f64) -> Option<f64> {
     if g0 <= 0.0 && v < 0.0 {
         return Some(0.0);
     }
+    // a touching pair whose gap is negative by roundoff counts as touching: otherwise a pair
+    // pressed together (acc < 0) whose gap never climbs back above 0 would never be found again
+    let g0 = g0.max(0.0);
     let half = 0.5 * acc;
     if half == 0.0 {
         return (v < 0.0).then(|| (-g0 / v).max(0.0));
@@ -53,6 +58,141 @@ pub fn pair_contact(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64) -> Option<f
     }
     // τ = (−b − √disc)/vv written without cancellation
     Some(c / (-b + disc.sqrt()))
+}
+
+/// [`pair_contact`], but only if the contact comes before `before` (s): a pair that cannot meet
+/// that soon is rejected without a square root, since τ ≥ c/(−2b) (the prediction of a disk
+/// only needs contacts earlier than the best event it has found so far).
+#[inline]
+pub fn pair_contact_before(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64, before: f64) -> Option<f64> {
+    let b = rx * vx + ry * vy;
+    if b >= 0.0 {
+        return None;
+    }
+    let c = rx * rx + ry * ry - sigma2;
+    if c <= 0.0 {
+        return Some(0.0);
+    }
+    if c >= -2.0 * b * before {
+        return None;
+    }
+    let vv = vx * vx + vy * vy;
+    let disc = b * b - vv * c;
+    if disc < 0.0 {
+        return None;
+    }
+    Some(c / (-b + disc.sqrt()))
+}
+
+/// The first τ in [0, `horizon`] (s) at which two disks at relative position (rx, ry) (m), with
+/// relative velocity (vx, vy) (m/s) and relative vertical acceleration `ay` (m/s²) (one disk
+/// rides on the piston, the other flies under gravity), are at distance √`sigma2` while
+/// approaching. The squared distance minus σ² is a quartic in τ; its sign changes are isolated
+/// between the roots of its derivatives (down to a quadratic, solved in closed form), so no
+/// contact is missed however briefly the disks touch. Touching (or overlapping by roundoff) and
+/// approaching, or at rest and accelerating into each other: 0.
+pub fn accel_pair_contact(
+    rx: f64,
+    ry: f64,
+    vx: f64,
+    vy: f64,
+    ay: f64,
+    sigma2: f64,
+    horizon: f64,
+) -> Option<f64> {
+    let h = 0.5 * ay;
+    let c0 = rx * rx + ry * ry - sigma2;
+    let c1 = 2.0 * (rx * vx + ry * vy);
+    let c2 = vx * vx + vy * vy + 2.0 * ry * h;
+    let (c3, c4) = (2.0 * vy * h, h * h);
+    if c0 <= 0.0 && (c1 < 0.0 || (c1 == 0.0 && c2 < 0.0)) {
+        return Some(0.0);
+    }
+    if horizon.is_nan() || horizon <= 0.0 {
+        return None;
+    }
+    let hi = horizon.min(1e300);
+    // exact distance at τ, for the refinement (no cancellation in expanded coefficients)
+    let f = |t: f64| {
+        let dx = rx + vx * t;
+        let dy = ry + (vy + h * t) * t;
+        dx * dx + dy * dy - sigma2
+    };
+    let roots = if c0 <= 0.0 {
+        // touching and receding: the roots of f/τ (a cubic) are the later contacts
+        let cubic = [c1, c2, c3, c4];
+        poly_roots(&cubic, 0.0, hi, &|t| horner(&cubic, t))
+    } else {
+        poly_roots(&[c0, c1, c2, c3, c4], 0.0, hi, &f)
+    };
+    // f starts positive (or touching and receding): its first sign change is a contact
+    roots.into_iter().next()
+}
+
+/// p(τ) = Σ c_k τ^k.
+#[inline]
+fn horner(c: &[f64], t: f64) -> f64 {
+    c.iter().rev().fold(0.0, |a, &k| a * t + k)
+}
+
+/// The points in (lo, hi] where the polynomial `c` (ascending coefficients) changes sign (or
+/// is exactly 0), ascending; `eval` evaluates it (or a function of the same sign that is more
+/// accurate, for the refinement). Between consecutive sign changes of p' the polynomial is
+/// monotone, so each sign change of p is bracketed and bisected to the last bit.
+fn poly_roots(c: &[f64], lo: f64, hi: f64, eval: &dyn Fn(f64) -> f64) -> Vec<f64> {
+    let mut c = c.to_vec();
+    while c.len() > 1 && c[c.len() - 1] == 0.0 {
+        c.pop();
+    }
+    let deg = c.len() - 1;
+    let mut knots = vec![lo];
+    match deg {
+        0 => return vec![],
+        1 => {}
+        2 => {
+            let t = -c[1] / (2.0 * c[2]);
+            if t > lo && t < hi {
+                knots.push(t);
+            }
+        }
+        _ => {
+            let d: Vec<f64> = (1..=deg).map(|k| k as f64 * c[k]).collect();
+            knots.extend(poly_roots(&d, lo, hi, &|t| horner(&d, t)));
+        }
+    }
+    knots.push(hi);
+    let mut out = Vec::new();
+    for w in knots.windows(2) {
+        let (mut a, mut b) = (w[0], w[1]);
+        let (mut fa, fb) = (eval(a), eval(b));
+        if fb == 0.0 {
+            out.push(b);
+            continue;
+        }
+        if fa == 0.0 || (fa < 0.0) == (fb < 0.0) {
+            continue;
+        }
+        for _ in 0..2100 {
+            let m = 0.5 * (a + b);
+            if m <= a || m >= b {
+                break;
+            }
+            let fm = eval(m);
+            if fm == 0.0 {
+                b = m;
+                break;
+            }
+            if (fm < 0.0) == (fa < 0.0) {
+                a = m;
+                fa = fm;
+            } else {
+                b = m;
+            }
+        }
+        out.push(b);
+    }
+    out.dedup();
+    out
 }
 
 /// A tournament (winner) tree over a fixed set of keys: one pending event time per disk.
@@ -96,19 +236,26 @@ impl Tournament {
     /// Sets the key of `i` to `t` and replays its path towards the root.
     #[inline]
     pub fn update(&mut self, i: usize, t: f64) {
+        assert!(i < self.size, "tournament index {i} out of range");
+        let node = self.node.as_mut_ptr();
         let mut k = self.size + i;
-        self.node[k].0 = t;
-        k >>= 1;
-        while k >= 1 {
-            let (a, b) = (self.node[2 * k], self.node[2 * k + 1]);
-            // ties: the left child holds the lower indices
-            let w = if b.0 < a.0 { b } else { a };
-            let old = self.node[k];
-            if w.1 == old.1 && w.0.to_bits() == old.0.to_bits() {
-                break;
-            }
-            self.node[k] = w;
+        // SAFETY: k < 2 size = node.len() on entry (checked above), and every step halves it
+        // while reading the children 2k, 2k + 1 < 2 size of a node k < size.
+        unsafe {
+            (*node.add(k)).0 = t;
             k >>= 1;
+            while k >= 1 {
+                // ties: the left child holds the lower indices; the winner is picked by index,
+                // not by a branch, which would be mispredicted half the time
+                let (a, b) = (*node.add(2 * k), *node.add(2 * k + 1));
+                let w = if b.0 < a.0 { b } else { a };
+                let old = *node.add(k);
+                if w.1 == old.1 && w.0.to_bits() == old.0.to_bits() {
+                    break;
+                }
+                *node.add(k) = w;
+                k >>= 1;
+            }
         }
     }
 }
@@ -150,6 +297,50 @@ mod tests {
         assert_eq!(pair_contact(0.002, 0.0, -1.0, 0.0, s2), Some(0.0));
         // grazing miss
         assert_eq!(pair_contact(0.01, 0.0025, -1.0, 0.0, s2), None);
+    }
+
+    #[test]
+    fn a_flying_disk_meets_a_riding_disk_at_the_root_of_the_quartic() {
+        let s2 = 4e-6; // d = 2 mm
+                       // disk j rides on a piston accelerating upward at 160 m/s², disk i falls onto it from
+                       // 1 mm above contact, head on: relative acceleration −(160 + 9.8), closing at 0.3 m/s
+        let (a, v, gap) = (-169.8, -0.3, 1e-3);
+        let t = accel_pair_contact(0.0, 0.002 + gap, 0.0, v, a, s2, 1.0).unwrap();
+        let exact = first_contact(gap, v, a).unwrap();
+        assert!((t - exact).abs() < 1e-15, "{t:e} vs {exact:e}");
+        // oblique: the distance at the root is σ, and it is the first such time
+        let (rx, ry, vx, vy) = (0.0015, 0.0025, -0.05, -0.2);
+        let t = accel_pair_contact(rx, ry, vx, vy, a, s2, 1.0).unwrap();
+        let d2 = |t: f64| (rx + vx * t).powi(2) + (ry + vy * t + 0.5 * a * t * t).powi(2);
+        assert!((d2(t) - s2).abs() < 1e-18, "{}", d2(t) - s2);
+        for k in 0..1000 {
+            assert!(d2(t * k as f64 / 1000.0) >= s2 - 1e-18);
+        }
+        // a brief graze that a coarse sampling would miss: the disks pass within σ for ~1 µs
+        let t = accel_pair_contact(0.001999, 0.0, 0.0, 0.0, -1.0, s2, 1.0);
+        assert!(
+            t.is_none(),
+            "receding along x? no: at rest, accelerating apart in y"
+        );
+        // touching and receding, but accelerated back: the later contact
+        let t = accel_pair_contact(0.0, 0.002, 0.0, 0.1, -10.0, s2, 1.0).unwrap();
+        assert!((t - 0.02).abs() < 1e-12, "{t}");
+        // touching at rest and pressed together: now
+        assert_eq!(
+            accel_pair_contact(0.0, 0.002, 0.0, 0.0, -10.0, s2, 1.0),
+            Some(0.0)
+        );
+        // beyond the horizon: none
+        assert_eq!(accel_pair_contact(0.0, 0.002, 0.0, 0.1, -10.0, s2, 0.01), None);
+    }
+
+    #[test]
+    fn a_touching_pair_pressed_together_with_a_roundoff_overlap_is_not_lost() {
+        // gap −1e-17 m, receding at 1e-9 m/s, pressed at 170 m/s²: it never gets back above 0
+        // on its parabola, but it is touching: the contact comes back at 2v/|a|
+        let t = first_contact(-1e-17, 1e-9, -170.0).unwrap();
+        assert!((t - 2e-9 / 170.0).abs() < 1e-22, "{t:e}");
+        assert_eq!(first_contact(-1e-17, 0.0, -170.0), Some(0.0));
     }
 
     #[test]

@@ -26,6 +26,8 @@ pub mod figures;
 pub mod observables;
 pub mod piston;
 pub mod scaling;
+pub mod statements;
+pub mod view;
 
 pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};
 
@@ -219,4 +221,7 @@ pub enum BedError {
     /// The event rate exploded in simulated time (inelastic collapse, or disks crushed).
     #[error("{0}")]
     Collapse(String),
+    /// Two disks, or a disk and a wall, overlap by more than the limit: a contact was missed.
+    #[error("{0}")]
+    Overlap(String),
 }

@@ -15,6 +15,10 @@ pub struct PowerFit {
     pub max_residual: f64,
     /// Number of points used.
     pub points: usize,
+    /// Standard error of θ propagated from the standard errors of the points (None when they
+    /// were not given): σ_θ² = Σ ((ln x_i − mean)/Sxx)² (σ_i/y_i)², the least-squares slope
+    /// being linear in the ln y_i.
+    pub theta_stderr: Option<f64>,
 }
 
 impl PowerFit {
@@ -27,11 +31,18 @@ impl PowerFit {
 /// Fits y = e^c x^θ by least squares of ln y on ln x over the points with x, y > 0 and finite.
 /// None with fewer than two such points or all x equal.
 pub fn fit_power(points: &[(f64, f64)]) -> Option<PowerFit> {
-    let pts: Vec<(f64, f64)> = points
+    let p: Vec<(f64, f64, Option<f64>)> = points.iter().map(|&(x, y)| (x, y, None)).collect();
+    fit_power_err(&p)
+}
+
+/// Like [`fit_power`], with a standard error of each y (or None), propagated to θ.
+pub fn fit_power_err(points: &[(f64, f64, Option<f64>)]) -> Option<PowerFit> {
+    let kept: Vec<(f64, f64, Option<f64>)> = points
         .iter()
-        .filter(|(x, y)| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
-        .map(|(x, y)| (x.ln(), y.ln()))
+        .copied()
+        .filter(|(x, y, _)| x.is_finite() && y.is_finite() && *x > 0.0 && *y > 0.0)
         .collect();
+    let pts: Vec<(f64, f64)> = kept.iter().map(|(x, y, _)| (x.ln(), y.ln())).collect();
     let n = pts.len();
     if n < 2 {
         return None;
@@ -46,12 +57,19 @@ pub fn fit_power(points: &[(f64, f64)]) -> Option<PowerFit> {
     let theta = sxy / sxx;
     let c = my - theta * mx;
     let res: Vec<f64> = pts.iter().map(|p| p.1 - (c + theta * p.0)).collect();
+    let theta_stderr = kept
+        .iter()
+        .zip(&pts)
+        .map(|((_, y, e), p)| e.map(|e| ((p.0 - mx) / sxx * e / y).powi(2)))
+        .sum::<Option<f64>>()
+        .map(f64::sqrt);
     Some(PowerFit {
         theta,
         intercept: c,
         rms_residual: (res.iter().map(|r| r * r).sum::<f64>() / n as f64).sqrt(),
         max_residual: res.iter().fold(0.0, |a: f64, r| a.max(r.abs())),
         points: n,
+        theta_stderr,
     })
 }
 
@@ -65,7 +83,11 @@ mod tests {
         let f = fit_power(&pts).unwrap();
         assert!((f.theta - 1.5).abs() < 1e-12 && (f.intercept - 3f64.ln()).abs() < 1e-12);
         assert!(f.max_residual < 1e-12 && f.is_power_law());
-        assert!(fit_power(&[(1.0, 1.0)]).is_none());
+        assert!(fit_power(&[(1.0, 1.0)]).is_none() && f.theta_stderr.is_none());
+        // two points 1 % uncertain each, a decade apart: σ_θ = √2 · 0.01 / ln 10
+        let f = fit_power_err(&[(1.0, 1.0, Some(0.01)), (10.0, 10.0, Some(0.1))]).unwrap();
+        let s = 2f64.sqrt() * 0.01 / 10f64.ln();
+        assert!((f.theta - 1.0).abs() < 1e-12 && (f.theta_stderr.unwrap() - s).abs() < 1e-12 * s);
         assert!(fit_power(&[(1.0, 1.0), (1.0, 2.0)]).is_none());
     }
 }

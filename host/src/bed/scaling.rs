@@ -2,7 +2,7 @@
 //! least-squares exponents θ of X ∝ V^θ for X = P, T, Nc, ΔI at each n (the paper's Fig. 4).
 
 use super::engine::{Bed, BedConfig, BedReport};
-use super::observables::{fit_power, PowerFit};
+use super::observables::{fit_power_err, PowerFit};
 use super::{BedError, Laws, Restitution};
 use crate::output::write_atomic;
 use crate::plot::{Mark, Panel, Series};
@@ -74,6 +74,7 @@ pub fn run_grid<R: Restitution>(
                 .run_protocol(grid.transient, grid.cycles, &mut |_| {})
                 .map_err(|e| match e {
                     BedError::Collapse(m) => BedError::Collapse(format!("n = {n}, f = {f} Hz: {m}")),
+                    BedError::Overlap(m) => BedError::Overlap(format!("n = {n}, f = {f} Hz: {m}")),
                     e => e,
                 })?;
             tick();
@@ -109,15 +110,22 @@ pub fn fit_all(grid: &Grid, runs: &[BedReport]) -> Vec<ScalingRow> {
         .enumerate()
         .map(|(a, &n)| {
             let rs = &runs[a * nf..(a + 1) * nf];
-            let fit = |f: &dyn Fn(&BedReport) -> f64| {
-                fit_power(&rs.iter().map(|r| (r.piston_speed, f(r))).collect::<Vec<_>>())
+            let fit = |f: &dyn Fn(&BedReport) -> (f64, Option<f64>)| {
+                fit_power_err(
+                    &rs.iter()
+                        .map(|r| {
+                            let (v, e) = f(r);
+                            (r.piston_speed, v, e)
+                        })
+                        .collect::<Vec<_>>(),
+                )
             };
             ScalingRow {
                 layers: n,
-                pressure: fit(&|r| r.pressure),
-                temperature: fit(&|r| r.temperature),
-                lid_collision_rate: fit(&|r| r.lid_collision_rate),
-                mean_impulse: fit(&|r| r.mean_impulse),
+                pressure: fit(&|r| (r.pressure, r.pressure_stderr)),
+                temperature: fit(&|r| (r.temperature, r.temperature_stderr)),
+                lid_collision_rate: fit(&|r| (r.lid_collision_rate, r.lid_collision_rate_stderr)),
+                mean_impulse: fit(&|r| (r.mean_impulse, r.mean_impulse_stderr)),
                 tc_share: rs.iter().map(|r| r.tc_share).fold(0.0, f64::max),
             }
         })
@@ -127,18 +135,25 @@ pub fn fit_all(grid: &Grid, runs: &[BedReport]) -> Vec<ScalingRow> {
 /// Writes every run of the grid as CSV.
 pub fn write_grid_csv(path: &Path, runs: &[BedReport]) -> Result<()> {
     let mut s = String::from(
-        "layers,freq_hz,piston_speed_m_s,pressure_n_m,lid_collision_rate_per_s,mean_impulse_n_s,temperature_j,events,collisions,tc_share,max_overlap_m,wall_s\n",
+        "layers,freq_hz,piston_speed_m_s,pressure_n_m,pressure_stderr,lid_collision_rate_per_s,lid_collision_rate_stderr,mean_impulse_n_s,mean_impulse_stderr,temperature_j,temperature_stderr,piston_pressure_n_m,piston_pressure_stderr,events,collisions,tc_share,max_overlap_m,wall_s\n",
     );
+    let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
     for r in runs {
         s.push_str(&format!(
-            "{},{},{},{:e},{:e},{:e},{:e},{},{},{:e},{:e},{:.3}\n",
+            "{},{},{},{:e},{},{:e},{},{:e},{},{:e},{},{:e},{},{},{},{:e},{:e},{:.3}\n",
             r.config.layers,
             r.config.freq,
             r.piston_speed,
             r.pressure,
+            e(r.pressure_stderr),
             r.lid_collision_rate,
+            e(r.lid_collision_rate_stderr),
             r.mean_impulse,
+            e(r.mean_impulse_stderr),
             r.temperature,
+            e(r.temperature_stderr),
+            r.piston_pressure,
+            e(r.piston_pressure_stderr),
             r.events,
             r.collisions,
             r.tc_share,
@@ -152,10 +167,15 @@ pub fn write_grid_csv(path: &Path, runs: &[BedReport]) -> Result<()> {
 /// Writes the exponents as CSV (theta and max |residual| of each observable).
 pub fn write_fit_csv(path: &Path, rows: &[ScalingRow]) -> Result<()> {
     let mut s =
-        String::from("layers,theta_p,resid_p,theta_t,resid_t,theta_nc,resid_nc,theta_di,resid_di,tc_share\n");
+        String::from("layers,theta_p,theta_p_stderr,resid_p,theta_t,theta_t_stderr,resid_t,theta_nc,theta_nc_stderr,resid_nc,theta_di,theta_di_stderr,resid_di,tc_share\n");
     let c = |f: &Option<PowerFit>| match f {
-        Some(f) => format!("{},{}", f.theta, f.max_residual),
-        None => ",".to_string(),
+        Some(f) => format!(
+            "{},{},{}",
+            f.theta,
+            f.theta_stderr.map(|e| e.to_string()).unwrap_or_default(),
+            f.max_residual
+        ),
+        None => ",,".to_string(),
     };
     for r in rows {
         s.push_str(&format!(
@@ -191,6 +211,14 @@ pub fn theta_panel(rows: &[ScalingRow], title: &str) -> Panel {
         let pts = pick(rows, f);
         series.push(Series::new(name, pts.clone(), Mark::Line, k));
         series.push(Series::new("", pts, Mark::Circles, k));
+        let bars: Vec<(f64, f64, f64)> = rows
+            .iter()
+            .filter_map(|r| {
+                f(r).filter(|p| p.is_power_law())
+                    .and_then(|p| p.theta_stderr.map(|e| (r.layers, p.theta, e)))
+            })
+            .collect();
+        series.extend(error_bars(&bars, k));
     }
     let xmax = rows.iter().map(|r| r.layers).fold(1.0, f64::max);
     Panel {
@@ -202,4 +230,13 @@ pub fn theta_panel(rows: &[ScalingRow], title: &str) -> Panel {
         series,
         ..Default::default()
     }
+}
+
+/// Vertical error bars of ± one standard error at (x, y, e), as short line series.
+pub fn error_bars(points: &[(f64, f64, f64)], color: usize) -> Vec<Series> {
+    points
+        .iter()
+        .filter(|p| p.2.is_finite() && p.2 > 0.0)
+        .map(|&(x, y, e)| Series::new("", vec![(x, y - e), (x, y + e)], Mark::Line, color))
+        .collect()
 }

@@ -154,23 +154,26 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
         opt.max_step_fraction = 0.01;
     }
     let end = a.integration.end_or(EndCriterion::Overlap);
+    let prov = sel.provenance(reg)?;
     let c = run_one(reg, &sel, v0, end, &opt)?;
     if let Some(p) = &a.trajectory {
-        write_atomic(p, &trajectory_csv(&c)?).with_context(|| format!("cannot write {}", p.display()))?;
+        let csv = [prov.csv_comment().into_bytes(), trajectory_csv(&c)?].concat();
+        write_atomic(p, &csv).with_context(|| format!("cannot write {}", p.display()))?;
     }
     if a.json {
         println!(
             "{}",
             serde_json::to_string_pretty(&json!({
-                "law": sel.name, "params": sel.params_json(), "pair": sel.pair_json(),
+                "law": sel.name, "params": prov.params_json(), "pair": sel.pair_json(),
                 "v0": v0, "end": end.as_str(),
                 "restitution": c.restitution, "contact_time": c.contact_time,
                 "max_overlap": c.max_overlap, "max_overlap_time": c.max_overlap_time,
                 "steps": c.steps, "force_evals": c.force_evals, "rtol": opt.rtol,
+                "provenance": prov.json(),
             }))?
         );
     } else {
-        println!("law: {} {}", sel.name, sel.params_json());
+        prov.lines().iter().for_each(|l| println!("{l}"));
         println!(
             "pair: {}: m_eff = {:.6e} kg, r_eff = {:.6e} m, E_eff = {:.6e} Pa",
             sel.partner, sel.pair.mass, sel.pair.radius, sel.pair.young
@@ -328,6 +331,7 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
     }
     let opt = a.integration.options()?;
     let end = a.integration.end_or(EndCriterion::Overlap);
+    let prov = sel.provenance(reg)?;
     let rows = sweep(
         reg,
         &SweepSpec {
@@ -374,8 +378,8 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
         ]);
         w.write_record(&rec)?;
     }
-    write_atomic(&a.out, &w.into_inner().context("csv")?)
-        .with_context(|| format!("cannot write {}", a.out.display()))?;
+    let csv = [prov.csv_comment().into_bytes(), w.into_inner().context("csv")?].concat();
+    write_atomic(&a.out, &csv).with_context(|| format!("cannot write {}", a.out.display()))?;
     println!("wrote {} collisions to {}", rows.len(), a.out.display());
     Ok(())
 }
@@ -394,7 +398,8 @@ pub struct CalibrateArgs {
     /// Impact speed of the measurement (m/s).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub v0: f64,
-    /// The law parameter to fit to the restitution (default: `eps`, or the law's only parameter).
+    /// The law parameter to fit to the restitution. Default: `eps` if the law has one, else its
+    /// only parameter other than `k`; a law with several others needs --fit NAME.
     #[arg(long)]
     pub fit: Option<String>,
     #[command(flatten)]
@@ -427,6 +432,9 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
         options: a.integration.options()?,
     };
     let c = calibrate(reg, &spec)?;
+    let fitted: Vec<ParamValue> = c.params.iter().map(|(k, v)| ParamValue::new(k, *v)).collect();
+    let prov = crate::output::Provenance::of(reg, &sel.name, &fitted)?;
+    prov.warn_if_shadowed();
     let young = sel.particle.young * c.young_factor;
     if a.json {
         let params: serde_json::Map<String, serde_json::Value> =
@@ -442,7 +450,7 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
                 "max_overlap": c.realized.max_overlap,
                 "restitution_residual": c.restitution_residual,
                 "contact_time_residual": c.contact_time_residual,
-                "collisions": c.collisions,
+                "collisions": c.collisions, "provenance": prov.json(),
             }))?
         );
     } else {
@@ -472,6 +480,7 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
                 .unwrap_or_default()
         );
         println!("collisions integrated: {}", c.collisions);
+        prov.lines().iter().skip(1).for_each(|l| println!("{l}"));
     }
     Ok(())
 }
@@ -588,6 +597,11 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
     };
     let c = oblique(&model, tmodel.as_ref(), &particle, &target, &impact)
         .with_context(|| format!("oblique impact of '{}' at v0 = {v0} m/s, {}°", sel.name, a.angle))?;
+    let prov = sel.provenance(reg)?;
+    let tprov = match &a.tangential {
+        Some(t) => Some(crate::output::Provenance::of(reg, t, &tparams)?),
+        None => None,
+    };
     let tjson: serde_json::Map<String, serde_json::Value> = tparams
         .iter()
         .map(|p| (p.name.to_string(), json!(p.value)))
@@ -611,6 +625,7 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
                 "contact_point_velocity_out": c.contact_point_velocity_out,
                 "sliding_share": c.sliding_share,
                 "dt": c.dt, "steps": c.steps,
+                "provenance": prov.json(), "tangential_provenance": tprov.as_ref().map(|p| p.json()),
             }))?
         );
     } else {
@@ -646,6 +661,10 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
             "contact time           = {:.8e} s ({} velocity-Verlet steps of {:.3e} s)",
             c.contact_time, c.steps, c.dt
         );
+        let tlines = tprov.iter().flat_map(|p| p.lines());
+        for l in prov.lines().into_iter().chain(tlines) {
+            println!("{l}");
+        }
     }
     Ok(())
 }

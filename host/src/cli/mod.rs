@@ -4,7 +4,8 @@ pub mod collide;
 pub mod dem;
 pub mod grid;
 
-use crate::config::{merge_params, parse_set, Config, Partner, Sphere, Wall};
+use crate::config::{merge_params, parse_sets, Config, Partner, Sphere, Wall};
+use crate::output::Provenance;
 use crate::registry::{kind_str, Registry, SearchPath};
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
@@ -22,27 +23,39 @@ pub struct Cli {
     pub command: Command,
 }
 
-/// Where to find plugins.
+/// Where to find plugins. The built-in laws (the plugins beside the dashpot executable) are
+/// always loaded unless `--no-default-plugins` is given; plugins named here come first, so a law
+/// name they share with a built-in one shadows it (with a warning when it is used).
 #[derive(Args, Debug, Clone, Default)]
 pub struct PluginArgs {
-    /// Directory to search for plugin libraries (repeatable; searched before DASHPOT_PLUGIN_PATH
-    /// and the directory of the dashpot executable).
+    /// Directory to search for plugin libraries (repeatable; searched after --plugin files,
+    /// before DASHPOT_PLUGIN_PATH and the built-in plugins, which stay loaded).
     #[arg(long = "plugin-dir", global = true, value_name = "DIR")]
     pub plugin_dirs: Vec<PathBuf>,
-    /// A plugin library to load by path (repeatable; loaded before any directory is searched).
+    /// A plugin library to load by path (repeatable; loaded first, before any directory is
+    /// searched; the built-in laws stay loaded). A relative path is relative to the current
+    /// directory.
     #[arg(long = "plugin", global = true, value_name = "FILE")]
     pub plugin_files: Vec<PathBuf>,
+    /// Do not load the built-in plugins (those beside the dashpot executable): only --plugin,
+    /// --plugin-dir and DASHPOT_PLUGIN_PATH.
+    #[arg(long = "no-default-plugins", global = true)]
+    pub no_default_plugins: bool,
 }
 
 impl PluginArgs {
     /// Loads the registry.
     pub fn registry(&self) -> Result<Registry> {
-        Ok(Registry::discover(&SearchPath::standard(
-            self.plugin_dirs.clone(),
-            self.plugin_files.clone(),
-        ))?)
+        let mut sp = SearchPath::standard(self.plugin_dirs.clone(), self.plugin_files.clone());
+        sp.use_default = !self.no_default_plugins;
+        Ok(Registry::discover(&sp)?)
     }
 }
+
+/// A malformed command line found after parsing (a parameter set twice, ...): exit status 2.
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+pub struct UsageError(pub String);
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
@@ -151,8 +164,9 @@ pub struct LawArgs {
     /// The law (see `dashpot laws`); may come from --config instead.
     #[arg(long)]
     pub law: Option<String>,
-    /// Set a law parameter, NAME=VALUE (repeatable; overrides --config).
-    #[arg(long = "set", value_name = "NAME=VALUE")]
+    /// Set a law parameter, NAME=VALUE (repeatable, once per parameter; overrides --config).
+    /// Parameters not set keep the defaults `dashpot law NAME` lists.
+    #[arg(long = "set", value_name = "NAME=VALUE", value_parser = crate::config::set_arg)]
     pub set: Vec<String>,
     /// TOML file with [law], [particle] and [partner] tables.
     #[arg(long)]
@@ -190,11 +204,7 @@ impl LawArgs {
             .clone()
             .or(cfg.law.name.clone())
             .context("no law given: use --law NAME (see `dashpot laws`) or a [law] name in --config")?;
-        let sets = self
-            .set
-            .iter()
-            .map(|s| parse_set(s))
-            .collect::<Result<Vec<_>, _>>()?;
+        let sets = parse_sets(&self.set).map_err(|e| UsageError(e.to_string()))?;
         let params = merge_params(&cfg.law.params, &sets);
         let (particle, pair, materials, partner) = self.particle.resolve(&cfg)?;
         Ok(Selection {
@@ -209,6 +219,14 @@ impl LawArgs {
 }
 
 impl Selection {
+    /// Where a result computed with this selection comes from (see [`Provenance`]); warns on
+    /// stderr if the law's name is shadowed.
+    pub fn provenance(&self, reg: &Registry) -> Result<Provenance> {
+        let p = Provenance::of(reg, &self.name, &self.params)?;
+        p.warn_if_shadowed();
+        Ok(p)
+    }
+
     /// The parameters as a JSON object.
     pub fn params_json(&self) -> serde_json::Value {
         let m: serde_json::Map<String, serde_json::Value> = self
@@ -251,7 +269,8 @@ pub fn run() -> std::process::ExitCode {
         Ok(()) => std::process::ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            std::process::ExitCode::from(1)
+            let usage = e.chain().any(|c| c.is::<UsageError>());
+            std::process::ExitCode::from(if usage { 2 } else { 1 })
         }
     }
 }
@@ -394,8 +413,9 @@ pub fn finite(name: &str, unit: &str, v: f64) -> Result<f64> {
 fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
     let sel = a.law.resolve()?;
     let (name, params, pair, partner) = (&sel.name, &sel.params, sel.pair, &sel.partner);
-    let (entry, plugin) = reg.find(name)?;
-    let (params_json, pair_json) = (sel.params_json(), sel.pair_json());
+    let (entry, _) = reg.find(name)?;
+    let prov = sel.provenance(reg)?;
+    let (params_json, pair_json) = (prov.params_json(), sel.pair_json());
     match entry.info.kind {
         LawKind::Contact => {
             if a.speed.is_some() {
@@ -425,13 +445,15 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
                 println!(
                     "{}",
                     serde_json::to_string_pretty(&json!({
-                        "law": name, "kind": "contact", "plugin": plugin.path.display().to_string(),
+                        "law": name, "kind": "contact", "plugin": prov.plugin_file,
                         "params": params_json, "pair": pair_json, "coefficients": c,
-                        "delta": delta, "rate": rate, "force": force,
+                        "delta": delta, "rate": rate, "force": force, "provenance": prov.json(),
                     }))?
                 );
             } else {
-                println!("law: {name} (contact, {})", plugin.path.display());
+                for l in prov.lines() {
+                    println!("{l}");
+                }
                 println!(
                     "pair: {partner}: m_eff = {:.6e} kg, r_eff = {:.6e} m, E_eff = {:.6e} Pa",
                     pair.mass, pair.radius, pair.young
@@ -471,12 +493,15 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
                 println!(
                     "{}",
                     serde_json::to_string_pretty(&json!({
-                        "law": name, "kind": "restitution", "plugin": plugin.path.display().to_string(),
+                        "law": name, "kind": "restitution", "plugin": prov.plugin_file,
                         "params": params_json, "pair": pair_json, "speed": speed, "restitution": r,
+                        "provenance": prov.json(),
                     }))?
                 );
             } else {
-                println!("law: {name} (restitution, {})", plugin.path.display());
+                for l in prov.lines() {
+                    println!("{l}");
+                }
                 println!("r(v = {speed} m/s) = {r:.10}");
             }
         }

@@ -21,20 +21,59 @@ fn coeff(c: &[dashpot_sdk::Coefficient], name: &str) -> f64 {
         .unwrap_or(f64::NAN)
 }
 
+/// The laws the report is made of.
+pub const REQUIRED: [&str; 5] = ["lsd", "hsd", "kuwabara-kono", "mcnamara-falcon", "constant"];
+
 /// Writes `report.md`, `laws.json` and CSV tables into `out`; `quick`: tiny driver runs.
 pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
+    // the papers need these laws: without one, the report would be incomplete, not a result
+    let missing: Vec<&str> = REQUIRED
+        .iter()
+        .copied()
+        .filter(|n| reg.find(n).is_err())
+        .collect();
+    if !missing.is_empty() {
+        anyhow::bail!(
+            "reproduce needs the built-in laws {}, but {} not found (searched: {}){}. Build them \
+             with `cargo build --release`, and do not pass --no-default-plugins; plugins given \
+             with --plugin, --plugin-dir or DASHPOT_PLUGIN_PATH are loaded in addition to them",
+            REQUIRED.join(", "),
+            if missing.len() == 1 {
+                format!("'{}' was", missing[0])
+            } else {
+                format!(
+                    "{} were",
+                    missing
+                        .iter()
+                        .map(|m| format!("'{m}'"))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            },
+            reg.searched
+                .iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            reg.refused_note()
+        );
+    }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
     let mut md = String::new();
     writeln!(md, "# dashpot: reproduction report\n")?;
     writeln!(
         md,
-        "Every number below was computed by the law plugins loaded at run time (`dashpot laws`).\n"
+        "Every number below was computed by the law plugins loaded at run time (`dashpot laws`), \
+         by dashpot {} (dashpot-sdk {}).\n",
+        env!("CARGO_PKG_VERSION"),
+        dashpot_sdk::abi::ABI_VERSION
     )?;
 
     // ---- laws ----
+    eprintln!("reproduce: the laws loaded");
     writeln!(
         md,
-        "## Laws loaded\n\n| law | kind | plugin | parameters |\n|---|---|---|---|"
+        "## Laws loaded\n\n| law | kind | plugin | sdk | file | parameters |\n|---|---|---|---|---|---|"
     )?;
     for l in &reg.laws {
         let p = &reg.plugins[l.plugin];
@@ -46,13 +85,30 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
             .collect();
         writeln!(
             md,
-            "| {} | {} | {} {} | {} |",
+            "| {} | {} | {} {} | {} | `{}` | {} |",
             l.info.name,
             crate::registry::kind_str(l.info.kind),
             p.name,
             p.version,
+            p.sdk_version,
+            p.path.display(),
             params.join("; ")
         )?;
+    }
+    for n in &reg.notes {
+        writeln!(md, "\nNote: {n}.")?;
+    }
+    for s in reg
+        .shadowed
+        .iter()
+        .filter(|s| REQUIRED.contains(&s.name.as_str()))
+    {
+        eprintln!(
+            "warning: law '{}' is taken from {}; it shadows the one in {}",
+            s.name,
+            s.used.display(),
+            s.hidden.display()
+        );
     }
     let laws: Vec<_> = reg.laws.iter().map(|l| law_json(reg, &l.info)).collect();
     write_atomic(
@@ -61,6 +117,7 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
     )?;
 
     // ---- Antypov & Elliott: MCC granule ----
+    eprintln!("reproduce: Antypov & Elliott, closed forms, Figs. 1-3 and the statements");
     let mcc = Particle::MCC;
     let pair = Pair::spheres(&mcc, &mcc)?;
     writeln!(
@@ -117,11 +174,13 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
         write_atomic(&out.join("antypov_elliott_closed_forms.csv"), csv.as_bytes())?;
         writeln!(md)?;
         md.push_str(&crate::report::collide::collide_figures(reg, out)?);
+        md.push_str(&crate::ae_statements::report(reg)?);
     } else {
         writeln!(md, "(the lsd and hsd plugins were not found)\n")?;
     }
 
     // ---- McNamara & Falcon: r(v) ----
+    eprintln!("reproduce: McNamara & Falcon, r(v) (Fig. 1)");
     writeln!(
         md,
         "## McNamara & Falcon (2005): restitution against impact speed (eq. 1, Fig. 1)\n"
@@ -185,6 +244,10 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
         } else {
             crate::bed::figures::Size::reproduce()
         };
+        eprintln!(
+            "reproduce: the vibrated bed, Figs. 2-4 and the other statements (size {})",
+            size.name
+        );
         let bed_md = crate::bed::figures::run(reg, &bed_dir, &size)?;
         write_atomic(&bed_dir.join("report.md"), bed_md.as_bytes())?;
         // the bed report's sections, one level down

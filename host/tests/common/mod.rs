@@ -43,8 +43,11 @@ pub fn plugin_dir() -> PathBuf {
     .clone()
 }
 
+/// `dashpot` with exactly the five seed plugins (`--no-default-plugins`: whatever else sits
+/// beside the binary in target/ stays out).
 pub fn dashpot(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_dashpot"))
+        .arg("--no-default-plugins")
         .arg("--plugin-dir")
         .arg(plugin_dir())
         .args(args)

@@ -71,7 +71,9 @@ pub enum CalibrateError {
     Law(#[from] LawError),
     /// Which parameter to fit is ambiguous.
     #[error(
-        "say which parameter of '{law}' to fit to the restitution with --fit NAME (one of: {candidates})"
+        "say which parameter of '{law}' to fit to the restitution with --fit NAME (one of: \
+         {candidates}); the default is `eps`, or else the only parameter other than `k`, and \
+         '{law}' has neither"
     )]
     Ambiguous {
         /// The law.

@@ -102,6 +102,7 @@ impl PairLaw<dashpot_sdk::abi::ContactModelHandle> {
         pair: &dashpot_sdk::Pair,
         poisson: f64,
     ) -> Result<Self, LawError> {
+        pair.validate()?;
         Ok(PairLaw::new(
             law.bind(&pair.materials(poisson)?)?,
             pair.mass,
@@ -338,13 +339,29 @@ pub enum CollideError {
     /// The law's force is too weak to stop the particles within a 1 m overlap.
     #[error(
         "the contact law cannot stop the particles: at v0 = {v0} m/s its force stays below the \
-         kinetic-energy scale m v0²/δ for every overlap up to 1 m (F(1 m, v0) = {f_at_1m} N)"
+         kinetic-energy scale m v0²/δ for every overlap up to 1 m (F at the last overlap probed, \
+         with δ̇ = v0: {f_at_1m} N)"
     )]
     NoStop {
         /// Impact speed (m/s).
         v0: f64,
-        /// F(δ = 1 m, δ̇ = v0) (N).
+        /// F(δ, δ̇ = v0) (N) at the largest overlap probed (between 0.5 m and 1 m).
         f_at_1m: f64,
+    },
+    /// The law failed while its overlap scale was sought, at an overlap the collision comes near.
+    #[error(
+        "the contact law failed at overlap δ = {delta:e} m, where it was asked for the collision's \
+         overlap scale at v0 = {v0} m/s (the overlap grows from 1e-40 m until F·δ reaches the \
+         kinetic-energy scale m v0²; it had not reached it below {delta:e} m, so the collision \
+         itself comes near this overlap): {source}"
+    )]
+    Probe {
+        /// The overlap probed (m).
+        delta: f64,
+        /// Impact speed (m/s).
+        v0: f64,
+        /// The law's error.
+        source: LawError,
     },
     /// The particles did not separate within the limits.
     #[error(
@@ -382,31 +399,87 @@ impl From<RhsError> for CollideError {
 
 /// The overlap scale δ* where F·δ* = m v0² (the kinetic energy in force × overlap), with
 /// F = max(|F(δ*, 0)|, |F(δ*, v0)|) so that purely dissipative laws have a scale too.
+///
+/// The law is only asked about overlaps the collision itself comes near: the search starts far
+/// below any physical overlap ([`PROBE_START`]) and grows, never past the first overlap where
+/// F·δ ≥ m v0² (and the collision's maximum overlap δ_max satisfies ∫F dδ = m v0²/2, so for any
+/// force that does not decrease with δ, δ* ≤ 2 δ_max). A law valid only up to some overlap (a
+/// fitted or tabulated law, a plastic limit) is thus never evaluated far beyond what the
+/// collision reaches. Each growth step goes at most half-way (in log δ) to where the power law
+/// through the last two points would cross, and at least a factor 2, so the largest overlap
+/// probed is below 2 δ*.
 pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64, CollideError> {
     let target = mass * v0 * v0;
-    let g = |d: f64| -> Result<f64, LawError> {
-        Ok(law.force(d, 0.0)?.abs().max(law.force(d, v0)?.abs()) * d - target)
+    // F·δ at δ, as the largest magnitude over the two probed rates
+    let work = |d: f64| -> Result<f64, CollideError> {
+        let f = |rate: f64| {
+            law.force(d, rate).map_err(|e| CollideError::Probe {
+                delta: d,
+                v0,
+                source: e,
+            })
+        };
+        Ok(f(0.0)?.abs().max(f(v0)?.abs()) * d)
     };
-    if g(1.0)? < 0.0 {
-        return Err(CollideError::NoStop {
-            v0,
-            f_at_1m: law.force(1.0, v0)?,
-        });
-    }
-    // bisection on a log scale (geometric means), to within a factor 1.01
-    let (mut lo, mut hi) = (1e-60f64, 1.0f64);
-    if g(lo)? >= 0.0 {
+    let (mut lo, mut w_lo) = (PROBE_START, work(PROBE_START)?);
+    if w_lo >= target {
         return Ok(lo);
     }
+    let mut hi;
+    let mut prev: Option<(f64, f64)> = None;
+    loop {
+        // the next overlap: half-way to the power-law estimate of the crossing, in [2, 1e3]×
+        let mut factor = 2.0f64;
+        if let Some((d0, w0)) = prev {
+            if w0 > 0.0 && w_lo > w0 {
+                let p = (w_lo / w0).ln() / (lo / d0).ln();
+                let to_cross = ((target / w_lo).ln() / p).exp();
+                if to_cross.is_finite() {
+                    factor = to_cross.sqrt().clamp(2.0, 1e3);
+                }
+            }
+        }
+        hi = lo * factor;
+        if hi > PROBE_LIMIT {
+            return Err(CollideError::NoStop {
+                v0,
+                f_at_1m: law.force(lo, v0)?,
+            });
+        }
+        let w_hi = work(hi)?;
+        if w_hi >= target {
+            break;
+        }
+        prev = Some((lo, w_lo));
+        (lo, w_lo) = (hi, w_hi);
+    }
+    // bisection on a log scale (geometric means), to within a factor 1.01
     while hi > 1.01 * lo {
         let mid = (lo * hi).sqrt();
-        if g(mid)? >= 0.0 {
+        if work(mid)? >= target {
             hi = mid;
         } else {
             lo = mid;
         }
     }
     Ok(hi)
+}
+
+/// The smallest overlap the scale search asks a law about (m): far below any physical overlap
+/// (10⁻⁴⁰ m), so that even the gentlest collision's scale lies above it.
+pub const PROBE_START: f64 = 1e-40;
+
+/// The largest overlap the scale search asks a law about (m): a law still too weak to stop the
+/// particles there never will.
+pub const PROBE_LIMIT: f64 = 1.0;
+
+/// What a rebound that never ends suggests.
+macro_rules! overdamped_hint {
+    () => {
+        "; the overlap creeps back towards 0 without reaching it: the law may be overdamped (the \
+         particles come to rest before they separate). With --end force the contact ends when \
+         the force returns to 0"
+    };
 }
 
 /// Phases 1 and 3: u = δ^{1/4} is the independent variable, the state is (v, t).
@@ -793,11 +866,17 @@ pub fn collide<C: ContactForce>(
                 u.powi(4),
                 y[0],
                 steps,
-                "too many steps in the rebound phase",
+                concat!("too many steps in the rebound phase", overdamped_hint!()),
             ));
         }
         if y[1] > t_limit {
-            return Err(no_return(y[1], u.powi(4), y[0], steps, "contact time limit"));
+            return Err(no_return(
+                y[1],
+                u.powi(4),
+                y[0],
+                steps,
+                concat!("contact time limit in the rebound phase", overdamped_hint!()),
+            ));
         }
         let last = u + h <= 0.0;
         let hh = if last { -u } else { h };

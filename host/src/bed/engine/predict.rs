@@ -1,0 +1,228 @@
+//! Prediction: the next event of each disk.
+
+use super::FREE;
+use super::{Bed, Kind};
+use crate::bed::cells::NONE;
+use crate::bed::events::{accel_pair_contact, first_contact, pair_contact_before};
+use crate::bed::Restitution;
+
+impl<R: Restitution> Bed<R> {
+    /// Predicts the next event of disk `i` from the current time, scanning everything.
+    pub(super) fn predict(&mut self, i: usize) {
+        self.predict_scope(i, Scope::All);
+    }
+
+    /// Predicts the next event of disk `i` from the current time and enters it in the queue.
+    ///
+    /// Besides its pending event, each disk caches the earliest of its *other* events (disks,
+    /// lid, piston) found by the last scan. After a cell crossing, while that cached event is
+    /// still valid, only the three cells that just became neighbours (and a wall just come
+    /// within reach) need scanning: the other candidates are unchanged, since the disk's
+    /// trajectory is, and a neighbour whose trajectory changed has predicted its own events
+    /// against this disk. That cuts the work of a crossing, most of the events, by two thirds.
+    pub(super) fn predict_scope(&mut self, i: usize, scope: Scope) {
+        let now = self.now;
+        let (xi, yi, vxi, vyi) = self.state_at(i, now);
+        let g = self.g;
+        let ayi = self.d[i].ay;
+        let rides = self.ride[i] != FREE;
+        // a disk riding on the piston stops at the end of its piece (it is re-anchored or leaves)
+        let ride_end = if rides {
+            self.piston.piece_start(self.ride[i] + 1) - now
+        } else {
+            f64::INFINITY
+        };
+        let (nx, ny) = (self.cells.nx, self.cells.ny);
+        let (cx, cy) = self.cells.col_row[i];
+        let (cx, cy) = (cx as usize, cy as usize);
+        // the best event that is not a cell crossing: from the cache or from scratch
+        let (mut best, mut kind, mut partner, mut pcount) = match scope {
+            Scope::All => (f64::INFINITY, Kind::Never, NONE, 0),
+            _ => (
+                self.cache_t[i] - now,
+                self.cache_kind[i],
+                self.cache_partner[i],
+                self.cache_pcount[i],
+            ),
+        };
+        let yb = self.cells.y0 + cy as f64 * self.cells.wy;
+        // the lid, from the top row only (rows are at least one diameter high)
+        if rides {
+            if ride_end < best {
+                best = ride_end.max(0.0);
+                kind = Kind::Horizon;
+                partner = NONE;
+            }
+        } else if cy + 1 == ny && matches!(scope, Scope::All | Scope::Row(1)) {
+            if let Some(t) = first_contact(self.lid - self.radius - yi, -vyi, g) {
+                if t < best {
+                    best = t;
+                    kind = Kind::Lid;
+                    partner = NONE;
+                }
+            }
+        }
+        // disks of this and the eight neighbouring cells (or of the three new ones)
+        let (rows, cols) = match scope {
+            Scope::All => (-1i64..=1, -1i64..=1),
+            Scope::Row(d) => (d..=d, -1..=1),
+            Scope::Col(d) => (-1..=1, d..=d),
+        };
+        for dy in rows {
+            let ry = cy as i64 + dy;
+            if ry < 0 || ry >= ny as i64 {
+                continue;
+            }
+            for dx in cols.clone() {
+                let rx = cx as i64 + dx;
+                let rx = if rx < 0 {
+                    (rx + nx as i64) as usize
+                } else if rx as usize >= nx {
+                    rx as usize - nx
+                } else {
+                    rx as usize
+                };
+                let mut j = self.cells.head(ry as usize * nx + rx);
+                while j != NONE {
+                    let ju = j as usize;
+                    if ju != i {
+                        let dtj = now - self.d[ju].tl;
+                        let xj = self.d[ju].x + self.d[ju].vx * dtj;
+                        let ayj = self.d[ju].ay;
+                        let yj = self.d[ju].y + (self.d[ju].vy + 0.5 * ayj * dtj) * dtj;
+                        let vyj = self.d[ju].vy + ayj * dtj;
+                        let rxij = self.wrap(xi - xj);
+                        let (ry, vx, vy) = (yi - yj, vxi - self.d[ju].vx, vyi - vyj);
+                        let hit = if ayj == ayi {
+                            pair_contact_before(rxij, ry, vx, vy, self.sigma2, best)
+                        } else {
+                            // one of the two rides on the piston: search up to its ride's end
+                            let end = if rides {
+                                ride_end
+                            } else if self.ride[ju] != FREE {
+                                self.piston.piece_start(self.ride[ju] + 1) - now
+                            } else {
+                                f64::INFINITY
+                            };
+                            accel_pair_contact(rxij, ry, vx, vy, ayi - ayj, self.sigma2, best.min(end))
+                        };
+                        if let Some(t) = hit {
+                            if t < best {
+                                best = t;
+                                kind = Kind::Disk;
+                                partner = j;
+                                pcount = self.count[ju];
+                            }
+                        }
+                    }
+                    j = self.cells.next(ju);
+                }
+            }
+        }
+        // the piston, piece by piece, only from rows it can reach, only from when the disk can
+        // be down at the piston's highest, and only if that is before the best event so far
+        if !rides && yb < self.piston_reach && matches!(scope, Scope::All | Scope::Row(-1)) {
+            let above = yi - self.piston_reach;
+            let reach = if above <= 0.0 {
+                Some(0.0)
+            } else {
+                first_contact(above, vyi, -g)
+            };
+            if let Some(tmin) = reach.filter(|&t| t < best) {
+                let k0 = self.piston.piece(now + tmin).max(self.piston.piece(now));
+                let mut settled = false;
+                for k in k0..k0 + 4 {
+                    let start = self.piston.piece_start(k).max(now);
+                    if start - now >= best {
+                        settled = true;
+                        break;
+                    }
+                    let end = self.piston.piece_start(k + 1);
+                    let dt = start - now;
+                    let y0 = yi + (vyi - 0.5 * g * dt) * dt;
+                    let v0 = vyi - g * dt;
+                    let p = self.piston.state_on(k, start);
+                    if let Some(t) = first_contact(y0 - self.radius - p.z, v0 - p.v, -g - p.a) {
+                        if start + t <= end {
+                            let tt = start + t - now;
+                            if tt < best {
+                                best = tt;
+                                kind = Kind::Piston;
+                                partner = NONE;
+                            }
+                            settled = true;
+                            break;
+                        }
+                    }
+                }
+                if !settled {
+                    let h = self.piston.piece_start(k0 + 4) - now;
+                    if h < best {
+                        best = h;
+                        kind = Kind::Horizon;
+                        partner = NONE;
+                    }
+                }
+            }
+        }
+        self.cache_t[i] = now + best;
+        self.cache_kind[i] = kind;
+        self.cache_partner[i] = partner;
+        self.cache_pcount[i] = pcount;
+        // cell crossings
+        let mut bx = f64::INFINITY;
+        let mut kx = Kind::Never;
+        if vxi > 0.0 {
+            let xr = (cx + 1) as f64 * self.cells.wx;
+            bx = ((xr - xi) / vxi).max(0.0);
+            kx = Kind::CellRight;
+        } else if vxi < 0.0 {
+            let xl = cx as f64 * self.cells.wx;
+            bx = ((xl - xi) / vxi).max(0.0);
+            kx = Kind::CellLeft;
+        }
+        if cy + 1 < ny {
+            if let Some(t) = first_contact(yb + self.cells.wy - yi, -vyi, -ayi) {
+                if t < bx {
+                    bx = t;
+                    kx = Kind::CellUp;
+                }
+            }
+        }
+        if cy > 0 {
+            if let Some(t) = first_contact(yi - yb, vyi, ayi) {
+                if t < bx {
+                    bx = t;
+                    kx = Kind::CellDown;
+                }
+            }
+        }
+        if bx < best {
+            best = bx;
+            kind = kx;
+            partner = NONE;
+        }
+        self.kind[i] = kind;
+        self.partner[i] = partner;
+        self.pcount[i] = pcount;
+        self.queue.update(i, now + best);
+    }
+
+    /// Whether the cached non-crossing event of `i` still holds (its partner has not collided
+    /// since).
+    #[inline]
+    pub(super) fn cache_valid(&self, i: usize) -> bool {
+        self.cache_kind[i] != Kind::Disk || self.count[self.cache_partner[i] as usize] == self.cache_pcount[i]
+    }
+}
+
+/// Which neighbours a prediction scans.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Scope {
+    /// All nine cells and both walls.
+    All,
+    /// Only the row of cells just entered (+1 above, −1 below).
+    Row(i64),
+    /// Only the column of cells just entered (+1 right, −1 left).
+    Col(i64),
+}
