@@ -85,9 +85,12 @@ impl<const D: usize> Neighbours<D> {
             return true;
         }
         let lim2 = 0.25 * self.skin * self.skin;
-        pos.par_iter()
-            .zip(self.anchor.par_iter())
-            .any(|(x, a)| dom.delta(x, a).norm_squared() > lim2)
+        let moved = |(x, a): (&VecD<D>, &VecD<D>)| dom.delta(x, a).norm_squared() > lim2;
+        if pos.len() < super::contacts::SERIAL_BELOW {
+            pos.iter().zip(self.anchor.iter()).any(moved)
+        } else {
+            pos.par_iter().zip(self.anchor.par_iter()).any(moved)
+        }
     }
 
     /// Rebuilds the list for `pos` (wrapped first) and radii `radius`.

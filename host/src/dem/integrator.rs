@@ -13,13 +13,22 @@
 //! by the two-body driver with the run's own law (so it is the law's stiffness that sets it).
 
 use super::cells::{Domain, Neighbours};
-use super::contacts::ContactSet;
+use super::contacts::{ContactSet, SERIAL_BELOW};
 use super::state::{from3, to3, Body, Material, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
 use crate::collide::{collide, Options, PairLaw};
 use dashpot_sdk::EndCriterion;
 use rayon::prelude::*;
+
+/// One particle's item in the kick–drift loop.
+type KickDrift<'a, const D: usize> = (
+    usize,
+    (
+        ((&'a mut VecD<D>, &'a mut VecD<D>), &'a mut Vec3),
+        &'a mut VecD<D>,
+    ),
+);
 
 /// Run settings.
 #[derive(Debug, Clone)]
@@ -413,19 +422,29 @@ impl<const D: usize> Engine<D> {
             let p = &mut self.p;
             let (pos, vel, omega) = (&mut p.pos, &mut p.vel, &mut p.omega);
             let (force, torque, mass, inertia) = (&p.force, &p.torque, &p.mass, &p.inertia);
-            pos.par_iter_mut()
-                .zip(vel.par_iter_mut())
-                .zip(omega.par_iter_mut())
-                .zip(self.vpred.par_iter_mut())
-                .enumerate()
-                .for_each(|(i, (((x, v), w), vp))| {
-                    let a = force[i] / mass[i] + g;
-                    let al = torque[i] / inertia[i];
-                    *v += a * h;
-                    *x += *v * dt;
-                    *w += al * h;
-                    *vp = *v + a * h;
-                });
+            let kick_drift = |(i, (((x, v), w), vp)): KickDrift<'_, D>| {
+                let a = force[i] / mass[i] + g;
+                let al = torque[i] / inertia[i];
+                *v += a * h;
+                *x += *v * dt;
+                *w += al * h;
+                *vp = *v + a * h;
+            };
+            if pos.len() < SERIAL_BELOW {
+                pos.iter_mut()
+                    .zip(vel.iter_mut())
+                    .zip(omega.iter_mut())
+                    .zip(self.vpred.iter_mut())
+                    .enumerate()
+                    .for_each(kick_drift);
+            } else {
+                pos.par_iter_mut()
+                    .zip(vel.par_iter_mut())
+                    .zip(omega.par_iter_mut())
+                    .zip(self.vpred.par_iter_mut())
+                    .enumerate()
+                    .for_each(kick_drift);
+            }
         }
         self.t += dt;
         self.steps += 1;
@@ -438,13 +457,18 @@ impl<const D: usize> Engine<D> {
             let p = &mut self.p;
             let (vel, omega) = (&mut p.vel, &mut p.omega);
             let (force, torque, mass, inertia) = (&p.force, &p.torque, &p.mass, &p.inertia);
-            vel.par_iter_mut()
-                .zip(omega.par_iter_mut())
-                .enumerate()
-                .for_each(|(i, (v, w))| {
-                    *v += (force[i] / mass[i] + g) * h;
-                    *w += torque[i] / inertia[i] * h;
-                });
+            let kick = |(i, (v, w)): (usize, (&mut VecD<D>, &mut Vec3))| {
+                *v += (force[i] / mass[i] + g) * h;
+                *w += torque[i] / inertia[i] * h;
+            };
+            if vel.len() < SERIAL_BELOW {
+                vel.iter_mut().zip(omega.iter_mut()).enumerate().for_each(kick);
+            } else {
+                vel.par_iter_mut()
+                    .zip(omega.par_iter_mut())
+                    .enumerate()
+                    .for_each(kick);
+            }
         }
         self.check(true)
     }
@@ -468,7 +492,7 @@ impl<const D: usize> Engine<D> {
     fn check(&self, velocities_too: bool) -> Result<(), DemError> {
         let p = &self.p;
         let dom = &self.cfg.domain;
-        let bad = (0..p.len()).into_par_iter().find_first(|&i| {
+        let bad_at = |&i: &usize| {
             let fin = p.pos[i].iter().all(|x| x.is_finite())
                 && (!velocities_too
                     || (p.vel[i].iter().all(|x| x.is_finite()) && p.omega[i].iter().all(|x| x.is_finite())));
@@ -477,7 +501,12 @@ impl<const D: usize> Engine<D> {
             }
             dom.bounded
                 && (0..D).any(|k| !dom.periodic[k] && (p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k]))
-        });
+        };
+        let bad = if p.len() < SERIAL_BELOW {
+            (0..p.len()).find(bad_at)
+        } else {
+            (0..p.len()).into_par_iter().find_first(bad_at)
+        };
         if let Some(i) = bad {
             let fmt = |v: &VecD<D>| format!("{:?}", v.as_slice());
             if !p.pos[i].iter().chain(p.vel[i].iter()).all(|x| x.is_finite())
