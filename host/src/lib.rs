@@ -12,6 +12,7 @@ pub mod ae_statements;
 pub mod bed;
 pub mod cli;
 pub mod config;
+pub mod dem;
 pub mod output;
 pub mod report;
 pub mod tabulate;

@@ -1,6 +1,7 @@
 //! The `dashpot` command line.
 
 pub mod collide;
+pub mod dem;
 pub mod grid;
 
 use crate::config::{merge_params, parse_sets, Config, Partner, Sphere, Wall};
@@ -96,6 +97,8 @@ pub enum Command {
     Bed(crate::bed::cli::BedArgs),
     /// Scaling exponents θ of the vibrated bed over a grid of layers and frequencies.
     Scaling(crate::bed::cli::ScalingArgs),
+    /// Soft-sphere DEM: a scene of disks or spheres, every contact through the contact laws.
+    Dem(crate::cli::dem::DemArgs),
 }
 
 /// Which figures.
@@ -291,6 +294,7 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Reproduce { out, quick } => crate::reproduce::run(&reg, &out, quick),
         Command::Bed(a) => crate::bed::cli::bed(&reg, &a),
         Command::Scaling(a) => crate::bed::cli::scaling(&reg, &a),
+        Command::Dem(a) => crate::cli::dem::run(&reg, &a),
     }
 }
 

@@ -1,0 +1,326 @@
+//! `dashpot dem --scene FILE.toml [--json] [--out DIR]`: a soft-sphere DEM run of a scene.
+
+use crate::dem::scene::SceneFile;
+use crate::dem::{Engine, Laws};
+use crate::registry::Registry;
+use anyhow::{Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+
+/// `dashpot dem`.
+#[derive(Args, Debug)]
+pub struct DemArgs {
+    /// The scene (TOML; see `examples/dem/` and the `dem::scene` docs).
+    #[arg(long, required_unless_present = "bed", conflicts_with = "bed")]
+    pub scene: Option<PathBuf>,
+    /// McNamara & Falcon's vibrated bed on the DEM engine instead of a scene.
+    #[command(flatten)]
+    pub bed: DemBedArgs,
+    /// Print the final state as JSON (particles, dt, steps, time, energy, contacts, ...).
+    #[arg(long)]
+    pub json: bool,
+    /// Write the trajectory (extended XYZ, for OVITO/ParaView/ASE) and the final state here.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws.
+#[derive(Args, Debug)]
+pub struct DemBedArgs {
+    /// Run the vibrated bed (the event-driven bed's geometry) with contact laws.
+    #[arg(long)]
+    pub bed: bool,
+    /// Number of layers n (N = n L/d disks).
+    #[arg(long, requires = "bed", allow_hyphen_values = true)]
+    pub layers: Option<f64>,
+    /// Piston frequency f (Hz).
+    #[arg(long, requires = "bed", allow_hyphen_values = true)]
+    pub freq: Option<f64>,
+    /// The contact law (see `dashpot laws`).
+    #[arg(long, requires = "bed")]
+    pub law: Option<String>,
+    /// A contact-law parameter NAME=VALUE (repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE", requires = "bed")]
+    pub set: Vec<String>,
+    /// A tangential law (friction), e.g. mindlin.
+    #[arg(long, requires = "bed")]
+    pub tangential: Option<String>,
+    /// A tangential-law parameter NAME=VALUE (repeatable), e.g. mu=0.3.
+    #[arg(long = "tset", value_name = "NAME=VALUE", requires = "bed")]
+    pub tset: Vec<String>,
+    /// Young's modulus of the disks (Pa); default steel, 2e11.
+    #[arg(long, allow_hyphen_values = true)]
+    pub young: Option<f64>,
+    /// Poisson's ratio; default 0.3.
+    #[arg(long, allow_hyphen_values = true)]
+    pub poisson: Option<f64>,
+    /// The step (s); default: the law's contact time at the largest impact speed / 50.
+    #[arg(long, allow_hyphen_values = true)]
+    pub dt: Option<f64>,
+    /// Gravity (m/s²).
+    #[arg(long, default_value_t = 9.8, allow_hyphen_values = true)]
+    pub gravity: f64,
+    /// Transient periods (not measured).
+    #[arg(long, default_value_t = 50.0, allow_hyphen_values = true)]
+    pub transient: f64,
+    /// Measured periods.
+    #[arg(long, default_value_t = 200.0, allow_hyphen_values = true)]
+    pub cycles: f64,
+    /// Seed of the initial state.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+/// Runs `dashpot dem`.
+pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
+    let Some(path) = &a.scene else {
+        return run_bed(reg, &a.bed, a.json);
+    };
+    let text =
+        std::fs::read_to_string(path).with_context(|| format!("reading --scene {}", path.display()))?;
+    let file = SceneFile::parse(&text).with_context(|| format!("in {}", path.display()))?;
+    match file.dimension()? {
+        2 => run_dim::<2>(reg, a, path, &file),
+        _ => run_dim::<3>(reg, a, path, &file),
+    }
+}
+
+fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
+    use crate::config::{merge_params, parse_set};
+    let layers = b.layers.context("--bed needs --layers N")?;
+    let freq = b.freq.context("--bed needs --freq HZ")?;
+    let law = b
+        .law
+        .clone()
+        .context("--bed needs --law NAME (a contact law, e.g. hsd)")?;
+    let mut bed = crate::dem::bed::DemBed::paper(layers, freq);
+    bed.bed.gravity = b.gravity;
+    bed.bed.seed = b.seed;
+    bed.dt = b.dt;
+    if let Some(e) = b.young {
+        bed.material.young = e;
+    }
+    if let Some(nu) = b.poisson {
+        bed.material.poisson = nu;
+    }
+    let sets = b
+        .set
+        .iter()
+        .map(|s| parse_set(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let params = merge_params(&Default::default(), &sets);
+    let tsets = b
+        .tset
+        .iter()
+        .map(|s| parse_set(s))
+        .collect::<Result<Vec<_>, _>>()?;
+    let tparams = merge_params(&Default::default(), &tsets);
+    let load = || {
+        Laws::from_registry(
+            reg,
+            (law.as_str(), params.as_slice()),
+            b.tangential.as_deref().map(|t| (t, tparams.as_slice())),
+            &bed.material,
+        )
+    };
+    let c = bed.engine(load()?)?.step_choice;
+    eprintln!(
+        "DEM bed: E = {:.3e} Pa, dt = {:.4e} s, contact time {:.4e} s at {:.3} m/s{}",
+        bed.material.young,
+        c.dt,
+        c.collision_time,
+        c.impact_speed,
+        if c.given { " (dt given)" } else { "" }
+    );
+    let total = (b.transient + b.cycles) / freq;
+    let pb = progress((total * 1000.0).ceil() as u64);
+    let r = bed
+        .run(load()?, b.transient, b.cycles, &mut |t| {
+            pb.set_position((t * 1000.0) as u64)
+        })
+        .with_context(|| format!("DEM bed n = {layers}, f = {freq} Hz, law {law}"))?;
+    pb.finish_and_clear();
+    let mut v = serde_json::to_value(&r)?;
+    v["engine"] = serde_json::json!("dem");
+    v["law"] = serde_json::json!(law);
+    v["params"] = serde_json::json!(params
+        .iter()
+        .map(|p| (p.name.to_string(), p.value))
+        .collect::<std::collections::BTreeMap<_, _>>());
+    v["tangential"] = serde_json::json!(b.tangential);
+    if json {
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!(
+            "DEM bed, law {law}{}: n = {layers}, f = {freq} Hz, {} disks",
+            b.tangential
+                .as_ref()
+                .map(|t| format!(" + {t}"))
+                .unwrap_or_default(),
+            r.disks
+        );
+        println!(
+            "lid pressure P = {:.5e} ± {:.1e} N/m",
+            r.pressure, r.pressure_error
+        );
+        println!(
+            "lid collision rate {:.5e} /s, mean impulse {:.5e} N·s, temperature {:.5e} J",
+            r.lid_collision_rate, r.mean_impulse, r.temperature
+        );
+        println!(
+            "{} steps of {:.4e} s over {:.3} s measured, {:.1} s wall",
+            r.steps, r.dt, r.measured_time, r.wall_seconds
+        );
+    }
+    Ok(())
+}
+
+fn run_dim<const D: usize>(
+    reg: &Registry,
+    a: &DemArgs,
+    path: &std::path::Path,
+    file: &SceneFile,
+) -> Result<()> {
+    let scene = file
+        .scene::<D>()
+        .with_context(|| format!("in {}", path.display()))?;
+    let normal = file.law.param_values();
+    let tang = file
+        .tangential
+        .as_ref()
+        .map(|t| (t.name.as_str(), t.param_values()));
+    let laws = Laws::from_registry(
+        reg,
+        (&file.law.name, &normal),
+        tang.as_ref().map(|(n, p)| (*n, p.as_slice())),
+        &scene.config.material,
+    )
+    .context("[law] / [tangential]")?;
+    let mut e = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)?;
+    let c = e.step_choice;
+    let line = if c.given {
+        format!(
+            "dt = {:.4e} s (given; the contact time at {:.3} m/s is {:.4e} s: {:.1} steps per collision)",
+            c.dt,
+            c.impact_speed,
+            c.collision_time,
+            c.collision_time / c.dt
+        )
+    } else {
+        format!(
+            "dt = {:.4e} s = contact time {:.4e} s / {} (law '{}', smallest particle, impact speed {:.3} m/s)",
+            c.dt, c.collision_time, scene.config.steps_per_collision, file.law.name, c.impact_speed
+        )
+    };
+    eprintln!("{line}");
+    let total_steps = (scene.duration / c.dt).ceil() as u64;
+    let mut traj = None;
+    if let Some(dir) = &a.out {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating --out {}", dir.display()))?;
+        let p = dir.join("trajectory.xyz");
+        let f = std::fs::File::create(&p).with_context(|| format!("creating {}", p.display()))?;
+        let mut w = std::io::BufWriter::new(f);
+        crate::dem::xyz::write_frame(&e, &mut w)?;
+        traj = Some(w);
+    }
+    let frames = if a.out.is_some() {
+        scene.snapshots.max(1)
+    } else {
+        0
+    } as u64;
+    let pb = progress(total_steps);
+    let wall0 = std::time::Instant::now();
+    let every = (total_steps / 200).max(1);
+    let mut next_frame = 1u64;
+    while e.time() + 0.5 * e.dt() < scene.duration {
+        e.step()
+            .with_context(|| format!("at t = {:.6e} s, step {}", e.time(), e.steps()))?;
+        if e.steps() % every == 0 {
+            pb.set_position(e.steps());
+        }
+        if let Some(w) = traj.as_mut() {
+            if frames > 0 && e.steps() * frames >= next_frame * total_steps {
+                crate::dem::xyz::write_frame(&e, w)?;
+                next_frame += 1;
+            }
+        }
+    }
+    pb.finish_and_clear();
+    let wall = wall0.elapsed().as_secs_f64();
+    if let Some(mut w) = traj {
+        w.flush()?;
+    }
+    let mut state = e.state_json();
+    state["law"] = serde_json::json!(file.law.name);
+    state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
+    state["wall_seconds"] = serde_json::json!(wall);
+    state["particle_steps_per_second"] =
+        serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));
+    if let Some(dir) = &a.out {
+        crate::output::write_atomic(
+            &dir.join("final.json"),
+            serde_json::to_string_pretty(&state)?.as_bytes(),
+        )?;
+    }
+    if a.json {
+        println!("{}", serde_json::to_string_pretty(&state)?);
+    } else {
+        let en = e.energy();
+        println!(
+            "{} {}D particles, law {}{}",
+            e.p.len(),
+            D,
+            file.law.name,
+            file.tangential
+                .as_ref()
+                .map(|t| format!(" + {}", t.name))
+                .unwrap_or_default()
+        );
+        println!(
+            "t = {:.6e} s after {} steps of {:.4e} s ({wall:.2} s wall, {:.3e} particle-steps/s)",
+            e.time(),
+            e.steps(),
+            e.dt(),
+            e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9)
+        );
+        println!(
+            "energy: {:.6e} J (translational {:.6e}, rotational {:.6e}, gravity {:.6e})",
+            en.total(),
+            en.translational,
+            en.rotational,
+            en.gravity
+        );
+        println!(
+            "contacts now: {} ({} pairs, {} with walls); neighbour rebuilds: {}",
+            e.contacts(),
+            e.pairs.len(),
+            e.wall_contacts.len(),
+            e.rebuilds()
+        );
+        if let Some(dir) = &a.out {
+            println!(
+                "wrote {} and {}",
+                dir.join("trajectory.xyz").display(),
+                dir.join("final.json").display()
+            );
+        }
+    }
+    Ok(())
+}
+
+fn progress(len: u64) -> ProgressBar {
+    let target = if std::io::stderr().is_terminal() {
+        ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::hidden()
+    };
+    let pb = ProgressBar::with_draw_target(Some(len), target);
+    if let Ok(s) =
+        ProgressStyle::with_template("dem [{elapsed_precise}] {wide_bar} {pos}/{len} steps (eta {eta})")
+    {
+        pb.set_style(s);
+    }
+    pb
+}

@@ -1,0 +1,251 @@
+//! The domain (periodic axes) and the neighbour list: a cell list rebuilt when a particle has
+//! moved by more than half the skin since the last build (a Verlet list on top of cells).
+//!
+//! The list holds every pair (i, j), i < j, whose surfaces were closer than `skin` at the build,
+//! sorted by i then j, as compressed rows (`start[i]..start[i+1]` into `js`). Until any particle
+//! has moved by skin/2 no other pair can touch, so contacts are found by scanning the list only.
+
+use super::state::VecD;
+use rayon::prelude::*;
+
+/// The simulation box: periodic along some axes (positions wrapped into `[lo, hi)` there), open
+/// along the others (particles may go anywhere; walls confine them).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Domain<const D: usize> {
+    /// Lower corner (m) (used along periodic axes, and to detect lost particles along the others
+    /// when `bounded`).
+    pub lo: VecD<D>,
+    /// Upper corner (m).
+    pub hi: VecD<D>,
+    /// Periodic axes.
+    pub periodic: [bool; D],
+    /// A particle outside `[lo, hi]` along an open axis is lost (an error).
+    pub bounded: bool,
+}
+
+impl<const D: usize> Domain<D> {
+    /// Box length along axis `k` (m).
+    #[inline]
+    pub fn length(&self, k: usize) -> f64 {
+        self.hi[k] - self.lo[k]
+    }
+
+    /// The minimum-image displacement `a − b` (m).
+    #[inline(always)]
+    pub fn delta(&self, a: &VecD<D>, b: &VecD<D>) -> VecD<D> {
+        let mut d = a - b;
+        for k in 0..D {
+            if self.periodic[k] {
+                let l = self.length(k);
+                d[k] -= l * (d[k] / l).round();
+            }
+        }
+        d
+    }
+
+    /// Wraps `x` into the box along periodic axes.
+    #[inline]
+    pub fn wrap(&self, x: &mut VecD<D>) {
+        for k in 0..D {
+            if self.periodic[k] {
+                let l = self.length(k);
+                let mut y = x[k] - self.lo[k];
+                y -= l * (y / l).floor();
+                if y >= l {
+                    y -= l;
+                }
+                x[k] = self.lo[k] + y;
+            }
+        }
+    }
+}
+
+/// The neighbour list (see the module doc).
+#[derive(Debug, Clone, Default)]
+pub struct Neighbours<const D: usize> {
+    /// Row starts, `n + 1` entries.
+    pub start: Vec<u32>,
+    /// Partners j > i of each row i, sorted.
+    pub js: Vec<u32>,
+    /// Positions at the build (m).
+    pub anchor: Vec<VecD<D>>,
+    /// The skin (m).
+    pub skin: f64,
+    /// Builds so far.
+    pub builds: u64,
+}
+
+/// Particles per parallel task.
+const CHUNK: usize = 2048;
+
+impl<const D: usize> Neighbours<D> {
+    /// Whether some particle has moved by more than skin/2 since the build.
+    pub fn stale(&self, dom: &Domain<D>, pos: &[VecD<D>]) -> bool {
+        if self.anchor.len() != pos.len() {
+            return true;
+        }
+        let lim2 = 0.25 * self.skin * self.skin;
+        let moved = |(x, a): (&VecD<D>, &VecD<D>)| dom.delta(x, a).norm_squared() > lim2;
+        if pos.len() < super::contacts::SERIAL_BELOW {
+            pos.iter().zip(self.anchor.iter()).any(moved)
+        } else {
+            pos.par_iter().zip(self.anchor.par_iter()).any(moved)
+        }
+    }
+
+    /// Rebuilds the list for `pos` (wrapped first) and radii `radius`.
+    pub fn build(&mut self, dom: &Domain<D>, pos: &mut [VecD<D>], radius: &[f64], skin: f64) {
+        let n = pos.len();
+        pos.par_iter_mut().for_each(|x| dom.wrap(x));
+        self.skin = skin;
+        self.builds += 1;
+        self.anchor.clear();
+        self.anchor.extend_from_slice(pos);
+        if n == 0 {
+            self.start = vec![0];
+            self.js.clear();
+            return;
+        }
+        let rmax = radius.iter().cloned().fold(0.0, f64::max);
+        let mut size = 2.0 * rmax + skin;
+        // grid bounds: the box along periodic axes, the particles' extent along the others
+        let mut lo = VecD::<D>::zeros();
+        let mut hi = VecD::<D>::zeros();
+        for k in 0..D {
+            if dom.periodic[k] {
+                lo[k] = dom.lo[k];
+                hi[k] = dom.hi[k];
+            } else {
+                let (a, b) = pos.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                    (a.min(x[k]), b.max(x[k]))
+                });
+                lo[k] = a;
+                hi[k] = b + 1e-12 * (1.0 + b.abs());
+            }
+        }
+        // at most ~2 cells per particle (a far-flung particle must not blow up the grid)
+        loop {
+            let cells: f64 = (0..D)
+                .map(|k| ((hi[k] - lo[k]) / size).floor().max(1.0))
+                .product();
+            if cells <= 2.0 * n as f64 + 64.0 {
+                break;
+            }
+            size *= 1.5;
+        }
+        let mut dims = [1usize; D];
+        let mut csize = [size; D];
+        for k in 0..D {
+            dims[k] = ((hi[k] - lo[k]) / size).floor().max(1.0) as usize;
+            csize[k] = (hi[k] - lo[k]) / dims[k] as f64;
+            if csize[k].is_nan() || csize[k] <= 0.0 {
+                csize[k] = size;
+            }
+        }
+        let ncell: usize = dims.iter().product();
+        let cell_of = |x: &VecD<D>| -> usize {
+            let mut c = 0usize;
+            for k in (0..D).rev() {
+                let q = (((x[k] - lo[k]) / csize[k]).floor() as i64).clamp(0, dims[k] as i64 - 1);
+                c = c * dims[k] + q as usize;
+            }
+            c
+        };
+        let cell: Vec<usize> = pos.par_iter().map(cell_of).collect();
+        let mut cstart = vec![0u32; ncell + 1];
+        for &c in &cell {
+            cstart[c + 1] += 1;
+        }
+        for c in 0..ncell {
+            cstart[c + 1] += cstart[c];
+        }
+        let mut fill = cstart.clone();
+        let mut members = vec![0u32; n];
+        for (i, &c) in cell.iter().enumerate() {
+            members[fill[c] as usize] = i as u32;
+            fill[c] += 1;
+        }
+        let neighbour_cells = |c: usize| -> Vec<usize> {
+            let mut idx = [0i64; D];
+            let mut r = c;
+            for k in 0..D {
+                idx[k] = (r % dims[k]) as i64;
+                r /= dims[k];
+            }
+            let mut out = Vec::with_capacity(27);
+            let total = 3usize.pow(D as u32);
+            'o: for m in 0..total {
+                let mut mm = m;
+                let mut id = 0usize;
+                let mut q = [0i64; D];
+                for k in 0..D {
+                    q[k] = idx[k] + (mm % 3) as i64 - 1;
+                    mm /= 3;
+                    if q[k] < 0 || q[k] >= dims[k] as i64 {
+                        if dom.periodic[k] {
+                            q[k] = q[k].rem_euclid(dims[k] as i64);
+                        } else {
+                            continue 'o;
+                        }
+                    }
+                }
+                for k in (0..D).rev() {
+                    id = id * dims[k] + q[k] as usize;
+                }
+                out.push(id);
+            }
+            out.sort_unstable();
+            out.dedup();
+            out
+        };
+        let chunks: Vec<(Vec<u32>, Vec<u32>)> = (0..n.div_ceil(CHUNK))
+            .into_par_iter()
+            .map(|ch| {
+                let (a, b) = (ch * CHUNK, ((ch + 1) * CHUNK).min(n));
+                let mut counts = Vec::with_capacity(b - a);
+                let mut js = Vec::new();
+                let mut last_cell = usize::MAX;
+                let mut nb = Vec::new();
+                for i in a..b {
+                    if cell[i] != last_cell {
+                        last_cell = cell[i];
+                        nb = neighbour_cells(last_cell);
+                    }
+                    let before = js.len();
+                    for &c in &nb {
+                        for &j in &members[cstart[c] as usize..cstart[c + 1] as usize] {
+                            if (j as usize) <= i {
+                                continue;
+                            }
+                            let cut = radius[i] + radius[j as usize] + skin;
+                            if dom.delta(&pos[i], &pos[j as usize]).norm_squared() < cut * cut {
+                                js.push(j);
+                            }
+                        }
+                    }
+                    js[before..].sort_unstable();
+                    counts.push((js.len() - before) as u32);
+                }
+                (counts, js)
+            })
+            .collect();
+        self.start.clear();
+        self.start.reserve(n + 1);
+        self.start.push(0);
+        self.js.clear();
+        let mut acc = 0u32;
+        for (counts, js) in chunks {
+            for c in counts {
+                acc += c;
+                self.start.push(acc);
+            }
+            self.js.extend_from_slice(&js);
+        }
+    }
+
+    /// Partners of particle `i`.
+    #[inline]
+    pub fn of(&self, i: usize) -> &[u32] {
+        &self.js[self.start[i] as usize..self.start[i + 1] as usize]
+    }
+}

@@ -1,0 +1,92 @@
+//! What a run measures: energies, contacts, the state as JSON.
+
+use super::state::VecD;
+use super::Engine;
+
+/// Energies (J).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Energy {
+    /// Translational kinetic energy Σ ½ m v².
+    pub translational: f64,
+    /// Rotational kinetic energy Σ ½ I ω².
+    pub rotational: f64,
+    /// Potential energy in gravity, −Σ m g·x (positions as wrapped into the box).
+    pub gravity: f64,
+}
+
+impl Energy {
+    /// Kinetic plus gravitational (J); the elastic energy stored in the contacts is not included
+    /// (a law does not publish its potential).
+    pub fn total(&self) -> f64 {
+        self.translational + self.rotational + self.gravity
+    }
+}
+
+impl<const D: usize> Engine<D> {
+    /// The energies now.
+    pub fn energy(&self) -> Energy {
+        let p = &self.p;
+        let g: VecD<D> = self.config().gravity;
+        let mut e = Energy {
+            translational: 0.0,
+            rotational: 0.0,
+            gravity: 0.0,
+        };
+        for i in 0..p.len() {
+            e.translational += 0.5 * p.mass[i] * p.vel[i].norm_squared();
+            e.rotational += 0.5 * p.inertia[i] * p.omega[i].norm_squared();
+            e.gravity -= p.mass[i] * g.dot(&p.pos[i]);
+        }
+        e
+    }
+
+    /// Granular temperature: the mean kinetic energy per particle (J), translational only.
+    pub fn temperature(&self) -> f64 {
+        self.energy().translational / self.p.len().max(1) as f64
+    }
+
+    /// Contacts now (particle pairs + particle–wall).
+    pub fn contacts(&self) -> usize {
+        self.pairs.len() + self.wall_contacts.len()
+    }
+
+    /// The final state, as `dashpot dem --json` prints it.
+    pub fn state_json(&self) -> serde_json::Value {
+        let p = &self.p;
+        let parts: Vec<serde_json::Value> = (0..p.len())
+            .map(|i| {
+                let w = if D == 2 {
+                    serde_json::json!(p.omega[i].z)
+                } else {
+                    serde_json::json!(p.omega[i].as_slice())
+                };
+                serde_json::json!({
+                    "position": p.pos[i].as_slice(),
+                    "velocity": p.vel[i].as_slice(),
+                    "angular_velocity": w,
+                    "diameter": 2.0 * p.radius[i],
+                })
+            })
+            .collect();
+        let e = self.energy();
+        let mv = self.mean_velocity();
+        serde_json::json!({
+            "dimension": D,
+            "particles": parts,
+            "dt": self.dt(),
+            "steps": self.steps(),
+            "time": self.time(),
+            "energy": e.total(),
+            "energies": e,
+            "contacts": self.contacts(),
+            "pair_contacts": self.pairs.len(),
+            "wall_contacts": self.wall_contacts.len(),
+            "pair_episodes": self.pair_episodes,
+            "neighbour_rebuilds": self.rebuilds(),
+            "collision_time": self.step_choice.collision_time,
+            "impact_speed": self.step_choice.impact_speed,
+            "dt_given": self.step_choice.given,
+            "mean_velocity": [mv.x, mv.y, mv.z],
+        })
+    }
+}

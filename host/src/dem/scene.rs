@@ -1,0 +1,512 @@
+//! The scene format of `dashpot dem --scene FILE.toml`, and a generator of random polydisperse
+//! packings.
+//!
+//! ```toml
+//! dimension = 2                      # 2: disks (ω about z), 3: spheres
+//! gravity = [0.0, -9.81]             # m/s²
+//! duration = 0.5                     # s
+//! # dt = 1e-6                        # s; else τ/steps_per_collision at impact_speed (printed)
+//! # steps_per_collision = 50
+//! # impact_speed = 1.0               # m/s; else estimated
+//! # skin = 4e-4                      # m; else 0.3 of the smallest diameter
+//! # snapshots = 10                   # frames written to --out (trajectory.xyz)
+//! [law]
+//! name = "hsd"
+//! params = { eps = 0.5 }
+//! [tangential]                       # optional
+//! name = "mindlin"
+//! params = { mu = 0.3 }
+//! [material]
+//! young = 1.0e8                      # Pa
+//! poisson = 0.3
+//! density = 7800.0                   # kg/m³
+//! disk_mass = "sphere"               # 2D: "sphere" (m = π ρ d³/6, I = 2/5 m R²) or "disk" (m = π ρ d³/4, I = m R²/2)
+//! [box]                              # optional
+//! lo = [0.0, 0.0]
+//! hi = [0.2, 0.1]
+//! periodic = [true, false]
+//! bounded = false                    # true: a particle leaving [lo, hi] along an open axis is an error
+//! [[wall]]
+//! point = [0.0, 0.0]
+//! normal = [0.0, 1.0]
+//! # motion = { kind = "piston", amplitude = 0.025, frequency = 20.0 }   # or kind = "sine"
+//! [[particle]]
+//! position = [0.1, 0.001]
+//! velocity = [1.0, 0.0]
+//! angular_velocity = 0.0             # 2D: a number (about z); 3D: [x, y, z]
+//! diameter = 0.002
+//! [generate]                         # optional: random polydisperse particles added to [[particle]]
+//! count = 2000
+//! diameter = [0.0018, 0.0022]        # uniform in [min, max] (m), or one number
+//! lo = [0.0, 0.0]                    # the region filled (m)
+//! hi = [0.2, 0.1]
+//! speed = 0.1                        # random velocities of this magnitude (m/s), default 0
+//! seed = 1
+//! ```
+
+use super::cells::Domain;
+use super::integrator::EngineConfig;
+use super::state::{Body, DiskMass, Material, Vec3, VecD};
+use super::walls::{Motion, Wall};
+use crate::bed::piston::Piston;
+use dashpot_sdk::ParamValue;
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+/// Why a scene is refused; the message names the key and the value.
+#[derive(Debug, thiserror::Error)]
+#[error("scene: {0}")]
+pub struct SceneError(pub String);
+
+fn bad(msg: String) -> SceneError {
+    SceneError(msg)
+}
+
+/// A law table: `name` and `params`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LawTable {
+    /// The law's name.
+    pub name: String,
+    /// Its parameters.
+    #[serde(default)]
+    pub params: BTreeMap<String, f64>,
+}
+
+impl LawTable {
+    /// The parameters as the registry takes them.
+    pub fn param_values(&self) -> Vec<ParamValue> {
+        self.params.iter().map(|(k, v)| ParamValue::new(k, *v)).collect()
+    }
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct MaterialTable {
+    young: f64,
+    poisson: f64,
+    density: f64,
+    #[serde(default)]
+    disk_mass: Option<DiskMass>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BoxTable {
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    #[serde(default)]
+    periodic: Option<Vec<bool>>,
+    #[serde(default)]
+    bounded: bool,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields, tag = "kind", rename_all = "kebab-case")]
+enum MotionTable {
+    Fixed,
+    Piston { amplitude: f64, frequency: f64 },
+    Sine { amplitude: f64, frequency: f64 },
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct WallTable {
+    point: Vec<f64>,
+    normal: Vec<f64>,
+    #[serde(default)]
+    motion: Option<MotionTable>,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+enum Spin {
+    Scalar(f64),
+    Vector(Vec<f64>),
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ParticleTable {
+    position: Vec<f64>,
+    #[serde(default)]
+    velocity: Option<Vec<f64>>,
+    #[serde(default)]
+    angular_velocity: Option<Spin>,
+    diameter: f64,
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+enum Diameters {
+    One(f64),
+    Range(Vec<f64>),
+}
+
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GenerateTable {
+    count: usize,
+    diameter: Diameters,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    #[serde(default)]
+    speed: f64,
+    #[serde(default = "one")]
+    seed: u64,
+}
+
+fn one() -> u64 {
+    1
+}
+
+/// The scene file as written.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    dimension: usize,
+    #[serde(default)]
+    gravity: Option<Vec<f64>>,
+    duration: f64,
+    #[serde(default)]
+    dt: Option<f64>,
+    #[serde(default)]
+    steps_per_collision: Option<f64>,
+    #[serde(default)]
+    impact_speed: Option<f64>,
+    #[serde(default)]
+    skin: Option<f64>,
+    #[serde(default)]
+    snapshots: Option<usize>,
+    /// The normal law.
+    pub law: LawTable,
+    /// The tangential law, if any.
+    #[serde(default)]
+    pub tangential: Option<LawTable>,
+    material: MaterialTable,
+    #[serde(default, rename = "box")]
+    domain: Option<BoxTable>,
+    #[serde(default)]
+    wall: Vec<WallTable>,
+    #[serde(default)]
+    particle: Vec<ParticleTable>,
+    #[serde(default)]
+    generate: Option<GenerateTable>,
+}
+
+/// A scene of dimension `D`, checked.
+#[derive(Debug, Clone)]
+pub struct Scene<const D: usize> {
+    /// Engine settings.
+    pub config: EngineConfig<D>,
+    /// Simulated time (s).
+    pub duration: f64,
+    /// Frames of the trajectory (0: none).
+    pub snapshots: usize,
+    /// The particles.
+    pub bodies: Vec<Body<D>>,
+    /// The walls.
+    pub walls: Vec<Wall<D>>,
+}
+
+impl SceneFile {
+    /// Parses TOML text.
+    pub fn parse(text: &str) -> Result<SceneFile, SceneError> {
+        toml::from_str(text).map_err(|e| bad(e.to_string()))
+    }
+
+    /// The dimension (2 or 3).
+    pub fn dimension(&self) -> Result<usize, SceneError> {
+        match self.dimension {
+            2 | 3 => Ok(self.dimension),
+            d => Err(bad(format!(
+                "dimension = {d} is out of range: it must be 2 (disks) or 3 (spheres)"
+            ))),
+        }
+    }
+
+    /// The checked scene; `D` must equal [`SceneFile::dimension`].
+    pub fn scene<const D: usize>(&self) -> Result<Scene<D>, SceneError> {
+        if self.dimension()? != D {
+            return Err(bad(format!(
+                "dimension = {} but a {D}D scene was asked for",
+                self.dimension
+            )));
+        }
+        let m = &self.material;
+        let material = Material {
+            young: m.young,
+            poisson: m.poisson,
+            density: m.density,
+            disk_mass: m.disk_mass.unwrap_or(DiskMass::Sphere),
+        };
+        material
+            .particle(1.0)
+            .validate()
+            .map_err(|e| bad(format!("[material]: {}", e.message)))?;
+        let mut config = EngineConfig::<D>::new(material);
+        if let Some(g) = &self.gravity {
+            config.gravity = vector::<D>("gravity", g)?;
+        }
+        positive("duration", "s", self.duration)?;
+        if let Some(dt) = self.dt {
+            positive("dt", "s", dt)?;
+        }
+        config.dt = self.dt;
+        if let Some(s) = self.steps_per_collision {
+            if !(s.is_finite() && s >= 1.0) {
+                return Err(bad(format!(
+                    "steps_per_collision = {s} is out of range: it must be >= 1"
+                )));
+            }
+            config.steps_per_collision = s;
+        }
+        if let Some(v) = self.impact_speed {
+            positive("impact_speed", "m/s", v)?;
+        }
+        config.impact_speed = self.impact_speed;
+        if let Some(s) = self.skin {
+            positive("skin", "m", s)?;
+        }
+        config.skin = self.skin;
+        if let Some(b) = &self.domain {
+            let lo = vector::<D>("box.lo", &b.lo)?;
+            let hi = vector::<D>("box.hi", &b.hi)?;
+            for k in 0..D {
+                if hi[k] <= lo[k] {
+                    return Err(bad(format!(
+                        "box: hi[{k}] = {} must exceed lo[{k}] = {}",
+                        hi[k], lo[k]
+                    )));
+                }
+            }
+            let mut periodic = [false; D];
+            if let Some(p) = &b.periodic {
+                if p.len() != D {
+                    return Err(bad(format!(
+                        "box.periodic = {p:?} has {} entries: dimension = {D} needs {D}",
+                        p.len()
+                    )));
+                }
+                periodic.copy_from_slice(p);
+            }
+            config.domain = Domain {
+                lo,
+                hi,
+                periodic,
+                bounded: b.bounded,
+            };
+        }
+        let mut walls = Vec::new();
+        for (k, w) in self.wall.iter().enumerate() {
+            let point = vector::<D>(&format!("wall[{k}].point"), &w.point)?;
+            let normal = vector::<D>(&format!("wall[{k}].normal"), &w.normal)?;
+            if normal.norm() == 0.0 {
+                return Err(bad(format!(
+                    "wall[{k}].normal = {:?} must be a non-zero vector",
+                    w.normal
+                )));
+            }
+            let motion = match &w.motion {
+                None | Some(MotionTable::Fixed) => Motion::Fixed,
+                Some(MotionTable::Piston { amplitude, frequency }) => {
+                    non_negative(&format!("wall[{k}].motion.amplitude"), "m", *amplitude)?;
+                    positive(&format!("wall[{k}].motion.frequency"), "Hz", *frequency)?;
+                    Motion::Piston(Piston::new(*amplitude, *frequency))
+                }
+                Some(MotionTable::Sine { amplitude, frequency }) => {
+                    non_negative(&format!("wall[{k}].motion.amplitude"), "m", *amplitude)?;
+                    positive(&format!("wall[{k}].motion.frequency"), "Hz", *frequency)?;
+                    Motion::Sine {
+                        amplitude: *amplitude,
+                        freq: *frequency,
+                    }
+                }
+            };
+            walls.push(Wall {
+                point,
+                normal: normal.normalize(),
+                motion,
+            });
+        }
+        let mut bodies = Vec::with_capacity(self.particle.len());
+        for (k, p) in self.particle.iter().enumerate() {
+            let position = vector::<D>(&format!("particle[{k}].position"), &p.position)?;
+            let velocity = match &p.velocity {
+                Some(v) => vector::<D>(&format!("particle[{k}].velocity"), v)?,
+                None => VecD::<D>::zeros(),
+            };
+            let key = format!("particle[{k}].angular_velocity");
+            let angular_velocity = match (&p.angular_velocity, D) {
+                (None, _) => Vec3::zeros(),
+                (Some(Spin::Scalar(w)), 2) => Vec3::new(0.0, 0.0, finite(&key, "rad/s", *w)?),
+                (Some(Spin::Vector(v)), 3) => Vec3::from(vector::<3>(&key, v)?),
+                (Some(Spin::Vector(v)), 2) if v.len() == 3 && v[0] == 0.0 && v[1] == 0.0 => {
+                    Vec3::new(0.0, 0.0, finite(&key, "rad/s", v[2])?)
+                }
+                (Some(s), _) => {
+                    return Err(bad(format!(
+                        "{key} = {s:?}: in 2D give a number (rad/s about z), in 3D a vector [x, y, z]"
+                    )))
+                }
+            };
+            positive(&format!("particle[{k}].diameter"), "m", p.diameter)?;
+            bodies.push(Body {
+                position,
+                velocity,
+                angular_velocity,
+                diameter: p.diameter,
+            });
+        }
+        if let Some(g) = &self.generate {
+            bodies.extend(generate::<D>(g)?);
+        }
+        if bodies.is_empty() {
+            return Err(bad(
+                "no particles: give [[particle]] entries or a [generate] table".into(),
+            ));
+        }
+        Ok(Scene {
+            config,
+            duration: self.duration,
+            snapshots: self.snapshots.unwrap_or(0),
+            bodies,
+            walls,
+        })
+    }
+}
+
+fn finite(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(bad(format!("{key} = {v} {unit} is not a finite number")))
+    }
+}
+
+fn positive(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(bad(format!(
+            "{key} = {v} {unit} is out of range: it must be finite and > 0"
+        )))
+    }
+}
+
+fn non_negative(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(bad(format!(
+            "{key} = {v} {unit} is out of range: it must be finite and >= 0"
+        )))
+    }
+}
+
+fn vector<const D: usize>(key: &str, v: &[f64]) -> Result<VecD<D>, SceneError> {
+    if v.len() != D {
+        return Err(bad(format!(
+            "{key} = {v:?} has {} components: dimension {D} needs {D}",
+            v.len()
+        )));
+    }
+    if let Some(x) = v.iter().find(|x| !x.is_finite()) {
+        return Err(bad(format!(
+            "{key} = {v:?}: component {x} is not a finite number"
+        )));
+    }
+    Ok(VecD::<D>::from_iterator(v.iter().cloned()))
+}
+
+/// A small deterministic generator (SplitMix64).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// `count` particles of diameters uniform in `[dmin, dmax]` (m) in the region `[lo, hi]`: one per
+/// site of a square (cubic) lattice of spacing 1.05 dmax, filled row by row from `lo`, each
+/// jittered at random within its site (no two overlap), with random velocities of magnitude
+/// `speed` (m/s). Errors if the region holds fewer than `count` sites.
+pub fn packing<const D: usize>(
+    count: usize,
+    dmin: f64,
+    dmax: f64,
+    lo: VecD<D>,
+    hi: VecD<D>,
+    speed: f64,
+    seed: u64,
+) -> Result<Vec<Body<D>>, SceneError> {
+    let a = 1.05 * dmax;
+    let mut sites = [0usize; D];
+    let mut total = 1usize;
+    for k in 0..D {
+        sites[k] = ((hi[k] - lo[k]) / a).floor().max(0.0) as usize;
+        total = total.saturating_mul(sites[k]);
+    }
+    if total < count {
+        return Err(bad(format!(
+            "generate: the region {:?}..{:?} holds {total} sites of {a:.3e} m, fewer than count = {count}",
+            lo.as_slice(),
+            hi.as_slice()
+        )));
+    }
+    let mut rng = Rng(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x1234_5678);
+    let mut out = Vec::with_capacity(count);
+    for s in 0..count {
+        let d = dmin + (dmax - dmin) * rng.next();
+        let mut x = VecD::<D>::zeros();
+        let mut r = s;
+        for k in 0..D {
+            let q = r % sites[k];
+            r /= sites[k];
+            let room = a - d;
+            x[k] = lo[k] + q as f64 * a + 0.5 * d + room * rng.next();
+        }
+        let mut v = VecD::<D>::from_iterator((0..D).map(|_| rng.next() - 0.5));
+        if v.norm() > 0.0 {
+            v *= speed / v.norm();
+        }
+        out.push(Body {
+            position: x,
+            velocity: v,
+            angular_velocity: Vec3::zeros(),
+            diameter: d,
+        });
+    }
+    Ok(out)
+}
+
+fn generate<const D: usize>(g: &GenerateTable) -> Result<Vec<Body<D>>, SceneError> {
+    let (dmin, dmax) = match &g.diameter {
+        Diameters::One(d) => (*d, *d),
+        Diameters::Range(v) if v.len() == 2 => (v[0], v[1]),
+        Diameters::Range(v) => {
+            return Err(bad(format!(
+                "generate.diameter = {v:?}: give one number or [min, max]"
+            )))
+        }
+    };
+    positive("generate.diameter (min)", "m", dmin)?;
+    positive("generate.diameter (max)", "m", dmax)?;
+    if dmax < dmin {
+        return Err(bad(format!(
+            "generate.diameter = [{dmin}, {dmax}]: max must be >= min"
+        )));
+    }
+    if g.count == 0 {
+        return Err(bad("generate.count = 0 is out of range: it must be >= 1".into()));
+    }
+    non_negative("generate.speed", "m/s", g.speed)?;
+    let lo = vector::<D>("generate.lo", &g.lo)?;
+    let hi = vector::<D>("generate.hi", &g.hi)?;
+    packing(g.count, dmin, dmax, lo, hi, g.speed, g.seed)
+}

@@ -1,0 +1,135 @@
+//! `dashpot dem --scene` as a user runs it: the JSON state, the trajectory, and bad scenes.
+
+mod common;
+
+use common::{fails, ok_json};
+use std::path::PathBuf;
+
+fn scene(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("dashpot-dem-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+const FREE_FALL: &str = r#"
+dimension = 2
+gravity = [0.0, -9.81]
+duration = 0.01
+dt = 1e-5
+[law]
+name = "hsd"
+params = { eps = 0.5 }
+[material]
+young = 1.0e8
+poisson = 0.3
+density = 7800.0
+[[wall]]
+point = [0.0, 0.0]
+normal = [0.0, 1.0]
+[[particle]]
+position = [0.0, 0.05]
+velocity = [0.3, 0.0]
+angular_velocity = 2.0
+diameter = 0.002
+"#;
+
+#[test]
+fn a_free_flight_follows_the_parabola_and_the_json_has_the_state() {
+    let p = scene("free.toml", FREE_FALL);
+    let v = ok_json(&["dem", "--scene", p.to_str().unwrap(), "--json"]);
+    let t = v["time"].as_f64().unwrap();
+    assert_eq!(v["steps"].as_u64().unwrap(), 1000);
+    assert!((t - 0.01).abs() < 1e-12);
+    let part = &v["particles"][0];
+    let x = part["position"][0].as_f64().unwrap();
+    let y = part["position"][1].as_f64().unwrap();
+    // velocity Verlet is exact under constant acceleration
+    assert!((x - 0.3 * t).abs() < 1e-14);
+    assert!((y - (0.05 - 0.5 * 9.81 * t * t)).abs() < 1e-13);
+    assert!((part["velocity"][1].as_f64().unwrap() + 9.81 * t).abs() < 1e-12);
+    assert_eq!(part["angular_velocity"].as_f64().unwrap(), 2.0);
+    assert_eq!(part["diameter"].as_f64().unwrap(), 0.002);
+    assert_eq!(v["contacts"].as_u64().unwrap(), 0);
+    assert_eq!(v["dt"].as_f64().unwrap(), 1e-5);
+    // energy: kinetic + potential is conserved in free flight
+    let m = std::f64::consts::PI / 6.0 * 7800.0 * 0.002f64.powi(3);
+    let i = 0.4 * m * 1e-6;
+    let e0 = 0.5 * m * 0.09 + 0.5 * i * 4.0 + m * 9.81 * 0.05;
+    assert!((v["energy"].as_f64().unwrap() - e0).abs() < 1e-12 * e0);
+}
+
+#[test]
+fn the_trajectory_has_one_frame_per_snapshot_plus_the_start() {
+    let p = scene(
+        "traj.toml",
+        &FREE_FALL.replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 4"),
+    );
+    let out = p.with_extension("out");
+    let v = ok_json(&[
+        "dem",
+        "--scene",
+        p.to_str().unwrap(),
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let xyz = std::fs::read_to_string(out.join("trajectory.xyz")).unwrap();
+    let frames = xyz.lines().filter(|l| l.starts_with("Lattice=")).count();
+    assert_eq!(frames, 5);
+    assert!(xyz.contains("Properties=species:S:1:pos:R:3:velo:R:3:omega:R:3:radius:R:1"));
+    let last: Vec<f64> = xyz
+        .lines()
+        .last()
+        .unwrap()
+        .split_whitespace()
+        .skip(1)
+        .map(|s| s.parse().unwrap())
+        .collect();
+    assert!((last[1] - v["particles"][0]["position"][1].as_f64().unwrap()).abs() < 1e-12);
+    let fin: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("final.json")).unwrap()).unwrap();
+    assert_eq!(fin["steps"], v["steps"]);
+}
+
+#[test]
+fn bad_scenes_name_the_key_and_the_value() {
+    let cases: [(&str, &str, &[&str]); 7] = [
+        ("dimension = 2", "dimension = 4", &["dimension = 4", "2", "3"]),
+        (
+            "diameter = 0.002",
+            "diameter = -0.002",
+            &["particle[0].diameter = -0.002", "> 0"],
+        ),
+        (
+            "position = [0.0, 0.05]",
+            "position = [0.0, 0.05, 0.0]",
+            &["particle[0].position", "3 components"],
+        ),
+        (
+            "young = 1.0e8",
+            "young = 1.0e8\nyoung_modulus = 3.0",
+            &["young_modulus"],
+        ),
+        ("name = \"hsd\"", "name = \"no-such-law\"", &["no-such-law"]),
+        ("duration = 0.01", "duration = -1.0", &["duration = -1", "> 0"]),
+        ("poisson = 0.3", "poisson = 0.7", &["poisson = 0.7", "(-1, 0.5)"]),
+    ];
+    for (k, (from, to, needles)) in cases.iter().enumerate() {
+        let p = scene(&format!("bad{k}.toml"), &FREE_FALL.replace(from, to));
+        fails(&["dem", "--scene", p.to_str().unwrap()], needles);
+    }
+    // a step far too large for the impact: refused as an unphysical overlap, not reported
+    let p = scene(
+        "overlap.toml",
+        &FREE_FALL
+            .replace("dt = 1e-5", "dt = 2e-3")
+            .replace("velocity = [0.3, 0.0]", "velocity = [0.0, -3.0]")
+            .replace("position = [0.0, 0.05]", "position = [0.0, 0.0011]"),
+    );
+    fails(
+        &["dem", "--scene", p.to_str().unwrap()],
+        &["overlaps wall 0", "time step"],
+    );
+}

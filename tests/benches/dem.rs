@@ -1,0 +1,194 @@
+//! Soft-sphere DEM throughput, every contender measured in the same run:
+//!
+//! 1. 2,000 polydisperse disks (1.9–2 mm, E = 10⁸ Pa) settling under gravity on a floor,
+//!    periodic sideways, HSD (ε = 0.5) + Mindlin (μ = 0.3) on one core: the plugins' batch calls
+//!    against the same laws compiled into this benchmark (same checked trampoline), interleaved;
+//! 2. cost per particle-step from 10³ to 10⁶ disks (one core), plugins;
+//! 3. speed-up on two cores (10⁵ disks);
+//! 4. peak resident memory of the process after the 10⁶-disk run (VmHWM).
+//!
+//! Run: `cargo bench -p dashpot-tests --bench dem`
+
+use dashpot::dem::{Body, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
+use dashpot::laws::{compiled, compiled_tangential};
+use dashpot_hsd::Hsd;
+use dashpot_mindlin::Mindlin;
+use dashpot_sdk::{MaterialPair, ParamValue};
+use dashpot_tests::full_registry;
+use std::time::Instant;
+
+const MAT: Material = Material {
+    young: 1.0e8,
+    poisson: 0.3,
+    density: 7800.0,
+    disk_mass: dashpot::dem::DiskMass::Sphere,
+};
+
+fn plugin_laws(reg: &dashpot::Registry) -> Laws {
+    Laws::from_registry(
+        reg,
+        ("hsd", &[ParamValue::new("eps", 0.5)]),
+        Some(("mindlin", &[ParamValue::new("mu", 0.3)])),
+        &MAT,
+    )
+    .unwrap()
+}
+
+fn compiled_laws() -> Laws {
+    let p = MAT.particle(1.0);
+    let (pp, pw) = (
+        MaterialPair::spheres(&p, &p).unwrap(),
+        MaterialPair::wall(&p).unwrap(),
+    );
+    let hsd = Hsd::with(0.5);
+    let m = Mindlin::with(0.3, 0.0);
+    Laws {
+        pair: Box::new(compiled(&hsd, &pp).unwrap()),
+        wall: Box::new(compiled(&hsd, &pw).unwrap()),
+        pair_tangential: Some(Box::new(compiled_tangential(&m, &pp).unwrap())),
+        wall_tangential: Some(Box::new(compiled_tangential(&m, &pw).unwrap())),
+    }
+}
+
+/// `n` disks (diameters uniform in [0.95, 1] × 2 mm) on a square lattice of spacing 2 mm, 50
+/// (or √n) columns wide, with random velocities of 0.05 m/s, settling under gravity on a floor,
+/// periodic sideways: contacts form at once and the pile closes from the bottom.
+fn pile(n: usize, laws: Laws) -> Engine<2> {
+    let d = 0.002;
+    let cols = (n as f64).sqrt().max(50.0).floor() as usize;
+    let width = cols as f64 * d;
+    let rows = n.div_ceil(cols);
+    let height = rows as f64 * d;
+    let mut seed = 7u64;
+    let mut rnd = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let bodies: Vec<Body<2>> = (0..n)
+        .map(|k| {
+            let (q, r) = ((k % cols) as f64, (k / cols) as f64);
+            let a = 2.0 * std::f64::consts::PI * rnd();
+            Body {
+                position: VecD::<2>::new((q + 0.5) * d, (r + 0.5) * d),
+                velocity: VecD::<2>::new(0.05 * a.cos(), 0.05 * a.sin()),
+                angular_velocity: Vec3::zeros(),
+                diameter: d * (0.95 + 0.05 * rnd()),
+            }
+        })
+        .collect();
+    let mut cfg = EngineConfig::<2>::new(MAT);
+    cfg.gravity = VecD::<2>::new(0.0, -9.81);
+    cfg.impact_speed = Some(1.0);
+    cfg.domain = Domain {
+        lo: VecD::<2>::new(0.0, -0.01),
+        hi: VecD::<2>::new(width, height + 1.0),
+        periodic: [true, false],
+        bounded: false,
+    };
+    let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
+    Engine::new(cfg, &bodies, vec![floor], laws).unwrap()
+}
+
+fn steps(e: &mut Engine<2>, k: usize) -> f64 {
+    let s = Instant::now();
+    for _ in 0..k {
+        e.step().unwrap();
+    }
+    s.elapsed().as_secs_f64()
+}
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+fn vm_hwm_kib() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let l = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    l.split_whitespace().nth(1)?.parse().ok()
+}
+
+fn main() {
+    let reg = full_registry();
+    let one = pool(1);
+
+    // 1. plugins vs compiled in, 2,000 settling disks, one core, interleaved blocks
+    one.install(|| {
+        let mut a = pile(2000, plugin_laws(&reg));
+        let mut b = pile(2000, compiled_laws());
+        // settle first: contacts everywhere
+        steps(&mut a, 5000);
+        steps(&mut b, 5000);
+        let (mut ta, mut tb) = (Vec::new(), Vec::new());
+        for _ in 0..7 {
+            ta.push(steps(&mut a, 500));
+            tb.push(steps(&mut b, 500));
+        }
+        ta.sort_by(f64::total_cmp);
+        tb.sort_by(f64::total_cmp);
+        let ps = |t: f64| 2000.0 * 500.0 / t;
+        println!(
+            "2000 disks, HSD + Mindlin, 1 core: plugins {:.3e} particle-steps/s, compiled in {:.3e}; ratio plugins/compiled = {:.3} (median of 7 blocks of 500 steps; {} contacts, dt = {:.3e} s)",
+            ps(ta[3]),
+            ps(tb[3]),
+            tb[3] / ta[3],
+            a.contacts(),
+            a.dt()
+        );
+        assert!((a.p.pos[0] - b.p.pos[0]).norm() < 1e-9, "both runs follow the same trajectory");
+    });
+
+    // 2. scaling, one core (10⁶ last, so VmHWM below is its peak)
+    let mut costs = Vec::new();
+    for n in [1_000usize, 10_000, 100_000, 1_000_000] {
+        let k = (4_000_000 / n).clamp(10, 2000);
+        let c = one.install(|| {
+            let mut e = pile(n, plugin_laws(&reg));
+            steps(&mut e, 200.min(k));
+            let t = steps(&mut e, k);
+            let c = t / (n as f64 * k as f64);
+            println!(
+                "n = {n:>8}: {:.1} ns per particle-step ({k} steps, {} contacts)",
+                c * 1e9,
+                e.contacts()
+            );
+            c
+        });
+        costs.push(c);
+    }
+    let (lo, hi) = costs
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &c| (a.min(c), b.max(c)));
+    println!("cost per particle-step, max/min over 1e3..1e6: {:.2}", hi / lo);
+    if let Some(kib) = vm_hwm_kib() {
+        println!(
+            "peak resident memory after the 10^6 run: {:.2} GiB",
+            kib as f64 / 1048576.0
+        );
+    }
+
+    // 3. two cores
+    let two = pool(2);
+    let n = 100_000;
+    let mut e1 = one.install(|| pile(n, plugin_laws(&reg)));
+    let mut e2 = two.install(|| pile(n, plugin_laws(&reg)));
+    one.install(|| steps(&mut e1, 50));
+    two.install(|| steps(&mut e2, 50));
+    let (mut t1, mut t2) = (Vec::new(), Vec::new());
+    for _ in 0..5 {
+        t1.push(one.install(|| steps(&mut e1, 40)));
+        t2.push(two.install(|| steps(&mut e2, 40)));
+    }
+    t1.sort_by(f64::total_cmp);
+    t2.sort_by(f64::total_cmp);
+    println!(
+        "n = {n}: 1 core {:.3e} particle-steps/s, 2 cores {:.3e}; speed-up {:.2}",
+        n as f64 * 40.0 / t1[2],
+        n as f64 * 40.0 / t2[2],
+        t1[2] / t2[2]
+    );
+}
