@@ -75,15 +75,12 @@ fn shift_indices(msg: &str, offset: usize) -> String {
     while let Some(i) = rest.find('[') {
         out.push_str(&rest[..=i]);
         rest = &rest[i + 1..];
-        match rest
+        if let Some((j, v)) = rest
             .find(']')
             .and_then(|j| rest[..j].parse::<usize>().ok().map(|v| (j, v)))
         {
-            Some((j, v)) => {
-                out.push_str(&(v + offset).to_string());
-                rest = &rest[j..];
-            }
-            None => {}
+            out.push_str(&(v + offset).to_string());
+            rest = &rest[j..];
         }
     }
     out.push_str(rest);
