@@ -39,6 +39,30 @@ pub const SEED_PLUGINS: [&str; 5] = [
     "dashpot_constant",
 ];
 
+/// The laws added with sdk 0.2 (tangential and plastic), by library name.
+pub const SDK02_PLUGINS: [&str; 4] = [
+    "dashpot_mindlin",
+    "dashpot_linear_history",
+    "dashpot_thornton",
+    "dashpot_walton_braun",
+];
+
+/// A registry of every plugin of the workspace (the seed laws and those of sdk 0.2).
+pub fn full_registry() -> Registry {
+    let files = SEED_PLUGINS
+        .iter()
+        .chain(SDK02_PLUGINS.iter())
+        .map(|n| plugin_file(n))
+        .collect();
+    let sp = SearchPath {
+        dirs: vec![],
+        files,
+        use_env: false,
+        use_default: false,
+    };
+    Registry::discover(&sp).expect("the plugins load")
+}
+
 /// A registry of exactly the five seed plugins, loaded from their `.so` files.
 pub fn seed_registry() -> Registry {
     let files = SEED_PLUGINS.iter().map(|n| plugin_file(n)).collect();

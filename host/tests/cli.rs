@@ -14,7 +14,17 @@ fn laws_json_lists_the_five_laws_with_their_schemas() {
     names.sort();
     assert_eq!(
         names,
-        ["constant", "hsd", "kuwabara-kono", "lsd", "mcnamara-falcon"]
+        [
+            "constant",
+            "hsd",
+            "kuwabara-kono",
+            "linear-history",
+            "lsd",
+            "mcnamara-falcon",
+            "mindlin",
+            "thornton",
+            "walton-braun"
+        ]
     );
     let get = |n: &str| laws.iter().find(|l| l["name"] == n).unwrap();
     let hsd = get("hsd");
@@ -24,7 +34,8 @@ fn laws_json_lists_the_five_laws_with_their_schemas() {
         .as_str()
         .unwrap()
         .ends_with("libdashpot_hsd.so"));
-    assert_eq!(hsd["plugin"]["version"], "0.1.0");
+    assert_eq!(hsd["plugin"]["version"], env!("CARGO_PKG_VERSION"));
+    assert_eq!(hsd["plugin"]["sdk_version"], env!("CARGO_PKG_VERSION"));
     let eps = &hsd["params"][0];
     assert_eq!(
         (eps["name"].as_str(), eps["unit"].as_str(), eps["range"].as_str()),

@@ -1,16 +1,26 @@
-//! HSD force over 10⁶ pairs: the plugin's batch call and per-pair call against the same law
-//! compiled statically into this benchmark, measured side by side in one run.
+//! The contact-law hot path over 10⁶ contacts, each contender measured side by side in one run:
+//!
+//! 1. HSD normal force with per-contact geometry (a polydisperse contact list: every contact its
+//!    own effective mass and radius): the plugin's batch call against the same law compiled into
+//!    this benchmark and called through the same checked trampoline;
+//! 2. HSD + Mindlin with history (normal batch, then tangential batch with the springs of every
+//!    contact): plugins against compiled in;
+//! 3. normal-only HSD of sdk 0.2 (per-contact geometry) against sdk 0.1's bound-pair batch, the
+//!    0.1 plugin built from the 0.1 sources of this repository and called exactly as a 0.1 host
+//!    called it.
 //!
 //! Run: `cargo bench -p dashpot-tests --bench hsd_force`
 
+use dashpot::laws::{compiled, compiled_tangential, NormalLaw, TangentialForce};
 use dashpot_hsd::Hsd;
-use dashpot_sdk::{BoundContact, ContactLaw, Pair, ParamValue, Particle};
-use dashpot_tests::seed_registry;
+use dashpot_mindlin::Mindlin;
+use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
+use dashpot_tests::{full_registry, sdk01_registry};
 use std::hint::black_box;
 use std::time::Instant;
 
 const N: usize = 1_000_000;
-const REPS: usize = 21;
+const REPS: usize = 15;
 
 fn time(f: &mut dyn FnMut()) -> f64 {
     let s = Instant::now();
@@ -18,8 +28,8 @@ fn time(f: &mut dyn FnMut()) -> f64 {
     s.elapsed().as_secs_f64()
 }
 
-/// Runs the contenders interleaved (A, B, C, A, B, C, ...) so that drifts in machine load hit
-/// all alike, and returns each one's minimum and median wall time (s).
+/// Runs the contenders interleaved (A, B, A, B, ...) so that drifts in machine load hit all
+/// alike; returns each one's minimum and median wall time (s).
 fn race(contenders: &mut [&mut dyn FnMut()]) -> Vec<(f64, f64)> {
     for f in contenders.iter_mut() {
         f();
@@ -38,9 +48,16 @@ fn race(contenders: &mut [&mut dyn FnMut()]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-fn main() {
-    let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).expect("pair");
-    // Overlaps up to 1e-4 m (1 % of d) and rates of either sign: a realistic DEM contact list.
+struct Contacts {
+    delta: Vec<f64>,
+    rate: Vec<f64>,
+    mass: Vec<f64>,
+    radius: Vec<f64>,
+    normal: Vec<[f64; 3]>,
+    velocity: Vec<[f64; 3]>,
+}
+
+fn contacts() -> Contacts {
     let mut x = 0x9e37_79b9_7f4a_7c15_u64;
     let mut rnd = move || {
         x ^= x << 13;
@@ -48,67 +65,188 @@ fn main() {
         x ^= x << 17;
         (x >> 11) as f64 / (1u64 << 53) as f64
     };
-    let delta: Vec<f64> = (0..N).map(|_| 1e-4 * rnd()).collect();
-    let rate: Vec<f64> = (0..N).map(|_| 2.0 * rnd() - 1.0).collect();
-    let mut out = vec![0.0; N];
-
-    // The same law, compiled into this binary, and loaded from libdashpot_hsd.so.
-    let stat = Hsd::with(0.54).bind(&pair).expect("bind");
-    let reg = seed_registry();
-    let plug = reg
-        .contact("hsd", &[ParamValue::new("eps", 0.54)])
-        .expect("law")
-        .bind(&pair)
-        .expect("bind");
-
-    let mut reference = vec![0.0; N];
-    stat.force_batch(&delta, &rate, &mut reference);
-    plug.force_batch(&delta, &rate, &mut out).expect("batch");
-    assert!(
-        out.iter()
-            .zip(&reference)
-            .all(|(a, b)| a.to_bits() == b.to_bits()),
-        "plugin and static forces differ"
-    );
-
-    let mut o1 = vec![0.0; N];
-    let mut o2 = vec![0.0; N];
-    let mut o3 = vec![0.0; N];
-    let r = race(&mut [
-        &mut || stat.force_batch(black_box(&delta), black_box(&rate), black_box(&mut o1)),
-        &mut || {
-            plug.force_batch(black_box(&delta), black_box(&rate), black_box(&mut o2))
-                .expect("batch")
-        },
-        &mut || {
-            for i in 0..N {
-                o3[i] = plug
-                    .force(black_box(delta[i]), black_box(rate[i]))
-                    .expect("force");
-            }
-            black_box(&o3);
-        },
-    ]);
-    let ns = |t: f64| t / N as f64 * 1e9;
-    println!("HSD normal force over {N} pairs, {REPS} interleaved runs (min | median)");
-    for (name, (tmin, tmed)) in [
-        "static (compiled in)",
-        "plugin batch call",
-        "plugin per-pair call",
-    ]
-    .iter()
-    .zip(&r)
-    {
-        println!("  {name:<22} {:7.3} | {:7.3} ns/pair", ns(*tmin), ns(*tmed));
+    let mut c = Contacts {
+        delta: Vec::with_capacity(N),
+        rate: Vec::with_capacity(N),
+        mass: Vec::with_capacity(N),
+        radius: Vec::with_capacity(N),
+        normal: Vec::with_capacity(N),
+        velocity: Vec::with_capacity(N),
+    };
+    for _ in 0..N {
+        // steel spheres of diameters 4-8 mm (a `fix pour ... diam range` packing)
+        let (d1, d2) = (0.004 + 0.004 * rnd(), 0.004 + 0.004 * rnd());
+        let (m1, m2) = (7800.0 * 0.5236 * d1 * d1 * d1, 7800.0 * 0.5236 * d2 * d2 * d2);
+        c.radius.push(0.25 * d1 * d2 / (0.5 * (d1 + d2)));
+        c.mass.push(m1 * m2 / (m1 + m2));
+        c.delta.push(1e-5 * rnd());
+        c.rate.push(2.0 * rnd() - 1.0);
+        let (th, ph) = (std::f64::consts::PI * rnd(), 2.0 * std::f64::consts::PI * rnd());
+        c.normal
+            .push([th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()]);
+        c.velocity.push([rnd() - 0.5, rnd() - 0.5, rnd() - 0.5]);
     }
+    c
+}
+
+fn normal_step(law: &dyn NormalLaw, c: &Contacts, slots: usize, hist: &mut [f64], out: &mut [f64]) {
+    law.force_batch(NormalBatch {
+        delta: black_box(&c.delta),
+        rate: black_box(&c.rate),
+        mass: &c.mass,
+        radius: &c.radius,
+        slots,
+        history: hist,
+        force: out,
+    })
+    .expect("normal batch");
+}
+
+fn tangential_step(
+    law: &dyn TangentialForce,
+    c: &Contacts,
+    fnorm: &[f64],
+    hist: &mut [f64],
+    out: &mut [[f64; 3]],
+) {
+    law.force_batch(TangentialBatch {
+        dt: 1e-7,
+        normal: &c.normal,
+        velocity: black_box(&c.velocity),
+        normal_force: fnorm,
+        delta: &c.delta,
+        mass: &c.mass,
+        radius: &c.radius,
+        slots: 3,
+        history: hist,
+        force: out,
+    })
+    .expect("tangential batch");
+}
+
+fn main() {
+    let steel = Particle {
+        diameter: 0.006,
+        density: 7800.0,
+        young: 2.0e11,
+        poisson: 0.3,
+    };
+    let mat = MaterialPair::spheres(&steel, &steel).expect("materials");
+    let c = contacts();
+    let reg = full_registry();
+    let hsd_p = reg
+        .contact("hsd", &[ParamValue::new("eps", 0.54)])
+        .expect("hsd")
+        .bind(&mat)
+        .expect("bind");
+    let hsd_s = compiled(&Hsd::with(0.54), &mat).expect("bind");
+    let mind_p = reg
+        .tangential("mindlin", &[ParamValue::new("mu", 0.3)])
+        .expect("mindlin")
+        .bind(&mat)
+        .expect("bind");
+    let mind_s = compiled_tangential(&Mindlin::with(0.3, 0.0), &mat).expect("bind");
+
+    // the two forms compute the same bits
+    let (mut f1, mut f2) = (vec![0.0; N], vec![0.0; N]);
+    normal_step(&hsd_p, &c, 0, &mut [], &mut f1);
+    normal_step(&hsd_s, &c, 0, &mut [], &mut f2);
+    assert!(f1.iter().zip(&f2).all(|(a, b)| a.to_bits() == b.to_bits()));
+
+    println!("Contact laws over {N} contacts (steel, diameters 4-8 mm, each contact its own m and r), {REPS} interleaved runs (min | median)");
+    let ns = |t: f64| t / N as f64 * 1e9;
+
+    // 1. HSD normal, per-contact geometry
+    let (mut o1, mut o2) = (vec![0.0; N], vec![0.0; N]);
+    let r = race(
+        &mut [&mut || normal_step(&hsd_s, &c, 0, &mut [], &mut o1), &mut || {
+            normal_step(&hsd_p, &c, 0, &mut [], &mut o2)
+        }],
+    );
+    println!("1. HSD normal force, per-contact geometry");
     println!(
-        "  speed ratio plugin batch / static:    {:.3} (min) | {:.3} (median)   target >= 0.95",
+        "   compiled in            {:7.3} | {:7.3} ns/contact",
+        ns(r[0].0),
+        ns(r[0].1)
+    );
+    println!(
+        "   plugin batch call      {:7.3} | {:7.3} ns/contact",
+        ns(r[1].0),
+        ns(r[1].1)
+    );
+    println!(
+        "   ratio plugin / compiled (speed): {:.3} (min) | {:.3} (median)",
         r[0].0 / r[1].0,
         r[0].1 / r[1].1
     );
+
+    // 2. HSD + Mindlin with history
+    let (mut hs, mut hp) = (vec![0.0; 3 * N], vec![0.0; 3 * N]);
+    let (mut ts, mut tp) = (vec![[0.0; 3]; N], vec![[0.0; 3]; N]);
+    let (mut ns_, mut np_) = (vec![0.0; N], vec![0.0; N]);
+    let r = race(&mut [
+        &mut || {
+            normal_step(&hsd_s, &c, 0, &mut [], &mut ns_);
+            tangential_step(&mind_s, &c, &ns_, &mut hs, &mut ts);
+        },
+        &mut || {
+            normal_step(&hsd_p, &c, 0, &mut [], &mut np_);
+            tangential_step(&mind_p, &c, &np_, &mut hp, &mut tp);
+        },
+    ]);
+    // after the same calls in the same order, the springs are the same bits
+    assert!(hs.iter().zip(&hp).all(|(a, b)| a.to_bits() == b.to_bits()));
+    println!("2. HSD + Mindlin (μ = 0.3) with history: normal batch, then tangential batch");
     println!(
-        "  speed ratio plugin per-pair / static: {:.3} (min) | {:.3} (median)",
-        r[0].0 / r[2].0,
-        r[0].1 / r[2].1
+        "   compiled in            {:7.3} | {:7.3} ns/contact",
+        ns(r[0].0),
+        ns(r[0].1)
     );
+    println!(
+        "   plugin batch calls     {:7.3} | {:7.3} ns/contact",
+        ns(r[1].0),
+        ns(r[1].1)
+    );
+    println!(
+        "   ratio plugin / compiled (speed): {:.3} (min) | {:.3} (median)   target >= 0.95",
+        r[0].0 / r[1].0,
+        r[0].1 / r[1].1
+    );
+
+    // 3. sdk 0.2 per-contact geometry against sdk 0.1's bound-pair batch
+    match sdk01_registry("release") {
+        None => println!("3. skipped: the sdk 0.1 sources are not in this checkout's history"),
+        Some(old) => {
+            let m01 = old
+                .contact("hsd", &[ParamValue::new("eps", 0.54)])
+                .expect("0.1 hsd")
+                .bind(&mat)
+                .expect("bind");
+            let pair01 = m01
+                .v1_bound_pair_batch(c.mass[0], c.radius[0])
+                .expect("a 0.1 law")
+                .expect("bind the pair");
+            let (mut o3, mut o4) = (vec![0.0; N], vec![0.0; N]);
+            let r = race(&mut [
+                &mut || pair01(black_box(&c.delta), black_box(&c.rate), &mut o3).expect("0.1 batch"),
+                &mut || normal_step(&hsd_p, &c, 0, &mut [], &mut o4),
+            ]);
+            println!("3. HSD normal force: sdk 0.2 per-contact geometry vs sdk 0.1 bound-pair batch (both plugins)");
+            println!(
+                "   0.1 bound to one pair   {:7.3} | {:7.3} ns/contact",
+                ns(r[0].0),
+                ns(r[0].1)
+            );
+            println!(
+                "   0.2 per-contact m, r    {:7.3} | {:7.3} ns/contact",
+                ns(r[1].0),
+                ns(r[1].1)
+            );
+            println!(
+                "   ratio 0.2 / 0.1 (speed): {:.3} (min) | {:.3} (median)   target >= 0.9",
+                r[0].0 / r[1].0,
+                r[0].1 / r[1].1
+            );
+        }
+    }
 }

@@ -3,14 +3,20 @@
 
 use dashpot_sdk::*;
 
-/// The law: damping coefficient η (N·s/m). K comes from the pair.
+/// The law: damping coefficient η (N·s/m).
 pub struct HertzLinearDamping {
     eta: f64,
-    k: f64,
+}
+
+/// The law bound to a pair of materials: K = a √r for a contact of effective radius r.
+pub struct Bound {
+    eta: f64,
+    /// (4/3) E_eff (Pa).
+    a: f64,
 }
 
 impl ContactLaw for HertzLinearDamping {
-    type Bound = Self;
+    type Bound = Bound;
     const NAME: &'static str = "hertz-linear-damping";
     const SUMMARY: &'static str = "Hertz spring + constant dashpot: F = K δ^{3/2} + η δ̇";
     const DOC: &'static str = "F = K δ^{3/2} + η δ̇ for δ ≥ 0, 0 for δ < 0, K = (4/3) E_eff √r_eff.";
@@ -21,20 +27,20 @@ impl ContactLaw for HertzLinearDamping {
     }
 
     fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(HertzLinearDamping { eta: p.get("eta")?, k: 0.0 })
+        Ok(HertzLinearDamping { eta: p.get("eta")? })
     }
 
-    fn bind(&self, pair: &Pair) -> Result<Self, LawError> {
-        Ok(HertzLinearDamping { eta: self.eta, k: pair.hertz_stiffness() })
+    fn bind(&self, materials: &MaterialPair) -> Result<Bound, LawError> {
+        Ok(Bound { eta: self.eta, a: 4.0 / 3.0 * materials.young })
     }
 }
 
-impl BoundContact for HertzLinearDamping {
-    fn force(&self, delta: f64, rate: f64) -> f64 {
-        if delta < 0.0 {
+impl BoundContact for Bound {
+    fn force(&self, c: Contact, _history: &mut [f64]) -> f64 {
+        if c.delta < 0.0 {
             return 0.0;
         }
-        self.k * delta * delta.sqrt() + self.eta * rate
+        self.a * (c.radius * c.delta).sqrt() * c.delta + self.eta * c.rate
     }
 }
 

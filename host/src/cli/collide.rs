@@ -82,6 +82,22 @@ pub struct CollideArgs {
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
+    /// A tangential (friction) law composed with the contact law (see `dashpot laws`): an
+    /// oblique impact of solid spheres with rotation. `--set NAME=VALUE` looks NAME up in the
+    /// contact law, then in the tangential law; write `LAW.NAME=VALUE` for a name both have.
+    #[arg(long, value_name = "NAME")]
+    pub tangential: Option<String>,
+    /// Angle of incidence from the normal (degrees, in [0, 90)); with `--v0` the speed of
+    /// approach. Above 0 (or with --tangential) the impact is oblique.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub angle: f64,
+    /// Initial spin of the particle (rad/s), positive in the sense of rolling along the incident
+    /// tangential direction (oblique impacts).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub spin: f64,
+    /// Time steps per contact time of the oblique integrator (velocity Verlet), ≥ 100.
+    #[arg(long, default_value_t = 20_000)]
+    pub steps: usize,
 }
 
 fn check_v0(v0: f64) -> Result<f64> {
@@ -128,6 +144,9 @@ pub fn trajectory_csv(c: &Collision) -> Result<Vec<u8>> {
 /// `dashpot collide`.
 pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
     let v0 = check_v0(a.v0)?;
+    if a.tangential.is_some() || a.angle != 0.0 {
+        return run_oblique(reg, a, v0);
+    }
     let sel = a.law.resolve()?;
     let mut opt = a.integration.options()?;
     opt.record = a.trajectory.is_some();
@@ -453,6 +472,180 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
                 .unwrap_or_default()
         );
         println!("collisions integrated: {}", c.collisions);
+    }
+    Ok(())
+}
+
+/// The `--set` values split between the contact law and the tangential law: a name is looked up
+/// in the contact law's schema, then in the tangential law's; `LAW.NAME` names the law.
+fn split_sets(
+    reg: &Registry,
+    normal: &str,
+    tangential: Option<&str>,
+    sets: &[String],
+) -> Result<(Vec<String>, Vec<ParamValue>)> {
+    let schema = |law: &str| -> Result<Vec<String>> {
+        Ok(reg
+            .find(law)?
+            .0
+            .info
+            .params
+            .iter()
+            .map(|p| p.name.to_string())
+            .collect())
+    };
+    let ns = schema(normal)?;
+    let ts = match tangential {
+        Some(t) => schema(t)?,
+        None => Vec::new(),
+    };
+    let (mut to_normal, mut to_tangential) = (Vec::new(), Vec::new());
+    for s in sets {
+        let (k, v) = crate::config::parse_set(s)?;
+        let (law, key) = match k.split_once('.') {
+            Some((l, key)) => (Some(l.to_string()), key.to_string()),
+            None => (None, k.clone()),
+        };
+        let target = match law.as_deref() {
+            Some(l) if l == normal => 'n',
+            Some(l) if Some(l) == tangential => 't',
+            Some(l) => bail!(
+                "--set {s}: '{l}' is neither the contact law '{normal}' nor the tangential law{}",
+                tangential.map(|t| format!(" '{t}'")).unwrap_or_default()
+            ),
+            None => match (ns.contains(&key), ts.contains(&key)) {
+                (true, true) => bail!(
+                    "--set {s}: both '{normal}' and '{}' have a parameter '{key}'; write \
+                     --set {normal}.{key}={v} or --set {}.{key}={v}",
+                    tangential.unwrap_or_default(),
+                    tangential.unwrap_or_default()
+                ),
+                (false, true) => 't',
+                _ => 'n',
+            },
+        };
+        if target == 't' {
+            if to_tangential.iter().any(|p: &ParamValue| p.name == key.as_str()) {
+                bail!("--set {s}: parameter '{key}' is set twice");
+            }
+            to_tangential.push(ParamValue::new(&key, v));
+        } else {
+            to_normal.push(format!("{key}={v}"));
+        }
+    }
+    Ok((to_normal, to_tangential))
+}
+
+/// `dashpot collide --angle/--tangential`: an oblique impact of solid spheres.
+fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
+    use crate::collide::oblique::{oblique, Body, Impact, Target};
+    if !(a.angle.is_finite() && (0.0..90.0).contains(&a.angle)) {
+        bail!(
+            "--angle = {}° is out of range: the angle of incidence must lie in [0, 90)",
+            a.angle
+        );
+    }
+    if a.trajectory.is_some() {
+        bail!("--trajectory is for head-on collisions; an oblique impact reports its end state");
+    }
+    let normal = match &a.law.law {
+        Some(n) => n.clone(),
+        None => a.law.resolve()?.name,
+    };
+    let (nsets, tparams) = split_sets(reg, &normal, a.tangential.as_deref(), &a.law.set)?;
+    let mut la = a.law.clone();
+    la.set = nsets;
+    let sel = la.resolve()?;
+    let end = a.integration.end_or(
+        reg.find(&sel.name)?
+            .0
+            .info
+            .end_criterion
+            .into_option()
+            .unwrap_or(EndCriterion::Overlap),
+    );
+    let model = reg.contact(&sel.name, &sel.params)?.bind(&sel.materials)?;
+    let tmodel = match &a.tangential {
+        Some(t) => Some(reg.tangential(t, &tparams)?.bind(&sel.materials)?),
+        None => None,
+    };
+    let (m1, r1) = (sel.particle.mass(), sel.particle.radius());
+    let particle = Body::solid_sphere(m1, r1);
+    let wall = a.law.particle.wall || sel.pair.radius == r1 && sel.pair.mass == m1;
+    let target = if wall {
+        Target::Wall
+    } else {
+        // the partner from the effective pair: m2 = m1 m/(m1 − m), r2 = r1 r/(r1 − r)
+        let (m, r) = (sel.pair.mass, sel.pair.radius);
+        Target::Sphere(Body::solid_sphere(m1 * m / (m1 - m), r1 * r / (r1 - r)))
+    };
+    let impact = Impact {
+        speed: v0,
+        angle: a.angle.to_radians(),
+        spin: a.spin,
+        end,
+        steps: a.steps,
+    };
+    let c = oblique(&model, tmodel.as_ref(), &particle, &target, &impact)
+        .with_context(|| format!("oblique impact of '{}' at v0 = {v0} m/s, {}°", sel.name, a.angle))?;
+    let tjson: serde_json::Map<String, serde_json::Value> = tparams
+        .iter()
+        .map(|p| (p.name.to_string(), json!(p.value)))
+        .collect();
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&json!({
+                "law": sel.name, "params": sel.params_json(), "pair": sel.pair_json(),
+                "tangential": a.tangential, "tangential_params": tjson,
+                "v0": v0, "angle": a.angle, "spin_in": a.spin, "end": end.as_str(),
+                "partner": if wall { "wall" } else { "sphere" },
+                "restitution": c.restitution, "contact_time": c.contact_time,
+                "max_overlap": c.max_overlap,
+                "normal_velocity_in": c.normal_velocity_in,
+                "tangential_velocity_in": c.tangential_velocity_in,
+                "tangential_velocity_out": c.tangential_velocity_out,
+                "angular_velocity_out": c.angular_velocity_out,
+                "partner_angular_velocity_out": c.partner_angular_velocity_out,
+                "rebound_angle": c.rebound_angle,
+                "contact_point_velocity_out": c.contact_point_velocity_out,
+                "sliding_share": c.sliding_share,
+                "dt": c.dt, "steps": c.steps,
+            }))?
+        );
+    } else {
+        println!(
+            "law: {} {} + tangential {} {}",
+            sel.name,
+            sel.params_json(),
+            a.tangential.as_deref().unwrap_or("(none: frictionless)"),
+            serde_json::Value::Object(tjson)
+        );
+        println!(
+            "pair: {}: m_eff = {:.6e} kg, r_eff = {:.6e} m, E_eff = {:.6e} Pa, G_eff = {:.6e} Pa",
+            sel.partner, sel.pair.mass, sel.pair.radius, sel.pair.young, sel.materials.shear
+        );
+        println!(
+            "impact: {v0} m/s at {}° from the normal (v_n = {:.6} m/s, v_t = {:.6} m/s), spin {} rad/s",
+            a.angle, c.normal_velocity_in, c.tangential_velocity_in, a.spin
+        );
+        println!("end of contact         : {}", end.as_str());
+        println!("normal restitution     = {:.8}", c.restitution);
+        println!("tangential velocity out= {:.8} m/s", c.tangential_velocity_out);
+        println!("angular velocity out   = {:.8} rad/s", c.angular_velocity_out);
+        println!("rebound angle          = {:.6}°", c.rebound_angle);
+        println!(
+            "contact-point velocity = {:.8} m/s (tangential, after)",
+            c.contact_point_velocity_out
+        );
+        println!(
+            "sliding share          = {:.4} of the steps in contact",
+            c.sliding_share
+        );
+        println!(
+            "contact time           = {:.8e} s ({} velocity-Verlet steps of {:.3e} s)",
+            c.contact_time, c.steps, c.dt
+        );
     }
     Ok(())
 }

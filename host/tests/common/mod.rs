@@ -7,12 +7,16 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 use std::sync::OnceLock;
 
-pub const SEED: [&str; 5] = [
+pub const SEED: [&str; 9] = [
     "dashpot_lsd",
     "dashpot_hsd",
     "dashpot_kuwabara_kono",
     "dashpot_mcnamara_falcon",
     "dashpot_constant",
+    "dashpot_mindlin",
+    "dashpot_linear_history",
+    "dashpot_thornton",
+    "dashpot_walton_braun",
 ];
 
 pub fn lib(name: &str) -> PathBuf {
@@ -24,7 +28,7 @@ pub fn lib(name: &str) -> PathBuf {
     ))
 }
 
-/// A plugin directory holding exactly the five seed plugins.
+/// A plugin directory holding exactly the plugins of the workspace.
 pub fn plugin_dir() -> PathBuf {
     static D: OnceLock<PathBuf> = OnceLock::new();
     D.get_or_init(|| {

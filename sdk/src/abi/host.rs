@@ -680,6 +680,45 @@ impl ContactModelHandle {
         Ok(())
     }
 
+    /// For benchmarks only: a 0.1 plugin's own bound-pair batch, called exactly as a 0.1 host
+    /// called it (bound once to the pair of effective `mass` and `radius`, no input checks of
+    /// the host), so that the 0.2 per-contact batch can be compared with it. `None` for a 0.2
+    /// law.
+    #[doc(hidden)]
+    pub fn v1_bound_pair_batch(
+        &self,
+        mass: f64,
+        radius: f64,
+    ) -> Option<Result<impl Fn(&[f64], &[f64], &mut [f64]) -> Result<(), LawError> + '_, LawError>> {
+        let ModelInner::V1 { law, young } = &self.inner else {
+            return None;
+        };
+        Some(law.bound(mass, radius, *young).map(move |b| {
+            move |d: &[f64], r: &[f64], o: &mut [f64]| {
+                let mut bad = 0usize;
+                if d.len() != o.len() || r.len() != o.len() {
+                    return Err(length_error(
+                        "force_batch",
+                        format!("{} {} {}", d.len(), r.len(), o.len()),
+                    ));
+                }
+                match unsafe {
+                    (b.ffi.vtable.force_batch)(
+                        b.ffi.obj,
+                        d.as_ptr(),
+                        r.as_ptr(),
+                        o.as_mut_ptr(),
+                        o.len(),
+                        &mut bad,
+                    )
+                } {
+                    v1::CallStatus::Ok => Ok(()),
+                    _ => Err(LawError::new(ErrorKind::Other, "0.1 batch failed")),
+                }
+            }
+        }))
+    }
+
     /// The normal force (N) on one contact, history updated in place.
     pub fn force(&self, c: Contact, history: &mut [f64]) -> Result<f64, LawError> {
         let mut out = [0.0];

@@ -4,7 +4,9 @@
 
 pub mod calibrate;
 pub mod extrap;
+pub mod oblique;
 pub mod rk;
 pub mod two_body;
 
+pub use oblique::{oblique, Body, Impact, ObliqueCollision, ObliqueError, Target};
 pub use two_body::{collide, CollideError, Collision, ContactForce, Options, PairLaw, Sample};

@@ -663,6 +663,12 @@ pub fn collide<C: ContactForce>(
                                                        // In this phase the force at a step's ends is −m times the acceleration the stepper already
                                                        // evaluated there: the force-criterion event needs no extra law calls.
     let mut f_now = -mass * kz[1];
+    // "The force returns to 0" is located as the force falling through this tiny threshold
+    // (1e-13 of the force scale m v0²/δ*): a law that clamps its force to exactly 0 (plastic
+    // unloading) then has a unique first crossing, and the located state is not one reached by
+    // a step across the clamp's kink. It shifts the end by 1e-13 of the contact's scale.
+    let f_eps = 1e-13 * mass * v0 * v0 / dstar;
+    let mut force_zero_passed = false;
     let mut n = 0;
     loop {
         if max_overlap.is_some_and(|(_, dm)| z[1] < 0.0 && z[0] <= 0.5 * dm) {
@@ -708,7 +714,12 @@ pub fn collide<C: ContactForce>(
             s_from = sm;
         }
         let f_new = -mass * s.f[1];
-        if end == EndCriterion::Force && max_overlap.is_some() && s.y[1] < 0.0 && f_new <= 0.0 {
+        // The force returns to 0 on rebound: the end of contact under the force criterion; for
+        // a law with memory (plastic unloading to a residual overlap, where the force is
+        // clamped to 0: a kink the step-size control does not see) a point to restart from.
+        let force_zero = max_overlap.is_some() && s.y[1] < 0.0 && f_new <= 0.0;
+        let restart_at_zero = law.has_history() && !force_zero_passed && f_now > 0.0;
+        if force_zero && (end == EndCriterion::Force || restart_at_zero) {
             let f_from = if s_from > 0.0 {
                 let st = opt.method.step(&mut tp, t, &z, &kz, s_from)?;
                 law.force(st.y[0], st.y[1])?
@@ -716,14 +727,23 @@ pub fn collide<C: ContactForce>(
                 f_now
             };
             let (t0, z0, k0) = (t, z, kz);
-            let (sf, zf) = locate::<_, RhsError, _>(s_from, f_from, h, f_new, |sv| {
+            let (sf, zf) = locate::<_, RhsError, _>(s_from, f_from - f_eps, h, f_new - f_eps, |sv| {
                 let st = opt.method.step(&mut tp, t0, &z0, &k0, sv)?;
-                Ok((law.force(st.y[0], st.y[1])?, st.y))
+                Ok((law.force(st.y[0], st.y[1])? - f_eps, st.y))
             })?;
-            force_end = Some((t + sf, zf[0], zf[1]));
             record(&mut traj, t + sf, zf[0], zf[1])?;
             steps += 1;
-            break;
+            if end == EndCriterion::Force {
+                force_end = Some((t + sf, zf[0], zf[1]));
+                break;
+            }
+            force_zero_passed = true;
+            t += sf;
+            z = zf;
+            law.commit(z[0], z[1])?;
+            kz = tp.rhs(t, &z)?;
+            f_now = -mass * kz[1];
+            continue;
         }
         t += h;
         z = s.y;
@@ -800,9 +820,9 @@ pub fn collide<C: ContactForce>(
             evals += 1;
             if f_new <= 0.0 && f_now > 0.0 {
                 let (u0, y0, k0) = (u, y, k);
-                let (sf, yf) = locate::<_, RhsError, _>(0.0, f_now, hh, f_new, |sv| {
+                let (sf, yf) = locate::<_, RhsError, _>(0.0, f_now - f_eps, hh, f_new - f_eps, |sv| {
                     let st = opt.method.step(&mut ph, u0, &y0, &k0, sv)?;
-                    Ok((law.force((u0 + sv).max(0.0).powi(4), st.y[0])?, st.y))
+                    Ok((law.force((u0 + sv).max(0.0).powi(4), st.y[0])? - f_eps, st.y))
                 })?;
                 u += sf;
                 y = yf;
