@@ -391,8 +391,9 @@ void PairDashpot::compute(int eflag, int vflag)
         cnorm[3 * n] = nx;
         cnorm[3 * n + 1] = ny;
         cnorm[3 * n + 2] = nz;
-        // relative velocity of a's contact point with respect to b's
-        double la = ra - 0.5 * delta, lb = rb > 0.0 ? rb - 0.5 * delta : 0.0;
+        // relative velocity of a's contact point with respect to b's; the contact point lies a
+        // radius from each centre (the two-body driver's convention; 0 for the wall)
+        double la = ra, lb = rb;
         double wx = la * omega[a][0], wy = la * omega[a][1], wz = la * omega[a][2];
         if (b >= 0) {
             wx += lb * omega[b][0];
