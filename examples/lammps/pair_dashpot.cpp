@@ -38,6 +38,7 @@ PairDashpot::PairDashpot(LAMMPS *lmp) :
     finitecutflag = 1;
     comm_forward = 0;
     no_virial_fdotr_compute = 1;    // the wall's reaction is not a pair force
+    restartinfo = 0;                // pair_style and pair_coeff are given again after read_restart
 }
 
 PairDashpot::~PairDashpot()
@@ -289,7 +290,8 @@ void PairDashpot::evaluate(size_t n)
 {
     if (n == 0) return;
     const int ns = nslots_n, nt = nslots_t;
-    double dt = update->dt;
+    // in a run's setup the state is one already integrated: the spring does not advance
+    double dt = update->setupflag ? 0.0 : update->dt;
     bool one_key = true;
     for (size_t k = 1; k < n && one_key; k++) one_key = ckey[k] == ckey[0];
     if (one_key) {
@@ -455,8 +457,20 @@ void PairDashpot::compute(int eflag, int vflag)
         }
     }
 
-    // 2. Normal and tangential forces, history updated in place.
+    // 2. Normal and tangential forces, history updated in place. In a run's setup the forces
+    // are recomputed at a time already integrated (after a restart, or between runs): the
+    // tangential law gets dt = 0, which gives the force of the stored spring, and the history
+    // is kept as it was (as pair granular does), or the spring would advance twice.
+    bool setup = update->setupflag != 0 && nvalues > 0;
+    if (setup) {
+        saved_hn.assign(chn.begin(), chn.begin() + n * ns);
+        saved_ht.assign(cht.begin(), cht.begin() + n * nt);
+    }
     evaluate(n);
+    if (setup) {
+        std::copy(saved_hn.begin(), saved_hn.end(), chn.begin());
+        std::copy(saved_ht.begin(), saved_ht.end(), cht.begin());
+    }
 
     // 3. Apply them: F on a, -F on b; torques from the tangential force; record the history.
     if (nvalues > 0) fix_history->clear(nlocal);

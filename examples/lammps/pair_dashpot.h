@@ -65,6 +65,7 @@ class PairDashpot : public Pair {
     // this step's contacts (a = the atom of the lower tag, or the particle against the wall)
     std::vector<int> ca, cb, ckey, cnt, first, order;
     std::vector<double> cdelta, crate, cmass, crad, cnorm, cvel, cra, crb, cfn, cft, chn, cht;
+    std::vector<double> saved_hn, saved_ht;
     std::vector<double> sdelta, srate, smass, srad, snorm, svel, sfn, sft, shn, sht;
 
     void allocate();

@@ -434,3 +434,28 @@ fn pair_dashpot_reports_tangential_errors() {
     let text = failing_deck(&v, "in.sliding", &[("newton", "on")]);
     assert!(text.contains("requires newton off"), "{text}");
 }
+
+/// The same contact stopped mid-way, written to a restart file, cleared and read back: the
+/// spring comes back from the file (fix DASHPOT/HISTORY's per-atom restart data), on 1 and on 2
+/// ranks. The only difference left is LAMMPS's own: after a restart the first forces see the
+/// full-step velocity instead of the half-step one (a 1e-8 effect here).
+#[test]
+fn the_tangential_spring_survives_a_restart_file() {
+    let Some(v) = venv() else { return };
+    let dir = lib_dir().join("lammps-restart");
+    std::fs::create_dir_all(&dir).expect("restart dir");
+    let whole = run_deck(&v, "in.twospheres", 1, &[]);
+    for ranks in [1, 2] {
+        let mut cmd_vars = vec![("restart", "1".to_string())];
+        cmd_vars.push(("restart_dir", dir.display().to_string()));
+        let r = run_deck(&v, "in.twospheres", ranks, &cmd_vars);
+        eprintln!("restarted on {ranks} rank(s): {r:?}");
+        for k in ["vx1", "vy1", "vz1", "w1", "w3"] {
+            let (a, b) = (num(&whole, k), num(&r, k));
+            assert!(
+                (a - b).abs() <= 1e-6 * a.abs(),
+                "{k}: {a} without restart, {b} with"
+            );
+        }
+    }
+}
