@@ -128,7 +128,8 @@ bool FixDashpotHistory::add(int i, tagint p, const double *v)
     int k = npartner[i];
     if (k >= maxpartner) return false;
     partner[i][k] = p;
-    std::memcpy(&values[i][k * nvalues], v, sizeof(double) * nvalues);
+    double *dst = &values[i][k * nvalues];
+    for (int s = 0; s < nvalues; s++) dst[s] = v[s];    // a few values: no memcpy call
     npartner[i] = k + 1;
     return true;
 }
