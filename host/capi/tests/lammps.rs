@@ -371,11 +371,12 @@ fn a_contact_crossing_between_ranks_keeps_its_tangential_spring() {
     assert!(out2.contains("2 by 1 by 1 MPI processor grid"), "{out2}");
     // the spheres touched, friction spun them up, and they separated again
     assert!(num(&one, "w3") > 1.0 && num(&one, "contact") == 0.0, "{one:?}");
-    // while in contact, both crossed x = 0 (the rank boundary): thermo rows of x1, x2, contact
+    // while in contact, both crossed x = 0 (the rank boundary): thermo rows of step, x1, x2,
+    // contact, and the normal and tangential force `compute pair/local` gets from single()
     let crossed = |out: &str| {
         out.lines().any(|l| {
             let w: Vec<f64> = l.split_whitespace().filter_map(|t| t.parse().ok()).collect();
-            w.len() == 6 && w[1] > 0.0 && w[2] > 0.0 && w[3] == 1.0
+            w.len() == 6 && w[1] > 0.0 && w[2] > 0.0 && w[3] == 1.0 && w[4] > 0.0 && w[5] > 0.0
         })
     };
     assert!(crossed(&out1) && crossed(&out2), "{out1}");
