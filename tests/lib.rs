@@ -140,7 +140,7 @@ pub fn build_external_with(
     }
 }
 
-/// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 0.99.0, copied
+/// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 1.0.0 (a future major), copied
 /// to a file of its own (building the real plugin again would overwrite it).
 pub fn wrong_abi_plugin() -> PathBuf {
     static P: OnceLock<PathBuf> = OnceLock::new();
@@ -149,7 +149,7 @@ pub fn wrong_abi_plugin() -> PathBuf {
             &workspace_root().join("Cargo.toml"),
             "dashpot-constant",
             "dashpot_constant",
-            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.99.0")],
+            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "1.0.0")],
             &[],
             Some("wrong_abi_constant"),
         )

@@ -322,7 +322,10 @@ fn reproduce_writes_the_report() {
     let csv = std::fs::read_to_string(out.join("mcnamara_falcon_fig1.csv")).unwrap();
     assert_eq!(csv.lines().count(), 242);
     let laws: Value = serde_json::from_str(&std::fs::read_to_string(out.join("laws.json")).unwrap()).unwrap();
-    assert_eq!(laws.as_array().unwrap().len(), 5);
+    assert_eq!(laws.as_array().unwrap().len(), common::SEED.len());
+    for f in ["thornton_vs_mcnamara_falcon", "oblique_test4", "oblique_test5"] {
+        assert!(out.join(format!("{f}.png")).exists(), "{f}");
+    }
     std::fs::remove_dir_all(&out).ok();
 }
 

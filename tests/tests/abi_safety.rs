@@ -20,7 +20,7 @@ fn a_plugin_built_against_another_sdk_version_is_refused_naming_both() {
     let path = wrong_abi_plugin();
     let err = LoadedPlugin::load(&path).unwrap_err();
     assert_eq!(err.kind, ErrorKind::Load);
-    assert!(err.message.contains("0.99.0"), "{}", err.message);
+    assert!(err.message.contains("1.0.0"), "{}", err.message);
     assert!(
         err.message.contains(dashpot_sdk::abi::ABI_VERSION),
         "{}",
@@ -32,7 +32,7 @@ fn a_plugin_built_against_another_sdk_version_is_refused_naming_both() {
         files: vec![path],
         ..Default::default()
     };
-    assert!(Registry::discover(&sp).unwrap_err().message.contains("0.99.0"));
+    assert!(Registry::discover(&sp).unwrap_err().message.contains("1.0.0"));
 }
 
 #[test]
@@ -204,7 +204,7 @@ fn a_refused_plugin_in_a_directory_does_not_stop_the_others() {
     assert_eq!(reg.refused.len(), 1);
     let e = reg.find("constant").unwrap_err();
     assert!(
-        e.message.contains("unknown law 'constant'") && e.message.contains("0.99.0"),
+        e.message.contains("unknown law 'constant'") && e.message.contains("1.0.0"),
         "{}",
         e.message
     );

@@ -102,6 +102,7 @@ impl PairLaw<dashpot_sdk::abi::ContactModelHandle> {
         pair: &dashpot_sdk::Pair,
         poisson: f64,
     ) -> Result<Self, LawError> {
+        pair.validate()?;
         Ok(PairLaw::new(
             law.bind(&pair.materials(poisson)?)?,
             pair.mass,
