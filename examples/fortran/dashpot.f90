@@ -1,7 +1,9 @@
 ! Fortran interfaces (iso_c_binding) to the dashpot C ABI, include/dashpot.h of host/capi.
-! Hand-written for the functions the examples use; the C header is the reference for the rest
-! (ownership, thread safety, the ABI version rule). Handles are type(c_ptr); statuses are
-! integer(c_int) with the values of enum DashpotStatus.
+! Every function of the header has its interface here (a test fails when one is missing); the C
+! header is the reference for each one's contract (ownership, thread safety, the ABI version
+! rule). Handles are type(c_ptr); statuses and enums are integer(c_int) with the values of the
+! header's enums. Arrays are passed as assumed-size arrays (a C pointer to the first element);
+! vectors of the tangential batch are real(c_double) :: v(3, n), x y z of contact i in v(:, i).
 module dashpot
   use iso_c_binding
   implicit none
@@ -23,6 +25,39 @@ module dashpot
   type, bind(c) :: dashpot_pair_t
     real(c_double) :: mass, radius, young
   end type dashpot_pair_t
+
+  ! struct DashpotMaterials (sdk 0.2): effective Young's and Mindlin shear moduli (Pa)
+  type, bind(c) :: dashpot_materials_t
+    real(c_double) :: young_eff, shear_eff
+  end type dashpot_materials_t
+
+  ! enum DashpotLawKind
+  integer(c_int), parameter :: DASHPOT_CONTACT = 1, DASHPOT_RESTITUTION = 2, DASHPOT_TANGENTIAL = 3
+  ! enum DashpotEndCriterion
+  integer(c_int), parameter :: DASHPOT_END_NONE = 0, DASHPOT_END_OVERLAP = 1, DASHPOT_END_FORCE = 2
+
+  ! struct DashpotLawInfo (strings: type(c_ptr), read them with c_string)
+  type, bind(c) :: dashpot_law_info_t
+    type(c_ptr) :: name
+    integer(c_int) :: kind
+    type(c_ptr) :: summary, doc
+    integer(c_size_t) :: n_params
+    integer(c_int) :: end_criterion
+  end type dashpot_law_info_t
+
+  ! struct DashpotParamInfo
+  type, bind(c) :: dashpot_param_info_t
+    type(c_ptr) :: name, unit, doc
+    integer(c_int) :: has_default
+    real(c_double) :: default_value, min, max
+    integer(c_int) :: min_inclusive, max_inclusive
+  end type dashpot_param_info_t
+
+  ! struct DashpotCalibrationTarget (NaN for an absent contact time or impact speed)
+  type, bind(c) :: dashpot_calibration_target_t
+    real(c_double) :: restitution, contact_time, impact_speed
+    integer(c_int32_t) :: end_criterion
+  end type dashpot_calibration_target_t
 
   interface
     function dashpot_abi_version() bind(c, name='dashpot_abi_version')
@@ -116,6 +151,229 @@ module dashpot
       integer(c_size_t), value :: n_delta, n_rate, n_out
       real(c_double), intent(out) :: force(*)
       integer(c_int) :: dashpot_contact_force_batch
+    end function
+
+    function dashpot_version() bind(c, name='dashpot_version')
+      import :: c_ptr
+      type(c_ptr) :: dashpot_version
+    end function
+
+    function dashpot_registry_find(registry, name, index) bind(c, name='dashpot_registry_find')
+      import :: c_ptr, c_char, c_size_t, c_int
+      type(c_ptr), value :: registry
+      character(kind=c_char), intent(in) :: name(*)
+      integer(c_size_t), intent(out) :: index
+      integer(c_int) :: dashpot_registry_find
+    end function
+
+    function dashpot_registry_law_info(registry, index, info) bind(c, name='dashpot_registry_law_info')
+      import :: c_ptr, c_size_t, c_int, dashpot_law_info_t
+      type(c_ptr), value :: registry
+      integer(c_size_t), value :: index
+      type(dashpot_law_info_t), intent(out) :: info
+      integer(c_int) :: dashpot_registry_law_info
+    end function
+
+    function dashpot_registry_param_info(registry, law, param, info) bind(c, name='dashpot_registry_param_info')
+      import :: c_ptr, c_size_t, c_int, dashpot_param_info_t
+      type(c_ptr), value :: registry
+      integer(c_size_t), value :: law, param
+      type(dashpot_param_info_t), intent(out) :: info
+      integer(c_int) :: dashpot_registry_param_info
+    end function
+
+    function dashpot_pair_wall(a, pair) bind(c, name='dashpot_pair_wall')
+      import :: c_int, dashpot_particle_t, dashpot_pair_t
+      type(dashpot_particle_t), intent(in) :: a
+      type(dashpot_pair_t), intent(out) :: pair
+      integer(c_int) :: dashpot_pair_wall
+    end function
+
+    function dashpot_pair_from_masses(diameter1, mass1, young1, poisson1, diameter2, mass2, young2, poisson2, pair) &
+      bind(c, name='dashpot_pair_from_masses')
+      import :: c_double, c_int, dashpot_pair_t
+      real(c_double), value :: diameter1, mass1, young1, poisson1, diameter2, mass2, young2, poisson2
+      type(dashpot_pair_t), intent(out) :: pair
+      integer(c_int) :: dashpot_pair_from_masses
+    end function
+
+    function dashpot_pair_wall_from_mass(diameter, mass, young, poisson, pair) &
+      bind(c, name='dashpot_pair_wall_from_mass')
+      import :: c_double, c_int, dashpot_pair_t
+      real(c_double), value :: diameter, mass, young, poisson
+      type(dashpot_pair_t), intent(out) :: pair
+      integer(c_int) :: dashpot_pair_wall_from_mass
+    end function
+
+    function dashpot_contact_coefficient(bound, name, value) bind(c, name='dashpot_contact_coefficient')
+      import :: c_ptr, c_char, c_double, c_int
+      type(c_ptr), value :: bound
+      character(kind=c_char), intent(in) :: name(*)
+      real(c_double), intent(out) :: value
+      integer(c_int) :: dashpot_contact_coefficient
+    end function
+
+    function dashpot_restitution_new(registry, name, param_names, param_values, n_params, law) &
+      bind(c, name='dashpot_restitution_new')
+      import :: c_ptr, c_char, c_double, c_size_t, c_int
+      type(c_ptr), value :: registry
+      character(kind=c_char), intent(in) :: name(*)
+      type(c_ptr), value :: param_names
+      real(c_double), intent(in) :: param_values(*)
+      integer(c_size_t), value :: n_params
+      type(c_ptr), intent(out) :: law
+      integer(c_int) :: dashpot_restitution_new
+    end function
+
+    subroutine dashpot_restitution_free(law) bind(c, name='dashpot_restitution_free')
+      import :: c_ptr
+      type(c_ptr), value :: law
+    end subroutine
+
+    function dashpot_restitution_bind(law, pair, bound) bind(c, name='dashpot_restitution_bind')
+      import :: c_ptr, c_int, dashpot_pair_t
+      type(c_ptr), value :: law
+      type(dashpot_pair_t), intent(in) :: pair
+      type(c_ptr), intent(out) :: bound
+      integer(c_int) :: dashpot_restitution_bind
+    end function
+
+    subroutine dashpot_bound_restitution_free(bound) bind(c, name='dashpot_bound_restitution_free')
+      import :: c_ptr
+      type(c_ptr), value :: bound
+    end subroutine
+
+    function dashpot_restitution_eval(bound, speed, restitution) bind(c, name='dashpot_restitution_eval')
+      import :: c_ptr, c_double, c_int
+      type(c_ptr), value :: bound
+      real(c_double), value :: speed
+      real(c_double), intent(out) :: restitution
+      integer(c_int) :: dashpot_restitution_eval
+    end function
+
+    function dashpot_restitution_batch(bound, speed, n_speed, restitution, n_out) &
+      bind(c, name='dashpot_restitution_batch')
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: bound
+      real(c_double), intent(in) :: speed(*)
+      integer(c_size_t), value :: n_speed, n_out
+      real(c_double), intent(out) :: restitution(*)
+      integer(c_int) :: dashpot_restitution_batch
+    end function
+
+    ! fixed_names: c_loc of an array of c_ptr (or c_null_ptr with n_fixed = 0)
+    function dashpot_calibrate(registry, name, target, pair, fixed_names, fixed_values, n_fixed, &
+      values, n_out, n_set) bind(c, name='dashpot_calibrate')
+      import :: c_ptr, c_char, c_double, c_size_t, c_int, dashpot_calibration_target_t, dashpot_pair_t
+      type(c_ptr), value :: registry
+      character(kind=c_char), intent(in) :: name(*)
+      type(dashpot_calibration_target_t), intent(in) :: target
+      type(dashpot_pair_t), intent(in) :: pair
+      type(c_ptr), value :: fixed_names
+      real(c_double), intent(in) :: fixed_values(*)
+      integer(c_size_t), value :: n_fixed, n_out
+      real(c_double), intent(out) :: values(*)
+      integer(c_size_t), intent(out) :: n_set
+      integer(c_int) :: dashpot_calibrate
+    end function
+
+    ! ---- sdk 0.2: materials, per-contact geometry and history, tangential laws ----
+
+    function dashpot_materials_spheres(young1, poisson1, young2, poisson2, materials) &
+      bind(c, name='dashpot_materials_spheres')
+      import :: c_double, c_int, dashpot_materials_t
+      real(c_double), value :: young1, poisson1, young2, poisson2
+      type(dashpot_materials_t), intent(out) :: materials
+      integer(c_int) :: dashpot_materials_spheres
+    end function
+
+    function dashpot_materials_wall(young, poisson, materials) bind(c, name='dashpot_materials_wall')
+      import :: c_double, c_int, dashpot_materials_t
+      real(c_double), value :: young, poisson
+      type(dashpot_materials_t), intent(out) :: materials
+      integer(c_int) :: dashpot_materials_wall
+    end function
+
+    function dashpot_contact_bind_materials(law, materials, model) bind(c, name='dashpot_contact_bind_materials')
+      import :: c_ptr, c_int, dashpot_materials_t
+      type(c_ptr), value :: law
+      type(dashpot_materials_t), intent(in) :: materials
+      type(c_ptr), intent(out) :: model
+      integer(c_int) :: dashpot_contact_bind_materials
+    end function
+
+    subroutine dashpot_contact_model_free(model) bind(c, name='dashpot_contact_model_free')
+      import :: c_ptr
+      type(c_ptr), value :: model
+    end subroutine
+
+    function dashpot_contact_model_history_slots(model, slots) bind(c, name='dashpot_contact_model_history_slots')
+      import :: c_ptr, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), intent(out) :: slots
+      integer(c_int) :: dashpot_contact_model_history_slots
+    end function
+
+    ! history(slots, n): contact i's history in history(:, i); pass a 1-element dummy when n_history = 0
+    function dashpot_contact_model_force_batch(model, n, delta, rate, mass, radius, history, n_history, force) &
+      bind(c, name='dashpot_contact_model_force_batch')
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), intent(in) :: delta(*), rate(*), mass(*), radius(*)
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: force(*)
+      integer(c_int) :: dashpot_contact_model_force_batch
+    end function
+
+    function dashpot_tangential_new(registry, name, param_names, param_values, n_params, law) &
+      bind(c, name='dashpot_tangential_new')
+      import :: c_ptr, c_char, c_double, c_size_t, c_int
+      type(c_ptr), value :: registry
+      character(kind=c_char), intent(in) :: name(*)
+      type(c_ptr), value :: param_names
+      real(c_double), intent(in) :: param_values(*)
+      integer(c_size_t), value :: n_params
+      type(c_ptr), intent(out) :: law
+      integer(c_int) :: dashpot_tangential_new
+    end function
+
+    subroutine dashpot_tangential_free(law) bind(c, name='dashpot_tangential_free')
+      import :: c_ptr
+      type(c_ptr), value :: law
+    end subroutine
+
+    function dashpot_tangential_bind_materials(law, materials, model) bind(c, name='dashpot_tangential_bind_materials')
+      import :: c_ptr, c_int, dashpot_materials_t
+      type(c_ptr), value :: law
+      type(dashpot_materials_t), intent(in) :: materials
+      type(c_ptr), intent(out) :: model
+      integer(c_int) :: dashpot_tangential_bind_materials
+    end function
+
+    subroutine dashpot_tangential_model_free(model) bind(c, name='dashpot_tangential_model_free')
+      import :: c_ptr
+      type(c_ptr), value :: model
+    end subroutine
+
+    function dashpot_tangential_model_history_slots(model, slots) bind(c, name='dashpot_tangential_model_history_slots')
+      import :: c_ptr, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), intent(out) :: slots
+      integer(c_int) :: dashpot_tangential_model_history_slots
+    end function
+
+    ! normal(3, n), velocity(3, n), force(3, n); history(slots, n)
+    function dashpot_tangential_model_force_batch(model, n, dt, normal, velocity, normal_force, delta, mass, radius, &
+      history, n_history, force) bind(c, name='dashpot_tangential_model_force_batch')
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), value :: dt
+      real(c_double), intent(in) :: normal(*), velocity(*), normal_force(*), delta(*), mass(*), radius(*)
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: force(*)
+      integer(c_int) :: dashpot_tangential_model_force_batch
     end function
 
     function dashpot_c_strlen(s) bind(c, name='strlen')

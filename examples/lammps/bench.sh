@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Benchmark: the settling pile of in.pile (20,000 spheres by default) on 1 and 2 MPI ranks,
+# with Mindlin friction and history (BENCH_FRICTION=mindlin, the default) or without (none);
+# or the polydisperse frictional pour of in.pour (BENCH_DECK=pour, 2,000 spheres, fix pour).
 # `pair_style dashpot hsd` (through the dashpot C ABI) against LAMMPS's nearest built-in,
 # `pair_style granular` with `hertz/material ... damping tsuji tangential linear_nohistory 0 0`.
 # Both runs have the same floor (fix wall/gran), integrator and neighbor settings; the score is
@@ -16,6 +18,8 @@ repeats="${2:-3}"
 nx="${BENCH_NX:-20}"
 nz="${BENCH_NZ:-50}"
 d2="${BENCH_D2:-0.01}"   # 0.008: a bidisperse pile (half the spheres 8 mm)
+friction="${BENCH_FRICTION:-mindlin}"
+deck="${BENCH_DECK:-pile}"
 plugin="$("$here/build.sh" "$root/target/lammps" | tail -n1)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
@@ -24,15 +28,25 @@ cd "$work"
 # prints "particle_steps_per_s pair_seconds loop_seconds"
 run() {
     local ranks="$1" style="$2" log="$work/$2.$1.log"
-    "$venv/bin/mpirun" -np "$ranks" "$venv/bin/lmp" -log none -in "$here/in.pile" \
-        -var style "$style" -var wall fix -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" -var d2 "$d2" \
+    if [ "$deck" = pour ]; then
+        set -- -var n "${BENCH_N:-2000}" -var tpour "${BENCH_TPOUR:-0.8}" -var tsettle "${BENCH_TSETTLE:-0.2}"
+    else
+        set -- -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" -var d2 "$d2" -var friction "$friction"
+    fi
+    "$venv/bin/mpirun" -np "$ranks" "$venv/bin/lmp" -log none -in "$here/in.$deck" \
+        -var style "$style" -var wall fix "$@" \
         -var plugin "$plugin" -var plugin_dir "$root/target/release" >"$log" 2>&1 ||
         { cat "$log" >&2; exit 1; }
-    awk '/^Loop time of/ { t = $4; n = $9; a = $12 } /^Pair  *\|/ { p = $5 }
-         END { printf "%.6g %.6g %.6g\n", a * n / t, p, t }' "$log"
+    # every run of the deck: particle-steps over loop time, summed
+    awk '/^Loop time of/ { t += $4; ps += $9 * $12 } /^Pair  *\|/ { p += $5 }
+         END { printf "%.6g %.6g %.6g\n", ps / t, p, t }' "$log"
 }
 
-echo "settling pile: $((nx * nx * nz)) spheres (d2 = $d2 m), $nsteps steps, best of $repeats; $(nproc) cores"
+if [ "$deck" = pour ]; then
+    echo "polydisperse pour: ${BENCH_N:-2000} spheres, best of $repeats; $(nproc) cores"
+else
+    echo "settling pile: $((nx * nx * nz)) spheres (d2 = $d2 m, friction $friction), $nsteps steps, best of $repeats; $(nproc) cores"
+fi
 printf "%-6s %-10s %16s %10s %10s\n" ranks style particle-steps/s pair_s loop_s
 for ranks in 1 2; do
     best_g=0 best_d=0

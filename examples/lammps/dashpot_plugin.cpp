@@ -1,5 +1,6 @@
-/* Registers pair_style dashpot with LAMMPS ("plugin load dashpotplugin.so"). */
+/* Registers pair_style dashpot and its history fix with LAMMPS ("plugin load dashpotplugin.so"). */
 #include "dashpot_lammps_plugin.h"
+#include "fix_dashpot_history.h"
 #include "pair_dashpot.h"
 
 #ifndef DASHPOT_LAMMPS_VERSION
@@ -13,15 +14,27 @@ static void *create_pair_dashpot(void *lmp)
     return new PairDashpot(static_cast<LAMMPS *>(lmp));
 }
 
+static void *create_fix_dashpot_history(void *lmp, int argc, char **argv)
+{
+    return new FixDashpotHistory(static_cast<LAMMPS *>(lmp), argc, argv);
+}
+
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *register_fn)
 {
+    auto reg = reinterpret_cast<dashpot_lmp_register_fn>(register_fn);
     dashpot_lmp_plugin_record record;
     record.version = DASHPOT_LAMMPS_VERSION;
     record.style = "pair";
     record.name = "dashpot";
-    record.info = "normal contact from any dashpot law through the dashpot C ABI";
+    record.info = "granular contact (normal + tangential laws with history) from dashpot laws through the C ABI";
     record.author = "dashpot project";
     record.creator.v1 = &create_pair_dashpot;
     record.handle = handle;
-    (reinterpret_cast<dashpot_lmp_register_fn>(register_fn))(&record, lmp);
+    reg(&record, lmp);
+
+    record.style = "fix";
+    record.name = "DASHPOT/HISTORY";
+    record.info = "per-contact history of pair_style dashpot, moved with the atoms and into restarts";
+    record.creator.v2 = &create_fix_dashpot_history;
+    reg(&record, lmp);
 }

@@ -151,6 +151,11 @@ typedef struct DashpotBoundRestitution DashpotBoundRestitution;
 typedef struct DashpotContactLaw DashpotContactLaw;
 
 /*
+ A contact law bound to a pair of materials (opaque): the hot path of a polydisperse DEM code.
+ */
+typedef struct DashpotContactModel DashpotContactModel;
+
+/*
  Loaded plugins and their laws (opaque).
  */
 typedef struct DashpotRegistry DashpotRegistry;
@@ -159,6 +164,16 @@ typedef struct DashpotRegistry DashpotRegistry;
  A configured restitution law (opaque).
  */
 typedef struct DashpotRestitutionLaw DashpotRestitutionLaw;
+
+/*
+ A configured tangential law (opaque).
+ */
+typedef struct DashpotTangentialLaw DashpotTangentialLaw;
+
+/*
+ A tangential law bound to a pair of materials (opaque): the hot path.
+ */
+typedef struct DashpotTangentialModel DashpotTangentialModel;
 
 /*
  What a calibration must reproduce.
@@ -200,6 +215,20 @@ typedef struct DashpotPair {
    */
   double young;
 } DashpotPair;
+
+/*
+ The effective moduli of a pair of materials (SI).
+ */
+typedef struct DashpotMaterials {
+  /*
+   Effective Young's modulus E_eff (Pa).
+   */
+  double young_eff;
+  /*
+   Effective (Mindlin) shear modulus G_eff (Pa).
+   */
+  double shear_eff;
+} DashpotMaterials;
 
 /*
  One sphere, in SI units.
@@ -440,6 +469,77 @@ enum DashpotStatus dashpot_contact_coefficient(const struct DashpotBoundContact 
                                                double *out_value);
 
 /*
+ Binds a contact law to a pair of materials: every constant that depends only on the
+ materials and the parameters is computed here, once. Any law may be bound this way, with
+ or without history.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a modulus not finite and > 0),
+ `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects these materials), `DASHPOT_ERR_PANIC`.
+ Ownership: `*out_model` is owned by the caller (free with `dashpot_contact_model_free`) and
+ may outlive the law. Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_contact_bind_materials(const struct DashpotContactLaw *law,
+                                                  const struct DashpotMaterials *materials,
+                                                  struct DashpotContactModel **out_model);
+
+/*
+ Frees a material-bound contact law (null is ignored).
+
+ # Safety
+ `model` must be null or a live handle from `dashpot_contact_bind_materials`, not used
+ concurrently.
+ */
+void dashpot_contact_model_free(struct DashpotContactModel *model);
+
+/*
+ The number of history values (doubles) the law keeps per contact (0 for a memoryless law).
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_contact_model_history_slots(const struct DashpotContactModel *model,
+                                                       size_t *out_slots);
+
+/*
+ The normal force on `n` contacts, each with its own geometry and history:
+ `out_force[i] = F(delta[i], rate[i]; mass[i], radius[i], history[i*slots .. (i+1)*slots])`.
+
+ `delta` (m), `rate` (m/s), `mass` (effective mass m1 m2/(m1 + m2), kg; the particle's mass
+ against a wall), `radius` (effective radius r1 r2/(r1 + r2), m; the particle's radius against
+ a flat wall) and `out_force` (N) hold `n` values each; `history` holds `n_history = n × slots`
+ values (see `dashpot_contact_model_history_slots`; null with 0 for a memoryless law), read
+ and updated in place.
+
+ Every input is checked inside the plugin, fused with the computation: a NaN or infinite
+ overlap or rate, or a mass or radius not finite and > 0, is refused with
+ `DASHPOT_ERR_NON_FINITE` naming the array, the index and the value; so is a non-finite force.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER` (the handle, or an array when `n` > 0),
+ `DASHPOT_ERR_BAD_LENGTH` (`n_history` ≠ `n × slots`), `DASHPOT_ERR_NON_FINITE` (`out_force`
+ and `history` are then partly written), `DASHPOT_ERR_PANIC` (the handle stays usable).
+ Ownership: the arrays stay the caller's. Thread-safe (distinct output and history arrays
+ per thread).
+
+ # Safety
+ Non-null arrays must hold the lengths stated; `out_force` and `history` must not overlap
+ each other or the inputs.
+ */
+enum DashpotStatus dashpot_contact_model_force_batch(const struct DashpotContactModel *model,
+                                                     size_t n,
+                                                     const double *delta,
+                                                     const double *rate,
+                                                     const double *mass,
+                                                     const double *radius,
+                                                     double *history,
+                                                     size_t n_history,
+                                                     double *out_force);
+
+/*
  The message of the last failed call on the calling thread (NUL-terminated UTF-8, empty if
  no call has failed on this thread yet). A successful call does not clear it.
 
@@ -454,6 +554,35 @@ const char *dashpot_last_error(void);
  thread-safe.
  */
 const char *dashpot_status_name(int status);
+
+/*
+ The materials of two spheres of Young's moduli `young1`, `young2` (Pa) and Poisson's ratios
+ `poisson1`, `poisson2`.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER` (`out_materials`), `DASHPOT_ERR_INVALID_PAIR` (a modulus
+ not finite and > 0, or a ratio outside (−1, 0.5); the message names it). Thread-safe.
+
+ # Safety
+ `out_materials` must be null or valid for writing.
+ */
+enum DashpotStatus dashpot_materials_spheres(double young1,
+                                             double poisson1,
+                                             double young2,
+                                             double poisson2,
+                                             struct DashpotMaterials *out_materials);
+
+/*
+ The materials of a sphere (Young's modulus `young` in Pa, Poisson's ratio `poisson`) against a
+ flat rigid wall.
+
+ Errors and thread safety as [`dashpot_materials_spheres`].
+
+ # Safety
+ `out_materials` must be null or valid for writing.
+ */
+enum DashpotStatus dashpot_materials_wall(double young,
+                                          double poisson,
+                                          struct DashpotMaterials *out_materials);
 
 /*
  The pair of two spheres `a` and `b`, each given by diameter, density, E and ν.
@@ -666,6 +795,107 @@ enum DashpotStatus dashpot_restitution_batch(const struct DashpotBoundRestitutio
                                              size_t n_speed,
                                              double *out_restitution,
                                              size_t n_out);
+
+/*
+ Creates tangential law `name` (e.g. `"mindlin"`) from `n_params` named values (parameters
+ left out take their defaults; the values are validated against the law's schema).
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW` (also for a law of another kind),
+ `DASHPOT_ERR_UNKNOWN_PARAMETER`, `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`.
+ Ownership: inputs are copied; `*out_law` is owned by the caller (free with
+ `dashpot_tangential_free`) and may outlive the registry. Thread-safe.
+
+ # Safety
+ `param_names`/`param_values` must be null (only if `n_params` is 0) or hold `n_params`
+ elements; strings NUL-terminated; other non-null pointers valid.
+ */
+enum DashpotStatus dashpot_tangential_new(const struct DashpotRegistry *registry,
+                                          const char *name,
+                                          const char *const *param_names,
+                                          const double *param_values,
+                                          size_t n_params,
+                                          struct DashpotTangentialLaw **out_law);
+
+/*
+ Frees a tangential law (null is ignored). Models bound from it stay valid.
+
+ # Safety
+ `law` must be null or a live handle from `dashpot_tangential_new`, not used concurrently.
+ */
+void dashpot_tangential_free(struct DashpotTangentialLaw *law);
+
+/*
+ Binds a tangential law to a pair of materials (see `dashpot_materials_spheres`, `_wall`).
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a modulus not finite and > 0),
+ `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects these materials), `DASHPOT_ERR_PANIC`.
+ Ownership: `*out_model` is owned by the caller (free with `dashpot_tangential_model_free`)
+ and may outlive the law. Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_tangential_bind_materials(const struct DashpotTangentialLaw *law,
+                                                     const struct DashpotMaterials *materials,
+                                                     struct DashpotTangentialModel **out_model);
+
+/*
+ Frees a bound tangential law (null is ignored).
+
+ # Safety
+ `model` must be null or a live handle from `dashpot_tangential_bind_materials`, not used
+ concurrently.
+ */
+void dashpot_tangential_model_free(struct DashpotTangentialModel *model);
+
+/*
+ The number of history values (doubles) the law keeps per contact (3 for a tangential
+ spring).
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_tangential_model_history_slots(const struct DashpotTangentialModel *model,
+                                                          size_t *out_slots);
+
+/*
+ The tangential force on `n` contacts, history advanced by the time step `dt` (s).
+
+ Per contact i: `normal[3i..3i+3]` the unit normal (from partner to particle),
+ `velocity[3i..3i+3]` the relative contact-point velocity (m/s), `normal_force[i]` the normal
+ force this step (N, > 0 repulsive; from the normal law), `delta[i]` the overlap (m),
+ `mass[i]`, `radius[i]` the effective mass (kg) and radius (m), `history[i*slots ..]` its
+ history (`n_history = n × slots` values, read and updated in place) and
+ `out_force[3i..3i+3]` the tangential force on the particle (N).
+
+ Every input is checked inside the plugin: a non-finite vector, normal force, overlap or
+ `dt`, or a mass or radius not finite and > 0, is refused with `DASHPOT_ERR_NON_FINITE`
+ naming the array, the index and the value; so is a non-finite force.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER` (the handle, or an array when `n` > 0),
+ `DASHPOT_ERR_BAD_LENGTH` (`n_history` ≠ `n × slots`), `DASHPOT_ERR_NON_FINITE` (outputs
+ then partly written), `DASHPOT_ERR_PANIC` (the handle stays usable).
+ Ownership: the arrays stay the caller's. Thread-safe (distinct output and history arrays
+ per thread).
+
+ # Safety
+ Non-null arrays must hold the lengths stated; `out_force` and `history` must not overlap
+ each other or the inputs.
+ */
+enum DashpotStatus dashpot_tangential_model_force_batch(const struct DashpotTangentialModel *model,
+                                                        size_t n,
+                                                        double dt,
+                                                        const double *normal,
+                                                        const double *velocity,
+                                                        const double *normal_force,
+                                                        const double *delta,
+                                                        const double *mass,
+                                                        const double *radius,
+                                                        double *history,
+                                                        size_t n_history,
+                                                        double *out_force);
 
 /*
  The ABI version of the library actually loaded. Cannot fail; thread-safe.

@@ -30,18 +30,24 @@
 
 pub mod calibrate;
 pub mod contact;
+pub mod contact_model;
 pub mod error;
+pub mod materials;
 pub mod pair;
 pub mod registry;
 pub mod restitution;
+pub mod tangential;
 pub mod version;
 
 pub use calibrate::*;
 pub use contact::*;
+pub use contact_model::*;
 pub use error::*;
+pub use materials::*;
 pub use pair::*;
 pub use registry::*;
 pub use restitution::*;
+pub use tangential::*;
 pub use version::*;
 
 // The thread-safety promises of the header, checked by the compiler: every handle may be shared
@@ -51,6 +57,9 @@ const _: () = {
     shareable::<DashpotRegistry>();
     shareable::<DashpotContactLaw>();
     shareable::<DashpotBoundContact>();
+    shareable::<DashpotContactModel>();
+    shareable::<DashpotTangentialLaw>();
+    shareable::<DashpotTangentialModel>();
     shareable::<DashpotRestitutionLaw>();
     shareable::<DashpotBoundRestitution>();
 };

