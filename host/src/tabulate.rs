@@ -184,8 +184,15 @@ impl TabulatedRestitution {
 }
 
 impl BoundRestitution for TabulatedRestitution {
+    /// r(v), with values above 1 by no more than the table's accuracy (1e-6 or its measured error) (an elastic law's
+    /// integrated 1 + 1e-12, a spline's overshoot at a plastic law's yield kink) read as 1.
     #[inline]
     fn restitution(&self, speed: f64) -> f64 {
-        self.at(speed)
+        let r = self.at(speed);
+        if r > 1.0 && r <= 1.0 + self.max_error.max(1e-6) {
+            1.0
+        } else {
+            r
+        }
     }
 }
