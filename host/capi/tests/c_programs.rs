@@ -70,6 +70,9 @@ fn link_args(cmd: &mut Command) {
     let lib = deps_dir();
     cmd.arg(format!("-L{}", lib.display()))
         .arg("-ldashpot_capi")
+        // DT_RPATH, not RUNPATH: it wins over LD_LIBRARY_PATH, where cargo puts target/<profile>
+        // (a `cargo build` leaves an older copy of the library there)
+        .arg("-Wl,--disable-new-dtags")
         .arg(format!("-Wl,-rpath,{}", lib.display()))
         .arg("-lm");
 }
