@@ -1,7 +1,7 @@
 //! `dashpot collide`, `dashpot sweep` and `dashpot calibrate`.
 
+use super::args::{LawArgs, Selection};
 use super::grid::parse_grid;
-use crate::cli::{LawArgs, Selection};
 use crate::collide::calibrate::{calibrate, CalibrateSpec};
 use crate::collide::two_body::{collide, Collision, Options, PairLaw};
 use crate::output::write_atomic;
