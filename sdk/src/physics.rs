@@ -23,6 +23,19 @@ pub fn contact_radius(radius: f64, delta: f64) -> f64 {
     (radius * delta.max(0.0)).sqrt()
 }
 
+/// Thornton's (1997) restitution of elastic–perfectly plastic spheres at x = V_y/v (V_y the
+/// yield impact speed, v the normal impact speed): 1 for x ≥ 1 (an elastic impact), else
+/// e = √(6√3/5) √(1 − x²/6) (x / (x + 2 √(6/5 − x²/5)))^{1/4}, which falls as v^{−1/4} far above
+/// V_y. Dimensionless.
+pub fn thornton_restitution(x: f64) -> f64 {
+    if x >= 1.0 {
+        return 1.0;
+    }
+    (6.0 * 3f64.sqrt() / 5.0).sqrt()
+        * (1.0 - x * x / 6.0).sqrt()
+        * (x / (x + 2.0 * (1.2 - 0.2 * x * x).sqrt())).powf(0.25)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

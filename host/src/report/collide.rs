@@ -354,7 +354,7 @@ fn plastic_and_oblique(reg: &Registry, out: &Path) -> Result<String> {
     for &v in &v0s {
         let b = PairLaw::bind(&th, &pair, steel.poisson)?;
         let e = collide(&b, pair.mass, v, EndCriterion::Force, &Options::default())?.restitution;
-        let closed = dashpot_thornton_closed_form(vy / v);
+        let closed = dashpot_sdk::physics::thornton_restitution(vy / v);
         let r = mf.restitution(v)?;
         st.push((v, e));
         sc.push((v, closed));
@@ -555,14 +555,4 @@ fn plastic_and_oblique(reg: &Registry, out: &Path) -> Result<String> {
         (3.5 * mu * 1.98f64).atan().to_degrees()
     )?;
     Ok(md)
-}
-
-/// Thornton's closed-form restitution at x = V_y/v (1 for x ≥ 1).
-fn dashpot_thornton_closed_form(x: f64) -> f64 {
-    if x >= 1.0 {
-        return 1.0;
-    }
-    (6.0 * 3f64.sqrt() / 5.0).sqrt()
-        * (1.0 - x * x / 6.0).sqrt()
-        * (x / (x + 2.0 * (1.2 - x * x / 5.0).sqrt())).powf(0.25)
 }

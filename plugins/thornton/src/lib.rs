@@ -47,12 +47,7 @@ use std::f64::consts::PI;
 /// e = √(6√3/5) √(1 − x²/6) (x / (x + 2 √(6/5 − x²/5)))^{1/4}; 1 for x ≥ 1 (elastic impact).
 /// Exact for this law under the force end criterion.
 pub fn restitution(x: f64) -> f64 {
-    if x >= 1.0 {
-        return 1.0;
-    }
-    (6.0 * 3f64.sqrt() / 5.0).sqrt()
-        * (1.0 - x * x / 6.0).sqrt()
-        * (x / (x + 2.0 * (1.2 - 0.2 * x * x).sqrt())).powf(0.25)
+    dashpot_sdk::physics::thornton_restitution(x)
 }
 
 /// The configured law: limiting contact pressure `py` (Pa).
