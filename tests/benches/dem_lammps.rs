@@ -1,0 +1,272 @@
+//! Soft-sphere DEM in 2D against LAMMPS on the same pile with the same physics, one core each:
+//! 2,000 polydisperse disks (1.9–2 mm, E = 10⁸ Pa, ν = 0.3, steel density, spheres confined
+//! to the plane) settling under gravity on a floor, periodic sideways, HSD (ε = 0.5) + Mindlin
+//! (μ = 0.3, history, no tangential damping) between disks and against the floor.
+//!
+//! LAMMPS runs `examples/dem/lammps/in.pile2d` (`pair_style granular hertz/material ... damping
+//! coeff_restitution tangential mindlin NULL 0 μ`, `fix wall/gran` with the same model, `fix
+//! enforce2d`) on the very disks dashpot starts from (positions, diameters, velocities written
+//! to a data file; the total mass LAMMPS computes is checked against dashpot's), at dashpot's
+//! time step and with dashpot's neighbour skin (0.3 of the smallest diameter). Both settle 5,000 steps, then 3,500 steps are timed: CPU
+//! seconds of the measuring thread for dashpot, LAMMPS's loop time × its CPU share. Three
+//! rounds, the two programs alternating; best of 3.
+//!
+//! LAMMPS comes from `$DASHPOT_LAMMPS_VENV` (default: `~/.cache/dashpot/lammps-venv-2025.7.22.4.0`,
+//! what `.ci/run` installs); without it the comparison is skipped with the reason printed.
+//!
+//! Run: `cargo bench -p dashpot-tests --bench dem_lammps`
+
+use dashpot::dem::{Body, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
+use dashpot_sdk::ParamValue;
+use dashpot_tests::full_registry;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const N: usize = 2000;
+const SETTLE: usize = 5000;
+const STEPS: usize = 3500;
+const ROUNDS: usize = 3;
+const D: f64 = 0.002;
+
+const MAT: Material = Material {
+    young: 1.0e8,
+    poisson: 0.3,
+    density: 7800.0,
+    disk_mass: dashpot::dem::DiskMass::Sphere,
+};
+
+/// This thread's CPU time (s).
+fn cpu_seconds() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes one timespec through a valid pointer.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
+    assert_eq!(rc, 0, "no thread CPU clock");
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// The pile of the `dem` benchmark: disks on a square lattice of spacing d, 50 columns, random
+/// directions at 0.05 m/s, diameters uniform in [0.95, 1] d.
+fn bodies() -> (Vec<Body<2>>, f64, f64) {
+    let cols = 50usize;
+    let rows = N.div_ceil(cols);
+    let mut seed = 7u64;
+    let mut rnd = || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let b = (0..N)
+        .map(|k| {
+            let (q, r) = ((k % cols) as f64, (k / cols) as f64);
+            let a = 2.0 * std::f64::consts::PI * rnd();
+            Body {
+                position: VecD::<2>::new((q + 0.5) * D, (r + 0.5) * D),
+                velocity: VecD::<2>::new(0.05 * a.cos(), 0.05 * a.sin()),
+                angular_velocity: Vec3::zeros(),
+                diameter: D * (0.95 + 0.05 * rnd()),
+            }
+        })
+        .collect();
+    (b, cols as f64 * D, rows as f64 * D)
+}
+
+fn engine(reg: &dashpot::Registry) -> Engine<2> {
+    let (b, width, height) = bodies();
+    let laws = Laws::from_registry(
+        reg,
+        ("hsd", &[ParamValue::new("eps", 0.5)]),
+        Some(("mindlin", &[ParamValue::new("mu", 0.3)])),
+        &MAT,
+    )
+    .expect("laws");
+    let mut cfg = EngineConfig::<2>::new(MAT);
+    cfg.gravity = VecD::<2>::new(0.0, -9.81);
+    cfg.impact_speed = Some(1.0);
+    cfg.domain = Domain {
+        lo: VecD::<2>::new(0.0, -0.01),
+        hi: VecD::<2>::new(width, height + 1.0),
+        periodic: [true, false],
+        bounded: false,
+    };
+    let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
+    Engine::new(cfg, &b, vec![floor], laws).expect("engine")
+}
+
+/// The pile as a LAMMPS data file (atom_style sphere: id type diameter density x y z).
+fn write_data(path: &Path) -> f64 {
+    let (b, width, height) = bodies();
+    let mut s = String::new();
+    let _ = writeln!(s, "dashpot DEM benchmark pile, 2D\n\n{N} atoms\n1 atom types\n");
+    let _ = writeln!(s, "0 {width:.17e} xlo xhi");
+    let _ = writeln!(s, "-0.01 {:.17e} ylo yhi", height + 1.0);
+    let _ = writeln!(s, "-0.001 0.001 zlo zhi\n\nAtoms # sphere\n");
+    let mut mass = 0.0;
+    for (i, p) in b.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "{} 1 {:.17e} {:.17e} {:.17e} {:.17e} 0",
+            i + 1,
+            p.diameter,
+            MAT.density,
+            p.position.x,
+            p.position.y
+        );
+        mass += MAT.density * std::f64::consts::FRAC_PI_6 * p.diameter.powi(3);
+    }
+    let _ = writeln!(s, "\nVelocities\n");
+    for (i, p) in b.iter().enumerate() {
+        let _ = writeln!(s, "{} {:.17e} {:.17e} 0 0 0 0", i + 1, p.velocity.x, p.velocity.y);
+    }
+    std::fs::write(path, s).expect("write the data file");
+    mass
+}
+
+fn venv() -> Result<PathBuf, String> {
+    let v = match std::env::var_os("DASHPOT_LAMMPS_VENV") {
+        Some(v) => PathBuf::from(v),
+        None => PathBuf::from(std::env::var_os("HOME").ok_or("no HOME")?)
+            .join(".cache/dashpot/lammps-venv-2025.7.22.4.0"),
+    };
+    if v.join("bin/lmp").is_file() {
+        Ok(v)
+    } else {
+        Err(format!(
+            "no LAMMPS at {} (run .ci/run once, or set DASHPOT_LAMMPS_VENV)",
+            v.display()
+        ))
+    }
+}
+
+/// Runs the deck; returns (CPU seconds of the timed loop, total mass, final position of atom 1).
+fn lammps(venv: &Path, data: &Path, dt: f64, skin: f64) -> (f64, f64, [f64; 2]) {
+    let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples/dem/lammps/in.pile2d");
+    let out = Command::new(venv.join("bin/lmp"))
+        .arg("-in")
+        .arg(&deck)
+        .args(["-log", "none", "-var", "data"])
+        .arg(data)
+        .args(["-var", "dt", &format!("{dt:.17e}")])
+        .args(["-var", "skin", &format!("{skin:.17e}")])
+        .args(["-var", "settle", &SETTLE.to_string()])
+        .args(["-var", "nsteps", &STEPS.to_string()])
+        .env("OMP_NUM_THREADS", "1")
+        .output()
+        .expect("run lmp");
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "LAMMPS failed:\n{text}\n{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let loops: Vec<&str> = text.lines().filter(|l| l.starts_with("Loop time of")).collect();
+    let last = loops.last().expect("a loop time");
+    // "Loop time of T on 1 procs for S steps with N atoms"
+    let t: f64 = last
+        .split_whitespace()
+        .nth(3)
+        .and_then(|x| x.parse().ok())
+        .expect("loop time");
+    let cpu_share = text
+        .lines()
+        .filter(|l| l.contains("% CPU use"))
+        .last()
+        .and_then(|l| l.split('%').next())
+        .and_then(|x| x.trim().parse::<f64>().ok())
+        .unwrap_or(100.0)
+        / 100.0;
+    let grab = |key: &str| -> Vec<f64> {
+        text.lines()
+            .find(|l| l.starts_with(key))
+            .map(|l| {
+                l.split_whitespace()
+                    .skip(1)
+                    .filter_map(|x| x.parse().ok())
+                    .collect()
+            })
+            .unwrap_or_default()
+    };
+    let m = grab("TOTAL_MASS");
+    let x = grab("FINAL_X1");
+    (t * cpu_share, m[0], [x[0], x[1]])
+}
+
+fn main() {
+    let reg = full_registry();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .expect("pool");
+    let venv = venv();
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../target/dem_lammps");
+    std::fs::create_dir_all(&dir).expect("target/dem_lammps");
+    let data = dir.join("pile2d.data");
+    let mass = write_data(&data);
+    let dt = one.install(|| engine(&reg).dt());
+    // dashpot's default skin: 0.3 of the smallest diameter
+    let skin = 0.3
+        * bodies()
+            .0
+            .iter()
+            .map(|b| b.diameter)
+            .fold(f64::INFINITY, f64::min);
+
+    let (mut td, mut tl) = (Vec::new(), Vec::new());
+    let mut contacts = 0;
+    for round in 0..ROUNDS {
+        let (t, c, x) = one.install(|| {
+            let mut e = engine(&reg);
+            for _ in 0..SETTLE {
+                e.step().expect("step");
+            }
+            let s = cpu_seconds();
+            for _ in 0..STEPS {
+                e.step().expect("step");
+            }
+            (cpu_seconds() - s, e.contacts(), e.p.pos[0])
+        });
+        td.push(t);
+        contacts = c;
+        let Ok(venv) = &venv else { continue };
+        let (tl_, m, xl) = lammps(venv, &data, dt, skin);
+        tl.push(tl_);
+        assert!(
+            (m - mass).abs() <= 1e-12 * mass,
+            "LAMMPS's total mass {m:e} kg is not dashpot's {mass:e} kg: the disks differ"
+        );
+        if round == 0 {
+            println!(
+                "disk 1 after {} steps: dashpot ({:.6e}, {:.6e}) m, LAMMPS ({:.6e}, {:.6e}) m (a chaotic pile: a consistency check, not a test)",
+                SETTLE + STEPS,
+                x.x,
+                x.y,
+                xl[0],
+                xl[1]
+            );
+        }
+    }
+    td.sort_by(f64::total_cmp);
+    tl.sort_by(f64::total_cmp);
+    let ps = |t: f64| (N * STEPS) as f64 / t;
+    println!(
+        "2D pile, {N} disks, HSD + Mindlin (eps = 0.5, mu = 0.3), dt = {dt:.3e} s, {STEPS} steps after {SETTLE}, one core, best of {ROUNDS} (CPU time)"
+    );
+    println!(
+        "  dashpot (plugins)  {:.3e} particle-steps/s   ({contacts} contacts at the end)",
+        ps(td[0])
+    );
+    if let Err(why) = &venv {
+        println!("  LAMMPS: skipped: {why}");
+        return;
+    }
+    println!("  LAMMPS granular    {:.3e} particle-steps/s", ps(tl[0]));
+    println!(
+        "  speed ratio dashpot / LAMMPS: {:.2}x (best) | {:.2}x (median)   target >= 2x",
+        tl[0] / td[0],
+        tl[ROUNDS / 2] / td[ROUNDS / 2]
+    );
+}
