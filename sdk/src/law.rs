@@ -208,7 +208,7 @@ pub trait BoundContact: Send + Sync + 'static {
 
     /// `b.force[i]` for every contact of the batch (see [`NormalBatch`]; the caller guarantees
     /// the lengths). Override only if a hand-vectorised form is faster than this loop.
-    #[inline]
+    #[inline(always)]
     fn force_batch(&self, b: NormalBatch<'_>) {
         let n = b.force.len();
         if b.slots == 0 {
@@ -298,7 +298,7 @@ pub trait BoundTangential: Send + Sync + 'static {
     fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3];
 
     /// `b.force[i]` for every contact of the batch.
-    #[inline]
+    #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
         let n = b.force.len();
         let mut empty: [f64; 0] = [];
