@@ -34,7 +34,7 @@
 //! Every function a plugin exports runs inside `catch_unwind`: a panicking law becomes an
 //! [`ErrorKind::Panic`](crate::ErrorKind::Panic) error in the host. Batch calls check every
 //! input (finite overlaps, rates and vectors; finite positive masses and radii) and every output
-//! inside the plugin, fused with the computation in blocks of 16, and report the first bad
+//! inside the plugin, fused with the computation in blocks of 64, and report the first bad
 //! index, which the host turns into an error naming the index, the input and its value.
 
 mod host;
