@@ -18,7 +18,7 @@
 
 use dashpot::dem::{Body, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
 use dashpot_sdk::ParamValue;
-use dashpot_tests::full_registry;
+use dashpot_tests::{full_registry, thread_cpu_seconds};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -35,18 +35,6 @@ const MAT: Material = Material {
     density: 7800.0,
     disk_mass: dashpot::dem::DiskMass::Sphere,
 };
-
-/// This thread's CPU time (s).
-fn cpu_seconds() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime writes one timespec through a valid pointer.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    assert_eq!(rc, 0, "no thread CPU clock");
-    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
-}
 
 /// The pile of the `dem` benchmark: disks on a square lattice of spacing d, 50 columns, random
 /// directions at 0.05 m/s, diameters uniform in [0.95, 1] d.
@@ -222,11 +210,11 @@ fn main() {
             for _ in 0..SETTLE {
                 e.step().expect("step");
             }
-            let s = cpu_seconds();
+            let s = thread_cpu_seconds();
             for _ in 0..STEPS {
                 e.step().expect("step");
             }
-            (cpu_seconds() - s, e.contacts(), e.p.pos[0])
+            (thread_cpu_seconds() - s, e.contacts(), e.p.pos[0])
         });
         td.push(t);
         contacts = c;

@@ -15,28 +15,16 @@ use dashpot::laws::{compiled, compiled_tangential, NormalLaw, TangentialForce};
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
-use dashpot_tests::{full_registry, sdk01_registry};
+use dashpot_tests::{full_registry, sdk01_registry, thread_cpu_seconds};
 use std::hint::black_box;
 
 const N: usize = 1_000_000;
 const REPS: usize = 21;
 
-/// This thread's CPU time (s): on a shared machine, time spent descheduled is not the law's.
-fn cpu_seconds() -> f64 {
-    let mut ts = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime writes one timespec through a valid pointer.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    assert_eq!(rc, 0, "no thread CPU clock");
-    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
-}
-
 fn time(f: &mut dyn FnMut()) -> f64 {
-    let s = cpu_seconds();
+    let s = thread_cpu_seconds();
     f();
-    cpu_seconds() - s
+    thread_cpu_seconds() - s
 }
 
 /// Runs the contenders interleaved (A, B, A, B, ...) so that drifts in machine load hit all
@@ -101,6 +89,22 @@ fn contacts() -> Contacts {
         c.velocity.push([rnd() - 0.5, rnd() - 0.5, rnd() - 0.5]);
     }
     c
+}
+
+/// Prints two contenders' (min, median) times per contact, converted by `per`, and their ratio.
+fn report(r: &[(f64, f64)], per: impl Fn(f64) -> f64, names: [&str; 2], ratio: &str, target: &str) {
+    for (k, name) in names.iter().enumerate() {
+        println!(
+            "   {name:<22} {:7.3} | {:7.3} ns/contact",
+            per(r[k].0),
+            per(r[k].1)
+        );
+    }
+    println!(
+        "   ratio {ratio} (speed): {:.3} (min) | {:.3} (median){target}",
+        r[0].0 / r[1].0,
+        r[0].1 / r[1].1
+    );
 }
 
 fn normal_step(law: &dyn NormalLaw, c: &Contacts, slots: usize, hist: &mut [f64], out: &mut [f64]) {
@@ -178,20 +182,12 @@ fn main() {
         }],
     );
     println!("1. HSD normal force, per-contact geometry");
-    println!(
-        "   compiled in            {:7.3} | {:7.3} ns/contact",
-        ns(r[0].0),
-        ns(r[0].1)
-    );
-    println!(
-        "   plugin batch call      {:7.3} | {:7.3} ns/contact",
-        ns(r[1].0),
-        ns(r[1].1)
-    );
-    println!(
-        "   ratio plugin / compiled (speed): {:.3} (min) | {:.3} (median)",
-        r[0].0 / r[1].0,
-        r[0].1 / r[1].1
+    report(
+        &r,
+        ns,
+        ["compiled in", "plugin batch call"],
+        "plugin / compiled",
+        "",
     );
 
     // 2. HSD + Mindlin with history
@@ -211,20 +207,12 @@ fn main() {
     // after the same calls in the same order, the springs are the same bits
     assert!(hs.iter().zip(&hp).all(|(a, b)| a.to_bits() == b.to_bits()));
     println!("2. HSD + Mindlin (μ = 0.3) with history: normal batch, then tangential batch");
-    println!(
-        "   compiled in            {:7.3} | {:7.3} ns/contact",
-        ns(r[0].0),
-        ns(r[0].1)
-    );
-    println!(
-        "   plugin batch calls     {:7.3} | {:7.3} ns/contact",
-        ns(r[1].0),
-        ns(r[1].1)
-    );
-    println!(
-        "   ratio plugin / compiled (speed): {:.3} (min) | {:.3} (median)   target >= 0.95",
-        r[0].0 / r[1].0,
-        r[0].1 / r[1].1
+    report(
+        &r,
+        ns,
+        ["compiled in", "plugin batch calls"],
+        "plugin / compiled",
+        "   target >= 0.95",
     );
 
     // 3. sdk 0.2 per-contact geometry against sdk 0.1's bound-pair batch
@@ -252,20 +240,12 @@ fn main() {
                 &mut || normal_step(&hsd_p, &c, 0, &mut [], &mut o4),
             ]);
             println!("3. HSD normal force: sdk 0.2 per-contact geometry vs sdk 0.1 bound-pair batch (both plugins)");
-            println!(
-                "   0.1 bound to one pair   {:7.3} | {:7.3} ns/contact",
-                ns(r[0].0),
-                ns(r[0].1)
-            );
-            println!(
-                "   0.2 per-contact m, r    {:7.3} | {:7.3} ns/contact",
-                ns(r[1].0),
-                ns(r[1].1)
-            );
-            println!(
-                "   ratio 0.2 / 0.1 (speed): {:.3} (min) | {:.3} (median)   target >= 0.9",
-                r[0].0 / r[1].0,
-                r[0].1 / r[1].1
+            report(
+                &r,
+                ns,
+                ["0.1 bound to one pair", "0.2 per-contact m, r"],
+                "0.2 / 0.1",
+                "   target >= 0.9",
             );
 
             // 4. the same two calls as a DEM loop makes them: chunks of CHUNK contacts whose
@@ -307,20 +287,12 @@ fn main() {
             println!(
                 "4. the same, in chunks of {CHUNK} contacts already in cache (as the DEM loop calls it)"
             );
-            println!(
-                "   0.1 bound to one pair   {:7.3} | {:7.3} ns/contact",
-                per(r[0].0),
-                per(r[0].1)
-            );
-            println!(
-                "   0.2 per-contact m, r    {:7.3} | {:7.3} ns/contact",
-                per(r[1].0),
-                per(r[1].1)
-            );
-            println!(
-                "   ratio 0.2 / 0.1 (speed): {:.3} (min) | {:.3} (median)   target >= 0.9",
-                r[0].0 / r[1].0,
-                r[0].1 / r[1].1
+            report(
+                &r,
+                per,
+                ["0.1 bound to one pair", "0.2 per-contact m, r"],
+                "0.2 / 0.1",
+                "   target >= 0.9",
             );
         }
     }
