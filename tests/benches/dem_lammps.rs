@@ -16,9 +16,12 @@
 //!
 //! Run: `cargo bench -p dashpot-tests --bench dem_lammps`
 
+mod common;
+
+use common::thread_cpu_seconds;
 use dashpot::dem::{Body, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
 use dashpot_sdk::ParamValue;
-use dashpot_tests::{full_registry, thread_cpu_seconds};
+use dashpot_tests::full_registry;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -11,11 +11,14 @@
 //!
 //! Run: `cargo bench -p dashpot-tests --bench hsd_force`
 
+mod common;
+
+use common::thread_cpu_seconds;
 use dashpot::laws::{compiled, compiled_tangential, NormalLaw, TangentialForce};
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
-use dashpot_tests::{full_registry, sdk01_registry, thread_cpu_seconds};
+use dashpot_tests::{full_registry, sdk01_registry};
 use std::hint::black_box;
 
 const N: usize = 1_000_000;
