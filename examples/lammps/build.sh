@@ -28,7 +28,7 @@ if [ -z "${DASHPOT_CAPI_LIB:-}" ]; then
     DASHPOT_CAPI_LIB="$root/target/release/libdashpot_capi.a"
 fi
 mkdir -p "$out"
-"${CXX:-g++}" -O2 -std=c++17 -Wall -Wextra -fPIC -shared -DLAMMPS_SMALLBIG \
+"${CXX:-g++}" -O3 -fno-semantic-interposition -std=c++17 -Wall -Wextra -fPIC -shared -DLAMMPS_SMALLBIG \
     -DDASHPOT_LAMMPS_VERSION="\"$lmpver\"" \
     -I"$lmpinc" -I"$mpiinc" -I"$root/host/capi/include" \
     "$here/pair_dashpot.cpp" "$here/fix_dashpot_history.cpp" "$here/dashpot_plugin.cpp" \

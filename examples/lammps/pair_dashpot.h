@@ -45,8 +45,18 @@ class PairDashpot : public Pair {
     void init_style() override;
     double init_one(int, int) override;
     double single(int, int, int, int, double, double, double, double &) override;
+    void write_restart(FILE *) override;
+    void read_restart(FILE *) override;
+    void write_restart_settings(FILE *) override;
+    void read_restart_settings(FILE *) override;
+
+    /* Copies the history of every current contact, held in neighbour-list order between
+     * rebuilds, into the per-atom records of fix DASHPOT/HISTORY (which move with the atoms).
+     * Called by the fix before atoms are exchanged, sorted or written to a restart file. */
+    void history_to_atoms();
 
  private:
+    std::vector<std::string> settings_args;    // pair_style's arguments, for restart files
     std::string law_name, tangential_name;
     DashpotRegistry *registry;
     DashpotContactLaw *law;
@@ -62,18 +72,47 @@ class PairDashpot : public Pair {
     int nslots_n, nslots_t, nvalues;    // history slots of the normal and tangential laws
     class FixDashpotHistory *fix_history;
 
-    // this step's contacts (a = the atom of the lower tag, or the particle against the wall)
-    std::vector<int> ca, cb, ckey, cnt, first, order;
-    std::vector<double> cdelta, crate, cmass, crad, cnorm, cvel, cra, crb, cfn, cft, chn, cht;
-    std::vector<double> saved_hn, saved_ht;
-    std::vector<double> sdelta, srate, smass, srad, snorm, svel, sfn, sft, shn, sht;
+    // Per-contact history in neighbour-list order: slot k is the k-th (i, j) pair of the list
+    // (ilist order, then jlist order), valid from one list build to the next. `touched` is 1
+    // when the slot's history may be non-zero (the contact was evaluated since it was zeroed).
+    std::vector<double> slot_hist;
+    std::vector<unsigned char> slot_touched;
+    std::vector<int> slot_i, slot_j;          // the pair's local indices, for history_to_atoms
+    std::vector<tagint> slot_ti, slot_tj;     // and tags (indices may be reused by then)
+    // the same for the zplane wall, per local atom
+    std::vector<double> wall_hist;
+    std::vector<unsigned char> wall_touched;
+    std::vector<tagint> wall_tag;
+    int nwall_slots;
+    bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)
+
+    // A chunk of contacts of one kind of pair (one bound model), evaluated in one normal and
+    // one tangential batch call when full: structure-of-arrays columns sized to stay in cache.
+    // (Public so that the gather helper in the .cpp can fill it.)
+ public:
+    struct Chunk {
+        int n = 0;
+        int *a = nullptr, *b = nullptr, *slot = nullptr;    // a = the atom of the lower tag; b < 0: the wall
+        double *delta = nullptr, *rate = nullptr, *mass = nullptr, *rad = nullptr, *fn = nullptr;
+        double *norm = nullptr, *vel = nullptr, *ft = nullptr, *hn = nullptr, *ht = nullptr;
+        std::vector<int> istore;
+        std::vector<double> dstore;
+        void reserve(int ns, int nt);    // allocates the columns once
+        Chunk() = default;
+        Chunk(const Chunk &) = delete;
+        Chunk &operator=(const Chunk &) = delete;
+    };
+
+ private:
+    std::vector<Chunk> chunks;    // per key of cmodel
 
     void allocate();
     void free_models();
     int key_of(int itype, int jtype) const;
-    void bind_models();
-    void evaluate(size_t n);
+    void layout_slots();
+    void flush(int key);
     void check(int status, const char *what);
+    void apply_settings(const std::vector<std::string> &args);
 };
 
 }    // namespace LAMMPS_NS
