@@ -659,12 +659,14 @@ void PairDashpot::compute(int eflag, int vflag)
                 key = type[j] * ntp1 + type[i];
             }
             const double r = std::sqrt(rsq);
-            const double rinv = 1.0 / r;
-            const double ma = rmass[a], mb = rmass[b];
+            const double ma = rmass[a], mb = rmass[b], msum = ma + mb;
+            // 1/r, 1/(ma + mb) and 1/(ra + rb) from one division
+            const double inv = 1.0 / (r * msum * radsum);
+            const double rinv = inv * msum * radsum;
             Chunk &c = chunks[key];
             push(c, ns, nt, a, b, k, dx * rinv, dy * rinv, dz * rinv, radsum - r, ra, rb, v[a][0] - v[b][0],
-                 v[a][1] - v[b][1], v[a][2] - v[b][2], ma * mb / (ma + mb), ra * rb / radsum, omega[a], omega[b],
-                 nv > 0 ? shist + (size_t) k * nv : nullptr);
+                 v[a][1] - v[b][1], v[a][2] - v[b][2], ma * mb * (inv * r * radsum), ra * rb * (inv * r * msum),
+                 omega[a], omega[b], nv > 0 ? shist + (size_t) k * nv : nullptr);
             if (c.n == CHUNK) flush(key);
         }
     }
