@@ -176,6 +176,8 @@ void PairDashpot::apply_settings(const std::vector<std::string> &arg)
     slot_hist.clear();
     slot_touched.clear();
     nwall_slots = 0;
+    stage = Chunk();    // its columns hold the history of the laws: sized again
+    sorted = Chunk();
 }
 
 /* Restart files: pair_style's arguments (written by rank 0, read back and broadcast), then
@@ -329,7 +331,6 @@ void PairDashpot::init_style()
     int nk = (nt + 1) * (nt + 1) + nt + 1;
     cmodel.assign(nk, nullptr);
     tmodel.assign(nk, nullptr);
-    chunks = std::vector<Chunk>(nk);
 }
 
 int PairDashpot::key_of(int itype, int jtype) const
@@ -454,37 +455,61 @@ void PairDashpot::history_to_atoms()
                    fix_history->maxpartner);
 }
 
-/* Evaluates the contacts gathered in chunk `key` (one kind of pair) in one normal and one
- * tangential batch call, then applies forces and torques and stores the history back. */
-void PairDashpot::flush(int key)
+void PairDashpot::Chunk::reserve(int ns, int nt)
 {
-    Chunk &c = chunks[key];
-    const size_t n = c.n;
-    if (n == 0) return;
-    c.n = 0;
-    const int ns = nslots_n, nt = nslots_t, nv = nvalues;
-    // In a run's setup the forces are recomputed at a state already integrated (after a
-    // restart, or between runs): the tangential law gets dt = 0, which gives the force of the
-    // stored spring, and the history is not stored back (as pair granular does), or the spring
-    // would advance twice.
-    const bool setup = update->setupflag != 0;
-    const double dt = setup ? 0.0 : update->dt;
-    check(dashpot_contact_model_force_batch(cmodel[key], n, c.delta, c.rate, c.mass, c.rad, ns ? c.hn : nullptr,
-                                            n * ns, c.fn),
-          "dashpot_contact_model_force_batch");
-    const bool tang = tlaw != nullptr;
-    if (tang)
-        check(dashpot_tangential_model_force_batch(tmodel[key], n, dt, c.norm, c.vel, c.fn, c.delta, c.mass, c.rad,
-                                                   nt ? c.ht : nullptr, n * nt, c.ft),
-              "dashpot_tangential_model_force_batch");
+    if (!istore.empty()) return;
+    istore.resize(4 * CHUNK);
+    dstore.resize((size_t) CHUNK * (14 + ns + nt));
+    a = istore.data();
+    b = a + CHUNK;
+    slot = b + CHUNK;
+    key = slot + CHUNK;
+    delta = dstore.data();
+    rate = delta + CHUNK;
+    mass = rate + CHUNK;
+    rad = mass + CHUNK;
+    fn = rad + CHUNK;
+    norm = fn + CHUNK;
+    vel = norm + 3 * CHUNK;
+    ft = vel + 3 * CHUNK;
+    hn = ft + 3 * CHUNK;
+    ht = hn + (size_t) CHUNK * ns;
+}
 
-    double **f = atom->f, **torque = atom->torque;
-    double *radius = atom->radius;
+/* The normal and then the tangential batch call on contacts lo .. lo+m-1 of chunk c, all of
+ * kind `key`. In a run's setup the forces are recomputed at a state already integrated (after
+ * a restart, or between runs): the tangential law gets dt = 0, which gives the force of the
+ * stored spring, and the caller does not store the history back (as pair granular does), or
+ * the spring would advance twice. */
+void PairDashpot::run_laws(Chunk &c, int lo, int m, int key)
+{
+    const size_t ns = nslots_n, nt = nslots_t;
+    const double dt = update->setupflag ? 0.0 : update->dt;
+    check(dashpot_contact_model_force_batch(cmodel[key], m, c.delta + lo, c.rate + lo, c.mass + lo, c.rad + lo,
+                                            ns ? c.hn + lo * ns : nullptr, m * ns, c.fn + lo),
+          "dashpot_contact_model_force_batch");
+    if (tlaw)
+        check(dashpot_tangential_model_force_batch(tmodel[key], m, dt, c.norm + 3 * lo, c.vel + 3 * lo, c.fn + lo,
+                                                   c.delta + lo, c.mass + lo, c.rad + lo,
+                                                   nt ? c.ht + lo * nt : nullptr, m * nt, c.ft + 3 * lo),
+              "dashpot_tangential_model_force_batch");
+}
+
+/* Applies the forces and torques of contacts 0 .. n-1 of chunk c and stores their history
+ * back into the slots. */
+template <int NS, int NT> void PairDashpot::scatter(Chunk &c, int n)
+{
+    const int ns = NS >= 0 ? NS : nslots_n, nt = NT >= 0 ? NT : nslots_t, nv = ns + nt;
+    const bool tang = tlaw != nullptr;
+    const bool store = nv > 0 && !update->setupflag;
+    double *f0 = atom->f[0], *t0 = atom->torque[0];    // contiguous: indexed from the first row
+    const double *radius = atom->radius;
     const int nlocal = atom->nlocal;
     const int newton_pair = force->newton_pair;
     const int *ca = c.a, *cb = c.b, *cs = c.slot;
-    const double *cn = c.norm, *cfn = c.fn, *cft = c.ft;
-    for (size_t k = 0; k < n; k++) {
+    const double *cn = c.norm, *cfn = c.fn, *cft = c.ft, *chn = c.hn, *cht = c.ht;
+    double *shist = nv > 0 ? slot_hist.data() : nullptr, *whist = nv > 0 ? wall_hist.data() : nullptr;
+    for (int k = 0; k < n; k++) {
         const int a = ca[k], b = cb[k];
         const double nx = cn[3 * k], ny = cn[3 * k + 1], nz = cn[3 * k + 2];
         const double fn = cfn[k];
@@ -500,22 +525,24 @@ void PairDashpot::flush(int key)
         const double cx = ny * ftz - nz * fty, cy = nz * ftx - nx * ftz, cz = nx * fty - ny * ftx;
         if (a < nlocal || newton_pair) {
             const double ra = radius[a];
-            f[a][0] += fx;
-            f[a][1] += fy;
-            f[a][2] += fz;
-            torque[a][0] -= ra * cx;
-            torque[a][1] -= ra * cy;
-            torque[a][2] -= ra * cz;
+            double *fa = f0 + 3 * a, *ta = t0 + 3 * a;
+            fa[0] += fx;
+            fa[1] += fy;
+            fa[2] += fz;
+            ta[0] -= ra * cx;
+            ta[1] -= ra * cy;
+            ta[2] -= ra * cz;
         }
         if (b >= 0) {
             if (b < nlocal || newton_pair) {
                 const double rb = radius[b];
-                f[b][0] -= fx;
-                f[b][1] -= fy;
-                f[b][2] -= fz;
-                torque[b][0] -= rb * cx;
-                torque[b][1] -= rb * cy;
-                torque[b][2] -= rb * cz;
+                double *fb = f0 + 3 * b, *tb = t0 + 3 * b;
+                fb[0] -= fx;
+                fb[1] -= fy;
+                fb[2] -= fz;
+                tb[0] -= rb * cx;
+                tb[1] -= rb * cy;
+                tb[2] -= rb * cz;
             }
             if (evflag) {
                 double r = radius[a] + radius[b] - c.delta[k];
@@ -531,99 +558,152 @@ void PairDashpot::flush(int key)
             if (vflag_atom)
                 for (int d = 0; d < 6; d++) vatom[a][d] += v[d];
         }
-        if (nv > 0 && !setup) {
+        if (store) {
             const int s = cs[k];
-            double *h = b >= 0 ? &slot_hist[(size_t) s * nv] : &wall_hist[(size_t) s * nv];
-            for (int q = 0; q < ns; q++) h[q] = c.hn[k * ns + q];
-            for (int q = 0; q < nt; q++) h[ns + q] = c.ht[k * nt + q];
+            double *h = (b >= 0 ? shist : whist) + (size_t) s * nv;
+            for (int q = 0; q < ns; q++) h[q] = chn[k * ns + q];
+            for (int q = 0; q < nt; q++) h[ns + q] = cht[(size_t) k * nt + q];
             (b >= 0 ? slot_touched[s] : wall_touched[s]) = 1;
         }
     }
 }
 
-/* Appends contact (a, b) (b < 0: the wall) with history slot s to chunk c; the caller
- * evaluates the chunk when full. n points from b to a, dv = v_a - v_b, ra and rb are the
- * distances from the centres to the contact point (rb = 0 for the wall). */
-static inline __attribute__((always_inline)) void push(PairDashpot::Chunk &c, int ns, int nt, int a, int b, int s,
-                                                       double nx, double ny, double nz, double delta, double ra,
-                                                       double rb, double dvx, double dvy, double dvz, double meff,
-                                                       double reff, const double *wa, const double *wb,
-                                                       const double *h)
+/* Evaluates the n contacts staged in `stage`: one normal and one tangential batch call per kind
+ * of pair present (when there are several, through a counting sort into `sorted`), then
+ * forces, torques and history. */
+template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed)
 {
-    const int k = c.n;
-    c.a[k] = a;
-    c.b[k] = b;
-    c.slot[k] = s;
-    c.delta[k] = delta;
-    c.mass[k] = meff;
-    c.rad[k] = reff;
-    c.rate[k] = -(dvx * nx + dvy * ny + dvz * nz);
-    double *cn = c.norm + 3 * k;
-    cn[0] = nx;
-    cn[1] = ny;
-    cn[2] = nz;
-    // relative velocity of a's contact point with respect to b's
-    double wx = ra * wa[0], wy = ra * wa[1], wz = ra * wa[2];
-    if (wb) {
-        wx += rb * wb[0];
-        wy += rb * wb[1];
-        wz += rb * wb[2];
+    if (n == 0) return;
+    if (!mixed) {
+        run_laws(stage, 0, n, stage.key[0]);
+        scatter<NS, NT>(stage, n);
+        return;
     }
-    double *cv = c.vel + 3 * k;
-    cv[0] = dvx - (wy * nz - wz * ny);
-    cv[1] = dvy - (wz * nx - wx * nz);
-    cv[2] = dvz - (wx * ny - wy * nx);
-    if (h) {
-        for (int q = 0; q < ns; q++) c.hn[k * ns + q] = h[q];
-        for (int q = 0; q < nt; q++) c.ht[k * nt + q] = h[ns + q];
+    const int ns = nslots_n, nt = nslots_t;
+    const int nk = (int) cmodel.size();
+    key_count.assign(nk + 1, 0);
+    for (int k = 0; k < n; k++) key_count[stage.key[k] + 1]++;
+    for (int q = 0; q < nk; q++) key_count[q + 1] += key_count[q];
+    key_next.assign(key_count.begin(), key_count.end() - 1);
+    Chunk &d = sorted;
+    for (int k = 0; k < n; k++) {
+        const int p = key_next[stage.key[k]]++;
+        d.a[p] = stage.a[k];
+        d.b[p] = stage.b[k];
+        d.slot[p] = stage.slot[k];
+        d.key[p] = stage.key[k];
+        d.delta[p] = stage.delta[k];
+        d.rate[p] = stage.rate[k];
+        d.mass[p] = stage.mass[k];
+        d.rad[p] = stage.rad[k];
+        for (int q = 0; q < 3; q++) {
+            d.norm[3 * p + q] = stage.norm[3 * k + q];
+            d.vel[3 * p + q] = stage.vel[3 * k + q];
+        }
+        for (int q = 0; q < ns; q++) d.hn[p * ns + q] = stage.hn[k * ns + q];
+        for (int q = 0; q < nt; q++) d.ht[p * nt + q] = stage.ht[k * nt + q];
     }
-    c.n = k + 1;
-}
-
-void PairDashpot::Chunk::reserve(int ns, int nt)
-{
-    if (!istore.empty()) return;
-    istore.resize(3 * CHUNK);
-    dstore.resize((size_t) CHUNK * (14 + ns + nt));
-    a = istore.data();
-    b = a + CHUNK;
-    slot = b + CHUNK;
-    delta = dstore.data();
-    rate = delta + CHUNK;
-    mass = rate + CHUNK;
-    rad = mass + CHUNK;
-    fn = rad + CHUNK;
-    norm = fn + CHUNK;
-    vel = norm + 3 * CHUNK;
-    ft = vel + 3 * CHUNK;
-    hn = ft + 3 * CHUNK;
-    ht = hn + (size_t) CHUNK * ns;
+    for (int key = 0; key < nk; key++) {
+        const int lo = key_count[key], m = key_count[key + 1] - lo;
+        if (m > 0) run_laws(d, lo, m, key);
+    }
+    scatter<NS, NT>(d, n);
 }
 
 void PairDashpot::compute(int eflag, int vflag)
 {
     ev_init(eflag, vflag);
+    const int ns = nslots_n, nt = nslots_t;
+    if (ns == 0 && nt == 3)
+        compute_t<0, 3>();
+    else if (ns == 0 && nt == 0)
+        compute_t<0, 0>();
+    else if (ns == 1 && nt == 3)
+        compute_t<1, 3>();
+    else if (ns == 1 && nt == 0)
+        compute_t<1, 0>();
+    else
+        compute_t<-1, -1>();
+}
 
+/* The step's forces, with the history slot counts known at compile time for the common laws
+ * (NS, NT < 0: read at run time). */
+template <int NS, int NT> void PairDashpot::compute_t()
+{
     double **x = atom->x, **v = atom->v, **omega = atom->omega;
-    double *radius = atom->radius, *rmass = atom->rmass;
-    int *type = atom->type;
-    tagint *tag = atom->tag;
+    const double *radius = atom->radius, *rmass = atom->rmass;
+    const int *type = atom->type;
+    const tagint *tag = atom->tag;
     const int nlocal = atom->nlocal;
     const int inum = list->inum;
-    int *ilist = list->ilist, *numneigh = list->numneigh;
+    const int *ilist = list->ilist, *numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
-    const int ns = nslots_n, nt = nslots_t, nv = nvalues;
+    const int ns = NS >= 0 ? NS : nslots_n, nt = NT >= 0 ? NT : nslots_t, nv = ns + nt;
     const int ntp1 = atom->ntypes + 1;
     const int wall_key0 = ntp1 * ntp1;
 
     if (nv > 0 && (slots_ncalls != neighbor->ncalls || (wall_flag && nlocal != nwall_slots))) layout_slots();
     double *shist = nv > 0 ? slot_hist.data() : nullptr;
     unsigned char *stouch = nv > 0 ? slot_touched.data() : nullptr;
-    for (auto &c : chunks) c.reserve(ns, nt);
+    stage.reserve(ns, nt);
+    sorted.reserve(ns, nt);
+    // LAMMPS's per-atom 2D arrays are contiguous: index them from their first row
+    const double *x0 = atom->nmax > 0 ? x[0] : nullptr, *v0 = atom->nmax > 0 ? v[0] : nullptr;
+    const double *w0 = atom->nmax > 0 ? omega[0] : nullptr;
 
-    // 1. Walk the neighbour list once: contacts go to the chunk of their kind of pair,
-    // evaluated whenever full; history slots follow the list (slot k = the k-th pair), and a
-    // pair that has separated has its history zeroed.
+    // The staging columns, as local pointers the compiler can keep in registers.
+    int *__restrict ca = stage.a, *__restrict cb = stage.b, *__restrict cs = stage.slot, *__restrict ck = stage.key;
+    double *__restrict cdelta = stage.delta, *__restrict crate = stage.rate, *__restrict cmass = stage.mass;
+    double *__restrict crad = stage.rad, *__restrict cnorm = stage.norm, *__restrict cvel = stage.vel;
+    double *__restrict chn = stage.hn, *__restrict cht = stage.ht;
+    int n = 0, key0 = -1;
+    bool mixed = false;
+
+    // Stages contact (a, b) (b < 0: the wall) of kind `key` and history slot s (h its values,
+    // null without history); n points from b to a, dv = v_a - v_b, ra and rb are the distances
+    // from the centres to the contact point (the two-body driver's convention; rb = 0 for the
+    // wall).
+    auto stage_contact = [&](int key, int a, int b, int s, double nx, double ny, double nz, double delta,
+                             double ra, double rb, double dvx, double dvy, double dvz, double meff, double reff,
+                             const double *wa, const double *wb, const double *h) __attribute__((always_inline))
+    {
+        if (n == 0) key0 = key;
+        mixed |= key != key0;
+        ca[n] = a;
+        cb[n] = b;
+        cs[n] = s;
+        ck[n] = key;
+        cdelta[n] = delta;
+        cmass[n] = meff;
+        crad[n] = reff;
+        crate[n] = -(dvx * nx + dvy * ny + dvz * nz);
+        double *cn = cnorm + 3 * n;
+        cn[0] = nx;
+        cn[1] = ny;
+        cn[2] = nz;
+        // relative velocity of a's contact point with respect to b's
+        double wx = ra * wa[0], wy = ra * wa[1], wz = ra * wa[2];
+        if (wb) {
+            wx += rb * wb[0];
+            wy += rb * wb[1];
+            wz += rb * wb[2];
+        }
+        double *cv = cvel + 3 * n;
+        cv[0] = dvx - (wy * nz - wz * ny);
+        cv[1] = dvy - (wz * nx - wx * nz);
+        cv[2] = dvz - (wx * ny - wy * nx);
+        for (int q = 0; q < ns; q++) chn[n * ns + q] = h[q];
+        for (int q = 0; q < nt; q++) cht[n * nt + q] = h[ns + q];
+        if (++n == CHUNK) {
+            evaluate<NS, NT>(n, mixed);
+            n = 0;
+            mixed = false;
+        }
+    };
+
+    // 1. Walk the neighbour list once: contacts are staged and evaluated a chunk at a time;
+    // history slots follow the list (slot k = the k-th pair), and a pair that has separated
+    // has its history zeroed.
     int k = 0;
     for (int ii = 0; ii < inum; ii++) {
         const int i = ilist[ii];
@@ -631,10 +711,11 @@ void PairDashpot::compute(int eflag, int vflag)
         const int jnum = numneigh[i];
         const double xi = x[i][0], yi = x[i][1], zi = x[i][2], radi = radius[i];
         const tagint ti = tag[i];
-        const int rowi = type[i] * ntp1;
+        const int typei = type[i];
         for (int jj = 0; jj < jnum; jj++, k++) {
             const int j = jlist[jj] & NEIGHMASK;
-            double dx = xi - x[j][0], dy = yi - x[j][1], dz = zi - x[j][2];
+            const double *xj = x0 + 3 * j;
+            double dx = xi - xj[0], dy = yi - xj[1], dz = zi - xj[2];
             const double rsq = dx * dx + dy * dy + dz * dz;
             const double radj = radius[j];
             const double radsum = radi + radj;
@@ -646,28 +727,27 @@ void PairDashpot::compute(int eflag, int vflag)
                 continue;
             }
             // orient from the lower tag, so that every rank computes a contact the same way
-            int a = i, b = j, key = rowi + type[j];
+            int a = i, b = j, ta = typei, tb = type[j];
             double ra = radi, rb = radj;
             if (tag[j] < ti) {
                 a = j;
                 b = i;
+                std::swap(ta, tb);
                 ra = radj;
                 rb = radi;
                 dx = -dx;
                 dy = -dy;
                 dz = -dz;
-                key = type[j] * ntp1 + type[i];
             }
             const double r = std::sqrt(rsq);
             const double ma = rmass[a], mb = rmass[b], msum = ma + mb;
             // 1/r, 1/(ma + mb) and 1/(ra + rb) from one division
             const double inv = 1.0 / (r * msum * radsum);
             const double rinv = inv * msum * radsum;
-            Chunk &c = chunks[key];
-            push(c, ns, nt, a, b, k, dx * rinv, dy * rinv, dz * rinv, radsum - r, ra, rb, v[a][0] - v[b][0],
-                 v[a][1] - v[b][1], v[a][2] - v[b][2], ma * mb * (inv * r * radsum), ra * rb * (inv * r * msum),
-                 omega[a], omega[b], nv > 0 ? shist + (size_t) k * nv : nullptr);
-            if (c.n == CHUNK) flush(key);
+            const double *va = v0 + 3 * a, *vb = v0 + 3 * b;
+            stage_contact(ta * ntp1 + tb, a, b, k, dx * rinv, dy * rinv, dz * rinv, radsum - r, ra, rb,
+                          va[0] - vb[0], va[1] - vb[1], va[2] - vb[2], ma * mb * (inv * r * radsum),
+                          ra * rb * (inv * r * msum), w0 + 3 * a, w0 + 3 * b, shist + (size_t) k * nv);
         }
     }
     if (wall_flag) {
@@ -681,15 +761,12 @@ void PairDashpot::compute(int eflag, int vflag)
                 }
                 continue;
             }
-            const int key = wall_key0 + type[i];
-            Chunk &c = chunks[key];
-            push(c, ns, nt, i, -1, i, 0.0, 0.0, 1.0, radius[i] - gap, radius[i], 0.0, v[i][0], v[i][1], v[i][2],
-                 rmass[i], radius[i], omega[i], nullptr, h);
-            if (c.n == CHUNK) flush(key);
+            stage_contact(wall_key0 + type[i], i, -1, i, 0.0, 0.0, 1.0, radius[i] - gap, radius[i], 0.0, v[i][0],
+                          v[i][1], v[i][2], rmass[i], radius[i], omega[i], nullptr, h);
         }
     }
-    // 2. The chunks not yet full.
-    for (int key = 0; key < (int) chunks.size(); key++) flush(key);
+    // 2. The last chunk, not full.
+    evaluate<NS, NT>(n, mixed);
     if (nv > 0) fix_history->stale = 1;
 }
 

@@ -86,31 +86,32 @@ class PairDashpot : public Pair {
     int nwall_slots;
     bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)
 
-    // A chunk of contacts of one kind of pair (one bound model), evaluated in one normal and
-    // one tangential batch call when full: structure-of-arrays columns sized to stay in cache.
-    // (Public so that the gather helper in the .cpp can fill it.)
+    // Contacts are staged a chunk at a time in structure-of-arrays columns sized to stay in
+    // cache, then evaluated in one normal and one tangential batch call per kind of pair
+    // (bound model) present in the chunk.
  public:
     struct Chunk {
-        int n = 0;
-        int *a = nullptr, *b = nullptr, *slot = nullptr;    // a = the atom of the lower tag; b < 0: the wall
+        int *a = nullptr, *b = nullptr;    // a = the atom of the lower tag; b < 0: the wall
+        int *slot = nullptr, *key = nullptr;    // history slot (list order, or the atom for the wall); kind
         double *delta = nullptr, *rate = nullptr, *mass = nullptr, *rad = nullptr, *fn = nullptr;
         double *norm = nullptr, *vel = nullptr, *ft = nullptr, *hn = nullptr, *ht = nullptr;
         std::vector<int> istore;
         std::vector<double> dstore;
         void reserve(int ns, int nt);    // allocates the columns once
-        Chunk() = default;
-        Chunk(const Chunk &) = delete;
-        Chunk &operator=(const Chunk &) = delete;
     };
 
  private:
-    std::vector<Chunk> chunks;    // per key of cmodel
+    Chunk stage, sorted;    // as gathered; by kind of pair when a chunk mixes kinds
+    std::vector<int> key_count, key_next;
 
     void allocate();
     void free_models();
     int key_of(int itype, int jtype) const;
     void layout_slots();
-    void flush(int key);
+    template <int NS, int NT> void compute_t();
+    template <int NS, int NT> void evaluate(int n, bool mixed);
+    template <int NS, int NT> void scatter(Chunk &c, int n);
+    void run_laws(Chunk &c, int lo, int m, int key);
     void check(int status, const char *what);
     void apply_settings(const std::vector<std::string> &args);
 };
