@@ -17,8 +17,10 @@
  *
  * Needs atom_style sphere (radius, rmass, omega, torque), SI units and comm_modify vel yes.
  * Laws with per-contact history (any tangential law, a plastic normal law) also need
- * `newton off`: each rank then computes every contact of its own atoms and keeps its history
- * with them (fix DASHPOT/HISTORY, created by the pair style). */
+ * `newton off`: each rank then computes every contact of its own atoms. Between neighbour-list
+ * builds the history sits in arrays in list order; fix DASHPOT/HISTORY (created by the pair
+ * style) carries it with the atoms across exchanges, sorts and restart files. Restart files
+ * also hold pair_style's arguments and pair_coeff's moduli. */
 #ifndef DASHPOT_PAIR_DASHPOT_H
 #define DASHPOT_PAIR_DASHPOT_H
 
