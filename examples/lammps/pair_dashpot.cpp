@@ -481,7 +481,7 @@ void PairDashpot::Chunk::reserve(int ns, int nt)
  * a restart, or between runs): the tangential law gets dt = 0, which gives the force of the
  * stored spring, and the caller does not store the history back (as pair granular does), or
  * the spring would advance twice. */
-void PairDashpot::run_laws(Chunk &c, int lo, int m, int key)
+void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *ht_direct)
 {
     const size_t ns = nslots_n, nt = nslots_t;
     const double dt = update->setupflag ? 0.0 : update->dt;
@@ -491,24 +491,26 @@ void PairDashpot::run_laws(Chunk &c, int lo, int m, int key)
     if (tlaw)
         check(dashpot_tangential_model_force_batch(tmodel[key], m, dt, c.norm + 3 * lo, c.vel + 3 * lo, c.fn + lo,
                                                    c.delta + lo, c.mass + lo, c.rad + lo,
-                                                   nt ? c.ht + lo * nt : nullptr, m * nt, c.ft + 3 * lo),
+                                                   nt ? (ht_direct ? ht_direct : c.ht + lo * nt) : nullptr, m * nt,
+                                                   c.ft + 3 * lo),
               "dashpot_tangential_model_force_batch");
 }
 
 /* Applies the forces and torques of contacts 0 .. n-1 of chunk c and stores their history
- * back into the slots. */
-template <int NS, int NT> void PairDashpot::scatter(Chunk &c, int n)
+ * back into the slots of `hist` (the list's, or the wall's), unless the laws updated it in
+ * place (`direct`). */
+template <int NS, int NT>
+void PairDashpot::scatter(Chunk &c, int n, double *hist, unsigned char *touched, bool direct)
 {
     const int ns = NS >= 0 ? NS : nslots_n, nt = NT >= 0 ? NT : nslots_t, nv = ns + nt;
     const bool tang = tlaw != nullptr;
-    const bool store = nv > 0 && !update->setupflag;
+    const bool store = nv > 0 && !update->setupflag && !direct;
     double *f0 = atom->f[0], *t0 = atom->torque[0];    // contiguous: indexed from the first row
     const double *radius = atom->radius;
     const int nlocal = atom->nlocal;
     const int newton_pair = force->newton_pair;
     const int *ca = c.a, *cb = c.b, *cs = c.slot;
     const double *cn = c.norm, *cfn = c.fn, *cft = c.ft, *chn = c.hn, *cht = c.ht;
-    double *shist = nv > 0 ? slot_hist.data() : nullptr, *whist = nv > 0 ? wall_hist.data() : nullptr;
     for (int k = 0; k < n; k++) {
         const int a = ca[k], b = cb[k];
         const double nx = cn[3 * k], ny = cn[3 * k + 1], nz = cn[3 * k + 2];
@@ -560,26 +562,42 @@ template <int NS, int NT> void PairDashpot::scatter(Chunk &c, int n)
         }
         if (store) {
             const int s = cs[k];
-            double *h = (b >= 0 ? shist : whist) + (size_t) s * nv;
+            double *h = hist + (size_t) s * nv;
             for (int q = 0; q < ns; q++) h[q] = chn[k * ns + q];
             for (int q = 0; q < nt; q++) h[ns + q] = cht[(size_t) k * nt + q];
-            (b >= 0 ? slot_touched[s] : wall_touched[s]) = 1;
+            touched[s] = 1;
         }
     }
+    if (direct) std::memset(touched + cs[0], 1, n);
 }
 
 /* Evaluates the n contacts staged in `stage`: one normal and one tangential batch call per kind
  * of pair present (when there are several, through a counting sort into `sorted`), then
  * forces, torques and history. */
-template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed)
+template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed, bool wall)
 {
     if (n == 0) return;
+    const int ns = NS >= 0 ? NS : nslots_n, nt = NT >= 0 ? NT : nslots_t, nv = ns + nt;
+    double *hist = nv > 0 ? (wall ? wall_hist.data() : slot_hist.data()) : nullptr;
+    unsigned char *touched = nv > 0 ? (wall ? wall_touched.data() : slot_touched.data()) : nullptr;
+    // Contacts of consecutive slots (a pile: every pair of the list touches) with only
+    // tangential history: the law reads and writes the slots in place. Not in a run's setup,
+    // where the history must not advance.
+    const bool direct = NS == 0 && nv > 0 && !mixed && !update->setupflag &&
+        stage.slot[n - 1] - stage.slot[0] == n - 1;
+    if (nv > 0 && !direct) {
+        const int *cs = stage.slot;
+        for (int k = 0; k < n; k++) {
+            const double *h = hist + (size_t) cs[k] * nv;
+            for (int q = 0; q < ns; q++) stage.hn[k * ns + q] = h[q];
+            for (int q = 0; q < nt; q++) stage.ht[(size_t) k * nt + q] = h[ns + q];
+        }
+    }
     if (!mixed) {
-        run_laws(stage, 0, n, stage.key[0]);
-        scatter<NS, NT>(stage, n);
+        run_laws(stage, 0, n, stage.key[0], direct ? hist + (size_t) stage.slot[0] * nv : nullptr);
+        scatter<NS, NT>(stage, n, hist, touched, direct);
         return;
     }
-    const int ns = nslots_n, nt = nslots_t;
     const int nk = (int) cmodel.size();
     key_count.assign(nk + 1, 0);
     for (int k = 0; k < n; k++) key_count[stage.key[k] + 1]++;
@@ -605,9 +623,9 @@ template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed)
     }
     for (int key = 0; key < nk; key++) {
         const int lo = key_count[key], m = key_count[key + 1] - lo;
-        if (m > 0) run_laws(d, lo, m, key);
+        if (m > 0) run_laws(d, lo, m, key, nullptr);
     }
-    scatter<NS, NT>(d, n);
+    scatter<NS, NT>(d, n, hist, touched, false);
 }
 
 void PairDashpot::compute(int eflag, int vflag)
@@ -655,17 +673,16 @@ template <int NS, int NT> void PairDashpot::compute_t()
     int *__restrict ca = stage.a, *__restrict cb = stage.b, *__restrict cs = stage.slot, *__restrict ck = stage.key;
     double *__restrict cdelta = stage.delta, *__restrict crate = stage.rate, *__restrict cmass = stage.mass;
     double *__restrict crad = stage.rad, *__restrict cnorm = stage.norm, *__restrict cvel = stage.vel;
-    double *__restrict chn = stage.hn, *__restrict cht = stage.ht;
     int n = 0, key0 = -1;
     bool mixed = false;
 
-    // Stages contact (a, b) (b < 0: the wall) of kind `key` and history slot s (h its values,
-    // null without history); n points from b to a, dv = v_a - v_b, ra and rb are the distances
+    // Stages contact (a, b) (b < 0: the wall) of kind `key` and history slot s (its values are
+    // read at evaluation); n points from b to a, dv = v_a - v_b, ra and rb are the distances
     // from the centres to the contact point (the two-body driver's convention; rb = 0 for the
     // wall).
     auto stage_contact = [&](int key, int a, int b, int s, double nx, double ny, double nz, double delta,
                              double ra, double rb, double dvx, double dvy, double dvz, double meff, double reff,
-                             const double *wa, const double *wb, const double *h) __attribute__((always_inline))
+                             const double *wa, const double *wb) __attribute__((always_inline))
     {
         if (n == 0) key0 = key;
         mixed |= key != key0;
@@ -692,10 +709,8 @@ template <int NS, int NT> void PairDashpot::compute_t()
         cv[0] = dvx - (wy * nz - wz * ny);
         cv[1] = dvy - (wz * nx - wx * nz);
         cv[2] = dvz - (wx * ny - wy * nx);
-        for (int q = 0; q < ns; q++) chn[n * ns + q] = h[q];
-        for (int q = 0; q < nt; q++) cht[n * nt + q] = h[ns + q];
         if (++n == CHUNK) {
-            evaluate<NS, NT>(n, mixed);
+            evaluate<NS, NT>(n, mixed, b < 0);
             n = 0;
             mixed = false;
         }
@@ -747,9 +762,13 @@ template <int NS, int NT> void PairDashpot::compute_t()
             const double *va = v0 + 3 * a, *vb = v0 + 3 * b;
             stage_contact(ta * ntp1 + tb, a, b, k, dx * rinv, dy * rinv, dz * rinv, radsum - r, ra, rb,
                           va[0] - vb[0], va[1] - vb[1], va[2] - vb[2], ma * mb * (inv * r * radsum),
-                          ra * rb * (inv * r * msum), w0 + 3 * a, w0 + 3 * b, shist + (size_t) k * nv);
+                          ra * rb * (inv * r * msum), w0 + 3 * a, w0 + 3 * b);
         }
     }
+    // the pairs' last chunk, not full: a chunk holds pairs or wall contacts, not both
+    evaluate<NS, NT>(n, mixed, false);
+    n = 0;
+    mixed = false;
     if (wall_flag) {
         for (int i = 0; i < nlocal; i++) {
             const double gap = x[i][2] - wall_z;
@@ -762,11 +781,11 @@ template <int NS, int NT> void PairDashpot::compute_t()
                 continue;
             }
             stage_contact(wall_key0 + type[i], i, -1, i, 0.0, 0.0, 1.0, radius[i] - gap, radius[i], 0.0, v[i][0],
-                          v[i][1], v[i][2], rmass[i], radius[i], omega[i], nullptr, h);
+                          v[i][1], v[i][2], rmass[i], radius[i], omega[i], nullptr);
         }
     }
-    // 2. The last chunk, not full.
-    evaluate<NS, NT>(n, mixed);
+    // 2. The wall's last chunk, not full.
+    evaluate<NS, NT>(n, mixed, true);
     if (nv > 0) fix_history->stale = 1;
 }
 

@@ -111,9 +111,9 @@ class PairDashpot : public Pair {
     int key_of(int itype, int jtype) const;
     void layout_slots();
     template <int NS, int NT> void compute_t();
-    template <int NS, int NT> void evaluate(int n, bool mixed);
-    template <int NS, int NT> void scatter(Chunk &c, int n);
-    void run_laws(Chunk &c, int lo, int m, int key);
+    template <int NS, int NT> void evaluate(int n, bool mixed, bool wall);
+    template <int NS, int NT> void scatter(Chunk &c, int n, double *hist, unsigned char *touched, bool direct);
+    void run_laws(Chunk &c, int lo, int m, int key, double *ht_direct);
     void check(int status, const char *what);
     void apply_settings(const std::vector<std::string> &args);
 };
