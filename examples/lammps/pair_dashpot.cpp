@@ -26,11 +26,13 @@
 using namespace LAMMPS_NS;
 
 static constexpr int MAX_PARTNERS = 32;    // contacts per atom the history fix can hold
+// contacts per batch call: the chunk's columns (about 20 doubles a contact) stay in L2 cache
+static constexpr int CHUNK = 256;
 
 PairDashpot::PairDashpot(LAMMPS *lmp) :
     Pair(lmp), registry(nullptr), law(nullptr), tlaw(nullptr), wall_flag(0), wall_z(0.0), young(nullptr),
     poisson(nullptr), young2(nullptr), poisson2(nullptr), nslots_n(0), nslots_t(0), nvalues(0),
-    fix_history(nullptr)
+    fix_history(nullptr), nwall_slots(0), slots_ncalls(-1)
 {
     single_enable = 1;
     single_extra = 2;    // svector: normal force (N), tangential force magnitude (N)
@@ -38,7 +40,7 @@ PairDashpot::PairDashpot(LAMMPS *lmp) :
     finitecutflag = 1;
     comm_forward = 0;
     no_virial_fdotr_compute = 1;    // the wall's reaction is not a pair force
-    restartinfo = 0;                // pair_style and pair_coeff are given again after read_restart
+    restartinfo = 1;                // write_restart keeps pair_style's arguments and pair_coeff
 }
 
 PairDashpot::~PairDashpot()
@@ -90,10 +92,18 @@ void PairDashpot::allocate()
 /* pair_style dashpot NORMAL [key=value ...] [tangential TANGENTIAL key=value ...] ... */
 void PairDashpot::settings(int narg, char **arg)
 {
+    std::vector<std::string> args(arg, arg + narg);
+    apply_settings(args);
+}
+
+void PairDashpot::apply_settings(const std::vector<std::string> &arg)
+{
+    const int narg = (int) arg.size();
     if (narg < 1) error->all(FLERR, "Illegal pair_style dashpot command: expected a normal law name");
     if (dashpot_abi_version() != DASHPOT_ABI_VERSION)
         error->all(FLERR, "pair dashpot: libdashpot_capi has ABI version {}, this plugin was built for {}",
                    dashpot_abi_version(), DASHPOT_ABI_VERSION);
+    settings_args = arg;
     law_name = arg[0];
     tangential_name.clear();
     std::vector<std::string> dirs, names, tnames;
@@ -101,7 +111,7 @@ void PairDashpot::settings(int narg, char **arg)
     wall_flag = 0;
     bool in_tangential = false;
     for (int i = 1; i < narg; i++) {
-        std::string a = arg[i];
+        const std::string &a = arg[i];
         if (a == "tangential") {
             if (in_tangential || i + 1 >= narg)
                 error->all(FLERR, "pair_style dashpot: 'tangential' must be followed by one tangential law name");
@@ -161,6 +171,84 @@ void PairDashpot::settings(int narg, char **arg)
     nslots_n = (int) ns;
     nslots_t = (int) nt;
     nvalues = nslots_n + nslots_t;
+    // the history laid out in list order belongs to the previous laws
+    slots_ncalls = -1;
+    slot_hist.clear();
+    slot_touched.clear();
+    nwall_slots = 0;
+    stage = Chunk();    // its columns hold the history of the laws: sized again
+    sorted = Chunk();
+}
+
+/* Restart files: pair_style's arguments (written by rank 0, read back and broadcast), then
+ * pair_coeff's moduli per pair of types. */
+void PairDashpot::write_restart_settings(FILE *fp)
+{
+    int n = (int) settings_args.size();
+    fwrite(&n, sizeof(int), 1, fp);
+    for (auto &a : settings_args) {
+        int len = (int) a.size();
+        fwrite(&len, sizeof(int), 1, fp);
+        fwrite(a.data(), sizeof(char), len, fp);
+    }
+}
+
+void PairDashpot::read_restart_settings(FILE *fp)
+{
+    int me = comm->me;
+    int n = 0;
+    if (me == 0) utils::sfread(FLERR, &n, sizeof(int), 1, fp, nullptr, error);
+    MPI_Bcast(&n, 1, MPI_INT, 0, world);
+    if (n < 1 || n > 10000) error->all(FLERR, "pair dashpot: corrupt restart file ({} pair_style arguments)", n);
+    std::vector<std::string> args(n);
+    for (auto &a : args) {
+        int len = 0;
+        if (me == 0) utils::sfread(FLERR, &len, sizeof(int), 1, fp, nullptr, error);
+        MPI_Bcast(&len, 1, MPI_INT, 0, world);
+        if (len < 0 || len > (1 << 20))
+            error->all(FLERR, "pair dashpot: corrupt restart file (an argument of {} characters)", len);
+        std::vector<char> buf(len + 1, 0);
+        if (me == 0 && len > 0) utils::sfread(FLERR, buf.data(), sizeof(char), len, fp, nullptr, error);
+        MPI_Bcast(buf.data(), len, MPI_CHAR, 0, world);
+        a.assign(buf.data(), len);
+    }
+    apply_settings(args);
+}
+
+void PairDashpot::write_restart(FILE *fp)
+{
+    write_restart_settings(fp);
+    for (int i = 1; i <= atom->ntypes; i++)
+        for (int j = i; j <= atom->ntypes; j++) {
+            fwrite(&setflag[i][j], sizeof(int), 1, fp);
+            if (setflag[i][j]) {
+                fwrite(&young[i][j], sizeof(double), 1, fp);
+                fwrite(&poisson[i][j], sizeof(double), 1, fp);
+                fwrite(&young2[i][j], sizeof(double), 1, fp);
+                fwrite(&poisson2[i][j], sizeof(double), 1, fp);
+            }
+        }
+}
+
+void PairDashpot::read_restart(FILE *fp)
+{
+    read_restart_settings(fp);
+    allocate();
+    int me = comm->me;
+    for (int i = 1; i <= atom->ntypes; i++)
+        for (int j = i; j <= atom->ntypes; j++) {
+            if (me == 0) utils::sfread(FLERR, &setflag[i][j], sizeof(int), 1, fp, nullptr, error);
+            MPI_Bcast(&setflag[i][j], 1, MPI_INT, 0, world);
+            if (setflag[i][j]) {
+                double m[4];
+                if (me == 0) utils::sfread(FLERR, m, sizeof(double), 4, fp, nullptr, error);
+                MPI_Bcast(m, 4, MPI_DOUBLE, 0, world);
+                young[i][j] = m[0];
+                poisson[i][j] = m[1];
+                young2[i][j] = m[2];
+                poisson2[i][j] = m[3];
+            }
+        }
 }
 
 /* pair_coeff I J E nu */
@@ -212,6 +300,7 @@ void PairDashpot::init_style()
         }
         if (!f)
             f = modify->add_fix(fmt::format("DASHPOT_HISTORY all DASHPOT/HISTORY {} {}", nvalues, MAX_PARTNERS));
+        if (f != fix_history) slots_ncalls = -1;    // a new fix: lay the history out from it
         fix_history = static_cast<FixDashpotHistory *>(f);
     } else {
         fix_history = nullptr;
@@ -284,241 +373,420 @@ double PairDashpot::init_one(int i, int j)
     return type_radius[i] + type_radius[j];
 }
 
-/* Evaluates contacts 0 .. n-1 of the c* arrays: one normal and one tangential batch call per
- * pair of types present. */
-void PairDashpot::evaluate(size_t n)
+/* Lays the history out in the order of the neighbour list just built: slot k is the k-th pair
+ * (i, j) of the list, and takes the values atom i (or j) carries in fix DASHPOT/HISTORY for
+ * that partner, zero if none. The wall's history is laid out per local atom. Runs once per
+ * list build, never in the steps between. */
+void PairDashpot::layout_slots()
 {
-    if (n == 0) return;
-    const int ns = nslots_n, nt = nslots_t;
-    // in a run's setup the state is one already integrated: the spring does not advance
-    double dt = update->setupflag ? 0.0 : update->dt;
-    bool one_key = true;
-    for (size_t k = 1; k < n && one_key; k++) one_key = ckey[k] == ckey[0];
-    if (one_key) {
-        int key = ckey[0];
-        check(dashpot_contact_model_force_batch(cmodel[key], n, cdelta.data(), crate.data(), cmass.data(),
-                                                crad.data(), ns ? chn.data() : nullptr, n * ns, cfn.data()),
-              "dashpot_contact_model_force_batch");
-        if (tlaw)
-            check(dashpot_tangential_model_force_batch(tmodel[key], n, dt, cnorm.data(), cvel.data(), cfn.data(),
-                                                       cdelta.data(), cmass.data(), crad.data(),
-                                                       nt ? cht.data() : nullptr, n * nt, cft.data()),
-                  "dashpot_tangential_model_force_batch");
-        return;
-    }
-    // Counting sort by key, then one call per key on contiguous copies.
-    int nk = (int) cmodel.size();
-    cnt.assign(nk + 1, 0);
-    for (size_t k = 0; k < n; k++) cnt[ckey[k] + 1]++;
-    for (int q = 0; q < nk; q++) cnt[q + 1] += cnt[q];
-    first = cnt;
-    order.resize(n);
-    for (size_t k = 0; k < n; k++) order[first[ckey[k]]++] = (int) k;
-    for (auto *v : {&sdelta, &srate, &smass, &srad, &sfn}) v->resize(n);
-    for (auto *v : {&snorm, &svel, &sft}) v->resize(3 * n);
-    shn.resize(n * ns);
-    sht.resize(n * nt);
-    for (size_t p = 0; p < n; p++) {
-        size_t k = order[p];
-        sdelta[p] = cdelta[k];
-        srate[p] = crate[k];
-        smass[p] = cmass[k];
-        srad[p] = crad[k];
-        for (int d = 0; d < 3; d++) {
-            snorm[3 * p + d] = cnorm[3 * k + d];
-            svel[3 * p + d] = cvel[3 * k + d];
-        }
-        for (int s = 0; s < ns; s++) shn[p * ns + s] = chn[k * ns + s];
-        for (int s = 0; s < nt; s++) sht[p * nt + s] = cht[k * nt + s];
-    }
-    for (int key = 0; key < nk; key++) {
-        size_t lo = cnt[key], m = cnt[key + 1] - cnt[key];
-        if (m == 0) continue;
-        check(dashpot_contact_model_force_batch(cmodel[key], m, &sdelta[lo], &srate[lo], &smass[lo], &srad[lo],
-                                                ns ? &shn[lo * ns] : nullptr, m * ns, &sfn[lo]),
-              "dashpot_contact_model_force_batch");
-        if (tlaw)
-            check(dashpot_tangential_model_force_batch(tmodel[key], m, dt, &snorm[3 * lo], &svel[3 * lo], &sfn[lo],
-                                                       &sdelta[lo], &smass[lo], &srad[lo],
-                                                       nt ? &sht[lo * nt] : nullptr, m * nt, &sft[3 * lo]),
-                  "dashpot_tangential_model_force_batch");
-    }
-    for (size_t p = 0; p < n; p++) {
-        size_t k = order[p];
-        cfn[k] = sfn[p];
-        for (int d = 0; d < 3; d++) cft[3 * k + d] = sft[3 * p + d];
-        for (int s = 0; s < ns; s++) chn[k * ns + s] = shn[p * ns + s];
-        for (int s = 0; s < nt; s++) cht[k * nt + s] = sht[p * nt + s];
-    }
-}
-
-void PairDashpot::compute(int eflag, int vflag)
-{
-    ev_init(eflag, vflag);
-
-    double **x = atom->x, **v = atom->v, **f = atom->f, **omega = atom->omega, **torque = atom->torque;
-    double *radius = atom->radius, *rmass = atom->rmass;
-    int *type = atom->type;
+    if (fix_history->stale) history_to_atoms();    // a build without a pre_exchange before it
+    const int nv = nvalues;
     tagint *tag = atom->tag;
     int nlocal = atom->nlocal;
-    int newton_pair = force->newton_pair;
     int inum = list->inum;
     int *ilist = list->ilist, *numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
-    const int ns = nslots_n, nt = nslots_t;
-    const int wall_key0 = (atom->ntypes + 1) * (atom->ntypes + 1);
-    const bool tang = tlaw != nullptr;
-
-    // Room for every neighbor pair and every wall contact: the gather below writes by index.
-    size_t cap = (size_t) (wall_flag ? nlocal : 0);
-    for (int ii = 0; ii < inum; ii++) cap += (size_t) numneigh[ilist[ii]];
-    if (ca.size() < cap) {
-        for (auto *vec : {&ca, &cb, &ckey}) vec->resize(cap);
-        for (auto *vec : {&cdelta, &crate, &cmass, &crad, &cra, &crb, &cfn}) vec->resize(cap);
-        for (auto *vec : {&cnorm, &cvel, &cft}) vec->resize(3 * cap);
-        chn.resize(cap * ns);
-        cht.resize(cap * nt);
-    }
-    size_t n = 0;
-
-    // The state of contact n between a and b (b < 0: the wall), oriented from a.
-    auto gather = [&](int a, int b, double nx, double ny, double nz, double delta, double ra, double rb,
-                      double vnx, double vny, double vnz, double meff, double reff, int key) {
-        ca[n] = a;
-        cb[n] = b;
-        ckey[n] = key;
-        cdelta[n] = delta;
-        cmass[n] = meff;
-        crad[n] = reff;
-        cnorm[3 * n] = nx;
-        cnorm[3 * n + 1] = ny;
-        cnorm[3 * n + 2] = nz;
-        // relative velocity of a's contact point with respect to b's; the contact point lies a
-        // radius from each centre (the two-body driver's convention; 0 for the wall)
-        double la = ra, lb = rb;
-        double wx = la * omega[a][0], wy = la * omega[a][1], wz = la * omega[a][2];
-        if (b >= 0) {
-            wx += lb * omega[b][0];
-            wy += lb * omega[b][1];
-            wz += lb * omega[b][2];
-        }
-        cra[n] = la;
-        crb[n] = lb;
-        cvel[3 * n] = vnx - (wy * nz - wz * ny);
-        cvel[3 * n + 1] = vny - (wz * nx - wx * nz);
-        cvel[3 * n + 2] = vnz - (wx * ny - wy * nx);
-        crate[n] = -(vnx * nx + vny * ny + vnz * nz);
-        if (nvalues > 0) {
-            // the record is on both atoms; read it from one this rank owns
-            const double *h = nullptr;
-            if (b < 0)
-                h = fix_history->find(a, 0);
-            else if (a < nlocal)
-                h = fix_history->find(a, tag[b]);
-            else
-                h = fix_history->find(b, tag[a]);
-            for (int s = 0; s < ns; s++) chn[n * ns + s] = h ? h[s] : 0.0;
-            for (int s = 0; s < nt; s++) cht[n * nt + s] = h ? h[ns + s] : 0.0;
-        }
-        n++;
-    };
-
-    // 1. Gather every contact of the step.
+    size_t nslot = 0;
+    for (int ii = 0; ii < inum; ii++) nslot += (size_t) numneigh[ilist[ii]];
+    slot_hist.assign(nslot * nv, 0.0);
+    slot_touched.assign(nslot, 0);
+    slot_i.resize(nslot);
+    slot_j.resize(nslot);
+    slot_ti.resize(nslot);
+    slot_tj.resize(nslot);
+    size_t k = 0;
     for (int ii = 0; ii < inum; ii++) {
         int i = ilist[ii];
         int *jlist = firstneigh[i];
-        int jnum = numneigh[i];
-        for (int jj = 0; jj < jnum; jj++) {
+        for (int jj = 0; jj < numneigh[i]; jj++, k++) {
             int j = jlist[jj] & NEIGHMASK;
-            // orient from the lower tag, so that every rank computes a contact the same way
-            int a = i, b = j;
-            if (tag[j] < tag[i]) {
-                a = j;
-                b = i;
+            slot_i[k] = i;
+            slot_j[k] = j;
+            slot_ti[k] = tag[i];
+            slot_tj[k] = tag[j];
+            // the record is on both atoms when both were owned here; i always is (half list)
+            const double *h = fix_history->find(i, tag[j]);
+            if (!h && j < nlocal) h = fix_history->find(j, tag[i]);
+            if (h) {
+                std::copy(h, h + nv, &slot_hist[k * nv]);
+                slot_touched[k] = 1;
             }
-            double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
-            double rsq = dx * dx + dy * dy + dz * dz;
-            double radsum = radius[a] + radius[b];
-            if (rsq >= radsum * radsum) continue;
-            double r = std::sqrt(rsq);
-            double rinv = 1.0 / r;
-            double ma = rmass[a], mb = rmass[b];
-            gather(a, b, dx * rinv, dy * rinv, dz * rinv, radsum - r, radius[a], radius[b], v[a][0] - v[b][0],
-                   v[a][1] - v[b][1], v[a][2] - v[b][2], ma * mb / (ma + mb),
-                   radius[a] * radius[b] / radsum, key_of(type[a], type[b]));
         }
     }
-    if (wall_flag) {
-        for (int i = 0; i < nlocal; i++) {
-            double gap = x[i][2] - wall_z;
-            if (gap >= radius[i]) continue;
-            gather(i, -1, 0.0, 0.0, 1.0, radius[i] - gap, radius[i], 0.0, v[i][0], v[i][1], v[i][2], rmass[i],
-                   radius[i], wall_key0 + type[i]);
+    nwall_slots = wall_flag ? nlocal : 0;
+    wall_hist.assign((size_t) nwall_slots * nv, 0.0);
+    wall_touched.assign(nwall_slots, 0);
+    wall_tag.resize(nwall_slots);
+    for (int i = 0; i < nwall_slots; i++) {
+        wall_tag[i] = tag[i];
+        const double *h = fix_history->find(i, 0);
+        if (h) {
+            std::copy(h, h + nv, &wall_hist[(size_t) i * nv]);
+            wall_touched[i] = 1;
         }
     }
+    slots_ncalls = neighbor->ncalls;
+}
 
-    // 2. Normal and tangential forces, history updated in place. In a run's setup the forces
-    // are recomputed at a time already integrated (after a restart, or between runs): the
-    // tangential law gets dt = 0, which gives the force of the stored spring, and the history
-    // is kept as it was (as pair granular does), or the spring would advance twice.
-    bool setup = update->setupflag != 0 && nvalues > 0;
-    if (setup) {
-        saved_hn.assign(chn.begin(), chn.begin() + n * ns);
-        saved_ht.assign(cht.begin(), cht.begin() + n * nt);
+void PairDashpot::history_to_atoms()
+{
+    if (!fix_history) return;
+    fix_history->stale = 0;
+    if (slots_ncalls < 0) return;    // nothing laid out yet: the records are current
+    const int nv = nvalues;
+    int nlocal = atom->nlocal;
+    fix_history->clear(nlocal);
+    bool ok = true;
+    size_t nslot = slot_touched.size();
+    for (size_t k = 0; k < nslot && ok; k++) {
+        if (!slot_touched[k]) continue;
+        const double *h = &slot_hist[k * nv];
+        bool zero = true;
+        for (int s = 0; s < nv; s++) zero = zero && h[s] == 0.0;
+        if (zero) continue;    // the same as no record: zero at first touch
+        int i = slot_i[k], j = slot_j[k];
+        if (i < nlocal) ok = fix_history->add(i, slot_tj[k], h);
+        if (ok && j < nlocal) ok = fix_history->add(j, slot_ti[k], h);
     }
-    evaluate(n);
-    if (setup) {
-        std::copy(saved_hn.begin(), saved_hn.end(), chn.begin());
-        std::copy(saved_ht.begin(), saved_ht.end(), cht.begin());
-    }
+    for (int i = 0; i < nwall_slots && i < nlocal && ok; i++)
+        if (wall_touched[i]) ok = fix_history->add(i, 0, &wall_hist[(size_t) i * nv]);
+    if (!ok)
+        error->one(FLERR, "pair dashpot: an atom has more than {} contacts (the history fix's capacity)",
+                   fix_history->maxpartner);
+}
 
-    // 3. Apply them: F on a, -F on b; torques from the tangential force; record the history.
-    if (nvalues > 0) fix_history->clear(nlocal);
-    std::vector<double> rec(nvalues > 0 ? nvalues : 1);
-    for (size_t k = 0; k < n; k++) {
-        int a = ca[k], b = cb[k];
-        double nx = cnorm[3 * k], ny = cnorm[3 * k + 1], nz = cnorm[3 * k + 2];
-        double fn = cfn[k];
+void PairDashpot::Chunk::reserve(int ns, int nt)
+{
+    if (!istore.empty()) return;
+    istore.resize(4 * CHUNK);
+    dstore.resize((size_t) CHUNK * (14 + ns + nt));
+    a = istore.data();
+    b = a + CHUNK;
+    slot = b + CHUNK;
+    key = slot + CHUNK;
+    delta = dstore.data();
+    rate = delta + CHUNK;
+    mass = rate + CHUNK;
+    rad = mass + CHUNK;
+    fn = rad + CHUNK;
+    norm = fn + CHUNK;
+    vel = norm + 3 * CHUNK;
+    ft = vel + 3 * CHUNK;
+    hn = ft + 3 * CHUNK;
+    ht = hn + (size_t) CHUNK * ns;
+}
+
+/* The normal and then the tangential batch call on contacts lo .. lo+m-1 of chunk c, all of
+ * kind `key`. In a run's setup the forces are recomputed at a state already integrated (after
+ * a restart, or between runs): the tangential law gets dt = 0, which gives the force of the
+ * stored spring, and the caller does not store the history back (as pair granular does), or
+ * the spring would advance twice. */
+void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *ht_direct)
+{
+    const size_t ns = nslots_n, nt = nslots_t;
+    const double dt = update->setupflag ? 0.0 : update->dt;
+    check(dashpot_contact_model_force_batch(cmodel[key], m, c.delta + lo, c.rate + lo, c.mass + lo, c.rad + lo,
+                                            ns ? c.hn + lo * ns : nullptr, m * ns, c.fn + lo),
+          "dashpot_contact_model_force_batch");
+    if (tlaw)
+        check(dashpot_tangential_model_force_batch(tmodel[key], m, dt, c.norm + 3 * lo, c.vel + 3 * lo, c.fn + lo,
+                                                   c.delta + lo, c.mass + lo, c.rad + lo,
+                                                   nt ? (ht_direct ? ht_direct : c.ht + lo * nt) : nullptr, m * nt,
+                                                   c.ft + 3 * lo),
+              "dashpot_tangential_model_force_batch");
+}
+
+/* Applies the forces and torques of contacts 0 .. n-1 of chunk c and stores their history
+ * back into the slots of `hist` (the list's, or the wall's), unless the laws updated it in
+ * place (`direct`). */
+template <int NS, int NT>
+void PairDashpot::scatter(Chunk &c, int n, double *hist, unsigned char *touched, bool direct)
+{
+    const int ns = NS >= 0 ? NS : nslots_n, nt = NT >= 0 ? NT : nslots_t, nv = ns + nt;
+    const bool tang = tlaw != nullptr;
+    const bool store = nv > 0 && !update->setupflag && !direct;
+    double *f0 = atom->f[0], *t0 = atom->torque[0];    // contiguous: indexed from the first row
+    const double *radius = atom->radius;
+    const int nlocal = atom->nlocal;
+    const int newton_pair = force->newton_pair;
+    const int *ca = c.a, *cb = c.b, *cs = c.slot;
+    const double *cn = c.norm, *cfn = c.fn, *cft = c.ft, *chn = c.hn, *cht = c.ht;
+    for (int k = 0; k < n; k++) {
+        const int a = ca[k], b = cb[k];
+        const double nx = cn[3 * k], ny = cn[3 * k + 1], nz = cn[3 * k + 2];
+        const double fn = cfn[k];
         double ftx = 0.0, fty = 0.0, ftz = 0.0;
         if (tang) {
             ftx = cft[3 * k];
             fty = cft[3 * k + 1];
             ftz = cft[3 * k + 2];
         }
-        double fx = fn * nx + ftx, fy = fn * ny + fty, fz = fn * nz + ftz;
-        // n x Ft; the torque on a is -la (n x Ft), on b -lb (n x Ft)
-        double cx = ny * ftz - nz * fty, cy = nz * ftx - nx * ftz, cz = nx * fty - ny * ftx;
+        const double fx = fn * nx + ftx, fy = fn * ny + fty, fz = fn * nz + ftz;
+        // n x Ft; the torque on a is -ra (n x Ft), on b -rb (n x Ft) (contact point a radius
+        // from each centre: the two-body driver's convention)
+        const double cx = ny * ftz - nz * fty, cy = nz * ftx - nx * ftz, cz = nx * fty - ny * ftx;
         if (a < nlocal || newton_pair) {
-            f[a][0] += fx;
-            f[a][1] += fy;
-            f[a][2] += fz;
-            torque[a][0] -= cra[k] * cx;
-            torque[a][1] -= cra[k] * cy;
-            torque[a][2] -= cra[k] * cz;
+            const double ra = radius[a];
+            double *fa = f0 + 3 * a, *ta = t0 + 3 * a;
+            fa[0] += fx;
+            fa[1] += fy;
+            fa[2] += fz;
+            ta[0] -= ra * cx;
+            ta[1] -= ra * cy;
+            ta[2] -= ra * cz;
         }
-        if (b >= 0 && (b < nlocal || newton_pair)) {
-            f[b][0] -= fx;
-            f[b][1] -= fy;
-            f[b][2] -= fz;
-            torque[b][0] -= crb[k] * cx;
-            torque[b][1] -= crb[k] * cy;
-            torque[b][2] -= crb[k] * cz;
+        if (b >= 0) {
+            if (b < nlocal || newton_pair) {
+                const double rb = radius[b];
+                double *fb = f0 + 3 * b, *tb = t0 + 3 * b;
+                fb[0] -= fx;
+                fb[1] -= fy;
+                fb[2] -= fz;
+                tb[0] -= rb * cx;
+                tb[1] -= rb * cy;
+                tb[2] -= rb * cz;
+            }
+            if (evflag) {
+                double r = radius[a] + radius[b] - c.delta[k];
+                ev_tally_xyz(a, b, nlocal, newton_pair, 0.0, 0.0, fx, fy, fz, nx * r, ny * r, nz * r);
+            }
+        } else if (vflag_either) {
+            // the wall's reaction, as a pair force between the particle and its contact point
+            // on the wall, a distance r = radius - delta below its centre along n = +z
+            double r = radius[a] - c.delta[k];
+            double v[6] = {0.0, 0.0, r * fz, 0.0, 0.0, 0.0};
+            if (vflag_global)
+                for (int d = 0; d < 6; d++) virial[d] += v[d];
+            if (vflag_atom)
+                for (int d = 0; d < 6; d++) vatom[a][d] += v[d];
         }
-        if (nvalues > 0) {
-            for (int s = 0; s < ns; s++) rec[s] = chn[k * ns + s];
-            for (int s = 0; s < nt; s++) rec[ns + s] = cht[k * nt + s];
-            bool ok = true;
-            if (a < nlocal) ok = fix_history->add(a, b < 0 ? 0 : tag[b], rec.data());
-            if (ok && b >= 0 && b < nlocal) ok = fix_history->add(b, tag[a], rec.data());
-            if (!ok)
-                error->one(FLERR, "pair dashpot: an atom has more than {} contacts (the history fix's capacity)",
-                           MAX_PARTNERS);
-        }
-        if (evflag && b >= 0) {
-            double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
-            ev_tally_xyz(a, b, nlocal, newton_pair, 0.0, 0.0, fx, fy, fz, dx, dy, dz);
+        if (store) {
+            const int s = cs[k];
+            double *h = hist + (size_t) s * nv;
+            for (int q = 0; q < ns; q++) h[q] = chn[k * ns + q];
+            for (int q = 0; q < nt; q++) h[ns + q] = cht[(size_t) k * nt + q];
+            touched[s] = 1;
         }
     }
+    if (direct) std::memset(touched + cs[0], 1, n);
+}
+
+/* Evaluates the n contacts staged in `stage`: one normal and one tangential batch call per kind
+ * of pair present (when there are several, through a counting sort into `sorted`), then
+ * forces, torques and history. */
+template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed, bool wall)
+{
+    if (n == 0) return;
+    const int ns = NS >= 0 ? NS : nslots_n, nt = NT >= 0 ? NT : nslots_t, nv = ns + nt;
+    double *hist = nv > 0 ? (wall ? wall_hist.data() : slot_hist.data()) : nullptr;
+    unsigned char *touched = nv > 0 ? (wall ? wall_touched.data() : slot_touched.data()) : nullptr;
+    // Contacts of consecutive slots (a pile: every pair of the list touches) with only
+    // tangential history: the law reads and writes the slots in place. Not in a run's setup,
+    // where the history must not advance.
+    const bool direct = NS == 0 && nv > 0 && !mixed && !update->setupflag &&
+        stage.slot[n - 1] - stage.slot[0] == n - 1;
+    if (nv > 0 && !direct) {
+        const int *cs = stage.slot;
+        for (int k = 0; k < n; k++) {
+            const double *h = hist + (size_t) cs[k] * nv;
+            for (int q = 0; q < ns; q++) stage.hn[k * ns + q] = h[q];
+            for (int q = 0; q < nt; q++) stage.ht[(size_t) k * nt + q] = h[ns + q];
+        }
+    }
+    if (!mixed) {
+        run_laws(stage, 0, n, stage.key[0], direct ? hist + (size_t) stage.slot[0] * nv : nullptr);
+        scatter<NS, NT>(stage, n, hist, touched, direct);
+        return;
+    }
+    const int nk = (int) cmodel.size();
+    key_count.assign(nk + 1, 0);
+    for (int k = 0; k < n; k++) key_count[stage.key[k] + 1]++;
+    for (int q = 0; q < nk; q++) key_count[q + 1] += key_count[q];
+    key_next.assign(key_count.begin(), key_count.end() - 1);
+    Chunk &d = sorted;
+    for (int k = 0; k < n; k++) {
+        const int p = key_next[stage.key[k]]++;
+        d.a[p] = stage.a[k];
+        d.b[p] = stage.b[k];
+        d.slot[p] = stage.slot[k];
+        d.key[p] = stage.key[k];
+        d.delta[p] = stage.delta[k];
+        d.rate[p] = stage.rate[k];
+        d.mass[p] = stage.mass[k];
+        d.rad[p] = stage.rad[k];
+        for (int q = 0; q < 3; q++) {
+            d.norm[3 * p + q] = stage.norm[3 * k + q];
+            d.vel[3 * p + q] = stage.vel[3 * k + q];
+        }
+        for (int q = 0; q < ns; q++) d.hn[p * ns + q] = stage.hn[k * ns + q];
+        for (int q = 0; q < nt; q++) d.ht[p * nt + q] = stage.ht[k * nt + q];
+    }
+    for (int key = 0; key < nk; key++) {
+        const int lo = key_count[key], m = key_count[key + 1] - lo;
+        if (m > 0) run_laws(d, lo, m, key, nullptr);
+    }
+    scatter<NS, NT>(d, n, hist, touched, false);
+}
+
+void PairDashpot::compute(int eflag, int vflag)
+{
+    ev_init(eflag, vflag);
+    const int ns = nslots_n, nt = nslots_t;
+    if (ns == 0 && nt == 3)
+        compute_t<0, 3>();
+    else if (ns == 0 && nt == 0)
+        compute_t<0, 0>();
+    else if (ns == 1 && nt == 3)
+        compute_t<1, 3>();
+    else if (ns == 1 && nt == 0)
+        compute_t<1, 0>();
+    else
+        compute_t<-1, -1>();
+}
+
+/* The step's forces, with the history slot counts known at compile time for the common laws
+ * (NS, NT < 0: read at run time). */
+template <int NS, int NT> void PairDashpot::compute_t()
+{
+    double **x = atom->x, **v = atom->v, **omega = atom->omega;
+    const double *radius = atom->radius, *rmass = atom->rmass;
+    const int *type = atom->type;
+    const tagint *tag = atom->tag;
+    const int nlocal = atom->nlocal;
+    const int inum = list->inum;
+    const int *ilist = list->ilist, *numneigh = list->numneigh;
+    int **firstneigh = list->firstneigh;
+    const int ns = NS >= 0 ? NS : nslots_n, nt = NT >= 0 ? NT : nslots_t, nv = ns + nt;
+    const int ntp1 = atom->ntypes + 1;
+    const int wall_key0 = ntp1 * ntp1;
+
+    if (nv > 0 && (slots_ncalls != neighbor->ncalls || (wall_flag && nlocal != nwall_slots))) layout_slots();
+    double *shist = nv > 0 ? slot_hist.data() : nullptr;
+    unsigned char *stouch = nv > 0 ? slot_touched.data() : nullptr;
+    stage.reserve(ns, nt);
+    sorted.reserve(ns, nt);
+    // LAMMPS's per-atom 2D arrays are contiguous: index them from their first row
+    const double *x0 = atom->nmax > 0 ? x[0] : nullptr, *v0 = atom->nmax > 0 ? v[0] : nullptr;
+    const double *w0 = atom->nmax > 0 ? omega[0] : nullptr;
+
+    // The staging columns, as local pointers the compiler can keep in registers.
+    int *__restrict ca = stage.a, *__restrict cb = stage.b, *__restrict cs = stage.slot, *__restrict ck = stage.key;
+    double *__restrict cdelta = stage.delta, *__restrict crate = stage.rate, *__restrict cmass = stage.mass;
+    double *__restrict crad = stage.rad, *__restrict cnorm = stage.norm, *__restrict cvel = stage.vel;
+    int n = 0, key0 = -1;
+    bool mixed = false;
+
+    // Stages contact (a, b) (b < 0: the wall) of kind `key` and history slot s (its values are
+    // read at evaluation); n points from b to a, dv = v_a - v_b, ra and rb are the distances
+    // from the centres to the contact point (the two-body driver's convention; rb = 0 for the
+    // wall).
+    auto stage_contact = [&](int key, int a, int b, int s, double nx, double ny, double nz, double delta,
+                             double ra, double rb, double dvx, double dvy, double dvz, double meff, double reff,
+                             const double *wa, const double *wb) __attribute__((always_inline))
+    {
+        if (n == 0) key0 = key;
+        mixed |= key != key0;
+        ca[n] = a;
+        cb[n] = b;
+        cs[n] = s;
+        ck[n] = key;
+        cdelta[n] = delta;
+        cmass[n] = meff;
+        crad[n] = reff;
+        crate[n] = -(dvx * nx + dvy * ny + dvz * nz);
+        double *cn = cnorm + 3 * n;
+        cn[0] = nx;
+        cn[1] = ny;
+        cn[2] = nz;
+        // relative velocity of a's contact point with respect to b's
+        double wx = ra * wa[0], wy = ra * wa[1], wz = ra * wa[2];
+        if (wb) {
+            wx += rb * wb[0];
+            wy += rb * wb[1];
+            wz += rb * wb[2];
+        }
+        double *cv = cvel + 3 * n;
+        cv[0] = dvx - (wy * nz - wz * ny);
+        cv[1] = dvy - (wz * nx - wx * nz);
+        cv[2] = dvz - (wx * ny - wy * nx);
+        if (++n == CHUNK) {
+            evaluate<NS, NT>(n, mixed, b < 0);
+            n = 0;
+            mixed = false;
+        }
+    };
+
+    // 1. Walk the neighbour list once: contacts are staged and evaluated a chunk at a time;
+    // history slots follow the list (slot k = the k-th pair), and a pair that has separated
+    // has its history zeroed.
+    int k = 0;
+    for (int ii = 0; ii < inum; ii++) {
+        const int i = ilist[ii];
+        const int *jlist = firstneigh[i];
+        const int jnum = numneigh[i];
+        const double xi = x[i][0], yi = x[i][1], zi = x[i][2], radi = radius[i];
+        const tagint ti = tag[i];
+        const int typei = type[i];
+        for (int jj = 0; jj < jnum; jj++, k++) {
+            const int j = jlist[jj] & NEIGHMASK;
+            const double *xj = x0 + 3 * j;
+            double dx = xi - xj[0], dy = yi - xj[1], dz = zi - xj[2];
+            const double rsq = dx * dx + dy * dy + dz * dz;
+            const double radj = radius[j];
+            const double radsum = radi + radj;
+            if (rsq >= radsum * radsum) {
+                if (nv > 0 && stouch[k]) {
+                    for (int q = 0; q < nv; q++) shist[(size_t) k * nv + q] = 0.0;
+                    stouch[k] = 0;
+                }
+                continue;
+            }
+            // orient from the lower tag, so that every rank computes a contact the same way
+            int a = i, b = j, ta = typei, tb = type[j];
+            double ra = radi, rb = radj;
+            if (tag[j] < ti) {
+                a = j;
+                b = i;
+                std::swap(ta, tb);
+                ra = radj;
+                rb = radi;
+                dx = -dx;
+                dy = -dy;
+                dz = -dz;
+            }
+            const double r = std::sqrt(rsq);
+            const double ma = rmass[a], mb = rmass[b], msum = ma + mb;
+            // 1/r, 1/(ma + mb) and 1/(ra + rb) from one division
+            const double inv = 1.0 / (r * msum * radsum);
+            const double rinv = inv * msum * radsum;
+            const double *va = v0 + 3 * a, *vb = v0 + 3 * b;
+            stage_contact(ta * ntp1 + tb, a, b, k, dx * rinv, dy * rinv, dz * rinv, radsum - r, ra, rb,
+                          va[0] - vb[0], va[1] - vb[1], va[2] - vb[2], ma * mb * (inv * r * radsum),
+                          ra * rb * (inv * r * msum), w0 + 3 * a, w0 + 3 * b);
+        }
+    }
+    // the pairs' last chunk, not full: a chunk holds pairs or wall contacts, not both
+    evaluate<NS, NT>(n, mixed, false);
+    n = 0;
+    mixed = false;
+    if (wall_flag) {
+        for (int i = 0; i < nlocal; i++) {
+            const double gap = x[i][2] - wall_z;
+            double *h = nv > 0 ? &wall_hist[(size_t) i * nv] : nullptr;
+            if (gap >= radius[i]) {
+                if (nv > 0 && wall_touched[i]) {
+                    for (int q = 0; q < nv; q++) h[q] = 0.0;
+                    wall_touched[i] = 0;
+                }
+                continue;
+            }
+            stage_contact(wall_key0 + type[i], i, -1, i, 0.0, 0.0, 1.0, radius[i] - gap, radius[i], 0.0, v[i][0],
+                          v[i][1], v[i][2], rmass[i], radius[i], omega[i], nullptr);
+        }
+    }
+    // 2. The wall's last chunk, not full.
+    evaluate<NS, NT>(n, mixed, true);
+    if (nv > 0) fix_history->stale = 1;
 }
 
 /* One pair for compute pair/local and pair_write: fforce = F_n / r; svector = {F_n, |F_t|}. The
@@ -541,6 +809,7 @@ double PairDashpot::single(int i, int j, int itype, int jtype, double rsq, doubl
     double reff = radius[i] * radius[j] / radsum;
     std::vector<double> h(nvalues > 0 ? nvalues : 1, 0.0);
     if (fix_history && i < atom->nlocal) {
+        fix_history->refresh();
         const double *s = fix_history->find(i, atom->tag[j]);
         if (s) std::copy(s, s + nvalues, h.begin());
     }

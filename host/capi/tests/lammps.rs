@@ -315,6 +315,10 @@ fn sphere_sliding_on_the_wall_ends_rolling_at_five_sevenths() {
         );
         // rolling: v = ω r (to the static overlap, δ/r ~ 1e-5)
         assert!((num(&r, "roll") - 1.0).abs() < 1e-4, "{r:?}");
+        // the wall's reaction is in the virial: W_zz = (r − δ) m g once the sphere rests on it,
+        // and nothing sideways (it rolls freely, no tangential force left)
+        assert!((num(&r, "wzz") - 1.0).abs() < 1e-4, "W_zz: {r:?}");
+        assert!(num(&r, "pxx").abs() < 1e-6 * num(&r, "pzz").abs(), "{r:?}");
     }
 }
 
@@ -438,7 +442,8 @@ fn pair_dashpot_reports_tangential_errors() {
 
 /// The same contact stopped mid-way, written to a restart file, cleared and read back: the
 /// spring comes back from the file (fix DASHPOT/HISTORY's per-atom restart data), on 1 and on 2
-/// ranks. The only difference left is LAMMPS's own: after a restart the first forces see the
+/// ranks, and so do pair_style's laws and pair_coeff's moduli when the deck does not give them
+/// again. The only difference left is LAMMPS's own: after a restart the first forces see the
 /// full-step velocity instead of the half-step one (a 1e-8 effect here).
 #[test]
 fn the_tangential_spring_survives_a_restart_file() {
@@ -446,11 +451,12 @@ fn the_tangential_spring_survives_a_restart_file() {
     let dir = lib_dir().join("lammps-restart");
     std::fs::create_dir_all(&dir).expect("restart dir");
     let whole = run_deck(&v, "in.twospheres", 1, &[]);
-    for ranks in [1, 2] {
+    for (ranks, repeat_pair) in [(1, "1"), (2, "1"), (1, "0"), (2, "0")] {
         let mut cmd_vars = vec![("restart", "1".to_string())];
         cmd_vars.push(("restart_dir", dir.display().to_string()));
+        cmd_vars.push(("repeat_pair", repeat_pair.to_string()));
         let r = run_deck(&v, "in.twospheres", ranks, &cmd_vars);
-        eprintln!("restarted on {ranks} rank(s): {r:?}");
+        eprintln!("restarted on {ranks} rank(s), pair_style given again: {repeat_pair}: {r:?}");
         for k in ["vx1", "vy1", "vz1", "w1", "w3"] {
             let (a, b) = (num(&whole, k), num(&r, k));
             assert!(
