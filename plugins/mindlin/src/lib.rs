@@ -53,8 +53,8 @@
 #![warn(missing_docs)]
 
 use dashpot_sdk::{
-    BoundTangential, History, LawError, MaterialPair, ParamSpec, Params, Range, TangentialContact,
-    TangentialLaw,
+    BoundTangential, History, LawError, MaterialPair, ParamSpec, Params, Range, TangentialBatch,
+    TangentialContact, TangentialLaw,
 };
 
 /// The configured law: friction coefficient `mu` and damping ratio `damping`.
@@ -159,6 +159,126 @@ impl BoundTangential for MindlinBound {
         let kt = self.stiffness(c.radius, c.delta);
         let eta = 2.0 * self.damping * (c.mass * kt).sqrt();
         spring_friction(kt, eta, self.mu, c, history)
+    }
+
+    /// The same arithmetic as [`BoundTangential::force`], contact for contact, rearranged for
+    /// SIMD: lanes of `LANES` contacts are transposed into component arrays, every branch of
+    /// steps 1–6 becomes a select (both sides computed, the unused one discarded), and the
+    /// results are transposed back. A test checks the bits against the per-contact form.
+    #[inline(always)]
+    fn force_batch(&self, b: TangentialBatch<'_>) {
+        if b.slots != 3 {
+            // not this law's layout: the per-contact form handles it
+            let TangentialBatch { history, force, .. } = b;
+            let slots = b.slots.max(1);
+            for (i, (h, f)) in history.chunks_exact_mut(slots).zip(force.iter_mut()).enumerate() {
+                *f = self.force(
+                    &TangentialContact {
+                        normal: b.normal[i],
+                        velocity: b.velocity[i],
+                        normal_force: b.normal_force[i],
+                        delta: b.delta[i],
+                        mass: b.mass[i],
+                        radius: b.radius[i],
+                        dt: b.dt,
+                    },
+                    h,
+                );
+            }
+            return;
+        }
+        if self.damping == 0.0 {
+            lanes::<false>(self, b)
+        } else {
+            lanes::<true>(self, b)
+        }
+    }
+}
+
+/// Contacts per SIMD lane group.
+const LANES: usize = 8;
+
+/// [`spring_friction`] over a batch, `LANES` contacts at a time, branch-free (`DAMPED`: whether
+/// η_t ≠ 0 needs computing).
+#[inline(always)]
+fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
+    let n = b.force.len();
+    let (mu, two_zeta, dt) = (law.mu, 2.0 * law.damping, b.dt);
+    let mut lo = 0;
+    while lo < n {
+        let m = LANES.min(n - lo);
+        // transpose in (idle lanes: a harmless contact out of touch)
+        let mut nv = [[0.0f64; LANES]; 3];
+        let mut v = [[0.0f64; LANES]; 3];
+        let mut h = [[0.0f64; LANES]; 3];
+        let (mut d, mut r, mut ms, mut fnorm) = ([0.0; LANES], [1.0; LANES], [1.0; LANES], [0.0; LANES]);
+        for l in 0..m {
+            let i = lo + l;
+            for k in 0..3 {
+                nv[k][l] = b.normal[i][k];
+                v[k][l] = b.velocity[i][k];
+                h[k][l] = b.history[3 * i + k];
+            }
+            d[l] = b.delta[i];
+            r[l] = b.radius[i];
+            ms[l] = b.mass[i];
+            fnorm[l] = b.normal_force[i];
+        }
+        let mut f = [[0.0f64; LANES]; 3];
+        for l in 0..LANES {
+            let kt = law.eight_g * dashpot_sdk::physics::contact_radius(r[l], d[l]);
+            let eta = if DAMPED {
+                two_zeta * (ms[l] * kt).sqrt()
+            } else {
+                0.0
+            };
+            let n3 = [nv[0][l], nv[1][l], nv[2][l]];
+            let x0 = [h[0][l], h[1][l], h[2][l]];
+            // 1. rotate into the tangent plane, keeping the length
+            let xn = dot(x0, n3);
+            let len2 = dot(x0, x0);
+            let p = [x0[0] - xn * n3[0], x0[1] - xn * n3[1], x0[2] - xn * n3[2]];
+            let plen2 = dot(p, p);
+            let s = if plen2 > 0.0 { (len2 / plen2).sqrt() } else { 0.0 };
+            let rot = xn != 0.0;
+            let mut xi = [0.0; 3];
+            for k in 0..3 {
+                xi[k] = if rot { p[k] * s } else { x0[k] };
+            }
+            // 2.–4. tangential velocity, advance, trial force
+            let v3 = [v[0][l], v[1][l], v[2][l]];
+            let vn = dot(v3, n3);
+            let mut vt = [0.0; 3];
+            let mut ft = [0.0; 3];
+            for k in 0..3 {
+                vt[k] = v3[k] - vn * n3[k];
+                xi[k] += vt[k] * dt;
+                ft[k] = -kt * xi[k] - eta * vt[k];
+            }
+            // 5. Coulomb cap, the spring reset to the capped force
+            let cap = mu * fnorm[l].max(0.0);
+            let f2 = dot(ft, ft);
+            let slide = f2 > cap * cap;
+            let sc = cap / f2.sqrt();
+            let touching = d[l] > 0.0;
+            for k in 0..3 {
+                let fs = ft[k] * sc;
+                let xs = if kt > 0.0 { -(fs + eta * vt[k]) / kt } else { 0.0 };
+                let (fk, xk) = if slide { (fs, xs) } else { (ft[k], xi[k]) };
+                // 6. out of touch: no force, the spring dropped
+                f[k][l] = if touching { fk } else { 0.0 };
+                h[k][l] = if touching { xk } else { 0.0 };
+            }
+        }
+        // transpose out
+        for l in 0..m {
+            let i = lo + l;
+            for k in 0..3 {
+                b.force[i][k] = f[k][l];
+                b.history[3 * i + k] = h[k][l];
+            }
+        }
+        lo += m;
     }
 }
 
@@ -577,5 +697,88 @@ mod tests {
         let p = Params::resolve(Mindlin::NAME, &Mindlin::params(), &[]).unwrap();
         assert_eq!((p.get("mu").unwrap(), p.get("damping").unwrap()), (0.5, 0.0));
         assert!(Params::resolve(Mindlin::NAME, &Mindlin::params(), &[ParamValue::new("mu", -0.1)]).is_err());
+    }
+    /// The SIMD batch gives the per-contact form's bits on every path: out of touch, fresh and
+    /// rotated springs, sticking and sliding, in tension, damped or not, and a ragged last lane.
+    #[test]
+    fn batch_is_the_per_contact_form_bit_for_bit() {
+        let mut x = 0x2545_f491_4f6c_dd1d_u64;
+        let mut rnd = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for damping in [0.0, 0.4] {
+            let l = law(2.0e11, 0.3, damping);
+            let n = 203;
+            let mut normal = Vec::new();
+            let mut velocity = Vec::new();
+            let (mut fnorm, mut delta, mut mass, mut radius) = (vec![], vec![], vec![], vec![]);
+            let mut hist = Vec::new();
+            for i in 0..n {
+                let (th, ph) = (PI * rnd(), 2.0 * PI * rnd());
+                normal.push([th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()]);
+                velocity.push([rnd() - 0.5, rnd() - 0.5, rnd() - 0.5]);
+                fnorm.push(if i % 7 == 0 { -1.0 } else { 20.0 * rnd() });
+                delta.push(if i % 11 == 0 { -1e-6 } else { 1e-5 * rnd() });
+                mass.push(1e-4 * (0.5 + rnd()));
+                radius.push(1e-3 * (0.5 + rnd()));
+                for _ in 0..3 {
+                    hist.push(if i % 5 == 0 { 0.0 } else { 1e-6 * (rnd() - 0.5) });
+                }
+            }
+            let dt = 1e-6;
+            let mut h1 = hist.clone();
+            let f1: Vec<[f64; 3]> = (0..n)
+                .map(|i| {
+                    let c = TangentialContact {
+                        normal: normal[i],
+                        velocity: velocity[i],
+                        normal_force: fnorm[i],
+                        delta: delta[i],
+                        mass: mass[i],
+                        radius: radius[i],
+                        dt,
+                    };
+                    l.force(&c, &mut h1[3 * i..3 * i + 3])
+                })
+                .collect();
+            let mut h2 = hist.clone();
+            let mut f2 = vec![[0.0; 3]; n];
+            l.force_batch(TangentialBatch {
+                dt,
+                normal: &normal,
+                velocity: &velocity,
+                normal_force: &fnorm,
+                delta: &delta,
+                mass: &mass,
+                radius: &radius,
+                slots: 3,
+                history: &mut h2,
+                force: &mut f2,
+            });
+            let slid = f1
+                .iter()
+                .zip(&fnorm)
+                .filter(|(f, &fn_)| {
+                    (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() >= 0.3 * fn_.max(0.0) * (1.0 - 1e-12)
+                })
+                .count();
+            assert!(
+                slid > 10 && slid < n - 10,
+                "both regimes covered: {slid} of {n} at the cap"
+            );
+            for i in 0..n {
+                for k in 0..3 {
+                    assert_eq!(
+                        f1[i][k].to_bits(),
+                        f2[i][k].to_bits(),
+                        "force {i}.{k}, damping {damping}"
+                    );
+                    assert_eq!(h1[3 * i + k].to_bits(), h2[3 * i + k].to_bits(), "spring {i}.{k}");
+                }
+            }
+        }
     }
 }
