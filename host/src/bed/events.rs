@@ -234,27 +234,35 @@ impl Tournament {
     }
 
     /// Sets the key of `i` to `t` and replays its path towards the root.
+    ///
+    /// The candidate winner climbs in registers and meets, at each level, the sibling of the
+    /// node it comes from: one load per level, from an address known in advance and never
+    /// just stored, so the loads of the path overlap and the only chain is compare-and-select
+    /// (reading both children back from memory made each level wait for the store below it).
     #[inline]
     pub fn update(&mut self, i: usize, t: f64) {
         assert!(i < self.size, "tournament index {i} out of range");
         let node = self.node.as_mut_ptr();
         let mut k = self.size + i;
-        // SAFETY: k < 2 size = node.len() on entry (checked above), and every step halves it
-        // while reading the children 2k, 2k + 1 < 2 size of a node k < size.
+        let mut w = (t, i as u32);
+        // SAFETY: k < 2 size = node.len() on entry (checked above); each step halves k, and
+        // k ^ 1 < 2 size and k >> 1 < size are in range for every k in [2, 2 size).
         unsafe {
-            (*node.add(k)).0 = t;
-            k >>= 1;
-            while k >= 1 {
-                // ties: the left child holds the lower indices; the winner is picked by index,
-                // not by a branch, which would be mispredicted half the time
-                let (a, b) = (*node.add(2 * k), *node.add(2 * k + 1));
-                let w = if b.0 < a.0 { b } else { a };
+            *node.add(k) = w;
+            while k > 1 {
+                let s = *node.add(k ^ 1);
+                // ties go to the lower index (which is the left child's), as one comparison of
+                // (key, index) pairs, selected without a branch (which side w comes from is
+                // a coin toss to the branch predictor)
+                let lower = (s.0 < w.0) | ((s.0 == w.0) & (s.1 < w.1));
+                w.0 = if lower { s.0 } else { w.0 };
+                w.1 = if lower { s.1 } else { w.1 };
+                k >>= 1;
                 let old = *node.add(k);
                 if w.1 == old.1 && w.0.to_bits() == old.0.to_bits() {
                     break;
                 }
                 *node.add(k) = w;
-                k >>= 1;
             }
         }
     }
@@ -341,6 +349,35 @@ mod tests {
         let t = first_contact(-1e-17, 1e-9, -170.0).unwrap();
         assert!((t - 2e-9 / 170.0).abs() < 1e-22, "{t:e}");
         assert_eq!(first_contact(-1e-17, 0.0, -170.0), Some(0.0));
+    }
+
+    #[test]
+    fn tournament_top_is_the_argmin_after_any_sequence_of_updates() {
+        // against a linear scan, over updates that raise and lower keys, with many ties (keys
+        // drawn from a few values) and sizes that are and are not powers of two
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        for n in [1usize, 2, 3, 7, 8, 300, 513] {
+            let mut t = Tournament::new(n);
+            let mut keys = vec![f64::INFINITY; n];
+            for _ in 0..20 * n {
+                let i = (next() % n as u64) as usize;
+                let k = match next() % 5 {
+                    0 => f64::INFINITY,
+                    v => v as f64 * 0.25,
+                };
+                t.update(i, k);
+                keys[i] = k;
+                let best = (0..n).fold(0, |b, j| if keys[j] < keys[b] { j } else { b });
+                assert_eq!(t.top(), (best, keys[best]), "n = {n}");
+                assert_eq!(t.key(i), k);
+            }
+        }
     }
 
     #[test]

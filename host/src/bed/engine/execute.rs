@@ -133,6 +133,8 @@ impl<R: Restitution> Bed<R> {
     pub(super) fn collide_pair(&mut self, i: usize, j: usize) -> Result<(), BedError> {
         self.guard_same_instant(i)?;
         self.guard_same_instant(j)?;
+        self.ke_remove(i);
+        self.ke_remove(j);
         self.advance(i);
         self.advance(j);
         // a disk riding on the piston that is hit leaves it (it may come straight back)
@@ -178,6 +180,8 @@ impl<R: Restitution> Bed<R> {
         self.last_partner[j] = i as u32;
         self.block_hits[i] += 1;
         self.block_hits[j] += 1;
+        self.ke_add(i);
+        self.ke_add(j);
         self.record(Kind::Disk, i, j as u32, u, r);
         self.predict(i);
         self.predict(j);
@@ -242,6 +246,7 @@ impl<R: Restitution> Bed<R> {
                 self.collide_pair(i, j)?;
             }
             Kind::Lid => {
+                self.ke_remove(i);
                 self.advance(i);
                 let gap = self.lid - self.radius - self.d[i].y;
                 let (u, r) = self.collide_wall(i, -1.0, 0.0, gap)?;
@@ -252,11 +257,13 @@ impl<R: Restitution> Bed<R> {
                     self.window.current.lid_collisions += 1;
                     self.window.current.lid_impulse += self.cfg.mass * (1.0 + r) * u;
                 }
+                self.ke_add(i);
                 self.last_partner[i] = LID;
                 self.record(Kind::Lid, i, NONE, u, r);
                 self.predict(i);
             }
             Kind::Piston => {
+                self.ke_remove(i);
                 self.advance(i);
                 let p = self.piston.state(t);
                 let gap = self.d[i].y - self.radius - p.z;
@@ -268,6 +275,7 @@ impl<R: Restitution> Bed<R> {
                     self.window.current.piston_impulse += j;
                 }
                 self.maybe_ride(i, r * u);
+                self.ke_add(i);
                 self.last_partner[i] = PISTON;
                 self.record(Kind::Piston, i, NONE, u, r);
                 self.predict(i);
@@ -314,7 +322,9 @@ impl<R: Restitution> Bed<R> {
             Kind::Horizon => {
                 self.record(Kind::Horizon, i, NONE, 0.0, 0.0);
                 if self.ride[i] != FREE {
+                    self.ke_remove(i);
                     self.ride_on(i);
+                    self.ke_add(i);
                 }
                 self.predict(i);
             }

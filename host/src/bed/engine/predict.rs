@@ -62,37 +62,35 @@ impl<R: Restitution> Bed<R> {
                 }
             }
         }
-        // disks of this and the eight neighbouring cells (or of the three new ones)
-        let (rows, cols) = match scope {
-            Scope::All => (-1i64..=1, -1i64..=1),
-            Scope::Row(d) => (d..=d, -1..=1),
-            Scope::Col(d) => (-1..=1, d..=d),
+        // disks of this and the eight neighbouring cells (or of the three new ones): the rows
+        // and the (periodic) columns to visit are worked out once, not per cell
+        let left = if cx == 0 { nx - 1 } else { cx - 1 };
+        let right = if cx + 1 == nx { 0 } else { cx + 1 };
+        let all_cols = [left, cx, right];
+        let (row_lo, row_hi, cols): (usize, usize, &[usize]) = match scope {
+            Scope::All => (cy.saturating_sub(1), (cy + 1).min(ny - 1), &all_cols),
+            Scope::Row(1) if cy + 1 < ny => (cy + 1, cy + 1, &all_cols),
+            Scope::Row(-1) if cy > 0 => (cy - 1, cy - 1, &all_cols),
+            Scope::Row(_) => (1, 0, &all_cols),
+            Scope::Col(1) => (cy.saturating_sub(1), (cy + 1).min(ny - 1), &all_cols[2..]),
+            Scope::Col(_) => (cy.saturating_sub(1), (cy + 1).min(ny - 1), &all_cols[..1]),
         };
-        for dy in rows {
-            let ry = cy as i64 + dy;
-            if ry < 0 || ry >= ny as i64 {
-                continue;
-            }
-            for dx in cols.clone() {
-                let rx = cx as i64 + dx;
-                let rx = if rx < 0 {
-                    (rx + nx as i64) as usize
-                } else if rx as usize >= nx {
-                    rx as usize - nx
-                } else {
-                    rx as usize
-                };
-                let mut j = self.cells.head(ry as usize * nx + rx);
+        let d = &self.d[..];
+        for row in row_lo..=row_hi {
+            let base = row * nx;
+            for &col in cols {
+                let mut j = self.cells.head(base + col);
                 while j != NONE {
                     let ju = j as usize;
+                    let dj = &d[ju];
                     if ju != i {
-                        let dtj = now - self.d[ju].tl;
-                        let xj = self.d[ju].x + self.d[ju].vx * dtj;
-                        let ayj = self.d[ju].ay;
-                        let yj = self.d[ju].y + (self.d[ju].vy + 0.5 * ayj * dtj) * dtj;
-                        let vyj = self.d[ju].vy + ayj * dtj;
+                        let dtj = now - dj.tl;
+                        let xj = dj.x + dj.vx * dtj;
+                        let ayj = dj.ay;
+                        let yj = dj.y + (dj.vy + 0.5 * ayj * dtj) * dtj;
+                        let vyj = dj.vy + ayj * dtj;
                         let rxij = self.wrap(xi - xj);
-                        let (ry, vx, vy) = (yi - yj, vxi - self.d[ju].vx, vyi - vyj);
+                        let (ry, vx, vy) = (yi - yj, vxi - dj.vx, vyi - vyj);
                         let hit = if ayj == ayi {
                             pair_contact_before(rxij, ry, vx, vy, self.sigma2, best)
                         } else {
