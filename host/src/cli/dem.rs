@@ -26,7 +26,8 @@ pub struct DemArgs {
     pub out: Option<PathBuf>,
 }
 
-/// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws.
+/// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws (the same
+/// run as `dashpot bed --engine dem`, with the paper's geometry).
 #[derive(Args, Debug)]
 pub struct DemBedArgs {
     /// Run the vibrated bed (the event-driven bed's geometry) with contact laws.
@@ -88,35 +89,21 @@ pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
 }
 
 fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
-    use crate::config::{merge_params, parse_set};
+    use crate::config::{merge_params, parse_sets};
     let layers = b.layers.context("--bed needs --layers N")?;
     let freq = b.freq.context("--bed needs --freq HZ")?;
     let law = b
         .law
         .clone()
         .context("--bed needs --law NAME (a contact law, e.g. hsd)")?;
-    let mut bed = crate::dem::bed::DemBed::paper(layers, freq);
-    bed.bed.gravity = b.gravity;
-    bed.bed.seed = b.seed;
+    let mut cfg = crate::bed::BedConfig::paper(layers, freq);
+    cfg.gravity = b.gravity;
+    cfg.seed = b.seed;
+    let mut bed = crate::dem::bed::DemBed::new(cfg, b.young, b.poisson);
     bed.dt = b.dt;
-    if let Some(e) = b.young {
-        bed.material.young = e;
-    }
-    if let Some(nu) = b.poisson {
-        bed.material.poisson = nu;
-    }
-    let sets = b
-        .set
-        .iter()
-        .map(|s| parse_set(s))
-        .collect::<Result<Vec<_>, _>>()?;
-    let params = merge_params(&Default::default(), &sets);
-    let tsets = b
-        .tset
-        .iter()
-        .map(|s| parse_set(s))
-        .collect::<Result<Vec<_>, _>>()?;
-    let tparams = merge_params(&Default::default(), &tsets);
+    let usage = |e: crate::config::ConfigError| crate::cli::UsageError(e.to_string());
+    let params = merge_params(&Default::default(), &parse_sets(&b.set).map_err(usage)?);
+    let tparams = merge_params(&Default::default(), &parse_sets(&b.tset).map_err(usage)?);
     let load = || {
         Laws::from_registry(
             reg,
@@ -142,37 +129,11 @@ fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
         })
         .with_context(|| format!("DEM bed n = {layers}, f = {freq} Hz, law {law}"))?;
     pb.finish_and_clear();
-    let mut v = serde_json::to_value(&r)?;
-    v["engine"] = serde_json::json!("dem");
-    v["law"] = serde_json::json!(law);
-    v["params"] = serde_json::json!(params
-        .iter()
-        .map(|p| (p.name.to_string(), p.value))
-        .collect::<std::collections::BTreeMap<_, _>>());
-    v["tangential"] = serde_json::json!(b.tangential);
     if json {
+        let v = crate::bed::cli::dem_report_json(&law, &params, b.tangential.as_deref(), &tparams, &r);
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
-        println!(
-            "DEM bed, law {law}{}: n = {layers}, f = {freq} Hz, {} disks",
-            b.tangential
-                .as_ref()
-                .map(|t| format!(" + {t}"))
-                .unwrap_or_default(),
-            r.disks
-        );
-        println!(
-            "lid pressure P = {:.5e} ± {:.1e} N/m",
-            r.pressure, r.pressure_error
-        );
-        println!(
-            "lid collision rate {:.5e} /s, mean impulse {:.5e} N·s, temperature {:.5e} J",
-            r.lid_collision_rate, r.mean_impulse, r.temperature
-        );
-        println!(
-            "{} steps of {:.4e} s over {:.3} s measured, {:.1} s wall",
-            r.steps, r.dt, r.measured_time, r.wall_seconds
-        );
+        crate::bed::cli::print_dem_report(&law, &params, b.tangential.as_deref(), &tparams, &r);
     }
     Ok(())
 }
