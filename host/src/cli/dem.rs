@@ -24,6 +24,11 @@ pub struct DemArgs {
     /// Write the trajectory (extended XYZ, for OVITO/ParaView/ASE) and the final state here.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Also draw each trajectory frame as a picture, frame_NNNN.png (and .svg), into --out:
+    /// the particles to scale and the walls (2D: the x–y plane; 3D: the side view x–z, y
+    /// into the page).
+    #[arg(long, requires = "out")]
+    pub png: bool,
 }
 
 /// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws (the same
@@ -185,6 +190,9 @@ fn run_dim<const D: usize>(
         let mut w = std::io::BufWriter::new(f);
         crate::dem::xyz::write_frame(&e, &mut w)?;
         traj = Some(w);
+        if a.png {
+            frame_png(&e, dir, 0, &file.law.name)?;
+        }
     }
     let frames = if a.out.is_some() {
         scene.snapshots.max(1)
@@ -204,6 +212,9 @@ fn run_dim<const D: usize>(
         if let Some(w) = traj.as_mut() {
             if frames > 0 && e.steps() * frames >= next_frame * total_steps {
                 crate::dem::xyz::write_frame(&e, w)?;
+                if let (true, Some(dir)) = (a.png, &a.out) {
+                    frame_png(&e, dir, next_frame, &file.law.name)?;
+                }
                 next_frame += 1;
             }
         }
@@ -284,4 +295,94 @@ fn progress(len: u64) -> ProgressBar {
         pb.set_style(s);
     }
     pb
+}
+
+/// The two axes a picture shows: x and y in 2D, x and z (the side view) in 3D.
+fn view_axes(d: usize) -> (usize, usize) {
+    (0, d - 1)
+}
+
+/// A picture of the particles (to scale) and the walls at the engine's time.
+pub fn snapshot_panel<const D: usize>(e: &Engine<D>, title: &str) -> crate::plot::Panel {
+    use crate::plot::{Mark, Panel, Series};
+    let (ax, ay) = view_axes(D);
+    let disks: Vec<(f64, f64, f64)> = (0..e.p.len())
+        .map(|i| (e.p.pos[i][ax], e.p.pos[i][ay], e.p.radius[i]))
+        .collect();
+    let rmax = e.p.radius.iter().cloned().fold(0.0, f64::max);
+    let (mut x0, mut x1, mut y0, mut y1) = disks.iter().fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        |(a, b, c, d), &(x, y, _)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    let dom = &e.config().domain;
+    if dom.bounded || dom.periodic.iter().any(|&p| p) {
+        (x0, x1) = (x0.min(dom.lo[ax]), x1.max(dom.hi[ax]));
+        if dom.bounded {
+            (y0, y1) = (y0.min(dom.lo[ay]), y1.max(dom.hi[ay]));
+        }
+    }
+    let walls = e.wall_states();
+    for w in &walls {
+        // a wall across the view: include its point
+        (x0, x1, y0, y1) = (
+            x0.min(w.point[ax]),
+            x1.max(w.point[ax]),
+            y0.min(w.point[ay]),
+            y1.max(w.point[ay]),
+        );
+    }
+    if !(x0.is_finite() && y0.is_finite()) {
+        (x0, x1, y0, y1) = (-1.0, 1.0, -1.0, 1.0);
+    }
+    let pad = 2.0 * rmax.max(1e-12);
+    let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
+    let diag = ((x1 - x0).powi(2) + (y1 - y0).powi(2)).sqrt();
+    let mut series = Vec::new();
+    for w in &walls {
+        let (nx, ny) = (w.normal[ax], w.normal[ay]);
+        let n = (nx * nx + ny * ny).sqrt();
+        if n < 0.5 {
+            continue; // a wall facing out of the picture's plane
+        }
+        let (tx, ty) = (-ny / n, nx / n);
+        let (px, py) = (w.point[ax], w.point[ay]);
+        series.push(Series::new(
+            "",
+            vec![(px - tx * diag, py - ty * diag), (px + tx * diag, py + ty * diag)],
+            Mark::Line,
+            6,
+        ));
+    }
+    Panel {
+        title: title.to_string(),
+        x_label: if D == 2 { "x (m)" } else { "x (m), side view" }.into(),
+        y_label: if D == 2 { "y (m)" } else { "z (m)" }.into(),
+        equal_aspect: true,
+        x_range: Some((x0, x1)),
+        y_range: Some((y0, y1)),
+        disks,
+        series,
+        ..Default::default()
+    }
+}
+
+fn frame_png<const D: usize>(e: &Engine<D>, dir: &std::path::Path, k: u64, law: &str) -> Result<()> {
+    let p = snapshot_panel(
+        e,
+        &format!("{} {}D particles, {law}, t = {:.6e} s", e.p.len(), D, e.time()),
+    );
+    let (w, h) = match (p.x_range, p.y_range) {
+        (Some((a, b)), Some((c, d))) => (b - a, d - c),
+        _ => (1.0, 1.0),
+    };
+    let width = 1200u32;
+    let height = ((width as f64 * h / w.max(1e-300)) as u32 + 120).clamp(240, 2400);
+    crate::plot::Figure {
+        panels: vec![p],
+        columns: 1,
+        panel_size: (width, height),
+    }
+    .save(dir, &format!("frame_{k:04}"))
+    .with_context(|| format!("drawing frame {k} into {}", dir.display()))?;
+    Ok(())
 }
