@@ -303,12 +303,13 @@ impl ContactSet {
     /// overlaps by less than |δ̇| dt/2 at the next step adds nothing more. The means are
     /// 5-point Gauss–Legendre rules in u with δ = D u⁴, exact for Hertz and HSD, one extra
     /// batch call per chunk that has such contacts. A law with history (Thornton, Walton–Braun)
-    /// keeps the step-end rule.
+    /// keeps the step-end rule, as does every law when `edge_means` is false.
     pub fn evaluate(
         &mut self,
         normal: &dyn NormalLaw,
         tangential: Option<&dyn TangentialForce>,
         dt: f64,
+        edge_means: bool,
     ) -> Result<(), DemError> {
         let n = self.len();
         if n == 0 {
@@ -339,7 +340,7 @@ impl ContactSet {
             .enumerate()
             .collect();
         // a law with history would see its history advanced by the extra calls: plain rule
-        let edges = sn == 0;
+        let edges = edge_means && sn == 0;
         let run = |(c, ((((f, ft), hn), ht), ls)): Task<'_>| -> Result<(), DemError> {
             let a = c * LAW_CHUNK;
             let b = a + f.len();
@@ -353,7 +354,7 @@ impl ContactSet {
                 force: &mut *f,
             })?;
             if edges {
-                edge_means(
+                step_edge_means(
                     normal,
                     Edges {
                         delta: &delta[a..b],
@@ -413,7 +414,7 @@ const GAUSS5: [(f64, f64); 5] = [
     (0.953_089_922_969_332, 0.118_463_442_528_094_54),
 ];
 
-/// The contacts of one chunk, as [`edge_means`] reads them.
+/// The contacts of one chunk, as [`step_edge_means`] reads them.
 struct Edges<'a> {
     delta: &'a [f64],
     rate: &'a [f64],
@@ -425,7 +426,7 @@ struct Edges<'a> {
 /// The first- and last-step means of [`ContactSet::evaluate`], for one chunk: `f` holds the
 /// law's forces at the step end and is corrected in place; `last` is read (the previous step's
 /// flag) and written.
-fn edge_means(
+fn step_edge_means(
     law: &dyn NormalLaw,
     c: Edges<'_>,
     last: &mut [bool],
