@@ -94,6 +94,34 @@ fn the_trajectory_has_one_frame_per_snapshot_plus_the_start() {
 }
 
 #[test]
+fn png_frames_are_drawn_beside_the_trajectory() {
+    let p = scene(
+        "png.toml",
+        &FREE_FALL.replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 2"),
+    );
+    let out = p.with_extension("pngout");
+    ok_json(&[
+        "dem",
+        "--scene",
+        p.to_str().unwrap(),
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+        "--png",
+    ]);
+    // one picture per trajectory frame (the start and 2 snapshots), each a PNG
+    for k in 0..3 {
+        let f = out.join(format!("frame_{k:04}.png"));
+        let bytes = std::fs::read(&f).unwrap_or_else(|e| panic!("{}: {e}", f.display()));
+        assert_eq!(&bytes[..8], b"\x89PNG\r\n\x1a\n");
+        assert!(out.join(format!("frame_{k:04}.svg")).exists());
+    }
+    assert!(!out.join("frame_0003.png").exists());
+    // --png without --out is refused
+    common::fails(&["dem", "--scene", p.to_str().unwrap(), "--png"], &["--out"]);
+}
+
+#[test]
 fn bad_scenes_name_the_key_and_the_value() {
     let cases: [(&str, &str, &[&str]); 7] = [
         ("dimension = 2", "dimension = 4", &["dimension = 4", "2", "3"]),

@@ -129,31 +129,50 @@ fn through_one_contact<const D: usize>(e: &mut Engine<D>, wall: bool) -> u64 {
 
 #[test]
 fn a_disk_bounces_off_the_floor_with_the_laws_restitution() {
-    // The error falls as (dt/τ)^1.4 or so, not (dt/τ)²: HSD's damping grows as δ^{1/4} from
-    // first touch, a kink no fixed step resolves. Measured at ε = 0.5: 1.4e-3 at 50 steps per
-    // collision, 1.0e-3 at 64, 2.1e-4 at 100, 3.5e-5 at 400.
+    // HSD realizes ε exactly (Antypov & Elliott, δ back to 0). The first touch falls anywhere
+    // within a step: 16 phases of it, at 50 steps per collision (the engine's default) and more.
+    // Before the first/last-step means and the second-order predictor, the error at 50 steps was
+    // 1.4e-3 at one phase and 4e-3 at the worst (falling as dt^{5/4}: the δ^{1/4} kink).
     for (eps, steps_per_collision, tol) in [
-        (0.5, 100.0, 3e-4),
-        (0.9, 100.0, 3e-4),
-        (0.5, 50.0, 1.5e-3),
-        (0.5, 400.0, 5e-5),
+        // measured worst over the phases: 1.3e-4, 1.6e-5, 8.6e-5, 1.0e-4, 6.7e-5 at 50 steps;
+        // 5.6e-5 at 100, 1.3e-5 at 400 (the issue asks for 1e-3 at 50)
+        (0.1, 50.0, 3e-4),
+        (0.3, 50.0, 3e-4),
+        (0.5, 50.0, 3e-4),
+        (0.7, 50.0, 3e-4),
+        (0.9, 50.0, 3e-4),
+        (0.5, 100.0, 1e-4),
+        (0.5, 400.0, 3e-5),
     ] {
-        let mat = soft(DiskMass::Sphere);
-        let mut cfg = EngineConfig::<2>::new(mat);
-        cfg.impact_speed = Some(1.0);
-        cfg.steps_per_collision = steps_per_collision;
-        let b = body([0.0, 0.5 * D2 + 1e-6], [0.0, -1.0], D2);
-        let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
-        let mut e = Engine::new(cfg, &[b], vec![floor], laws(&mat, eps, None)).unwrap();
-        let steps = through_one_contact(&mut e, true);
-        let r = e.p.vel[0].y / 1.0;
-        println!(
-            "eps {eps}: realized {r:.6}, {steps} steps in contact, dt {:.3e} s",
-            e.dt()
+        let mut worst: f64 = 0.0;
+        for phase in 0..16 {
+            let mat = soft(DiskMass::Sphere);
+            let mut cfg = EngineConfig::<2>::new(mat);
+            cfg.impact_speed = Some(1.0);
+            cfg.steps_per_collision = steps_per_collision;
+            // probe the step, then place the first touch at (phase + 0.5)/16 of a step
+            let floor = || Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
+            let b = body([0.0, 0.5 * D2 + 1e-6], [0.0, -1.0], D2);
+            let dt = Engine::new(cfg.clone(), &[b], vec![floor()], laws(&mat, eps, None))
+                .unwrap()
+                .dt();
+            let gap = (phase as f64 + 0.5) / 16.0 * dt * 1.0 + 2.0 * dt;
+            let b = body([0.0, 0.5 * D2 + gap], [0.0, -1.0], D2);
+            let mut e = Engine::new(cfg, &[b], vec![floor()], laws(&mat, eps, None)).unwrap();
+            let steps = through_one_contact(&mut e, true);
+            let r = e.p.vel[0].y / 1.0;
+            assert!(
+                steps as f64 >= steps_per_collision - 1.0,
+                "{steps} steps per collision"
+            );
+            assert_eq!(e.p.vel[0].x, 0.0);
+            worst = worst.max((r - eps).abs());
+        }
+        println!("eps {eps}, {steps_per_collision} steps per collision: worst |r - eps| over 16 phases {worst:.3e}");
+        assert!(
+            worst < tol,
+            "realized restitution off by {worst} for eps {eps} at {steps_per_collision} steps"
         );
-        assert!(steps as f64 >= steps_per_collision, "{steps} steps per collision");
-        assert!((r - eps).abs() < tol, "realized restitution {r} for eps {eps}");
-        assert_eq!(e.p.vel[0].x, 0.0);
     }
 }
 

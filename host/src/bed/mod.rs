@@ -173,40 +173,8 @@ pub fn contact_laws(
     d: f64,
     m: f64,
 ) -> Result<Laws<crate::collide::TabulatedRestitution>, LawError> {
-    use crate::collide::{CollideError, Options, TabulatedRestitution};
-    let law = reg.contact(name, params)?;
-    let end = reg
-        .find(name)?
-        .0
-        .info
-        .end_criterion
-        .into_option()
-        .unwrap_or(dashpot_sdk::EndCriterion::Overlap);
-    let (pp, pw) = bed_pairs(d, m)?;
-    let opt = Options {
-        rtol: 1e-10,
-        ..Options::default()
-    };
-    let p = bed_particle(d, m);
-    let (mp, mw) = (
-        dashpot_sdk::MaterialPair::spheres(&p, &p)?,
-        dashpot_sdk::MaterialPair::wall(&p)?,
-    );
-    let table = |pair: &Pair| -> Result<TabulatedRestitution, LawError> {
-        let materials = if pair.radius == pp.radius { &mp } else { &mw };
-        let b = crate::collide::PairLaw::new(law.bind(materials)?, pair.mass, pair.radius);
-        TabulatedRestitution::build(&b, pair.mass, end, 1e-4, 20.0, 1e-6, &opt).map_err(|e| match e {
-            CollideError::Law(l) => l,
-            other => LawError::new(
-                dashpot_sdk::ErrorKind::Other,
-                format!("contact law '{name}' as a restitution law: {other}"),
-            ),
-        })
-    };
-    Ok(Laws {
-        disk: table(&pp)?,
-        wall: table(&pw)?,
-    })
+    let (disk, wall) = crate::tabulate::contact_restitution(reg, name, params, &bed_particle(d, m))?;
+    Ok(Laws { disk, wall })
 }
 
 /// What can go wrong in a bed run.

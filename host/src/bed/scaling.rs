@@ -4,6 +4,8 @@
 use super::engine::{Bed, BedConfig, BedReport};
 use super::observables::{fit_power_err, PowerFit};
 use super::{BedError, Laws, Restitution};
+use crate::dem::bed::{DemBed, DemBedReport};
+use crate::dem::DemError;
 use crate::output::write_atomic;
 use crate::plot::{Mark, Panel, Series};
 use anyhow::{Context, Result};
@@ -102,31 +104,138 @@ pub struct ScalingRow {
     pub tc_share: f64,
 }
 
+/// What the exponent fits need from a run, of either engine.
+pub trait Measured {
+    /// Piston peak speed V (m/s).
+    fn speed(&self) -> f64;
+    /// (P, its standard error), (T, ...), (Nc, ...), (ΔI, ...).
+    fn observables(&self) -> [(f64, Option<f64>); 4];
+    /// Share of collisions made elastic by the TC model (0 without one).
+    fn tc_share(&self) -> f64;
+}
+
+impl Measured for BedReport {
+    fn speed(&self) -> f64 {
+        self.piston_speed
+    }
+    fn observables(&self) -> [(f64, Option<f64>); 4] {
+        [
+            (self.pressure, self.pressure_stderr),
+            (self.temperature, self.temperature_stderr),
+            (self.lid_collision_rate, self.lid_collision_rate_stderr),
+            (self.mean_impulse, self.mean_impulse_stderr),
+        ]
+    }
+    fn tc_share(&self) -> f64 {
+        self.tc_share
+    }
+}
+
+impl Measured for DemBedReport {
+    fn speed(&self) -> f64 {
+        self.piston_speed
+    }
+    fn observables(&self) -> [(f64, Option<f64>); 4] {
+        [
+            (self.pressure, self.pressure_stderr),
+            (self.temperature, self.temperature_stderr),
+            (self.lid_collision_rate, self.lid_collision_rate_stderr),
+            (self.mean_impulse, self.mean_impulse_stderr),
+        ]
+    }
+    fn tc_share(&self) -> f64 {
+        0.0
+    }
+}
+
+/// Runs every point of `grid` on the DEM engine, in parallel (each run serial: a bed has fewer
+/// disks than pay for threads), with `laws[k]` for run `k` and the bed `bed(n, f)`; `tick` is
+/// called after each run. Results in grid order.
+pub fn run_dem_grid(
+    laws: Vec<crate::dem::Laws>,
+    bed: &(dyn Fn(f64, f64) -> DemBed + Sync),
+    grid: &Grid,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Vec<DemBedReport>, DemError> {
+    let mut jobs: Vec<(usize, crate::dem::Laws)> = laws.into_iter().enumerate().collect();
+    // longest runs first (many disks, low frequency), for load balance
+    let cost = |k: usize| {
+        let (n, f) = grid.point(k);
+        n / f
+    };
+    jobs.sort_by(|a, b| cost(b.0).total_cmp(&cost(a.0)));
+    let mut done: Vec<(usize, DemBedReport)> = jobs
+        .into_par_iter()
+        .map(|(k, l)| {
+            let (n, f) = grid.point(k);
+            let r = bed(n, f)
+                .run(l, grid.transient, grid.cycles, &mut |_| {})
+                .map_err(|e| DemError::Invalid(format!("n = {n}, f = {f} Hz: {e}")))?;
+            tick();
+            Ok((k, r))
+        })
+        .collect::<Result<Vec<_>, DemError>>()?;
+    done.sort_by_key(|(k, _)| *k);
+    Ok(done.into_iter().map(|(_, r)| r).collect())
+}
+
+/// Writes every DEM run of the grid as CSV.
+pub fn write_dem_grid_csv(path: &Path, runs: &[DemBedReport]) -> Result<()> {
+    let mut s = String::from(
+        "layers,freq_hz,piston_speed_m_s,pressure_n_m,pressure_stderr,lid_collision_rate_per_s,lid_collision_rate_stderr,mean_impulse_n_s,mean_impulse_stderr,temperature_j,temperature_stderr,piston_pressure_n_m,piston_pressure_stderr,young_pa,dt_s,collision_time_s,steps,wall_s\n",
+    );
+    let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
+    for r in runs {
+        s.push_str(&format!(
+            "{},{},{},{:e},{},{:e},{},{:e},{},{:e},{},{:e},{},{:e},{:e},{:e},{},{:.3}\n",
+            r.config.layers,
+            r.config.freq,
+            r.piston_speed,
+            r.pressure,
+            e(r.pressure_stderr),
+            r.lid_collision_rate,
+            e(r.lid_collision_rate_stderr),
+            r.mean_impulse,
+            e(r.mean_impulse_stderr),
+            r.temperature,
+            e(r.temperature_stderr),
+            r.piston_pressure,
+            e(r.piston_pressure_stderr),
+            r.young,
+            r.dt,
+            r.collision_time,
+            r.steps,
+            r.wall_seconds
+        ));
+    }
+    write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
+}
+
 /// Fits θ for each n of `grid` from the runs (in grid order).
-pub fn fit_all(grid: &Grid, runs: &[BedReport]) -> Vec<ScalingRow> {
+pub fn fit_all<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<ScalingRow> {
     let nf = grid.freqs.len();
     grid.layers
         .iter()
         .enumerate()
         .map(|(a, &n)| {
             let rs = &runs[a * nf..(a + 1) * nf];
-            let fit = |f: &dyn Fn(&BedReport) -> (f64, Option<f64>)| {
+            let fit = |k: usize| {
                 fit_power_err(
                     &rs.iter()
                         .map(|r| {
-                            let (v, e) = f(r);
-                            (r.piston_speed, v, e)
+                            let (v, e) = r.observables()[k];
+                            (r.speed(), v, e)
                         })
                         .collect::<Vec<_>>(),
                 )
             };
             ScalingRow {
                 layers: n,
-                pressure: fit(&|r| (r.pressure, r.pressure_stderr)),
-                temperature: fit(&|r| (r.temperature, r.temperature_stderr)),
-                lid_collision_rate: fit(&|r| (r.lid_collision_rate, r.lid_collision_rate_stderr)),
-                mean_impulse: fit(&|r| (r.mean_impulse, r.mean_impulse_stderr)),
-                tc_share: rs.iter().map(|r| r.tc_share).fold(0.0, f64::max),
+                pressure: fit(0),
+                temperature: fit(1),
+                lid_collision_rate: fit(2),
+                mean_impulse: fit(3),
+                tc_share: rs.iter().map(|r| r.tc_share()).fold(0.0, f64::max),
             }
         })
         .collect()

@@ -24,9 +24,15 @@ pub struct DemArgs {
     /// Write the trajectory (extended XYZ, for OVITO/ParaView/ASE) and the final state here.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Also draw each trajectory frame as a picture, frame_NNNN.png (and .svg), into --out:
+    /// the particles to scale and the walls (2D: the x–y plane; 3D: the side view x–z, y
+    /// into the page).
+    #[arg(long, requires = "out")]
+    pub png: bool,
 }
 
-/// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws.
+/// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws (the same
+/// run as `dashpot bed --engine dem`, with the paper's geometry).
 #[derive(Args, Debug)]
 pub struct DemBedArgs {
     /// Run the vibrated bed (the event-driven bed's geometry) with contact laws.
@@ -88,35 +94,21 @@ pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
 }
 
 fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
-    use crate::config::{merge_params, parse_set};
+    use crate::config::{merge_params, parse_sets};
     let layers = b.layers.context("--bed needs --layers N")?;
     let freq = b.freq.context("--bed needs --freq HZ")?;
     let law = b
         .law
         .clone()
         .context("--bed needs --law NAME (a contact law, e.g. hsd)")?;
-    let mut bed = crate::dem::bed::DemBed::paper(layers, freq);
-    bed.bed.gravity = b.gravity;
-    bed.bed.seed = b.seed;
+    let mut cfg = crate::bed::BedConfig::paper(layers, freq);
+    cfg.gravity = b.gravity;
+    cfg.seed = b.seed;
+    let mut bed = crate::dem::bed::DemBed::new(cfg, b.young, b.poisson);
     bed.dt = b.dt;
-    if let Some(e) = b.young {
-        bed.material.young = e;
-    }
-    if let Some(nu) = b.poisson {
-        bed.material.poisson = nu;
-    }
-    let sets = b
-        .set
-        .iter()
-        .map(|s| parse_set(s))
-        .collect::<Result<Vec<_>, _>>()?;
-    let params = merge_params(&Default::default(), &sets);
-    let tsets = b
-        .tset
-        .iter()
-        .map(|s| parse_set(s))
-        .collect::<Result<Vec<_>, _>>()?;
-    let tparams = merge_params(&Default::default(), &tsets);
+    let usage = |e: crate::config::ConfigError| crate::cli::UsageError(e.to_string());
+    let params = merge_params(&Default::default(), &parse_sets(&b.set).map_err(usage)?);
+    let tparams = merge_params(&Default::default(), &parse_sets(&b.tset).map_err(usage)?);
     let load = || {
         Laws::from_registry(
             reg,
@@ -142,37 +134,11 @@ fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
         })
         .with_context(|| format!("DEM bed n = {layers}, f = {freq} Hz, law {law}"))?;
     pb.finish_and_clear();
-    let mut v = serde_json::to_value(&r)?;
-    v["engine"] = serde_json::json!("dem");
-    v["law"] = serde_json::json!(law);
-    v["params"] = serde_json::json!(params
-        .iter()
-        .map(|p| (p.name.to_string(), p.value))
-        .collect::<std::collections::BTreeMap<_, _>>());
-    v["tangential"] = serde_json::json!(b.tangential);
     if json {
+        let v = crate::bed::cli::dem_report_json(&law, &params, b.tangential.as_deref(), &tparams, &r);
         println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
-        println!(
-            "DEM bed, law {law}{}: n = {layers}, f = {freq} Hz, {} disks",
-            b.tangential
-                .as_ref()
-                .map(|t| format!(" + {t}"))
-                .unwrap_or_default(),
-            r.disks
-        );
-        println!(
-            "lid pressure P = {:.5e} ± {:.1e} N/m",
-            r.pressure, r.pressure_error
-        );
-        println!(
-            "lid collision rate {:.5e} /s, mean impulse {:.5e} N·s, temperature {:.5e} J",
-            r.lid_collision_rate, r.mean_impulse, r.temperature
-        );
-        println!(
-            "{} steps of {:.4e} s over {:.3} s measured, {:.1} s wall",
-            r.steps, r.dt, r.measured_time, r.wall_seconds
-        );
+        crate::bed::cli::print_dem_report(&law, &params, b.tangential.as_deref(), &tparams, &r);
     }
     Ok(())
 }
@@ -224,6 +190,9 @@ fn run_dim<const D: usize>(
         let mut w = std::io::BufWriter::new(f);
         crate::dem::xyz::write_frame(&e, &mut w)?;
         traj = Some(w);
+        if a.png {
+            frame_png(&e, dir, 0, &file.law.name)?;
+        }
     }
     let frames = if a.out.is_some() {
         scene.snapshots.max(1)
@@ -243,6 +212,9 @@ fn run_dim<const D: usize>(
         if let Some(w) = traj.as_mut() {
             if frames > 0 && e.steps() * frames >= next_frame * total_steps {
                 crate::dem::xyz::write_frame(&e, w)?;
+                if let (true, Some(dir)) = (a.png, &a.out) {
+                    frame_png(&e, dir, next_frame, &file.law.name)?;
+                }
                 next_frame += 1;
             }
         }
@@ -323,4 +295,94 @@ fn progress(len: u64) -> ProgressBar {
         pb.set_style(s);
     }
     pb
+}
+
+/// The two axes a picture shows: x and y in 2D, x and z (the side view) in 3D.
+fn view_axes(d: usize) -> (usize, usize) {
+    (0, d - 1)
+}
+
+/// A picture of the particles (to scale) and the walls at the engine's time.
+pub fn snapshot_panel<const D: usize>(e: &Engine<D>, title: &str) -> crate::plot::Panel {
+    use crate::plot::{Mark, Panel, Series};
+    let (ax, ay) = view_axes(D);
+    let disks: Vec<(f64, f64, f64)> = (0..e.p.len())
+        .map(|i| (e.p.pos[i][ax], e.p.pos[i][ay], e.p.radius[i]))
+        .collect();
+    let rmax = e.p.radius.iter().cloned().fold(0.0, f64::max);
+    let (mut x0, mut x1, mut y0, mut y1) = disks.iter().fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        |(a, b, c, d), &(x, y, _)| (a.min(x), b.max(x), c.min(y), d.max(y)),
+    );
+    let dom = &e.config().domain;
+    if dom.bounded || dom.periodic.iter().any(|&p| p) {
+        (x0, x1) = (x0.min(dom.lo[ax]), x1.max(dom.hi[ax]));
+        if dom.bounded {
+            (y0, y1) = (y0.min(dom.lo[ay]), y1.max(dom.hi[ay]));
+        }
+    }
+    let walls = e.wall_states();
+    for w in &walls {
+        // a wall across the view: include its point
+        (x0, x1, y0, y1) = (
+            x0.min(w.point[ax]),
+            x1.max(w.point[ax]),
+            y0.min(w.point[ay]),
+            y1.max(w.point[ay]),
+        );
+    }
+    if !(x0.is_finite() && y0.is_finite()) {
+        (x0, x1, y0, y1) = (-1.0, 1.0, -1.0, 1.0);
+    }
+    let pad = 2.0 * rmax.max(1e-12);
+    let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
+    let diag = ((x1 - x0).powi(2) + (y1 - y0).powi(2)).sqrt();
+    let mut series = Vec::new();
+    for w in &walls {
+        let (nx, ny) = (w.normal[ax], w.normal[ay]);
+        let n = (nx * nx + ny * ny).sqrt();
+        if n < 0.5 {
+            continue; // a wall facing out of the picture's plane
+        }
+        let (tx, ty) = (-ny / n, nx / n);
+        let (px, py) = (w.point[ax], w.point[ay]);
+        series.push(Series::new(
+            "",
+            vec![(px - tx * diag, py - ty * diag), (px + tx * diag, py + ty * diag)],
+            Mark::Line,
+            6,
+        ));
+    }
+    Panel {
+        title: title.to_string(),
+        x_label: if D == 2 { "x (m)" } else { "x (m), side view" }.into(),
+        y_label: if D == 2 { "y (m)" } else { "z (m)" }.into(),
+        equal_aspect: true,
+        x_range: Some((x0, x1)),
+        y_range: Some((y0, y1)),
+        disks,
+        series,
+        ..Default::default()
+    }
+}
+
+fn frame_png<const D: usize>(e: &Engine<D>, dir: &std::path::Path, k: u64, law: &str) -> Result<()> {
+    let p = snapshot_panel(
+        e,
+        &format!("{} {}D particles, {law}, t = {:.6e} s", e.p.len(), D, e.time()),
+    );
+    let (w, h) = match (p.x_range, p.y_range) {
+        (Some((a, b)), Some((c, d))) => (b - a, d - c),
+        _ => (1.0, 1.0),
+    };
+    let width = 1200u32;
+    let height = ((width as f64 * h / w.max(1e-300)) as u32 + 120).clamp(240, 2400);
+    crate::plot::Figure {
+        panels: vec![p],
+        columns: 1,
+        panel_size: (width, height),
+    }
+    .save(dir, &format!("frame_{k:04}"))
+    .with_context(|| format!("drawing frame {k} into {}", dir.display()))?;
+    Ok(())
 }

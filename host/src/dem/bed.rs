@@ -5,27 +5,35 @@
 //! given. Steel disks by default (E = 200 GPa, ν = 0.3, ρ = 7800 kg/m³, the mass of a 2 mm steel
 //! sphere, 3.27×10⁻⁵ kg, as the paper's); `young` softens them.
 //!
-//! Measured after the transient, as the event-driven bed does: the lid pressure P = I/(T L) from
-//! the impulse I the lid received over the measured time T; the lid collision rate counted per
-//! contact *episode* (a disk touching the lid, however long); the mean impulse per episode; the
-//! temperature, the mean translational kinetic energy per disk sampled 64 times a period. The
-//! statistical error of P is the standard error of its means over blocks of periods.
+//! Measured after the transient, as the event-driven bed does, under the same JSON keys: the lid
+//! pressure P = I/(T L) from the impulse I the lid received over the measured time T; the lid
+//! collision rate counted per contact *episode* (a disk touching the lid, however long); the mean
+//! impulse per episode; the temperature, the mean translational kinetic energy per disk sampled
+//! 64 times a period; the piston pressure. Each one's statistical error (`*_stderr`) is the
+//! standard error of its values over blocks of periods (up to 20 blocks), or, over independent
+//! seeds, of the seeds' values ([`DemBedReport::combine`]).
+//!
+//! The disks' mass is the bed's `mass` (the density follows from it), so that the event-driven
+//! bed's `from:LAW` tables and this engine bind the laws to the same particle.
 
 use super::scene::packing;
 use super::state::{DiskMass, Material, VecD};
 use super::walls::{Motion, Wall};
 use super::{DemError, Domain, Engine, EngineConfig, Laws};
+use crate::bed::engine::stderr_of;
 use crate::bed::piston::Piston;
 use crate::bed::BedConfig;
+
+/// Kinetic-energy samples per piston period (as the event-driven bed).
+pub const SAMPLES_PER_PERIOD: f64 = 64.0;
 
 /// The DEM bed's settings beyond the bed's geometry.
 #[derive(Debug, Clone)]
 pub struct DemBed {
-    /// Geometry, frequency, gravity, seed (the event-driven bed's; `mass`, `tangential` and `tc`
-    /// are not used: the mass comes from the material, friction from a tangential law, and a
-    /// soft contact needs no TC model).
+    /// Geometry, frequency, gravity, mass, seed (the event-driven bed's; `tangential` and `tc`
+    /// must be unset: friction comes from a tangential law, and a soft contact needs no TC model).
     pub bed: BedConfig,
-    /// The disks' material (2D mass convention: a sphere's).
+    /// The disks' material (2D mass convention: a sphere's; density from the bed's mass).
     pub material: Material,
     /// The step (s), or chosen from the law.
     pub dt: Option<f64>,
@@ -33,9 +41,12 @@ pub struct DemBed {
     pub steps_per_collision: f64,
 }
 
-/// What a DEM bed run measured (the event-driven bed's keys, plus the step).
+/// What a DEM bed run measured: the event-driven bed's keys (`pressure`, `lid_collision_rate`,
+/// `mean_impulse`, `temperature`, `piston_pressure` and their `_stderr`), plus the step.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct DemBedReport {
+    /// The bed (geometry, frequency, gravity, mass, seed).
+    pub config: BedConfig,
     /// Number of disks N.
     pub disks: usize,
     /// Lid height (m).
@@ -44,37 +55,98 @@ pub struct DemBedReport {
     pub piston_speed: f64,
     /// Measured time (s).
     pub measured_time: f64,
-    /// Lid pressure P (N/m).
+    /// Lid pressure P (N/m): the lid's impulse over the measured time and the width.
     pub pressure: f64,
-    /// Standard error of P from block means (N/m).
-    pub pressure_error: f64,
     /// Lid contact episodes per second (1/s).
     pub lid_collision_rate: f64,
     /// Mean impulse per lid episode (N·s).
     pub mean_impulse: f64,
     /// Mean translational kinetic energy per disk (J).
     pub temperature: f64,
+    /// Standard error of `pressure` (N/m): block means, or the spread of seeds.
+    pub pressure_stderr: Option<f64>,
+    /// Standard error of `lid_collision_rate` (1/s).
+    pub lid_collision_rate_stderr: Option<f64>,
+    /// Standard error of `mean_impulse` (N·s).
+    pub mean_impulse_stderr: Option<f64>,
+    /// Standard error of `temperature` (J).
+    pub temperature_stderr: Option<f64>,
+    /// Time-averaged pressure on the piston (N/m); by momentum balance `pressure` + N m g / L.
+    pub piston_pressure: f64,
+    /// Standard error of `piston_pressure` (N/m).
+    pub piston_pressure_stderr: Option<f64>,
+    /// Independent seeds averaged (1: one run, standard errors by block means).
+    pub seeds: usize,
+    /// Lid contact episodes counted.
+    pub lid_episodes: u64,
     /// The step (s).
     pub dt: f64,
-    /// The contact time the step was chosen from (s).
+    /// The contact time at `impact_speed` the step was chosen from (s).
     pub collision_time: f64,
-    /// Steps taken.
+    /// The impact speed the contact time was computed at (m/s).
+    pub impact_speed: f64,
+    /// Whether the step was given (`--dt`) rather than chosen.
+    pub dt_given: bool,
+    /// Steps taken (per seed).
     pub steps: u64,
     /// Young's modulus used (Pa).
     pub young: f64,
-    /// Wall time (s).
+    /// Poisson's ratio used.
+    pub poisson: f64,
+    /// Density of the disks (kg/m³), from the bed's mass.
+    pub density: f64,
+    /// Wall time (s), summed over seeds.
     pub wall_seconds: f64,
+    /// Wall seconds per simulated second (of one run).
+    pub wall_per_simulated_second: f64,
+}
+
+impl DemBedReport {
+    /// The mean of independent runs, standard errors from their spread (one run: itself).
+    pub fn combine(runs: &[DemBedReport]) -> Option<DemBedReport> {
+        let first = runs.first()?;
+        if runs.len() == 1 {
+            return Some(first.clone());
+        }
+        let k = runs.len() as f64;
+        let mean = |f: &dyn Fn(&DemBedReport) -> f64| runs.iter().map(f).sum::<f64>() / k;
+        let se = |f: &dyn Fn(&DemBedReport) -> f64| stderr_of(&runs.iter().map(f).collect::<Vec<_>>());
+        let mut r = first.clone();
+        r.pressure = mean(&|r| r.pressure);
+        r.pressure_stderr = se(&|r| r.pressure);
+        r.lid_collision_rate = mean(&|r| r.lid_collision_rate);
+        r.lid_collision_rate_stderr = se(&|r| r.lid_collision_rate);
+        r.mean_impulse = mean(&|r| r.mean_impulse);
+        r.mean_impulse_stderr = se(&|r| r.mean_impulse);
+        r.temperature = mean(&|r| r.temperature);
+        r.temperature_stderr = se(&|r| r.temperature);
+        r.piston_pressure = mean(&|r| r.piston_pressure);
+        r.piston_pressure_stderr = se(&|r| r.piston_pressure);
+        r.lid_episodes = runs.iter().map(|r| r.lid_episodes).sum();
+        r.wall_seconds = runs.iter().map(|r| r.wall_seconds).sum();
+        r.seeds = runs.len();
+        Some(r)
+    }
 }
 
 impl DemBed {
     /// Steel disks in the paper's bed with `layers` layers at `freq` (Hz).
     pub fn paper(layers: f64, freq: f64) -> DemBed {
+        DemBed::new(BedConfig::paper(layers, freq), None, None)
+    }
+
+    /// The bed `bed` with disks of Young's modulus `young` (Pa; default steel, 2×10¹¹) and
+    /// Poisson's ratio `poisson` (default 0.3), of the bed's mass (the density follows).
+    pub fn new(bed: BedConfig, young: Option<f64>, poisson: Option<f64>) -> DemBed {
+        let d = bed.diameter;
         DemBed {
-            bed: BedConfig::paper(layers, freq),
             material: Material {
+                young: young.unwrap_or(crate::bed::STEEL_YOUNG),
+                poisson: poisson.unwrap_or(crate::bed::STEEL_POISSON),
+                density: bed.mass / (std::f64::consts::PI / 6.0 * d * d * d),
                 disk_mass: DiskMass::Sphere,
-                ..Material::STEEL
             },
+            bed,
             dt: None,
             steps_per_collision: 50.0,
         }
@@ -85,6 +157,16 @@ impl DemBed {
     pub fn engine(&self, laws: Laws) -> Result<Engine<2>, DemError> {
         let b = &self.bed;
         b.validate().map_err(|e| DemError::Invalid(e.to_string()))?;
+        if let Some(rt) = b.tangential {
+            return Err(DemError::Invalid(format!(
+                "tangential restitution r_t = {rt} is the event-driven engine's rough-disk model: the DEM bed takes a tangential law (e.g. mindlin) instead"
+            )));
+        }
+        if let Some(tc) = b.tc {
+            return Err(DemError::Invalid(format!(
+                "tc = {tc} s is the event-driven engine's TC model: soft contacts need none, leave it unset with the DEM engine"
+            )));
+        }
         let n = b.disks();
         let d = b.diameter;
         let bottom = -0.5 * b.amplitude;
@@ -106,7 +188,7 @@ impl DemBed {
         // the fastest impacts: a disk meeting the piston at its peak speed after falling the box
         cfg.impact_speed = Some(
             2.0 * Piston::new(b.amplitude, b.freq).peak_speed()
-                + (2.0 * b.gravity * (lid - bottom)).sqrt()
+                + (2.0 * b.gravity.abs() * (lid - bottom)).sqrt()
                 + 2.0 * b.initial_speed,
         );
         cfg.domain = Domain {
@@ -124,7 +206,8 @@ impl DemBed {
         Engine::new(cfg, &bodies, vec![piston, lid_wall], laws)
     }
 
-    /// Runs `transient` periods, then measures over `cycles` periods.
+    /// Runs `transient` periods, then measures over `cycles` periods; `progress(t)` is called
+    /// with the simulated time every 1/64 period or so.
     pub fn run(
         &self,
         laws: Laws,
@@ -137,9 +220,9 @@ impl DemBed {
                 "transient = {transient} periods is out of range: must be >= 0"
             )));
         }
-        if !(cycles.is_finite() && cycles >= 1.0) {
+        if !(cycles.is_finite() && cycles > 0.0) {
             return Err(DemError::Invalid(format!(
-                "cycles = {cycles} periods is out of range: must be >= 1"
+                "cycles = {cycles} periods is out of range: must be > 0"
             )));
         }
         let clock = std::time::Instant::now();
@@ -149,65 +232,73 @@ impl DemBed {
         e.run_until(transient * period, every, progress)?;
         e.reset_wall_counters();
         let t0 = e.time();
-        let sample = period / 64.0;
+        let sample = period / SAMPLES_PER_PERIOD;
         let mut next_sample = t0;
-        let (mut ke, mut samples) = (0.0, 0u64);
-        // block means of the lid impulse: about 20 blocks
+        // block sums: time, lid impulse, piston impulse, lid episodes, kinetic energy, samples
         let blocks = (cycles.floor() as usize).clamp(1, 20);
         let block_len = cycles * period / blocks as f64;
-        let mut block_impulse = Vec::with_capacity(blocks);
-        let mut last = 0.0;
-        let end = t0 + cycles * period;
-        while e.time() + 0.5 * e.dt() < end {
-            e.step()?;
-            if e.time() >= next_sample {
-                ke += e.temperature();
-                samples += 1;
-                next_sample += sample;
+        let mut rows: Vec<[f64; 6]> = Vec::with_capacity(blocks);
+        let (mut lid0, mut pis0, mut ep0, mut tb0) = (0.0, 0.0, 0u64, t0);
+        for b in 0..blocks {
+            let end = t0 + (b + 1) as f64 * block_len;
+            let (mut ke, mut samples) = (0.0, 0.0);
+            while e.time() + 0.5 * e.dt() < end {
+                e.step()?;
+                if e.time() >= next_sample {
+                    ke += e.temperature();
+                    samples += 1.0;
+                    next_sample += sample;
+                }
+                if e.steps() % every == 0 {
+                    progress(e.time());
+                }
             }
-            if e.time() >= t0 + (block_impulse.len() + 1) as f64 * block_len - 0.5 * e.dt()
-                && block_impulse.len() < blocks
-            {
-                let now = e.wall_impulse[1].y;
-                block_impulse.push(now - last);
-                last = now;
-            }
-            if e.steps() % every == 0 {
-                progress(e.time());
-            }
+            let (lid, pis, ep) = (e.wall_impulse[1].y, -e.wall_impulse[0].y, e.wall_episodes[1]);
+            rows.push([
+                e.time() - tb0,
+                lid - lid0,
+                pis - pis0,
+                (ep - ep0) as f64,
+                ke,
+                samples,
+            ]);
+            (lid0, pis0, ep0, tb0) = (lid, pis, ep, e.time());
         }
         let tm = e.time() - t0;
         let w = self.bed.width;
-        let impulse = e.wall_impulse[1].y;
-        let episodes = e.wall_episodes[1];
-        let pressure = impulse / (tm * w);
-        let pb: Vec<f64> = block_impulse.iter().map(|i| i / (block_len * w)).collect();
-        let k = pb.len() as f64;
-        let mean = pb.iter().sum::<f64>() / k;
-        let var = if k > 1.0 {
-            pb.iter().map(|p| (p - mean).powi(2)).sum::<f64>() / (k - 1.0)
-        } else {
-            f64::NAN
-        };
+        let sum = |k: usize| rows.iter().map(|r| r[k]).sum::<f64>();
+        let (impulse, piston, episodes, ke, samples) = (sum(1), sum(2), sum(3), sum(4), sum(5));
+        let se =
+            |f: &dyn Fn(&[f64; 6]) -> Option<f64>| stderr_of(&rows.iter().filter_map(f).collect::<Vec<_>>());
+        let c = e.step_choice;
         Ok(DemBedReport {
+            config: self.bed,
             disks: e.p.len(),
             lid: self.bed.lid(),
             piston_speed: Piston::new(self.bed.amplitude, self.bed.freq).peak_speed(),
             measured_time: tm,
-            pressure,
-            pressure_error: (var / k).sqrt(),
-            lid_collision_rate: episodes as f64 / tm,
-            mean_impulse: if episodes > 0 {
-                impulse / episodes as f64
-            } else {
-                0.0
-            },
-            temperature: if samples > 0 { ke / samples as f64 } else { 0.0 },
+            pressure: impulse / (tm * w),
+            lid_collision_rate: episodes / tm,
+            mean_impulse: if episodes > 0.0 { impulse / episodes } else { 0.0 },
+            temperature: if samples > 0.0 { ke / samples } else { 0.0 },
+            pressure_stderr: se(&|r| Some(r[1] / (r[0] * w))),
+            lid_collision_rate_stderr: se(&|r| Some(r[3] / r[0])),
+            mean_impulse_stderr: se(&|r| (r[3] > 0.0).then(|| r[1] / r[3])),
+            temperature_stderr: se(&|r| (r[5] > 0.0).then(|| r[4] / r[5])),
+            piston_pressure: piston / (tm * w),
+            piston_pressure_stderr: se(&|r| Some(r[2] / (r[0] * w))),
+            seeds: 1,
+            lid_episodes: episodes as u64,
             dt: e.dt(),
-            collision_time: e.step_choice.collision_time,
+            collision_time: c.collision_time,
+            impact_speed: c.impact_speed,
+            dt_given: c.given,
             steps: e.steps(),
             young: self.material.young,
+            poisson: self.material.poisson,
+            density: self.material.density,
             wall_seconds: clock.elapsed().as_secs_f64(),
+            wall_per_simulated_second: clock.elapsed().as_secs_f64() / e.time().max(1e-300),
         })
     }
 }

@@ -1,12 +1,23 @@
 //! The engine and its step.
 //!
 //! Scheme: velocity Verlet (kick–drift–kick), second order and symplectic for conservative
-//! forces, with one addition for the rate-dependent normal force (damping): the overlap rate at
-//! the end of the step comes from the *predicted* velocity v(t) + dt·a(t) rather than the
-//! half-step one, whose lag of dt/2 makes the dissipated energy first order in dt. The tangential
-//! laws get the slip of the contact points over the step (half-step v and ω), so that slip × dt
-//! is the step's tangential displacement exactly (the Mindlin plugin's stated convention). With
-//! an elastic law and no friction the scheme is exactly velocity Verlet.
+//! forces, with two additions for dissipative contacts:
+//!
+//! - the overlap rate the normal law sees at the end of the step comes from a *predicted*
+//!   end-of-step velocity rather than the half-step one, whose lag of dt/2 makes the dissipated
+//!   energy first order in dt. The predictor is v(t + dt/2) + (dt/2)(2 a(t) − a(t − dt)): the
+//!   acceleration extrapolated linearly to the step's end, second order (v(t) + dt·a(t), the
+//!   first-order predictor, left an error of 1e-3 in the restitution at 50 steps per contact);
+//! - the first and the last step of a contact take the mean force over the part of the step in
+//!   contact ([`super::contacts::ContactSet::evaluate`]): the force switches on and off with a
+//!   kink (HSD's damping grows as δ^{1/4}) that the step-end rule integrates only to dt^{5/4}.
+//!
+//! With them, a disk dropped on a floor under HSD bounces with ε to within 1.4e-4 at 50 steps
+//! per contact whatever the phase of the first touch within a step (without: 4e-3 at worst,
+//! 1.4e-3 at the test's phase). The tangential laws get the slip of the contact points over
+//! the step (half-step v and ω), so that slip × dt is the step's tangential displacement
+//! exactly (the Mindlin plugin's stated convention). Elastic and frictionless, between the first
+//! and last steps of contacts the scheme is velocity Verlet.
 //!
 //! Time step: unless given, τ/`steps_per_collision` where τ is the contact time of the smallest
 //! particle against an equal one and against a wall at the largest expected impact speed, found
@@ -21,11 +32,15 @@ use crate::collide::{collide, Options, PairLaw};
 use dashpot_sdk::EndCriterion;
 use rayon::prelude::*;
 
-/// One particle's item in the kick–drift loop.
+/// One particle's item in the kick–drift loop: index, position, velocity, spin, predicted
+/// velocity, previous acceleration.
 type KickDrift<'a, const D: usize> = (
     usize,
     (
-        ((&'a mut VecD<D>, &'a mut VecD<D>), &'a mut Vec3),
+        (
+            ((&'a mut VecD<D>, &'a mut VecD<D>), &'a mut Vec3),
+            &'a mut VecD<D>,
+        ),
         &'a mut VecD<D>,
     ),
 );
@@ -48,6 +63,9 @@ pub struct EngineConfig<const D: usize> {
     pub domain: Domain<D>,
     /// The particles' material.
     pub material: Material,
+    /// Whether a contact's first and last step take the mean force over the part of the step in
+    /// contact (default true; off: the plain step-end rule, for measuring what it changes).
+    pub edge_means: bool,
 }
 
 impl<const D: usize> EngineConfig<D> {
@@ -66,6 +84,7 @@ impl<const D: usize> EngineConfig<D> {
                 bounded: false,
             },
             material,
+            edge_means: true,
         }
     }
 }
@@ -103,6 +122,8 @@ pub struct Engine<const D: usize> {
     /// Particle–wall contacts of the last evaluation.
     pub wall_contacts: ContactSet,
     vpred: Vec<VecD<D>>,
+    /// Each particle's acceleration at the previous step (the predictor's extrapolation).
+    aold: Vec<VecD<D>>,
     bufs: Vec<(Vec<VecD<D>>, Vec<Vec3>)>,
     /// Impulse (N·s) given to each wall since the last reset (force on the wall × dt, summed).
     pub wall_impulse: Vec<VecD<D>>,
@@ -231,6 +252,7 @@ impl<const D: usize> Engine<D> {
         );
         let mut e = Engine {
             vpred: p.vel.clone(),
+            aold: vec![VecD::<D>::zeros(); p.len()],
             p,
             walls,
             laws,
@@ -264,6 +286,10 @@ impl<const D: usize> Engine<D> {
             .for_each(|h| *h = 0.0);
         e.reset_wall_counters();
         e.pair_episodes = e.pairs.len() as u64;
+        let g = e.cfg.gravity;
+        for i in 0..e.p.len() {
+            e.aold[i] = e.p.force[i] / e.p.mass[i] + g;
+        }
         Ok(e)
     }
 
@@ -325,10 +351,18 @@ impl<const D: usize> Engine<D> {
         )?;
         self.wall_contacts
             .gather_walls(&ws, &p.pos, &self.vpred, &p.vel, &p.omega, &p.radius, &p.mass)?;
-        self.pairs
-            .evaluate(&*self.laws.pair, self.laws.pair_tangential.as_deref(), self.dt)?;
-        self.wall_contacts
-            .evaluate(&*self.laws.wall, self.laws.wall_tangential.as_deref(), self.dt)?;
+        self.pairs.evaluate(
+            &*self.laws.pair,
+            self.laws.pair_tangential.as_deref(),
+            self.dt,
+            self.cfg.edge_means,
+        )?;
+        self.wall_contacts.evaluate(
+            &*self.laws.wall,
+            self.laws.wall_tangential.as_deref(),
+            self.dt,
+            self.cfg.edge_means,
+        )?;
         self.scatter();
         Ok(())
     }
@@ -422,19 +456,21 @@ impl<const D: usize> Engine<D> {
             let p = &mut self.p;
             let (pos, vel, omega) = (&mut p.pos, &mut p.vel, &mut p.omega);
             let (force, torque, mass, inertia) = (&p.force, &p.torque, &p.mass, &p.inertia);
-            let kick_drift = |(i, (((x, v), w), vp)): KickDrift<'_, D>| {
+            let kick_drift = |(i, ((((x, v), w), vp), ao)): KickDrift<'_, D>| {
                 let a = force[i] / mass[i] + g;
                 let al = torque[i] / inertia[i];
                 *v += a * h;
                 *x += *v * dt;
                 *w += al * h;
-                *vp = *v + a * h;
+                *vp = *v + (a * 2.0 - *ao) * h;
+                *ao = a;
             };
             if pos.len() < SERIAL_BELOW {
                 pos.iter_mut()
                     .zip(vel.iter_mut())
                     .zip(omega.iter_mut())
                     .zip(self.vpred.iter_mut())
+                    .zip(self.aold.iter_mut())
                     .enumerate()
                     .for_each(kick_drift);
             } else {
@@ -442,6 +478,7 @@ impl<const D: usize> Engine<D> {
                     .zip(vel.par_iter_mut())
                     .zip(omega.par_iter_mut())
                     .zip(self.vpred.par_iter_mut())
+                    .zip(self.aold.par_iter_mut())
                     .enumerate()
                     .for_each(kick_drift);
             }
