@@ -78,6 +78,45 @@ impl ContactSet {
         }
     }
 
+    /// An empty set with room for `cap` contacts (so that gathering a step's contacts, about
+    /// as many as the last step's, does not grow eleven arrays by doubling every step).
+    fn with_capacity(slots_n: usize, slots_t: usize, cap: usize) -> ContactSet {
+        ContactSet {
+            i: Vec::with_capacity(cap),
+            j: Vec::with_capacity(cap),
+            delta: Vec::with_capacity(cap),
+            rate: Vec::with_capacity(cap),
+            mass: Vec::with_capacity(cap),
+            radius: Vec::with_capacity(cap),
+            normal: Vec::with_capacity(cap),
+            vrel: Vec::with_capacity(cap),
+            hist_n: Vec::with_capacity(cap * slots_n),
+            hist_t: Vec::with_capacity(cap * slots_t),
+            fresh: Vec::with_capacity(cap),
+            slots_n,
+            slots_t,
+            ..Default::default()
+        }
+    }
+
+    /// The parts gathered chunk by chunk, in order, as one set (the first part's arrays are
+    /// kept, not copied: with one chunk nothing moves).
+    fn concat(
+        slots_n: usize,
+        slots_t: usize,
+        parts: Vec<Result<ContactSet, DemError>>,
+    ) -> Result<ContactSet, DemError> {
+        let mut parts = parts.into_iter();
+        let mut next = match parts.next() {
+            Some(p) => p?,
+            None => ContactSet::new(slots_n, slots_t),
+        };
+        for p in parts {
+            next.append(&mut p?);
+        }
+        Ok(next)
+    }
+
     /// Number of contacts.
     pub fn len(&self) -> usize {
         self.i.len()
@@ -183,8 +222,10 @@ impl ContactSet {
     ) -> Result<(), DemError> {
         let n = pos.len();
         let prev = &*self;
-        let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(n.div_ceil(GATHER_CHUNK), |ch| {
-            let mut out = ContactSet::new(prev.slots_n, prev.slots_t);
+        let chunks = n.div_ceil(GATHER_CHUNK);
+        let cap = prev.len() / chunks.max(1) + prev.len() / (8 * chunks.max(1)) + 16;
+        let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(chunks, |ch| {
+            let mut out = ContactSet::with_capacity(prev.slots_n, prev.slots_t, cap);
             for i in ch * GATHER_CHUNK..((ch + 1) * GATHER_CHUNK).min(n) {
                 for &j in nb.of(i) {
                     let ju = j as usize;
@@ -225,10 +266,7 @@ impl ContactSet {
             }
             Ok(out)
         });
-        let mut next = ContactSet::new(self.slots_n, self.slots_t);
-        for p in parts {
-            next.append(&mut p?);
-        }
+        let mut next = ContactSet::concat(self.slots_n, self.slots_t, parts)?;
         next.index_rows(n);
         next.fnorm.resize(next.len(), 0.0);
         next.ftan.resize(next.len(), [0.0; 3]);
@@ -252,8 +290,10 @@ impl ContactSet {
         let mut next = ContactSet::new(self.slots_n, self.slots_t);
         if !walls.is_empty() {
             let prev = &*self;
-            let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(n.div_ceil(GATHER_CHUNK), |ch| {
-                let mut out = ContactSet::new(prev.slots_n, prev.slots_t);
+            let chunks = n.div_ceil(GATHER_CHUNK);
+            let cap = prev.len() / chunks.max(1) + prev.len() / (8 * chunks.max(1)) + 16;
+            let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(chunks, |ch| {
+                let mut out = ContactSet::with_capacity(prev.slots_n, prev.slots_t, cap);
                 for i in ch * GATHER_CHUNK..((ch + 1) * GATHER_CHUNK).min(n) {
                     for (w, ws) in walls.iter().enumerate() {
                         let gap = (pos[i] - ws.point).dot(&ws.normal);
@@ -278,9 +318,7 @@ impl ContactSet {
                 }
                 Ok(out)
             });
-            for p in parts {
-                next.append(&mut p?);
-            }
+            next = ContactSet::concat(self.slots_n, self.slots_t, parts)?;
         }
         next.index_rows(n);
         next.fnorm.resize(next.len(), 0.0);
