@@ -9,7 +9,9 @@
 //!
 //! Run: `cargo bench -p dashpot-tests --bench dem`
 
-use dashpot::dem::{Body, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
+mod common;
+
+use dashpot::dem::{Engine, Laws, Material};
 use dashpot::laws::{compiled, compiled_tangential};
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
@@ -58,42 +60,7 @@ fn pile(n: usize, laws: Laws) -> Engine<2> {
 }
 
 fn pile_with(n: usize, laws: Laws, edge_means: bool) -> Engine<2> {
-    let d = 0.002;
-    let cols = (n as f64).sqrt().max(50.0).floor() as usize;
-    let width = cols as f64 * d;
-    let rows = n.div_ceil(cols);
-    let height = rows as f64 * d;
-    let mut seed = 7u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let bodies: Vec<Body<2>> = (0..n)
-        .map(|k| {
-            let (q, r) = ((k % cols) as f64, (k / cols) as f64);
-            let a = 2.0 * std::f64::consts::PI * rnd();
-            Body {
-                position: VecD::<2>::new((q + 0.5) * d, (r + 0.5) * d),
-                velocity: VecD::<2>::new(0.05 * a.cos(), 0.05 * a.sin()),
-                angular_velocity: Vec3::zeros(),
-                diameter: d * (0.95 + 0.05 * rnd()),
-            }
-        })
-        .collect();
-    let mut cfg = EngineConfig::<2>::new(MAT);
-    cfg.gravity = VecD::<2>::new(0.0, -9.81);
-    cfg.impact_speed = Some(1.0);
-    cfg.edge_means = edge_means;
-    cfg.domain = Domain {
-        lo: VecD::<2>::new(0.0, -0.01),
-        hi: VecD::<2>::new(width, height + 1.0),
-        periodic: [true, false],
-        bounded: false,
-    };
-    let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
-    Engine::new(cfg, &bodies, vec![floor], laws).unwrap()
+    common::pile(n, laws, MAT, edge_means)
 }
 
 fn steps(e: &mut Engine<2>, k: usize) -> f64 {

@@ -19,7 +19,7 @@
 mod common;
 
 use common::thread_cpu_seconds;
-use dashpot::dem::{Body, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
+use dashpot::dem::{Body, Engine, Laws, Material};
 use dashpot_sdk::ParamValue;
 use dashpot_tests::full_registry;
 use std::fmt::Write as _;
@@ -30,7 +30,6 @@ const N: usize = 2000;
 const SETTLE: usize = 5000;
 const STEPS: usize = 3500;
 const ROUNDS: usize = 3;
-const D: f64 = 0.002;
 
 const MAT: Material = Material {
     young: 1.0e8,
@@ -39,35 +38,11 @@ const MAT: Material = Material {
     disk_mass: dashpot::dem::DiskMass::Sphere,
 };
 
-/// The pile of the `dem` benchmark: disks on a square lattice of spacing d, 50 columns, random
-/// directions at 0.05 m/s, diameters uniform in [0.95, 1] d.
 fn bodies() -> (Vec<Body<2>>, f64, f64) {
-    let cols = 50usize;
-    let rows = N.div_ceil(cols);
-    let mut seed = 7u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let b = (0..N)
-        .map(|k| {
-            let (q, r) = ((k % cols) as f64, (k / cols) as f64);
-            let a = 2.0 * std::f64::consts::PI * rnd();
-            Body {
-                position: VecD::<2>::new((q + 0.5) * D, (r + 0.5) * D),
-                velocity: VecD::<2>::new(0.05 * a.cos(), 0.05 * a.sin()),
-                angular_velocity: Vec3::zeros(),
-                diameter: D * (0.95 + 0.05 * rnd()),
-            }
-        })
-        .collect();
-    (b, cols as f64 * D, rows as f64 * D)
+    common::pile_bodies(N)
 }
 
 fn engine(reg: &dashpot::Registry) -> Engine<2> {
-    let (b, width, height) = bodies();
     let laws = Laws::from_registry(
         reg,
         ("hsd", &[ParamValue::new("eps", 0.5)]),
@@ -75,17 +50,7 @@ fn engine(reg: &dashpot::Registry) -> Engine<2> {
         &MAT,
     )
     .expect("laws");
-    let mut cfg = EngineConfig::<2>::new(MAT);
-    cfg.gravity = VecD::<2>::new(0.0, -9.81);
-    cfg.impact_speed = Some(1.0);
-    cfg.domain = Domain {
-        lo: VecD::<2>::new(0.0, -0.01),
-        hi: VecD::<2>::new(width, height + 1.0),
-        periodic: [true, false],
-        bounded: false,
-    };
-    let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
-    Engine::new(cfg, &b, vec![floor], laws).expect("engine")
+    common::pile(N, laws, MAT, true)
 }
 
 /// The pile as a LAMMPS data file (atom_style sphere: id type diameter density x y z).
