@@ -124,6 +124,10 @@ pub struct Engine<const D: usize> {
     vpred: Vec<VecD<D>>,
     /// Each particle's acceleration at the previous step (the predictor's extrapolation).
     aold: Vec<VecD<D>>,
+    /// 1/m and 1/I of each particle (the kicks multiply: a division per component and particle
+    /// was a tenth of a step). Masses and moments of inertia are fixed at construction.
+    inv_mass: Vec<f64>,
+    inv_inertia: Vec<f64>,
     bufs: Vec<(Vec<VecD<D>>, Vec<Vec3>)>,
     /// Impulse (N·s) given to each wall since the last reset (force on the wall × dt, summed).
     pub wall_impulse: Vec<VecD<D>>,
@@ -253,6 +257,8 @@ impl<const D: usize> Engine<D> {
         let mut e = Engine {
             vpred: p.vel.clone(),
             aold: vec![VecD::<D>::zeros(); p.len()],
+            inv_mass: p.mass.iter().map(|m| 1.0 / m).collect(),
+            inv_inertia: p.inertia.iter().map(|i| 1.0 / i).collect(),
             p,
             walls,
             laws,
@@ -455,10 +461,11 @@ impl<const D: usize> Engine<D> {
         {
             let p = &mut self.p;
             let (pos, vel, omega) = (&mut p.pos, &mut p.vel, &mut p.omega);
-            let (force, torque, mass, inertia) = (&p.force, &p.torque, &p.mass, &p.inertia);
+            let (force, torque) = (&p.force, &p.torque);
+            let (im, ii) = (&self.inv_mass, &self.inv_inertia);
             let kick_drift = |(i, ((((x, v), w), vp), ao)): KickDrift<'_, D>| {
-                let a = force[i] / mass[i] + g;
-                let al = torque[i] / inertia[i];
+                let a = force[i] * im[i] + g;
+                let al = torque[i] * ii[i];
                 *v += a * h;
                 *x += *v * dt;
                 *w += al * h;
@@ -493,10 +500,11 @@ impl<const D: usize> Engine<D> {
         {
             let p = &mut self.p;
             let (vel, omega) = (&mut p.vel, &mut p.omega);
-            let (force, torque, mass, inertia) = (&p.force, &p.torque, &p.mass, &p.inertia);
+            let (force, torque) = (&p.force, &p.torque);
+            let (im, ii) = (&self.inv_mass, &self.inv_inertia);
             let kick = |(i, (v, w)): (usize, (&mut VecD<D>, &mut Vec3))| {
-                *v += (force[i] / mass[i] + g) * h;
-                *w += torque[i] / inertia[i] * h;
+                *v += (force[i] * im[i] + g) * h;
+                *w += torque[i] * ii[i] * h;
             };
             if vel.len() < SERIAL_BELOW {
                 vel.iter_mut().zip(omega.iter_mut()).enumerate().for_each(kick);
@@ -529,6 +537,20 @@ impl<const D: usize> Engine<D> {
     fn check(&self, velocities_too: bool) -> Result<(), DemError> {
         let p = &self.p;
         let dom = &self.cfg.domain;
+        // the common case in one branch-free pass: a sum of every coordinate is finite unless
+        // one of them is not (or the sum overflows, which only takes the exact scan below)
+        if !dom.bounded && p.len() < SERIAL_BELOW {
+            let mut s = 0.0;
+            for i in 0..p.len() {
+                s += p.pos[i].sum();
+                if velocities_too {
+                    s += p.vel[i].sum() + p.omega[i].sum();
+                }
+            }
+            if s.is_finite() {
+                return Ok(());
+            }
+        }
         let bad_at = |&i: &usize| {
             let fin = p.pos[i].iter().all(|x| x.is_finite())
                 && (!velocities_too
