@@ -34,6 +34,29 @@ use rayon::prelude::*;
 
 /// One particle's item in the kick–drift loop: index, position, velocity, spin, predicted
 /// velocity, previous acceleration.
+/// The first half-kick and the drift of one particle, with its acceleration `a` (m/s²) and
+/// angular acceleration `al` (rad/s²); `vp` gets the second-order predicted velocity at the end
+/// of the step, `ao` keeps `a` for the next prediction.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn kick_drift_one<const D: usize>(
+    a: VecD<D>,
+    al: Vec3,
+    h: f64,
+    dt: f64,
+    x: &mut VecD<D>,
+    v: &mut VecD<D>,
+    w: &mut Vec3,
+    vp: &mut VecD<D>,
+    ao: &mut VecD<D>,
+) {
+    *v += a * h;
+    *x += *v * dt;
+    *w += al * h;
+    *vp = *v + (a * 2.0 - *ao) * h;
+    *ao = a;
+}
+
 type KickDrift<'a, const D: usize> = (
     usize,
     (
@@ -464,22 +487,27 @@ impl<const D: usize> Engine<D> {
             let (force, torque) = (&p.force, &p.torque);
             let (im, ii) = (&self.inv_mass, &self.inv_inertia);
             let kick_drift = |(i, ((((x, v), w), vp), ao)): KickDrift<'_, D>| {
-                let a = force[i] * im[i] + g;
-                let al = torque[i] * ii[i];
-                *v += a * h;
-                *x += *v * dt;
-                *w += al * h;
-                *vp = *v + (a * 2.0 - *ao) * h;
-                *ao = a;
+                kick_drift_one(force[i] * im[i] + g, torque[i] * ii[i], h, dt, x, v, w, vp, ao);
             };
-            if pos.len() < SERIAL_BELOW {
-                pos.iter_mut()
-                    .zip(vel.iter_mut())
-                    .zip(omega.iter_mut())
-                    .zip(self.vpred.iter_mut())
-                    .zip(self.aold.iter_mut())
-                    .enumerate()
-                    .for_each(kick_drift);
+            let n = pos.len();
+            if n < SERIAL_BELOW {
+                // a plain indexed loop over equal-length slices: inlined and vectorised
+                let (force, torque, im, ii) = (&force[..n], &torque[..n], &im[..n], &ii[..n]);
+                let (vel, omega) = (&mut vel[..n], &mut omega[..n]);
+                let (vpred, aold) = (&mut self.vpred[..n], &mut self.aold[..n]);
+                for i in 0..n {
+                    kick_drift_one(
+                        force[i] * im[i] + g,
+                        torque[i] * ii[i],
+                        h,
+                        dt,
+                        &mut pos[i],
+                        &mut vel[i],
+                        &mut omega[i],
+                        &mut vpred[i],
+                        &mut aold[i],
+                    );
+                }
             } else {
                 pos.par_iter_mut()
                     .zip(vel.par_iter_mut())
@@ -506,8 +534,14 @@ impl<const D: usize> Engine<D> {
                 *v += (force[i] * im[i] + g) * h;
                 *w += torque[i] * ii[i] * h;
             };
-            if vel.len() < SERIAL_BELOW {
-                vel.iter_mut().zip(omega.iter_mut()).enumerate().for_each(kick);
+            let n = vel.len();
+            if n < SERIAL_BELOW {
+                let (force, torque, im, ii) = (&force[..n], &torque[..n], &im[..n], &ii[..n]);
+                let omega = &mut omega[..n];
+                for i in 0..n {
+                    vel[i] += (force[i] * im[i] + g) * h;
+                    omega[i] += torque[i] * ii[i] * h;
+                }
             } else {
                 vel.par_iter_mut()
                     .zip(omega.par_iter_mut())
@@ -540,14 +574,17 @@ impl<const D: usize> Engine<D> {
         // the common case in one branch-free pass: a sum of every coordinate is finite unless
         // one of them is not (or the sum overflows, which only takes the exact scan below)
         if !dom.bounded && p.len() < SERIAL_BELOW {
-            let mut s = 0.0;
-            for i in 0..p.len() {
-                s += p.pos[i].sum();
-                if velocities_too {
-                    s += p.vel[i].sum() + p.omega[i].sum();
+            // one running sum per component: independent chains, not one long one
+            let mut s = [0.0f64; 4];
+            for (k, x) in p.pos.iter().enumerate() {
+                s[k % 4] += x.sum();
+            }
+            if velocities_too {
+                for (k, (v, w)) in p.vel.iter().zip(&p.omega).enumerate() {
+                    s[k % 4] += v.sum() + w.sum();
                 }
             }
-            if s.is_finite() {
+            if ((s[0] + s[1]) + (s[2] + s[3])).is_finite() {
                 return Ok(());
             }
         }
