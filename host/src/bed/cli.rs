@@ -684,40 +684,19 @@ pub fn print_dem_report(
         r.collision_time,
         r.impact_speed
     );
-    println!("measured over {:.3} s after the transient:", r.measured_time);
-    let pm = |v: f64, e: Option<f64>| match e {
-        Some(e) => format!("{v:.6e} ± {e:.2e}"),
-        None => format!("{v:.6e}"),
-    };
-    println!(
-        "  (± one standard error: {}; lid collisions counted per contact episode)",
-        if r.seeds > 1 {
-            format!("spread of {} independent seeds", r.seeds)
-        } else {
-            "block means over the measured periods".to_string()
-        }
-    );
-    println!(
-        "  pressure P                  {} N/m",
-        pm(r.pressure, r.pressure_stderr)
-    );
-    println!(
-        "  lid collision rate Nc       {} 1/s",
-        pm(r.lid_collision_rate, r.lid_collision_rate_stderr)
-    );
-    println!(
-        "  mean impulse ΔI             {} N·s",
-        pm(r.mean_impulse, r.mean_impulse_stderr)
-    );
-    println!(
-        "  temperature T               {} J",
-        pm(r.temperature, r.temperature_stderr)
-    );
-    println!(
-        "  piston pressure             {} N/m (P + N m g / L = {:.6e})",
-        pm(r.piston_pressure, r.piston_pressure_stderr),
-        r.pressure + r.disks as f64 * c.mass * c.gravity / c.width
-    );
+    print_observables(&Observables {
+        measured_time: r.measured_time,
+        seeds: r.seeds,
+        single_seed: "block means over the measured periods",
+        note: "; lid collisions counted per contact episode",
+        pressure_label: "pressure P                 ",
+        pressure: (r.pressure, r.pressure_stderr),
+        rate: (r.lid_collision_rate, r.lid_collision_rate_stderr),
+        impulse: (r.mean_impulse, r.mean_impulse_stderr),
+        temperature: (r.temperature, r.temperature_stderr),
+        piston: (r.piston_pressure, r.piston_pressure_stderr),
+        piston_expected: r.pressure + r.disks as f64 * c.mass * c.gravity / c.width,
+    });
     println!(
         "run: {} steps of {:.4e} s, {:.3} s wall ({:.2} s per simulated s)",
         r.steps, r.dt, r.wall_seconds, r.wall_per_simulated_second
@@ -761,6 +740,48 @@ pub fn report_json(law: &str, params: &[ParamValue], r: &BedReport) -> serde_jso
     v
 }
 
+/// The measured observables of a bed run, as both engines print them: value and standard error.
+struct Observables<'a> {
+    measured_time: f64,
+    seeds: usize,
+    /// Where the standard error of a single-seed run comes from.
+    single_seed: &'a str,
+    /// Appended to the line saying what ± means.
+    note: &'a str,
+    /// Padded to the width of the other labels.
+    pressure_label: &'a str,
+    pressure: (f64, Option<f64>),
+    rate: (f64, Option<f64>),
+    impulse: (f64, Option<f64>),
+    temperature: (f64, Option<f64>),
+    piston: (f64, Option<f64>),
+    /// P + N m g / L, what the piston pressure should be.
+    piston_expected: f64,
+}
+
+fn print_observables(o: &Observables<'_>) {
+    println!("measured over {:.3} s after the transient:", o.measured_time);
+    let pm = |(v, e): (f64, Option<f64>)| match e {
+        Some(e) => format!("{v:.6e} ± {e:.2e}"),
+        None => format!("{v:.6e}"),
+    };
+    let source = if o.seeds > 1 {
+        format!("spread of {} independent seeds", o.seeds)
+    } else {
+        o.single_seed.to_string()
+    };
+    println!("  (± one standard error: {source}{})", o.note);
+    println!("  {} {} N/m", o.pressure_label, pm(o.pressure));
+    println!("  lid collision rate Nc       {} 1/s", pm(o.rate));
+    println!("  mean impulse ΔI             {} N·s", pm(o.impulse));
+    println!("  temperature T               {} J", pm(o.temperature));
+    println!(
+        "  piston pressure             {} N/m (P + N m g / L = {:.6e})",
+        pm(o.piston),
+        o.piston_expected
+    );
+}
+
 fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
     let c = &r.config;
     let ps: Vec<String> = params
@@ -777,40 +798,19 @@ fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
         c.gravity,
         r.lid
     );
-    println!("measured over {:.3} s after the transient:", r.measured_time);
-    let pm = |v: f64, e: Option<f64>| match e {
-        Some(e) => format!("{v:.6e} ± {e:.2e}"),
-        None => format!("{v:.6e}"),
-    };
-    println!(
-        "  (± one standard error: {})",
-        if r.seeds > 1 {
-            format!("spread of {} independent seeds", r.seeds)
-        } else {
-            "batch means over the measured periods".to_string()
-        }
-    );
-    println!(
-        "  pressure P = Nc ΔI / L      {} N/m",
-        pm(r.pressure, r.pressure_stderr)
-    );
-    println!(
-        "  lid collision rate Nc       {} 1/s",
-        pm(r.lid_collision_rate, r.lid_collision_rate_stderr)
-    );
-    println!(
-        "  mean impulse ΔI             {} N·s",
-        pm(r.mean_impulse, r.mean_impulse_stderr)
-    );
-    println!(
-        "  temperature T               {} J",
-        pm(r.temperature, r.temperature_stderr)
-    );
-    println!(
-        "  piston pressure             {} N/m (P + N m g / L = {:.6e})",
-        pm(r.piston_pressure, r.piston_pressure_stderr),
-        r.pressure + r.disks as f64 * c.mass * c.gravity / c.width
-    );
+    print_observables(&Observables {
+        measured_time: r.measured_time,
+        seeds: r.seeds,
+        single_seed: "batch means over the measured periods",
+        note: "",
+        pressure_label: "pressure P = Nc ΔI / L     ",
+        pressure: (r.pressure, r.pressure_stderr),
+        rate: (r.lid_collision_rate, r.lid_collision_rate_stderr),
+        impulse: (r.mean_impulse, r.mean_impulse_stderr),
+        temperature: (r.temperature, r.temperature_stderr),
+        piston: (r.piston_pressure, r.piston_pressure_stderr),
+        piston_expected: r.pressure + r.disks as f64 * c.mass * c.gravity / c.width,
+    });
     println!(
         "run: {} events ({} collisions, {} cell crossings), {:.3e} events/s, {:.3e} collisions/s, {:.3} s wall ({:.4} s per simulated s)",
         r.events,
