@@ -223,7 +223,7 @@ impl ContactSet {
         let n = pos.len();
         let prev = &*self;
         let chunks = n.div_ceil(GATHER_CHUNK);
-        let cap = prev.len() / chunks.max(1) + prev.len() / (8 * chunks.max(1)) + 16;
+        let cap = chunk_capacity(prev.len(), chunks);
         let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(chunks, |ch| {
             let mut out = ContactSet::with_capacity(prev.slots_n, prev.slots_t, cap);
             for i in ch * GATHER_CHUNK..((ch + 1) * GATHER_CHUNK).min(n) {
@@ -291,7 +291,7 @@ impl ContactSet {
         if !walls.is_empty() {
             let prev = &*self;
             let chunks = n.div_ceil(GATHER_CHUNK);
-            let cap = prev.len() / chunks.max(1) + prev.len() / (8 * chunks.max(1)) + 16;
+            let cap = chunk_capacity(prev.len(), chunks);
             let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(chunks, |ch| {
                 let mut out = ContactSet::with_capacity(prev.slots_n, prev.slots_t, cap);
                 for i in ch * GATHER_CHUNK..((ch + 1) * GATHER_CHUNK).min(n) {
@@ -530,6 +530,12 @@ fn step_edge_means(
 /// Below this many particles the engine runs serially: rayon's dispatch per parallel loop costs
 /// more than a few thousand particles' work (a 50-disk bed ran at 175 µs per step).
 pub const SERIAL_BELOW: usize = 4096;
+
+/// Room for one gathering chunk's contacts: its share of the last step's count, an eighth more.
+fn chunk_capacity(last: usize, chunks: usize) -> usize {
+    let share = last / chunks.max(1);
+    share + share / 8 + 16
+}
 
 /// `f(0..chunks)` collected, in parallel when there is more than one chunk.
 fn par_or_seq<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {

@@ -167,26 +167,9 @@ impl BoundTangential for MindlinBound {
     /// results are transposed back. A test checks the bits against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
-        if b.slots != 3 {
-            // not this law's layout: the per-contact form handles it
-            let TangentialBatch { history, force, .. } = b;
-            let slots = b.slots.max(1);
-            for (i, (h, f)) in history.chunks_exact_mut(slots).zip(force.iter_mut()).enumerate() {
-                *f = self.force(
-                    &TangentialContact {
-                        normal: b.normal[i],
-                        velocity: b.velocity[i],
-                        normal_force: b.normal_force[i],
-                        delta: b.delta[i],
-                        mass: b.mass[i],
-                        radius: b.radius[i],
-                        dt: b.dt,
-                    },
-                    h,
-                );
-            }
-            return;
-        }
+        // the host checks every batch against the law's declared slots (three: ξ); a caller
+        // that does not is told so through the trampoline's panic catch
+        assert_eq!(b.slots, 3, "mindlin keeps 3 history slots per contact");
         if self.damping == 0.0 {
             lanes::<false>(self, b)
         } else {
