@@ -256,9 +256,11 @@ fn elastic_energy_is_conserved_over_1e5_steps() {
         MaterialPair::wall(&p).unwrap().young,
     );
     let total = |e: &Engine<2>| {
-        let elastic = |c: &dashpot::dem::contacts::ContactSet, ey: f64| -> f64 {
-            (0..c.len())
-                .map(|k| 0.4 * 4.0 / 3.0 * ey * c.radius[k].sqrt() * c.delta[k].powf(2.5))
+        let elastic = |cs: &dashpot::dem::contacts::Contacts, ey: f64| -> f64 {
+            cs.chunks
+                .iter()
+                .flat_map(|c| c.radius.iter().zip(&c.delta))
+                .map(|(r, d)| 0.4 * 4.0 / 3.0 * ey * r.sqrt() * d.powf(2.5))
                 .sum::<f64>()
         };
         e.energy().total() + elastic(&e.pairs, epp) + elastic(&e.wall_contacts, epw)
@@ -402,7 +404,7 @@ fn history_survives_the_periodic_boundary_and_rebuilds() {
             }
             e.step().unwrap();
             if !e.pairs.is_empty() {
-                max_spring = max_spring.max(e.pairs.hist_t[0].abs());
+                max_spring = max_spring.max(e.pairs.chunks[0].hist_t[0].abs());
             }
         }
         (e, max_spring)
@@ -429,4 +431,121 @@ fn history_survives_the_periodic_boundary_and_rebuilds() {
     }
     // the spring mattered: both disks spin, and the tangential impulse slowed the sliding
     assert!(a.p.omega[0].z.abs() > 1.0 && a.p.vel[0].x < 0.3 - 1e-3);
+}
+
+/// A dense 2D lattice of `cols` × `rows` disks, spacing 0.99 of the largest diameter (so that
+/// most neighbours overlap from the start), random directions at 0.2 m/s, diameters in
+/// [0.97, 1] × D2; periodic sideways, and periodic vertically too when `closed` is false.
+fn dense_lattice(cols: usize, rows: usize, closed: bool) -> (EngineConfig<2>, Vec<Body<2>>) {
+    let mat = soft(DiskMass::Disk);
+    let a = 0.99 * D2;
+    let mut s = 99u64;
+    let mut rnd = || {
+        s = s
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (s >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let bodies = (0..cols * rows)
+        .map(|k| {
+            let (q, r) = ((k % cols) as f64, (k / cols) as f64);
+            let t = 2.0 * std::f64::consts::PI * rnd();
+            let d = D2 * (0.97 + 0.03 * rnd());
+            body([(q + 0.5) * a, (r + 0.5) * a], [0.2 * t.cos(), 0.2 * t.sin()], d)
+        })
+        .collect();
+    let mut cfg = EngineConfig::<2>::new(mat);
+    cfg.impact_speed = Some(1.0);
+    cfg.domain = Domain {
+        lo: VecD::<2>::new(0.0, if closed { -1.0 } else { 0.0 }),
+        hi: VecD::<2>::new(cols as f64 * a, rows as f64 * a + if closed { 1.0 } else { 0.0 }),
+        periodic: [true, !closed],
+        bounded: false,
+    };
+    (cfg, bodies)
+}
+
+/// Contacts are gathered, evaluated and summed in chunks of particles, in parallel: a pair
+/// whose partners lie in different chunks must still give equal and opposite forces (Newton's
+/// third law, so the total force vanishes in a periodic box), and every overlapping pair must
+/// be found (against a brute-force count over all pairs, minimum image).
+#[test]
+fn chunked_contacts_keep_newtons_third_law_and_miss_no_pair() {
+    // 70 columns: the chunk boundaries (every 2,048 disks) fall inside rows, and the rows
+    // above and below a boundary hold partners of both chunks
+    let (cols, rows) = (70, 72);
+    let (cfg, bodies) = dense_lattice(cols, rows, false);
+    let f = CundallStrack { kt: 2.0e3, mu: 0.5 };
+    let mat = cfg.material;
+    let mut e = Engine::new(cfg.clone(), &bodies, vec![], laws(&mat, 0.8, Some(f))).unwrap();
+    for _ in 0..5 {
+        e.step().unwrap();
+    }
+    let (lx, ly) = (cfg.domain.length(0), cfg.domain.length(1));
+    let p = &e.p;
+    let mut brute = 0;
+    for i in 0..p.len() {
+        for j in i + 1..p.len() {
+            let mut d = p.pos[i] - p.pos[j];
+            d.x -= lx * (d.x / lx).round();
+            d.y -= ly * (d.y / ly).round();
+            if d.norm() < p.radius[i] + p.radius[j] {
+                brute += 1;
+            }
+        }
+    }
+    assert!(e.pairs.chunks.len() >= 3, "{} chunks", e.pairs.chunks.len());
+    assert_eq!(e.pairs.len(), brute, "pair contacts found against brute force");
+    let total: VecD<2> = p.force.iter().sum();
+    let scale: f64 = p.force.iter().map(|f| f.norm()).sum();
+    println!(
+        "{brute} contacts; |sum F| = {:.3e} N of sum |F| = {scale:.3e} N",
+        total.norm()
+    );
+    assert!(scale > 0.0 && total.norm() <= 1e-12 * scale);
+    // the tangential forces are there too, so the torques are not all zero
+    assert!(p.torque.iter().any(|t| t.z.abs() > 0.0));
+}
+
+/// The forces of a step are summed in a fixed order whatever the number of threads (chunk by
+/// chunk, partners beyond a chunk afterwards), so a run is bit for bit the same on one thread
+/// and on two.
+#[test]
+fn a_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
+    let run = |threads: usize| -> Engine<2> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let (mut cfg, bodies) = dense_lattice(70, 72, true);
+            cfg.gravity = VecD::<2>::new(0.0, -9.81);
+            let mat = cfg.material;
+            let f = CundallStrack { kt: 2.0e3, mu: 0.5 };
+            let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
+            let mut e = Engine::new(cfg, &bodies, vec![floor], laws(&mat, 0.8, Some(f))).unwrap();
+            for _ in 0..40 {
+                e.step().unwrap();
+            }
+            e
+        })
+    };
+    let (a, b) = (run(1), run(2));
+    println!(
+        "{} pair and {} wall contacts after 40 steps",
+        a.pairs.len(),
+        a.wall_contacts.len()
+    );
+    assert!(a.pairs.len() > 1000 && !a.wall_contacts.is_empty());
+    let bits = |e: &Engine<2>| -> Vec<u64> {
+        let p = &e.p;
+        p.pos
+            .iter()
+            .chain(&p.vel)
+            .flat_map(|v| v.iter().copied())
+            .chain(p.omega.iter().map(|w| w.z))
+            .map(f64::to_bits)
+            .collect()
+    };
+    assert!(bits(&a) == bits(&b), "one thread and two part");
 }

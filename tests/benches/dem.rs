@@ -100,11 +100,15 @@ fn vm_hwm_kib() -> Option<u64> {
 }
 
 fn main() {
+    // `cargo bench --bench dem -- [plugins] [scaling] [cores]`: the named sections only
+    let only: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
+    let run = |name: &str| only.is_empty() || only.iter().any(|a| a == name);
     let reg = full_registry();
     let one = pool(1);
 
     // 1. plugins vs compiled in, 2,000 settling disks, one core, interleaved blocks
-    one.install(|| {
+    if run("plugins") {
+        one.install(|| {
         let mut a = pile(2000, plugin_laws(&reg));
         let mut b = pile(2000, compiled_laws());
         // settle first: contacts everywhere
@@ -145,8 +149,8 @@ fn main() {
         let (mut formed, mut last, mut total) = (0usize, 0usize, 0usize);
         for _ in 0..200 {
             a.step().unwrap();
-            formed += a.pairs.formed;
-            last += a.pairs.last.iter().filter(|&&l| l).count();
+            formed += a.pairs.formed();
+            last += a.pairs.predicted_last();
             total += a.pairs.len();
         }
         println!(
@@ -167,64 +171,75 @@ fn main() {
             c.rebuilds()
         );
     });
+    }
 
     // 2. scaling, one core (10⁶ last, so VmHWM below is its peak)
-    let mut costs = Vec::new();
-    for n in [1_000usize, 10_000, 100_000, 1_000_000] {
-        let k = (4_000_000 / n).clamp(10, 2000);
-        let c = one.install(|| {
-            let mut e = pile(n, plugin_laws(&reg));
-            steps(&mut e, 200.min(k));
-            let t = steps(&mut e, k);
-            let c = t / (n as f64 * k as f64);
+    if run("scaling") {
+        let mut costs = Vec::new();
+        for n in [1_000usize, 10_000, 100_000, 1_000_000] {
+            let k = (4_000_000 / n).clamp(10, 2000);
+            let c = one.install(|| {
+                let mut e = pile(n, plugin_laws(&reg));
+                steps(&mut e, 200.min(k));
+                let t = steps(&mut e, k);
+                let c = t / (n as f64 * k as f64);
+                println!(
+                    "n = {n:>8}: {:.1} ns per particle-step ({k} steps, {} contacts)",
+                    c * 1e9,
+                    e.contacts()
+                );
+                c
+            });
+            costs.push(c);
+        }
+        let (lo, hi) = costs
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &c| (a.min(c), b.max(c)));
+        println!("cost per particle-step, max/min over 1e3..1e6: {:.2}", hi / lo);
+        if let Some(kib) = vm_hwm_kib() {
             println!(
-                "n = {n:>8}: {:.1} ns per particle-step ({k} steps, {} contacts)",
-                c * 1e9,
-                e.contacts()
+                "peak resident memory after the 10^6 run: {:.2} GiB",
+                kib as f64 / 1048576.0
             );
-            c
-        });
-        costs.push(c);
-    }
-    let (lo, hi) = costs
-        .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), &c| (a.min(c), b.max(c)));
-    println!("cost per particle-step, max/min over 1e3..1e6: {:.2}", hi / lo);
-    if let Some(kib) = vm_hwm_kib() {
-        println!(
-            "peak resident memory after the 10^6 run: {:.2} GiB",
-            kib as f64 / 1048576.0
-        );
+        }
     }
 
-    // 3. two cores
-    let two = pool(2);
-    let n = 100_000;
-    let mut e1 = one.install(|| pile(n, plugin_laws(&reg)));
-    let mut e2 = two.install(|| pile(n, plugin_laws(&reg)));
-    one.install(|| steps(&mut e1, 50));
-    two.install(|| steps(&mut e2, 50));
-    let (mut t1, mut t2) = (Vec::new(), Vec::new());
-    let (mut cpu2, mut wall2) = (0.0, 0.0);
-    for _ in 0..5 {
-        t1.push(one.install(|| steps(&mut e1, 40)));
-        let c0 = process_cpu();
-        let w = two.install(|| steps(&mut e2, 40));
-        cpu2 += process_cpu() - c0;
-        wall2 += w;
-        t2.push(w);
+    // 3. two cores: one pile of 10⁵ disks, settled until its contacts are the work of a step,
+    // then stepped in blocks alternately by one thread and by two (the same engine, so both
+    // sides step the same disks with the same contacts)
+    if run("cores") {
+        let two = pool(2);
+        let n = 100_000;
+        let settle: usize = std::env::var("DASHPOT_BENCH_SETTLE")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(2000);
+        let mut e = two.install(|| pile(n, plugin_laws(&reg)));
+        two.install(|| steps(&mut e, settle));
+        let (mut t1, mut t2) = (Vec::new(), Vec::new());
+        let (mut cpu2, mut wall2) = (0.0, 0.0);
+        let c0 = e.contacts();
+        for _ in 0..7 {
+            t1.push(one.install(|| steps(&mut e, 40)));
+            let c = process_cpu();
+            let w = two.install(|| steps(&mut e, 40));
+            cpu2 += process_cpu() - c;
+            wall2 += w;
+            t2.push(w);
+        }
+        t1.sort_by(f64::total_cmp);
+        t2.sort_by(f64::total_cmp);
+        println!(
+            "n = {n}: 1 core {:.3e} particle-steps/s, 2 cores {:.3e}; speed-up {:.2} median, {:.2} best (7 interleaved blocks of 40 steps of one pile settled {settle} steps; {c0} -> {} contacts)",
+            n as f64 * 40.0 / t1[3],
+            n as f64 * 40.0 / t2[3],
+            t1[3] / t2[3],
+            t1[0] / t2[0],
+            e.contacts()
+        );
+        println!(
+            "  cores the 2-thread blocks received (process CPU s / wall s): {:.2}",
+            cpu2 / wall2
+        );
     }
-    t1.sort_by(f64::total_cmp);
-    t2.sort_by(f64::total_cmp);
-    println!(
-        "n = {n}: 1 core {:.3e} particle-steps/s, 2 cores {:.3e}; speed-up {:.2} median, {:.2} best (5 interleaved blocks of 40 steps)",
-        n as f64 * 40.0 / t1[2],
-        n as f64 * 40.0 / t2[2],
-        t1[2] / t2[2],
-        t1[0] / t2[0]
-    );
-    println!(
-        "  cores the 2-thread blocks actually received from the machine: {:.2} (CPU s / wall s)",
-        cpu2 / wall2
-    );
 }

@@ -83,28 +83,6 @@ pub struct Neighbours<const D: usize> {
 const CHUNK: usize = 2048;
 
 impl<const D: usize> Neighbours<D> {
-    /// Whether some particle has moved by more than skin/2 since the build.
-    pub fn stale(&self, dom: &Domain<D>, pos: &[VecD<D>]) -> bool {
-        if self.anchor.len() != pos.len() {
-            return true;
-        }
-        let lim2 = 0.25 * self.skin * self.skin;
-        let moved = |(x, a): (&VecD<D>, &VecD<D>)| dom.delta(x, a).norm_squared() > lim2;
-        if pos.len() < super::contacts::SERIAL_BELOW {
-            // the largest displacement, without an early exit: a rebuild is rare, and a loop
-            // without a branch per particle runs several times faster
-            let mut worst = 0.0f64;
-            for (x, a) in pos.iter().zip(self.anchor.iter()) {
-                let d2 = dom.delta(x, a).norm_squared();
-                worst = if d2 > worst { d2 } else { worst };
-            }
-            // (a NaN displacement never becomes the largest: the state check reports it)
-            worst > lim2
-        } else {
-            pos.par_iter().zip(self.anchor.par_iter()).any(moved)
-        }
-    }
-
     /// Rebuilds the list for `pos` (wrapped first) and radii `radius`.
     pub fn build(&mut self, dom: &Domain<D>, pos: &mut [VecD<D>], radius: &[f64], skin: f64) {
         let n = pos.len();

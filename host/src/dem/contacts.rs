@@ -2,12 +2,19 @@
 //! take), and their history carried from step to step.
 //!
 //! A contact is keyed by `(i, j)`: two particles with `i < j`, or particle `i` and wall `j`.
-//! Contacts are gathered in key order (particle by particle, partners sorted), and so was the
-//! previous step's set; a contact's history is found in the previous set by scanning the short
-//! row of its particle `i` (compressed rows, `start[i]..start[i+1]`). A contact that is new
-//! starts from zero history; one that is gone is not carried over (dropped at separation).
-//! Particle indices never change, so neither a neighbour-list rebuild nor a periodic wrap
-//! touches the history.
+//! The contacts are kept in chunks by their particle `i`: chunk `c` holds those of particles
+//! `c·GATHER_CHUNK .. (c+1)·GATHER_CHUNK`, in key order (particle by particle, partners
+//! sorted). Particle indices never change, so a contact stays in its chunk for life: its
+//! history is found in the same chunk of the previous step, also in key order, by a merge
+//! (one cursor moving forward through the previous set), and each chunk is gathered, evaluated and
+//! scattered as one parallel task that touches no other chunk's contacts (see
+//! [`super::integrator::Engine`]). A contact that is new starts from zero history; one that is
+//! gone is not carried over (dropped at separation). Neither a neighbour-list rebuild nor a
+//! periodic wrap touches the history.
+//!
+//! Each chunk is double-buffered ([`Contacts`]): the step's contacts are written into the
+//! spare set while the previous step's are read, then the two are swapped, so a step allocates
+//! nothing once the arrays have grown to the pile's size.
 
 use super::cells::{Domain, Neighbours};
 use super::state::{to3, Vec3, VecD};
@@ -15,9 +22,10 @@ use super::walls::WallState;
 use super::DemError;
 use crate::laws::{NormalLaw, TangentialForce};
 use dashpot_sdk::{NormalBatch, TangentialBatch};
-use rayon::prelude::*;
+use std::ops::Range;
 
-/// One kind of contacts (particle pairs, or particles against walls), structure of arrays.
+/// One chunk of one kind of contacts (particle pairs, or particles against walls), structure
+/// of arrays.
 #[derive(Debug, Clone, Default)]
 pub struct ContactSet {
     /// First partner: a particle.
@@ -53,20 +61,22 @@ pub struct ContactSet {
     /// Whether each contact's force was last taken as the rest of the contact (see
     /// [`ContactSet::evaluate`]: the step predicted to be its last); carried over.
     pub last: Vec<bool>,
-    /// Rows by particle i: `start[i]..start[i+1]` (n + 1 entries).
-    pub start: Vec<u32>,
+    /// The chunk's first particle.
+    pub first: usize,
     /// Contacts of this set that were not in the previous one (first touches this step).
     pub formed: usize,
+    /// Scratch of the gathering: the candidate pairs (or particles, `j` unused, for walls).
+    cand: Vec<(u32, u32)>,
 }
 
 /// The overlap beyond which a run is refused, as a fraction of the smaller radius.
 pub const MAX_OVERLAP: f64 = 0.5;
 
-/// Contacts per law call (and per parallel task).
+/// Contacts per law call.
 pub const LAW_CHUNK: usize = 1024;
 
-/// Particles per gathering task.
-const GATHER_CHUNK: usize = 4096;
+/// Particles per chunk of contacts (the unit of parallel work).
+pub const GATHER_CHUNK: usize = 2048;
 
 impl ContactSet {
     /// An empty set for laws keeping `slots_n` and `slots_t` history values.
@@ -76,45 +86,6 @@ impl ContactSet {
             slots_t,
             ..Default::default()
         }
-    }
-
-    /// An empty set with room for `cap` contacts (so that gathering a step's contacts, about
-    /// as many as the last step's, does not grow eleven arrays by doubling every step).
-    fn with_capacity(slots_n: usize, slots_t: usize, cap: usize) -> ContactSet {
-        ContactSet {
-            i: Vec::with_capacity(cap),
-            j: Vec::with_capacity(cap),
-            delta: Vec::with_capacity(cap),
-            rate: Vec::with_capacity(cap),
-            mass: Vec::with_capacity(cap),
-            radius: Vec::with_capacity(cap),
-            normal: Vec::with_capacity(cap),
-            vrel: Vec::with_capacity(cap),
-            hist_n: Vec::with_capacity(cap * slots_n),
-            hist_t: Vec::with_capacity(cap * slots_t),
-            fresh: Vec::with_capacity(cap),
-            slots_n,
-            slots_t,
-            ..Default::default()
-        }
-    }
-
-    /// The parts gathered chunk by chunk, in order, as one set (the first part's arrays are
-    /// kept, not copied: with one chunk nothing moves).
-    fn concat(
-        slots_n: usize,
-        slots_t: usize,
-        parts: Vec<Result<ContactSet, DemError>>,
-    ) -> Result<ContactSet, DemError> {
-        let mut parts = parts.into_iter();
-        let mut next = match parts.next() {
-            Some(p) => p?,
-            None => ContactSet::new(slots_n, slots_t),
-        };
-        for p in parts {
-            next.append(&mut p?);
-        }
-        Ok(next)
     }
 
     /// Number of contacts.
@@ -127,21 +98,53 @@ impl ContactSet {
         self.i.is_empty()
     }
 
-    /// The history of contact (i, j) in this set, if it exists.
-    #[inline]
-    fn find(&self, i: usize, j: u32) -> Option<usize> {
-        if i + 1 >= self.start.len() {
-            return None;
-        }
-        let (a, b) = (self.start[i] as usize, self.start[i + 1] as usize);
-        (a..b).find(|&k| self.j[k] == j)
+    /// Sizes every array for `count` contacts (keeping their room: once grown to a pile's
+    /// contacts, no step allocates; only new elements are written, and the gathering then
+    /// writes every contact's values by index).
+    fn size(&mut self, count: usize) {
+        self.i.resize(count, 0);
+        self.j.resize(count, 0);
+        self.delta.resize(count, 0.0);
+        self.rate.resize(count, 0.0);
+        self.mass.resize(count, 0.0);
+        self.radius.resize(count, 0.0);
+        self.normal.resize(count, [0.0; 3]);
+        self.vrel.resize(count, [0.0; 3]);
+        self.hist_n.resize(count * self.slots_n, 0.0);
+        self.hist_t.resize(count * self.slots_t, 0.0);
+        self.fnorm.resize(count, 0.0);
+        self.ftan.resize(count, [0.0; 3]);
+        self.fresh.resize(count, false);
+        self.last.resize(count, false);
     }
 
+    /// The history of contact (i, j) in this set, if it exists, found by a merge: `cursor`
+    /// starts at 0 for a gathering and is moved forward here, which works because contacts are
+    /// gathered in key order and were so in this set (a step's lookups cost one pass over it).
+    #[inline]
+    fn find(&self, cursor: &mut usize, i: usize, j: u32) -> Option<usize> {
+        let key = ((i as u64) << 32) | j as u64;
+        let n = self.i.len();
+        while *cursor < n {
+            let m = *cursor;
+            let k = ((self.i[m] as u64) << 32) | self.j[m] as u64;
+            if k >= key {
+                return (k == key).then_some(m);
+            }
+            *cursor += 1;
+        }
+        None
+    }
+
+    /// Writes contact `k` (the arrays sized by [`ContactSet::size`]), its history carried
+    /// over from `prev` (found with `cursor`, see [`ContactSet::find`]) or zero if it is new.
     #[allow(clippy::too_many_arguments)]
     #[inline]
-    fn push(
+    fn put(
         &mut self,
+        k: usize,
         prev: &ContactSet,
+        cursor: &mut usize,
         i: usize,
         j: u32,
         delta: f64,
@@ -151,66 +154,46 @@ impl ContactSet {
         n: Vec3,
         v: Vec3,
     ) {
-        self.i.push(i as u32);
-        self.j.push(j);
-        self.delta.push(delta);
-        self.rate.push(rate);
-        self.mass.push(mass);
-        self.radius.push(radius);
-        self.normal.push([n.x, n.y, n.z]);
-        self.vrel.push([v.x, v.y, v.z]);
-        match prev.find(i, j) {
-            Some(k) => {
-                let (sn, st) = (self.slots_n, self.slots_t);
-                self.hist_n.extend_from_slice(&prev.hist_n[k * sn..(k + 1) * sn]);
-                self.hist_t.extend_from_slice(&prev.hist_t[k * st..(k + 1) * st]);
-                self.fresh.push(false);
-                self.last.push(prev.last[k]);
+        self.i[k] = i as u32;
+        self.j[k] = j;
+        self.delta[k] = delta;
+        self.rate[k] = rate;
+        self.mass[k] = mass;
+        self.radius[k] = radius;
+        self.normal[k] = [n.x, n.y, n.z];
+        self.vrel[k] = [v.x, v.y, v.z];
+        let (sn, st) = (self.slots_n, self.slots_t);
+        let (hn, ht) = (
+            &mut self.hist_n[k * sn..(k + 1) * sn],
+            &mut self.hist_t[k * st..(k + 1) * st],
+        );
+        match prev.find(cursor, i, j) {
+            Some(m) => {
+                hn.copy_from_slice(&prev.hist_n[m * sn..(m + 1) * sn]);
+                ht.copy_from_slice(&prev.hist_t[m * st..(m + 1) * st]);
+                self.fresh[k] = false;
+                self.last[k] = prev.last[m];
             }
             None => {
-                self.hist_n.extend(std::iter::repeat_n(0.0, self.slots_n));
-                self.hist_t.extend(std::iter::repeat_n(0.0, self.slots_t));
-                self.fresh.push(true);
-                self.last.push(false);
+                hn.fill(0.0);
+                ht.fill(0.0);
+                self.fresh[k] = true;
+                self.last[k] = false;
                 self.formed += 1;
             }
         }
     }
 
-    fn append(&mut self, o: &mut ContactSet) {
-        self.i.append(&mut o.i);
-        self.j.append(&mut o.j);
-        self.delta.append(&mut o.delta);
-        self.rate.append(&mut o.rate);
-        self.mass.append(&mut o.mass);
-        self.radius.append(&mut o.radius);
-        self.normal.append(&mut o.normal);
-        self.vrel.append(&mut o.vrel);
-        self.hist_n.append(&mut o.hist_n);
-        self.hist_t.append(&mut o.hist_t);
-        self.fresh.append(&mut o.fresh);
-        self.last.append(&mut o.last);
-        self.formed += o.formed;
-    }
-
-    fn index_rows(&mut self, n: usize) {
-        self.start.clear();
-        self.start.resize(n + 1, 0);
-        for &i in &self.i {
-            self.start[i as usize + 1] += 1;
-        }
-        for k in 0..n {
-            self.start[k + 1] += self.start[k];
-        }
-    }
-
-    /// Replaces `self` by the contacts of the current state, carrying history over from `self`.
-    /// Overlap rates come from the predicted velocities `vpred`, the contact points' slip from
-    /// the step's velocities `vel`, `omega` (over the step: velocity Verlet's half-step ones, so
-    /// that slip × dt is the tangential displacement of the step).
+    /// Fills `self` with the pair contacts of the particles of `range` at the current state,
+    /// carrying history over from `prev` (the same chunk's previous set). Overlap rates come
+    /// from the predicted velocities `vpred`, the contact points' slip from the step's
+    /// velocities `vel`, `omega` (over the step: velocity Verlet's half-step ones, so that
+    /// slip × dt is the tangential displacement of the step).
     #[allow(clippy::too_many_arguments)]
     pub fn gather_pairs<const D: usize>(
         &mut self,
+        prev: &ContactSet,
+        range: Range<usize>,
         dom: &Domain<D>,
         nb: &Neighbours<D>,
         pos: &[VecD<D>],
@@ -220,64 +203,73 @@ impl ContactSet {
         radius: &[f64],
         mass: &[f64],
     ) -> Result<(), DemError> {
-        let n = pos.len();
-        let prev = &*self;
-        let chunks = n.div_ceil(GATHER_CHUNK);
-        let cap = chunk_capacity(prev.len(), chunks);
-        let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(chunks, |ch| {
-            let mut out = ContactSet::with_capacity(prev.slots_n, prev.slots_t, cap);
-            for i in ch * GATHER_CHUNK..((ch + 1) * GATHER_CHUNK).min(n) {
-                for &j in nb.of(i) {
-                    let ju = j as usize;
-                    let d = dom.delta(&pos[i], &pos[ju]);
-                    let sum = radius[i] + radius[ju];
-                    let r2 = d.norm_squared();
-                    if r2 >= sum * sum {
-                        continue;
-                    }
-                    let dist = r2.sqrt();
-                    let delta = sum - dist;
-                    let rmin = radius[i].min(radius[ju]);
-                    if delta.is_nan() || delta > MAX_OVERLAP * rmin {
-                        return Err(DemError::Overlap {
-                            i,
-                            partner: format!("particle {ju}"),
-                            delta,
-                            radius: rmin,
-                        });
-                    }
-                    let nv = to3(&(d / dist));
-                    let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
-                    let dv = to3(&(vel[i] - vel[ju]));
-                    let v = dv - (omega[i] * radius[i] + omega[ju] * radius[ju]).cross(&nv);
-                    let (mi, mj) = (mass[i], mass[ju]);
-                    out.push(
-                        prev,
-                        i,
-                        j,
-                        delta,
-                        rate,
-                        mi * mj / (mi + mj),
-                        radius[i] * radius[ju] / sum,
-                        nv,
-                        v,
-                    );
-                }
+        self.first = range.start;
+        self.formed = 0;
+        // pass 1, over every listed pair: the pairs in contact, kept without a branch per pair
+        // (one pair in six or so touches: a branch mispredicts too often); a NaN distance is
+        // kept too, for the check below
+        let mut cand = std::mem::take(&mut self.cand);
+        let listed = nb.start[range.end] as usize - nb.start[range.start] as usize;
+        cand.clear();
+        cand.resize(listed, (0, 0));
+        let mut count = 0;
+        for i in range {
+            let (xi, ri) = (pos[i], radius[i]);
+            for &j in nb.of(i) {
+                let r2 = dom.delta(&xi, &pos[j as usize]).norm_squared();
+                let sum = ri + radius[j as usize];
+                cand[count] = (i as u32, j);
+                count += usize::from((r2 < sum * sum) | r2.is_nan());
             }
-            Ok(out)
-        });
-        let mut next = ContactSet::concat(self.slots_n, self.slots_t, parts)?;
-        next.index_rows(n);
-        next.fnorm.resize(next.len(), 0.0);
-        next.ftan.resize(next.len(), [0.0; 3]);
-        *self = next;
+        }
+        // pass 2, over the contacts only
+        self.size(count);
+        let mut cursor = 0;
+        for (k, &(i, j)) in cand[..count].iter().enumerate() {
+            let (i, ju) = (i as usize, j as usize);
+            let d = dom.delta(&pos[i], &pos[ju]);
+            let sum = radius[i] + radius[ju];
+            let dist = d.norm_squared().sqrt();
+            let delta = sum - dist;
+            let rmin = radius[i].min(radius[ju]);
+            if delta.is_nan() || delta > MAX_OVERLAP * rmin {
+                return Err(DemError::Overlap {
+                    i,
+                    partner: format!("particle {ju}"),
+                    delta,
+                    radius: rmin,
+                });
+            }
+            let nv = to3(&(d / dist));
+            let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
+            let dv = to3(&(vel[i] - vel[ju]));
+            let v = dv - (omega[i] * radius[i] + omega[ju] * radius[ju]).cross(&nv);
+            let (mi, mj) = (mass[i], mass[ju]);
+            self.put(
+                k,
+                prev,
+                &mut cursor,
+                i,
+                j,
+                delta,
+                rate,
+                mi * mj / (mi + mj),
+                radius[i] * radius[ju] / sum,
+                nv,
+                v,
+            );
+        }
+        self.cand = cand;
         Ok(())
     }
 
-    /// Replaces `self` by the particle–wall contacts of the current state.
+    /// Fills `self` with the particle–wall contacts of the particles of `range` at the current
+    /// state, carrying history over from `prev` (see [`ContactSet::gather_pairs`]).
     #[allow(clippy::too_many_arguments)]
     pub fn gather_walls<const D: usize>(
         &mut self,
+        prev: &ContactSet,
+        range: Range<usize>,
         walls: &[WallState<D>],
         pos: &[VecD<D>],
         vpred: &[VecD<D>],
@@ -286,48 +278,69 @@ impl ContactSet {
         radius: &[f64],
         mass: &[f64],
     ) -> Result<(), DemError> {
-        let n = pos.len();
-        let mut next = ContactSet::new(self.slots_n, self.slots_t);
-        if !walls.is_empty() {
-            let prev = &*self;
-            let chunks = n.div_ceil(GATHER_CHUNK);
-            let cap = chunk_capacity(prev.len(), chunks);
-            let parts: Vec<Result<ContactSet, DemError>> = par_or_seq(chunks, |ch| {
-                let mut out = ContactSet::with_capacity(prev.slots_n, prev.slots_t, cap);
-                for i in ch * GATHER_CHUNK..((ch + 1) * GATHER_CHUNK).min(n) {
-                    for (w, ws) in walls.iter().enumerate() {
-                        let gap = (pos[i] - ws.point).dot(&ws.normal);
-                        let delta = radius[i] - gap;
-                        if delta <= 0.0 {
-                            continue;
-                        }
-                        if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
-                            return Err(DemError::Overlap {
-                                i,
-                                partner: format!("wall {w}"),
-                                delta,
-                                radius: radius[i],
-                            });
-                        }
-                        let nv = to3(&ws.normal);
-                        let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
-                        let dv = to3(&(vel[i] - ws.velocity));
-                        let v = dv - (omega[i] * radius[i]).cross(&nv);
-                        out.push(prev, i, w as u32, delta, rate, mass[i], radius[i], nv, v);
-                    }
-                }
-                Ok(out)
-            });
-            next = ContactSet::concat(self.slots_n, self.slots_t, parts)?;
+        self.first = range.start;
+        self.formed = 0;
+        // pass 1: the particles touching some wall (or with a NaN gap), without a branch per
+        // particle; pass 2 over those only
+        let mut cand = std::mem::take(&mut self.cand);
+        cand.clear();
+        cand.resize(range.len(), (0, 0));
+        let mut count = 0;
+        for i in range {
+            let (xi, ri) = (pos[i], radius[i]);
+            let mut hit = false;
+            for ws in walls {
+                let d = ri - (xi - ws.point).dot(&ws.normal);
+                hit |= (d > 0.0) | d.is_nan();
+            }
+            cand[count] = (i as u32, 0);
+            count += usize::from(hit);
         }
-        next.index_rows(n);
-        next.fnorm.resize(next.len(), 0.0);
-        next.ftan.resize(next.len(), [0.0; 3]);
-        *self = next;
+        self.size(count * walls.len());
+        let mut k = 0;
+        let mut cursor = 0;
+        for &(i, _) in &cand[..count] {
+            let i = i as usize;
+            for (w, ws) in walls.iter().enumerate() {
+                let gap = (pos[i] - ws.point).dot(&ws.normal);
+                let delta = radius[i] - gap;
+                if delta <= 0.0 {
+                    continue;
+                }
+                if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
+                    return Err(DemError::Overlap {
+                        i,
+                        partner: format!("wall {w}"),
+                        delta,
+                        radius: radius[i],
+                    });
+                }
+                let nv = to3(&ws.normal);
+                let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
+                let dv = to3(&(vel[i] - ws.velocity));
+                let v = dv - (omega[i] * radius[i]).cross(&nv);
+                self.put(
+                    k,
+                    prev,
+                    &mut cursor,
+                    i,
+                    w as u32,
+                    delta,
+                    rate,
+                    mass[i],
+                    radius[i],
+                    nv,
+                    v,
+                );
+                k += 1;
+            }
+        }
+        self.size(k);
+        self.cand = cand;
         Ok(())
     }
 
-    /// Calls the laws on every contact (in batches of [`LAW_CHUNK`], in parallel): normal forces,
+    /// Calls the laws on every contact of the set (in batches of [`LAW_CHUNK`]): normal forces,
     /// then tangential forces (which need them), histories advanced in place over `dt` (s).
     ///
     /// The first and the last step of a contact (normal laws without history): velocity Verlet
@@ -340,7 +353,7 @@ impl ContactSet {
     /// contact (δ from δ − δ̇ dt/2 down to 0), and a contact that was so predicted but still
     /// overlaps by less than |δ̇| dt/2 at the next step adds nothing more. The means are
     /// 5-point Gauss–Legendre rules in u with δ = D u⁴, exact for Hertz and HSD, one extra
-    /// batch call per chunk that has such contacts. A law with history (Thornton, Walton–Braun)
+    /// batch call per batch that has such contacts. A law with history (Thornton, Walton–Braun)
     /// keeps the step-end rule, as does every law when `edge_means` is false.
     pub fn evaluate(
         &mut self,
@@ -350,58 +363,33 @@ impl ContactSet {
         edge_means: bool,
     ) -> Result<(), DemError> {
         let n = self.len();
-        if n == 0 {
-            return Ok(());
-        }
         let (sn, st) = (self.slots_n, self.slots_t);
-        let ContactSet {
-            delta,
-            rate,
-            mass,
-            radius,
-            normal: nrm,
-            vrel,
-            hist_n,
-            hist_t,
-            fnorm,
-            ftan,
-            fresh,
-            last,
-            ..
-        } = self;
-        let tasks: Vec<_> = fnorm
-            .chunks_mut(LAW_CHUNK)
-            .zip(ftan.chunks_mut(LAW_CHUNK))
-            .zip(split_rows(hist_n, sn, n))
-            .zip(split_rows(hist_t, st, n))
-            .zip(last.chunks_mut(LAW_CHUNK))
-            .enumerate()
-            .collect();
         // a law with history would see its history advanced by the extra calls: plain rule
         let edges = edge_means && sn == 0;
-        let run = |(c, ((((f, ft), hn), ht), ls)): Task<'_>| -> Result<(), DemError> {
-            let a = c * LAW_CHUNK;
-            let b = a + f.len();
+        let mut a = 0;
+        while a < n {
+            let b = (a + LAW_CHUNK).min(n);
+            let f = &mut self.fnorm[a..b];
             normal.force_batch(NormalBatch {
-                delta: &delta[a..b],
-                rate: &rate[a..b],
-                mass: &mass[a..b],
-                radius: &radius[a..b],
+                delta: &self.delta[a..b],
+                rate: &self.rate[a..b],
+                mass: &self.mass[a..b],
+                radius: &self.radius[a..b],
                 slots: sn,
-                history: hn,
+                history: &mut self.hist_n[a * sn..b * sn],
                 force: &mut *f,
             })?;
             if edges {
                 step_edge_means(
                     normal,
                     Edges {
-                        delta: &delta[a..b],
-                        rate: &rate[a..b],
-                        mass: &mass[a..b],
-                        radius: &radius[a..b],
-                        fresh: &fresh[a..b],
+                        delta: &self.delta[a..b],
+                        rate: &self.rate[a..b],
+                        mass: &self.mass[a..b],
+                        radius: &self.radius[a..b],
+                        fresh: &self.fresh[a..b],
                     },
-                    ls,
+                    &mut self.last[a..b],
                     f,
                     dt,
                 )?;
@@ -409,39 +397,90 @@ impl ContactSet {
             if let Some(t) = tangential {
                 t.force_batch(TangentialBatch {
                     dt,
-                    normal: &nrm[a..b],
-                    velocity: &vrel[a..b],
+                    normal: &self.normal[a..b],
+                    velocity: &self.vrel[a..b],
                     normal_force: &*f,
-                    delta: &delta[a..b],
-                    mass: &mass[a..b],
-                    radius: &radius[a..b],
+                    delta: &self.delta[a..b],
+                    mass: &self.mass[a..b],
+                    radius: &self.radius[a..b],
                     slots: st,
-                    history: ht,
-                    force: ft,
+                    history: &mut self.hist_t[a * st..b * st],
+                    force: &mut self.ftan[a..b],
                 })?;
             }
-            Ok(())
-        };
-        if tasks.len() == 1 {
-            tasks.into_iter().try_for_each(run)
-        } else {
-            tasks.into_par_iter().try_for_each(run)
+            a = b;
         }
+        Ok(())
     }
 }
 
-/// One parallel task of [`ContactSet::evaluate`]: chunk index, normal forces, tangential forces,
-/// normal and tangential history rows, the contacts' `last` flags.
-type Task<'a> = (
-    usize,
-    (
-        (
-            ((&'a mut [f64], &'a mut [[f64; 3]]), &'a mut [f64]),
-            &'a mut [f64],
-        ),
-        &'a mut [bool],
-    ),
-);
+/// One kind of contacts of a run, in chunks of [`GATHER_CHUNK`] particles (see the module doc),
+/// each double-buffered.
+#[derive(Debug, Clone, Default)]
+pub struct Contacts {
+    /// The chunks of the last evaluation, in particle order.
+    pub chunks: Vec<ContactSet>,
+    /// The chunks being written.
+    spare: Vec<ContactSet>,
+    slots_n: usize,
+    slots_t: usize,
+}
+
+impl Contacts {
+    /// No contacts yet, for laws keeping `slots_n` and `slots_t` history values.
+    pub fn new(slots_n: usize, slots_t: usize) -> Contacts {
+        Contacts {
+            slots_n,
+            slots_t,
+            ..Default::default()
+        }
+    }
+
+    /// Number of contacts.
+    pub fn len(&self) -> usize {
+        self.chunks.iter().map(ContactSet::len).sum()
+    }
+
+    /// No contacts.
+    pub fn is_empty(&self) -> bool {
+        self.chunks.iter().all(ContactSet::is_empty)
+    }
+
+    /// Contacts that formed at the last evaluation (first touches).
+    pub fn formed(&self) -> usize {
+        self.chunks.iter().map(|c| c.formed).sum()
+    }
+
+    /// Contacts whose last evaluation took the rest of the contact (see
+    /// [`ContactSet::evaluate`]).
+    pub fn predicted_last(&self) -> usize {
+        self.chunks
+            .iter()
+            .map(|c| c.last.iter().filter(|&&l| l).count())
+            .sum()
+    }
+
+    /// Every contact's history set to zero (the engine's trial evaluation at construction).
+    pub fn clear_history(&mut self) {
+        for c in &mut self.chunks {
+            c.hist_n.iter_mut().for_each(|h| *h = 0.0);
+            c.hist_t.iter_mut().for_each(|h| *h = 0.0);
+        }
+    }
+
+    /// The previous chunks and the spare ones to write, `chunks` of each (created as needed).
+    pub fn buffers(&mut self, chunks: usize) -> (&[ContactSet], &mut [ContactSet]) {
+        let (sn, st) = (self.slots_n, self.slots_t);
+        self.chunks.resize_with(chunks, || ContactSet::new(sn, st));
+        self.spare.resize_with(chunks, || ContactSet::new(sn, st));
+        (&self.chunks, &mut self.spare)
+    }
+
+    /// The spare chunks, now written, become the current ones.
+    pub fn swap(&mut self) {
+        std::mem::swap(&mut self.chunks, &mut self.spare);
+    }
+}
 
 /// 5-point Gauss–Legendre nodes and weights on [0, 1].
 const GAUSS5: [(f64, f64); 5] = [
@@ -530,32 +569,3 @@ fn step_edge_means(
 /// Below this many particles the engine runs serially: rayon's dispatch per parallel loop costs
 /// more than a few thousand particles' work (a 50-disk bed ran at 175 µs per step).
 pub const SERIAL_BELOW: usize = 4096;
-
-/// Room for one gathering chunk's contacts: its share of the last step's count, an eighth more.
-fn chunk_capacity(last: usize, chunks: usize) -> usize {
-    let share = last / chunks.max(1);
-    share + share / 8 + 16
-}
-
-/// `f(0..chunks)` collected, in parallel when there is more than one chunk.
-fn par_or_seq<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
-    if chunks <= 1 {
-        (0..chunks).map(f).collect()
-    } else {
-        (0..chunks).into_par_iter().map(f).collect()
-    }
-}
-
-/// `hist` cut into the history rows of successive [`LAW_CHUNK`]s of `n` contacts.
-fn split_rows(mut hist: &mut [f64], slots: usize, n: usize) -> Vec<&mut [f64]> {
-    let mut out = Vec::with_capacity(n.div_ceil(LAW_CHUNK));
-    let mut left = n;
-    while left > 0 {
-        let k = left.min(LAW_CHUNK);
-        let (a, b) = std::mem::take(&mut hist).split_at_mut(k * slots);
-        out.push(a);
-        hist = b;
-        left -= k;
-    }
-    out
-}

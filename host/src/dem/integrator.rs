@@ -24,7 +24,7 @@
 //! by the two-body driver with the run's own law (so it is the law's stiffness that sets it).
 
 use super::cells::{Domain, Neighbours};
-use super::contacts::{ContactSet, SERIAL_BELOW};
+use super::contacts::{ContactSet, Contacts, GATHER_CHUNK, SERIAL_BELOW};
 use super::state::{from3, to3, Body, Material, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
@@ -57,16 +57,178 @@ fn kick_drift_one<const D: usize>(
     *ao = a;
 }
 
-type KickDrift<'a, const D: usize> = (
+/// One chunk's task in [`Engine::forces`]: chunk index, (previous, next) pair contacts,
+/// (previous, next) wall contacts, the chunk's forces and torques, its overflow.
+type ChunkTask<'a, const D: usize> = (
     usize,
     (
         (
-            ((&'a mut VecD<D>, &'a mut VecD<D>), &'a mut Vec3),
-            &'a mut VecD<D>,
+            (
+                (&'a ContactSet, &'a mut ContactSet),
+                (&'a ContactSet, &'a mut ContactSet),
+            ),
+            (&'a mut [VecD<D>], &'a mut [Vec3]),
         ),
-        &'a mut VecD<D>,
+        &'a mut Vec<(u32, VecD<D>, Vec3)>,
     ),
 );
+
+/// Sums the forces and torques of one chunk's pair contacts `pairs` and wall contacts `walls`
+/// into the chunk's particles (`f`, `tq`: particles `first..first + f.len()`), zeroed first;
+/// a pair partner beyond the chunk gets its force and torque through `overflow` (force on i,
+/// torque on j).
+fn scatter_chunk<const D: usize>(
+    pairs: &ContactSet,
+    walls: &ContactSet,
+    first: usize,
+    radius: &[f64],
+    f: &mut [VecD<D>],
+    tq: &mut [Vec3],
+    overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
+) {
+    f.iter_mut().for_each(|v| *v = VecD::<D>::zeros());
+    tq.iter_mut().for_each(|v| *v = Vec3::zeros());
+    overflow.clear();
+    let len = f.len();
+    for m in 0..pairs.len() {
+        let (i, j) = (pairs.i[m] as usize - first, pairs.j[m] as usize);
+        let nv = Vec3::from(pairs.normal[m]);
+        let ft = Vec3::from(pairs.ftan[m]);
+        let fi = from3::<D>(&(nv * pairs.fnorm[m] + ft));
+        let nxf = nv.cross(&ft);
+        f[i] += fi;
+        tq[i] -= nxf * radius[first + i];
+        let tj = -(nxf * radius[j]);
+        match j.checked_sub(first) {
+            Some(jl) if jl < len => {
+                f[jl] -= fi;
+                tq[jl] += tj;
+            }
+            _ => overflow.push((j as u32, fi, tj)),
+        }
+    }
+    for m in 0..walls.len() {
+        let i = walls.i[m] as usize - first;
+        let nv = Vec3::from(walls.normal[m]);
+        let ft = Vec3::from(walls.ftan[m]);
+        f[i] += from3::<D>(&(nv * walls.fnorm[m] + ft));
+        tq[i] -= nv.cross(&ft) * radius[first + i];
+    }
+    if D == 2 {
+        tq.iter_mut().for_each(|t| {
+            t.x = 0.0;
+            t.y = 0.0;
+        });
+    }
+}
+
+/// The arrays the kick loops read, whole or one chunk's part.
+struct Shared<'a, const D: usize> {
+    force: &'a [VecD<D>],
+    torque: &'a [Vec3],
+    im: &'a [f64],
+    ii: &'a [f64],
+    /// The positions at the neighbour list's build, or empty (no valid list).
+    anchor: &'a [VecD<D>],
+}
+
+impl<'a, const D: usize> Shared<'a, D> {
+    /// The part of particles `a..a + len`.
+    fn chunk(&self, a: usize, len: usize) -> Shared<'a, D> {
+        let b = a + len;
+        Shared {
+            force: &self.force[a..b],
+            torque: &self.torque[a..b],
+            im: &self.im[a..b],
+            ii: &self.ii[a..b],
+            anchor: if self.anchor.is_empty() {
+                &[]
+            } else {
+                &self.anchor[a..b]
+            },
+        }
+    }
+}
+
+/// One chunk's item in the kick–drift loop: chunk index, positions, velocities, spins,
+/// predicted velocities, previous accelerations.
+type KickDriftChunk<'a, const D: usize> = (
+    usize,
+    (
+        (
+            ((&'a mut [VecD<D>], &'a mut [VecD<D>]), &'a mut [Vec3]),
+            &'a mut [VecD<D>],
+        ),
+        &'a mut [VecD<D>],
+    ),
+);
+
+/// The first half-kick and the drift of one chunk of particles (gravity `g`, half step `h`,
+/// step `dt`); returns the largest squared displacement (m²) from the anchors, if any.
+/// Positions are wrapped only when the list is built, so the plain difference is the
+/// displacement. A NaN displacement never becomes the largest: the state check reports it.
+#[allow(clippy::too_many_arguments)]
+fn kick_drift_chunk<const D: usize>(
+    s: &Shared<'_, D>,
+    g: VecD<D>,
+    h: f64,
+    dt: f64,
+    pos: &mut [VecD<D>],
+    vel: &mut [VecD<D>],
+    omega: &mut [Vec3],
+    vpred: &mut [VecD<D>],
+    aold: &mut [VecD<D>],
+) -> f64 {
+    let n = pos.len();
+    let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
+    let (vel, omega, vpred, aold) = (&mut vel[..n], &mut omega[..n], &mut vpred[..n], &mut aold[..n]);
+    for i in 0..n {
+        kick_drift_one(
+            force[i] * im[i] + g,
+            torque[i] * ii[i],
+            h,
+            dt,
+            &mut pos[i],
+            &mut vel[i],
+            &mut omega[i],
+            &mut vpred[i],
+            &mut aold[i],
+        );
+    }
+    if s.anchor.len() != n {
+        return 0.0;
+    }
+    let anchor = &s.anchor[..n];
+    let mut worst = 0.0f64;
+    for i in 0..n {
+        let d2 = (pos[i] - anchor[i]).norm_squared();
+        worst = if d2 > worst { d2 } else { worst };
+    }
+    worst
+}
+
+/// The second half-kick of one chunk of particles at positions `pos`; returns the sum of
+/// every position, velocity and spin coordinate (finite unless one of them is not).
+fn kick_chunk<const D: usize>(
+    s: &Shared<'_, D>,
+    pos: &[VecD<D>],
+    g: VecD<D>,
+    h: f64,
+    vel: &mut [VecD<D>],
+    omega: &mut [Vec3],
+) -> f64 {
+    let n = vel.len();
+    let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
+    let (pos, omega) = (&pos[..n], &mut omega[..n]);
+    // independent running sums, not one long chain
+    let mut sum = [0.0f64; 4];
+    for i in 0..n {
+        vel[i] += (force[i] * im[i] + g) * h;
+        omega[i] += torque[i] * ii[i] * h;
+        sum[i % 4] += pos[i].sum() + vel[i].sum() + omega[i].sum();
+    }
+    (sum[0] + sum[1]) + (sum[2] + sum[3])
+}
 
 /// Run settings.
 #[derive(Debug, Clone)]
@@ -141,9 +303,9 @@ pub struct Engine<const D: usize> {
     nb: Neighbours<D>,
     skin: f64,
     /// Particle-pair contacts of the last evaluation.
-    pub pairs: ContactSet,
+    pub pairs: Contacts,
     /// Particle–wall contacts of the last evaluation.
-    pub wall_contacts: ContactSet,
+    pub wall_contacts: Contacts,
     vpred: Vec<VecD<D>>,
     /// Each particle's acceleration at the previous step (the predictor's extrapolation).
     aold: Vec<VecD<D>>,
@@ -151,7 +313,9 @@ pub struct Engine<const D: usize> {
     /// was a tenth of a step). Masses and moments of inertia are fixed at construction.
     inv_mass: Vec<f64>,
     inv_inertia: Vec<f64>,
-    bufs: Vec<(Vec<VecD<D>>, Vec<Vec3>)>,
+    /// Per chunk of contacts, the forces and torques on particles of later chunks (the
+    /// partner j of a pair contact whose i is in the chunk), added after the parallel part.
+    overflow: Vec<Vec<(u32, VecD<D>, Vec3)>>,
     /// Impulse (N·s) given to each wall since the last reset (force on the wall × dt, summed).
     pub wall_impulse: Vec<VecD<D>>,
     /// Contact episodes with each wall since the last reset (first touches).
@@ -292,9 +456,9 @@ impl<const D: usize> Engine<D> {
             steps: 0,
             nb: Neighbours::default(),
             skin,
-            pairs: ContactSet::new(sn, st),
-            wall_contacts: ContactSet::new(swn, swt),
-            bufs: Vec::new(),
+            pairs: Contacts::new(sn, st),
+            wall_contacts: Contacts::new(swn, swt),
+            overflow: Vec::new(),
             wall_impulse: vec![VecD::<D>::zeros(); nw],
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
@@ -303,16 +467,8 @@ impl<const D: usize> Engine<D> {
         e.nb.build(&e.cfg.domain, &mut e.p.pos, &e.p.radius, e.skin);
         // the initial forces: a trial evaluation, its history discarded (nothing has happened yet)
         e.forces()?;
-        e.pairs
-            .hist_n
-            .iter_mut()
-            .chain(e.pairs.hist_t.iter_mut())
-            .for_each(|h| *h = 0.0);
-        e.wall_contacts
-            .hist_n
-            .iter_mut()
-            .chain(e.wall_contacts.hist_t.iter_mut())
-            .for_each(|h| *h = 0.0);
+        e.pairs.clear_history();
+        e.wall_contacts.clear_history();
         e.reset_wall_counters();
         e.pair_episodes = e.pairs.len() as u64;
         let g = e.cfg.gravity;
@@ -365,189 +521,176 @@ impl<const D: usize> Engine<D> {
 
     /// Gathers the contacts at the current positions and predicted velocities, calls the laws,
     /// and sums forces and torques into the particles.
+    ///
+    /// The particles are cut into chunks of [`GATHER_CHUNK`]; each chunk is one task, run in
+    /// parallel: it gathers its particles' pair and wall contacts (history from the same chunk
+    /// of the last step), calls the laws on them, and sums the forces into its own particles'
+    /// slice of the force and torque arrays. A pair partner j beyond the chunk gets its share
+    /// afterwards, chunk by chunk in order. The sums therefore run in one fixed order whatever
+    /// the number of threads, and a run is bit for bit the same on one core or many.
     fn forces(&mut self) -> Result<(), DemError> {
         let ws = self.wall_states();
-        let p = &self.p;
-        self.pairs.gather_pairs(
-            &self.cfg.domain,
-            &self.nb,
-            &p.pos,
-            &self.vpred,
-            &p.vel,
-            &p.omega,
-            &p.radius,
-            &p.mass,
-        )?;
-        self.wall_contacts
-            .gather_walls(&ws, &p.pos, &self.vpred, &p.vel, &p.omega, &p.radius, &p.mass)?;
-        self.pairs.evaluate(
-            &*self.laws.pair,
-            self.laws.pair_tangential.as_deref(),
-            self.dt,
-            self.cfg.edge_means,
-        )?;
-        self.wall_contacts.evaluate(
-            &*self.laws.wall,
-            self.laws.wall_tangential.as_deref(),
-            self.dt,
-            self.cfg.edge_means,
-        )?;
-        self.scatter();
+        let n = self.p.len();
+        let chunks = n.div_ceil(GATHER_CHUNK);
+        self.overflow.resize_with(chunks, Vec::new);
+        let (prev_p, next_p) = self.pairs.buffers(chunks);
+        let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
+        let p = &mut self.p;
+        let (pos, vel, omega, radius, mass) = (&p.pos, &p.vel, &p.omega, &p.radius, &p.mass);
+        let (vpred, nb, dom, laws) = (&self.vpred, &self.nb, &self.cfg.domain, &self.laws);
+        let (dt, edges) = (self.dt, self.cfg.edge_means);
+        let work = |(c, ((((pp, np), (pw, nw)), (f, tq)), ov)): ChunkTask<'_, D>| {
+            let range = c * GATHER_CHUNK..(c * GATHER_CHUNK + f.len());
+            np.gather_pairs(pp, range.clone(), dom, nb, pos, vpred, vel, omega, radius, mass)?;
+            nw.gather_walls(pw, range, &ws, pos, vpred, vel, omega, radius, mass)?;
+            np.evaluate(&*laws.pair, laws.pair_tangential.as_deref(), dt, edges)?;
+            nw.evaluate(&*laws.wall, laws.wall_tangential.as_deref(), dt, edges)?;
+            scatter_chunk(np, nw, c * GATHER_CHUNK, radius, f, tq, ov);
+            Ok::<(), DemError>(())
+        };
+        let force = &mut p.force;
+        let torque = &mut p.torque;
+        let overflow = &mut self.overflow;
+        // the first error in chunk order, whatever the threads did
+        let results: Vec<Result<(), DemError>> = if n < SERIAL_BELOW {
+            prev_p
+                .iter()
+                .zip(next_p.iter_mut())
+                .zip(prev_w.iter().zip(next_w.iter_mut()))
+                .zip(
+                    force
+                        .chunks_mut(GATHER_CHUNK)
+                        .zip(torque.chunks_mut(GATHER_CHUNK)),
+                )
+                .zip(overflow.iter_mut())
+                .enumerate()
+                .map(work)
+                .collect()
+        } else {
+            prev_p
+                .par_iter()
+                .zip(next_p.par_iter_mut())
+                .zip(prev_w.par_iter().zip(next_w.par_iter_mut()))
+                .zip(
+                    force
+                        .par_chunks_mut(GATHER_CHUNK)
+                        .zip(torque.par_chunks_mut(GATHER_CHUNK)),
+                )
+                .zip(overflow.par_iter_mut())
+                .enumerate()
+                .map(work)
+                .collect()
+        };
+        results.into_iter().collect::<Result<(), DemError>>()?;
+        self.pairs.swap();
+        self.wall_contacts.swap();
+        let p = &mut self.p;
+        for ov in &self.overflow {
+            for &(j, f, t) in ov {
+                p.force[j as usize] -= f;
+                p.torque[j as usize] += t;
+            }
+        }
+        for w in &self.wall_contacts.chunks {
+            for m in 0..w.len() {
+                let nv = Vec3::from(w.normal[m]);
+                let fi = nv * w.fnorm[m] + Vec3::from(w.ftan[m]);
+                let k = w.j[m] as usize;
+                self.wall_impulse[k] -= from3::<D>(&fi) * self.dt;
+                if w.fresh[m] {
+                    self.wall_episodes[k] += 1;
+                }
+            }
+        }
+        self.pair_episodes += self.pairs.formed() as u64;
         Ok(())
     }
 
-    fn scatter(&mut self) {
-        let n = self.p.len();
-        let threads = rayon::current_num_threads();
-        let c = &self.pairs;
-        let parts = if threads > 1 && c.len() >= 8192 {
-            threads
-        } else {
-            1
-        };
-        while self.bufs.len() + 1 < parts {
-            self.bufs.push((Vec::new(), Vec::new()));
-        }
-        let per = c.len().div_ceil(parts).max(1);
-        let mut targets: Vec<(&mut [VecD<D>], &mut [Vec3])> = Vec::with_capacity(parts);
-        targets.push((&mut self.p.force, &mut self.p.torque));
-        for b in self.bufs.iter_mut().take(parts - 1) {
-            b.0.resize(n, VecD::<D>::zeros());
-            b.1.resize(n, Vec3::zeros());
-            targets.push((&mut b.0, &mut b.1));
-        }
-        let radius = &self.p.radius;
-        let accumulate = |k: usize, (f, tq): (&mut [VecD<D>], &mut [Vec3])| {
-            f.iter_mut().for_each(|v| *v = VecD::<D>::zeros());
-            tq.iter_mut().for_each(|v| *v = Vec3::zeros());
-            for m in k * per..((k + 1) * per).min(c.len()) {
-                let (i, j) = (c.i[m] as usize, c.j[m] as usize);
-                let nv = Vec3::from(c.normal[m]);
-                let ft = Vec3::from(c.ftan[m]);
-                let fi = from3::<D>(&(nv * c.fnorm[m] + ft));
-                f[i] += fi;
-                f[j] -= fi;
-                let nxf = nv.cross(&ft);
-                tq[i] -= nxf * radius[i];
-                tq[j] -= nxf * radius[j];
-            }
-        };
-        if parts == 1 {
-            let t = targets.pop().expect("one target");
-            accumulate(0, t);
-        } else {
-            targets
-                .into_par_iter()
-                .enumerate()
-                .for_each(|(k, t)| accumulate(k, t));
-            let bufs = &self.bufs[..parts - 1];
-            self.p
-                .force
-                .par_iter_mut()
-                .zip(self.p.torque.par_iter_mut())
-                .enumerate()
-                .for_each(|(i, (f, tq))| {
-                    for b in bufs {
-                        *f += b.0[i];
-                        *tq += b.1[i];
-                    }
-                });
-        }
-        let w = &self.wall_contacts;
-        for m in 0..w.len() {
-            let i = w.i[m] as usize;
-            let nv = Vec3::from(w.normal[m]);
-            let ft = Vec3::from(w.ftan[m]);
-            let fi = nv * w.fnorm[m] + ft;
-            self.p.force[i] += from3::<D>(&fi);
-            self.p.torque[i] -= nv.cross(&ft) * self.p.radius[i];
-            let k = w.j[m] as usize;
-            self.wall_impulse[k] -= from3::<D>(&fi) * self.dt;
-            if w.fresh[m] {
-                self.wall_episodes[k] += 1;
-            }
-        }
-        self.pair_episodes += c.formed as u64;
-        if D == 2 {
-            self.p.torque.iter_mut().for_each(|t| {
-                t.x = 0.0;
-                t.y = 0.0;
-            });
-        }
-    }
-
     /// One step of `dt`.
+    ///
+    /// The loops over particles run chunk by chunk ([`GATHER_CHUNK`]), in parallel above
+    /// [`SERIAL_BELOW`] particles; the first one also finds the largest displacement since the
+    /// neighbour list was built, the second one sums the state, which is finite unless some
+    /// coordinate is not (or the sum overflows: then the exact check below tells), so neither
+    /// the staleness test nor the state check costs a pass of its own.
     pub fn step(&mut self) -> Result<(), DemError> {
         let dt = self.dt;
         let h = 0.5 * dt;
         let g = self.cfg.gravity;
-        {
+        let n = self.p.len();
+        let c = GATHER_CHUNK;
+        let fresh_list = self.nb.anchor.len() == n;
+        let moved2 = {
             let p = &mut self.p;
-            let (pos, vel, omega) = (&mut p.pos, &mut p.vel, &mut p.omega);
-            let (force, torque) = (&p.force, &p.torque);
-            let (im, ii) = (&self.inv_mass, &self.inv_inertia);
-            let kick_drift = |(i, ((((x, v), w), vp), ao)): KickDrift<'_, D>| {
-                kick_drift_one(force[i] * im[i] + g, torque[i] * ii[i], h, dt, x, v, w, vp, ao);
+            let shared = Shared {
+                force: &p.force,
+                torque: &p.torque,
+                im: &self.inv_mass,
+                ii: &self.inv_inertia,
+                anchor: if fresh_list { &self.nb.anchor } else { &[] },
             };
-            let n = pos.len();
+            let run = |(k, ((((x, v), w), vp), ao)): KickDriftChunk<'_, D>| {
+                kick_drift_chunk(&shared.chunk(k * c, x.len()), g, h, dt, x, v, w, vp, ao)
+            };
+            let chunks = p
+                .pos
+                .chunks_mut(c)
+                .zip(p.vel.chunks_mut(c))
+                .zip(p.omega.chunks_mut(c))
+                .zip(self.vpred.chunks_mut(c))
+                .zip(self.aold.chunks_mut(c))
+                .enumerate();
             if n < SERIAL_BELOW {
-                // a plain indexed loop over equal-length slices: inlined and vectorised
-                let (force, torque, im, ii) = (&force[..n], &torque[..n], &im[..n], &ii[..n]);
-                let (vel, omega) = (&mut vel[..n], &mut omega[..n]);
-                let (vpred, aold) = (&mut self.vpred[..n], &mut self.aold[..n]);
-                for i in 0..n {
-                    kick_drift_one(
-                        force[i] * im[i] + g,
-                        torque[i] * ii[i],
-                        h,
-                        dt,
-                        &mut pos[i],
-                        &mut vel[i],
-                        &mut omega[i],
-                        &mut vpred[i],
-                        &mut aold[i],
-                    );
-                }
+                chunks.map(run).fold(0.0, f64::max)
             } else {
-                pos.par_iter_mut()
-                    .zip(vel.par_iter_mut())
-                    .zip(omega.par_iter_mut())
-                    .zip(self.vpred.par_iter_mut())
-                    .zip(self.aold.par_iter_mut())
+                p.pos
+                    .par_chunks_mut(c)
+                    .zip(p.vel.par_chunks_mut(c))
+                    .zip(p.omega.par_chunks_mut(c))
+                    .zip(self.vpred.par_chunks_mut(c))
+                    .zip(self.aold.par_chunks_mut(c))
                     .enumerate()
-                    .for_each(kick_drift);
+                    .map(run)
+                    .reduce(|| 0.0, f64::max)
             }
-        }
+        };
         self.t += dt;
         self.steps += 1;
-        if self.nb.stale(&self.cfg.domain, &self.p.pos) {
+        if !fresh_list || moved2 > 0.25 * self.nb.skin * self.nb.skin {
             self.nb
                 .build(&self.cfg.domain, &mut self.p.pos, &self.p.radius, self.skin);
         }
         self.forces()?;
-        {
+        let sum = {
             let p = &mut self.p;
-            let (vel, omega) = (&mut p.vel, &mut p.omega);
-            let (force, torque) = (&p.force, &p.torque);
-            let (im, ii) = (&self.inv_mass, &self.inv_inertia);
-            let kick = |(i, (v, w)): (usize, (&mut VecD<D>, &mut Vec3))| {
-                *v += (force[i] * im[i] + g) * h;
-                *w += torque[i] * ii[i] * h;
+            let shared = Shared {
+                force: &p.force,
+                torque: &p.torque,
+                im: &self.inv_mass,
+                ii: &self.inv_inertia,
+                anchor: &[],
             };
-            let n = vel.len();
+            let pos = &p.pos;
+            let run = |(k, (v, w)): (usize, (&mut [VecD<D>], &mut [Vec3]))| {
+                let a = k * c;
+                kick_chunk(&shared.chunk(a, v.len()), &pos[a..a + v.len()], g, h, v, w)
+            };
+            let chunks = p.vel.chunks_mut(c).zip(p.omega.chunks_mut(c)).enumerate();
             if n < SERIAL_BELOW {
-                let (force, torque, im, ii) = (&force[..n], &torque[..n], &im[..n], &ii[..n]);
-                let omega = &mut omega[..n];
-                for i in 0..n {
-                    vel[i] += (force[i] * im[i] + g) * h;
-                    omega[i] += torque[i] * ii[i] * h;
-                }
+                chunks.map(run).sum::<f64>()
             } else {
-                vel.par_iter_mut()
-                    .zip(omega.par_iter_mut())
+                p.vel
+                    .par_chunks_mut(c)
+                    .zip(p.omega.par_chunks_mut(c))
                     .enumerate()
-                    .for_each(kick);
+                    .map(run)
+                    .collect::<Vec<f64>>()
+                    .into_iter()
+                    .sum::<f64>()
             }
+        };
+        if sum.is_finite() && !self.cfg.domain.bounded {
+            return Ok(());
         }
         self.check(true)
     }
