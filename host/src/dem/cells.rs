@@ -47,6 +47,22 @@ impl<const D: usize> Domain<D> {
         d
     }
 
+    /// The box's images, for the pair loops ([`Images::delta`] is [`Domain::delta`] with the
+    /// lengths worked out once).
+    pub fn images(&self) -> Images<D> {
+        let mut im = Images {
+            len: [0.0; D],
+            half: [f64::INFINITY; D],
+        };
+        for k in 0..D {
+            if self.periodic[k] {
+                im.len[k] = self.length(k);
+                im.half[k] = 0.5 * im.len[k];
+            }
+        }
+        im
+    }
+
     /// Wraps `x` into the box along periodic axes.
     #[inline]
     pub fn wrap(&self, x: &mut VecD<D>) {
@@ -61,6 +77,29 @@ impl<const D: usize> Domain<D> {
                 x[k] = self.lo[k] + y;
             }
         }
+    }
+}
+
+/// The periodic lengths of a [`Domain`] (m), for loops over pairs.
+#[derive(Debug, Clone, Copy)]
+pub struct Images<const D: usize> {
+    len: [f64; D],
+    /// Half the length along periodic axes, infinite along open ones.
+    half: [f64; D],
+}
+
+impl<const D: usize> Images<D> {
+    /// The minimum-image displacement `a − b` (m).
+    #[inline(always)]
+    pub fn delta(&self, a: &VecD<D>, b: &VecD<D>) -> VecD<D> {
+        let mut d = a - b;
+        for k in 0..D {
+            // only pairs across the boundary need the image (never along an open axis)
+            if d[k].abs() > self.half[k] {
+                d[k] -= self.len[k] * (d[k] / self.len[k]).round();
+            }
+        }
+        d
     }
 }
 

@@ -67,6 +67,8 @@ pub struct ContactSet {
     pub formed: usize,
     /// Scratch of the gathering: the candidate pairs (or particles, `j` unused, for walls).
     cand: Vec<(u32, u32)>,
+    /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
+    scratch: Vec<f64>,
 }
 
 /// The overlap beyond which a run is refused, as a fraction of the smaller radius.
@@ -213,10 +215,11 @@ impl ContactSet {
         cand.clear();
         cand.resize(listed, (0, 0));
         let mut count = 0;
+        let images = dom.images();
         for i in range {
             let (xi, ri) = (pos[i], radius[i]);
             for &j in nb.of(i) {
-                let r2 = dom.delta(&xi, &pos[j as usize]).norm_squared();
+                let r2 = images.delta(&xi, &pos[j as usize]).norm_squared();
                 let sum = ri + radius[j as usize];
                 cand[count] = (i as u32, j);
                 count += usize::from((r2 < sum * sum) | r2.is_nan());
@@ -227,7 +230,7 @@ impl ContactSet {
         let mut cursor = 0;
         for (k, &(i, j)) in cand[..count].iter().enumerate() {
             let (i, ju) = (i as usize, j as usize);
-            let d = dom.delta(&pos[i], &pos[ju]);
+            let d = images.delta(&pos[i], &pos[ju]);
             let sum = radius[i] + radius[ju];
             let dist = d.norm_squared().sqrt();
             let delta = sum - dist;
@@ -280,22 +283,29 @@ impl ContactSet {
     ) -> Result<(), DemError> {
         self.first = range.start;
         self.formed = 0;
-        // pass 1: the particles touching some wall (or with a NaN gap), without a branch per
-        // particle; pass 2 over those only
+        // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall
+        // over the particles, a loop without branches; pass 2 over the particles it picks
         let mut cand = std::mem::take(&mut self.cand);
+        let mut worst = std::mem::take(&mut self.scratch);
+        let (xs, rs) = (&pos[range.clone()], &radius[range.clone()]);
+        worst.clear();
+        worst.resize(range.len(), f64::NEG_INFINITY);
+        for ws in walls {
+            let (p, n) = (ws.point, ws.normal);
+            for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
+                // the very expression of pass 2, so that both agree on every contact
+                let d = r - (x - p).dot(&n);
+                *m = if d > *m || d.is_nan() { d } else { *m };
+            }
+        }
         cand.clear();
         cand.resize(range.len(), (0, 0));
         let mut count = 0;
-        for i in range {
-            let (xi, ri) = (pos[i], radius[i]);
-            let mut hit = false;
-            for ws in walls {
-                let d = ri - (xi - ws.point).dot(&ws.normal);
-                hit |= (d > 0.0) | d.is_nan();
-            }
-            cand[count] = (i as u32, 0);
-            count += usize::from(hit);
+        for (k, m) in worst.iter().enumerate() {
+            cand[count] = ((range.start + k) as u32, 0);
+            count += usize::from((*m > 0.0) | m.is_nan());
         }
+        self.scratch = worst;
         self.size(count * walls.len());
         let mut k = 0;
         let mut cursor = 0;
