@@ -106,6 +106,17 @@ fn body<const D: usize>(x: [f64; D], v: [f64; D], d: f64) -> Body<D> {
     }
 }
 
+/// Uniform numbers in [0, 1) from a 64-bit linear congruential generator seeded with `seed`
+/// (reproducible initial states without a dependency).
+fn lcg(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// Runs until the contact count of `kind` has gone up and back to zero; returns steps in contact.
 fn through_one_contact<const D: usize>(e: &mut Engine<D>, wall: bool) -> u64 {
     let count = |e: &Engine<D>| {
@@ -225,13 +236,8 @@ fn elastic_energy_is_conserved_over_1e5_steps() {
     cfg.steps_per_collision = 200.0;
     let side = 6.0 * D2;
     let mut bodies = Vec::new();
-    let mut s = 12345u64;
-    let mut rnd = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut uniform = lcg(12345);
+    let mut rnd = || uniform() - 0.5;
     for a in 0..3 {
         for b in 0..3 {
             let x = [(a as f64 + 1.0) * 1.5 * D2, (b as f64 + 1.0) * 1.5 * D2];
@@ -439,13 +445,7 @@ fn history_survives_the_periodic_boundary_and_rebuilds() {
 fn dense_lattice(cols: usize, rows: usize, closed: bool) -> (EngineConfig<2>, Vec<Body<2>>) {
     let mat = soft(DiskMass::Disk);
     let a = 0.99 * D2;
-    let mut s = 99u64;
-    let mut rnd = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = lcg(99);
     let bodies = (0..cols * rows)
         .map(|k| {
             let (q, r) = ((k % cols) as f64, (k / cols) as f64);
