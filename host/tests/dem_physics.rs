@@ -549,3 +549,29 @@ fn a_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
     };
     assert!(bits(&a) == bits(&b), "one thread and two part");
 }
+
+/// A non-finite coordinate, however it got there, stops the run at the next step with an error
+/// naming the particle, not a result: in a velocity, a spin, or a position (here an isolated
+/// disk, so that no contact test meets it first).
+#[test]
+fn a_non_finite_state_stops_the_run_naming_the_particle() {
+    let (cfg, bodies) = dense_lattice(70, 72, false);
+    let mat = cfg.material;
+    for what in 0..3 {
+        let mut e = Engine::new(cfg.clone(), &bodies, vec![], laws(&mat, 0.8, None)).unwrap();
+        e.step().unwrap();
+        match what {
+            0 => e.p.vel[4321].x = f64::NAN,
+            1 => e.p.omega[4321].z = f64::INFINITY,
+            _ => {
+                // far from every other disk: no pair test sees it
+                e.p.pos[4321].x = f64::NAN;
+                e.invalidate_neighbours();
+            }
+        }
+        let err = e.step().expect_err("a non-finite state must stop the run");
+        let msg = err.to_string();
+        println!("{msg}");
+        assert!(msg.contains("particle 4321"), "{msg}");
+    }
+}

@@ -207,8 +207,8 @@ fn kick_drift_chunk<const D: usize>(
     worst
 }
 
-/// The second half-kick of one chunk of particles at positions `pos`; returns the sum of
-/// every position, velocity and spin coordinate (finite unless one of them is not).
+/// The second half-kick of one chunk of particles at positions `pos`; returns the sum of every
+/// position, velocity and spin coordinate, finite unless one of them is not.
 fn kick_chunk<const D: usize>(
     s: &Shared<'_, D>,
     pos: &[VecD<D>],
@@ -220,14 +220,15 @@ fn kick_chunk<const D: usize>(
     let n = vel.len();
     let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
     let (pos, omega) = (&pos[..n], &mut omega[..n]);
-    // independent running sums, not one long chain
-    let mut sum = [0.0f64; 4];
+    // component-wise running sums: no horizontal add per particle
+    let (mut sx, mut sw) = (VecD::<D>::zeros(), Vec3::zeros());
     for i in 0..n {
         vel[i] += (force[i] * im[i] + g) * h;
         omega[i] += torque[i] * ii[i] * h;
-        sum[i % 4] += pos[i].sum() + vel[i].sum() + omega[i].sum();
+        sx += pos[i] + vel[i];
+        sw += omega[i];
     }
-    (sum[0] + sum[1]) + (sum[2] + sum[3])
+    sx.sum() + sw.sum()
 }
 
 /// Run settings.
@@ -581,7 +582,14 @@ impl<const D: usize> Engine<D> {
                 .map(work)
                 .collect()
         };
-        results.into_iter().collect::<Result<(), DemError>>()?;
+        // a contact test that met a NaN reports the particle whose state is not finite
+        results
+            .into_iter()
+            .collect::<Result<(), DemError>>()
+            .map_err(|e| match self.check(true) {
+                Err(nf @ DemError::NonFinite { .. }) => nf,
+                _ => e,
+            })?;
         self.pairs.swap();
         self.wall_contacts.swap();
         let p = &mut self.p;
@@ -611,8 +619,8 @@ impl<const D: usize> Engine<D> {
     /// The loops over particles run chunk by chunk ([`GATHER_CHUNK`]), in parallel above
     /// [`SERIAL_BELOW`] particles; the first one also finds the largest displacement since the
     /// neighbour list was built, the second one sums the state, which is finite unless some
-    /// coordinate is not (or the sum overflows: then the exact check below tells), so neither
-    /// the staleness test nor the state check costs a pass of its own.
+    /// coordinate is not (or the sum overflows: then the exact check below tells),
+    /// so neither the staleness test nor the state check costs a pass of its own.
     pub fn step(&mut self) -> Result<(), DemError> {
         let dt = self.dt;
         let h = 0.5 * dt;
@@ -756,6 +764,7 @@ impl<const D: usize> Engine<D> {
                     t: self.t,
                     pos: fmt(&p.pos[i]),
                     vel: fmt(&p.vel[i]),
+                    spin: format!("{:?}", p.omega[i].as_slice()),
                 });
             }
             let axis = (0..D)

@@ -111,7 +111,9 @@ pub enum DemError {
         radius: f64,
     },
     /// A particle's state is not finite.
-    #[error("particle {i} has a non-finite state at t = {t} s (position {pos}, velocity {vel})")]
+    #[error(
+        "particle {i} has a non-finite state at t = {t} s (position {pos}, velocity {vel}, angular velocity {spin})"
+    )]
     NonFinite {
         /// The particle.
         i: usize,
@@ -121,6 +123,8 @@ pub enum DemError {
         pos: String,
         /// Velocity, formatted.
         vel: String,
+        /// Angular velocity, formatted.
+        spin: String,
     },
     /// A particle left the bounded domain.
     #[error(
