@@ -154,10 +154,13 @@ fn main() {
             total += a.pairs.len();
         }
         println!(
-            "  per step: {:.1} pair contacts, {:.1} first touches, {:.1} predicted last steps",
+            "  per step: {:.1} pair contacts, {:.1} first touches, {:.1} predicted last steps; {} listed pairs, {} neighbour builds in {} steps",
             total as f64 / 200.0,
             formed as f64 / 200.0,
-            last as f64 / 200.0
+            last as f64 / 200.0,
+            a.listed_pairs(),
+            a.rebuilds(),
+            a.steps()
         );
         println!(
             "2000 disks, plugins: with the first/last-step means {:.3e} particle-steps/s, without {:.3e}; ratio with/without = {:.3} median, {:.3} best ({} and {} contacts, {} and {} neighbour rebuilds)",

@@ -504,6 +504,11 @@ impl<const D: usize> Engine<D> {
         self.nb.builds
     }
 
+    /// Pairs in the neighbour list (closer than the skin at its last build).
+    pub fn listed_pairs(&self) -> usize {
+        self.nb.js.len()
+    }
+
     /// Forces a neighbour-list rebuild at the next step (tests: history must survive it).
     pub fn invalidate_neighbours(&mut self) {
         self.nb.anchor.clear();
