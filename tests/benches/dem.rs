@@ -3,11 +3,14 @@
 //! 1. 2,000 polydisperse disks (1.9–2 mm, E = 10⁸ Pa) settling under gravity on a floor,
 //!    periodic sideways, HSD (ε = 0.5) + Mindlin (μ = 0.3) on one core: the plugins' batch calls
 //!    against the same laws compiled into this benchmark (same checked trampoline), interleaved;
-//! 2. cost per particle-step from 10³ to 10⁶ disks (one core), plugins;
-//! 3. speed-up on two cores (10⁵ disks);
+//! 2. cost per particle-step from 10³ to 10⁶ disks (one core), plugins, every size over the same
+//!    stage of the same pile;
+//! 3. speed-up on two cores (10⁵ disks, one settled pile stepped alternately by one thread and
+//!    by two, wall time);
 //! 4. peak resident memory of the process after the 10⁶-disk run (VmHWM).
 //!
-//! Run: `cargo bench -p dashpot-tests --bench dem`
+//! One-core figures are thread CPU time (the machine is shared). Run: `cargo bench -p
+//! dashpot-tests --bench dem [-- plugins | scaling | cores]` (sections by name; all by default).
 
 mod common;
 
@@ -65,10 +68,15 @@ fn pile_with(n: usize, laws: Laws, edge_means: bool) -> Engine<2> {
 
 fn steps(e: &mut Engine<2>, k: usize) -> f64 {
     let s = Instant::now();
-    for _ in 0..k {
-        e.step().unwrap();
-    }
+    e.advance(k as u64).unwrap();
     s.elapsed().as_secs_f64()
+}
+
+/// Thread CPU seconds of `k` steps (one-thread pools: the work runs on this thread).
+fn cpu_steps(e: &mut Engine<2>, k: usize) -> f64 {
+    let s = common::thread_cpu_seconds();
+    e.advance(k as u64).unwrap();
+    common::thread_cpu_seconds() - s
 }
 
 /// CPU seconds this process has received (all threads).
@@ -116,8 +124,8 @@ fn main() {
         steps(&mut b, 5000);
         let (mut ta, mut tb) = (Vec::new(), Vec::new());
         for _ in 0..7 {
-            ta.push(steps(&mut a, 500));
-            tb.push(steps(&mut b, 500));
+            ta.push(cpu_steps(&mut a, 500));
+            tb.push(cpu_steps(&mut b, 500));
         }
         ta.sort_by(f64::total_cmp);
         tb.sort_by(f64::total_cmp);
@@ -141,8 +149,8 @@ fn main() {
         steps(&mut c, 5000);
         let (mut ta, mut tc) = (Vec::new(), Vec::new());
         for _ in 0..7 {
-            ta.push(steps(&mut a, 500));
-            tc.push(steps(&mut c, 500));
+            ta.push(cpu_steps(&mut a, 500));
+            tc.push(cpu_steps(&mut c, 500));
         }
         ta.sort_by(f64::total_cmp);
         tc.sort_by(f64::total_cmp);
@@ -176,23 +184,29 @@ fn main() {
     });
     }
 
-    // 2. scaling, one core (10⁶ last, so VmHWM below is its peak)
+    // 2. scaling, one core (10⁶ last, so VmHWM below is its peak): every size steps through the
+    // same stage of the same pile (steps 300..400 from the lattice, so the same contacts per
+    // disk), smaller sizes repeated from scratch and their median taken; thread CPU time
     if run("scaling") {
         let mut costs = Vec::new();
         for n in [1_000usize, 10_000, 100_000, 1_000_000] {
-            let k = (4_000_000 / n).clamp(10, 2000);
-            let c = one.install(|| {
-                let mut e = pile(n, plugin_laws(&reg));
-                steps(&mut e, 200.min(k));
-                let t = steps(&mut e, k);
-                let c = t / (n as f64 * k as f64);
-                println!(
-                    "n = {n:>8}: {:.1} ns per particle-step ({k} steps, {} contacts)",
-                    c * 1e9,
-                    e.contacts()
-                );
-                c
+            let reps = (100_000 / n).clamp(1, 15);
+            let (c, per) = one.install(|| {
+                let mut cs = Vec::new();
+                let mut per = 0.0;
+                for _ in 0..reps {
+                    let mut e = pile(n, plugin_laws(&reg));
+                    cpu_steps(&mut e, 300);
+                    cs.push(cpu_steps(&mut e, 100) / (n as f64 * 100.0));
+                    per = e.contacts() as f64 / n as f64;
+                }
+                cs.sort_by(f64::total_cmp);
+                (cs[cs.len() / 2], per)
             });
+            println!(
+                "n = {n:>8}: {:.1} ns per particle-step (steps 300..400, median of {reps}; {per:.3} contacts per disk)",
+                c * 1e9
+            );
             costs.push(c);
         }
         let (lo, hi) = costs

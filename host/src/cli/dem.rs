@@ -204,7 +204,23 @@ fn run_dim<const D: usize>(
     let every = (total_steps / 200).max(1);
     let mut next_frame = 1u64;
     while e.time() + 0.5 * e.dt() < scene.duration {
-        e.step()
+        // the steps to the next progress tick, frame or the end, as one block
+        let next_tick = (e.steps() / every + 1) * every;
+        let next_frame_step = if traj.is_some() && frames > 0 {
+            (next_frame * total_steps).div_ceil(frames)
+        } else {
+            u64::MAX
+        };
+        let (mut k, mut t) = (0u64, e.time());
+        loop {
+            t += e.dt();
+            k += 1;
+            let s = e.steps() + k;
+            if t + 0.5 * e.dt() >= scene.duration || s >= next_tick || s >= next_frame_step {
+                break;
+            }
+        }
+        e.advance(k)
             .with_context(|| format!("at t = {:.6e} s, step {}", e.time(), e.steps()))?;
         if e.steps() % every == 0 {
             pb.set_position(e.steps());

@@ -164,12 +164,17 @@ type KickDriftChunk<'a, const D: usize> = (
 );
 
 /// The first half-kick and the drift of one chunk of particles (gravity `g`, half step `h`,
-/// step `dt`); returns the largest squared displacement (m²) from the anchors, if any.
-/// Positions are wrapped only when the list is built, so the plain difference is the
-/// displacement. A NaN displacement never becomes the largest: the state check reports it.
+/// step `dt`), preceded by the last step's second half-kick when `pending` (the same force
+/// and the same two additions as the separate loops, so the same bits, in one pass over the
+/// particles instead of two). Returns the largest squared displacement (m²) from the anchors,
+/// if any, and, when `pending`, the sum of every coordinate of the last step's end state
+/// (finite unless one of them is not; else 0). Positions are wrapped only when the list is
+/// built, so the plain difference is the displacement. A NaN displacement never becomes the
+/// largest: the state check reports it.
 #[allow(clippy::too_many_arguments)]
 fn kick_drift_chunk<const D: usize>(
     s: &Shared<'_, D>,
+    pending: bool,
     g: VecD<D>,
     h: f64,
     dt: f64,
@@ -178,25 +183,48 @@ fn kick_drift_chunk<const D: usize>(
     omega: &mut [Vec3],
     vpred: &mut [VecD<D>],
     aold: &mut [VecD<D>],
-) -> f64 {
+) -> (f64, f64) {
     let n = pos.len();
     let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
     let (vel, omega, vpred, aold) = (&mut vel[..n], &mut omega[..n], &mut vpred[..n], &mut aold[..n]);
-    for i in 0..n {
-        kick_drift_one(
-            force[i] * im[i] + g,
-            torque[i] * ii[i],
-            h,
-            dt,
-            &mut pos[i],
-            &mut vel[i],
-            &mut omega[i],
-            &mut vpred[i],
-            &mut aold[i],
-        );
+    let (mut sx, mut sw) = (VecD::<D>::zeros(), Vec3::zeros());
+    if pending {
+        for i in 0..n {
+            let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
+            vel[i] += a * h;
+            omega[i] += al * h;
+            sx += pos[i] + vel[i];
+            sw += omega[i];
+            kick_drift_one(
+                a,
+                al,
+                h,
+                dt,
+                &mut pos[i],
+                &mut vel[i],
+                &mut omega[i],
+                &mut vpred[i],
+                &mut aold[i],
+            );
+        }
+    } else {
+        for i in 0..n {
+            kick_drift_one(
+                force[i] * im[i] + g,
+                torque[i] * ii[i],
+                h,
+                dt,
+                &mut pos[i],
+                &mut vel[i],
+                &mut omega[i],
+                &mut vpred[i],
+                &mut aold[i],
+            );
+        }
     }
+    let sum = sx.sum() + sw.sum();
     if s.anchor.len() != n {
-        return 0.0;
+        return (0.0, sum);
     }
     let anchor = &s.anchor[..n];
     let mut worst = 0.0f64;
@@ -204,7 +232,7 @@ fn kick_drift_chunk<const D: usize>(
         let d2 = (pos[i] - anchor[i]).norm_squared();
         worst = if d2 > worst { d2 } else { worst };
     }
-    worst
+    (worst, sum)
 }
 
 /// The second half-kick of one chunk of particles at positions `pos`; returns the sum of every
@@ -317,6 +345,8 @@ pub struct Engine<const D: usize> {
     /// Per chunk of contacts, the forces and torques on particles of later chunks (the
     /// partner j of a pair contact whose i is in the chunk), added after the parallel part.
     overflow: Vec<Vec<(u32, VecD<D>, Vec3)>>,
+    /// The last step's second half-kick is still to do ([`Engine::advance`]).
+    pending_kick: bool,
     /// Impulse (N·s) given to each wall since the last reset (force on the wall × dt, summed).
     pub wall_impulse: Vec<VecD<D>>,
     /// Contact episodes with each wall since the last reset (first touches).
@@ -460,6 +490,7 @@ impl<const D: usize> Engine<D> {
             pairs: Contacts::new(sn, st),
             wall_contacts: Contacts::new(swn, swt),
             overflow: Vec::new(),
+            pending_kick: false,
             wall_impulse: vec![VecD::<D>::zeros(); nw],
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
@@ -627,13 +658,33 @@ impl<const D: usize> Engine<D> {
     /// coordinate is not (or the sum overflows: then the exact check below tells),
     /// so neither the staleness test nor the state check costs a pass of its own.
     pub fn step(&mut self) -> Result<(), DemError> {
+        self.step_with(false)
+    }
+
+    /// `k` steps of `dt`, the state at the end the same bit for bit as after `k` calls of
+    /// [`Engine::step`]; between the steps, the second half-kick of one step is done in the
+    /// same pass over the particles as the first half-kick and the drift of the next (one pass
+    /// fewer per step; the state between the steps is not observable). Not in a bounded box,
+    /// whose check for lost particles wants every step's end state: there, plain steps.
+    pub fn advance(&mut self, k: u64) -> Result<(), DemError> {
+        let fuse = !self.cfg.domain.bounded;
+        for s in 0..k {
+            self.step_with(fuse && s + 1 < k)?;
+        }
+        Ok(())
+    }
+
+    /// One step; with `defer`, the step ends before its second half-kick, which the next step
+    /// does first ([`Engine::advance`]).
+    fn step_with(&mut self, defer: bool) -> Result<(), DemError> {
+        let pending = std::mem::take(&mut self.pending_kick);
         let dt = self.dt;
         let h = 0.5 * dt;
         let g = self.cfg.gravity;
         let n = self.p.len();
         let c = GATHER_CHUNK;
         let fresh_list = self.nb.anchor.len() == n;
-        let moved2 = {
+        let (moved2, sum) = {
             let p = &mut self.p;
             let shared = Shared {
                 force: &p.force,
@@ -643,8 +694,10 @@ impl<const D: usize> Engine<D> {
                 anchor: if fresh_list { &self.nb.anchor } else { &[] },
             };
             let run = |(k, ((((x, v), w), vp), ao)): KickDriftChunk<'_, D>| {
-                kick_drift_chunk(&shared.chunk(k * c, x.len()), g, h, dt, x, v, w, vp, ao)
+                let s = shared.chunk(k * c, x.len());
+                kick_drift_chunk(&s, pending, g, h, dt, x, v, w, vp, ao)
             };
+            let both = |(a, b): (f64, f64), (c, d): (f64, f64)| (a.max(c), b + d);
             let chunks = p
                 .pos
                 .chunks_mut(c)
@@ -654,7 +707,7 @@ impl<const D: usize> Engine<D> {
                 .zip(self.aold.chunks_mut(c))
                 .enumerate();
             if n < SERIAL_BELOW {
-                chunks.map(run).fold(0.0, f64::max)
+                chunks.map(run).fold((0.0, 0.0), both)
             } else {
                 p.pos
                     .par_chunks_mut(c)
@@ -664,9 +717,16 @@ impl<const D: usize> Engine<D> {
                     .zip(self.aold.par_chunks_mut(c))
                     .enumerate()
                     .map(run)
-                    .reduce(|| 0.0, f64::max)
+                    .collect::<Vec<(f64, f64)>>()
+                    .into_iter()
+                    .fold((0.0, 0.0), both)
             }
         };
+        if !sum.is_finite() {
+            // the last step's end state was not finite: name the particle (its coordinates
+            // are one drift further on)
+            self.check(true)?;
+        }
         self.t += dt;
         self.steps += 1;
         if !fresh_list || moved2 > 0.25 * self.nb.skin * self.nb.skin {
@@ -674,6 +734,10 @@ impl<const D: usize> Engine<D> {
                 .build(&self.cfg.domain, &mut self.p.pos, &self.p.radius, self.skin);
         }
         self.forces()?;
+        if defer {
+            self.pending_kick = true;
+            return Ok(());
+        }
         let sum = {
             let p = &mut self.p;
             let shared = Shared {
@@ -716,7 +780,16 @@ impl<const D: usize> Engine<D> {
         progress: &mut dyn FnMut(f64),
     ) -> Result<(), DemError> {
         while self.t + 0.5 * self.dt < t_end {
-            self.step()?;
+            // the steps to the next progress call or to the end, as one block
+            let (mut k, mut t) = (0u64, self.t);
+            loop {
+                t += self.dt;
+                k += 1;
+                if t + 0.5 * self.dt >= t_end || (every > 0 && (self.steps + k) % every == 0) {
+                    break;
+                }
+            }
+            self.advance(k)?;
             if every > 0 && self.steps % every == 0 {
                 progress(self.t);
             }
