@@ -179,15 +179,23 @@ impl<R: Restitution> Bed<R> {
             bx = ((xl - xi) / vxi).max(0.0);
             kx = Kind::CellLeft;
         }
-        if cy + 1 < ny {
-            if let Some(t) = first_contact(yb + self.cells.wy - yi, -vyi, -ayi) {
-                if t < bx {
-                    bx = t;
-                    kx = Kind::CellUp;
-                }
+        // a row boundary is only looked for where the disk can reach it: not above while it
+        // moves down (or is at rest) and is not pushed up, not below in the mirror case, and not
+        // below once it is found to cross above while rising and slowing (it turns back only
+        // after that crossing): one square root instead of two for most crossings
+        let up = if cy + 1 < ny && (vyi > 0.0 || ayi > 0.0) {
+            first_contact(yb + self.cells.wy - yi, -vyi, -ayi)
+        } else {
+            None
+        };
+        if let Some(t) = up {
+            if t < bx {
+                bx = t;
+                kx = Kind::CellUp;
             }
         }
-        if cy > 0 {
+        let turns_after_up = up.is_some() && vyi > 0.0 && ayi < 0.0;
+        if cy > 0 && (vyi < 0.0 || ayi < 0.0) && !turns_after_up {
             if let Some(t) = first_contact(yi - yb, vyi, ayi) {
                 if t < bx {
                     bx = t;
