@@ -337,6 +337,52 @@ mod tests {
     }
 
     #[test]
+    fn the_bounded_pair_test_agrees_with_the_full_one_bit_for_bit() {
+        // over random pairs (approaching, receding, touching, overlapping by roundoff, grazing)
+        // and bounds (0, small, large, ∞): a contact before the bound is the full test's, to the
+        // bit, and no contact before it is ever reported
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut u = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let s2 = 4e-6;
+        let mut hits = 0;
+        for k in 0..200_000 {
+            let (rx, ry) = match k % 4 {
+                // touching, or overlapping / apart by roundoff
+                0 => {
+                    let a = std::f64::consts::PI * u();
+                    let r = 0.002 * (1.0 + 1e-15 * u());
+                    (r * a.cos(), r * a.sin())
+                }
+                _ => (0.004 * u(), 0.004 * u()),
+            };
+            let (vx, vy) = (u(), u());
+            let before = [0.0, 1e-4 * u().abs(), 1e-2 * u().abs(), f64::INFINITY][k % 4];
+            let full = pair_contact(rx, ry, vx, vy, s2);
+            let bounded = pair_contact_before(rx, ry, vx, vy, s2, before);
+            match full {
+                Some(t) if t < before => {
+                    assert_eq!(
+                        bounded.map(f64::to_bits),
+                        Some(t.to_bits()),
+                        "{rx} {ry} {vx} {vy} {before}"
+                    );
+                    hits += 1;
+                }
+                _ => assert!(
+                    bounded.is_none_or(|t| t >= before || Some(t) == full),
+                    "{rx} {ry} {vx} {vy} {before}"
+                ),
+            }
+        }
+        assert!(hits > 10_000, "{hits}");
+    }
+
+    #[test]
     fn a_flying_disk_meets_a_riding_disk_at_the_root_of_the_quartic() {
         let s2 = 4e-6; // d = 2 mm
                        // disk j rides on a piston accelerating upward at 160 m/s², disk i falls onto it from
