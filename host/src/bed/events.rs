@@ -203,9 +203,11 @@ fn poly_roots(c: &[f64], lo: f64, hi: f64, eval: &dyn Fn(f64) -> f64) -> Vec<f64
 /// the smaller of two nodes is taken by arithmetic on their difference, without a branch (the
 /// comparisons of keys and indices, and even an integer `min`, were compiled into a branch per
 /// level that went either way at random, mispredicted half the time). `update(i, t)` is
-/// O(log N) and stops as soon as a node's winner is unchanged; `top()` is O(1). Ties go to the
-/// lower index, so the event order is deterministic. Keys are times (s); −0 is stored as +0
-/// (so that the two compare equal, as `f64`s do); NaN keys are not expected.
+/// O(log N) and always climbs to the root (most updates are of the top disk, whose path has to
+/// be replayed to the root anyway; a check per level for an unchanged node cost more than it
+/// saved); `top()` is O(1). Ties go to the lower index, so the event order is deterministic.
+/// Keys are times (s); −0 is stored as +0 (so that the two compare equal, as `f64`s do); NaN
+/// keys are not expected.
 #[derive(Debug, Clone)]
 pub struct Tournament {
     size: usize,
@@ -288,9 +290,6 @@ impl Tournament {
             while k > 1 {
                 w = smaller(w, *node.add(k ^ 1));
                 k >>= 1;
-                if *node.add(k) == w {
-                    break;
-                }
                 *node.add(k) = w;
             }
         }
