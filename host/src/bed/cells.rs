@@ -41,7 +41,7 @@ impl Cells {
             wx: width / nx as f64,
             wy: (y1 - y0) / ny as f64,
             y0,
-            head: vec![NONE; nx * ny],
+            head: vec![NONE; nx * ny + 1],
             next: vec![NONE; n],
             prev: vec![NONE; n],
             cell: vec![NONE; n],
@@ -54,6 +54,13 @@ impl Cells {
         let cx = ((x / self.wx).floor().max(0.0) as usize).min(self.nx - 1);
         let cy = (((y - self.y0) / self.wy).floor().max(0.0) as usize).min(self.ny - 1);
         (cy * self.nx + cx) as u32
+    }
+
+    /// A cell that is never filled, after the grid's: what a prediction visits for the rows
+    /// beyond the grid, so that it always visits the same number of cells.
+    #[inline]
+    pub fn outside(&self) -> usize {
+        self.nx * self.ny
     }
 
     /// The first disk of cell `c`.
@@ -145,5 +152,8 @@ mod tests {
         assert_eq!(in_a, vec![2, 0]);
         assert_eq!(c.head(0), 1);
         assert_eq!(c.locate(-1.0, -1.0), 0);
+        // the cell beyond the grid is never located, so never filled
+        assert_eq!(c.locate(1.0, 1.0) as usize, c.outside() - 1);
+        assert_eq!(c.head(c.outside()), NONE);
     }
 }

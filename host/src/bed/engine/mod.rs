@@ -542,6 +542,49 @@ mod tests {
     }
 
     #[test]
+    fn no_pair_can_touch_before_the_next_event_of_either_disk() {
+        // the cells, the list of cells a prediction visits and the cache of each disk's best
+        // other event must never let a contact through: at any instant, every pair of disks
+        // that will touch (in free flight, by the closed form over all N² pairs) does so no
+        // earlier than the next pending event of one of the two, which predicts it or comes
+        // first and predicts again
+        let laws = Laws {
+            disk: Compiled(Fixed(0.95)),
+            wall: Compiled(Fixed(0.95)),
+        };
+        let mut bed = Bed::new(BedConfig::paper(3.0, 30.0), laws).unwrap();
+        let mut checked = 0;
+        for _ in 0..100 {
+            bed.run_events(499).unwrap();
+            let now = bed.now;
+            for i in 0..bed.n {
+                let (xi, yi, vxi, vyi) = bed.state_at(i, now);
+                for j in 0..i {
+                    if bed.d[i].ay != bed.d[j].ay {
+                        continue; // one rides on the piston: not a free-flight pair
+                    }
+                    let (xj, yj, vxj, vyj) = bed.state_at(j, now);
+                    let rx = bed.wrap(xi - xj);
+                    let hit = crate::bed::events::pair_contact(rx, yi - yj, vxi - vxj, vyi - vyj, bed.sigma2);
+                    if let Some(t) = hit {
+                        let next = bed.queue.key(i).min(bed.queue.key(j));
+                        assert!(
+                            now + t >= next - 1e-12,
+                            "disks {i} and {j} touch at {} before {next}",
+                            now + t
+                        );
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(
+            checked > 10_000 && bed.counters.cell_crossings > 20_000,
+            "{checked}"
+        );
+    }
+
+    #[test]
     fn a_law_outside_zero_one_is_refused() {
         let mut bed = dropped(1.2);
         let err = bed.run_until(1.0, &mut |_| {}).unwrap_err().to_string();

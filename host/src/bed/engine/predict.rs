@@ -62,59 +62,73 @@ impl<R: Restitution> Bed<R> {
                 }
             }
         }
-        // disks of this and the eight neighbouring cells (or of the three new ones): the rows
-        // and the (periodic) columns to visit are worked out once, not per cell
+        // disks of this and the eight neighbouring cells (or of the three new ones): the list of
+        // cells is worked out once, 9 or 3 of them, a row beyond the grid standing for the empty
+        // cell (so that the loop over them has one of two trip counts, which the branch
+        // predictor learns; nested loops over rows and columns of varying counts it did not)
         let left = if cx == 0 { nx - 1 } else { cx - 1 };
         let right = if cx + 1 == nx { 0 } else { cx + 1 };
-        let all_cols = [left, cx, right];
-        let (row_lo, row_hi, cols): (usize, usize, &[usize]) = match scope {
-            Scope::All => (cy.saturating_sub(1), (cy + 1).min(ny - 1), &all_cols),
-            Scope::Row(1) if cy + 1 < ny => (cy + 1, cy + 1, &all_cols),
-            Scope::Row(-1) if cy > 0 => (cy - 1, cy - 1, &all_cols),
-            Scope::Row(_) => (1, 0, &all_cols),
-            Scope::Col(1) => (cy.saturating_sub(1), (cy + 1).min(ny - 1), &all_cols[2..]),
-            Scope::Col(_) => (cy.saturating_sub(1), (cy + 1).min(ny - 1), &all_cols[..1]),
+        let out = self.cells.outside();
+        let cell = |r: usize, c: usize| if r < ny { r * nx + c } else { out };
+        let (below, above) = (cy.wrapping_sub(1), cy + 1);
+        let mut list = [out; 9];
+        let visit: &[usize] = match scope {
+            Scope::All => {
+                for (k, r) in [below, cy, above].into_iter().enumerate() {
+                    list[3 * k] = cell(r, left);
+                    list[3 * k + 1] = cell(r, cx);
+                    list[3 * k + 2] = cell(r, right);
+                }
+                &list
+            }
+            Scope::Row(dr) => {
+                let r = if dr > 0 { above } else { below };
+                list[..3].copy_from_slice(&[cell(r, left), cell(r, cx), cell(r, right)]);
+                &list[..3]
+            }
+            Scope::Col(dc) => {
+                let c = if dc > 0 { right } else { left };
+                list[..3].copy_from_slice(&[cell(below, c), cell(cy, c), cell(above, c)]);
+                &list[..3]
+            }
         };
         let d = &self.d[..];
-        for row in row_lo..=row_hi {
-            let base = row * nx;
-            for &col in cols {
-                let mut j = self.cells.head(base + col);
-                while j != NONE {
-                    let ju = j as usize;
-                    let dj = &d[ju];
-                    if ju != i {
-                        let dtj = now - dj.tl;
-                        let xj = dj.x + dj.vx * dtj;
-                        let ayj = dj.ay;
-                        let yj = dj.y + (dj.vy + 0.5 * ayj * dtj) * dtj;
-                        let vyj = dj.vy + ayj * dtj;
-                        let rxij = self.wrap(xi - xj);
-                        let (ry, vx, vy) = (yi - yj, vxi - dj.vx, vyi - vyj);
-                        let hit = if ayj == ayi {
-                            pair_contact_before(rxij, ry, vx, vy, self.sigma2, best)
+        for &c in visit {
+            let mut j = self.cells.head(c);
+            while j != NONE {
+                let ju = j as usize;
+                let dj = &d[ju];
+                if ju != i {
+                    let dtj = now - dj.tl;
+                    let xj = dj.x + dj.vx * dtj;
+                    let ayj = dj.ay;
+                    let yj = dj.y + (dj.vy + 0.5 * ayj * dtj) * dtj;
+                    let vyj = dj.vy + ayj * dtj;
+                    let rxij = self.wrap(xi - xj);
+                    let (ry, vx, vy) = (yi - yj, vxi - dj.vx, vyi - vyj);
+                    let hit = if ayj == ayi {
+                        pair_contact_before(rxij, ry, vx, vy, self.sigma2, best)
+                    } else {
+                        // one of the two rides on the piston: search up to its ride's end
+                        let end = if rides {
+                            ride_end
+                        } else if self.ride[ju] != FREE {
+                            self.piston.piece_start(self.ride[ju] + 1) - now
                         } else {
-                            // one of the two rides on the piston: search up to its ride's end
-                            let end = if rides {
-                                ride_end
-                            } else if self.ride[ju] != FREE {
-                                self.piston.piece_start(self.ride[ju] + 1) - now
-                            } else {
-                                f64::INFINITY
-                            };
-                            accel_pair_contact(rxij, ry, vx, vy, ayi - ayj, self.sigma2, best.min(end))
+                            f64::INFINITY
                         };
-                        if let Some(t) = hit {
-                            if t < best {
-                                best = t;
-                                kind = Kind::Disk;
-                                partner = j;
-                                pcount = self.count[ju];
-                            }
+                        accel_pair_contact(rxij, ry, vx, vy, ayi - ayj, self.sigma2, best.min(end))
+                    };
+                    if let Some(t) = hit {
+                        if t < best {
+                            best = t;
+                            kind = Kind::Disk;
+                            partner = j;
+                            pcount = self.count[ju];
                         }
                     }
-                    j = self.cells.next(ju);
                 }
+                j = self.cells.next(ju);
             }
         }
         // the piston, piece by piece, only from rows it can reach, only from when the disk can
@@ -179,15 +193,23 @@ impl<R: Restitution> Bed<R> {
             bx = ((xl - xi) / vxi).max(0.0);
             kx = Kind::CellLeft;
         }
-        if cy + 1 < ny {
-            if let Some(t) = first_contact(yb + self.cells.wy - yi, -vyi, -ayi) {
-                if t < bx {
-                    bx = t;
-                    kx = Kind::CellUp;
-                }
+        // a row boundary is only looked for where the disk can reach it: not above while it
+        // moves down (or is at rest) and is not pushed up, not below in the mirror case, and not
+        // below once it is found to cross above while rising and slowing (it turns back only
+        // after that crossing): one square root instead of two for most crossings
+        let up = if cy + 1 < ny && (vyi > 0.0 || ayi > 0.0) {
+            first_contact(yb + self.cells.wy - yi, -vyi, -ayi)
+        } else {
+            None
+        };
+        if let Some(t) = up {
+            if t < bx {
+                bx = t;
+                kx = Kind::CellUp;
             }
         }
-        if cy > 0 {
+        let turns_after_up = up.is_some() && vyi > 0.0 && ayi < 0.0;
+        if cy > 0 && (vyi < 0.0 || ayi < 0.0) && !turns_after_up {
             if let Some(t) = first_contact(yi - yb, vyi, ayi) {
                 if t < bx {
                     bx = t;
