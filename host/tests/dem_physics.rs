@@ -106,6 +106,18 @@ fn body<const D: usize>(x: [f64; D], v: [f64; D], d: f64) -> Body<D> {
     }
 }
 
+/// Every coordinate of the state of a 2D run (positions, velocities, spins), as bits.
+fn state_bits(e: &Engine<2>) -> Vec<u64> {
+    let p = &e.p;
+    p.pos
+        .iter()
+        .chain(&p.vel)
+        .flat_map(|v| v.iter().copied())
+        .chain(p.omega.iter().map(|w| w.z))
+        .map(f64::to_bits)
+        .collect()
+}
+
 /// Uniform numbers in [0, 1) from a 64-bit linear congruential generator seeded with `seed`
 /// (reproducible initial states without a dependency).
 fn lcg(mut seed: u64) -> impl FnMut() -> f64 {
@@ -537,17 +549,7 @@ fn a_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
         a.wall_contacts.len()
     );
     assert!(a.pairs.len() > 1000 && !a.wall_contacts.is_empty());
-    let bits = |e: &Engine<2>| -> Vec<u64> {
-        let p = &e.p;
-        p.pos
-            .iter()
-            .chain(&p.vel)
-            .flat_map(|v| v.iter().copied())
-            .chain(p.omega.iter().map(|w| w.z))
-            .map(f64::to_bits)
-            .collect()
-    };
-    assert!(bits(&a) == bits(&b), "one thread and two part");
+    assert!(state_bits(&a) == state_bits(&b), "one thread and two part");
 }
 
 /// A non-finite coordinate, however it got there, stops the run at the next step with an error
@@ -600,16 +602,6 @@ fn advance_is_the_same_bit_for_bit_as_single_steps() {
     }
     b.advance(25).unwrap();
     b.advance(35).unwrap();
-    let bits = |e: &Engine<2>| -> Vec<u64> {
-        let p = &e.p;
-        p.pos
-            .iter()
-            .chain(&p.vel)
-            .flat_map(|v| v.iter().copied())
-            .chain(p.omega.iter().map(|w| w.z))
-            .map(f64::to_bits)
-            .collect()
-    };
     assert!(a.pairs.len() > 100 && a.steps() == b.steps());
-    assert!(bits(&a) == bits(&b), "advance and single steps part");
+    assert!(state_bits(&a) == state_bits(&b), "advance and single steps part");
 }

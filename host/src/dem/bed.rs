@@ -20,7 +20,7 @@ use super::scene::packing;
 use super::state::{DiskMass, Material, VecD};
 use super::walls::{Motion, Wall};
 use super::{DemError, Domain, Engine, EngineConfig, Laws};
-use crate::bed::engine::stderr_of;
+use crate::bed::engine::{mean_over_seeds, seed_observables, stderr_of};
 use crate::bed::piston::Piston;
 use crate::bed::BedConfig;
 
@@ -104,30 +104,14 @@ pub struct DemBedReport {
 impl DemBedReport {
     /// The mean of independent runs, standard errors from their spread (one run: itself).
     pub fn combine(runs: &[DemBedReport]) -> Option<DemBedReport> {
-        let first = runs.first()?;
-        if runs.len() == 1 {
-            return Some(first.clone());
-        }
-        let k = runs.len() as f64;
-        let mean = |f: &dyn Fn(&DemBedReport) -> f64| runs.iter().map(f).sum::<f64>() / k;
-        let se = |f: &dyn Fn(&DemBedReport) -> f64| stderr_of(&runs.iter().map(f).collect::<Vec<_>>());
-        let mut r = first.clone();
-        r.pressure = mean(&|r| r.pressure);
-        r.pressure_stderr = se(&|r| r.pressure);
-        r.lid_collision_rate = mean(&|r| r.lid_collision_rate);
-        r.lid_collision_rate_stderr = se(&|r| r.lid_collision_rate);
-        r.mean_impulse = mean(&|r| r.mean_impulse);
-        r.mean_impulse_stderr = se(&|r| r.mean_impulse);
-        r.temperature = mean(&|r| r.temperature);
-        r.temperature_stderr = se(&|r| r.temperature);
-        r.piston_pressure = mean(&|r| r.piston_pressure);
-        r.piston_pressure_stderr = se(&|r| r.piston_pressure);
+        let mut r = mean_over_seeds(runs)?;
         r.lid_episodes = runs.iter().map(|r| r.lid_episodes).sum();
         r.wall_seconds = runs.iter().map(|r| r.wall_seconds).sum();
-        r.seeds = runs.len();
         Some(r)
     }
 }
+
+seed_observables!(DemBedReport);
 
 impl DemBed {
     /// Steel disks in the paper's bed with `layers` layers at `freq` (Hz).

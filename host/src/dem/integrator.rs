@@ -188,39 +188,26 @@ fn kick_drift_chunk<const D: usize>(
     let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
     let (vel, omega, vpred, aold) = (&mut vel[..n], &mut omega[..n], &mut vpred[..n], &mut aold[..n]);
     let (mut sx, mut sw) = (VecD::<D>::zeros(), Vec3::zeros());
-    if pending {
-        for i in 0..n {
-            let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
+    // (`pending` is the same for the whole loop: the compiler makes two loops of it)
+    for i in 0..n {
+        let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
+        if pending {
             vel[i] += a * h;
             omega[i] += al * h;
             sx += pos[i] + vel[i];
             sw += omega[i];
-            kick_drift_one(
-                a,
-                al,
-                h,
-                dt,
-                &mut pos[i],
-                &mut vel[i],
-                &mut omega[i],
-                &mut vpred[i],
-                &mut aold[i],
-            );
         }
-    } else {
-        for i in 0..n {
-            kick_drift_one(
-                force[i] * im[i] + g,
-                torque[i] * ii[i],
-                h,
-                dt,
-                &mut pos[i],
-                &mut vel[i],
-                &mut omega[i],
-                &mut vpred[i],
-                &mut aold[i],
-            );
-        }
+        kick_drift_one(
+            a,
+            al,
+            h,
+            dt,
+            &mut pos[i],
+            &mut vel[i],
+            &mut omega[i],
+            &mut vpred[i],
+            &mut aold[i],
+        );
     }
     let sum = sx.sum() + sw.sum();
     if s.anchor.len() != n {
@@ -589,34 +576,28 @@ impl<const D: usize> Engine<D> {
         let torque = &mut p.torque;
         let overflow = &mut self.overflow;
         // the first error in chunk order, whatever the threads did
+        // the same chain of zips, by std's iterators or rayon's (method names given)
+        macro_rules! tasks {
+            ($iter:ident, $iter_mut:ident, $chunks_mut:ident) => {
+                prev_p
+                    .$iter()
+                    .zip(next_p.$iter_mut())
+                    .zip(prev_w.$iter().zip(next_w.$iter_mut()))
+                    .zip(
+                        force
+                            .$chunks_mut(GATHER_CHUNK)
+                            .zip(torque.$chunks_mut(GATHER_CHUNK)),
+                    )
+                    .zip(overflow.$iter_mut())
+                    .enumerate()
+                    .map(work)
+                    .collect()
+            };
+        }
         let results: Vec<Result<(), DemError>> = if n < SERIAL_BELOW {
-            prev_p
-                .iter()
-                .zip(next_p.iter_mut())
-                .zip(prev_w.iter().zip(next_w.iter_mut()))
-                .zip(
-                    force
-                        .chunks_mut(GATHER_CHUNK)
-                        .zip(torque.chunks_mut(GATHER_CHUNK)),
-                )
-                .zip(overflow.iter_mut())
-                .enumerate()
-                .map(work)
-                .collect()
+            tasks!(iter, iter_mut, chunks_mut)
         } else {
-            prev_p
-                .par_iter()
-                .zip(next_p.par_iter_mut())
-                .zip(prev_w.par_iter().zip(next_w.par_iter_mut()))
-                .zip(
-                    force
-                        .par_chunks_mut(GATHER_CHUNK)
-                        .zip(torque.par_chunks_mut(GATHER_CHUNK)),
-                )
-                .zip(overflow.par_iter_mut())
-                .enumerate()
-                .map(work)
-                .collect()
+            tasks!(par_iter, par_iter_mut, par_chunks_mut)
         };
         // a contact test that met a NaN reports the particle whose state is not finite
         results

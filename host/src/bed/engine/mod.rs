@@ -22,8 +22,10 @@ mod predict;
 mod sampling;
 
 pub use config::BedConfig;
+pub(crate) use sampling::seed_observables;
 pub use sampling::{
-    batch_stderr, stderr_of, Batch, BedReport, Counters, TraceRow, Window, SAMPLES_PER_PERIOD,
+    batch_stderr, mean_over_seeds, stderr_of, Batch, BedReport, Counters, SeedObservables, TraceRow, Window,
+    SAMPLES_PER_PERIOD,
 };
 
 use super::cells::{Cells, NONE};

@@ -111,6 +111,63 @@ pub fn stderr_of(v: &[f64]) -> Option<f64> {
     Some((var / n as f64).sqrt())
 }
 
+/// A report of the bed's observables (either engine's), for averaging over seeds.
+pub trait SeedObservables: Clone {
+    /// The five observables with their standard errors: lid pressure, lid collision rate, mean
+    /// impulse, temperature, piston pressure.
+    fn observables(&mut self) -> [(&mut f64, &mut Option<f64>); 5];
+    /// How many seeds the report averages.
+    fn seeds(&mut self) -> &mut usize;
+}
+
+/// Implements [`SeedObservables`] for a report with the fields `pressure`, `lid_collision_rate`,
+/// `mean_impulse`, `temperature`, `piston_pressure`, their `_stderr` companions and `seeds`.
+macro_rules! seed_observables {
+    ($t:ty) => {
+        impl $crate::bed::engine::SeedObservables for $t {
+            fn observables(&mut self) -> [(&mut f64, &mut Option<f64>); 5] {
+                [
+                    (&mut self.pressure, &mut self.pressure_stderr),
+                    (
+                        &mut self.lid_collision_rate,
+                        &mut self.lid_collision_rate_stderr,
+                    ),
+                    (&mut self.mean_impulse, &mut self.mean_impulse_stderr),
+                    (&mut self.temperature, &mut self.temperature_stderr),
+                    (&mut self.piston_pressure, &mut self.piston_pressure_stderr),
+                ]
+            }
+            fn seeds(&mut self) -> &mut usize {
+                &mut self.seeds
+            }
+        }
+    };
+}
+pub(crate) use seed_observables;
+
+/// The mean of `runs` (independent seeds): each observable's mean over the seeds, its
+/// standard error from their spread, the rest of the report from the first run (the caller
+/// sums its counters). None for no runs; one run is returned as it is.
+pub fn mean_over_seeds<R: SeedObservables>(runs: &[R]) -> Option<R> {
+    let first = runs.first()?;
+    if runs.len() == 1 {
+        return Some(first.clone());
+    }
+    let mut values: Vec<[f64; 5]> = Vec::with_capacity(runs.len());
+    for r in runs {
+        let mut r = r.clone();
+        values.push(r.observables().map(|(v, _)| *v));
+    }
+    let mut out = first.clone();
+    for (k, (v, e)) in out.observables().into_iter().enumerate() {
+        let column: Vec<f64> = values.iter().map(|x| x[k]).collect();
+        *v = column.iter().sum::<f64>() / column.len() as f64;
+        *e = stderr_of(&column);
+    }
+    *out.seeds() = runs.len();
+    Some(out)
+}
+
 /// The results of a run, averaged after the transient.
 #[derive(Debug, Clone, Serialize)]
 pub struct BedReport {
@@ -401,24 +458,7 @@ impl BedReport {
     /// is the mean over the runs, its standard error the spread of the runs over √K (K ≥ 2);
     /// counters are summed, the largest overlap is the largest. None for no runs.
     pub fn combine(runs: &[BedReport]) -> Option<BedReport> {
-        let first = runs.first()?;
-        if runs.len() == 1 {
-            return Some(first.clone());
-        }
-        let k = runs.len() as f64;
-        let mean = |f: &dyn Fn(&BedReport) -> f64| runs.iter().map(f).sum::<f64>() / k;
-        let se = |f: &dyn Fn(&BedReport) -> f64| stderr_of(&runs.iter().map(f).collect::<Vec<_>>());
-        let mut r = first.clone();
-        r.pressure = mean(&|r| r.pressure);
-        r.pressure_stderr = se(&|r| r.pressure);
-        r.lid_collision_rate = mean(&|r| r.lid_collision_rate);
-        r.lid_collision_rate_stderr = se(&|r| r.lid_collision_rate);
-        r.mean_impulse = mean(&|r| r.mean_impulse);
-        r.mean_impulse_stderr = se(&|r| r.mean_impulse);
-        r.temperature = mean(&|r| r.temperature);
-        r.temperature_stderr = se(&|r| r.temperature);
-        r.piston_pressure = mean(&|r| r.piston_pressure);
-        r.piston_pressure_stderr = se(&|r| r.piston_pressure);
+        let mut r = mean_over_seeds(runs)?;
         r.events = runs.iter().map(|r| r.events).sum();
         r.collisions = runs.iter().map(|r| r.collisions).sum();
         r.tc_firings = runs.iter().map(|r| r.tc_firings).sum();
@@ -429,7 +469,8 @@ impl BedReport {
         };
         r.max_overlap = runs.iter().map(|r| r.max_overlap).fold(0.0, f64::max);
         r.wall_seconds = runs.iter().map(|r| r.wall_seconds).sum();
-        r.seeds = runs.len();
         Some(r)
     }
 }
+
+seed_observables!(BedReport);
