@@ -54,35 +54,47 @@ pub fn run_grid<R: Restitution>(
     grid: &Grid,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<BedReport>, BedError> {
-    // longest runs first (many disks, low frequency: more simulated time), for load balance
-    let mut order: Vec<usize> = (0..grid.len()).collect();
+    let jobs = (0..grid.len()).map(|k| (k, ())).collect();
+    run_points(grid, jobs, tick, |n, f, ()| {
+        let mut bed = Bed::new(
+            cfg(n, f),
+            Laws {
+                disk: &laws.disk,
+                wall: &laws.wall,
+            },
+        )?;
+        bed.run_protocol(grid.transient, grid.cycles, &mut |_| {})
+            .map_err(|e| match e {
+                BedError::Collapse(m) => BedError::Collapse(format!("n = {n}, f = {f} Hz: {m}")),
+                BedError::Overlap(m) => BedError::Overlap(format!("n = {n}, f = {f} Hz: {m}")),
+                e => e,
+            })
+    })
+}
+
+/// Runs `run(n, f, job)` for each `(k, job)` at the grid's point k, in parallel (rayon), the
+/// longest runs first (many disks, low frequency: more simulated time) for load balance;
+/// `tick` is called after each run. Results in grid order; an error stops the lot.
+fn run_points<J: Send, T: Send, E: Send>(
+    grid: &Grid,
+    mut jobs: Vec<(usize, J)>,
+    tick: &(dyn Fn() + Sync),
+    run: impl Fn(f64, f64, J) -> Result<T, E> + Sync,
+) -> Result<Vec<T>, E> {
     let cost = |k: usize| {
         let (n, f) = grid.point(k);
         n / f
     };
-    order.sort_by(|&a, &b| cost(b).total_cmp(&cost(a)));
-    let mut done: Vec<(usize, BedReport)> = order
-        .par_iter()
-        .map(|&k| {
+    jobs.sort_by(|a, b| cost(b.0).total_cmp(&cost(a.0)));
+    let mut done: Vec<(usize, T)> = jobs
+        .into_par_iter()
+        .map(|(k, job)| {
             let (n, f) = grid.point(k);
-            let mut bed = Bed::new(
-                cfg(n, f),
-                Laws {
-                    disk: &laws.disk,
-                    wall: &laws.wall,
-                },
-            )?;
-            let r = bed
-                .run_protocol(grid.transient, grid.cycles, &mut |_| {})
-                .map_err(|e| match e {
-                    BedError::Collapse(m) => BedError::Collapse(format!("n = {n}, f = {f} Hz: {m}")),
-                    BedError::Overlap(m) => BedError::Overlap(format!("n = {n}, f = {f} Hz: {m}")),
-                    e => e,
-                })?;
+            let r = run(n, f, job)?;
             tick();
             Ok((k, r))
         })
-        .collect::<Result<Vec<_>, BedError>>()?;
+        .collect::<Result<Vec<_>, E>>()?;
     done.sort_by_key(|(k, _)| *k);
     Ok(done.into_iter().map(|(_, r)| r).collect())
 }
@@ -157,26 +169,12 @@ pub fn run_dem_grid(
     grid: &Grid,
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<DemBedReport>, DemError> {
-    let mut jobs: Vec<(usize, crate::dem::Laws)> = laws.into_iter().enumerate().collect();
-    // longest runs first (many disks, low frequency), for load balance
-    let cost = |k: usize| {
-        let (n, f) = grid.point(k);
-        n / f
-    };
-    jobs.sort_by(|a, b| cost(b.0).total_cmp(&cost(a.0)));
-    let mut done: Vec<(usize, DemBedReport)> = jobs
-        .into_par_iter()
-        .map(|(k, l)| {
-            let (n, f) = grid.point(k);
-            let r = bed(n, f)
-                .run(l, grid.transient, grid.cycles, &mut |_| {})
-                .map_err(|e| DemError::Invalid(format!("n = {n}, f = {f} Hz: {e}")))?;
-            tick();
-            Ok((k, r))
-        })
-        .collect::<Result<Vec<_>, DemError>>()?;
-    done.sort_by_key(|(k, _)| *k);
-    Ok(done.into_iter().map(|(_, r)| r).collect())
+    let jobs = laws.into_iter().enumerate().collect();
+    run_points(grid, jobs, tick, |n, f, l| {
+        bed(n, f)
+            .run(l, grid.transient, grid.cycles, &mut |_| {})
+            .map_err(|e| DemError::Invalid(format!("n = {n}, f = {f} Hz: {e}")))
+    })
 }
 
 /// Writes every DEM run of the grid as CSV.
