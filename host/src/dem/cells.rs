@@ -30,21 +30,11 @@ impl<const D: usize> Domain<D> {
         self.hi[k] - self.lo[k]
     }
 
-    /// The minimum-image displacement `a − b` (m).
-    #[inline(always)]
+    /// The minimum-image displacement `a − b` (m) (in loops over pairs, take
+    /// [`Domain::images`] once and call [`Images::delta`]).
+    #[inline]
     pub fn delta(&self, a: &VecD<D>, b: &VecD<D>) -> VecD<D> {
-        let mut d = a - b;
-        for k in 0..D {
-            if self.periodic[k] {
-                let l = self.length(k);
-                // only pairs across the boundary need the image (and `round` is a libm call
-                // on baseline x86-64, too slow for every pair of every step)
-                if d[k].abs() > 0.5 * l {
-                    d[k] -= l * (d[k] / l).round();
-                }
-            }
-        }
-        d
+        self.images().delta(a, b)
     }
 
     /// The box's images, for the pair loops ([`Images::delta`] is [`Domain::delta`] with the
@@ -227,6 +217,7 @@ impl<const D: usize> Neighbours<D> {
             out.dedup();
             out
         };
+        let images = dom.images();
         let chunks: Vec<(Vec<u32>, Vec<u32>)> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|ch| {
@@ -247,7 +238,7 @@ impl<const D: usize> Neighbours<D> {
                                 continue;
                             }
                             let cut = radius[i] + radius[j as usize] + skin;
-                            if dom.delta(&pos[i], &pos[j as usize]).norm_squared() < cut * cut {
+                            if images.delta(&pos[i], &pos[j as usize]).norm_squared() < cut * cut {
                                 js.push(j);
                             }
                         }

@@ -212,8 +212,10 @@ impl ContactSet {
         // kept too, for the check below
         let mut cand = std::mem::take(&mut self.cand);
         let listed = nb.start[range.end] as usize - nb.start[range.start] as usize;
-        cand.clear();
-        cand.resize(listed, (0, 0));
+        // room for every listed pair (grown, never cleared: each slot is written before read)
+        if cand.len() < listed {
+            cand.resize(listed, (0, 0));
+        }
         let mut count = 0;
         let images = dom.images();
         for i in range {
@@ -298,8 +300,9 @@ impl ContactSet {
                 *m = if d > *m || d.is_nan() { d } else { *m };
             }
         }
-        cand.clear();
-        cand.resize(range.len(), (0, 0));
+        if cand.len() < range.len() {
+            cand.resize(range.len(), (0, 0));
+        }
         let mut count = 0;
         for (k, m) in worst.iter().enumerate() {
             cand[count] = ((range.start + k) as u32, 0);

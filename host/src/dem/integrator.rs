@@ -32,8 +32,6 @@ use crate::collide::{collide, Options, PairLaw};
 use dashpot_sdk::EndCriterion;
 use rayon::prelude::*;
 
-/// One particle's item in the kick–drift loop: index, position, velocity, spin, predicted
-/// velocity, previous acceleration.
 /// The first half-kick and the drift of one particle, with its acceleration `a` (m/s²) and
 /// angular acceleration `al` (rad/s²); `vp` gets the second-order predicted velocity at the end
 /// of the step, `ao` keeps `a` for the next prediction.
@@ -57,6 +55,27 @@ fn kick_drift_one<const D: usize>(
     *ao = a;
 }
 
+/// The second half-kick of one particle (acceleration `a`, angular acceleration `al`), its end
+/// state added to the running sums `sx` (position and velocity) and `sw` (spin), whose
+/// finiteness is the state check.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn end_kick<const D: usize>(
+    a: VecD<D>,
+    al: Vec3,
+    h: f64,
+    x: &VecD<D>,
+    v: &mut VecD<D>,
+    w: &mut Vec3,
+    sx: &mut VecD<D>,
+    sw: &mut Vec3,
+) {
+    *v += a * h;
+    *w += al * h;
+    *sx += x + *v;
+    *sw += *w;
+}
+
 /// One chunk's task in [`Engine::forces`]: chunk index, (previous, next) pair contacts,
 /// (previous, next) wall contacts, the chunk's forces and torques, its overflow.
 type ChunkTask<'a, const D: usize> = (
@@ -74,13 +93,13 @@ type ChunkTask<'a, const D: usize> = (
 );
 
 /// Sums the forces and torques of one chunk's pair contacts `pairs` and wall contacts `walls`
-/// into the chunk's particles (`f`, `tq`: particles `first..first + f.len()`), zeroed first;
+/// into the chunk's particles (`f`, `tq`: particles `pairs.first..pairs.first + f.len()`),
+/// zeroed first;
 /// a pair partner beyond the chunk gets its force and torque through `overflow` (force on i,
 /// torque on j).
 fn scatter_chunk<const D: usize>(
     pairs: &ContactSet,
     walls: &ContactSet,
-    first: usize,
     radius: &[f64],
     f: &mut [VecD<D>],
     tq: &mut [Vec3],
@@ -89,7 +108,7 @@ fn scatter_chunk<const D: usize>(
     f.iter_mut().for_each(|v| *v = VecD::<D>::zeros());
     tq.iter_mut().for_each(|v| *v = Vec3::zeros());
     overflow.clear();
-    let len = f.len();
+    let (first, len) = (pairs.first, f.len());
     for m in 0..pairs.len() {
         let (i, j) = (pairs.i[m] as usize - first, pairs.j[m] as usize);
         let nv = Vec3::from(pairs.normal[m]);
@@ -192,10 +211,7 @@ fn kick_drift_chunk<const D: usize>(
     for i in 0..n {
         let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
         if pending {
-            vel[i] += a * h;
-            omega[i] += al * h;
-            sx += pos[i] + vel[i];
-            sw += omega[i];
+            end_kick(a, al, h, &pos[i], &mut vel[i], &mut omega[i], &mut sx, &mut sw);
         }
         kick_drift_one(
             a,
@@ -238,10 +254,8 @@ fn kick_chunk<const D: usize>(
     // component-wise running sums: no horizontal add per particle
     let (mut sx, mut sw) = (VecD::<D>::zeros(), Vec3::zeros());
     for i in 0..n {
-        vel[i] += (force[i] * im[i] + g) * h;
-        omega[i] += torque[i] * ii[i] * h;
-        sx += pos[i] + vel[i];
-        sw += omega[i];
+        let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
+        end_kick(a, al, h, &pos[i], &mut vel[i], &mut omega[i], &mut sx, &mut sw);
     }
     sx.sum() + sw.sum()
 }
@@ -569,7 +583,7 @@ impl<const D: usize> Engine<D> {
             nw.gather_walls(pw, range, &ws, pos, vpred, vel, omega, radius, mass)?;
             np.evaluate(&*laws.pair, laws.pair_tangential.as_deref(), dt, edges)?;
             nw.evaluate(&*laws.wall, laws.wall_tangential.as_deref(), dt, edges)?;
-            scatter_chunk(np, nw, c * GATHER_CHUNK, radius, f, tq, ov);
+            scatter_chunk(np, nw, radius, f, tq, ov);
             Ok::<(), DemError>(())
         };
         let force = &mut p.force;
@@ -698,9 +712,7 @@ impl<const D: usize> Engine<D> {
                     .zip(self.aold.par_chunks_mut(c))
                     .enumerate()
                     .map(run)
-                    .collect::<Vec<(f64, f64)>>()
-                    .into_iter()
-                    .fold((0.0, 0.0), both)
+                    .reduce(|| (0.0, 0.0), both)
             }
         };
         if !sum.is_finite() {
@@ -742,8 +754,6 @@ impl<const D: usize> Engine<D> {
                     .zip(p.omega.par_chunks_mut(c))
                     .enumerate()
                     .map(run)
-                    .collect::<Vec<f64>>()
-                    .into_iter()
                     .sum::<f64>()
             }
         };
@@ -778,26 +788,12 @@ impl<const D: usize> Engine<D> {
         Ok(())
     }
 
+    /// The exact state check, particle by particle: the first non-finite particle (velocities
+    /// and spins too if `velocities_too`), or in a bounded box the first one outside it. The
+    /// steps call it only when their running sums were not finite, or in a bounded box.
     fn check(&self, velocities_too: bool) -> Result<(), DemError> {
         let p = &self.p;
         let dom = &self.cfg.domain;
-        // the common case in one branch-free pass: a sum of every coordinate is finite unless
-        // one of them is not (or the sum overflows, which only takes the exact scan below)
-        if !dom.bounded && p.len() < SERIAL_BELOW {
-            // one running sum per component: independent chains, not one long one
-            let mut s = [0.0f64; 4];
-            for (k, x) in p.pos.iter().enumerate() {
-                s[k % 4] += x.sum();
-            }
-            if velocities_too {
-                for (k, (v, w)) in p.vel.iter().zip(&p.omega).enumerate() {
-                    s[k % 4] += v.sum() + w.sum();
-                }
-            }
-            if ((s[0] + s[1]) + (s[2] + s[3])).is_finite() {
-                return Ok(());
-            }
-        }
         let bad_at = |&i: &usize| {
             let fin = p.pos[i].iter().all(|x| x.is_finite())
                 && (!velocities_too
