@@ -3,9 +3,9 @@
 # with Mindlin friction and history (BENCH_FRICTION=mindlin, the default) or without (none);
 # or the polydisperse frictional pour of in.pour (BENCH_DECK=pour, 2,000 spheres, fix pour).
 # `pair_style dashpot hsd` (through the dashpot C ABI) against LAMMPS's nearest built-in,
-# `pair_style granular` with `hertz/material ... damping tsuji` and the same friction
-# (`tangential mindlin NULL 0 MU` against dashpot's `tangential mindlin mu=MU`, or
-# `linear_nohistory 0 0` without friction); for the pour, `damping coeff_restitution`.
+# `pair_style granular` with `hertz/material ... damping coeff_restitution` (for Hertz the same
+# alpha(eps) as hsd) and the same friction (`tangential mindlin NULL 0 MU` against dashpot's
+# `tangential mindlin mu=MU`, or `linear_nohistory 0 0` without friction).
 # Both runs have the same floor (fix wall/gran), integrator and neighbor settings; the score is
 # particle-steps per second of the whole run loop (atoms x steps / LAMMPS's "Loop time"), best of
 # REPEATS runs, with the two styles alternating so that machine noise hits both. Each run's

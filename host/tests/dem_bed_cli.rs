@@ -317,6 +317,13 @@ fn each_engines_options_are_refused_by_the_other() {
         &["--dt = 0"],
     );
     fails(&with(&["--engine", "dem", "--law", "nosuch"]), &["nosuch"]);
+    // a measuring window shorter than a step would report 0/0 rates
+    fails(
+        &[
+            "bed", "--engine", "dem", "--law", "hsd", "--layers", "0.5", "--freq", "20", "--cycles", "1e-7",
+        ],
+        &["cycles = 0.0000001", "at least one step"],
+    );
     let o = dashpot(&with(&["--engine", "dem", "--law", "hsd", "--set", "eps=abc"]));
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("abc"));

@@ -249,6 +249,14 @@ impl DemBed {
             (lid0, pis0, ep0, tb0) = (lid, pis, ep, e.time());
         }
         let tm = e.time() - t0;
+        // a block shorter than half a step takes no step: its rates would be 0/0
+        if rows.iter().any(|r| r[0] <= 0.0 || r[0].is_nan()) {
+            return Err(DemError::Invalid(format!(
+                "cycles = {cycles} periods ({:e} s in {blocks} blocks) is too short: each block must span at least one step of dt = {:e} s",
+                cycles * period,
+                e.dt()
+            )));
+        }
         let w = self.bed.width;
         let sum = |k: usize| rows.iter().map(|r| r[k]).sum::<f64>();
         let (impulse, piston, episodes, ke, samples) = (sum(1), sum(2), sum(3), sum(4), sum(5));
