@@ -55,15 +55,9 @@ fn compiled_laws() -> Laws {
     }
 }
 
-/// `n` disks (diameters uniform in [0.95, 1] × 2 mm) on a square lattice of spacing 2 mm, 50
-/// (or √n) columns wide, with random velocities of 0.05 m/s, settling under gravity on a floor,
-/// periodic sideways: contacts form at once and the pile closes from the bottom.
+/// The benchmarks' pile ([`common::pile`]) of `n` disks with the first/last-step means.
 fn pile(n: usize, laws: Laws) -> Engine<2> {
-    pile_with(n, laws, true)
-}
-
-fn pile_with(n: usize, laws: Laws, edge_means: bool) -> Engine<2> {
-    common::pile(n, laws, MAT, edge_means)
+    common::pile(n, laws, MAT, true)
 }
 
 fn steps(e: &mut Engine<2>, k: usize) -> f64 {
@@ -77,21 +71,6 @@ fn cpu_steps(e: &mut Engine<2>, k: usize) -> f64 {
     let s = common::thread_cpu_seconds();
     e.advance(k as u64).unwrap();
     common::thread_cpu_seconds() - s
-}
-
-/// CPU seconds this process has received (all threads).
-fn process_cpu() -> f64 {
-    let mut t = libc::timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    // SAFETY: clock_gettime writes one timespec through a valid pointer.
-    let r = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t) };
-    if r == 0 {
-        t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
-    } else {
-        f64::NAN
-    }
 }
 
 fn pool(threads: usize) -> rayon::ThreadPool {
@@ -143,8 +122,8 @@ fn main() {
 
         // what the first/last-step means cost: the same pile with the plain step-end rule, both
         // from the start and settled as long (a pile gains contacts as it settles)
-        let mut a = pile_with(2000, plugin_laws(&reg), true);
-        let mut c = pile_with(2000, plugin_laws(&reg), false);
+        let mut a = pile(2000, plugin_laws(&reg));
+        let mut c = common::pile(2000, plugin_laws(&reg), MAT, false);
         steps(&mut a, 5000);
         steps(&mut c, 5000);
         let (mut ta, mut tc) = (Vec::new(), Vec::new());
@@ -252,9 +231,9 @@ fn main() {
         let c0 = e.contacts();
         for _ in 0..7 {
             t1.push(one.install(|| steps(&mut e, 40)));
-            let c = process_cpu();
+            let c = common::process_cpu_seconds();
             let w = two.install(|| steps(&mut e, 40));
-            cpu2 += process_cpu() - c;
+            cpu2 += common::process_cpu_seconds() - c;
             wall2 += w;
             t2.push(w);
         }

@@ -7,7 +7,7 @@
 //! coeff_restitution tangential mindlin NULL 0 μ`, `fix wall/gran` with the same model, `fix
 //! enforce2d`) on the very disks dashpot starts from (positions, diameters, velocities written
 //! to a data file; the total mass LAMMPS computes is checked against dashpot's), at dashpot's
-//! time step and with dashpot's neighbour skin (0.3 of the smallest diameter). Both settle 5,000 steps, then 3,500 steps are timed: CPU
+//! time step and with dashpot's neighbour skin (the engine's default, 0.3 of the smallest diameter). Both settle 5,000 steps, then 3,500 steps are timed: CPU
 //! seconds of the measuring thread for dashpot, LAMMPS's loop time × its CPU share. Three
 //! rounds, the two programs alternating; best of 3.
 //!
@@ -72,7 +72,8 @@ fn write_data(path: &Path) -> f64 {
             p.position.x,
             p.position.y
         );
-        mass += MAT.density * std::f64::consts::FRAC_PI_6 * p.diameter.powi(3);
+        // dashpot's own mass of a disk (the convention LAMMPS's total is checked against)
+        mass += MAT.mass_inertia(2, p.diameter).0;
     }
     let _ = writeln!(s, "\nVelocities\n");
     for (i, p) in b.iter().enumerate() {
@@ -161,14 +162,11 @@ fn main() {
     std::fs::create_dir_all(&dir).expect("target/dem_lammps");
     let data = dir.join("pile2d.data");
     let mass = write_data(&data);
-    let dt = one.install(|| engine(&reg).dt());
-    // dashpot's default skin: 0.3 of the smallest diameter
-    let skin = 0.3
-        * bodies()
-            .0
-            .iter()
-            .map(|b| b.diameter)
-            .fold(f64::INFINITY, f64::min);
+    // dashpot's step and neighbour skin, as the engine chose them, for LAMMPS too
+    let (dt, skin) = one.install(|| {
+        let e = engine(&reg);
+        (e.dt(), e.skin())
+    });
 
     let (mut td, mut tl) = (Vec::new(), Vec::new());
     let mut contacts = 0;

@@ -211,15 +211,10 @@ fn run_dim<const D: usize>(
         } else {
             u64::MAX
         };
-        let (mut k, mut t) = (0u64, e.time());
-        loop {
-            t += e.dt();
-            k += 1;
-            let s = e.steps() + k;
-            if t + 0.5 * e.dt() >= scene.duration || s >= next_tick || s >= next_frame_step {
-                break;
-            }
-        }
+        let k = e.steps_to(
+            scene.duration,
+            next_tick.min(next_frame_step).saturating_sub(e.steps()).max(1),
+        );
         e.advance(k)
             .with_context(|| format!("at t = {:.6e} s, step {}", e.time(), e.steps()))?;
         if e.steps() % every == 0 {

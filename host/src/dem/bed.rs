@@ -20,12 +20,18 @@ use super::scene::packing;
 use super::state::{DiskMass, Material, VecD};
 use super::walls::{Motion, Wall};
 use super::{DemError, Domain, Engine, EngineConfig, Laws};
-use crate::bed::engine::{mean_over_seeds, seed_observables, stderr_of};
+use crate::bed::engine::{mean_over_seeds, seed_observables, stderr_of, SAMPLES_PER_PERIOD};
 use crate::bed::piston::Piston;
 use crate::bed::BedConfig;
 
-/// Kinetic-energy samples per piston period (as the event-driven bed).
-pub const SAMPLES_PER_PERIOD: f64 = 64.0;
+/// The error for a measuring window of `cycles` periods of `period` (s) in `blocks` blocks
+/// whose blocks are shorter than a step `dt` (s).
+fn too_short(cycles: f64, period: f64, blocks: usize, dt: f64) -> DemError {
+    DemError::Invalid(format!(
+        "cycles = {cycles} periods ({:e} s in {blocks} blocks) is too short: each block must span at least one step of dt = {dt:e} s",
+        cycles * period
+    ))
+}
 
 /// The DEM bed's settings beyond the bed's geometry.
 #[derive(Debug, Clone)]
@@ -212,15 +218,18 @@ impl DemBed {
         let clock = std::time::Instant::now();
         let mut e = self.engine(laws)?;
         let period = 1.0 / self.bed.freq;
+        // block sums: time, lid impulse, piston impulse, lid episodes, kinetic energy, samples
+        let blocks = (cycles.floor() as usize).clamp(1, 20);
+        let block_len = cycles * period / blocks as f64;
+        if block_len < e.dt() {
+            return Err(too_short(cycles, period, blocks, e.dt()));
+        }
         let every = ((period / e.dt()) as u64 / 64).max(1);
         e.run_until(transient * period, every, progress)?;
         e.reset_wall_counters();
         let t0 = e.time();
-        let sample = period / SAMPLES_PER_PERIOD;
+        let sample = period / SAMPLES_PER_PERIOD as f64;
         let mut next_sample = t0;
-        // block sums: time, lid impulse, piston impulse, lid episodes, kinetic energy, samples
-        let blocks = (cycles.floor() as usize).clamp(1, 20);
-        let block_len = cycles * period / blocks as f64;
         let mut rows: Vec<[f64; 6]> = Vec::with_capacity(blocks);
         let (mut lid0, mut pis0, mut ep0, mut tb0) = (0.0, 0.0, 0u64, t0);
         for b in 0..blocks {
@@ -249,13 +258,9 @@ impl DemBed {
             (lid0, pis0, ep0, tb0) = (lid, pis, ep, e.time());
         }
         let tm = e.time() - t0;
-        // a block shorter than half a step takes no step: its rates would be 0/0
+        // a block that took no step would give 0/0 rates
         if rows.iter().any(|r| r[0] <= 0.0 || r[0].is_nan()) {
-            return Err(DemError::Invalid(format!(
-                "cycles = {cycles} periods ({:e} s in {blocks} blocks) is too short: each block must span at least one step of dt = {:e} s",
-                cycles * period,
-                e.dt()
-            )));
+            return Err(too_short(cycles, period, blocks, e.dt()));
         }
         let w = self.bed.width;
         let sum = |k: usize| rows.iter().map(|r| r[k]).sum::<f64>();

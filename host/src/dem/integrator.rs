@@ -536,6 +536,11 @@ impl<const D: usize> Engine<D> {
         self.nb.builds
     }
 
+    /// The neighbour-list skin (m).
+    pub fn skin(&self) -> f64 {
+        self.skin
+    }
+
     /// Pairs in the neighbour list (closer than the skin at its last build).
     pub fn listed_pairs(&self) -> usize {
         self.nb.js.len()
@@ -763,6 +768,17 @@ impl<const D: usize> Engine<D> {
         self.check(true)
     }
 
+    /// How many steps, at most `limit`, a run to time `t_end` (s) takes from now: steps are
+    /// taken while t + dt/2 < `t_end`, t summed step by step as the steps sum it.
+    pub fn steps_to(&self, t_end: f64, limit: u64) -> u64 {
+        let (mut k, mut t) = (0u64, self.t);
+        while k < limit && t + 0.5 * self.dt < t_end {
+            t += self.dt;
+            k += 1;
+        }
+        k
+    }
+
     /// Runs until time `t_end` (s), calling `progress(t)` every `every` steps.
     pub fn run_until(
         &mut self,
@@ -772,15 +788,12 @@ impl<const D: usize> Engine<D> {
     ) -> Result<(), DemError> {
         while self.t + 0.5 * self.dt < t_end {
             // the steps to the next progress call or to the end, as one block
-            let (mut k, mut t) = (0u64, self.t);
-            loop {
-                t += self.dt;
-                k += 1;
-                if t + 0.5 * self.dt >= t_end || (every > 0 && (self.steps + k) % every == 0) {
-                    break;
-                }
-            }
-            self.advance(k)?;
+            let limit = if every > 0 {
+                every - self.steps % every
+            } else {
+                u64::MAX
+            };
+            self.advance(self.steps_to(t_end, limit))?;
             if every > 0 && self.steps % every == 0 {
                 progress(self.t);
             }

@@ -3,17 +3,27 @@
 
 use dashpot::dem::{Body, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
 
-/// This thread's CPU time (s), for benchmarks on a shared machine: time spent descheduled is
-/// not the code's.
-pub fn thread_cpu_seconds() -> f64 {
+/// The CPU time (s) of clock `clock` (a `libc::CLOCK_*_CPUTIME_ID`).
+fn cpu_seconds(clock: libc::clockid_t) -> f64 {
     let mut ts = libc::timespec {
         tv_sec: 0,
         tv_nsec: 0,
     };
     // SAFETY: clock_gettime writes one timespec through a valid pointer.
-    let rc = unsafe { libc::clock_gettime(libc::CLOCK_THREAD_CPUTIME_ID, &mut ts) };
-    assert_eq!(rc, 0, "no thread CPU clock");
+    let rc = unsafe { libc::clock_gettime(clock, &mut ts) };
+    assert_eq!(rc, 0, "no CPU clock {clock}");
     ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// This thread's CPU time (s), for benchmarks on a shared machine: time spent descheduled is
+/// not the code's.
+pub fn thread_cpu_seconds() -> f64 {
+    cpu_seconds(libc::CLOCK_THREAD_CPUTIME_ID)
+}
+
+/// The CPU time (s) this process has received, all threads together.
+pub fn process_cpu_seconds() -> f64 {
+    cpu_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
 
 /// The DEM benchmarks' pile: `n` disks (diameters uniform in [0.95, 1] × 2 mm) on a square
