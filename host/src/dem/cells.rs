@@ -263,6 +263,23 @@ impl<const D: usize> Neighbours<D> {
         }
     }
 
+    /// For each chunk of `chunk` particles, the last chunk holding a partner of one of its
+    /// particles (the chunk itself if none lies beyond), written into `out`.
+    pub fn chunk_reach(&self, chunk: usize, out: &mut Vec<usize>) {
+        let n = self.start.len().saturating_sub(1);
+        out.clear();
+        out.extend((0..n.div_ceil(chunk)).map(|c| {
+            let rows = c * chunk..((c + 1) * chunk).min(n);
+            // each row's partners are sorted: its last is its farthest
+            let far = rows
+                .clone()
+                .filter_map(|i| self.of(i).last().map(|&j| j as usize))
+                .max()
+                .unwrap_or(0);
+            far.max(rows.start) / chunk
+        }));
+    }
+
     /// Partners of particle `i`.
     #[inline]
     pub fn of(&self, i: usize) -> &[u32] {

@@ -24,6 +24,27 @@ use crate::laws::{NormalLaw, TangentialForce};
 use dashpot_sdk::{NormalBatch, TangentialBatch};
 use std::ops::Range;
 
+/// The particle state a gathering reads: particles `base..base + pos.len()`, each array
+/// indexed by particle number minus `base` (the engine hands a chunk the particles its
+/// contacts can reach, and no more: other chunks' particles may be moving meanwhile).
+#[derive(Debug, Clone, Copy)]
+pub struct View<'a, const D: usize> {
+    /// The first particle of the view.
+    pub base: usize,
+    /// Positions (m).
+    pub pos: &'a [VecD<D>],
+    /// Predicted end-of-step velocities (m/s), for the overlap rates.
+    pub vpred: &'a [VecD<D>],
+    /// The step's (half-step) velocities (m/s), for the contact points' slip.
+    pub vel: &'a [VecD<D>],
+    /// The step's angular velocities (rad/s).
+    pub omega: &'a [Vec3],
+    /// Radii (m).
+    pub radius: &'a [f64],
+    /// Masses (kg).
+    pub mass: &'a [f64],
+}
+
 /// One chunk of one kind of contacts (particle pairs, or particles against walls), structure
 /// of arrays.
 #[derive(Debug, Clone, Default)]
@@ -191,20 +212,23 @@ impl ContactSet {
     /// from the predicted velocities `vpred`, the contact points' slip from the step's
     /// velocities `vel`, `omega` (over the step: velocity Verlet's half-step ones, so that
     /// slip × dt is the tangential displacement of the step).
-    #[allow(clippy::too_many_arguments)]
     pub fn gather_pairs<const D: usize>(
         &mut self,
         prev: &ContactSet,
         range: Range<usize>,
         dom: &Domain<D>,
         nb: &Neighbours<D>,
-        pos: &[VecD<D>],
-        vpred: &[VecD<D>],
-        vel: &[VecD<D>],
-        omega: &[Vec3],
-        radius: &[f64],
-        mass: &[f64],
+        view: &View<'_, D>,
     ) -> Result<(), DemError> {
+        let View {
+            base,
+            pos,
+            vpred,
+            vel,
+            omega,
+            radius,
+            mass,
+        } = *view;
         self.first = range.start;
         self.formed = 0;
         // pass 1, over every listed pair: the pairs in contact, kept without a branch per pair
@@ -219,10 +243,11 @@ impl ContactSet {
         let mut count = 0;
         let images = dom.images();
         for i in range {
-            let (xi, ri) = (pos[i], radius[i]);
+            let (xi, ri) = (pos[i - base], radius[i - base]);
             for &j in nb.of(i) {
-                let r2 = images.delta(&xi, &pos[j as usize]).norm_squared();
-                let sum = ri + radius[j as usize];
+                let jl = j as usize - base;
+                let r2 = images.delta(&xi, &pos[jl]).norm_squared();
+                let sum = ri + radius[jl];
                 cand[count] = (i as u32, j);
                 count += usize::from((r2 < sum * sum) | r2.is_nan());
             }
@@ -231,7 +256,9 @@ impl ContactSet {
         self.size(count);
         let mut cursor = 0;
         for (k, &(i, j)) in cand[..count].iter().enumerate() {
-            let (i, ju) = (i as usize, j as usize);
+            let (ig, jg) = (i as usize, j as usize);
+            // indices into the view
+            let (i, ju) = (ig - base, jg - base);
             let d = images.delta(&pos[i], &pos[ju]);
             let sum = radius[i] + radius[ju];
             let dist = d.norm_squared().sqrt();
@@ -239,8 +266,8 @@ impl ContactSet {
             let rmin = radius[i].min(radius[ju]);
             if delta.is_nan() || delta > MAX_OVERLAP * rmin {
                 return Err(DemError::Overlap {
-                    i,
-                    partner: format!("particle {ju}"),
+                    i: ig,
+                    partner: format!("particle {jg}"),
                     delta,
                     radius: rmin,
                 });
@@ -254,7 +281,7 @@ impl ContactSet {
                 k,
                 prev,
                 &mut cursor,
-                i,
+                ig,
                 j,
                 delta,
                 rate,
@@ -270,26 +297,31 @@ impl ContactSet {
 
     /// Fills `self` with the particle–wall contacts of the particles of `range` at the current
     /// state, carrying history over from `prev` (see [`ContactSet::gather_pairs`]).
-    #[allow(clippy::too_many_arguments)]
     pub fn gather_walls<const D: usize>(
         &mut self,
         prev: &ContactSet,
         range: Range<usize>,
         walls: &[WallState<D>],
-        pos: &[VecD<D>],
-        vpred: &[VecD<D>],
-        vel: &[VecD<D>],
-        omega: &[Vec3],
-        radius: &[f64],
-        mass: &[f64],
+        view: &View<'_, D>,
     ) -> Result<(), DemError> {
         self.first = range.start;
         self.formed = 0;
+        let View {
+            base,
+            pos,
+            vpred,
+            vel,
+            omega,
+            radius,
+            mass,
+        } = *view;
+        // the chunk's particles, indexed from 0
+        let local = range.start - base..range.end - base;
         // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall
         // over the particles, a loop without branches; pass 2 over the particles it picks
         let mut cand = std::mem::take(&mut self.cand);
         let mut worst = std::mem::take(&mut self.scratch);
-        let (xs, rs) = (&pos[range.clone()], &radius[range.clone()]);
+        let (xs, rs) = (&pos[local.clone()], &radius[local.clone()]);
         worst.clear();
         worst.resize(range.len(), f64::NEG_INFINITY);
         for ws in walls {
@@ -312,8 +344,8 @@ impl ContactSet {
         self.size(count * walls.len());
         let mut k = 0;
         let mut cursor = 0;
-        for &(i, _) in &cand[..count] {
-            let i = i as usize;
+        for &(ig, _) in &cand[..count] {
+            let (ig, i) = (ig as usize, ig as usize - base);
             for (w, ws) in walls.iter().enumerate() {
                 let gap = (pos[i] - ws.point).dot(&ws.normal);
                 let delta = radius[i] - gap;
@@ -322,7 +354,7 @@ impl ContactSet {
                 }
                 if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
                     return Err(DemError::Overlap {
-                        i,
+                        i: ig,
                         partner: format!("wall {w}"),
                         delta,
                         radius: radius[i],
@@ -336,7 +368,7 @@ impl ContactSet {
                     k,
                     prev,
                     &mut cursor,
-                    i,
+                    ig,
                     w as u32,
                     delta,
                     rate,

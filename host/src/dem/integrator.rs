@@ -24,13 +24,15 @@
 //! by the two-body driver with the run's own law (so it is the law's stiffness that sets it).
 
 use super::cells::{Domain, Neighbours};
-use super::contacts::{ContactSet, Contacts, GATHER_CHUNK, SERIAL_BELOW};
+use super::contacts::{ContactSet, Contacts, View, GATHER_CHUNK, SERIAL_BELOW};
 use super::state::{from3, to3, Body, Material, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
 use crate::collide::{collide, Options, PairLaw};
 use dashpot_sdk::EndCriterion;
 use rayon::prelude::*;
+
+mod pipeline;
 
 /// The first half-kick and the drift of one particle, with its acceleration `a` (m/s²) and
 /// angular acceleration `al` (rad/s²); `vp` gets the second-order predicted velocity at the end
@@ -94,9 +96,9 @@ type ChunkTask<'a, const D: usize> = (
 
 /// Sums the forces and torques of one chunk's pair contacts `pairs` and wall contacts `walls`
 /// into the chunk's particles (`f`, `tq`: particles `pairs.first..pairs.first + f.len()`),
-/// zeroed first;
-/// a pair partner beyond the chunk gets its force and torque through `overflow` (force on i,
-/// torque on j).
+/// zeroed first; `radius` holds the radii from the chunk's first particle on (to its farthest
+/// partner). A pair partner beyond the chunk gets its force and torque through `overflow`
+/// (force on i, torque on j).
 fn scatter_chunk<const D: usize>(
     pairs: &ContactSet,
     walls: &ContactSet,
@@ -116,14 +118,14 @@ fn scatter_chunk<const D: usize>(
         let fi = from3::<D>(&(nv * pairs.fnorm[m] + ft));
         let nxf = nv.cross(&ft);
         f[i] += fi;
-        tq[i] -= nxf * radius[first + i];
-        let tj = -(nxf * radius[j]);
-        match j.checked_sub(first) {
-            Some(jl) if jl < len => {
-                f[jl] -= fi;
-                tq[jl] += tj;
-            }
-            _ => overflow.push((j as u32, fi, tj)),
+        tq[i] -= nxf * radius[i];
+        let jl = j - first;
+        let tj = -(nxf * radius[jl]);
+        if jl < len {
+            f[jl] -= fi;
+            tq[jl] += tj;
+        } else {
+            overflow.push((j as u32, fi, tj));
         }
     }
     for m in 0..walls.len() {
@@ -131,7 +133,7 @@ fn scatter_chunk<const D: usize>(
         let nv = Vec3::from(walls.normal[m]);
         let ft = Vec3::from(walls.ftan[m]);
         f[i] += from3::<D>(&(nv * walls.fnorm[m] + ft));
-        tq[i] -= nv.cross(&ft) * radius[first + i];
+        tq[i] -= nv.cross(&ft) * radius[i];
     }
     if D == 2 {
         tq.iter_mut().for_each(|t| {
@@ -139,6 +141,43 @@ fn scatter_chunk<const D: usize>(
             t.y = 0.0;
         });
     }
+}
+
+/// What every chunk's force evaluation shares: the box, the neighbour list, the walls' states,
+/// the laws, the step (s) and whether contacts' first and last steps take mean forces.
+struct ChunkContext<'a, const D: usize> {
+    dom: &'a Domain<D>,
+    nb: &'a Neighbours<D>,
+    walls: &'a [WallState<D>],
+    laws: &'a Laws,
+    dt: f64,
+    edges: bool,
+}
+
+/// The forces of the chunk of particles `range`: its pair and wall contacts gathered from
+/// `view` (history from the chunk's previous sets `pairs.0` and `walls.0` into the new ones
+/// `pairs.1` and `walls.1`), the laws called on them, and the forces and torques summed into
+/// the chunk's `f` and `tq` (see [`scatter_chunk`], which fills `overflow`).
+#[allow(clippy::too_many_arguments)]
+fn chunk_forces<const D: usize>(
+    ctx: &ChunkContext<'_, D>,
+    range: std::ops::Range<usize>,
+    view: &View<'_, D>,
+    pairs: (&ContactSet, &mut ContactSet),
+    walls: (&ContactSet, &mut ContactSet),
+    f: &mut [VecD<D>],
+    tq: &mut [Vec3],
+    overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
+) -> Result<(), DemError> {
+    let ((pp, np), (pw, nw)) = (pairs, walls);
+    np.gather_pairs(pp, range.clone(), ctx.dom, ctx.nb, view)?;
+    nw.gather_walls(pw, range.clone(), ctx.walls, view)?;
+    let laws = ctx.laws;
+    np.evaluate(&*laws.pair, laws.pair_tangential.as_deref(), ctx.dt, ctx.edges)?;
+    nw.evaluate(&*laws.wall, laws.wall_tangential.as_deref(), ctx.dt, ctx.edges)?;
+    let radius = &view.radius[range.start - view.base..];
+    scatter_chunk(np, nw, radius, f, tq, overflow);
+    Ok(())
 }
 
 /// The arrays the kick loops read, whole or one chunk's part.
@@ -182,14 +221,24 @@ type KickDriftChunk<'a, const D: usize> = (
     ),
 );
 
+/// The unit roundoff of f64 (2⁻⁵³).
+const ROUNDOFF: f64 = f64::EPSILON / 2.0;
+
 /// The first half-kick and the drift of one chunk of particles (gravity `g`, half step `h`,
 /// step `dt`), preceded by the last step's second half-kick when `pending` (the same force
 /// and the same two additions as the separate loops, so the same bits, in one pass over the
-/// particles instead of two). Returns the largest squared displacement (m²) from the anchors,
-/// if any, and, when `pending`, the sum of every coordinate of the last step's end state
-/// (finite unless one of them is not; else 0). Positions are wrapped only when the list is
-/// built, so the plain difference is the displacement. A NaN displacement never becomes the
-/// largest: the state check reports it.
+/// particles instead of two). Returns whether a particle has moved by more than half the
+/// list's `skin` (m) since the anchors (the list is stale; never without anchors) and, when
+/// `pending`, the sum of every coordinate of the last step's end state (finite unless one of
+/// them is not; else 0).
+///
+/// `moved` (m) bounds the displacement of the chunk's particles since the anchors: the chunk's
+/// largest speed × `dt` is added each step (with the roundoff of the drift's sums), and the
+/// displacements themselves are read only once the bound nears half the skin (then `moved`
+/// becomes their largest). So the anchors are read in a few steps of a list's life, not in
+/// every one, and the test says stale exactly when a displacement exceeds half the skin.
+/// Positions are wrapped only when the list is built, so the plain difference is the
+/// displacement. A NaN displacement is never stale: the state check reports it.
 #[allow(clippy::too_many_arguments)]
 fn kick_drift_chunk<const D: usize>(
     s: &Shared<'_, D>,
@@ -202,11 +251,15 @@ fn kick_drift_chunk<const D: usize>(
     omega: &mut [Vec3],
     vpred: &mut [VecD<D>],
     aold: &mut [VecD<D>],
-) -> (f64, f64) {
+    moved: &mut f64,
+    skin: f64,
+) -> (bool, f64) {
     let n = pos.len();
     let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
     let (vel, omega, vpred, aold) = (&mut vel[..n], &mut omega[..n], &mut vpred[..n], &mut aold[..n]);
     let (mut sx, mut sw) = (VecD::<D>::zeros(), Vec3::zeros());
+    // the largest squared speed of the drift and squared distance from the origin after it
+    let (mut v2max, mut x2max) = (0.0f64, 0.0f64);
     // (`pending` is the same for the whole loop: the compiler makes two loops of it)
     for i in 0..n {
         let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
@@ -224,10 +277,19 @@ fn kick_drift_chunk<const D: usize>(
             &mut vpred[i],
             &mut aold[i],
         );
+        let (v2, x2) = (vel[i].norm_squared(), pos[i].norm_squared());
+        v2max = if v2 > v2max { v2 } else { v2max };
+        x2max = if x2 > x2max { x2 } else { x2max };
     }
     let sum = sx.sum() + sw.sum();
     if s.anchor.len() != n {
-        return (0.0, sum);
+        return (false, sum);
+    }
+    // |fl(x + fl(v dt)) − (x + v dt)| ≤ u (|x + v dt| + |v dt|), each component
+    *moved += v2max.sqrt() * dt * (1.0 + 4.0 * ROUNDOFF) + 2.0 * ROUNDOFF * x2max.sqrt();
+    // (the displacements' own rounding is far below the margin of 0.49 against 0.5)
+    if *moved <= 0.49 * skin {
+        return (false, sum);
     }
     let anchor = &s.anchor[..n];
     let mut worst = 0.0f64;
@@ -235,7 +297,8 @@ fn kick_drift_chunk<const D: usize>(
         let d2 = (pos[i] - anchor[i]).norm_squared();
         worst = if d2 > worst { d2 } else { worst };
     }
-    (worst, sum)
+    *moved = worst.sqrt();
+    (worst > 0.25 * skin * skin, sum)
 }
 
 /// The second half-kick of one chunk of particles at positions `pos`; returns the sum of every
@@ -346,6 +409,12 @@ pub struct Engine<const D: usize> {
     /// Per chunk of contacts, the forces and torques on particles of later chunks (the
     /// partner j of a pair contact whose i is in the chunk), added after the parallel part.
     overflow: Vec<Vec<(u32, VecD<D>, Vec3)>>,
+    /// For each chunk of particles, the last chunk holding a pair partner of one of its
+    /// particles (in the current neighbour list).
+    reach: Vec<usize>,
+    /// For each chunk of particles, a bound on their displacement since the list was built (m)
+    /// (see [`kick_drift_chunk`]).
+    moved: Vec<f64>,
     /// The last step's second half-kick is still to do ([`Engine::advance`]).
     pending_kick: bool,
     /// Impulse (N·s) given to each wall since the last reset (force on the wall × dt, summed).
@@ -491,13 +560,15 @@ impl<const D: usize> Engine<D> {
             pairs: Contacts::new(sn, st),
             wall_contacts: Contacts::new(swn, swt),
             overflow: Vec::new(),
+            reach: Vec::new(),
+            moved: Vec::new(),
             pending_kick: false,
             wall_impulse: vec![VecD::<D>::zeros(); nw],
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
         };
         e.check(false)?;
-        e.nb.build(&e.cfg.domain, &mut e.p.pos, &e.p.radius, e.skin);
+        e.rebuild();
         // the initial forces: a trial evaluation, its history discarded (nothing has happened yet)
         e.forces()?;
         e.pairs.clear_history();
@@ -568,9 +639,11 @@ impl<const D: usize> Engine<D> {
     /// The particles are cut into chunks of [`GATHER_CHUNK`]; each chunk is one task, run in
     /// parallel: it gathers its particles' pair and wall contacts (history from the same chunk
     /// of the last step), calls the laws on them, and sums the forces into its own particles'
-    /// slice of the force and torque arrays. A pair partner j beyond the chunk gets its share
-    /// afterwards, chunk by chunk in order. The sums therefore run in one fixed order whatever
-    /// the number of threads, and a run is bit for bit the same on one core or many.
+    /// slice of the force and torque arrays ([`chunk_forces`]). A pair partner j beyond the
+    /// chunk gets its share afterwards, chunk by chunk in order ([`Engine::finish_forces`]).
+    /// The sums therefore run in one fixed order whatever the number of threads, and a run is
+    /// bit for bit the same on one core or many. (The steps themselves do this work chunk by
+    /// chunk right after each chunk's drift: [`Engine::drift_and_forces`].)
     fn forces(&mut self) -> Result<(), DemError> {
         let ws = self.wall_states();
         let n = self.p.len();
@@ -579,17 +652,26 @@ impl<const D: usize> Engine<D> {
         let (prev_p, next_p) = self.pairs.buffers(chunks);
         let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
         let p = &mut self.p;
-        let (pos, vel, omega, radius, mass) = (&p.pos, &p.vel, &p.omega, &p.radius, &p.mass);
-        let (vpred, nb, dom, laws) = (&self.vpred, &self.nb, &self.cfg.domain, &self.laws);
-        let (dt, edges) = (self.dt, self.cfg.edge_means);
+        let view = View {
+            base: 0,
+            pos: &p.pos,
+            vpred: &self.vpred,
+            vel: &p.vel,
+            omega: &p.omega,
+            radius: &p.radius,
+            mass: &p.mass,
+        };
+        let ctx = ChunkContext {
+            dom: &self.cfg.domain,
+            nb: &self.nb,
+            walls: &ws,
+            laws: &self.laws,
+            dt: self.dt,
+            edges: self.cfg.edge_means,
+        };
         let work = |(c, ((((pp, np), (pw, nw)), (f, tq)), ov)): ChunkTask<'_, D>| {
             let range = c * GATHER_CHUNK..(c * GATHER_CHUNK + f.len());
-            np.gather_pairs(pp, range.clone(), dom, nb, pos, vpred, vel, omega, radius, mass)?;
-            nw.gather_walls(pw, range, &ws, pos, vpred, vel, omega, radius, mass)?;
-            np.evaluate(&*laws.pair, laws.pair_tangential.as_deref(), dt, edges)?;
-            nw.evaluate(&*laws.wall, laws.wall_tangential.as_deref(), dt, edges)?;
-            scatter_chunk(np, nw, radius, f, tq, ov);
-            Ok::<(), DemError>(())
+            chunk_forces(&ctx, range, &view, (pp, np), (pw, nw), f, tq, ov)
         };
         let force = &mut p.force;
         let torque = &mut p.torque;
@@ -613,19 +695,24 @@ impl<const D: usize> Engine<D> {
                     .collect()
             };
         }
-        let results: Vec<Result<(), DemError>> = if n < SERIAL_BELOW {
+        let results: Result<(), DemError> = if n < SERIAL_BELOW {
             tasks!(iter, iter_mut, chunks_mut)
         } else {
             tasks!(par_iter, par_iter_mut, par_chunks_mut)
         };
-        // a contact test that met a NaN reports the particle whose state is not finite
-        results
-            .into_iter()
-            .collect::<Result<(), DemError>>()
-            .map_err(|e| match self.check(true) {
-                Err(nf @ DemError::NonFinite { .. }) => nf,
-                _ => e,
-            })?;
+        self.finish_forces(results)
+    }
+
+    /// The serial end of a force evaluation whose chunks gave `results` (the first error in
+    /// chunk order): a contact test that met a NaN reports the particle whose state is not
+    /// finite; else the new contacts become the current ones, the partners beyond each chunk
+    /// get their forces (chunk by chunk, in order), and the walls' impulses and episodes and
+    /// the pair episodes are counted.
+    fn finish_forces(&mut self, results: Result<(), DemError>) -> Result<(), DemError> {
+        results.map_err(|e| match self.check(true) {
+            Err(nf @ DemError::NonFinite { .. }) => nf,
+            _ => e,
+        })?;
         self.pairs.swap();
         self.wall_contacts.swap();
         let p = &mut self.p;
@@ -650,13 +737,25 @@ impl<const D: usize> Engine<D> {
         Ok(())
     }
 
+    /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach
+    /// and displacement bounds.
+    fn rebuild(&mut self) {
+        self.nb
+            .build(&self.cfg.domain, &mut self.p.pos, &self.p.radius, self.skin);
+        self.nb.chunk_reach(GATHER_CHUNK, &mut self.reach);
+        self.moved.clear();
+        self.moved.resize(self.reach.len(), 0.0);
+    }
+
     /// One step of `dt`.
     ///
-    /// The loops over particles run chunk by chunk ([`GATHER_CHUNK`]), in parallel above
-    /// [`SERIAL_BELOW`] particles; the first one also finds the largest displacement since the
-    /// neighbour list was built, the second one sums the state, which is finite unless some
-    /// coordinate is not (or the sum overflows: then the exact check below tells),
-    /// so neither the staleness test nor the state check costs a pass of its own.
+    /// With a valid neighbour list, the step is one pass over the particles, chunk by chunk
+    /// ([`Engine::drift_and_forces`]): each chunk's kicks and drift, then at once its contacts'
+    /// forces, while its particles are still in cache. On the rare step where a particle has
+    /// moved by more than half the skin since the list was built, the list is rebuilt and the
+    /// forces are evaluated again ([`Engine::forces`]). The passes also sum the state, which
+    /// is finite unless some coordinate is not (or the sum overflows: then the exact check
+    /// tells), so neither the staleness test nor the state check costs a pass of its own.
     pub fn step(&mut self) -> Result<(), DemError> {
         self.step_with(false)
     }
@@ -682,60 +781,61 @@ impl<const D: usize> Engine<D> {
         let h = 0.5 * dt;
         let g = self.cfg.gravity;
         let n = self.p.len();
-        let c = GATHER_CHUNK;
-        let fresh_list = self.nb.anchor.len() == n;
-        let (moved2, sum) = {
-            let p = &mut self.p;
-            let shared = Shared {
-                force: &p.force,
-                torque: &p.torque,
-                im: &self.inv_mass,
-                ii: &self.inv_inertia,
-                anchor: if fresh_list { &self.nb.anchor } else { &[] },
-            };
-            let run = |(k, ((((x, v), w), vp), ao)): KickDriftChunk<'_, D>| {
-                let s = shared.chunk(k * c, x.len());
-                kick_drift_chunk(&s, pending, g, h, dt, x, v, w, vp, ao)
-            };
-            let both = |(a, b): (f64, f64), (c, d): (f64, f64)| (a.max(c), b + d);
-            let chunks = p
-                .pos
-                .chunks_mut(c)
-                .zip(p.vel.chunks_mut(c))
-                .zip(p.omega.chunks_mut(c))
-                .zip(self.vpred.chunks_mut(c))
-                .zip(self.aold.chunks_mut(c))
-                .enumerate();
-            if n < SERIAL_BELOW {
-                chunks.map(run).fold((0.0, 0.0), both)
-            } else {
-                p.pos
-                    .par_chunks_mut(c)
-                    .zip(p.vel.par_chunks_mut(c))
-                    .zip(p.omega.par_chunks_mut(c))
-                    .zip(self.vpred.par_chunks_mut(c))
-                    .zip(self.aold.par_chunks_mut(c))
-                    .enumerate()
-                    .map(run)
-                    .reduce(|| (0.0, 0.0), both)
+        if self.nb.anchor.len() == n {
+            let pass = self.drift_and_forces(pending);
+            if !pass.sum.is_finite() {
+                // the last step's end state was not finite: name the particle (its coordinates
+                // are one drift further on)
+                self.check(true)?;
             }
-        };
-        if !sum.is_finite() {
-            // the last step's end state was not finite: name the particle (its coordinates
-            // are one drift further on)
-            self.check(true)?;
+            self.t += dt;
+            self.steps += 1;
+            if pass.stale {
+                self.rebuild();
+                self.forces()?;
+            } else {
+                self.finish_forces(pass.result)?;
+            }
+        } else {
+            // no list (the first step, or after [`Engine::invalidate_neighbours`]): the kicks and
+            // the drift of every particle, then the list, then the forces
+            let c = GATHER_CHUNK;
+            let sum = {
+                let p = &mut self.p;
+                let shared = Shared {
+                    force: &p.force,
+                    torque: &p.torque,
+                    im: &self.inv_mass,
+                    ii: &self.inv_inertia,
+                    anchor: &[],
+                };
+                let run = |(k, ((((x, v), w), vp), ao)): KickDriftChunk<'_, D>| {
+                    let s = shared.chunk(k * c, x.len());
+                    kick_drift_chunk(&s, pending, g, h, dt, x, v, w, vp, ao, &mut 0.0, 0.0).1
+                };
+                let chunks = p
+                    .pos
+                    .chunks_mut(c)
+                    .zip(p.vel.chunks_mut(c))
+                    .zip(p.omega.chunks_mut(c))
+                    .zip(self.vpred.chunks_mut(c))
+                    .zip(self.aold.chunks_mut(c))
+                    .enumerate();
+                chunks.map(run).sum::<f64>()
+            };
+            if !sum.is_finite() {
+                self.check(true)?;
+            }
+            self.t += dt;
+            self.steps += 1;
+            self.rebuild();
+            self.forces()?;
         }
-        self.t += dt;
-        self.steps += 1;
-        if !fresh_list || moved2 > 0.25 * self.nb.skin * self.nb.skin {
-            self.nb
-                .build(&self.cfg.domain, &mut self.p.pos, &self.p.radius, self.skin);
-        }
-        self.forces()?;
         if defer {
             self.pending_kick = true;
             return Ok(());
         }
+        let c = GATHER_CHUNK;
         let sum = {
             let p = &mut self.p;
             let shared = Shared {

@@ -1,0 +1,307 @@
+//! The step as one pass over the particles: each chunk's kicks and drift, then at once the
+//! forces of its contacts, while the chunk's particles are still in cache.
+//!
+//! From 10⁵ particles on, a step is bound by memory traffic, not arithmetic. Done as two passes
+//! (every drift, then every force), the second pass reads each particle's state again from
+//! main memory and writes its force and torque into lines long evicted. Here the chunks are
+//! taken in *reverse* order: a chunk's pair contacts have their partner j > i in the same
+//! chunk or a later one, which has therefore already drifted; the gathering reads the chunk
+//! that was just drifted and the one before it from cache, and the scatter writes forces the
+//! drift has just read.
+//!
+//! In parallel, the chunks are cut into one contiguous range per thread. A range's last
+//! chunks reach partners in the next range's first chunks (its *head*: the chunks up to the
+//! farthest chunk any earlier range reaches, from the neighbour list). So every head drifts
+//! first (phase 1, in parallel); then each range runs its own reverse sweep over the chunks
+//! it has not drifted yet (phase 2). The result does not depend on the cut: each chunk's drift
+//! and forces are the same arithmetic in any order, and the forces on partners beyond a chunk
+//! are added afterwards in chunk order ([`Engine::finish_forces`]).
+//!
+//! If a drift finds the list stale (a particle has moved by half the skin since it was built),
+//! the remaining gatherings are skipped, every chunk still drifts, and the step rebuilds the
+//! list and evaluates the forces again; the history of the previous step is intact, since
+//! gatherings write only the spare contact sets.
+//!
+//! The particle arrays are shared between the tasks of a phase through [`Parts`], whose
+//! slices the schedule keeps apart: during phase 2, task r writes positions, velocities,
+//! spins, predicted velocities and previous accelerations only of its own chunks outside its
+//! head, and forces and torques only of its own chunks; it reads the state only of its own
+//! chunks already drifted and of later ranges' heads, which no task writes in phase 2. In
+//! phase 1, each task touches only its own head.
+
+use super::{chunk_forces, kick_drift_chunk, ChunkContext, Engine, Shared, GATHER_CHUNK, SERIAL_BELOW};
+use crate::dem::contacts::{ContactSet, View};
+use crate::dem::state::{Vec3, VecD};
+use crate::dem::DemError;
+use rayon::prelude::*;
+use std::marker::PhantomData;
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// A particle array shared by the tasks of one phase of [`Engine::drift_and_forces`], each
+/// taking slices of it that the schedule (see the module doc) keeps apart from every other
+/// task's: no element is written by one task while another holds a slice over it.
+struct Parts<'a, T> {
+    ptr: *mut T,
+    len: usize,
+    _borrow: PhantomData<&'a mut [T]>,
+}
+
+// SAFETY: a `Parts` hands out slices of a `&mut [T]` borrowed for its lifetime; the slices are
+// kept disjoint between threads by the schedule of `drift_and_forces`, which is what sending
+// `&mut [T]` parts to other threads requires.
+unsafe impl<T: Send + Sync> Send for Parts<'_, T> {}
+// SAFETY: as above.
+unsafe impl<T: Send + Sync> Sync for Parts<'_, T> {}
+
+impl<'a, T> Parts<'a, T> {
+    fn new(v: &'a mut [T]) -> Parts<'a, T> {
+        Parts {
+            ptr: v.as_mut_ptr(),
+            len: v.len(),
+            _borrow: PhantomData,
+        }
+    }
+
+    /// The elements `r`, to read.
+    ///
+    /// # Safety
+    /// No slice from [`Parts::get_mut`] over any of them may be alive meanwhile.
+    unsafe fn get(&self, r: Range<usize>) -> &[T] {
+        assert!(r.start <= r.end && r.end <= self.len, "Parts::get out of bounds");
+        // SAFETY: in bounds (checked), within the borrowed slice; no writer (the caller)
+        unsafe { std::slice::from_raw_parts(self.ptr.add(r.start), r.end - r.start) }
+    }
+
+    /// The elements `r`, to write.
+    ///
+    /// # Safety
+    /// No other slice over any of them may be alive meanwhile.
+    #[allow(clippy::mut_from_ref)]
+    unsafe fn get_mut(&self, r: Range<usize>) -> &mut [T] {
+        assert!(
+            r.start <= r.end && r.end <= self.len,
+            "Parts::get_mut out of bounds"
+        );
+        // SAFETY: in bounds (checked), within the borrowed slice; exclusive (the caller)
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(r.start), r.end - r.start) }
+    }
+}
+
+/// `v` cut into consecutive parts of the lengths `cuts[r + 1] − cuts[r]`.
+fn cut<'a, T>(mut v: &'a mut [T], cuts: &[usize]) -> Vec<&'a mut [T]> {
+    let mut out = Vec::with_capacity(cuts.len().saturating_sub(1));
+    for w in cuts.windows(2) {
+        let (a, b) = std::mem::take(&mut v).split_at_mut(w[1] - w[0]);
+        out.push(a);
+        v = b;
+    }
+    out
+}
+
+/// What a pipelined pass found.
+pub(super) struct Pass {
+    /// The neighbour list went stale: rebuild it and evaluate the forces again.
+    pub stale: bool,
+    /// The sum of the last step's end state when a second half-kick was pending (finite
+    /// unless some coordinate is not), else 0.
+    pub sum: f64,
+    /// The first error of the chunks' force evaluations, in chunk order (meaningless if stale).
+    pub result: Result<(), DemError>,
+}
+
+/// One range's share of the chunk-owned data in phase 2: new pair and wall contact sets,
+/// overflows and displacement bounds of its chunks.
+type RangeItems<'a, const D: usize> = (
+    usize,
+    (
+        (
+            (&'a mut [ContactSet], &'a mut [ContactSet]),
+            &'a mut [Vec<(u32, VecD<D>, Vec3)>],
+        ),
+        &'a mut [f64],
+    ),
+);
+
+impl<const D: usize> Engine<D> {
+    /// The first half-kick and the drift of every particle (after the last step's second
+    /// half-kick when `pending`) and the contacts' forces at the new positions, chunk by chunk
+    /// in one pass (see the module doc), with the list valid at the start. The forces are
+    /// left for [`Engine::finish_forces`] to complete unless the pass found the list stale.
+    pub(super) fn drift_and_forces(&mut self, pending: bool) -> Pass {
+        let n = self.p.len();
+        let c = GATHER_CHUNK;
+        let chunks = n.div_ceil(c);
+        let dt = self.dt;
+        let (h, g) = (0.5 * dt, self.cfg.gravity);
+        let t_end = self.t + dt;
+        let ws: Vec<_> = self.walls.iter().map(|w| w.at(t_end)).collect();
+        let tasks = if n < SERIAL_BELOW {
+            1
+        } else {
+            rayon::current_num_threads().clamp(1, chunks.max(1))
+        };
+        // range r: chunks cuts[r]..cuts[r + 1]; its head: cuts[r]..head[r]
+        let cuts: Vec<usize> = (0..=tasks).map(|r| r * chunks / tasks).collect();
+        let mut head = vec![0usize; tasks];
+        let mut reached = 0usize;
+        for r in 0..tasks {
+            let (a, b) = (cuts[r], cuts[r + 1]);
+            head[r] = reached.clamp(a, b);
+            let far = self.reach[a..b].iter().map(|&k| k + 1).max().unwrap_or(0);
+            reached = reached.max(far);
+        }
+        self.overflow.resize_with(chunks, Vec::new);
+        let (prev_p, next_p) = self.pairs.buffers(chunks);
+        let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
+        let p = &mut self.p;
+        let (radius, mass) = (&p.radius[..], &p.mass[..]);
+        let (im, ii, anchor) = (&self.inv_mass[..], &self.inv_inertia[..], &self.nb.anchor[..]);
+        let skin = self.nb.skin;
+        let pos = Parts::new(&mut p.pos);
+        let vel = Parts::new(&mut p.vel);
+        let omega = Parts::new(&mut p.omega);
+        let vpred = Parts::new(&mut self.vpred);
+        let aold = Parts::new(&mut self.aold);
+        let force = Parts::new(&mut p.force);
+        let torque = Parts::new(&mut p.torque);
+        let particles = |k: usize| k * c..((k + 1) * c).min(n);
+        // the drift of chunk k; the caller owns chunk k (see the module doc)
+        let drift = |k: usize, moved: &mut f64| -> (bool, f64) {
+            let r = particles(k);
+            // SAFETY: chunk k's state, force and torque are this task's alone (the schedule)
+            unsafe {
+                let s = Shared {
+                    force: force.get(r.clone()),
+                    torque: torque.get(r.clone()),
+                    im: &im[r.clone()],
+                    ii: &ii[r.clone()],
+                    anchor: &anchor[r.clone()],
+                };
+                kick_drift_chunk(
+                    &s,
+                    pending,
+                    g,
+                    h,
+                    dt,
+                    pos.get_mut(r.clone()),
+                    vel.get_mut(r.clone()),
+                    omega.get_mut(r.clone()),
+                    vpred.get_mut(r.clone()),
+                    aold.get_mut(r),
+                    moved,
+                    skin,
+                )
+            }
+        };
+        let ctx = ChunkContext {
+            dom: &self.cfg.domain,
+            nb: &self.nb,
+            walls: &ws,
+            laws: &self.laws,
+            dt,
+            edges: self.cfg.edge_means,
+        };
+        let reach = &self.reach;
+        // the forces of chunk k, whose particles and partners have drifted
+        let forces = |k: usize,
+                      np: &mut ContactSet,
+                      nw: &mut ContactSet,
+                      ov: &mut Vec<(u32, VecD<D>, Vec3)>|
+         -> Result<(), DemError> {
+            let r = particles(k);
+            let w = r.start..particles(reach[k]).end;
+            // SAFETY: chunks k..=reach[k] have drifted and no task writes their state now;
+            // chunk k's force and torque are this task's alone (the schedule)
+            unsafe {
+                let view = View {
+                    base: r.start,
+                    pos: pos.get(w.clone()),
+                    vpred: vpred.get(w.clone()),
+                    vel: vel.get(w.clone()),
+                    omega: omega.get(w.clone()),
+                    radius: &radius[w.clone()],
+                    mass: &mass[w],
+                };
+                chunk_forces(
+                    &ctx,
+                    r.clone(),
+                    &view,
+                    (&prev_p[k], np),
+                    (&prev_w[k], nw),
+                    force.get_mut(r.clone()),
+                    torque.get_mut(r),
+                    ov,
+                )
+            }
+        };
+        let stale = AtomicBool::new(false);
+        let merge = |(s1, x1): (bool, f64), (s2, x2): (bool, f64)| (s1 | s2, x1 + x2);
+        // phase 1: the heads
+        let head_pass = |(r, moved): (usize, &mut [f64])| {
+            let a = cuts[r];
+            (a..head[r])
+                .map(|k| drift(k, &mut moved[k - a]))
+                .fold((false, 0.0), merge)
+        };
+        let (s1, sum1) = if tasks > 1 {
+            cut(&mut self.moved, &cuts)
+                .into_par_iter()
+                .enumerate()
+                .map(head_pass)
+                .reduce(|| (false, 0.0), merge)
+        } else {
+            (false, 0.0)
+        };
+        if s1 {
+            stale.store(true, Ordering::Relaxed);
+        }
+        // phase 2: each range's reverse sweep
+        let sweep = |(r, (((np, nw), ov), moved)): RangeItems<'_, D>| {
+            let a = cuts[r];
+            let (mut st, mut sum) = (false, 0.0);
+            let mut first_err: Result<(), DemError> = Ok(());
+            for k in (a..cuts[r + 1]).rev() {
+                if k >= head[r] {
+                    let (s, x) = drift(k, &mut moved[k - a]);
+                    sum += x;
+                    if s {
+                        st = true;
+                        stale.store(true, Ordering::Relaxed);
+                    }
+                }
+                if st || stale.load(Ordering::Relaxed) {
+                    continue;
+                }
+                if let Err(e) = forces(k, &mut np[k - a], &mut nw[k - a], &mut ov[k - a]) {
+                    first_err = Err(e);
+                }
+            }
+            (sum, first_err)
+        };
+        let items = cut(next_p, &cuts)
+            .into_iter()
+            .zip(cut(next_w, &cuts))
+            .zip(cut(&mut self.overflow, &cuts))
+            .zip(cut(&mut self.moved, &cuts))
+            .enumerate();
+        let outcomes: Vec<(f64, Result<(), DemError>)> = if tasks > 1 {
+            items.collect::<Vec<_>>().into_par_iter().map(sweep).collect()
+        } else {
+            items.map(sweep).collect()
+        };
+        let mut sum = sum1;
+        let mut result = Ok(());
+        for (x, res) in outcomes {
+            sum += x;
+            if result.is_ok() {
+                result = res;
+            }
+        }
+        Pass {
+            stale: stale.load(Ordering::Relaxed),
+            sum,
+            result,
+        }
+    }
+}
