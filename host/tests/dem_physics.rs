@@ -113,7 +113,7 @@ fn state_bits(e: &Engine<2>) -> Vec<u64> {
         .iter()
         .chain(&p.vel)
         .flat_map(|v| v.iter().copied())
-        .chain(p.omega.iter().map(|w| w.z))
+        .chain(p.omega.iter().copied())
         .map(f64::to_bits)
         .collect()
 }
@@ -358,7 +358,7 @@ fn rolls_with<const D: usize>(disk_mass: DiskMass, expected: f64, mindlin: bool)
     while e.time() < 4.0 * t_slide {
         e.step().unwrap();
         vs += e.p.vel[0][0];
-        slip += e.p.vel[0][0] + e.p.omega[0].z * r;
+        slip += e.p.vel[0][0] + e.p.angular_velocity(0).z * r;
         n += 1.0;
     }
     let ratio = vs / n / v0;
@@ -434,8 +434,8 @@ fn history_survives_the_periodic_boundary_and_rebuilds() {
         "rebuilds: {} vs {}; spring max {spring_a:.3e} vs {spring_b:.3e} m; omega {:.6} vs {:.6} rad/s",
         a.rebuilds(),
         b.rebuilds(),
-        a.p.omega[0].z,
-        b.p.omega[0].z
+        a.p.angular_velocity(0).z,
+        b.p.angular_velocity(0).z
     );
     assert!(b.rebuilds() >= 50 && a.rebuilds() <= 2);
     assert!(
@@ -445,10 +445,10 @@ fn history_survives_the_periodic_boundary_and_rebuilds() {
     assert!(spring_a > 0.0 && (spring_a - spring_b).abs() <= 1e-9 * spring_a);
     for k in 0..2 {
         assert!((a.p.vel[k] - b.p.vel[k]).norm() < 1e-9, "velocity of {k}");
-        assert!((a.p.omega[k].z - b.p.omega[k].z).abs() < 1e-9 * a.p.omega[k].z.abs());
+        assert!((a.p.omega[k] - b.p.omega[k]).abs() < 1e-9 * a.p.omega[k].abs());
     }
     // the spring mattered: both disks spin, and the tangential impulse slowed the sliding
-    assert!(a.p.omega[0].z.abs() > 1.0 && a.p.vel[0].x < 0.3 - 1e-3);
+    assert!(a.p.omega[0].abs() > 1.0 && a.p.vel[0].x < 0.3 - 1e-3);
 }
 
 /// A dense 2D lattice of `cols` × `rows` disks, spacing 0.99 of the largest diameter (so that
@@ -516,7 +516,7 @@ fn chunked_contacts_keep_newtons_third_law_and_miss_no_pair() {
     );
     assert!(scale > 0.0 && total.norm() <= 1e-12 * scale);
     // the tangential forces are there too, so the torques are not all zero
-    assert!(p.torque.iter().any(|t| t.z.abs() > 0.0));
+    assert!(p.torque.iter().any(|t| t.abs() > 0.0));
 }
 
 /// The forces of a step are summed in a fixed order whatever the number of threads (chunk by
@@ -617,7 +617,7 @@ fn a_non_finite_state_stops_the_run_naming_the_particle() {
         e.step().unwrap();
         match what {
             0 => e.p.vel[4321].x = f64::NAN,
-            1 => e.p.omega[4321].z = f64::INFINITY,
+            1 => e.p.omega[4321] = f64::INFINITY,
             _ => {
                 // far from every other disk: no pair test sees it
                 e.p.pos[4321].x = f64::NAN;

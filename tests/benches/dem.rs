@@ -166,34 +166,51 @@ fn main() {
     // 2. scaling, one core (10⁶ last, so VmHWM below is its peak): every size steps through the
     // same stage of the same pile (steps 300..400 from the lattice, so the same contacts per
     // disk), timed in 4 blocks of 25 steps, smaller sizes repeated from scratch; thread CPU
-    // time; the best block and the median block of each size
+    // time; the best block and the median block of each size, and the whole window (the 100
+    // steps with whatever neighbour-list builds fall in them: the cost a run pays), median
+    // over the repeats
     if run("scaling") {
-        let (mut costs, mut medians) = (Vec::new(), Vec::new());
-        for n in [1_000usize, 10_000, 100_000, 1_000_000] {
+        let (mut costs, mut medians, mut wholes) = (Vec::new(), Vec::new(), Vec::new());
+        // DASHPOT_BENCH_SIZES="100000 1000000": other sizes (for profiling one of them)
+        let sizes: Vec<usize> = std::env::var("DASHPOT_BENCH_SIZES")
+            .ok()
+            .map(|s| s.split_whitespace().filter_map(|w| w.parse().ok()).collect())
+            .unwrap_or_else(|| vec![1_000, 10_000, 100_000, 1_000_000]);
+        for n in sizes {
             let reps = (100_000 / n).clamp(1, 15);
-            let (cs, per) = one.install(|| {
-                let mut cs = Vec::new();
-                let mut per = 0.0;
+            let (cs, mut ws, per, builds) = one.install(|| {
+                let (mut cs, mut ws) = (Vec::new(), Vec::new());
+                let (mut per, mut builds) = (0.0, 0);
                 for _ in 0..reps {
                     let mut e = pile(n, plugin_laws(&reg));
                     cpu_steps(&mut e, 300);
+                    let b0 = e.rebuilds();
+                    let mut w = 0.0;
                     for _ in 0..4 {
-                        cs.push(cpu_steps(&mut e, 25) / (n as f64 * 25.0));
+                        let t = cpu_steps(&mut e, 25);
+                        cs.push(t / (n as f64 * 25.0));
+                        w += t;
                     }
+                    ws.push(w / (n as f64 * 100.0));
                     per = e.contacts() as f64 / n as f64;
+                    builds = e.rebuilds() - b0;
                 }
                 cs.sort_by(f64::total_cmp);
-                (cs, per)
+                (cs, ws, per, builds)
             });
-            let (best, median) = (cs[0], cs[cs.len() / 2]);
+            ws.sort_by(f64::total_cmp);
+            let (best, median, whole) = (cs[0], cs[cs.len() / 2], ws[ws.len() / 2]);
             println!(
-                "n = {n:>8}: {:.1} ns per particle-step best, {:.1} median ({} blocks of 25 of steps 300..400; {per:.3} contacts per disk)",
+                "n = {n:>8}: {:.1} ns per particle-step best, {:.1} median ({} blocks of 25 of steps 300..400), {:.1} over the whole window (median of {}; {builds} list builds in it); {per:.3} contacts per disk",
                 best * 1e9,
                 median * 1e9,
-                cs.len()
+                cs.len(),
+                whole * 1e9,
+                ws.len()
             );
             costs.push(best);
             medians.push(median);
+            wholes.push(whole);
         }
         let spread = |v: &[f64]| {
             let (lo, hi) = v
@@ -202,9 +219,10 @@ fn main() {
             hi / lo
         };
         println!(
-            "cost per particle-step, max/min over 1e3..1e6: {:.2} (best blocks), {:.2} (median blocks)",
+            "cost per particle-step, max/min over 1e3..1e6: {:.2} (best blocks), {:.2} (median blocks), {:.2} (whole windows)",
             spread(&costs),
-            spread(&medians)
+            spread(&medians),
+            spread(&wholes)
         );
         if let Some(kib) = vm_hwm_kib() {
             println!(

@@ -17,7 +17,7 @@
 //! nothing once the arrays have grown to the pile's size.
 
 use super::cells::{Domain, Neighbours};
-use super::state::{to3, Vec3, VecD};
+use super::state::{spin, to3, Vec3, VecD};
 use super::walls::WallState;
 use super::DemError;
 use crate::laws::{NormalLaw, TangentialForce};
@@ -37,8 +37,8 @@ pub struct View<'a, const D: usize> {
     pub vpred: &'a [VecD<D>],
     /// The step's (half-step) velocities (m/s), for the contact points' slip.
     pub vel: &'a [VecD<D>],
-    /// The step's angular velocities (rad/s).
-    pub omega: &'a [Vec3],
+    /// The step's angular velocities (rad/s), laid out as [`super::state::Particles::omega`].
+    pub omega: &'a [f64],
     /// Radii (m).
     pub radius: &'a [f64],
     /// Masses (kg).
@@ -275,7 +275,8 @@ impl ContactSet {
             let nv = to3(&(d / dist));
             let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
             let dv = to3(&(vel[i] - vel[ju]));
-            let v = dv - (omega[i] * radius[i] + omega[ju] * radius[ju]).cross(&nv);
+            let (wi, wj) = (spin::<D>(omega, i), spin::<D>(omega, ju));
+            let v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
             let (mi, mj) = (mass[i], mass[ju]);
             self.put(
                 k,
@@ -363,7 +364,7 @@ impl ContactSet {
                 let nv = to3(&ws.normal);
                 let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
                 let dv = to3(&(vel[i] - ws.velocity));
-                let v = dv - (omega[i] * radius[i]).cross(&nv);
+                let v = dv - (spin::<D>(omega, i) * radius[i]).cross(&nv);
                 self.put(
                     k,
                     prev,

@@ -25,7 +25,7 @@
 
 use super::cells::{Domain, Neighbours};
 use super::contacts::{ContactSet, Contacts, View, GATHER_CHUNK, SERIAL_BELOW};
-use super::state::{from3, to3, Body, Material, Particles, Vec3, VecD};
+use super::state::{from3, set_spin, spin, spin_len, to3, Body, Material, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
 use crate::collide::{collide, Options, PairLaw};
@@ -88,15 +88,15 @@ type ChunkTask<'a, const D: usize> = (
                 (&'a ContactSet, &'a mut ContactSet),
                 (&'a ContactSet, &'a mut ContactSet),
             ),
-            (&'a mut [VecD<D>], &'a mut [Vec3]),
+            (&'a mut [VecD<D>], &'a mut [f64]),
         ),
         &'a mut Vec<(u32, VecD<D>, Vec3)>,
     ),
 );
 
 /// Sums the forces and torques of one chunk's pair contacts `pairs` and wall contacts `walls`
-/// into the chunk's particles (`f`, `tq`: particles `pairs.first..pairs.first + f.len()`),
-/// zeroed first; `radius` holds the radii from the chunk's first particle on (to its farthest
+/// into the chunk's particles (`f`, `tq`: particles `pairs.first..pairs.first + f.len()`,
+/// torques as [`Particles::torque`]), zeroed first; `radius` holds the radii from the chunk's first particle on (to its farthest
 /// partner). A pair partner beyond the chunk gets its force and torque through `overflow`
 /// (force on i, torque on j).
 fn scatter_chunk<const D: usize>(
@@ -104,11 +104,11 @@ fn scatter_chunk<const D: usize>(
     walls: &ContactSet,
     radius: &[f64],
     f: &mut [VecD<D>],
-    tq: &mut [Vec3],
+    tq: &mut [f64],
     overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
 ) {
     f.iter_mut().for_each(|v| *v = VecD::<D>::zeros());
-    tq.iter_mut().for_each(|v| *v = Vec3::zeros());
+    tq.iter_mut().for_each(|v| *v = 0.0);
     overflow.clear();
     let (first, len) = (pairs.first, f.len());
     for m in 0..pairs.len() {
@@ -118,12 +118,12 @@ fn scatter_chunk<const D: usize>(
         let fi = from3::<D>(&(nv * pairs.fnorm[m] + ft));
         let nxf = nv.cross(&ft);
         f[i] += fi;
-        tq[i] -= nxf * radius[i];
+        add_spin::<D>(tq, i, &-(nxf * radius[i]));
         let jl = j - first;
         let tj = -(nxf * radius[jl]);
         if jl < len {
             f[jl] -= fi;
-            tq[jl] += tj;
+            add_spin::<D>(tq, jl, &tj);
         } else {
             overflow.push((j as u32, fi, tj));
         }
@@ -133,14 +133,17 @@ fn scatter_chunk<const D: usize>(
         let nv = Vec3::from(walls.normal[m]);
         let ft = Vec3::from(walls.ftan[m]);
         f[i] += from3::<D>(&(nv * walls.fnorm[m] + ft));
-        tq[i] -= nv.cross(&ft) * radius[i];
+        add_spin::<D>(tq, i, &-(nv.cross(&ft) * radius[i]));
     }
-    if D == 2 {
-        tq.iter_mut().for_each(|t| {
-            t.x = 0.0;
-            t.y = 0.0;
-        });
-    }
+
+}
+
+/// Adds `v` to spin `i` of the flat array `w` (a − b is a + (−b) in floating point: adding the
+/// negation is subtracting).
+#[inline(always)]
+fn add_spin<const D: usize>(w: &mut [f64], i: usize, v: &Vec3) {
+    let s = spin::<D>(w, i) + v;
+    set_spin::<D>(w, i, &s);
 }
 
 /// What every chunk's force evaluation shares: the box, the neighbour list, the walls' states,
@@ -166,7 +169,7 @@ fn chunk_forces<const D: usize>(
     pairs: (&ContactSet, &mut ContactSet),
     walls: (&ContactSet, &mut ContactSet),
     f: &mut [VecD<D>],
-    tq: &mut [Vec3],
+    tq: &mut [f64],
     overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
 ) -> Result<(), DemError> {
     let ((pp, np), (pw, nw)) = (pairs, walls);
@@ -183,7 +186,8 @@ fn chunk_forces<const D: usize>(
 /// The arrays the kick loops read, whole or one chunk's part.
 struct Shared<'a, const D: usize> {
     force: &'a [VecD<D>],
-    torque: &'a [Vec3],
+    /// Torques, [`spin_len`]`(D)` per particle.
+    torque: &'a [f64],
     im: &'a [f64],
     ii: &'a [f64],
     /// The positions at the neighbour list's build, or empty (no valid list).
@@ -196,7 +200,7 @@ impl<'a, const D: usize> Shared<'a, D> {
         let b = a + len;
         Shared {
             force: &self.force[a..b],
-            torque: &self.torque[a..b],
+            torque: &self.torque[a * spin_len(D)..b * spin_len(D)],
             im: &self.im[a..b],
             ii: &self.ii[a..b],
             anchor: if self.anchor.is_empty() {
@@ -214,7 +218,7 @@ type KickDriftChunk<'a, const D: usize> = (
     usize,
     (
         (
-            ((&'a mut [VecD<D>], &'a mut [VecD<D>]), &'a mut [Vec3]),
+            ((&'a mut [VecD<D>], &'a mut [VecD<D>]), &'a mut [f64]),
             &'a mut [VecD<D>],
         ),
         &'a mut [VecD<D>],
@@ -248,23 +252,25 @@ fn kick_drift_chunk<const D: usize>(
     dt: f64,
     pos: &mut [VecD<D>],
     vel: &mut [VecD<D>],
-    omega: &mut [Vec3],
+    omega: &mut [f64],
     vpred: &mut [VecD<D>],
     aold: &mut [VecD<D>],
     moved: &mut f64,
     skin: f64,
 ) -> (bool, f64) {
     let n = pos.len();
-    let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
-    let (vel, omega, vpred, aold) = (&mut vel[..n], &mut omega[..n], &mut vpred[..n], &mut aold[..n]);
+    let ns = n * spin_len(D);
+    let (force, torque, im, ii) = (&s.force[..n], &s.torque[..ns], &s.im[..n], &s.ii[..n]);
+    let (vel, omega, vpred, aold) = (&mut vel[..n], &mut omega[..ns], &mut vpred[..n], &mut aold[..n]);
     let (mut sx, mut sw) = (VecD::<D>::zeros(), Vec3::zeros());
     // the largest squared speed of the drift and squared distance from the origin after it
     let (mut v2max, mut x2max) = (0.0f64, 0.0f64);
     // (`pending` is the same for the whole loop: the compiler makes two loops of it)
     for i in 0..n {
-        let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
+        let (a, al) = (force[i] * im[i] + g, spin::<D>(torque, i) * ii[i]);
+        let mut w = spin::<D>(omega, i);
         if pending {
-            end_kick(a, al, h, &pos[i], &mut vel[i], &mut omega[i], &mut sx, &mut sw);
+            end_kick(a, al, h, &pos[i], &mut vel[i], &mut w, &mut sx, &mut sw);
         }
         kick_drift_one(
             a,
@@ -273,10 +279,11 @@ fn kick_drift_chunk<const D: usize>(
             dt,
             &mut pos[i],
             &mut vel[i],
-            &mut omega[i],
+            &mut w,
             &mut vpred[i],
             &mut aold[i],
         );
+        set_spin::<D>(omega, i, &w);
         let (v2, x2) = (vel[i].norm_squared(), pos[i].norm_squared());
         v2max = if v2 > v2max { v2 } else { v2max };
         x2max = if x2 > x2max { x2 } else { x2max };
@@ -309,16 +316,19 @@ fn kick_chunk<const D: usize>(
     g: VecD<D>,
     h: f64,
     vel: &mut [VecD<D>],
-    omega: &mut [Vec3],
+    omega: &mut [f64],
 ) -> f64 {
     let n = vel.len();
-    let (force, torque, im, ii) = (&s.force[..n], &s.torque[..n], &s.im[..n], &s.ii[..n]);
-    let (pos, omega) = (&pos[..n], &mut omega[..n]);
+    let ns = n * spin_len(D);
+    let (force, torque, im, ii) = (&s.force[..n], &s.torque[..ns], &s.im[..n], &s.ii[..n]);
+    let (pos, omega) = (&pos[..n], &mut omega[..ns]);
     // component-wise running sums: no horizontal add per particle
     let (mut sx, mut sw) = (VecD::<D>::zeros(), Vec3::zeros());
     for i in 0..n {
-        let (a, al) = (force[i] * im[i] + g, torque[i] * ii[i]);
-        end_kick(a, al, h, &pos[i], &mut vel[i], &mut omega[i], &mut sx, &mut sw);
+        let (a, al) = (force[i] * im[i] + g, spin::<D>(torque, i) * ii[i]);
+        let mut w = spin::<D>(omega, i);
+        end_kick(a, al, h, &pos[i], &mut vel[i], &mut w, &mut sx, &mut sw);
+        set_spin::<D>(omega, i, &w);
     }
     sx.sum() + sw.sum()
 }
@@ -687,7 +697,7 @@ impl<const D: usize> Engine<D> {
                     .zip(
                         force
                             .$chunks_mut(GATHER_CHUNK)
-                            .zip(torque.$chunks_mut(GATHER_CHUNK)),
+                            .zip(torque.$chunks_mut(GATHER_CHUNK * spin_len(D))),
                     )
                     .zip(overflow.$iter_mut())
                     .enumerate()
@@ -719,7 +729,7 @@ impl<const D: usize> Engine<D> {
         for ov in &self.overflow {
             for &(j, f, t) in ov {
                 p.force[j as usize] -= f;
-                p.torque[j as usize] += t;
+                add_spin::<D>(&mut p.torque, j as usize, &t);
             }
         }
         for w in &self.wall_contacts.chunks {
@@ -817,7 +827,7 @@ impl<const D: usize> Engine<D> {
                     .pos
                     .chunks_mut(c)
                     .zip(p.vel.chunks_mut(c))
-                    .zip(p.omega.chunks_mut(c))
+                    .zip(p.omega.chunks_mut(c * spin_len(D)))
                     .zip(self.vpred.chunks_mut(c))
                     .zip(self.aold.chunks_mut(c))
                     .enumerate();
@@ -846,17 +856,18 @@ impl<const D: usize> Engine<D> {
                 anchor: &[],
             };
             let pos = &p.pos;
-            let run = |(k, (v, w)): (usize, (&mut [VecD<D>], &mut [Vec3]))| {
+            let run = |(k, (v, w)): (usize, (&mut [VecD<D>], &mut [f64]))| {
                 let a = k * c;
                 kick_chunk(&shared.chunk(a, v.len()), &pos[a..a + v.len()], g, h, v, w)
             };
-            let chunks = p.vel.chunks_mut(c).zip(p.omega.chunks_mut(c)).enumerate();
+            let cs = c * spin_len(D);
+            let chunks = p.vel.chunks_mut(c).zip(p.omega.chunks_mut(cs)).enumerate();
             if n < SERIAL_BELOW {
                 chunks.map(run).sum::<f64>()
             } else {
                 p.vel
                     .par_chunks_mut(c)
-                    .zip(p.omega.par_chunks_mut(c))
+                    .zip(p.omega.par_chunks_mut(cs))
                     .enumerate()
                     .map(run)
                     .sum::<f64>()
@@ -910,7 +921,8 @@ impl<const D: usize> Engine<D> {
         let bad_at = |&i: &usize| {
             let fin = p.pos[i].iter().all(|x| x.is_finite())
                 && (!velocities_too
-                    || (p.vel[i].iter().all(|x| x.is_finite()) && p.omega[i].iter().all(|x| x.is_finite())));
+                    || (p.vel[i].iter().all(|x| x.is_finite())
+                        && p.angular_velocity(i).iter().all(|x| x.is_finite())));
             if !fin {
                 return true;
             }
@@ -925,14 +937,14 @@ impl<const D: usize> Engine<D> {
         if let Some(i) = bad {
             let fmt = |v: &VecD<D>| format!("{:?}", v.as_slice());
             if !p.pos[i].iter().chain(p.vel[i].iter()).all(|x| x.is_finite())
-                || !p.omega[i].iter().all(|x| x.is_finite())
+                || !p.angular_velocity(i).iter().all(|x| x.is_finite())
             {
                 return Err(DemError::NonFinite {
                     i,
                     t: self.t,
                     pos: fmt(&p.pos[i]),
                     vel: fmt(&p.vel[i]),
-                    spin: format!("{:?}", p.omega[i].as_slice()),
+                    spin: format!("{:?}", p.angular_velocity(i).as_slice()),
                 });
             }
             let axis = (0..D)
@@ -965,7 +977,7 @@ fn impact_speed<const D: usize>(cfg: &EngineConfig<D>, p: &Particles<D>, walls: 
         return v;
     }
     let vmax = (0..p.len())
-        .map(|i| p.vel[i].norm() + p.omega[i].norm() * p.radius[i])
+        .map(|i| p.vel[i].norm() + p.angular_velocity(i).norm() * p.radius[i])
         .fold(0.0, f64::max);
     let wmax = walls.iter().map(|w| w.motion.peak_speed()).fold(0.0, f64::max);
     let g = cfg.gravity.norm();

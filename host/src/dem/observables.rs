@@ -34,7 +34,7 @@ impl<const D: usize> Engine<D> {
         };
         for i in 0..p.len() {
             e.translational += 0.5 * p.mass[i] * p.vel[i].norm_squared();
-            e.rotational += 0.5 * p.inertia[i] * p.omega[i].norm_squared();
+            e.rotational += 0.5 * p.inertia[i] * p.angular_velocity(i).norm_squared();
             e.gravity -= p.mass[i] * g.dot(&p.pos[i]);
         }
         e
@@ -56,9 +56,9 @@ impl<const D: usize> Engine<D> {
         let parts: Vec<serde_json::Value> = (0..p.len())
             .map(|i| {
                 let w = if D == 2 {
-                    serde_json::json!(p.omega[i].z)
+                    serde_json::json!(p.angular_velocity(i).z)
                 } else {
-                    serde_json::json!(p.omega[i].as_slice())
+                    serde_json::json!(p.angular_velocity(i).as_slice())
                 };
                 serde_json::json!({
                     "position": p.pos[i].as_slice(),

@@ -94,8 +94,9 @@ pub struct Particles<const D: usize> {
     pub pos: Vec<VecD<D>>,
     /// Velocities (m/s).
     pub vel: Vec<VecD<D>>,
-    /// Angular velocities (rad/s).
-    pub omega: Vec<Vec3>,
+    /// Angular velocities (rad/s), [`spin_len`]`(D)` components per particle: ω_z in 2D,
+    /// (ω_x, ω_y, ω_z) in 3D (see [`Particles::angular_velocity`]).
+    pub omega: Vec<f64>,
     /// Radii (m).
     pub radius: Vec<f64>,
     /// Masses (kg).
@@ -104,8 +105,8 @@ pub struct Particles<const D: usize> {
     pub inertia: Vec<f64>,
     /// Forces of the last evaluation (N), gravity excluded.
     pub force: Vec<VecD<D>>,
-    /// Torques of the last evaluation (N·m).
-    pub torque: Vec<Vec3>,
+    /// Torques of the last evaluation (N·m), laid out as `omega` (see [`Particles::torque`]).
+    pub torque: Vec<f64>,
 }
 
 impl<const D: usize> Particles<D> {
@@ -115,23 +116,23 @@ impl<const D: usize> Particles<D> {
         let mut p = Particles {
             pos: Vec::with_capacity(n),
             vel: Vec::with_capacity(n),
-            omega: Vec::with_capacity(n),
+            omega: Vec::with_capacity(n * spin_len(D)),
             radius: Vec::with_capacity(n),
             mass: Vec::with_capacity(n),
             inertia: Vec::with_capacity(n),
             force: vec![VecD::<D>::zeros(); n],
-            torque: vec![Vec3::zeros(); n],
+            torque: vec![0.0; n * spin_len(D)],
         };
         for b in bodies {
             let (m, i) = mat.mass_inertia(D, b.diameter);
             p.pos.push(b.position);
             p.vel.push(b.velocity);
-            let mut w = b.angular_velocity;
+            // (2D: the z component only)
             if D == 2 {
-                w.x = 0.0;
-                w.y = 0.0;
+                p.omega.push(b.angular_velocity.z);
+            } else {
+                p.omega.extend_from_slice(b.angular_velocity.as_slice());
             }
-            p.omega.push(w);
             p.radius.push(0.5 * b.diameter);
             p.mass.push(m);
             p.inertia.push(i);
@@ -154,9 +155,59 @@ impl<const D: usize> Particles<D> {
         Body {
             position: self.pos[i],
             velocity: self.vel[i],
-            angular_velocity: self.omega[i],
+            angular_velocity: self.angular_velocity(i),
             diameter: 2.0 * self.radius[i],
         }
+    }
+
+    /// Angular velocity of particle `i` (rad/s) (2D: (0, 0, ω_z)).
+    #[inline]
+    pub fn angular_velocity(&self, i: usize) -> Vec3 {
+        spin::<D>(&self.omega, i)
+    }
+
+    /// Sets the angular velocity of particle `i` (rad/s) (2D: its z component only).
+    #[inline]
+    pub fn set_angular_velocity(&mut self, i: usize, w: &Vec3) {
+        set_spin::<D>(&mut self.omega, i, w)
+    }
+
+    /// Torque on particle `i` at the last evaluation (N·m) (2D: (0, 0, τ_z)).
+    #[inline]
+    pub fn torque(&self, i: usize) -> Vec3 {
+        spin::<D>(&self.torque, i)
+    }
+}
+
+/// Components stored per particle for a spin (angular velocity, torque) in dimension `d`: one
+/// in 2D (about z: disks turn in the plane), three in 3D. A 2D step moves a third of the bytes
+/// a 3-vector would.
+pub const fn spin_len(d: usize) -> usize {
+    if d == 2 {
+        1
+    } else {
+        3
+    }
+}
+
+/// Spin `i` (rad/s or N·m) of the flat array `w` ([`spin_len`]`(D)` components per particle),
+/// as a 3D vector (2D: (0, 0, z)).
+#[inline(always)]
+pub fn spin<const D: usize>(w: &[f64], i: usize) -> Vec3 {
+    if D == 2 {
+        Vec3::new(0.0, 0.0, w[i])
+    } else {
+        Vec3::new(w[3 * i], w[3 * i + 1], w[3 * i + 2])
+    }
+}
+
+/// Stores `v` as spin `i` of the flat array `w` (2D: its z component only).
+#[inline(always)]
+pub fn set_spin<const D: usize>(w: &mut [f64], i: usize, v: &Vec3) {
+    if D == 2 {
+        w[i] = v.z;
+    } else {
+        w[3 * i..3 * i + 3].copy_from_slice(v.as_slice());
     }
 }
 

@@ -49,7 +49,7 @@ pub fn write_frame<const D: usize, W: Write>(e: &Engine<D>, w: &mut W) -> std::i
     for i in 0..p.len() {
         let x = to3(&p.pos[i]);
         let v = to3(&p.vel[i]);
-        let o = p.omega[i];
+        let o = p.angular_velocity(i);
         writeln!(
             w,
             "P {:.9e} {:.9e} {:.9e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e}",

@@ -31,7 +31,7 @@
 
 use super::{chunk_forces, kick_drift_chunk, ChunkContext, Engine, Shared, GATHER_CHUNK, SERIAL_BELOW};
 use crate::dem::contacts::{ContactSet, View};
-use crate::dem::state::{Vec3, VecD};
+use crate::dem::state::{spin_len, Vec3, VecD};
 use crate::dem::DemError;
 use rayon::prelude::*;
 use std::marker::PhantomData;
@@ -166,6 +166,8 @@ impl<const D: usize> Engine<D> {
         let force = Parts::new(&mut p.force);
         let torque = Parts::new(&mut p.torque);
         let particles = |k: usize| k * c..((k + 1) * c).min(n);
+        // the same particles' spins and torques
+        let spins = |r: &Range<usize>| r.start * spin_len(D)..r.end * spin_len(D);
         // the drift of chunk k; the caller owns chunk k (see the module doc)
         let drift = |k: usize, moved: &mut f64| -> (bool, f64) {
             let r = particles(k);
@@ -173,7 +175,7 @@ impl<const D: usize> Engine<D> {
             unsafe {
                 let s = Shared {
                     force: force.get(r.clone()),
-                    torque: torque.get(r.clone()),
+                    torque: torque.get(spins(&r)),
                     im: &im[r.clone()],
                     ii: &ii[r.clone()],
                     anchor: &anchor[r.clone()],
@@ -186,7 +188,7 @@ impl<const D: usize> Engine<D> {
                     dt,
                     pos.get_mut(r.clone()),
                     vel.get_mut(r.clone()),
-                    omega.get_mut(r.clone()),
+                    omega.get_mut(spins(&r)),
                     vpred.get_mut(r.clone()),
                     aold.get_mut(r),
                     moved,
@@ -219,7 +221,7 @@ impl<const D: usize> Engine<D> {
                     pos: pos.get(w.clone()),
                     vpred: vpred.get(w.clone()),
                     vel: vel.get(w.clone()),
-                    omega: omega.get(w.clone()),
+                    omega: omega.get(spins(&w)),
                     radius: &radius[w.clone()],
                     mass: &mass[w],
                 };
@@ -230,7 +232,7 @@ impl<const D: usize> Engine<D> {
                     (&prev_p[k], np),
                     (&prev_w[k], nw),
                     force.get_mut(r.clone()),
-                    torque.get_mut(r),
+                    torque.get_mut(spins(&r)),
                     ov,
                 )
             }
