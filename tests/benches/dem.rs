@@ -4,10 +4,11 @@
 //!    periodic sideways, HSD (ε = 0.5) + Mindlin (μ = 0.3) on one core: the plugins' batch calls
 //!    against the same laws compiled into this benchmark (same checked trampoline), interleaved;
 //! 2. cost per particle-step from 10³ to 10⁶ disks (one core), plugins, every size over the same
-//!    stage of the same pile;
+//!    stage of the same pile, the sizes timed in turn round by round;
 //! 3. speed-up on two cores (10⁵ disks, one settled pile stepped alternately by one thread and
 //!    by two, wall time);
-//! 4. peak resident memory of the process after the 10⁶-disk run (VmHWM).
+//! 4. peak resident memory of the process while the piles of 2. (10⁶ disks among them) are
+//!    held (VmHWM).
 //!
 //! One-core figures are thread CPU time (the machine is shared). Run: `cargo bench -p
 //! dashpot-tests --bench dem [-- plugins | scaling | cores]` (sections by name; all by default).
@@ -163,12 +164,14 @@ fn main() {
     });
     }
 
-    // 2. scaling, one core (10⁶ last, so VmHWM below is its peak): every size steps through the
-    // same stage of the same pile (steps 300..400 from the lattice, so the same contacts per
-    // disk), timed in 4 blocks of 25 steps, smaller sizes repeated from scratch; thread CPU
-    // time; the best block and the median block of each size, and the whole window (the 100
-    // steps with whatever neighbour-list builds fall in them: the cost a run pays), median
-    // over the repeats
+    // 2. scaling, one core: every size steps through the same stage of the same pile (steps
+    // 300..400 from the lattice, so the same contacts per disk), the smaller sizes as several
+    // piles (15 of 10³, 10 of 10⁴) so that each size's block is long enough to time. The sizes
+    // are timed in turn, round by round (4 rounds of 25 steps), so that every size's window
+    // spans the same stretch of the machine's time: this machine's speed drifts by ±20 % over
+    // tens of seconds, which timing one size after another turned into ratios. Thread CPU
+    // time; per size the best round, the median round and the whole window (the cost a run
+    // pays, list builds included).
     if run("scaling") {
         let (mut costs, mut medians, mut wholes) = (Vec::new(), Vec::new(), Vec::new());
         // DASHPOT_BENCH_SIZES="100000 1000000": other sizes (for profiling one of them)
@@ -176,37 +179,46 @@ fn main() {
             .ok()
             .map(|s| s.split_whitespace().filter_map(|w| w.parse().ok()).collect())
             .unwrap_or_else(|| vec![1_000, 10_000, 100_000, 1_000_000]);
-        for n in sizes {
-            let reps = (100_000 / n).clamp(1, 15);
-            let (cs, mut ws, per, builds) = one.install(|| {
-                let (mut cs, mut ws) = (Vec::new(), Vec::new());
-                let (mut per, mut builds) = (0.0, 0);
-                for _ in 0..reps {
-                    let mut e = pile(n, plugin_laws(&reg));
-                    cpu_steps(&mut e, 300);
-                    let b0 = e.rebuilds();
-                    let mut w = 0.0;
-                    for _ in 0..4 {
-                        let t = cpu_steps(&mut e, 25);
-                        cs.push(t / (n as f64 * 25.0));
-                        w += t;
-                    }
-                    ws.push(w / (n as f64 * 100.0));
-                    per = e.contacts() as f64 / n as f64;
-                    builds = e.rebuilds() - b0;
-                }
-                cs.sort_by(f64::total_cmp);
-                (cs, ws, per, builds)
-            });
-            ws.sort_by(f64::total_cmp);
-            let (best, median, whole) = (cs[0], cs[cs.len() / 2], ws[ws.len() / 2]);
+        let mut piles: Vec<Vec<Engine<2>>> = one.install(|| {
+            sizes
+                .iter()
+                .map(|&n| {
+                    (0..(100_000 / n).clamp(1, 15))
+                        .map(|_| {
+                            let mut e = pile(n, plugin_laws(&reg));
+                            cpu_steps(&mut e, 300);
+                            e
+                        })
+                        .collect()
+                })
+                .collect()
+        });
+        let builds0: Vec<u64> = piles
+            .iter()
+            .map(|ps| ps.iter().map(|e| e.rebuilds()).sum())
+            .collect();
+        let mut rounds = vec![Vec::new(); sizes.len()];
+        for _ in 0..4 {
+            for (s, ps) in piles.iter_mut().enumerate() {
+                let n = sizes[s];
+                let t: f64 = one.install(|| ps.iter_mut().map(|e| cpu_steps(e, 25)).sum());
+                rounds[s].push(t / (ps.len() as f64 * n as f64 * 25.0));
+            }
+        }
+        for (s, ps) in piles.iter().enumerate() {
+            let n = sizes[s];
+            let whole = rounds[s].iter().sum::<f64>() / 4.0;
+            let mut rs = rounds[s].clone();
+            rs.sort_by(f64::total_cmp);
+            let (best, median) = (rs[0], 0.5 * (rs[1] + rs[2]));
+            let builds: u64 = ps.iter().map(|e| e.rebuilds()).sum::<u64>() - builds0[s];
+            let per = ps.iter().map(|e| e.contacts()).sum::<usize>() as f64 / (ps.len() * n) as f64;
             println!(
-                "n = {n:>8}: {:.1} ns per particle-step best, {:.1} median ({} blocks of 25 of steps 300..400), {:.1} over the whole window (median of {}; {builds} list builds in it); {per:.3} contacts per disk",
+                "n = {n:>8}: {:.1} ns per particle-step over steps 300..400 ({} pile(s); {builds} list builds in the window); rounds of 25 steps: best {:.1}, median {:.1}; {per:.3} contacts per disk",
+                whole * 1e9,
+                ps.len(),
                 best * 1e9,
                 median * 1e9,
-                cs.len(),
-                whole * 1e9,
-                ws.len()
             );
             costs.push(best);
             medians.push(median);
@@ -219,14 +231,15 @@ fn main() {
             hi / lo
         };
         println!(
-            "cost per particle-step, max/min over 1e3..1e6: {:.2} (best blocks), {:.2} (median blocks), {:.2} (whole windows)",
-            spread(&costs),
+            "cost per particle-step, max/min over the sizes: {:.2} (whole windows), {:.2} (median rounds), {:.2} (best rounds)",
+            spread(&wholes),
             spread(&medians),
-            spread(&wholes)
+            spread(&costs)
         );
+        drop(piles);
         if let Some(kib) = vm_hwm_kib() {
             println!(
-                "peak resident memory after the 10^6 run: {:.2} GiB",
+                "peak resident memory of the process, every pile above held at once (the 10^6 one among them): {:.2} GiB",
                 kib as f64 / 1048576.0
             );
         }

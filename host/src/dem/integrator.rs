@@ -135,7 +135,6 @@ fn scatter_chunk<const D: usize>(
         f[i] += from3::<D>(&(nv * walls.fnorm[m] + ft));
         add_spin::<D>(tq, i, &-(nv.cross(&ft) * radius[i]));
     }
-
 }
 
 /// Adds `v` to spin `i` of the flat array `w` (a − b is a + (−b) in floating point: adding the
