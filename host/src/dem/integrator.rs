@@ -96,9 +96,9 @@ type ChunkTask<'a, const D: usize> = (
 
 /// Sums the forces and torques of one chunk's pair contacts `pairs` and wall contacts `walls`
 /// into the chunk's particles (`f`, `tq`: particles `pairs.first..pairs.first + f.len()`,
-/// torques as [`Particles::torque`]), zeroed first; `radius` holds the radii from the chunk's first particle on (to its farthest
-/// partner). A pair partner beyond the chunk gets its force and torque through `overflow`
-/// (force on i, torque on j).
+/// torques as [`Particles::torque`]), zeroed first; `radius` holds the radii from the chunk's
+/// first particle on (to its farthest partner). A pair partner beyond the chunk gets its force
+/// and torque through `overflow` (force on i, torque on j).
 fn scatter_chunk<const D: usize>(
     pairs: &ContactSet,
     walls: &ContactSet,
@@ -391,7 +391,9 @@ pub struct StepChoice {
 
 /// A soft-sphere DEM run.
 pub struct Engine<const D: usize> {
-    /// The particles.
+    /// The particles. Between steps, velocities and spins may be edited freely; positions only
+    /// followed by [`Engine::invalidate_neighbours`] (the neighbour list's staleness is tracked
+    /// from the particles' speeds, so a particle moved by hand is not seen to have moved).
     pub p: Particles<D>,
     /// The walls.
     pub walls: Vec<Wall<D>>,
@@ -704,12 +706,12 @@ impl<const D: usize> Engine<D> {
                     .collect()
             };
         }
-        let results: Result<(), DemError> = if n < SERIAL_BELOW {
+        let results: Vec<Result<(), DemError>> = if n < SERIAL_BELOW {
             tasks!(iter, iter_mut, chunks_mut)
         } else {
             tasks!(par_iter, par_iter_mut, par_chunks_mut)
         };
-        self.finish_forces(results)
+        self.finish_forces(results.into_iter().collect())
     }
 
     /// The serial end of a force evaluation whose chunks gave `results` (the first error in
@@ -806,9 +808,10 @@ impl<const D: usize> Engine<D> {
                 self.finish_forces(pass.result)?;
             }
         } else {
-            // no list (the first step, or after [`Engine::invalidate_neighbours`]): the kicks and
-            // the drift of every particle, then the list, then the forces
+            // no list (after [`Engine::invalidate_neighbours`]): the kicks and the drift of every
+            // particle, then the list, then the forces
             let c = GATHER_CHUNK;
+            let cs = c * spin_len(D);
             let sum = {
                 let p = &mut self.p;
                 let shared = Shared {
@@ -822,15 +825,27 @@ impl<const D: usize> Engine<D> {
                     let s = shared.chunk(k * c, x.len());
                     kick_drift_chunk(&s, pending, g, h, dt, x, v, w, vp, ao, &mut 0.0, 0.0).1
                 };
-                let chunks = p
-                    .pos
-                    .chunks_mut(c)
-                    .zip(p.vel.chunks_mut(c))
-                    .zip(p.omega.chunks_mut(c * spin_len(D)))
-                    .zip(self.vpred.chunks_mut(c))
-                    .zip(self.aold.chunks_mut(c))
-                    .enumerate();
-                chunks.map(run).sum::<f64>()
+                if n < SERIAL_BELOW {
+                    p.pos
+                        .chunks_mut(c)
+                        .zip(p.vel.chunks_mut(c))
+                        .zip(p.omega.chunks_mut(cs))
+                        .zip(self.vpred.chunks_mut(c))
+                        .zip(self.aold.chunks_mut(c))
+                        .enumerate()
+                        .map(run)
+                        .sum::<f64>()
+                } else {
+                    p.pos
+                        .par_chunks_mut(c)
+                        .zip(p.vel.par_chunks_mut(c))
+                        .zip(p.omega.par_chunks_mut(cs))
+                        .zip(self.vpred.par_chunks_mut(c))
+                        .zip(self.aold.par_chunks_mut(c))
+                        .enumerate()
+                        .map(run)
+                        .sum::<f64>()
+                }
             };
             if !sum.is_finite() {
                 self.check(true)?;

@@ -17,10 +17,17 @@
 //! and forces are the same arithmetic in any order, and the forces on partners beyond a chunk
 //! are added afterwards in chunk order ([`Engine::finish_forces`]).
 //!
-//! If a drift finds the list stale (a particle has moved by half the skin since it was built),
-//! the remaining gatherings are skipped, every chunk still drifts, and the step rebuilds the
-//! list and evaluates the forces again; the history of the previous step is intact, since
-//! gatherings write only the spare contact sets.
+//! If a drift finds the list stale (a particle has moved by more than half the skin since it
+//! was built), the remaining gatherings are skipped, every chunk still drifts, and the step
+//! rebuilds the list and evaluates the forces again; the history of the previous step is
+//! intact, since gatherings write only the spare contact sets.
+//!
+//! The heads are what the pipelining costs: they drift apart from their gathering. In a pile
+//! numbered row by row, a chunk reaches one or two chunks further, and a range's head is one
+//! chunk. Where the numbering does not follow space (a box periodic along the numbering's slow
+//! axis, or particles long mixed), a chunk may reach far, whole ranges become heads, and the
+//! step degrades towards two passes (every drift, then every force): the same result, at the
+//! speed of the two passes.
 //!
 //! The particle arrays are shared between the tasks of a phase through [`Parts`], whose
 //! slices the schedule keeps apart: during phase 2, task r writes positions, velocities,
@@ -141,16 +148,26 @@ impl<const D: usize> Engine<D> {
         } else {
             rayon::current_num_threads().clamp(1, chunks.max(1))
         };
-        // range r: chunks cuts[r]..cuts[r + 1]; its head: cuts[r]..head[r]
-        let cuts: Vec<usize> = (0..=tasks).map(|r| r * chunks / tasks).collect();
-        let mut head = vec![0usize; tasks];
-        let mut reached = 0usize;
-        for r in 0..tasks {
-            let (a, b) = (cuts[r], cuts[r + 1]);
-            head[r] = reached.clamp(a, b);
-            let far = self.reach[a..b].iter().map(|&k| k + 1).max().unwrap_or(0);
-            reached = reached.max(far);
+        // range r: chunks cuts[r]..cuts[r + 1]; its head: cuts[r]..head[r] (one range, no
+        // head: no allocation, for the small piles whose steps take microseconds)
+        let (one_cut, one_head) = ([0, chunks], [0]);
+        let (mut cut_v, mut head_v) = (Vec::new(), Vec::new());
+        if tasks > 1 {
+            cut_v = (0..=tasks).map(|r| r * chunks / tasks).collect();
+            head_v = vec![0usize; tasks];
+            let mut reached = 0usize;
+            for r in 0..tasks {
+                let (a, b) = (cut_v[r], cut_v[r + 1]);
+                head_v[r] = reached.clamp(a, b);
+                let far = self.reach[a..b].iter().map(|&k| k + 1).max().unwrap_or(0);
+                reached = reached.max(far);
+            }
         }
+        let (cuts, head): (&[usize], &[usize]) = if tasks > 1 {
+            (&cut_v, &head_v)
+        } else {
+            (&one_cut, &one_head)
+        };
         self.overflow.resize_with(chunks, Vec::new);
         let (prev_p, next_p) = self.pairs.buffers(chunks);
         let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
@@ -247,7 +264,7 @@ impl<const D: usize> Engine<D> {
                 .fold((false, 0.0), merge)
         };
         let (s1, sum1) = if tasks > 1 {
-            cut(&mut self.moved, &cuts)
+            cut(&mut self.moved, cuts)
                 .into_par_iter()
                 .enumerate()
                 .map(head_pass)
@@ -281,24 +298,26 @@ impl<const D: usize> Engine<D> {
             }
             (sum, first_err)
         };
-        let items = cut(next_p, &cuts)
-            .into_iter()
-            .zip(cut(next_w, &cuts))
-            .zip(cut(&mut self.overflow, &cuts))
-            .zip(cut(&mut self.moved, &cuts))
-            .enumerate();
-        let outcomes: Vec<(f64, Result<(), DemError>)> = if tasks > 1 {
-            items.collect::<Vec<_>>().into_par_iter().map(sweep).collect()
-        } else {
-            items.map(sweep).collect()
-        };
-        let mut sum = sum1;
-        let mut result = Ok(());
-        for (x, res) in outcomes {
-            sum += x;
-            if result.is_ok() {
-                result = res;
+        let (mut sum, mut result) = (sum1, Ok(()));
+        if tasks > 1 {
+            let outcomes: Vec<(f64, Result<(), DemError>)> = cut(next_p, cuts)
+                .into_iter()
+                .zip(cut(next_w, cuts))
+                .zip(cut(&mut self.overflow, cuts))
+                .zip(cut(&mut self.moved, cuts))
+                .enumerate()
+                .collect::<Vec<_>>()
+                .into_par_iter()
+                .map(sweep)
+                .collect();
+            for (x, res) in outcomes {
+                sum += x;
+                if result.is_ok() {
+                    result = res;
+                }
             }
+        } else {
+            (sum, result) = sweep((0, (((next_p, next_w), &mut self.overflow), &mut self.moved)));
         }
         Pass {
             stale: stale.load(Ordering::Relaxed),
