@@ -31,8 +31,95 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     res
 }
 
+/// A result file written as it grows (a trajectory), which appears at its path only when
+/// [`AtomicFile::commit`] is called: until then it is a temporary file beside it, removed if the
+/// writer is dropped uncommitted (a run that failed leaves no half-written result).
+pub struct AtomicFile {
+    tmp: std::path::PathBuf,
+    path: std::path::PathBuf,
+    w: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl AtomicFile {
+    /// A new file to become `path`.
+    pub fn create(path: &Path) -> std::io::Result<AtomicFile> {
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_string())
+            .unwrap_or_default();
+        let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
+        let f = std::fs::File::create(&tmp)?;
+        Ok(AtomicFile {
+            tmp,
+            path: path.to_path_buf(),
+            w: Some(std::io::BufWriter::new(f)),
+        })
+    }
+
+    /// Flushes the file and moves it to its path.
+    pub fn commit(mut self) -> std::io::Result<()> {
+        let w = self
+            .w
+            .take()
+            .ok_or_else(|| std::io::Error::other("already committed"))?;
+        let f = w.into_inner().map_err(|e| e.into_error())?;
+        f.sync_all()?;
+        std::fs::rename(&self.tmp, &self.path)
+    }
+}
+
+impl Write for AtomicFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self.w.as_mut() {
+            Some(w) => w.write(buf),
+            None => Err(std::io::Error::other("already committed")),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.w.as_mut().map_or(Ok(()), |w| w.flush())
+    }
+}
+
+impl Drop for AtomicFile {
+    fn drop(&mut self) {
+        // uncommitted (or its commit failed): the temporary goes
+        if self.w.take().is_some() || self.tmp.exists() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use std::io::Write;
+
+    #[test]
+    fn a_growing_file_appears_only_when_committed() {
+        let dir = std::env::temp_dir().join(format!("dashpot-grow-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("t.xyz");
+        // dropped uncommitted: nothing is left, neither the file nor its temporary
+        {
+            let mut f = super::AtomicFile::create(&p).unwrap();
+            f.write_all(b"frame 1").unwrap();
+        }
+        assert!(!p.exists());
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+        let mut f = super::AtomicFile::create(&p).unwrap();
+        f.write_all(b"frame 1\n").unwrap();
+        assert!(!p.exists());
+        f.write_all(b"frame 2\n").unwrap();
+        f.commit().unwrap();
+        assert_eq!(std::fs::read(&p).unwrap(), b"frame 1\nframe 2\n");
+        assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
     #[test]
     fn writes_whole_file_and_leaves_no_temporary() {
         let dir = std::env::temp_dir().join(format!("dashpot-out-{}", std::process::id()));

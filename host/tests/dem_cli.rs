@@ -160,4 +160,22 @@ fn bad_scenes_name_the_key_and_the_value() {
         &["dem", "--scene", p.to_str().unwrap()],
         &["overlaps wall 0", "time step"],
     );
+    // and a run that fails after its first frames leaves no trajectory behind, not half of one
+    let out = p.with_extension("out");
+    let _ = std::fs::remove_dir_all(&out);
+    fails(
+        &[
+            "dem",
+            "--scene",
+            p.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &["overlaps wall 0"],
+    );
+    let left: Vec<_> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|f| f.unwrap().file_name())
+        .collect();
+    assert!(left.is_empty(), "a failed run left {left:?}");
 }

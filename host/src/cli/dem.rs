@@ -6,7 +6,7 @@ use crate::registry::Registry;
 use anyhow::{Context, Result};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
 use std::path::PathBuf;
 
 /// `dashpot dem`.
@@ -186,8 +186,9 @@ fn run_dim<const D: usize>(
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir).with_context(|| format!("creating --out {}", dir.display()))?;
         let p = dir.join("trajectory.xyz");
-        let f = std::fs::File::create(&p).with_context(|| format!("creating {}", p.display()))?;
-        let mut w = std::io::BufWriter::new(f);
+        // (it appears at its name when the run has ended well: a failed run leaves none)
+        let mut w =
+            crate::output::AtomicFile::create(&p).with_context(|| format!("creating {}", p.display()))?;
         crate::dem::xyz::write_frame(&e, &mut w)?;
         traj = Some(w);
         if a.png {
@@ -232,8 +233,8 @@ fn run_dim<const D: usize>(
     }
     pb.finish_and_clear();
     let wall = wall0.elapsed().as_secs_f64();
-    if let Some(mut w) = traj {
-        w.flush()?;
+    if let Some(w) = traj {
+        w.commit().context("writing the trajectory")?;
     }
     let mut state = e.state_json();
     state["law"] = serde_json::json!(file.law.name);
