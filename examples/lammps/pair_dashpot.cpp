@@ -376,7 +376,7 @@ double PairDashpot::init_one(int i, int j)
 /* Lays the history out in the order of the neighbour list just built: slot k is the k-th pair
  * (i, j) of the list, and takes the values atom i (or j) carries in fix DASHPOT/HISTORY for
  * that partner, zero if none. The wall's history is laid out per local atom. Runs once per
- * list build, never in the steps between. */
+ * list build (at the first compute after it), never in the steps between. */
 void PairDashpot::layout_slots()
 {
     if (fix_history->stale) history_to_atoms();    // a build without a pre_exchange before it
@@ -426,6 +426,7 @@ void PairDashpot::layout_slots()
         }
     }
     slots_ncalls = neighbor->ncalls;
+    fix_history->rebuilt = 0;
 }
 
 void PairDashpot::history_to_atoms()
@@ -660,7 +661,11 @@ template <int NS, int NT> void PairDashpot::compute_t()
     const int ntp1 = atom->ntypes + 1;
     const int wall_key0 = ntp1 * ntp1;
 
-    if (nv > 0 && (slots_ncalls != neighbor->ncalls || (wall_flag && nlocal != nwall_slots))) layout_slots();
+    // a new list (flagged by the history fix's post_neighbor hooks: LAMMPS's count of builds
+    // restarts at every run's setup, so after a run with no build in its steps, such as `run 0`,
+    // the count alone would take the next setup's list for the old one)
+    if (nv > 0 && (fix_history->rebuilt || slots_ncalls != neighbor->ncalls || (wall_flag && nlocal != nwall_slots)))
+        layout_slots();
     double *shist = nv > 0 ? slot_hist.data() : nullptr;
     unsigned char *stouch = nv > 0 ? slot_touched.data() : nullptr;
     stage.reserve(ns, nt);
