@@ -65,7 +65,8 @@ pub struct DemBedReport {
     pub pressure: f64,
     /// Lid contact episodes per second (1/s).
     pub lid_collision_rate: f64,
-    /// Mean impulse per lid episode (N·s).
+    /// Mean impulse per lid episode (N·s); 0 when no disk touched the lid (then not measured:
+    /// it does not enter a mean over seeds).
     pub mean_impulse: f64,
     /// Mean translational kinetic energy per disk (J).
     pub temperature: f64,

@@ -116,6 +116,10 @@ pub trait SeedObservables: Clone {
     /// The five observables with their standard errors: lid pressure, lid collision rate, mean
     /// impulse, temperature, piston pressure.
     fn observables(&mut self) -> [(&mut f64, &mut Option<f64>); 5];
+    /// Which of the five were measured: the mean impulse per lid collision is not when no disk
+    /// hit the lid (the report then holds 0), and a seed without it must not pull the mean
+    /// over seeds towards 0.
+    fn measured(&self) -> [bool; 5];
     /// How many seeds the report averages.
     fn seeds(&mut self) -> &mut usize;
 }
@@ -137,6 +141,9 @@ macro_rules! seed_observables {
                     (&mut self.piston_pressure, &mut self.piston_pressure_stderr),
                 ]
             }
+            fn measured(&self) -> [bool; 5] {
+                [true, true, self.lid_collision_rate > 0.0, true, true]
+            }
             fn seeds(&mut self) -> &mut usize {
                 &mut self.seeds
             }
@@ -145,22 +152,28 @@ macro_rules! seed_observables {
 }
 pub(crate) use seed_observables;
 
-/// The mean of `runs` (independent seeds): each observable's mean over the seeds, its
-/// standard error from their spread, the rest of the report from the first run (the caller
-/// sums its counters). None for no runs; one run is returned as it is.
+/// The mean of `runs` (independent seeds): each observable's mean over the seeds that measured
+/// it, its standard error from their spread, the rest of the report from the first run (the
+/// caller sums its counters). None for no runs; one run is returned as it is.
 pub fn mean_over_seeds<R: SeedObservables>(runs: &[R]) -> Option<R> {
     let first = runs.first()?;
     if runs.len() == 1 {
         return Some(first.clone());
     }
-    let mut values: Vec<[f64; 5]> = Vec::with_capacity(runs.len());
+    let mut values: Vec<([f64; 5], [bool; 5])> = Vec::with_capacity(runs.len());
     for r in runs {
         let mut r = r.clone();
-        values.push(r.observables().map(|(v, _)| *v));
+        let measured = r.measured();
+        values.push((r.observables().map(|(v, _)| *v), measured));
     }
     let mut out = first.clone();
     for (k, (v, e)) in out.observables().into_iter().enumerate() {
-        let column: Vec<f64> = values.iter().map(|x| x[k]).collect();
+        let column: Vec<f64> = values.iter().filter(|x| x.1[k]).map(|x| x.0[k]).collect();
+        if column.is_empty() {
+            // measured by no seed: the first run's placeholder stays
+            *e = None;
+            continue;
+        }
         *v = column.iter().sum::<f64>() / column.len() as f64;
         *e = stderr_of(&column);
     }
@@ -185,7 +198,8 @@ pub struct BedReport {
     pub pressure: f64,
     /// Lid collision frequency Nc (1/s).
     pub lid_collision_rate: f64,
-    /// Mean impulse per lid collision ΔI (N·s).
+    /// Mean impulse per lid collision ΔI (N·s); 0 when no disk hit the lid (then not
+    /// measured: it does not enter a mean over seeds).
     pub mean_impulse: f64,
     /// Granular temperature T: time-averaged translational kinetic energy per disk (J).
     pub temperature: f64,
@@ -474,3 +488,53 @@ impl BedReport {
 }
 
 seed_observables!(BedReport);
+
+#[cfg(test)]
+mod seed_tests {
+    use super::{mean_over_seeds, seed_observables};
+
+    #[derive(Clone, Default)]
+    struct Seed {
+        pressure: f64,
+        pressure_stderr: Option<f64>,
+        lid_collision_rate: f64,
+        lid_collision_rate_stderr: Option<f64>,
+        mean_impulse: f64,
+        mean_impulse_stderr: Option<f64>,
+        temperature: f64,
+        temperature_stderr: Option<f64>,
+        piston_pressure: f64,
+        piston_pressure_stderr: Option<f64>,
+        seeds: usize,
+    }
+    seed_observables!(Seed);
+
+    fn seed(rate: f64, impulse: f64, temperature: f64) -> Seed {
+        Seed {
+            lid_collision_rate: rate,
+            mean_impulse: impulse,
+            pressure: rate * impulse,
+            temperature,
+            ..Default::default()
+        }
+    }
+
+    /// A seed in which no disk hit the lid has no mean impulse per collision (its 0 is a
+    /// placeholder): the mean over seeds is over the others, not pulled towards 0.
+    #[test]
+    fn a_seed_without_lid_collisions_does_not_enter_the_mean_impulse() {
+        let runs = [seed(10.0, 2e-6, 1.0), seed(0.0, 0.0, 2.0), seed(30.0, 4e-6, 3.0)];
+        let m = mean_over_seeds(&runs).unwrap();
+        assert_eq!(m.seeds, 3);
+        assert!((m.mean_impulse - 3e-6).abs() < 1e-18, "{}", m.mean_impulse);
+        // the spread of the two measured seeds: |a - b| / 2
+        assert!((m.mean_impulse_stderr.unwrap() - 1e-6).abs() < 1e-18);
+        // the rates, pressures and temperatures of all three seeds
+        assert!((m.lid_collision_rate - 40.0 / 3.0).abs() < 1e-12);
+        assert!((m.temperature - 2.0).abs() < 1e-15);
+        // no seed measured it: the placeholder stays, with no error bar
+        let none = mean_over_seeds(&[seed(0.0, 0.0, 1.0), seed(0.0, 0.0, 1.0)]).unwrap();
+        assert_eq!(none.mean_impulse, 0.0);
+        assert!(none.mean_impulse_stderr.is_none());
+    }
+}
