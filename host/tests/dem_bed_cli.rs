@@ -328,3 +328,25 @@ fn each_engines_options_are_refused_by_the_other() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("abc"));
 }
+
+/// `dem --bed` is `bed --engine dem` under another name: the same checks refuse the same
+/// values (it once parsed its options itself and let a negative modulus or an unphysical
+/// Poisson's ratio through to the engine).
+#[test]
+fn dem_bed_takes_the_checks_of_bed_engine_dem() {
+    let base = [
+        "dem", "--bed", "--layers", "0.5", "--freq", "20", "--cycles", "1", "--law", "hsd",
+    ];
+    let with = |extra: &[&'static str]| -> Vec<&'static str> {
+        let mut a: Vec<&'static str> = base.to_vec();
+        a.extend_from_slice(extra);
+        a
+    };
+    fails(&with(&["--young", "-5"]), &["--young = -5", "> 0"]);
+    fails(&with(&["--poisson", "0.7"]), &["--poisson = 0.7", "(-1, 0.5)"]);
+    fails(&with(&["--dt", "0"]), &["--dt = 0"]);
+    fails(&with(&["--set", "eps=1.5"]), &["eps", "1.5", "(0, 1]"]);
+    fails(&with(&["--tset", "mu=0.3"]), &["--tset", "--tangential"]);
+    fails(&with(&["--transient", "-1"]), &["--transient = -1", ">= 0"]);
+    fails(&with(&["--tangential", "0.5"]), &["--tangential 0.5", "mindlin"]);
+}

@@ -93,54 +93,48 @@ pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
     }
 }
 
+/// `dem --bed` is `bed --engine dem` with the same values: its arguments are handed to that
+/// command's parser and run by it, so both take the same checks, defaults and output.
 fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
-    use crate::config::{merge_params, parse_sets};
+    #[derive(clap::Parser)]
+    struct BedCommand {
+        #[command(flatten)]
+        bed: crate::bed::cli::BedArgs,
+    }
     let layers = b.layers.context("--bed needs --layers N")?;
     let freq = b.freq.context("--bed needs --freq HZ")?;
     let law = b
         .law
         .clone()
         .context("--bed needs --law NAME (a contact law, e.g. hsd)")?;
-    let mut cfg = crate::bed::BedConfig::paper(layers, freq);
-    cfg.gravity = b.gravity;
-    cfg.seed = b.seed;
-    let mut bed = crate::dem::bed::DemBed::new(cfg, b.young, b.poisson);
-    bed.dt = b.dt;
-    let usage = |e: crate::config::ConfigError| crate::cli::UsageError(e.to_string());
-    let params = merge_params(&Default::default(), &parse_sets(&b.set).map_err(usage)?);
-    let tparams = merge_params(&Default::default(), &parse_sets(&b.tset).map_err(usage)?);
-    let load = || {
-        Laws::from_registry(
-            reg,
-            (law.as_str(), params.as_slice()),
-            b.tangential.as_deref().map(|t| (t, tparams.as_slice())),
-            &bed.material,
-        )
+    let mut argv: Vec<String> = vec!["dashpot dem --bed".into(), "--engine".into(), "dem".into()];
+    let mut put = |flag: &str, value: String| {
+        argv.push(flag.into());
+        argv.push(value);
     };
-    let c = bed.engine(load()?)?.step_choice;
-    eprintln!(
-        "DEM bed: E = {:.3e} Pa, dt = {:.4e} s, contact time {:.4e} s at {:.3} m/s{}",
-        bed.material.young,
-        c.dt,
-        c.collision_time,
-        c.impact_speed,
-        if c.given { " (dt given)" } else { "" }
-    );
-    let total = (b.transient + b.cycles) / freq;
-    let pb = progress((total * 1000.0).ceil() as u64);
-    let r = bed
-        .run(load()?, b.transient, b.cycles, &mut |t| {
-            pb.set_position((t * 1000.0) as u64)
-        })
-        .with_context(|| format!("DEM bed n = {layers}, f = {freq} Hz, law {law}"))?;
-    pb.finish_and_clear();
-    if json {
-        let v = crate::bed::cli::dem_report_json(&law, &params, b.tangential.as_deref(), &tparams, &r);
-        println!("{}", serde_json::to_string_pretty(&v)?);
-    } else {
-        crate::bed::cli::print_dem_report(&law, &params, b.tangential.as_deref(), &tparams, &r);
+    put("--layers", layers.to_string());
+    put("--freq", freq.to_string());
+    put("--law", law);
+    b.set.iter().for_each(|s| put("--set", s.clone()));
+    if let Some(t) = &b.tangential {
+        put("--tangential", t.clone());
     }
-    Ok(())
+    b.tset.iter().for_each(|s| put("--tset", s.clone()));
+    for (flag, v) in [("--young", b.young), ("--poisson", b.poisson), ("--dt", b.dt)] {
+        if let Some(v) = v {
+            put(flag, v.to_string());
+        }
+    }
+    put("--gravity", b.gravity.to_string());
+    put("--transient", b.transient.to_string());
+    put("--cycles", b.cycles.to_string());
+    put("--seed", b.seed.to_string());
+    if json {
+        argv.push("--json".into());
+    }
+    let cmd = <BedCommand as clap::Parser>::try_parse_from(&argv)
+        .map_err(|e| crate::cli::UsageError(e.to_string()))?;
+    crate::bed::cli::bed(reg, &cmd.bed)
 }
 
 fn run_dim<const D: usize>(

@@ -491,7 +491,7 @@ seed_observables!(BedReport);
 
 #[cfg(test)]
 mod seed_tests {
-    use super::{mean_over_seeds, seed_observables};
+    use super::mean_over_seeds;
 
     #[derive(Clone, Default)]
     struct Seed {
