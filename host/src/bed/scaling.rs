@@ -173,7 +173,10 @@ pub fn run_dem_grid(
     run_points(grid, jobs, tick, |n, f, l| {
         bed(n, f)
             .run(l, grid.transient, grid.cycles, &mut |_| {})
-            .map_err(|e| DemError::Invalid(format!("n = {n}, f = {f} Hz: {e}")))
+            .map_err(|e| DemError::InRun {
+                point: format!("n = {n}, f = {f} Hz"),
+                error: Box::new(e),
+            })
     })
 }
 

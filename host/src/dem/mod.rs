@@ -126,6 +126,14 @@ pub enum DemError {
         /// Angular velocity, formatted.
         spin: String,
     },
+    /// One run of a grid failed: which one, and why (the error kind kept).
+    #[error("{point}: {error}")]
+    InRun {
+        /// The run, e.g. "n = 2, f = 20 Hz".
+        point: String,
+        /// What went wrong.
+        error: Box<DemError>,
+    },
     /// A particle left the bounded domain.
     #[error(
         "particle {i} left the domain at t = {t} s: position {pos} outside [{lo}, {hi}] along axis {axis}"
