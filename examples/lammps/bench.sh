@@ -40,11 +40,24 @@ run() {
         -var style "$style" -var wall fix "$@" \
         -var plugin "$plugin" -var plugin_dir "$root/target/release" >"$log" 2>&1 ||
         { cat "$log" >&2; exit 1; }
-    # the deck's own result line (the settled pile's measures for the pour), to stderr
-    grep '^RESULT' "$log" | sed "s/^/ranks=$ranks /" >&2 || true
+    # the deck's own result line (the settled pile's measures for the pour), to stderr; a run
+    # without one, or whose pile lost atoms, sank through the floor or went non-finite, is no
+    # benchmark: stop rather than print a ratio
+    local result
+    result="$(grep '^RESULT' "$log")" || { echo "$style on $ranks rank(s): no RESULT line" >&2; cat "$log" >&2; exit 1; }
+    echo "ranks=$ranks $result" >&2
+    if [ "$deck" = pile ]; then
+        echo "$result" | awk -v want="$((nx * nx * nz))" -v d="0.01" '{
+            for (i = 2; i <= NF; i++) { split($i, kv, "="); v[kv[1]] = kv[2] }
+            ok = v["atoms"] == want && v["vrms"] !~ /nan|inf/ &&
+                 v["zmin"] > -0.5 * d && v["zmax"] !~ /nan|inf/
+            if (!ok) { print "not a sane pile (want " want " atoms, none below the floor, finite): " $0; exit 1 }
+        }' >&2 || exit 1
+    fi
     # every run of the deck: particle-steps over loop time, summed
     awk '/^Loop time of/ { t += $4; ps += $9 * $12 } /^Pair  *\|/ { p += $5 }
-         END { printf "%.6g %.6g %.6g\n", ps / t, p, t }' "$log"
+         END { if (t <= 0) exit 1; printf "%.6g %.6g %.6g\n", ps / t, p, t }' "$log" ||
+        { echo "$style on $ranks rank(s): no loop time" >&2; exit 1; }
 }
 
 if [ "$deck" = pour ]; then
