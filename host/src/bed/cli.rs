@@ -3,7 +3,7 @@
 
 use super::engine::{Bed, BedConfig, BedReport};
 use super::view::{progress_bar, snapshot_figure, SaveAs};
-use super::{resolve, scaling, DynRestitution, Laws};
+use super::{scaling, DynRestitution, Laws};
 use crate::output::write_atomic;
 use crate::plot::Figure;
 use crate::registry::Registry;
@@ -308,19 +308,16 @@ impl PhysArgs {
             bail!("mass m = {} kg is out of range: m must be > 0", self.mass);
         }
         let name = self.restitution_name()?;
-        if let Some(contact) = name.strip_prefix(super::FROM_CONTACT) {
-            if self.young.is_some() || self.poisson.is_some() {
-                let mut p = super::bed_particle(self.diameter, self.mass);
-                p.young = self.young.unwrap_or(p.young);
-                p.poisson = self.poisson.unwrap_or(p.poisson);
-                let (disk, wall) = crate::tabulate::contact_restitution(reg, contact, &self.params()?, &p)?;
-                return Ok(Laws {
-                    disk: Box::new(super::Compiled(disk)),
-                    wall: Box::new(super::Compiled(wall)),
-                });
-            }
-        }
-        Ok(resolve(reg, name, &self.params()?, self.diameter, self.mass)?)
+        Ok(super::resolve_for(reg, name, &self.params()?, &self.particle())?)
+    }
+
+    /// The bed's disks: diameter and mass, and the material of --young and --poisson (steel's
+    /// where not given).
+    pub fn particle(&self) -> dashpot_sdk::Particle {
+        let mut p = super::bed_particle(self.diameter, self.mass);
+        p.young = self.young.unwrap_or(p.young);
+        p.poisson = self.poisson.unwrap_or(p.poisson);
+        p
     }
 
     /// Checks the protocol's lengths.
@@ -525,9 +522,9 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
         if let Some(o) = v.as_object_mut() {
             o.insert("engine".into(), json!("event"));
             if law_name.is_some() {
-                let p = super::bed_particle(a.phys.diameter, a.phys.mass);
-                o.insert("young".into(), json!(a.phys.young.unwrap_or(p.young)));
-                o.insert("poisson".into(), json!(a.phys.poisson.unwrap_or(p.poisson)));
+                let p = a.phys.particle();
+                o.insert("young".into(), json!(p.young));
+                o.insert("poisson".into(), json!(p.poisson));
             }
         }
         if let Some(o) = v.as_object_mut() {

@@ -873,11 +873,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
         let bc = BedConfig::paper(1.0, f);
         let mut p = super::bed_particle(bc.diameter, bc.mass);
         p.young = young;
-        let (kd, kw) = crate::tabulate::contact_restitution(reg, "kuwabara-kono", &kk, &p)?;
-        let kk_table: Plug = Laws {
-            disk: Box::new(super::Compiled(kd)),
-            wall: Box::new(super::Compiled(kw)),
-        };
+        let kk_table: Plug = super::resolve_for(reg, "from:kuwabara-kono", &kk, &p)?;
         struct Row {
             n: f64,
             what: &'static str,

@@ -111,8 +111,12 @@ pub fn bed_particle(d: f64, m: f64) -> Particle {
 
 /// The disk–disk and disk–wall pairs of the bed's particle.
 pub fn bed_pairs(d: f64, m: f64) -> Result<(Pair, Pair), LawError> {
-    let p = bed_particle(d, m);
-    Ok((Pair::spheres(&p, &p)?, Pair::wall(&p)?))
+    particle_pairs(&bed_particle(d, m))
+}
+
+/// The disk–disk and disk–wall pairs of particle `p`.
+fn particle_pairs(p: &Particle) -> Result<(Pair, Pair), LawError> {
+    Ok((Pair::spheres(p, p)?, Pair::wall(p)?))
 }
 
 /// Loads restitution law `name` from the registry with `params` and binds it to the bed's pairs.
@@ -123,8 +127,18 @@ pub fn plugin_laws(
     d: f64,
     m: f64,
 ) -> Result<Laws<BoundRestitutionHandle>, LawError> {
+    plugin_laws_for(reg, name, params, &bed_particle(d, m))
+}
+
+/// [`plugin_laws`] bound to the pairs of particle `p`.
+fn plugin_laws_for(
+    reg: &crate::Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    p: &Particle,
+) -> Result<Laws<BoundRestitutionHandle>, LawError> {
     let law = reg.restitution(name, params)?;
-    let (pp, pw) = bed_pairs(d, m)?;
+    let (pp, pw) = particle_pairs(p)?;
     Ok(Laws {
         disk: law.bind(&pp)?,
         wall: law.bind(&pw)?,
@@ -145,14 +159,26 @@ pub fn resolve(
     d: f64,
     m: f64,
 ) -> Result<Laws<DynRestitution>, LawError> {
+    resolve_for(reg, name, params, &bed_particle(d, m))
+}
+
+/// [`resolve`] for the disks `p` (the bed's diameter and mass, and a material: steel's in
+/// [`resolve`], else what `--young` and `--poisson` give, which a `from:LAW` table is
+/// computed for).
+pub fn resolve_for(
+    reg: &crate::Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    p: &Particle,
+) -> Result<Laws<DynRestitution>, LawError> {
     if let Some(contact) = name.strip_prefix(FROM_CONTACT) {
-        let l = contact_laws(reg, contact, params, d, m)?;
+        let (disk, wall) = crate::tabulate::contact_restitution(reg, contact, params, p)?;
         return Ok(Laws {
-            disk: Box::new(Compiled(l.disk)),
-            wall: Box::new(Compiled(l.wall)),
+            disk: Box::new(Compiled(disk)),
+            wall: Box::new(Compiled(wall)),
         });
     }
-    let l = plugin_laws(reg, name, params, d, m)?;
+    let l = plugin_laws_for(reg, name, params, p)?;
     Ok(Laws {
         disk: Box::new(l.disk),
         wall: Box::new(l.wall),
