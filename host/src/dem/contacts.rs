@@ -307,15 +307,8 @@ impl ContactSet {
     ) -> Result<(), DemError> {
         self.first = range.start;
         self.formed = 0;
-        let View {
-            base,
-            pos,
-            vpred,
-            vel,
-            omega,
-            radius,
-            mass,
-        } = *view;
+        let (base, pos, vpred, vel) = (view.base, view.pos, view.vpred, view.vel);
+        let (omega, radius, mass) = (view.omega, view.radius, view.mass);
         // the chunk's particles, indexed from 0
         let local = range.start - base..range.end - base;
         // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall

@@ -194,6 +194,22 @@ struct Shared<'a, const D: usize> {
 }
 
 impl<'a, const D: usize> Shared<'a, D> {
+    /// Forces, torques, inverse masses and moments of inertia, no anchors (no staleness test).
+    fn without_anchors(
+        force: &'a [VecD<D>],
+        torque: &'a [f64],
+        im: &'a [f64],
+        ii: &'a [f64],
+    ) -> Shared<'a, D> {
+        Shared {
+            force,
+            torque,
+            im,
+            ii,
+            anchor: &[],
+        }
+    }
+
     /// The part of particles `a..a + len`.
     fn chunk(&self, a: usize, len: usize) -> Shared<'a, D> {
         let b = a + len;
@@ -814,37 +830,29 @@ impl<const D: usize> Engine<D> {
             let cs = c * spin_len(D);
             let sum = {
                 let p = &mut self.p;
-                let shared = Shared {
-                    force: &p.force,
-                    torque: &p.torque,
-                    im: &self.inv_mass,
-                    ii: &self.inv_inertia,
-                    anchor: &[],
-                };
+                let shared = Shared::without_anchors(&p.force, &p.torque, &self.inv_mass, &self.inv_inertia);
                 let run = |(k, ((((x, v), w), vp), ao)): KickDriftChunk<'_, D>| {
                     let s = shared.chunk(k * c, x.len());
                     kick_drift_chunk(&s, pending, g, h, dt, x, v, w, vp, ao, &mut 0.0, 0.0).1
                 };
+                // the same chain by std's chunks or rayon's
+                macro_rules! drift_all {
+                    ($chunks_mut:ident) => {
+                        p.pos
+                            .$chunks_mut(c)
+                            .zip(p.vel.$chunks_mut(c))
+                            .zip(p.omega.$chunks_mut(cs))
+                            .zip(self.vpred.$chunks_mut(c))
+                            .zip(self.aold.$chunks_mut(c))
+                            .enumerate()
+                            .map(run)
+                            .sum::<f64>()
+                    };
+                }
                 if n < SERIAL_BELOW {
-                    p.pos
-                        .chunks_mut(c)
-                        .zip(p.vel.chunks_mut(c))
-                        .zip(p.omega.chunks_mut(cs))
-                        .zip(self.vpred.chunks_mut(c))
-                        .zip(self.aold.chunks_mut(c))
-                        .enumerate()
-                        .map(run)
-                        .sum::<f64>()
+                    drift_all!(chunks_mut)
                 } else {
-                    p.pos
-                        .par_chunks_mut(c)
-                        .zip(p.vel.par_chunks_mut(c))
-                        .zip(p.omega.par_chunks_mut(cs))
-                        .zip(self.vpred.par_chunks_mut(c))
-                        .zip(self.aold.par_chunks_mut(c))
-                        .enumerate()
-                        .map(run)
-                        .sum::<f64>()
+                    drift_all!(par_chunks_mut)
                 }
             };
             if !sum.is_finite() {
@@ -862,13 +870,7 @@ impl<const D: usize> Engine<D> {
         let c = GATHER_CHUNK;
         let sum = {
             let p = &mut self.p;
-            let shared = Shared {
-                force: &p.force,
-                torque: &p.torque,
-                im: &self.inv_mass,
-                ii: &self.inv_inertia,
-                anchor: &[],
-            };
+            let shared = Shared::without_anchors(&p.force, &p.torque, &self.inv_mass, &self.inv_inertia);
             let pos = &p.pos;
             let run = |(k, (v, w)): (usize, (&mut [VecD<D>], &mut [f64]))| {
                 let a = k * c;
