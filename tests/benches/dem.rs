@@ -250,7 +250,11 @@ fn main() {
     // sides step the same disks with the same contacts)
     if run("cores") {
         let two = pool(2);
-        let n = 100_000;
+        // DASHPOT_BENCH_CORES_N: another size (the speed-up where the pile fits in cache, say)
+        let n: usize = std::env::var("DASHPOT_BENCH_CORES_N")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(100_000);
         let settle: usize = std::env::var("DASHPOT_BENCH_SETTLE")
             .ok()
             .and_then(|s| s.parse().ok())

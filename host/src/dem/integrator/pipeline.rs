@@ -9,11 +9,12 @@
 //! that was just drifted and the one before it from cache, and the scatter writes forces the
 //! drift has just read.
 //!
-//! In parallel, the chunks are cut into one contiguous range per thread. A range's last
-//! chunks reach partners in the next range's first chunks (its *head*: the chunks up to the
-//! farthest chunk any earlier range reaches, from the neighbour list). So every head drifts
-//! first (phase 1, in parallel); then each range runs its own reverse sweep over the chunks
-//! it has not drifted yet (phase 2). The result does not depend on the cut: each chunk's drift
+//! In parallel, the chunks are cut into contiguous ranges, two per thread, of even work (by
+//! particles, listed pairs and the last step's contacts). A range's last chunks reach partners
+//! in the next range's first chunks (its *head*: the chunks up to the farthest chunk any
+//! earlier range reaches, from the neighbour list). So every head drifts first (phase 1, in
+//! parallel); then each range runs its own reverse sweep over the chunks it has not drifted
+//! yet (phase 2). The result does not depend on the cut: each chunk's drift
 //! and forces are the same arithmetic in any order, and the forces on partners beyond a chunk
 //! are added afterwards in chunk order ([`Engine::finish_forces`]).
 //!
@@ -143,17 +144,36 @@ impl<const D: usize> Engine<D> {
         let (h, g) = (0.5 * dt, self.cfg.gravity);
         let t_end = self.t + dt;
         let ws: Vec<_> = self.walls.iter().map(|w| w.at(t_end)).collect();
+        // two ranges per thread, so that a thread held up (by the machine, or by a range denser
+        // in contacts than its weight says) leaves its second range to the other
         let tasks = if n < SERIAL_BELOW {
             1
         } else {
-            rayon::current_num_threads().clamp(1, chunks.max(1))
+            (2 * rayon::current_num_threads()).clamp(1, chunks.max(1))
         };
         // range r: chunks cuts[r]..cuts[r + 1]; its head: cuts[r]..head[r] (one range, no
         // head: no allocation, for the small piles whose steps take microseconds)
         let (one_cut, one_head) = ([0, chunks], [0]);
         let (mut cut_v, mut head_v) = (Vec::new(), Vec::new());
         if tasks > 1 {
-            cut_v = (0..=tasks).map(|r| r * chunks / tasks).collect();
+            // cut where the work is even: a chunk's work is counted as its particles, its listed
+            // pairs and its contacts of the last step (weights ~ their costs in a step)
+            let (start, pairs, walls) = (&self.nb.start, &self.pairs.chunks, &self.wall_contacts.chunks);
+            let mut prefix = Vec::with_capacity(chunks + 1);
+            prefix.push(0usize);
+            for k in 0..chunks {
+                let r = k * c..((k + 1) * c).min(n);
+                let listed = (start[r.end] - start[r.start]) as usize;
+                let touching = pairs.get(k).map_or(0, |s| s.len()) + walls.get(k).map_or(0, |s| s.len());
+                prefix.push(prefix[k] + 4 * r.len() + listed + 6 * touching);
+            }
+            cut_v = vec![0; tasks + 1];
+            cut_v[tasks] = chunks;
+            for r in 1..tasks {
+                let at = prefix.partition_point(|&w| w < prefix[chunks] * r / tasks);
+                // at least one chunk in every range
+                cut_v[r] = at.clamp(cut_v[r - 1] + 1, chunks - (tasks - r));
+            }
             head_v = vec![0usize; tasks];
             let mut reached = 0usize;
             for r in 0..tasks {
