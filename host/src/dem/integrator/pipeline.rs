@@ -145,11 +145,13 @@ impl<const D: usize> Engine<D> {
         let t_end = self.t + dt;
         let ws: Vec<_> = self.walls.iter().map(|w| w.at(t_end)).collect();
         // two ranges per thread, so that a thread held up (by the machine, or by a range denser
-        // in contacts than its weight says) leaves its second range to the other
-        let tasks = if n < SERIAL_BELOW {
+        // in contacts than its weight says) leaves its second range to another; one thread,
+        // one range
+        let threads = rayon::current_num_threads();
+        let tasks = if n < SERIAL_BELOW || threads == 1 {
             1
         } else {
-            (2 * rayon::current_num_threads()).clamp(1, chunks.max(1))
+            (2 * threads).clamp(1, chunks.max(1))
         };
         // range r: chunks cuts[r]..cuts[r + 1]; its head: cuts[r]..head[r] (one range, no
         // head: no allocation, for the small piles whose steps take microseconds)
