@@ -561,12 +561,11 @@ fn a_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
 /// tells the runs apart.
 #[test]
 fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
-    let run = |threads: usize, two_passes: bool| -> Engine<2> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+    // `threads` 0: off any pool (the global one, as the CLI runs); `blocks`: the 600 steps as
+    // blocks of `advance` (the pool's other threads kept awake through each block) instead of
+    // single steps
+    let run = |threads: usize, two_passes: bool, blocks: bool| -> Engine<2> {
+        let go = || {
             let (mut cfg, mut bodies) = dense_lattice(70, 72, false);
             cfg.domain.periodic = [false, false];
             cfg.gravity = VecD::<2>::new(0.0, -9.81);
@@ -577,6 +576,12 @@ fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
             let f = CundallStrack { kt: 2.0e3, mu: 0.5 };
             let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
             let mut e = Engine::new(cfg, &bodies, vec![floor], laws(&mat, 0.8, Some(f))).unwrap();
+            if blocks {
+                for _ in 0..4 {
+                    e.advance(150).unwrap();
+                }
+                return e;
+            }
             for _ in 0..600 {
                 if two_passes {
                     e.invalidate_neighbours();
@@ -584,14 +589,29 @@ fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
                 e.step().unwrap();
             }
             e
-        })
+        };
+        if threads == 0 {
+            return go();
+        }
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(go)
     };
-    let reference = run(1, true);
+    let reference = run(1, true, false);
     assert_eq!(reference.rebuilds(), 601);
-    for threads in [1, 2, 3] {
-        let e = run(threads, false);
+    for (threads, blocks) in [
+        (1, false),
+        (2, false),
+        (3, false),
+        (2, true),
+        (3, true),
+        (0, true),
+    ] {
+        let e = run(threads, false, blocks);
         println!(
-            "{threads} thread(s): {} list builds in 600 steps, {} pair and {} wall contacts",
+            "{threads} thread(s), blocks {blocks}: {} list builds in 600 steps, {} pair and {} wall contacts",
             e.rebuilds(),
             e.pairs.len(),
             e.wall_contacts.len()
@@ -600,7 +620,7 @@ fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
         assert!(e.pairs.len() > 1000 && !e.wall_contacts.is_empty());
         assert!(
             state_bits(&e) == state_bits(&reference),
-            "{threads} thread(s): one pass and two part"
+            "{threads} thread(s), blocks {blocks}: one pass and two part"
         );
     }
 }

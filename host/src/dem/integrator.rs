@@ -32,6 +32,7 @@ use crate::collide::{collide, Options, PairLaw};
 use dashpot_sdk::EndCriterion;
 use rayon::prelude::*;
 
+mod awake;
 mod pipeline;
 
 /// The first half-kick and the drift of one particle, with its acceleration `a` (m/s²) and
@@ -792,12 +793,24 @@ impl<const D: usize> Engine<D> {
     /// same pass over the particles as the first half-kick and the drift of the next (one pass
     /// fewer per step; the state between the steps is not observable). Not in a bounded box,
     /// whose check for lost particles wants every step's end state: there, plain steps.
+    ///
+    /// On a pool of several threads, the pool's other threads wait for each step's parallel
+    /// phase without sleeping through the block (see `awake.rs`): the same steps, without a
+    /// wake-up per step.
     pub fn advance(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
-        for s in 0..k {
-            self.step_with(fuse && s + 1 < k)?;
+        let parallel = k > 1 && self.p.len() >= SERIAL_BELOW;
+        let mut block = || {
+            for s in 0..k {
+                self.step_with(fuse && s + 1 < k)?;
+            }
+            Ok(())
+        };
+        if parallel {
+            awake::with_pool_awake(block)
+        } else {
+            block()
         }
-        Ok(())
     }
 
     /// One step; with `defer`, the step ends before its second half-kick, which the next step

@@ -37,11 +37,11 @@
 //! chunks already drifted and of later ranges' heads, which no task writes in phase 2. Phase 1
 //! runs alone.
 
+use super::awake::map_claimed;
 use super::{chunk_forces, kick_drift_chunk, ChunkContext, Engine, Shared, GATHER_CHUNK, SERIAL_BELOW};
 use crate::dem::contacts::{ContactSet, View};
 use crate::dem::state::{spin_len, Vec3, VecD};
 use crate::dem::DemError;
-use rayon::prelude::*;
 use std::marker::PhantomData;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -325,16 +325,14 @@ impl<const D: usize> Engine<D> {
         };
         let (mut sum, mut result) = (sum1, Ok(()));
         if tasks > 1 {
-            let outcomes: Vec<(f64, Result<(), DemError>)> = cut(next_p, cuts)
+            let ranges: Vec<RangeItems<'_, D>> = cut(next_p, cuts)
                 .into_iter()
                 .zip(cut(next_w, cuts))
                 .zip(cut(&mut self.overflow, cuts))
                 .zip(cut(&mut self.moved, cuts))
                 .enumerate()
-                .collect::<Vec<_>>()
-                .into_par_iter()
-                .map(sweep)
                 .collect();
+            let outcomes = map_claimed(ranges, sweep);
             for (x, res) in outcomes {
                 sum += x;
                 if result.is_ok() {

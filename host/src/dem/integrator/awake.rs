@@ -1,0 +1,179 @@
+//! The pool kept awake through a block of steps.
+//!
+//! A step of a large pile has one parallel phase between two serial ones (the heads' drift
+//! before it, the partners' forces and the counts after it: [`super::Engine::drift_and_forces`]).
+//! Between two phases, rayon's idle workers spin a few dozen rounds, then sleep; waking one
+//! costs the step some 100–250 µs on a virtual machine, where the sleeping thread's core has
+//! halted and must be scheduled again by the hypervisor, out of a step of a few milliseconds.
+//! OpenMP runtimes keep their threads spinning between the parallel regions of a run for this
+//! reason. Here, for a block of steps, every other worker of the pool runs a job that looks for
+//! rayon work without pause (`rayon::yield_now`, which steals), so that each phase's tasks are
+//! taken at once; the job ends with the block.
+//!
+//! Nothing in the steps depends on it: the tasks and their results are the same, only who
+//! waits and how differs. The cost is the spinning workers' cores during the serial phases,
+//! which nothing else would use while the steps run.
+
+use crossbeam_utils::Backoff;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+/// Runs `f` on a rayon worker with every other worker of its pool looking for work without
+/// sleeping until `f` returns (or unwinds). Called off a pool, `f` runs on a worker of the
+/// global pool (the caller waits once for the block, not once per step); on a pool of one
+/// thread, `f` just runs.
+pub(super) fn with_pool_awake<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    if rayon::current_num_threads() < 2 {
+        return f();
+    }
+    let Some(me) = rayon::current_thread_index() else {
+        return rayon::scope(|_| with_pool_awake(f));
+    };
+    let stop = AtomicBool::new(false);
+    // sets `stop` however `f` ends, so that the scope's wait for the spinners ends
+    struct Stop<'a>(&'a AtomicBool);
+    impl Drop for Stop<'_> {
+        fn drop(&mut self) {
+            self.0.store(true, Ordering::Release);
+        }
+    }
+    rayon::scope(|s| {
+        for _ in 1..rayon::current_num_threads() {
+            s.spawn(|_| {
+                // a spinner picked up by the calling worker itself (while it waits for some
+                // task of `f`) returns at once: it would spin until `f`, which it holds up,
+                // returned
+                if rayon::current_thread_index() == Some(me) {
+                    return;
+                }
+                // spin, then yield the core between looks (a pool larger than the machine)
+                let wait = Backoff::new();
+                while !stop.load(Ordering::Acquire) {
+                    if rayon::yield_now() == Some(rayon::Yield::Executed) {
+                        wait.reset();
+                    } else {
+                        wait.snooze();
+                    }
+                }
+            });
+        }
+        let _stop = Stop(&stop);
+        f()
+    })
+}
+
+fn lock<X>(m: &Mutex<X>) -> MutexGuard<'_, X> {
+    m.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// `work` applied to each of `items` on the threads of the pool, the results in the items'
+/// order. Each item is taken, in order, by whichever thread is free (the calling one among
+/// them), so that a thread held up leaves the later items to the others; the calling thread
+/// then waits for the last ones without sleeping (a sleeping caller would be woken by the
+/// last task's thread at the cost rayon's own wait pays on a virtual machine: see the module
+/// doc). A panic in `work` reaches the caller once every item has been taken.
+pub(super) fn map_claimed<I: Send, T: Send>(items: Vec<I>, work: impl Fn(I) -> T + Sync) -> Vec<T> {
+    let n = items.len();
+    let threads = rayon::current_num_threads().min(n);
+    if threads < 2 {
+        return items.into_iter().map(work).collect();
+    }
+    let slots: Vec<Mutex<(Option<I>, Option<T>)>> =
+        items.into_iter().map(|i| Mutex::new((Some(i), None))).collect();
+    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
+    // counts an item done however its work ends, so that the caller's wait ends
+    struct Done<'a>(&'a AtomicUsize);
+    impl Drop for Done<'_> {
+        fn drop(&mut self) {
+            self.0.fetch_add(1, Ordering::Release);
+        }
+    }
+    let claim = || loop {
+        let k = next.fetch_add(1, Ordering::Relaxed);
+        if k >= n {
+            return;
+        }
+        let _done = Done(&done);
+        let item = lock(&slots[k]).0.take();
+        if let Some(item) = item {
+            let out = work(item);
+            lock(&slots[k]).1 = Some(out);
+        }
+    };
+    rayon::scope(|s| {
+        for _ in 1..threads {
+            s.spawn(|_| claim());
+        }
+        claim();
+        let wait = Backoff::new();
+        while done.load(Ordering::Acquire) < n {
+            wait.snooze();
+        }
+    });
+    // every item's work returned (a panic would have left the scope above)
+    slots
+        .into_iter()
+        .filter_map(|m| m.into_inner().unwrap_or_else(PoisonError::into_inner).1)
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pool(threads: usize) -> rayon::ThreadPool {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("a pool")
+    }
+
+    #[test]
+    fn every_item_is_worked_once_and_the_results_keep_the_items_order() {
+        for threads in [1, 2, 3] {
+            let calls = AtomicUsize::new(0);
+            let out = pool(threads).install(|| {
+                with_pool_awake(|| {
+                    map_claimed((0..37u64).collect(), |i| {
+                        calls.fetch_add(1, Ordering::Relaxed);
+                        // uneven work, so that the threads take items out of turn
+                        std::hint::black_box((0..(i % 5) * 1000).map(std::hint::black_box).sum::<u64>());
+                        i * i
+                    })
+                })
+            });
+            assert_eq!(calls.load(Ordering::Relaxed), 37);
+            assert_eq!(
+                out,
+                (0..37u64).map(|i| i * i).collect::<Vec<_>>(),
+                "{threads} threads"
+            );
+        }
+    }
+
+    #[test]
+    fn a_panicking_item_reaches_the_caller_and_nothing_hangs() {
+        for threads in [2, 3] {
+            let p = pool(threads);
+            let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                p.install(|| {
+                    with_pool_awake(|| {
+                        map_claimed((0..8).collect(), |i: i32| {
+                            assert!(i != 5, "item five");
+                            i
+                        })
+                    })
+                })
+            }));
+            let err = r.expect_err("the panic must reach the caller");
+            let msg = err
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| err.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            assert!(msg.contains("item five"), "{msg}");
+            // the pool still works
+            assert_eq!(p.install(|| map_claimed(vec![1, 2, 3], |i| 2 * i)), vec![2, 4, 6]);
+        }
+    }
+}
