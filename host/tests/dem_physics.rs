@@ -553,20 +553,28 @@ fn a_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
 }
 
 /// A step with a valid neighbour list is one pass over the particles (each chunk drifted, then
-/// its forces evaluated, chunks in reverse order, the chunks cut into one range per thread whose
-/// first chunks drift ahead); on a step where the list goes stale mid-pass, the forces are
-/// evaluated again after a rebuild. Its result must be the same bit for bit as the plain two
-/// passes (every drift, a fresh list, every force: forced here by invalidating the list before
-/// each step) on one, two and three threads. An open box, so that no wrapping at the rebuilds
-/// tells the runs apart.
+/// its forces evaluated, chunks in reverse order, the chunks cut into two ranges per thread
+/// whose first chunks drift as soon as an earlier range needs them); on a step where the list
+/// goes stale mid-pass, the forces are evaluated again after a rebuild. Its result must be the
+/// same bit for bit as the plain two passes (every drift, a fresh list, every force: forced
+/// here by invalidating the list before each step) on one, two and three threads, step by step
+/// or in blocks of steps. An open box, so that no wrapping at the rebuilds tells the runs apart.
 #[test]
 fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
-    // `threads` 0: off any pool (the global one, as the CLI runs); `blocks`: the 600 steps as
+    // 70 × 72 disks: 3 chunks, one range each on 2 and 3 threads (each a whole head or none);
+    // 140 × 130 disks: 9 chunks, ranges of 1 to 3 chunks, some with a head and more
+    for (cols, rows, steps) in [(70, 72, 600), (140, 130, 480)] {
+        one_pass_against_two(cols, rows, steps);
+    }
+}
+
+fn one_pass_against_two(cols: usize, rows: usize, steps: usize) {
+    // `threads` 0: off any pool (the global one, as the CLI runs); `blocks`: the steps as
     // blocks of `advance` (the pool's other threads kept awake through each block) instead of
     // single steps
     let run = |threads: usize, two_passes: bool, blocks: bool| -> Engine<2> {
         let go = || {
-            let (mut cfg, mut bodies) = dense_lattice(70, 72, false);
+            let (mut cfg, mut bodies) = dense_lattice(cols, rows, false);
             cfg.domain.periodic = [false, false];
             cfg.gravity = VecD::<2>::new(0.0, -9.81);
             // 1 m/s: the list goes stale every few dozen steps
@@ -578,11 +586,11 @@ fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
             let mut e = Engine::new(cfg, &bodies, vec![floor], laws(&mat, 0.8, Some(f))).unwrap();
             if blocks {
                 for _ in 0..4 {
-                    e.advance(150).unwrap();
+                    e.advance(steps as u64 / 4).unwrap();
                 }
                 return e;
             }
-            for _ in 0..600 {
+            for _ in 0..steps {
                 if two_passes {
                     e.invalidate_neighbours();
                 }
@@ -600,7 +608,7 @@ fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
         pool.install(go)
     };
     let reference = run(1, true, false);
-    assert_eq!(reference.rebuilds(), 601);
+    assert_eq!(reference.rebuilds(), steps as u64 + 1);
     for (threads, blocks) in [
         (1, false),
         (2, false),
@@ -611,7 +619,7 @@ fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
     ] {
         let e = run(threads, false, blocks);
         println!(
-            "{threads} thread(s), blocks {blocks}: {} list builds in 600 steps, {} pair and {} wall contacts",
+            "{cols} x {rows} disks, {threads} thread(s), blocks {blocks}: {} list builds in {steps} steps, {} pair and {} wall contacts",
             e.rebuilds(),
             e.pairs.len(),
             e.wall_contacts.len()

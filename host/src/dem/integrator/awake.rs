@@ -1,18 +1,24 @@
 //! The pool kept awake through a block of steps.
 //!
-//! A step of a large pile has one parallel phase between two serial ones (the heads' drift
-//! before it, the partners' forces and the counts after it: [`super::Engine::drift_and_forces`]).
-//! Between two phases, rayon's idle workers spin a few dozen rounds, then sleep; waking one
-//! costs the step some 100–250 µs on a virtual machine, where the sleeping thread's core has
-//! halted and must be scheduled again by the hypervisor, out of a step of a few milliseconds.
-//! OpenMP runtimes keep their threads spinning between the parallel regions of a run for this
-//! reason. Here, for a block of steps, every other worker of the pool runs a job that looks for
-//! rayon work without pause (`rayon::yield_now`, which steals), so that each phase's tasks are
-//! taken at once; the job ends with the block.
+//! A step of a large pile is a few parallel passes (one in an open box; the second half-kick
+//! and the state check in a bounded one; a list build now and then) between serial stretches
+//! (the partners' forces and the counts). Between two parallel passes, rayon's idle workers
+//! spin a few dozen rounds, then sleep; waking one costs the step some 100–250 µs on a
+//! virtual machine, where the sleeping thread's core has halted and must be scheduled again
+//! by the hypervisor, out of a step of a few milliseconds. OpenMP runtimes keep their threads
+//! spinning between the parallel regions of a run for this reason. Here, for a block of
+//! steps, every other worker of the pool runs a job that looks for rayon work without pause
+//! (`rayon::yield_now`, which steals), so that each pass's tasks are taken at once; the job
+//! ends with the block. At the end of a pass, the calling thread waits for the others' last
+//! tasks without sleeping either ([`map_claimed`]).
 //!
 //! Nothing in the steps depends on it: the tasks and their results are the same, only who
-//! waits and how differs. The cost is the spinning workers' cores during the serial phases,
-//! which nothing else would use while the steps run.
+//! waits and how differs. The cost is the spinning workers' cores during the serial
+//! stretches, which nothing else would use while the steps run; on a pool larger than the
+//! machine, the waits yield the core between looks. One block at a time in the process keeps
+//! its pool awake: a spinner runs whatever rayon work it finds, and two blocks' spinners, each
+//! run by the other block's thread while it waits inside rayon, would wait for each other's
+//! end. Another block running meanwhile runs as rayon runs it, with sleeping workers.
 
 use crossbeam_utils::Backoff;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -29,6 +35,22 @@ pub(super) fn with_pool_awake<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     let Some(me) = rayon::current_thread_index() else {
         return rayon::scope(|_| with_pool_awake(f));
     };
+    // one block at a time (see the module doc)
+    static AWAKE: AtomicBool = AtomicBool::new(false);
+    if AWAKE
+        .compare_exchange(false, true, Ordering::Acquire, Ordering::Relaxed)
+        .is_err()
+    {
+        return f();
+    }
+    struct Awake;
+    impl Drop for Awake {
+        fn drop(&mut self) {
+            AWAKE.store(false, Ordering::Release);
+        }
+    }
+    // (dropped after the scope, which waits for the spinners)
+    let _awake = Awake;
     let stop = AtomicBool::new(false);
     // sets `stop` however `f` ends, so that the scope's wait for the spinners ends
     struct Stop<'a>(&'a AtomicBool);
@@ -148,6 +170,20 @@ mod tests {
                 (0..37u64).map(|i| i * i).collect::<Vec<_>>(),
                 "{threads} threads"
             );
+        }
+    }
+
+    #[test]
+    fn two_blocks_at_once_on_one_pool_both_end() {
+        for threads in [2, 3, 4] {
+            let (a, b) = pool(threads).install(|| {
+                rayon::join(
+                    || with_pool_awake(|| map_claimed((0..50u64).collect(), |i| i + 1)),
+                    || with_pool_awake(|| map_claimed((0..50u64).collect(), |i| i + 2)),
+                )
+            });
+            assert_eq!(a.iter().sum::<u64>(), 1275);
+            assert_eq!(b.iter().sum::<u64>(), 1325);
         }
     }
 

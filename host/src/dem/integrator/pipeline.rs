@@ -10,13 +10,17 @@
 //! drift has just read.
 //!
 //! In parallel, the chunks are cut into contiguous ranges, two per thread, of even work (by
-//! particles, listed pairs and the last step's contacts). A range's last chunks reach partners
-//! in the next range's first chunks (its *head*: the chunks up to the farthest chunk any
-//! earlier range reaches, from the neighbour list). So every head drifts first (phase 1, a few
-//! chunks, on the calling thread); then each range runs its own reverse sweep over the chunks
-//! it has not drifted yet (phase 2, in parallel). The result does not depend on the cut: each
-//! chunk's drift and forces are the same arithmetic in any order, and the forces on partners
-//! beyond a chunk are added afterwards in chunk order ([`Engine::finish_forces`]).
+//! particles, listed pairs and the last step's contacts), each range one task, taken in order
+//! by whichever thread is free. A range's last chunks reach partners in the next ranges' first
+//! chunks (their *head*: the chunks up to the farthest chunk any earlier range reaches, from
+//! the neighbour list), which must have drifted before those forces are evaluated. So a head
+//! is drifted by the first task that needs it, its own range's or an earlier one's, and the
+//! others wait the few microseconds until it is done (a head is one chunk in a pile numbered
+//! row by row); each range then runs its own reverse sweep over the chunks outside its head.
+//! There is no serial phase: besides those few microseconds, the pool's threads wait for
+//! each other only at the end of the pass. The result does not depend on the cut nor on who drifts a head: each chunk's
+//! drift and forces are the same arithmetic in any order, and the forces on partners beyond a
+//! chunk are added afterwards in chunk order ([`Engine::finish_forces`]).
 //!
 //! If a drift finds the list stale (a particle has moved by more than half the skin since it
 //! was built), the remaining gatherings are skipped, every chunk still drifts, and the step
@@ -30,23 +34,27 @@
 //! step degrades towards two passes (every drift, then every force): the same result, at the
 //! speed of the two passes.
 //!
-//! The particle arrays are shared between the tasks of a phase through [`Parts`], whose
-//! slices the schedule keeps apart: during phase 2, task r writes positions, velocities,
-//! spins, predicted velocities and previous accelerations only of its own chunks outside its
-//! head, and forces and torques only of its own chunks; it reads the state only of its own
-//! chunks already drifted and of later ranges' heads, which no task writes in phase 2. Phase 1
-//! runs alone.
+//! The particle arrays are shared between the tasks through [`Parts`], whose slices the
+//! schedule keeps apart. A head's state (to do, busy, done) is taken by one task with a
+//! compare-and-swap; that task alone then writes the head's positions, velocities, spins,
+//! predicted velocities, previous accelerations and displacement bounds, and publishes them
+//! with the state "done" (release), which every reader of the head waits for (acquire). Task
+//! r writes that state of its own chunks outside its head, and forces and torques only of its
+//! own chunks, those of its head after the head is done (a drift reads them). It reads the
+//! state of its own chunks already drifted and of the heads it has waited for, which nobody
+//! writes any more in the pass.
 
 use super::awake::map_claimed;
 use super::{chunk_forces, kick_drift_chunk, ChunkContext, Engine, Shared, GATHER_CHUNK, SERIAL_BELOW};
 use crate::dem::contacts::{ContactSet, View};
 use crate::dem::state::{spin_len, Vec3, VecD};
 use crate::dem::DemError;
+use crossbeam_utils::Backoff;
 use std::marker::PhantomData;
 use std::ops::Range;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
 
-/// A particle array shared by the tasks of one phase of [`Engine::drift_and_forces`], each
+/// A particle array shared by the tasks of [`Engine::drift_and_forces`], each
 /// taking slices of it that the schedule (see the module doc) keeps apart from every other
 /// task's: no element is written by one task while another holds a slice over it.
 struct Parts<'a, T> {
@@ -112,24 +120,27 @@ pub(super) struct Pass {
     /// The neighbour list went stale: rebuild it and evaluate the forces again.
     pub stale: bool,
     /// The sum of the last step's end state when a second half-kick was pending (finite
-    /// unless some coordinate is not), else 0.
+    /// unless some coordinate is not), else 0; its rounding depends on which tasks drifted
+    /// the heads, so only its finiteness means anything.
     pub sum: f64,
     /// The first error of the chunks' force evaluations, in chunk order (meaningless if stale).
     pub result: Result<(), DemError>,
 }
 
-/// One range's share of the chunk-owned data in phase 2: new pair and wall contact sets,
-/// overflows and displacement bounds of its chunks.
+/// One range's share of the chunk-owned data: new pair and wall contact sets and overflows of
+/// its chunks.
 type RangeItems<'a, const D: usize> = (
     usize,
     (
-        (
-            (&'a mut [ContactSet], &'a mut [ContactSet]),
-            &'a mut [Vec<(u32, VecD<D>, Vec3)>],
-        ),
-        &'a mut [f64],
+        (&'a mut [ContactSet], &'a mut [ContactSet]),
+        &'a mut [Vec<(u32, VecD<D>, Vec3)>],
     ),
 );
+
+/// A head not drifted yet, being drifted, drifted.
+const HEAD_TODO: u8 = 0;
+const HEAD_BUSY: u8 = 1;
+const HEAD_DONE: u8 = 2;
 
 impl<const D: usize> Engine<D> {
     /// The first half-kick and the drift of every particle (after the last step's second
@@ -205,11 +216,12 @@ impl<const D: usize> Engine<D> {
         let aold = Parts::new(&mut self.aold);
         let force = Parts::new(&mut p.force);
         let torque = Parts::new(&mut p.torque);
+        let moved = Parts::new(&mut self.moved);
         let particles = |k: usize| k * c..((k + 1) * c).min(n);
         // the same particles' spins and torques
         let spins = |r: &Range<usize>| r.start * spin_len(D)..r.end * spin_len(D);
         // the drift of chunk k; the caller owns chunk k (see the module doc)
-        let drift = |k: usize, moved: &mut f64| -> (bool, f64) {
+        let drift = |k: usize| -> (bool, f64) {
             let r = particles(k);
             // SAFETY: chunk k's state, force and torque are this task's alone (the schedule)
             unsafe {
@@ -231,7 +243,7 @@ impl<const D: usize> Engine<D> {
                     omega.get_mut(spins(&r)),
                     vpred.get_mut(r.clone()),
                     aold.get_mut(r),
-                    moved,
+                    &mut moved.get_mut(k..k + 1)[0],
                     skin,
                 )
             }
@@ -278,41 +290,72 @@ impl<const D: usize> Engine<D> {
             }
         };
         let stale = AtomicBool::new(false);
-        let merge = |(s1, x1): (bool, f64), (s2, x2): (bool, f64)| (s1 | s2, x1 + x2);
-        // phase 1: the heads
-        let head_pass = |(r, moved): (usize, &mut [f64])| {
-            let a = cuts[r];
-            (a..head[r])
-                .map(|k| drift(k, &mut moved[k - a]))
-                .fold((false, 0.0), merge)
+        // every range's head: drifted by the first task that needs it (its own range's, or an
+        // earlier range's whose last chunks reach it), the others waiting until it is done
+        // (one range: no head, no allocation)
+        let heads: Vec<AtomicU8> = (0..tasks)
+            .filter(|_| tasks > 1)
+            .map(|r| AtomicU8::new(if head[r] > cuts[r] { HEAD_TODO } else { HEAD_DONE }))
+            .collect();
+        // makes sure head `r` has drifted; the drift's sum if this task drifted it
+        let ensure_head = |r: usize| -> f64 {
+            let state = &heads[r];
+            if state
+                .compare_exchange(HEAD_TODO, HEAD_BUSY, Ordering::Acquire, Ordering::Acquire)
+                .is_ok()
+            {
+                // "done" however the drift ends: a panic must reach the caller, not leave the
+                // other tasks waiting
+                struct Done<'a>(&'a AtomicU8);
+                impl Drop for Done<'_> {
+                    fn drop(&mut self) {
+                        self.0.store(HEAD_DONE, Ordering::Release);
+                    }
+                }
+                let _done = Done(state);
+                let (mut st, mut sum) = (false, 0.0);
+                for k in cuts[r]..head[r] {
+                    let (s, x) = drift(k);
+                    st |= s;
+                    sum += x;
+                }
+                if st {
+                    stale.store(true, Ordering::Relaxed);
+                }
+                return sum;
+            }
+            let wait = Backoff::new();
+            while state.load(Ordering::Acquire) != HEAD_DONE {
+                wait.snooze();
+            }
+            0.0
         };
-        // (on the calling thread: a few chunks, and a parallel dispatch here cost another
-        // wake-up of the other threads per step, some 100 µs on this virtual machine)
-        let (s1, sum1) = if tasks > 1 {
-            cut(&mut self.moved, cuts)
-                .into_iter()
-                .enumerate()
-                .map(head_pass)
-                .fold((false, 0.0), merge)
-        } else {
-            (false, 0.0)
-        };
-        if s1 {
-            stale.store(true, Ordering::Relaxed);
-        }
-        // phase 2: each range's reverse sweep
-        let sweep = |(r, (((np, nw), ov), moved)): RangeItems<'_, D>| {
-            let a = cuts[r];
-            let (mut st, mut sum) = (false, 0.0);
+        // each range's reverse sweep: first the heads of the later ranges its chunks reach,
+        // then its chunks from the last, each drifted (outside its head) and its forces
+        // evaluated; its own head is made sure of before the forces of the head's chunks
+        let sweep = |(r, ((np, nw), ov)): RangeItems<'_, D>| {
+            let (a, b) = (cuts[r], cuts[r + 1]);
+            let mut sum = 0.0;
+            let far = reach[a..b].iter().copied().max().unwrap_or(0);
+            // (ranges r + 1.. start at cuts[r + 1..tasks])
+            for (q, &start) in cuts.iter().enumerate().take(tasks).skip(r + 1) {
+                if start > far {
+                    break;
+                }
+                sum += ensure_head(q);
+            }
+            let mut st = false;
             let mut first_err: Result<(), DemError> = Ok(());
-            for k in (a..cuts[r + 1]).rev() {
+            for k in (a..b).rev() {
                 if k >= head[r] {
-                    let (s, x) = drift(k, &mut moved[k - a]);
+                    let (s, x) = drift(k);
                     sum += x;
                     if s {
                         st = true;
                         stale.store(true, Ordering::Relaxed);
                     }
+                } else if k + 1 == head[r] {
+                    sum += ensure_head(r);
                 }
                 if st || stale.load(Ordering::Relaxed) {
                     continue;
@@ -323,24 +366,22 @@ impl<const D: usize> Engine<D> {
             }
             (sum, first_err)
         };
-        let (mut sum, mut result) = (sum1, Ok(()));
+        let (mut sum, mut result) = (0.0, Ok(()));
         if tasks > 1 {
             let ranges: Vec<RangeItems<'_, D>> = cut(next_p, cuts)
                 .into_iter()
                 .zip(cut(next_w, cuts))
                 .zip(cut(&mut self.overflow, cuts))
-                .zip(cut(&mut self.moved, cuts))
                 .enumerate()
                 .collect();
-            let outcomes = map_claimed(ranges, sweep);
-            for (x, res) in outcomes {
+            for (x, res) in map_claimed(ranges, sweep) {
                 sum += x;
                 if result.is_ok() {
                     result = res;
                 }
             }
         } else {
-            (sum, result) = sweep((0, (((next_p, next_w), &mut self.overflow), &mut self.moved)));
+            (sum, result) = sweep((0, ((next_p, next_w), &mut self.overflow)));
         }
         Pass {
             stale: stale.load(Ordering::Relaxed),
