@@ -148,17 +148,39 @@ fn bad_scenes_name_the_key_and_the_value() {
         let p = scene(&format!("bad{k}.toml"), &FREE_FALL.replace(from, to));
         fails(&["dem", "--scene", p.to_str().unwrap()], needles);
     }
-    // a step far too large for the impact: refused as an unphysical overlap, not reported
+    // a step far too large for the impact: refused before the run (0.04 steps per collision
+    // at the expected 6 m/s, where the explicit step is unstable below 2), with the bound
+    let impact = FREE_FALL
+        .replace("velocity = [0.3, 0.0]", "velocity = [0.0, -3.0]")
+        .replace("position = [0.0, 0.05]", "position = [0.0, 0.0011]");
+    let p = scene("coarse.toml", &impact.replace("dt = 1e-5", "dt = 2e-3"));
+    fails(
+        &["dem", "--scene", p.to_str().unwrap()],
+        &["dt = 2e-3 s is out of range", "steps", "dt must be < 4.2"],
+    );
     let p = scene(
-        "overlap.toml",
-        &FREE_FALL
-            .replace("dt = 1e-5", "dt = 2e-3")
-            .replace("velocity = [0.3, 0.0]", "velocity = [0.0, -3.0]")
-            .replace("position = [0.0, 0.05]", "position = [0.0, 0.0011]"),
+        "coarse-chosen.toml",
+        &impact.replace("dt = 1e-5", "steps_per_collision = 1.5"),
     );
     fails(
         &["dem", "--scene", p.to_str().unwrap()],
-        &["overlaps wall 0", "time step"],
+        &["steps_per_collision = 1.5", ">= 2"],
+    );
+    // the same step let through by an impact speed given far too low (2.4 steps per collision
+    // at 1 mm/s, a warning): the real impact at 3 m/s is refused as an unphysical overlap, not
+    // reported
+    let p = scene(
+        "overlap.toml",
+        &impact.replace("dt = 1e-5", "dt = 2e-4\nimpact_speed = 1e-3"),
+    );
+    fails(
+        &["dem", "--scene", p.to_str().unwrap()],
+        &[
+            "steps per collision",
+            "barely resolved",
+            "overlaps wall 0",
+            "time step",
+        ],
     );
     // and a run that fails after its first frames leaves no trajectory behind, not half of one
     let out = p.with_extension("out");

@@ -230,8 +230,9 @@ impl PhysArgs {
                     }
                 }
                 if let Some(k) = self.steps_per_collision {
-                    if !(k.is_finite() && k >= 1.0) {
-                        bail!("--steps-per-collision = {k} is out of range: must be >= 1");
+                    let min = crate::dem::integrator::MIN_STEPS_PER_COLLISION;
+                    if !(k.is_finite() && k >= min) {
+                        bail!("--steps-per-collision = {k} is out of range: must be >= {min} (below, the explicit step is unstable)");
                     }
                 }
                 self.params()?;

@@ -22,6 +22,8 @@
 //! Time step: unless given, τ/`steps_per_collision` where τ is the contact time of the smallest
 //! particle against an equal one and against a wall at the largest expected impact speed, found
 //! by the two-body driver with the run's own law (so it is the law's stiffness that sets it).
+//! A step, given or chosen, must resolve that contact by at least
+//! [`MIN_STEPS_PER_COLLISION`] steps, below which the explicit scheme is unstable.
 
 use super::cells::{Domain, Neighbours};
 use super::contacts::{ContactSet, Contacts, View, GATHER_CHUNK, SERIAL_BELOW};
@@ -349,6 +351,15 @@ fn kick_chunk<const D: usize>(
     sx.sum() + sw.sum()
 }
 
+/// The fewest steps per collision (τ/dt, τ the contact time at the largest expected impact
+/// speed) a run accepts. Velocity Verlet is stable for a spring of angular frequency ω only while
+/// ω dt < 2. A linear spring's contact lasts π/ω, so its limit is π/2 ≈ 1.57 steps per
+/// collision; a Hertz contact stiffens with overlap (ω² = (3/2) K δ^{1/2}/m), and at its deepest
+/// overlap ω = 1.37 v/δ_max while τ = 2.94 δ_max/v, so its limit is 2.0. Below it the contact
+/// gains energy step by step; well above it the restitution is still off (about 50 steps per
+/// collision give it within 1e-3).
+pub const MIN_STEPS_PER_COLLISION: f64 = 2.0;
+
 /// Run settings.
 #[derive(Debug, Clone)]
 pub struct EngineConfig<const D: usize> {
@@ -533,6 +544,14 @@ impl<const D: usize> Engine<D> {
                 }
                 let v = impact_speed(&cfg, &p, &walls);
                 let tau = collision_time(&laws, &mat, D, dmin, v).unwrap_or(f64::NAN);
+                if tau / dt < MIN_STEPS_PER_COLLISION {
+                    return Err(DemError::Invalid(format!(
+                        "dt = {dt:e} s is out of range: the contact time at the largest expected impact speed ({v:.3} m/s) is {tau:.4e} s, so the step resolves a collision in {:.2} steps, and the explicit step is unstable below {MIN_STEPS_PER_COLLISION} (a Hertz contact's deepest overlap); dt must be < {:.4e} s (about {:.4e} s, 50 steps per collision, gives the restitution within 1e-3; or give impact_speed if the impacts will be slower)",
+                        tau / dt,
+                        tau / MIN_STEPS_PER_COLLISION,
+                        tau / 50.0
+                    )));
+                }
                 StepChoice {
                     dt,
                     collision_time: tau,
@@ -541,9 +560,11 @@ impl<const D: usize> Engine<D> {
                 }
             }
             None => {
-                if !(cfg.steps_per_collision.is_finite() && cfg.steps_per_collision >= 1.0) {
+                if !(cfg.steps_per_collision.is_finite()
+                    && cfg.steps_per_collision >= MIN_STEPS_PER_COLLISION)
+                {
                     return Err(DemError::Invalid(format!(
-                        "steps_per_collision = {} is out of range: it must be >= 1",
+                        "steps_per_collision = {} is out of range: it must be >= {MIN_STEPS_PER_COLLISION} (below, the explicit step is unstable at a Hertz contact's deepest overlap)",
                         cfg.steps_per_collision
                     )));
                 }
