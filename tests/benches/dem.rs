@@ -6,7 +6,8 @@
 //! 2. cost per particle-step from 10³ to 10⁶ disks (one core), plugins, every size over the same
 //!    stage of the same pile, the sizes timed in turn round by round;
 //! 3. speed-up on two cores (10⁵ disks, one settled pile stepped alternately by one thread and
-//!    by two, wall time);
+//!    by two, wall time): the ratio of the medians, and the median of the ratios block by block
+//!    (each two-thread block against the one-thread block before it);
 //! 4. peak resident memory of the process while the piles of 2. (10⁶ disks among them) are
 //!    held (VmHWM).
 //!
@@ -261,10 +262,12 @@ fn main() {
             .unwrap_or(2000);
         let mut e = two.install(|| pile(n, plugin_laws(&reg)));
         two.install(|| steps(&mut e, settle));
+        // 15 blocks of each: the machine's noise over a block (~0.1-0.2 s) is the error here
+        const BLOCKS: usize = 15;
         let (mut t1, mut t2) = (Vec::new(), Vec::new());
         let (mut cpu2, mut wall2) = (0.0, 0.0);
         let (c0, b0) = (e.contacts(), e.rebuilds());
-        for _ in 0..7 {
+        for _ in 0..BLOCKS {
             t1.push(one.install(|| steps(&mut e, 40)));
             let c = common::process_cpu_seconds();
             let w = two.install(|| steps(&mut e, 40));
@@ -272,20 +275,29 @@ fn main() {
             wall2 += w;
             t2.push(w);
         }
+        // each 2-thread block against the 1-thread block just before it: the machine's drift
+        // over the run (±20 % over tens of seconds) cancels within a pair
+        let m = BLOCKS / 2;
+        let mut paired: Vec<f64> = t1.iter().zip(&t2).map(|(a, b)| a / b).collect();
+        paired.sort_by(f64::total_cmp);
         t1.sort_by(f64::total_cmp);
         t2.sort_by(f64::total_cmp);
         println!(
-            "n = {n}: 1 core {:.3e} particle-steps/s, 2 cores {:.3e}; speed-up {:.2} median, {:.2} best (7 interleaved blocks of 40 steps of one pile settled {settle} steps; {c0} -> {} contacts)",
-            n as f64 * 40.0 / t1[3],
-            n as f64 * 40.0 / t2[3],
-            t1[3] / t2[3],
+            "n = {n}: 1 core {:.3e} particle-steps/s, 2 cores {:.3e}; speed-up {:.2} median, {:.2} best; block by block {:.2} median ({:.2}-{:.2} the middle half) ({BLOCKS} interleaved blocks of 40 steps of one pile settled {settle} steps; {c0} -> {} contacts)",
+            n as f64 * 40.0 / t1[m],
+            n as f64 * 40.0 / t2[m],
+            t1[m] / t2[m],
             t1[0] / t2[0],
+            paired[m],
+            paired[BLOCKS / 4],
+            paired[BLOCKS - 1 - BLOCKS / 4],
             e.contacts()
         );
         println!(
-            "  cores the 2-thread blocks received (process CPU s / wall s): {:.2}; {} neighbour-list builds in the 560 steps",
+            "  cores the 2-thread blocks used (process CPU s / wall s, the waits spinning): {:.2}; {} neighbour-list builds in the {} steps",
             cpu2 / wall2,
-            e.rebuilds() - b0
+            e.rebuilds() - b0,
+            BLOCKS * 80
         );
     }
 }
