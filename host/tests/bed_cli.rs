@@ -361,3 +361,41 @@ fn seeds_run_in_parallel_and_report_standard_errors() {
         &["--seeds = 0"],
     );
 }
+
+/// A lid out of the disks' reach: no lid collision, so the pressure and the collision rate
+/// are 0 (measured) and the mean impulse per collision is not measured: `null` in the JSON, not
+/// a 0 that reads as a measurement, on both engines and over seeds.
+#[test]
+fn a_lid_nobody_reaches_has_no_mean_impulse() {
+    let quiet = [
+        "bed",
+        "--layers",
+        "0.5",
+        "--freq",
+        "10",
+        "--headroom",
+        "0.5",
+        "--transient",
+        "2",
+        "--cycles",
+        "3",
+        "--json",
+    ];
+    let engines: [&[&str]; 3] = [
+        &["--restitution", "constant", "--set", "r=0.9"],
+        &["--restitution", "constant", "--set", "r=0.9", "--seeds", "2"],
+        &[
+            "--engine", "dem", "--law", "hsd", "--set", "eps=0.9", "--young", "1e7",
+        ],
+    ];
+    for e in engines {
+        let args: Vec<&str> = quiet.iter().chain(e.iter()).copied().collect();
+        let v = ok_json(&args);
+        assert_eq!(v["lid_collision_rate"].as_f64(), Some(0.0), "{e:?}: {v}");
+        assert_eq!(v["pressure"].as_f64(), Some(0.0), "{e:?}");
+        assert!(v["mean_impulse"].is_null(), "{e:?}: {}", v["mean_impulse"]);
+        assert!(v["mean_impulse_stderr"].is_null(), "{e:?}");
+        // the disks still press on the piston: their weight, N m g / L
+        assert!(v["piston_pressure"].as_f64().unwrap() > 0.0, "{e:?}");
+    }
+}

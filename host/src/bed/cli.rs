@@ -750,7 +750,8 @@ struct Observables<'a> {
     pressure_label: &'a str,
     pressure: (f64, Option<f64>),
     rate: (f64, Option<f64>),
-    impulse: (f64, Option<f64>),
+    /// `None` when no disk hit the lid.
+    impulse: (Option<f64>, Option<f64>),
     temperature: (f64, Option<f64>),
     piston: (f64, Option<f64>),
     /// P + N m g / L, what the piston pressure should be.
@@ -771,7 +772,10 @@ fn print_observables(o: &Observables<'_>) {
     println!("  (± one standard error: {source}{})", o.note);
     println!("  {} {} N/m", o.pressure_label, pm(o.pressure));
     println!("  lid collision rate Nc       {} 1/s", pm(o.rate));
-    println!("  mean impulse ΔI             {} N·s", pm(o.impulse));
+    match o.impulse {
+        (Some(v), e) => println!("  mean impulse ΔI             {} N·s", pm((v, e))),
+        (None, _) => println!("  mean impulse ΔI             not measured: no disk hit the lid"),
+    }
     println!("  temperature T               {} J", pm(o.temperature));
     println!(
         "  piston pressure             {} N/m (P + N m g / L = {:.6e})",

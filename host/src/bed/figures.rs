@@ -229,7 +229,7 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
                 .layers
                 .iter()
                 .enumerate()
-                .map(|(a, &n)| (n, runs[a * nf + k].observables()[0].0))
+                .map(|(a, &n)| (n, runs[a * nf + k].pressure().0))
                 .collect();
             let c = PALETTE.len() + (k * 15) / (nf.max(2) - 1);
             let bars: Vec<(f64, f64, f64)> = grid
@@ -237,7 +237,7 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
                 .iter()
                 .enumerate()
                 .filter_map(|(a, &n)| {
-                    let (p, e) = runs[a * nf + k].observables()[0];
+                    let (p, e) = runs[a * nf + k].pressure();
                     e.map(|e| (n, p, e))
                 })
                 .collect();
@@ -266,7 +266,7 @@ fn peaks<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<(f64, f64, f64)> {
         .enumerate()
         .map(|(k, &f)| {
             let p: Vec<f64> = (0..grid.layers.len())
-                .map(|a| runs[a * nf + k].observables()[0].0)
+                .map(|a| runs[a * nf + k].pressure().0)
                 .collect();
             let (am, pm) = p
                 .iter()
@@ -880,7 +880,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
             p: f64,
             pe: Option<f64>,
             nc: f64,
-            di: f64,
+            di: Option<f64>,
             t: f64,
             note: String,
         }
@@ -951,13 +951,13 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
         for r in &rows {
             writeln!(
                 md,
-                "| {} | {} | {:.4} ± {} | {:.0} | {:.3e} | {:.3e} | {} |",
+                "| {} | {} | {:.4} ± {} | {:.0} | {} | {:.3e} | {} |",
                 r.n,
                 r.what,
                 r.p,
                 r.pe.map(|e| format!("{e:.4}")).unwrap_or("–".into()),
                 r.nc,
-                r.di,
+                r.di.map(|d| format!("{d:.3e}")).unwrap_or("–".into()),
                 r.t,
                 r.note
             )?;

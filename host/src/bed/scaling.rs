@@ -120,8 +120,14 @@ pub struct ScalingRow {
 pub trait Measured {
     /// Piston peak speed V (m/s).
     fn speed(&self) -> f64;
-    /// (P, its standard error), (T, ...), (Nc, ...), (ΔI, ...).
-    fn observables(&self) -> [(f64, Option<f64>); 4];
+    /// (P, its standard error), (T, ...), (Nc, ...), (ΔI, ...); `None` where not measured (ΔI
+    /// without lid collisions).
+    fn observables(&self) -> [(Option<f64>, Option<f64>); 4];
+    /// (P, its standard error): always measured.
+    fn pressure(&self) -> (f64, Option<f64>) {
+        let (p, e) = self.observables()[0];
+        (p.unwrap_or(0.0), e)
+    }
     /// Share of collisions made elastic by the TC model (0 without one).
     fn tc_share(&self) -> f64;
 }
@@ -130,11 +136,11 @@ impl Measured for BedReport {
     fn speed(&self) -> f64 {
         self.piston_speed
     }
-    fn observables(&self) -> [(f64, Option<f64>); 4] {
+    fn observables(&self) -> [(Option<f64>, Option<f64>); 4] {
         [
-            (self.pressure, self.pressure_stderr),
-            (self.temperature, self.temperature_stderr),
-            (self.lid_collision_rate, self.lid_collision_rate_stderr),
+            (Some(self.pressure), self.pressure_stderr),
+            (Some(self.temperature), self.temperature_stderr),
+            (Some(self.lid_collision_rate), self.lid_collision_rate_stderr),
             (self.mean_impulse, self.mean_impulse_stderr),
         ]
     }
@@ -147,11 +153,11 @@ impl Measured for DemBedReport {
     fn speed(&self) -> f64 {
         self.piston_speed
     }
-    fn observables(&self) -> [(f64, Option<f64>); 4] {
+    fn observables(&self) -> [(Option<f64>, Option<f64>); 4] {
         [
-            (self.pressure, self.pressure_stderr),
-            (self.temperature, self.temperature_stderr),
-            (self.lid_collision_rate, self.lid_collision_rate_stderr),
+            (Some(self.pressure), self.pressure_stderr),
+            (Some(self.temperature), self.temperature_stderr),
+            (Some(self.lid_collision_rate), self.lid_collision_rate_stderr),
             (self.mean_impulse, self.mean_impulse_stderr),
         ]
     }
@@ -188,7 +194,7 @@ pub fn write_dem_grid_csv(path: &Path, runs: &[DemBedReport]) -> Result<()> {
     let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
     for r in runs {
         s.push_str(&format!(
-            "{},{},{},{:e},{},{:e},{},{:e},{},{:e},{},{:e},{},{:e},{:e},{:e},{},{:.3}\n",
+            "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{},{:e},{:e},{:e},{},{:.3}\n",
             r.config.layers,
             r.config.freq,
             r.piston_speed,
@@ -196,7 +202,7 @@ pub fn write_dem_grid_csv(path: &Path, runs: &[DemBedReport]) -> Result<()> {
             e(r.pressure_stderr),
             r.lid_collision_rate,
             e(r.lid_collision_rate_stderr),
-            r.mean_impulse,
+            e(r.mean_impulse),
             e(r.mean_impulse_stderr),
             r.temperature,
             e(r.temperature_stderr),
@@ -223,9 +229,9 @@ pub fn fit_all<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<ScalingRow> {
             let fit = |k: usize| {
                 fit_power_err(
                     &rs.iter()
-                        .map(|r| {
+                        .filter_map(|r| {
                             let (v, e) = r.observables()[k];
-                            (r.speed(), v, e)
+                            v.map(|v| (r.speed(), v, e))
                         })
                         .collect::<Vec<_>>(),
                 )
@@ -250,7 +256,7 @@ pub fn write_grid_csv(path: &Path, runs: &[BedReport]) -> Result<()> {
     let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
     for r in runs {
         s.push_str(&format!(
-            "{},{},{},{:e},{},{:e},{},{:e},{},{:e},{},{:e},{},{},{},{:e},{:e},{:.3}\n",
+            "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{},{},{},{:e},{:e},{:.3}\n",
             r.config.layers,
             r.config.freq,
             r.piston_speed,
@@ -258,7 +264,7 @@ pub fn write_grid_csv(path: &Path, runs: &[BedReport]) -> Result<()> {
             e(r.pressure_stderr),
             r.lid_collision_rate,
             e(r.lid_collision_rate_stderr),
-            r.mean_impulse,
+            e(r.mean_impulse),
             e(r.mean_impulse_stderr),
             r.temperature,
             e(r.temperature_stderr),

@@ -65,9 +65,9 @@ pub struct DemBedReport {
     pub pressure: f64,
     /// Lid contact episodes per second (1/s).
     pub lid_collision_rate: f64,
-    /// Mean impulse per lid episode (N·s); 0 when no disk touched the lid (then not measured:
-    /// it does not enter a mean over seeds).
-    pub mean_impulse: f64,
+    /// Mean impulse per lid episode (N·s); `None` (JSON `null`) when no disk touched the lid:
+    /// not measured, and left out of a mean over seeds.
+    pub mean_impulse: Option<f64>,
     /// Mean translational kinetic energy per disk (J).
     pub temperature: f64,
     /// Standard error of `pressure` (N/m): block means, or the spread of seeds.
@@ -277,7 +277,7 @@ impl DemBed {
             measured_time: tm,
             pressure: impulse / (tm * w),
             lid_collision_rate: episodes / tm,
-            mean_impulse: if episodes > 0.0 { impulse / episodes } else { 0.0 },
+            mean_impulse: (episodes > 0.0).then(|| impulse / episodes),
             temperature: if samples > 0.0 { ke / samples } else { 0.0 },
             pressure_stderr: se(&|r| Some(r[1] / (r[0] * w))),
             lid_collision_rate_stderr: se(&|r| Some(r[3] / r[0])),

@@ -24,8 +24,8 @@ mod sampling;
 pub use config::BedConfig;
 pub(crate) use sampling::seed_observables;
 pub use sampling::{
-    batch_stderr, mean_over_seeds, stderr_of, Batch, BedReport, Counters, SeedObservables, TraceRow, Window,
-    SAMPLES_PER_PERIOD,
+    batch_stderr, mean_over_seeds, stderr_of, Batch, BedReport, Counters, Observable, SeedObservables,
+    TraceRow, Window, SAMPLES_PER_PERIOD,
 };
 
 use super::cells::{Cells, NONE};

@@ -111,15 +111,38 @@ pub fn stderr_of(v: &[f64]) -> Option<f64> {
     Some((var / n as f64).sqrt())
 }
 
+/// An observable's field in a report: a number always measured (`f64`), or one that may not
+/// have been (`Option<f64>`: the mean impulse per lid collision, when no disk hit the lid).
+pub trait Observable {
+    /// The value, if measured.
+    fn get(&self) -> Option<f64>;
+    /// Sets the value.
+    fn put(&mut self, v: f64);
+}
+
+impl Observable for f64 {
+    fn get(&self) -> Option<f64> {
+        Some(*self)
+    }
+    fn put(&mut self, v: f64) {
+        *self = v;
+    }
+}
+
+impl Observable for Option<f64> {
+    fn get(&self) -> Option<f64> {
+        *self
+    }
+    fn put(&mut self, v: f64) {
+        *self = Some(v);
+    }
+}
+
 /// A report of the bed's observables (either engine's), for averaging over seeds.
 pub trait SeedObservables: Clone {
     /// The five observables with their standard errors: lid pressure, lid collision rate, mean
     /// impulse, temperature, piston pressure.
-    fn observables(&mut self) -> [(&mut f64, &mut Option<f64>); 5];
-    /// Which of the five were measured: the mean impulse per lid collision is not when no disk
-    /// hit the lid (the report then holds 0), and a seed without it must not pull the mean
-    /// over seeds towards 0.
-    fn measured(&self) -> [bool; 5];
+    fn observables(&mut self) -> [(&mut dyn Observable, &mut Option<f64>); 5];
     /// How many seeds the report averages.
     fn seeds(&mut self) -> &mut usize;
 }
@@ -129,7 +152,7 @@ pub trait SeedObservables: Clone {
 macro_rules! seed_observables {
     ($t:ty) => {
         impl $crate::bed::engine::SeedObservables for $t {
-            fn observables(&mut self) -> [(&mut f64, &mut Option<f64>); 5] {
+            fn observables(&mut self) -> [(&mut dyn $crate::bed::engine::Observable, &mut Option<f64>); 5] {
                 [
                     (&mut self.pressure, &mut self.pressure_stderr),
                     (
@@ -141,9 +164,6 @@ macro_rules! seed_observables {
                     (&mut self.piston_pressure, &mut self.piston_pressure_stderr),
                 ]
             }
-            fn measured(&self) -> [bool; 5] {
-                [true, true, self.lid_collision_rate > 0.0, true, true]
-            }
             fn seeds(&mut self) -> &mut usize {
                 &mut self.seeds
             }
@@ -153,28 +173,27 @@ macro_rules! seed_observables {
 pub(crate) use seed_observables;
 
 /// The mean of `runs` (independent seeds): each observable's mean over the seeds that measured
-/// it, its standard error from their spread, the rest of the report from the first run (the
-/// caller sums its counters). None for no runs; one run is returned as it is.
+/// it (a seed in which no disk hit the lid has no mean impulse, and must not pull the mean
+/// towards 0), its standard error from their spread, the rest of the report from the first run
+/// (the caller sums its counters). None for no runs; one run is returned as it is.
 pub fn mean_over_seeds<R: SeedObservables>(runs: &[R]) -> Option<R> {
     let first = runs.first()?;
     if runs.len() == 1 {
         return Some(first.clone());
     }
-    let mut values: Vec<([f64; 5], [bool; 5])> = Vec::with_capacity(runs.len());
-    for r in runs {
-        let mut r = r.clone();
-        let measured = r.measured();
-        values.push((r.observables().map(|(v, _)| *v), measured));
-    }
+    let values: Vec<[Option<f64>; 5]> = runs
+        .iter()
+        .map(|r| r.clone().observables().map(|(v, _)| v.get()))
+        .collect();
     let mut out = first.clone();
     for (k, (v, e)) in out.observables().into_iter().enumerate() {
-        let column: Vec<f64> = values.iter().filter(|x| x.1[k]).map(|x| x.0[k]).collect();
+        let column: Vec<f64> = values.iter().filter_map(|x| x[k]).collect();
         if column.is_empty() {
-            // measured by no seed: the first run's placeholder stays
+            // measured by no seed: not measured (the first run's None stays)
             *e = None;
             continue;
         }
-        *v = column.iter().sum::<f64>() / column.len() as f64;
+        v.put(column.iter().sum::<f64>() / column.len() as f64);
         *e = stderr_of(&column);
     }
     *out.seeds() = runs.len();
@@ -198,9 +217,9 @@ pub struct BedReport {
     pub pressure: f64,
     /// Lid collision frequency Nc (1/s).
     pub lid_collision_rate: f64,
-    /// Mean impulse per lid collision ΔI (N·s); 0 when no disk hit the lid (then not
-    /// measured: it does not enter a mean over seeds).
-    pub mean_impulse: f64,
+    /// Mean impulse per lid collision ΔI (N·s); `None` (JSON `null`) when no disk hit the lid:
+    /// not measured, and left out of a mean over seeds.
+    pub mean_impulse: Option<f64>,
     /// Granular temperature T: time-averaged translational kinetic energy per disk (J).
     pub temperature: f64,
     /// Standard error of `pressure` (N/m): batch means over the measured periods, or the
@@ -413,11 +432,8 @@ impl<R: Restitution> Bed<R> {
         } else {
             0.0
         };
-        let di = if self.window.lid_collisions > 0 {
-            self.window.lid_impulse / self.window.lid_collisions as f64
-        } else {
-            0.0
-        };
+        let di = (self.window.lid_collisions > 0)
+            .then(|| self.window.lid_impulse / self.window.lid_collisions as f64);
         let c = &self.counters;
         let (b, l) = (&self.window.batches[..], self.width);
         BedReport {
@@ -426,7 +442,8 @@ impl<R: Restitution> Bed<R> {
             lid: self.lid,
             piston_speed: self.piston.peak_speed(),
             measured_time: tm,
-            pressure: nc * di / self.width,
+            // (0 without lid collisions)
+            pressure: nc * di.unwrap_or(0.0) / self.width,
             lid_collision_rate: nc,
             mean_impulse: di,
             temperature: if self.window.ke_samples > 0 {
@@ -499,7 +516,7 @@ mod seed_tests {
         pressure_stderr: Option<f64>,
         lid_collision_rate: f64,
         lid_collision_rate_stderr: Option<f64>,
-        mean_impulse: f64,
+        mean_impulse: Option<f64>,
         mean_impulse_stderr: Option<f64>,
         temperature: f64,
         temperature_stderr: Option<f64>,
@@ -512,29 +529,30 @@ mod seed_tests {
     fn seed(rate: f64, impulse: f64, temperature: f64) -> Seed {
         Seed {
             lid_collision_rate: rate,
-            mean_impulse: impulse,
+            mean_impulse: (rate > 0.0).then_some(impulse),
             pressure: rate * impulse,
             temperature,
             ..Default::default()
         }
     }
 
-    /// A seed in which no disk hit the lid has no mean impulse per collision (its 0 is a
-    /// placeholder): the mean over seeds is over the others, not pulled towards 0.
+    /// A seed in which no disk hit the lid has no mean impulse per collision: the mean over
+    /// seeds is over the others, not pulled towards 0.
     #[test]
     fn a_seed_without_lid_collisions_does_not_enter_the_mean_impulse() {
         let runs = [seed(10.0, 2e-6, 1.0), seed(0.0, 0.0, 2.0), seed(30.0, 4e-6, 3.0)];
         let m = mean_over_seeds(&runs).unwrap();
         assert_eq!(m.seeds, 3);
-        assert!((m.mean_impulse - 3e-6).abs() < 1e-18, "{}", m.mean_impulse);
+        let mi = m.mean_impulse.expect("two seeds measured it");
+        assert!((mi - 3e-6).abs() < 1e-18, "{mi}");
         // the spread of the two measured seeds: |a - b| / 2
         assert!((m.mean_impulse_stderr.unwrap() - 1e-6).abs() < 1e-18);
         // the rates, pressures and temperatures of all three seeds
         assert!((m.lid_collision_rate - 40.0 / 3.0).abs() < 1e-12);
         assert!((m.temperature - 2.0).abs() < 1e-15);
-        // no seed measured it: the placeholder stays, with no error bar
+        // no seed measured it: not measured, with no error bar
         let none = mean_over_seeds(&[seed(0.0, 0.0, 1.0), seed(0.0, 0.0, 1.0)]).unwrap();
-        assert_eq!(none.mean_impulse, 0.0);
+        assert_eq!(none.mean_impulse, None);
         assert!(none.mean_impulse_stderr.is_none());
     }
 }
