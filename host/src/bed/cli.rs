@@ -886,7 +886,7 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
                     pb.inc(1)
                 })?;
             std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
-            scaling::write_dem_grid_csv(&a.out.join("grid.csv"), &runs)?;
+            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs)?;
             let law = format!(
                 "DEM {}{}, E = {:.3e} Pa",
                 a.phys.law_name()?,

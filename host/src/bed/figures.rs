@@ -3,8 +3,7 @@
 
 use super::engine::{Bed, BedConfig, BedReport};
 use super::scaling::{
-    fit_all, run_dem_grid, run_grid, theta_panel, write_dem_grid_csv, write_fit_csv, write_grid_csv, Grid,
-    Measured, ScalingRow,
+    fit_all, run_dem_grid, run_grid, theta_panel, write_fit_csv, write_grid_csv, Grid, Measured, ScalingRow,
 };
 use super::view::{progress_bar, snapshot_panel};
 use super::{resolve, DynRestitution, Laws};
@@ -1034,9 +1033,9 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
         let kk_runs = dem_grid(&grid, "kuwabara-kono", &kk, "DEM Fig. 2 kuwabara-kono")?;
         let hi = dem_grid(&grid, "hsd", &eps_hi, "DEM Fig. 2 hsd 0.95")?;
         let lo = dem_grid(&grid, "hsd", &eps_lo, "DEM Fig. 2 hsd 0.7")?;
-        write_dem_grid_csv(&out.join("dem_fig2_kk.csv"), &kk_runs)?;
-        write_dem_grid_csv(&out.join("dem_fig2_hsd095.csv"), &hi)?;
-        write_dem_grid_csv(&out.join("dem_fig2_hsd070.csv"), &lo)?;
+        write_grid_csv(&out.join("dem_fig2_kk.csv"), &kk_runs)?;
+        write_grid_csv(&out.join("dem_fig2_hsd095.csv"), &hi)?;
+        write_grid_csv(&out.join("dem_fig2_hsd070.csv"), &lo)?;
         Figure {
             panels: vec![
                 pressure_panel(&format!("DEM, Kuwabara–Kono A = {CROSS_KK_A} s"), &grid, &kk_runs),
@@ -1086,7 +1085,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
             ("kk", "DEM, Kuwabara–Kono", "kuwabara-kono", &kk[..]),
         ] {
             let runs = dem_grid(&grid, name, params, &format!("DEM Fig. 4 {tag}"))?;
-            write_dem_grid_csv(&out.join(format!("dem_fig4_{tag}_grid.csv")), &runs)?;
+            write_grid_csv(&out.join(format!("dem_fig4_{tag}_grid.csv")), &runs)?;
             let rows = fit_all(&grid, &runs);
             write_fit_csv(&out.join(format!("dem_fig4_{tag}_theta.csv")), &rows)?;
             panels.push(theta_panel(&rows, title));

@@ -130,7 +130,42 @@ pub trait Measured {
     }
     /// Share of collisions made elastic by the TC model (0 without one).
     fn tc_share(&self) -> f64;
+    /// The grid CSV's columns common to both engines, in order: n, f, V, P, Nc, ΔI, T and the
+    /// piston pressure, each with its standard error.
+    fn csv_common(&self) -> String;
+    /// The engine's own CSV columns after those: their header, and a run's values.
+    const CSV_EXTRA_HEADER: &'static str;
+    /// See [`Measured::CSV_EXTRA_HEADER`].
+    fn csv_extra(&self) -> String;
 }
+
+/// The columns of [`Measured::csv_common`], from a report's fields (both reports name them
+/// alike).
+macro_rules! csv_common {
+    ($r:expr) => {{
+        let r = $r;
+        let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
+        format!(
+            "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{}",
+            r.config.layers,
+            r.config.freq,
+            r.piston_speed,
+            r.pressure,
+            e(r.pressure_stderr),
+            r.lid_collision_rate,
+            e(r.lid_collision_rate_stderr),
+            e(r.mean_impulse),
+            e(r.mean_impulse_stderr),
+            r.temperature,
+            e(r.temperature_stderr),
+            r.piston_pressure,
+            e(r.piston_pressure_stderr),
+        )
+    }};
+}
+
+/// The header of [`Measured::csv_common`].
+const CSV_COMMON_HEADER: &str = "layers,freq_hz,piston_speed_m_s,pressure_n_m,pressure_stderr,lid_collision_rate_per_s,lid_collision_rate_stderr,mean_impulse_n_s,mean_impulse_stderr,temperature_j,temperature_stderr,piston_pressure_n_m,piston_pressure_stderr";
 
 impl Measured for BedReport {
     fn speed(&self) -> f64 {
@@ -146,6 +181,16 @@ impl Measured for BedReport {
     }
     fn tc_share(&self) -> f64 {
         self.tc_share
+    }
+    fn csv_common(&self) -> String {
+        csv_common!(self)
+    }
+    const CSV_EXTRA_HEADER: &'static str = "events,collisions,tc_share,max_overlap_m,wall_s";
+    fn csv_extra(&self) -> String {
+        format!(
+            "{},{},{:e},{:e},{:.3}",
+            self.events, self.collisions, self.tc_share, self.max_overlap, self.wall_seconds
+        )
     }
 }
 
@@ -163,6 +208,16 @@ impl Measured for DemBedReport {
     }
     fn tc_share(&self) -> f64 {
         0.0
+    }
+    fn csv_common(&self) -> String {
+        csv_common!(self)
+    }
+    const CSV_EXTRA_HEADER: &'static str = "young_pa,dt_s,collision_time_s,steps,wall_s";
+    fn csv_extra(&self) -> String {
+        format!(
+            "{:e},{:e},{:e},{},{:.3}",
+            self.young, self.dt, self.collision_time, self.steps, self.wall_seconds
+        )
     }
 }
 
@@ -184,38 +239,6 @@ pub fn run_dem_grid(
                 error: Box::new(e),
             })
     })
-}
-
-/// Writes every DEM run of the grid as CSV.
-pub fn write_dem_grid_csv(path: &Path, runs: &[DemBedReport]) -> Result<()> {
-    let mut s = String::from(
-        "layers,freq_hz,piston_speed_m_s,pressure_n_m,pressure_stderr,lid_collision_rate_per_s,lid_collision_rate_stderr,mean_impulse_n_s,mean_impulse_stderr,temperature_j,temperature_stderr,piston_pressure_n_m,piston_pressure_stderr,young_pa,dt_s,collision_time_s,steps,wall_s\n",
-    );
-    let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
-    for r in runs {
-        s.push_str(&format!(
-            "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{},{:e},{:e},{:e},{},{:.3}\n",
-            r.config.layers,
-            r.config.freq,
-            r.piston_speed,
-            r.pressure,
-            e(r.pressure_stderr),
-            r.lid_collision_rate,
-            e(r.lid_collision_rate_stderr),
-            e(r.mean_impulse),
-            e(r.mean_impulse_stderr),
-            r.temperature,
-            e(r.temperature_stderr),
-            r.piston_pressure,
-            e(r.piston_pressure_stderr),
-            r.young,
-            r.dt,
-            r.collision_time,
-            r.steps,
-            r.wall_seconds
-        ));
-    }
-    write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
 }
 
 /// Fits θ for each n of `grid` from the runs (in grid order).
@@ -248,34 +271,12 @@ pub fn fit_all<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<ScalingRow> {
         .collect()
 }
 
-/// Writes every run of the grid as CSV.
-pub fn write_grid_csv(path: &Path, runs: &[BedReport]) -> Result<()> {
-    let mut s = String::from(
-        "layers,freq_hz,piston_speed_m_s,pressure_n_m,pressure_stderr,lid_collision_rate_per_s,lid_collision_rate_stderr,mean_impulse_n_s,mean_impulse_stderr,temperature_j,temperature_stderr,piston_pressure_n_m,piston_pressure_stderr,events,collisions,tc_share,max_overlap_m,wall_s\n",
-    );
-    let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
+/// Writes every run of the grid as CSV, either engine's: the common columns, then the
+/// engine's own.
+pub fn write_grid_csv<R: Measured>(path: &Path, runs: &[R]) -> Result<()> {
+    let mut s = format!("{CSV_COMMON_HEADER},{}\n", R::CSV_EXTRA_HEADER);
     for r in runs {
-        s.push_str(&format!(
-            "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{},{},{},{:e},{:e},{:.3}\n",
-            r.config.layers,
-            r.config.freq,
-            r.piston_speed,
-            r.pressure,
-            e(r.pressure_stderr),
-            r.lid_collision_rate,
-            e(r.lid_collision_rate_stderr),
-            e(r.mean_impulse),
-            e(r.mean_impulse_stderr),
-            r.temperature,
-            e(r.temperature_stderr),
-            r.piston_pressure,
-            e(r.piston_pressure_stderr),
-            r.events,
-            r.collisions,
-            r.tc_share,
-            r.max_overlap,
-            r.wall_seconds
-        ));
+        s.push_str(&format!("{},{}\n", r.csv_common(), r.csv_extra()));
     }
     write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
 }
