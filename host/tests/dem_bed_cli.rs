@@ -316,6 +316,15 @@ fn each_engines_options_are_refused_by_the_other() {
         &with(&["--engine", "dem", "--law", "hsd", "--dt", "0"]),
         &["--dt = 0"],
     );
+    // steps that cannot resolve a collision: the explicit step is unstable below 2 per collision
+    fails(
+        &with(&["--engine", "dem", "--law", "hsd", "--steps-per-collision", "1.5"]),
+        &["--steps-per-collision = 1.5", ">= 2"],
+    );
+    fails(
+        &with(&["--engine", "dem", "--law", "hsd", "--dt", "1e-3"]),
+        &["dt = 1e-3 s is out of range", "steps", "dt must be <="],
+    );
     fails(&with(&["--engine", "dem", "--law", "nosuch"]), &["nosuch"]);
     // a measuring window shorter than a step would report 0/0 rates
     fails(

@@ -156,7 +156,7 @@ fn bad_scenes_name_the_key_and_the_value() {
     let p = scene("coarse.toml", &impact.replace("dt = 1e-5", "dt = 2e-3"));
     fails(
         &["dem", "--scene", p.to_str().unwrap()],
-        &["dt = 2e-3 s is out of range", "steps", "dt must be < 4.2"],
+        &["dt = 2e-3 s is out of range", "steps", "dt must be <= 4.2"],
     );
     let p = scene(
         "coarse-chosen.toml",

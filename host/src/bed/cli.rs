@@ -230,10 +230,8 @@ impl PhysArgs {
                     }
                 }
                 if let Some(k) = self.steps_per_collision {
-                    let min = crate::dem::integrator::MIN_STEPS_PER_COLLISION;
-                    if !(k.is_finite() && k >= min) {
-                        bail!("--steps-per-collision = {k} is out of range: must be >= {min} (below, the explicit step is unstable)");
-                    }
+                    crate::dem::integrator::check_steps_per_collision("--steps-per-collision", k)
+                        .map_err(anyhow::Error::msg)?;
                 }
                 self.params()?;
                 self.tparams()?;
@@ -581,6 +579,9 @@ fn bed_dem(reg: &Registry, a: &BedArgs) -> Result<()> {
         c.impact_speed,
         c.collision_time / c.dt
     );
+    if let Some(w) = c.warning() {
+        eprintln!("warning: {w}");
+    }
     let laws = (0..k)
         .map(|_| a.phys.dem_laws(reg, &dem.material))
         .collect::<Result<Vec<_>>>()?;

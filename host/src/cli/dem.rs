@@ -175,13 +175,8 @@ fn run_dim<const D: usize>(
         )
     };
     eprintln!("{line}");
-    if c.given && c.collision_time / c.dt < 10.0 {
-        eprintln!(
-            "warning: {:.1} steps per collision at {:.3} m/s: the contacts are barely resolved (the restitution is off by far more than 1e-3; about {:.4e} s, 50 steps per collision, resolves it)",
-            c.collision_time / c.dt,
-            c.impact_speed,
-            c.collision_time / 50.0
-        );
+    if let Some(w) = c.warning() {
+        eprintln!("warning: {w}");
     }
     let total_steps = (scene.duration / c.dt).ceil() as u64;
     let mut traj = None;

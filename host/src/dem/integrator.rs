@@ -352,13 +352,30 @@ fn kick_chunk<const D: usize>(
 }
 
 /// The fewest steps per collision (τ/dt, τ the contact time at the largest expected impact
-/// speed) a run accepts. Velocity Verlet is stable for a spring of angular frequency ω only while
-/// ω dt < 2. A linear spring's contact lasts π/ω, so its limit is π/2 ≈ 1.57 steps per
-/// collision; a Hertz contact stiffens with overlap (ω² = (3/2) K δ^{1/2}/m), and at its deepest
-/// overlap ω = 1.37 v/δ_max while τ = 2.94 δ_max/v, so its limit is 2.0. Below it the contact
-/// gains energy step by step; well above it the restitution is still off (about 50 steps per
-/// collision give it within 1e-3).
+/// speed) a run accepts. Velocity Verlet is stable for an undamped spring of angular frequency ω
+/// only while ω dt < 2. A linear spring's contact lasts π/ω, so its limit is π/2 ≈ 1.57 steps
+/// per collision; a Hertz contact stiffens with overlap (ω² = (3/2) K δ^{1/2}/m), and at its
+/// deepest overlap ω = 1.37 v/δ_max while τ = 2.94 δ_max/v, so its limit is 2.0. Below it the
+/// contact gains energy step by step. It is a floor, not a guarantee: damping taken from the
+/// explicit velocity narrows the stable range further (for a linear dashpot, to
+/// ω dt < 2(√(1 + ζ²) − ζ) at damping ratio ζ), and well above it the restitution is still off
+/// (about 50 steps per collision give it within 1e-3; [`StepChoice::warning`] speaks up below
+/// [`WARN_STEPS_PER_COLLISION`]).
 pub const MIN_STEPS_PER_COLLISION: f64 = 2.0;
+
+/// Below this many steps per collision a given step draws a warning ([`StepChoice::warning`]).
+pub const WARN_STEPS_PER_COLLISION: f64 = 10.0;
+
+/// Checks a steps-per-collision setting called `name` (the chosen step is τ/k): the message
+/// names the value and the range.
+pub fn check_steps_per_collision(name: &str, k: f64) -> Result<(), String> {
+    if k.is_finite() && k >= MIN_STEPS_PER_COLLISION {
+        return Ok(());
+    }
+    Err(format!(
+        "{name} = {k} is out of range: it must be >= {MIN_STEPS_PER_COLLISION} (below, the explicit step is unstable at a Hertz contact's deepest overlap)"
+    ))
+}
 
 /// Run settings.
 #[derive(Debug, Clone)]
@@ -415,6 +432,32 @@ pub struct StepChoice {
     pub impact_speed: f64,
     /// Whether the step was given rather than chosen.
     pub given: bool,
+}
+
+impl StepChoice {
+    /// What a user should hear about a given step: that it resolves a collision in fewer than
+    /// [`WARN_STEPS_PER_COLLISION`] steps, or that the contact time could not be computed (the
+    /// two-body driver failed with this law), so the step went unchecked. None for a chosen
+    /// step or a well-resolved one.
+    pub fn warning(&self) -> Option<String> {
+        if !self.given {
+            return None;
+        }
+        let k = self.collision_time / self.dt;
+        if !k.is_finite() {
+            return Some(format!(
+                "the contact time at {:.3} m/s could not be computed with this law: the step dt = {:.4e} s is not checked against it",
+                self.impact_speed, self.dt
+            ));
+        }
+        (k < WARN_STEPS_PER_COLLISION).then(|| {
+            format!(
+                "{k:.1} steps per collision at {:.3} m/s: the contacts are barely resolved, and the restitution is off by 1e-3 or more (about {:.4e} s, 50 steps per collision, resolves it)",
+                self.impact_speed,
+                self.collision_time / 50.0
+            )
+        })
+    }
 }
 
 /// A soft-sphere DEM run.
@@ -546,7 +589,7 @@ impl<const D: usize> Engine<D> {
                 let tau = collision_time(&laws, &mat, D, dmin, v).unwrap_or(f64::NAN);
                 if tau / dt < MIN_STEPS_PER_COLLISION {
                     return Err(DemError::Invalid(format!(
-                        "dt = {dt:e} s is out of range: the contact time at the largest expected impact speed ({v:.3} m/s) is {tau:.4e} s, so the step resolves a collision in {:.2} steps, and the explicit step is unstable below {MIN_STEPS_PER_COLLISION} (a Hertz contact's deepest overlap); dt must be < {:.4e} s (about {:.4e} s, 50 steps per collision, gives the restitution within 1e-3; or give impact_speed if the impacts will be slower)",
+                        "dt = {dt:e} s is out of range: the contact time at the largest expected impact speed ({v:.3} m/s) is {tau:.4e} s, so the step resolves a collision in {:.2} steps, and the explicit step is unstable below {MIN_STEPS_PER_COLLISION} (a Hertz contact's deepest overlap); dt must be <= {:.4e} s (about {:.4e} s, 50 steps per collision, gives the restitution within 1e-3; a scene may give impact_speed if the impacts will be slower)",
                         tau / dt,
                         tau / MIN_STEPS_PER_COLLISION,
                         tau / 50.0
@@ -560,14 +603,8 @@ impl<const D: usize> Engine<D> {
                 }
             }
             None => {
-                if !(cfg.steps_per_collision.is_finite()
-                    && cfg.steps_per_collision >= MIN_STEPS_PER_COLLISION)
-                {
-                    return Err(DemError::Invalid(format!(
-                        "steps_per_collision = {} is out of range: it must be >= {MIN_STEPS_PER_COLLISION} (below, the explicit step is unstable at a Hertz contact's deepest overlap)",
-                        cfg.steps_per_collision
-                    )));
-                }
+                check_steps_per_collision("steps_per_collision", cfg.steps_per_collision)
+                    .map_err(DemError::Invalid)?;
                 let v = impact_speed(&cfg, &p, &walls);
                 let tau = if bodies.is_empty() {
                     1.0

@@ -45,7 +45,7 @@
 //! ```
 
 use super::cells::Domain;
-use super::integrator::{EngineConfig, MIN_STEPS_PER_COLLISION};
+use super::integrator::{check_steps_per_collision, EngineConfig};
 use super::state::{Body, DiskMass, Material, Vec3, VecD};
 use super::walls::{Motion, Wall};
 use crate::bed::piston::Piston;
@@ -254,11 +254,7 @@ impl SceneFile {
         }
         config.dt = self.dt;
         if let Some(s) = self.steps_per_collision {
-            if !(s.is_finite() && s >= MIN_STEPS_PER_COLLISION) {
-                return Err(bad(format!(
-                    "steps_per_collision = {s} is out of range: it must be >= {MIN_STEPS_PER_COLLISION} (below, the explicit step is unstable)"
-                )));
-            }
+            check_steps_per_collision("steps_per_collision", s).map_err(bad)?;
             config.steps_per_collision = s;
         }
         if let Some(v) = self.impact_speed {
