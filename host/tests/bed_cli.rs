@@ -398,4 +398,37 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
         // the disks still press on the piston: their weight, N m g / L
         assert!(v["piston_pressure"].as_f64().unwrap() > 0.0, "{e:?}");
     }
+    // in a grid's CSV: an empty cell, not a 0
+    let out = std::env::temp_dir().join(format!("dashpot-bed-nolid-{}", std::process::id()));
+    let o = dashpot(&[
+        "scaling",
+        "--layers",
+        "0.5",
+        "--freqs",
+        "10:12:2",
+        "--headroom",
+        "0.5",
+        "--transient",
+        "2",
+        "--cycles",
+        "3",
+        "--restitution",
+        "constant",
+        "--set",
+        "r=0.9",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("grid.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let k = header.iter().position(|h| *h == "mean_impulse_n_s").unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 2, "{csv}");
+    for r in &rows {
+        assert_eq!(r.len(), header.len(), "{csv}");
+        assert_eq!(r[k], "", "{csv}");
+        assert_eq!(r[k + 1], "", "{csv}");
+    }
 }

@@ -139,51 +139,53 @@ pub trait Measured {
     fn csv_extra(&self) -> String;
 }
 
-/// The columns of [`Measured::csv_common`], from a report's fields (both reports name them
-/// alike).
-macro_rules! csv_common {
-    ($r:expr) => {{
-        let r = $r;
-        let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
-        format!(
-            "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{}",
-            r.config.layers,
-            r.config.freq,
-            r.piston_speed,
-            r.pressure,
-            e(r.pressure_stderr),
-            r.lid_collision_rate,
-            e(r.lid_collision_rate_stderr),
-            e(r.mean_impulse),
-            e(r.mean_impulse_stderr),
-            r.temperature,
-            e(r.temperature_stderr),
-            r.piston_pressure,
-            e(r.piston_pressure_stderr),
-        )
-    }};
+/// The methods of [`Measured`] both engines' reports share, from their fields (named alike):
+/// the speed, the observables and the common CSV columns.
+macro_rules! measured_common {
+    () => {
+        fn speed(&self) -> f64 {
+            self.piston_speed
+        }
+        fn observables(&self) -> [(Option<f64>, Option<f64>); 4] {
+            [
+                (Some(self.pressure), self.pressure_stderr),
+                (Some(self.temperature), self.temperature_stderr),
+                (
+                    Some(self.lid_collision_rate),
+                    self.lid_collision_rate_stderr,
+                ),
+                (self.mean_impulse, self.mean_impulse_stderr),
+            ]
+        }
+        fn csv_common(&self) -> String {
+            let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
+            format!(
+                "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{}",
+                self.config.layers,
+                self.config.freq,
+                self.piston_speed,
+                self.pressure,
+                e(self.pressure_stderr),
+                self.lid_collision_rate,
+                e(self.lid_collision_rate_stderr),
+                e(self.mean_impulse),
+                e(self.mean_impulse_stderr),
+                self.temperature,
+                e(self.temperature_stderr),
+                self.piston_pressure,
+                e(self.piston_pressure_stderr),
+            )
+        }
+    };
 }
 
 /// The header of [`Measured::csv_common`].
 const CSV_COMMON_HEADER: &str = "layers,freq_hz,piston_speed_m_s,pressure_n_m,pressure_stderr,lid_collision_rate_per_s,lid_collision_rate_stderr,mean_impulse_n_s,mean_impulse_stderr,temperature_j,temperature_stderr,piston_pressure_n_m,piston_pressure_stderr";
 
 impl Measured for BedReport {
-    fn speed(&self) -> f64 {
-        self.piston_speed
-    }
-    fn observables(&self) -> [(Option<f64>, Option<f64>); 4] {
-        [
-            (Some(self.pressure), self.pressure_stderr),
-            (Some(self.temperature), self.temperature_stderr),
-            (Some(self.lid_collision_rate), self.lid_collision_rate_stderr),
-            (self.mean_impulse, self.mean_impulse_stderr),
-        ]
-    }
+    measured_common!();
     fn tc_share(&self) -> f64 {
         self.tc_share
-    }
-    fn csv_common(&self) -> String {
-        csv_common!(self)
     }
     const CSV_EXTRA_HEADER: &'static str = "events,collisions,tc_share,max_overlap_m,wall_s";
     fn csv_extra(&self) -> String {
@@ -195,22 +197,9 @@ impl Measured for BedReport {
 }
 
 impl Measured for DemBedReport {
-    fn speed(&self) -> f64 {
-        self.piston_speed
-    }
-    fn observables(&self) -> [(Option<f64>, Option<f64>); 4] {
-        [
-            (Some(self.pressure), self.pressure_stderr),
-            (Some(self.temperature), self.temperature_stderr),
-            (Some(self.lid_collision_rate), self.lid_collision_rate_stderr),
-            (self.mean_impulse, self.mean_impulse_stderr),
-        ]
-    }
+    measured_common!();
     fn tc_share(&self) -> f64 {
         0.0
-    }
-    fn csv_common(&self) -> String {
-        csv_common!(self)
     }
     const CSV_EXTRA_HEADER: &'static str = "young_pa,dt_s,collision_time_s,steps,wall_s";
     fn csv_extra(&self) -> String {

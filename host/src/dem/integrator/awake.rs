@@ -43,22 +43,9 @@ pub(super) fn with_pool_awake<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     {
         return f();
     }
-    struct Awake;
-    impl Drop for Awake {
-        fn drop(&mut self) {
-            AWAKE.store(false, Ordering::Release);
-        }
-    }
     // (dropped after the scope, which waits for the spinners)
-    let _awake = Awake;
+    let _awake = OnDrop(|| AWAKE.store(false, Ordering::Release));
     let stop = AtomicBool::new(false);
-    // sets `stop` however `f` ends, so that the scope's wait for the spinners ends
-    struct Stop<'a>(&'a AtomicBool);
-    impl Drop for Stop<'_> {
-        fn drop(&mut self) {
-            self.0.store(true, Ordering::Release);
-        }
-    }
     rayon::scope(|s| {
         for _ in 1..rayon::current_num_threads() {
             s.spawn(|_| {
@@ -79,9 +66,29 @@ pub(super) fn with_pool_awake<R: Send>(f: impl FnOnce() -> R + Send) -> R {
                 }
             });
         }
-        let _stop = Stop(&stop);
+        // `stop` however `f` ends, so that the scope's wait for the spinners ends
+        let _stop = OnDrop(|| stop.store(true, Ordering::Release));
         f()
     })
+}
+
+/// Runs its closure when dropped: at the end of the scope it guards, however that ends (a
+/// panic included), so that no thread is left waiting for a flag.
+pub(super) struct OnDrop<F: FnMut()>(pub F);
+
+impl<F: FnMut()> Drop for OnDrop<F> {
+    fn drop(&mut self) {
+        (self.0)()
+    }
+}
+
+/// Waits until `done()`: spinning, then yielding the core between looks (for a pool larger
+/// than the machine).
+pub(super) fn spin_until(done: impl Fn() -> bool) {
+    let wait = Backoff::new();
+    while !done() {
+        wait.snooze();
+    }
 }
 
 fn lock<X>(m: &Mutex<X>) -> MutexGuard<'_, X> {
@@ -103,19 +110,15 @@ pub(super) fn map_claimed<I: Send, T: Send>(items: Vec<I>, work: impl Fn(I) -> T
     let slots: Vec<Mutex<(Option<I>, Option<T>)>> =
         items.into_iter().map(|i| Mutex::new((Some(i), None))).collect();
     let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
-    // counts an item done however its work ends, so that the caller's wait ends
-    struct Done<'a>(&'a AtomicUsize);
-    impl Drop for Done<'_> {
-        fn drop(&mut self) {
-            self.0.fetch_add(1, Ordering::Release);
-        }
-    }
     let claim = || loop {
         let k = next.fetch_add(1, Ordering::Relaxed);
         if k >= n {
             return;
         }
-        let _done = Done(&done);
+        // counted done however the work ends, so that the caller's wait ends
+        let _done = OnDrop(|| {
+            done.fetch_add(1, Ordering::Release);
+        });
         let item = lock(&slots[k]).0.take();
         if let Some(item) = item {
             let out = work(item);
@@ -127,10 +130,7 @@ pub(super) fn map_claimed<I: Send, T: Send>(items: Vec<I>, work: impl Fn(I) -> T
             s.spawn(|_| claim());
         }
         claim();
-        let wait = Backoff::new();
-        while done.load(Ordering::Acquire) < n {
-            wait.snooze();
-        }
+        spin_until(|| done.load(Ordering::Acquire) >= n);
     });
     // every item's work returned (a panic would have left the scope above)
     slots

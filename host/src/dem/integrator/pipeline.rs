@@ -44,12 +44,11 @@
 //! state of its own chunks already drifted and of the heads it has waited for, which nobody
 //! writes any more in the pass.
 
-use super::awake::map_claimed;
+use super::awake::{map_claimed, spin_until, OnDrop};
 use super::{chunk_forces, kick_drift_chunk, ChunkContext, Engine, Shared, GATHER_CHUNK, SERIAL_BELOW};
 use crate::dem::contacts::{ContactSet, View};
 use crate::dem::state::{spin_len, Vec3, VecD};
 use crate::dem::DemError;
-use crossbeam_utils::Backoff;
 use std::marker::PhantomData;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
@@ -306,13 +305,7 @@ impl<const D: usize> Engine<D> {
             {
                 // "done" however the drift ends: a panic must reach the caller, not leave the
                 // other tasks waiting
-                struct Done<'a>(&'a AtomicU8);
-                impl Drop for Done<'_> {
-                    fn drop(&mut self) {
-                        self.0.store(HEAD_DONE, Ordering::Release);
-                    }
-                }
-                let _done = Done(state);
+                let _done = OnDrop(|| state.store(HEAD_DONE, Ordering::Release));
                 let (mut st, mut sum) = (false, 0.0);
                 for k in cuts[r]..head[r] {
                     let (s, x) = drift(k);
@@ -324,10 +317,7 @@ impl<const D: usize> Engine<D> {
                 }
                 return sum;
             }
-            let wait = Backoff::new();
-            while state.load(Ordering::Acquire) != HEAD_DONE {
-                wait.snooze();
-            }
+            spin_until(|| state.load(Ordering::Acquire) == HEAD_DONE);
             0.0
         };
         // each range's reverse sweep: first the heads of the later ranges its chunks reach,
