@@ -18,7 +18,10 @@
 //! machine, the waits yield the core between looks. One block at a time in the process keeps
 //! its pool awake: a spinner runs whatever rayon work it finds, and two blocks' spinners, each
 //! run by the other block's thread while it waits inside rayon, would wait for each other's
-//! end. Another block running meanwhile runs as rayon runs it, with sleeping workers.
+//! end. Another block running meanwhile runs as rayon runs it, with sleeping workers, and a
+//! thread of it that picks up one of the awake block's spinners while it waits inside rayon
+//! is held until that block ends: slower, never stuck (engines stepped side by side on one
+//! pool are better given a pool each).
 
 use crossbeam_utils::Backoff;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
