@@ -482,17 +482,9 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
                             disk: &laws.disk,
                             wall: &laws.wall,
                         },
-                    )?
-                    .run_protocol(a.phys.transient, a.phys.cycles, &mut |_| {})
-                    .map_err(|e| match e {
-                        super::BedError::Collapse(m) => {
-                            super::BedError::Collapse(format!("seed {}: {m}", cfg.seed))
-                        }
-                        super::BedError::Overlap(m) => {
-                            super::BedError::Overlap(format!("seed {}: {m}", cfg.seed))
-                        }
-                        e => e,
-                    })
+                    )
+                    .and_then(|mut bed| bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |_| {}))
+                    .map_err(|e| e.in_run(format!("seed {}", cfg.seed)))
                 })
                 .collect::<Result<Vec<BedReport>, _>>()
         },

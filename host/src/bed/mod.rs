@@ -218,4 +218,23 @@ pub enum BedError {
     /// Two disks, or a disk and a wall, overlap by more than the limit: a contact was missed.
     #[error("{0}")]
     Overlap(String),
+    /// One run of several (a grid point, a seed) failed: which one, and why (the error kind
+    /// kept).
+    #[error("{point}: {error}")]
+    InRun {
+        /// The run, e.g. "n = 2, f = 20 Hz" or "seed 3".
+        point: String,
+        /// What went wrong.
+        error: Box<BedError>,
+    },
+}
+
+impl BedError {
+    /// This error, as that of the run `point` of several.
+    pub fn in_run(self, point: String) -> BedError {
+        BedError::InRun {
+            point,
+            error: Box::new(self),
+        }
+    }
 }

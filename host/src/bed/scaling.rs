@@ -56,19 +56,15 @@ pub fn run_grid<R: Restitution>(
 ) -> Result<Vec<BedReport>, BedError> {
     let jobs = (0..grid.len()).map(|k| (k, ())).collect();
     run_points(grid, jobs, tick, |n, f, ()| {
-        let mut bed = Bed::new(
+        Bed::new(
             cfg(n, f),
             Laws {
                 disk: &laws.disk,
                 wall: &laws.wall,
             },
-        )?;
-        bed.run_protocol(grid.transient, grid.cycles, &mut |_| {})
-            .map_err(|e| match e {
-                BedError::Collapse(m) => BedError::Collapse(format!("n = {n}, f = {f} Hz: {m}")),
-                BedError::Overlap(m) => BedError::Overlap(format!("n = {n}, f = {f} Hz: {m}")),
-                e => e,
-            })
+        )
+        .and_then(|mut bed| bed.run_protocol(grid.transient, grid.cycles, &mut |_| {}))
+        .map_err(|e| e.in_run(format!("n = {n}, f = {f} Hz")))
     })
 }
 
