@@ -209,7 +209,7 @@ fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
         }
         let mut f = [[0.0f64; LANES]; 3];
         for l in 0..LANES {
-            let kt = law.eight_g * dashpot_sdk::physics::contact_radius(r[l], d[l]);
+            let kt = law.stiffness(r[l], d[l]);
             let eta = if DAMPED {
                 two_zeta * (ms[l] * kt).sqrt()
             } else {
