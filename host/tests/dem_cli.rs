@@ -62,9 +62,19 @@ fn a_free_flight_follows_the_parabola_and_the_json_has_the_state() {
 
 #[test]
 fn the_trajectory_has_one_frame_per_snapshot_plus_the_start() {
+    // 1,000 steps exactly, and a duration of 1,000.42 steps: the run takes 1,000 (it stops once
+    // t + dt/2 passes the duration), and the last frame must still be written, at the end
+    for (k, duration) in ["0.01", "0.0100042"].into_iter().enumerate() {
+        frames_of(k, duration);
+    }
+}
+
+fn frames_of(k: usize, duration: &str) {
     let p = scene(
-        "traj.toml",
-        &FREE_FALL.replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 4"),
+        &format!("traj{k}.toml"),
+        &FREE_FALL
+            .replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 4")
+            .replace("duration = 0.01", &format!("duration = {duration}")),
     );
     let out = p.with_extension("out");
     let v = ok_json(&[
@@ -77,7 +87,8 @@ fn the_trajectory_has_one_frame_per_snapshot_plus_the_start() {
     ]);
     let xyz = std::fs::read_to_string(out.join("trajectory.xyz")).unwrap();
     let frames = xyz.lines().filter(|l| l.starts_with("Lattice=")).count();
-    assert_eq!(frames, 5);
+    assert_eq!(frames, 5, "duration {duration}");
+    assert_eq!(v["steps"], 1000, "duration {duration}");
     assert!(xyz.contains("Properties=species:S:1:pos:R:3:velo:R:3:omega:R:3:radius:R:1"));
     let last: Vec<f64> = xyz
         .lines()

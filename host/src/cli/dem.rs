@@ -178,7 +178,17 @@ fn run_dim<const D: usize>(
     if let Some(w) = c.warning() {
         eprintln!("warning: {w}");
     }
+    // (an estimate: the run steps while t + dt/2 < duration, one step fewer whenever the
+    // fraction of duration / dt is below 1/2; the last frame is written at the end regardless)
     let total_steps = (scene.duration / c.dt).ceil() as u64;
+    // frame k: the trajectory's frame and with --png its picture
+    let frame = |e: &Engine<D>, w: &mut crate::output::AtomicFile, k: u64| -> Result<()> {
+        crate::dem::xyz::write_frame(e, w)?;
+        if let (true, Some(dir)) = (a.png, &a.out) {
+            frame_png(e, dir, k, &file.law.name)?;
+        }
+        Ok(())
+    };
     let mut traj = None;
     if let Some(dir) = &a.out {
         std::fs::create_dir_all(dir).with_context(|| format!("creating --out {}", dir.display()))?;
@@ -186,11 +196,8 @@ fn run_dim<const D: usize>(
         // (it appears at its name when the run has ended well: a failed run leaves none)
         let mut w =
             crate::output::AtomicFile::create(&p).with_context(|| format!("creating {}", p.display()))?;
-        crate::dem::xyz::write_frame(&e, &mut w)?;
+        frame(&e, &mut w, 0)?;
         traj = Some(w);
-        if a.png {
-            frame_png(&e, dir, 0, &file.law.name)?;
-        }
     }
     let frames = if a.out.is_some() {
         scene.snapshots.max(1)
@@ -200,33 +207,37 @@ fn run_dim<const D: usize>(
     let pb = progress(total_steps);
     let wall0 = std::time::Instant::now();
     let every = (total_steps / 200).max(1);
-    let mut next_frame = 1u64;
-    while e.time() + 0.5 * e.dt() < scene.duration {
-        // the steps to the next progress tick, frame or the end, as one block
-        let next_tick = (e.steps() / every + 1) * every;
-        let next_frame_step = if traj.is_some() && frames > 0 {
-            (next_frame * total_steps).div_ceil(frames)
-        } else {
-            u64::MAX
-        };
-        let k = e.steps_to(
-            scene.duration,
-            next_tick.min(next_frame_step).saturating_sub(e.steps()).max(1),
-        );
-        e.advance(k)
-            .with_context(|| format!("at t = {:.6e} s, step {}", e.time(), e.steps()))?;
-        if e.steps() % every == 0 {
-            pb.set_position(e.steps());
-        }
-        if let Some(w) = traj.as_mut() {
-            if frames > 0 && e.steps() * frames >= next_frame * total_steps {
-                crate::dem::xyz::write_frame(&e, w)?;
-                if let (true, Some(dir)) = (a.png, &a.out) {
-                    frame_png(&e, dir, next_frame, &file.law.name)?;
-                }
-                next_frame += 1;
+    // the steps to the next progress tick, frame or the end, as one block
+    let next_frame = std::cell::Cell::new(1u64);
+    let framing = traj.is_some() && frames > 0;
+    e.run_with_stops(
+        scene.duration,
+        &mut |s| {
+            let next_tick = (s / every + 1) * every;
+            if framing {
+                next_tick.min((next_frame.get() * total_steps).div_ceil(frames))
+            } else {
+                next_tick
             }
-        }
+        },
+        &mut |e| -> Result<()> {
+            if e.steps() % every == 0 {
+                pb.set_position(e.steps());
+            }
+            if let Some(w) = traj.as_mut() {
+                let k = next_frame.get();
+                if frames > 0 && e.steps() * frames >= k * total_steps {
+                    frame(e, w, k)?;
+                    next_frame.set(k + 1);
+                }
+            }
+            Ok(())
+        },
+    )
+    .with_context(|| format!("at t = {:.6e} s, step {}", e.time(), e.steps()))?;
+    // the last frame, if the run ended short of the step it was placed at
+    if let (Some(w), true) = (traj.as_mut(), framing && next_frame.get() <= frames) {
+        frame(&e, w, next_frame.get())?;
     }
     pb.finish_and_clear();
     let wall = wall0.elapsed().as_secs_f64();

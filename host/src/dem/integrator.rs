@@ -984,17 +984,31 @@ impl<const D: usize> Engine<D> {
         every: u64,
         progress: &mut dyn FnMut(f64),
     ) -> Result<(), DemError> {
+        self.run_with_stops(
+            t_end,
+            &mut |s| s.checked_div(every).map_or(u64::MAX, |q| (q + 1) * every),
+            &mut |e| {
+                if every > 0 && e.steps % every == 0 {
+                    progress(e.t);
+                }
+                Ok(())
+            },
+        )
+    }
+
+    /// Runs until time `t_end` (s) in blocks of [`Engine::advance`]: each block ends at the step
+    /// count `next_stop(steps)` gives (or at `t_end`), and `at_stop(self)` is called after it
+    /// (a progress tick, a frame of output).
+    pub fn run_with_stops<E: From<DemError>>(
+        &mut self,
+        t_end: f64,
+        next_stop: &mut dyn FnMut(u64) -> u64,
+        at_stop: &mut dyn FnMut(&Self) -> Result<(), E>,
+    ) -> Result<(), E> {
         while self.t + 0.5 * self.dt < t_end {
-            // the steps to the next progress call or to the end, as one block
-            let limit = if every > 0 {
-                every - self.steps % every
-            } else {
-                u64::MAX
-            };
+            let limit = next_stop(self.steps).saturating_sub(self.steps).max(1);
             self.advance(self.steps_to(t_end, limit))?;
-            if every > 0 && self.steps % every == 0 {
-                progress(self.t);
-            }
+            at_stop(self)?;
         }
         Ok(())
     }
