@@ -15,12 +15,12 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 }
 
 /// A result file written as it grows (a trajectory), which appears at its path only when
-/// [`AtomicFile::commit`] is called: until then it is a temporary file beside it, removed if the
-/// writer is dropped uncommitted (a run that failed leaves no half-written result).
+/// [`AtomicFile::commit`] is called: until then it is a temporary file beside it (tempfile's
+/// `NamedTempFile`), removed if the writer is dropped uncommitted (a run that failed leaves no
+/// half-written result).
 pub struct AtomicFile {
-    tmp: std::path::PathBuf,
     path: std::path::PathBuf,
-    w: Option<std::io::BufWriter<std::fs::File>>,
+    w: std::io::BufWriter<tempfile::NamedTempFile>,
 }
 
 impl AtomicFile {
@@ -35,46 +35,34 @@ impl AtomicFile {
             .file_name()
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_default();
-        let tmp = dir.join(format!(".{name}.tmp-{}", std::process::id()));
-        let f = std::fs::File::create(&tmp)?;
+        let prefix = format!(".{name}.");
+        let mut b = tempfile::Builder::new();
+        b.prefix(&prefix).suffix(".tmp");
+        // a result file's usual mode (under the umask), not a temporary's owner-only 0600
+        #[cfg(unix)]
+        b.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
+        let tmp = b.tempfile_in(dir)?;
         Ok(AtomicFile {
-            tmp,
             path: path.to_path_buf(),
-            w: Some(std::io::BufWriter::new(f)),
+            w: std::io::BufWriter::new(tmp),
         })
     }
 
-    /// Flushes the file and moves it to its path.
-    pub fn commit(mut self) -> std::io::Result<()> {
-        let w = self
-            .w
-            .take()
-            .ok_or_else(|| std::io::Error::other("already committed"))?;
-        let f = w.into_inner().map_err(|e| e.into_error())?;
-        f.sync_all()?;
-        std::fs::rename(&self.tmp, &self.path)
+    /// Flushes the file, syncs it and moves it to its path.
+    pub fn commit(self) -> std::io::Result<()> {
+        let tmp = self.w.into_inner().map_err(|e| e.into_error())?;
+        tmp.as_file().sync_all()?;
+        tmp.persist(&self.path).map(|_| ()).map_err(|e| e.error)
     }
 }
 
 impl Write for AtomicFile {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        match self.w.as_mut() {
-            Some(w) => w.write(buf),
-            None => Err(std::io::Error::other("already committed")),
-        }
+        self.w.write(buf)
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.w.as_mut().map_or(Ok(()), |w| w.flush())
-    }
-}
-
-impl Drop for AtomicFile {
-    fn drop(&mut self) {
-        // uncommitted (or its commit failed): the temporary goes
-        if self.w.take().is_some() || self.tmp.exists() {
-            let _ = std::fs::remove_file(&self.tmp);
-        }
+        self.w.flush()
     }
 }
 
@@ -101,6 +89,23 @@ mod tests {
         f.commit().unwrap();
         assert_eq!(std::fs::read(&p).unwrap(), b"frame 1\nframe 2\n");
         assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 1);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A committed file has the mode a plain `File::create` gives (the umask's), not the
+    /// owner-only mode of a temporary file.
+    #[cfg(unix)]
+    #[test]
+    fn a_committed_file_has_a_plain_files_mode() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = std::env::temp_dir().join(format!("dashpot-mode-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let plain = dir.join("plain");
+        std::fs::File::create(&plain).unwrap();
+        let p = dir.join("result.csv");
+        super::write_atomic(&p, b"x").unwrap();
+        let mode = |p: &std::path::Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode(&p), mode(&plain));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
