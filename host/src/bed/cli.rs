@@ -2,6 +2,7 @@
 //! `dashpot figures bed` commands (delegated to from [`crate::cli`]).
 
 use super::engine::{Bed, BedConfig, BedReport};
+use super::scaling::InRun;
 use super::view::{progress_bar, snapshot_figure, SaveAs};
 use super::{scaling, DynRestitution, Laws};
 use crate::output::write_atomic;

@@ -228,13 +228,3 @@ pub enum BedError {
         error: Box<BedError>,
     },
 }
-
-impl BedError {
-    /// This error, as that of the run `point` of several.
-    pub fn in_run(self, point: String) -> BedError {
-        BedError::InRun {
-            point,
-            error: Box::new(self),
-        }
-    }
-}

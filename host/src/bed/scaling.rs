@@ -64,14 +64,38 @@ pub fn run_grid<R: Restitution>(
             },
         )
         .and_then(|mut bed| bed.run_protocol(grid.transient, grid.cycles, &mut |_| {}))
-        .map_err(|e| e.in_run(format!("n = {n}, f = {f} Hz")))
     })
+}
+
+/// An error of one run of several, which can say which run it was (the error kind kept).
+pub trait InRun {
+    /// This error, as that of the run `point`.
+    fn in_run(self, point: String) -> Self;
+}
+
+impl InRun for BedError {
+    fn in_run(self, point: String) -> Self {
+        BedError::InRun {
+            point,
+            error: Box::new(self),
+        }
+    }
+}
+
+impl InRun for DemError {
+    fn in_run(self, point: String) -> Self {
+        DemError::InRun {
+            point,
+            error: Box::new(self),
+        }
+    }
 }
 
 /// Runs `run(n, f, job)` for each `(k, job)` at the grid's point k, in parallel (rayon), the
 /// longest runs first (many disks, low frequency: more simulated time) for load balance;
-/// `tick` is called after each run. Results in grid order; an error stops the lot.
-fn run_points<J: Send, T: Send, E: Send>(
+/// `tick` is called after each run. Results in grid order; an error stops the lot, and names
+/// its grid point.
+fn run_points<J: Send, T: Send, E: Send + InRun>(
     grid: &Grid,
     mut jobs: Vec<(usize, J)>,
     tick: &(dyn Fn() + Sync),
@@ -86,7 +110,7 @@ fn run_points<J: Send, T: Send, E: Send>(
         .into_par_iter()
         .map(|(k, job)| {
             let (n, f) = grid.point(k);
-            let r = run(n, f, job)?;
+            let r = run(n, f, job).map_err(|e| e.in_run(format!("n = {n}, f = {f} Hz")))?;
             tick();
             Ok((k, r))
         })
@@ -217,12 +241,7 @@ pub fn run_dem_grid(
 ) -> Result<Vec<DemBedReport>, DemError> {
     let jobs = laws.into_iter().enumerate().collect();
     run_points(grid, jobs, tick, |n, f, l| {
-        bed(n, f)
-            .run(l, grid.transient, grid.cycles, &mut |_| {})
-            .map_err(|e| DemError::InRun {
-                point: format!("n = {n}, f = {f} Hz"),
-                error: Box::new(e),
-            })
+        bed(n, f).run(l, grid.transient, grid.cycles, &mut |_| {})
     })
 }
 

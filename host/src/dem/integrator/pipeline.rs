@@ -292,10 +292,13 @@ impl<const D: usize> Engine<D> {
         // every range's head: drifted by the first task that needs it (its own range's, or an
         // earlier range's whose last chunks reach it), the others waiting until it is done
         // (one range: no head, no allocation)
-        let heads: Vec<AtomicU8> = (0..tasks)
-            .filter(|_| tasks > 1)
-            .map(|r| AtomicU8::new(if head[r] > cuts[r] { HEAD_TODO } else { HEAD_DONE }))
-            .collect();
+        let heads: Vec<AtomicU8> = if tasks > 1 {
+            (0..tasks)
+                .map(|r| AtomicU8::new(if head[r] > cuts[r] { HEAD_TODO } else { HEAD_DONE }))
+                .collect()
+        } else {
+            Vec::new()
+        };
         // makes sure head `r` has drifted; the drift's sum if this task drifted it
         let ensure_head = |r: usize| -> f64 {
             let state = &heads[r];
