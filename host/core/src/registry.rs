@@ -245,7 +245,8 @@ impl Registry {
             None => Err(LawError::new(
                 ErrorKind::UnknownLaw,
                 format!(
-                    "unknown law '{name}'; available laws: {}{}",
+                    "unknown law '{name}'{}; available laws: {}{}",
+                    did_you_mean(name, self.laws.iter().map(|l| l.info.name.as_str())),
                     self.names_or_hint(),
                     self.refused_note()
                 ),
@@ -317,19 +318,47 @@ impl Registry {
 
     /// Creates contact law `name` from `params`.
     pub fn contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
-        self.find_kind(name, LawKind::Contact)?.new_contact(name, params)
+        let p = self.find_kind(name, LawKind::Contact)?;
+        self.check_names(name, params)?;
+        p.new_contact(name, params)
     }
 
     /// Creates tangential law `name` from `params`.
     pub fn tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
-        self.find_kind(name, LawKind::Tangential)?
-            .new_tangential(name, params)
+        let p = self.find_kind(name, LawKind::Tangential)?;
+        self.check_names(name, params)?;
+        p.new_tangential(name, params)
     }
 
     /// Creates restitution law `name` from `params`.
     pub fn restitution(&self, name: &str, params: &[ParamValue]) -> Result<RestitutionLawHandle, LawError> {
-        self.find_kind(name, LawKind::Restitution)?
-            .new_restitution(name, params)
+        let p = self.find_kind(name, LawKind::Restitution)?;
+        self.check_names(name, params)?;
+        p.new_restitution(name, params)
+    }
+
+    /// Refuses a parameter name outside law `name`'s schema, with the closest name of the
+    /// schema ("did you mean"), before the plugin sees it (the plugin refuses it too, without a
+    /// suggestion: the sdk's resolver cannot know what a user meant).
+    fn check_names(&self, name: &str, params: &[ParamValue]) -> Result<(), LawError> {
+        let (entry, _) = self.find(name)?;
+        let names: Vec<&str> = entry.info.params.iter().map(|s| s.name.as_str()).collect();
+        match params.iter().find(|p| !names.contains(&p.name.as_str())) {
+            None => Ok(()),
+            Some(p) => Err(LawError::new(
+                ErrorKind::UnknownParameter,
+                format!(
+                    "law '{name}' has no parameter '{}'{}; its parameters are: {}",
+                    p.name,
+                    did_you_mean(p.name.as_str(), names.iter().copied()),
+                    if names.is_empty() {
+                        "(none)".to_string()
+                    } else {
+                        names.join(", ")
+                    }
+                ),
+            )),
+        }
     }
 
     /// Closed-form calibration of contact law `name`, if it offers one.
@@ -409,6 +438,31 @@ pub fn explicit_file(path: &Path) -> Result<PathBuf, LawError> {
     Ok(abs)
 }
 
+/// The name of `candidates` closest to `name` by edit distance (Damerau–Levenshtein: a typo
+/// of one or two letters, a swap), if one is close enough to be what was meant: at most one edit
+/// for names of up to four letters, two for longer ones, and fewer edits than the name has
+/// letters. Ties go to the first candidate.
+pub fn closest<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+    let len = name.chars().count();
+    let limit = if len <= 4 { 1 } else { 2 };
+    let folded = name.to_lowercase();
+    candidates
+        .into_iter()
+        .filter(|c| *c != name)
+        .map(|c| (strsim::damerau_levenshtein(&folded, &c.to_lowercase()), c))
+        .filter(|&(d, _)| d <= limit && d < len)
+        .min_by_key(|&(d, _)| d)
+        .map(|(_, c)| c)
+}
+
+/// " (did you mean `x`?)" for the name of `candidates` closest to `name` ([`closest`]), or
+/// nothing.
+pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
+    closest(name, candidates)
+        .map(|c| format!(" (did you mean `{c}`?)"))
+        .unwrap_or_default()
+}
+
 /// "contact", "restitution" or "tangential".
 pub fn kind_str(k: LawKind) -> &'static str {
     match k {
@@ -421,6 +475,29 @@ pub fn kind_str(k: LawKind) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn typos_find_the_name_meant_and_nothing_else() {
+        let laws = ["lsd", "hsd", "kuwabara-kono", "mcnamara-falcon", "constant"];
+        assert_eq!(closest("hdd", laws), Some("hsd"));
+        assert_eq!(closest("HSD", laws), Some("hsd"));
+        assert_eq!(closest("kuwabara-kno", laws), Some("kuwabara-kono"));
+        assert_eq!(closest("konstant", laws), Some("constant"));
+        // two edits in a short name, or nothing alike: no guess
+        assert_eq!(closest("abc", laws), None);
+        assert_eq!(closest("hertz", laws), None);
+        assert_eq!(closest("epsx", ["eps", "k"]), Some("eps"));
+        assert_eq!(closest("x", ["eps", "k"]), None);
+        assert_eq!(
+            closest(
+                "velocty",
+                ["position", "velocity", "angular_velocity", "diameter"]
+            ),
+            Some("velocity")
+        );
+        assert_eq!(did_you_mean("hdd", laws), " (did you mean `hsd`?)");
+        assert_eq!(did_you_mean("zzz", laws), "");
+    }
 
     #[test]
     fn the_scan_skips_cargo_artifacts_and_the_c_library() {
