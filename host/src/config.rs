@@ -186,11 +186,156 @@ impl Config {
             path: path.display().to_string(),
             source,
         })?;
-        toml::from_str(&text).map_err(|e| ConfigError::Parse {
+        from_toml(&text).map_err(|message| ConfigError::Parse {
             path: path.display().to_string(),
-            message: e.to_string(),
+            message,
         })
     }
+}
+
+/// Reads a TOML document into `T` (a scene, a configuration); an error's first line names what
+/// a user must change: the key path (`particle[3].velocity`), the type expected and the type
+/// found, or for an unknown key the closest known one ("did you mean `velocity`?") and all the
+/// keys valid there, then the line and column; the lines after it quote the document there.
+pub fn from_toml<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, String> {
+    let de = toml::Deserializer::parse(text).map_err(|e| syntax_error(text, &e))?;
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let what = explain(&path, inner.message());
+        let at = inner
+            .span()
+            .map(|s| {
+                let (line, col) = line_col(text, s.start);
+                format!(" (line {line}, column {col})")
+            })
+            .unwrap_or_default();
+        format!("{what}{at}{}", quote(&inner))
+    })
+}
+
+/// A document that is not TOML at all: where, and the parser's words.
+fn syntax_error(text: &str, e: &toml::de::Error) -> String {
+    let at = e
+        .span()
+        .map(|s| {
+            let (line, col) = line_col(text, s.start);
+            format!(" at line {line}, column {col}")
+        })
+        .unwrap_or_default();
+    format!("not valid TOML{at}: {}{}", e.message().trim(), quote(e))
+}
+
+/// The parser's quotation of the document at the error (its lines after the first, without
+/// the message repeated), as lines to append.
+fn quote(e: &toml::de::Error) -> String {
+    let full = e.to_string();
+    let lines: Vec<&str> = full.lines().collect();
+    if lines.len() < 3 || !lines[0].starts_with("TOML parse error") {
+        return String::new();
+    }
+    lines[1..]
+        .iter()
+        .take_while(|l| l.trim_start().starts_with('|') || l.contains(" | "))
+        .map(|l| format!("\n{l}"))
+        .collect()
+}
+
+/// 1-based line and column of byte `at` of `text`.
+fn line_col(text: &str, at: usize) -> (usize, usize) {
+    let before = &text[..at.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// Serde's message about the value at `path`, said for a user: the key first, types in words.
+fn explain(path: &str, msg: &str) -> String {
+    let key = |p: &str| {
+        if p.is_empty() || p == "." {
+            "the top level".to_string()
+        } else {
+            format!("`{p}`")
+        }
+    };
+    // "unknown field `x`, expected one of `a`, `b`" (the path ends in the unknown key)
+    for (what, pre) in [("key", "unknown field `"), ("value", "unknown variant `")] {
+        if let Some(rest) = msg.strip_prefix(pre) {
+            let (name, tail) = rest.split_once('`').unwrap_or((rest, ""));
+            let known: Vec<&str> = tail.split('`').skip(1).step_by(2).collect();
+            // the path ends in the unknown key, except inside a tagged enum (buffered)
+            let parent = match path.rsplit_once('.') {
+                Some((p, last)) if last == name => p,
+                None if path == name => "",
+                _ => path,
+            };
+            let full = if parent.is_empty() || parent == "." {
+                name.to_string()
+            } else {
+                format!("{parent}.{name}")
+            };
+            let hint = crate::registry::did_you_mean(name, known.iter().copied());
+            let valid = if known.is_empty() {
+                "none".to_string()
+            } else {
+                known
+                    .iter()
+                    .map(|k| format!("`{k}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            };
+            return if what == "key" {
+                format!(
+                    "unknown key `{full}`{hint}: the keys valid in {} are {valid}",
+                    key(parent)
+                )
+            } else {
+                format!(
+                    "{} = \"{name}\" is not a valid choice{hint}: the choices are {valid}",
+                    key(path)
+                )
+            };
+        }
+    }
+    if let Some(rest) = msg.strip_prefix("missing field `") {
+        let name = rest.split('`').next().unwrap_or(rest);
+        let full = if path.is_empty() || path == "." {
+            name.to_string()
+        } else {
+            format!("{path}.{name}")
+        };
+        return format!("`{full}` is missing: it is required in {}", key(path));
+    }
+    for pre in ["invalid type: ", "invalid value: ", "invalid length "] {
+        if let Some(rest) = msg.strip_prefix(pre) {
+            if let Some((found, expected)) = rest.rsplit_once(", expected ") {
+                return format!(
+                    "{}: expected {}, found {}",
+                    key(path),
+                    type_words(expected),
+                    type_words(found)
+                );
+            }
+        }
+    }
+    // an untagged enum's `expecting` ("a number or an array ...")
+    format!("{}: expected {}", key(path), msg.trim())
+}
+
+/// serde's names of types in words a user of a TOML file knows.
+fn type_words(t: &str) -> String {
+    let t = t.trim();
+    let words = match t {
+        "f64" | "f32" => "a number",
+        "usize" | "u64" | "u32" | "u8" => "a whole number >= 0",
+        "i64" | "i32" => "a whole number",
+        "a sequence" => "an array",
+        "a boolean" | "bool" => "true or false",
+        "a map" => "a table",
+        _ if t.starts_with("struct ") || t.starts_with("internally tagged enum") => "a table",
+        _ => return t.replace("sequence", "array").replace("map", "table"),
+    };
+    words.to_string()
 }
 
 /// Parses `NAME=VALUE` (VALUE a number; NaN is accepted here and rejected by the law's range).
