@@ -29,6 +29,11 @@ pub struct DemArgs {
     /// into the page).
     #[arg(long, requires = "out")]
     pub png: bool,
+    /// Check the scene and stop before the first step: every check of the file and of the start
+    /// state (overlaps, the box, the packing, the laws, the step), then the step chosen, the
+    /// contact time, the particle count and size range. Exits non-zero if a check fails.
+    #[arg(long, requires = "scene")]
+    pub check: bool,
 }
 
 /// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws (the same
@@ -174,6 +179,9 @@ fn run_dim<const D: usize>(
             c.dt, c.collision_time, scene.config.steps_per_collision, file.law.name, c.impact_speed
         )
     };
+    if a.check {
+        return print_check(&e, path, &file.law.name, a.json);
+    }
     eprintln!("{line}");
     if let Some(w) = c.warning() {
         eprintln!("warning: {w}");
@@ -299,6 +307,51 @@ fn run_dim<const D: usize>(
             );
         }
     }
+    Ok(())
+}
+
+/// `dem --scene FILE --check`: what the run would start with (the checks have passed).
+fn print_check<const D: usize>(e: &Engine<D>, path: &std::path::Path, law: &str, json: bool) -> Result<()> {
+    let c = e.step_choice;
+    if let Some(w) = c.warning() {
+        eprintln!("warning: {w}");
+    }
+    let d = |f: fn(f64, f64) -> f64, start: f64| 2.0 * e.p.radius.iter().cloned().fold(start, f);
+    let (dmin, dmax) = (d(f64::min, f64::INFINITY), d(f64::max, 0.0));
+    if json {
+        let v = serde_json::json!({
+            "scene": path.display().to_string(),
+            "checks": "passed",
+            "dimension": D,
+            "law": law,
+            "dt": c.dt,
+            "dt_given": c.given,
+            "collision_time": c.collision_time,
+            "impact_speed": c.impact_speed,
+            "steps_per_collision": c.collision_time / c.dt,
+            "particles": e.p.len(),
+            "diameter_min": dmin,
+            "diameter_max": dmax,
+            "walls": e.walls.len(),
+        });
+        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(());
+    }
+    println!("{}: every check passed (not run)", path.display());
+    println!(
+        "dt = {:.4e} s{}; contact time {:.4e} s at {:.3} m/s (law '{law}'), {:.1} steps per collision",
+        c.dt,
+        if c.given { " (given)" } else { " (chosen)" },
+        c.collision_time,
+        c.impact_speed,
+        c.collision_time / c.dt
+    );
+    println!(
+        "{} {}D particles, diameters {dmin:.4e} .. {dmax:.4e} m; {} wall(s)",
+        e.p.len(),
+        D,
+        e.walls.len()
+    );
     Ok(())
 }
 

@@ -10,6 +10,8 @@
 //! # impact_speed = 1.0               # m/s; else estimated
 //! # skin = 4e-4                      # m; else 0.3 of the smallest diameter
 //! # snapshots = 10                   # frames written to --out (trajectory.xyz)
+//! # allow_initial_overlap = false    # true: particles may start overlapping (a pre-compressed
+//! #                                  # packing), up to 0.5 of the smaller radius
 //! [law]
 //! name = "hsd"
 //! params = { eps = 0.5 }
@@ -43,6 +45,8 @@
 //! speed = 0.1                        # random velocities of this magnitude (m/s), default 0
 //! seed = 1
 //! ```
+
+mod check;
 
 use super::cells::Domain;
 use super::integrator::{check_steps_per_collision, EngineConfig};
@@ -119,7 +123,10 @@ struct WallTable {
 }
 
 #[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a number (2D: rad/s about z) or an array [x, y, z] of numbers (3D, rad/s)"
+)]
 enum Spin {
     Scalar(f64),
     Vector(Vec<f64>),
@@ -137,7 +144,10 @@ struct ParticleTable {
 }
 
 #[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+#[serde(
+    untagged,
+    expecting = "a number (m) or an array [min, max] of two numbers (m)"
+)]
 enum Diameters {
     One(f64),
     Range(Vec<f64>),
@@ -178,6 +188,10 @@ pub struct SceneFile {
     skin: Option<f64>,
     #[serde(default)]
     snapshots: Option<usize>,
+    /// Particles may start overlapping each other or a wall (a deliberately pre-compressed
+    /// packing), up to 0.5 of the smaller radius; else any overlap at the start is refused.
+    #[serde(default)]
+    allow_initial_overlap: bool,
     /// The normal law.
     pub law: LawTable,
     /// The tangential law, if any.
@@ -212,7 +226,7 @@ pub struct Scene<const D: usize> {
 impl SceneFile {
     /// Parses TOML text.
     pub fn parse(text: &str) -> Result<SceneFile, SceneError> {
-        toml::from_str(text).map_err(|e| bad(e.to_string()))
+        crate::config::from_toml(text).map_err(bad)
     }
 
     /// The dimension (2 or 3).
@@ -362,6 +376,10 @@ impl SceneFile {
                 "no particles: give [[particle]] entries or a [generate] table".into(),
             ));
         }
+        let problems = check::start_problems(&bodies, &walls, &config.domain, self.allow_initial_overlap);
+        if !problems.is_empty() {
+            return Err(bad(problems.join("\nscene: ")));
+        }
         Ok(Scene {
             config,
             duration: self.duration,
@@ -445,14 +463,22 @@ pub fn packing<const D: usize>(
     let mut sites = [0usize; D];
     let mut total = 1usize;
     for k in 0..D {
+        if hi[k] <= lo[k] || !(hi[k] - lo[k]).is_finite() {
+            return Err(bad(format!(
+                "generate: hi[{k}] = {} m must exceed lo[{k}] = {} m (the region filled is lo..hi)",
+                hi[k], lo[k]
+            )));
+        }
         sites[k] = ((hi[k] - lo[k]) / a).floor().max(0.0) as usize;
         total = total.saturating_mul(sites[k]);
     }
     if total < count {
+        let per_axis: Vec<String> = sites.iter().map(|s| s.to_string()).collect();
         return Err(bad(format!(
-            "generate: the region {:?}..{:?} holds {total} sites of {a:.3e} m, fewer than count = {count}",
+            "generate: count = {count} particles cannot fit: the region lo = {:?} .. hi = {:?} m holds at most {total} ({} sites of {a:.4e} m, 1.05 times the largest diameter {dmax} m); lower generate.count to {total} or less, enlarge generate.lo/hi, or give a smaller generate.diameter",
             lo.as_slice(),
-            hi.as_slice()
+            hi.as_slice(),
+            per_axis.join(" x ")
         )));
     }
     let mut rng = Rng(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x1234_5678);
