@@ -90,16 +90,22 @@ fn scaling_fits_the_classical_exponents_without_gravity_and_constant_r() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     // with g = 0 and constant r, V is the only time scale: P ∝ V², Nc ∝ V, ΔI ∝ V
-    let th = |k: &str| v[0][k]["theta"].as_f64().unwrap();
+    let th = |k: &str| v["exponents"][0][k]["theta"].as_f64().unwrap();
     assert!((th("pressure") - 2.0).abs() < 0.15, "{v}");
     assert!((th("lid_collision_rate") - 1.0).abs() < 0.15, "{v}");
     assert!((th("mean_impulse") - 1.0).abs() < 0.15, "{v}");
     let csv = std::fs::read_to_string(dir.join("scaling.csv")).unwrap();
-    assert!(csv.starts_with("layers,theta_p,theta_p_stderr,resid_p"));
+    // after the provenance's comment lines
+    assert!(csv
+        .lines()
+        .find(|l| !l.starts_with('#'))
+        .unwrap()
+        .starts_with("layers,theta_p,theta_p_stderr,resid_p"));
     assert_eq!(
         std::fs::read_to_string(dir.join("grid.csv"))
             .unwrap()
             .lines()
+            .filter(|l| !l.starts_with('#'))
             .count(),
         4
     );
@@ -421,7 +427,7 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(out.join("grid.csv")).unwrap();
-    let mut lines = csv.lines();
+    let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let k = header.iter().position(|h| *h == "mean_impulse_n_s").unwrap();
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();

@@ -854,6 +854,7 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
         transient: a.phys.transient,
         cycles: a.phys.cycles,
     };
+    let prov = scaling_provenance(reg, &a.phys)?;
     let pb = progress_bar(grid.len() as u64, "scaling (runs)");
     let (rows, law) = match a.phys.engine {
         EngineKind::Event => {
@@ -864,7 +865,7 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
             };
             let runs = scaling::run_grid(&laws, &|n, f| a.phys.config(n, f), &grid, &|| pb.inc(1))?;
             std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
-            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs)?;
+            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs, &prov)?;
             (
                 scaling::fit_all(&grid, &runs),
                 a.phys.restitution_name()?.to_string(),
@@ -880,7 +881,7 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
                     pb.inc(1)
                 })?;
             std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
-            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs)?;
+            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs, &prov)?;
             let law = format!(
                 "DEM {}{}, E = {:.3e} Pa",
                 a.phys.law_name()?,
@@ -895,7 +896,7 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
         }
     };
     pb.finish_and_clear();
-    scaling::write_fit_csv(&a.out.join("scaling.csv"), &rows)?;
+    scaling::write_fit_csv(&a.out.join("scaling.csv"), &rows, &prov)?;
     let title = format!(
         "θ(n): {} {}, g = {} m/s²",
         law,
@@ -904,7 +905,9 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
     );
     Figure::single(scaling::theta_panel(&rows, &title)).save(&a.out, "theta")?;
     if a.json {
-        println!("{}", serde_json::to_string_pretty(&rows)?);
+        let mut v = scaling::provenance_json(&prov);
+        v.insert("exponents".into(), serde_json::to_value(&rows)?);
+        println!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         println!(
             "scaling exponents θ of X ∝ V^θ, least squares of ln X on ln V over {} frequencies (max |residual| in ln units)",
@@ -928,6 +931,7 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
                 c(&r.mean_impulse)
             );
         }
+        prov.iter().flat_map(|p| p.lines()).for_each(|l| println!("{l}"));
         println!(
             "wrote {}, {} and theta.png/.svg",
             a.out.join("scaling.csv").display(),
@@ -935,6 +939,25 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The provenance of `dashpot scaling`'s laws: the restitution law (a contact law's own for
+/// `from:NAME`), or on the DEM engine the contact law and the tangential law.
+fn scaling_provenance(reg: &Registry, phys: &PhysArgs) -> Result<Vec<crate::output::Provenance>> {
+    let prov = match phys.engine {
+        EngineKind::Event => {
+            let r = phys.restitution_name()?;
+            let name = r.strip_prefix(super::FROM_CONTACT).unwrap_or(r);
+            scaling::provenance(reg, name, &phys.params()?, None)?
+        }
+        EngineKind::Dem => {
+            let t = phys.tparams()?;
+            let tangential = phys.tangential.as_deref().map(|n| (n, &t[..]));
+            scaling::provenance(reg, phys.law_name()?, &phys.params()?, tangential)?
+        }
+    };
+    prov.iter().for_each(|p| p.warn_if_shadowed());
+    Ok(prov)
 }
 
 /// `dashpot figures ...`.

@@ -3,10 +3,12 @@
 
 use super::engine::{Bed, BedConfig, BedReport};
 use super::scaling::{
-    fit_all, run_dem_grid, run_grid, theta_panel, write_fit_csv, write_grid_csv, Grid, Measured, ScalingRow,
+    fit_all, provenance, run_dem_grid, run_grid, theta_panel, write_fit_csv, write_grid_csv, Grid, Measured,
+    ScalingRow,
 };
 use super::view::{progress_bar, snapshot_panel};
 use super::{resolve, DynRestitution, Laws};
+use crate::output::Provenance;
 use crate::plot::{Figure, Mark, Panel, Series, PALETTE};
 use crate::registry::Registry;
 use anyhow::{Context, Result};
@@ -116,11 +118,13 @@ fn law(reg: &Registry, name: &str, params: &[ParamValue]) -> Result<Plug> {
     Ok(resolve(reg, name, params, c.diameter, c.mass)?)
 }
 
-/// The three laws of the paper: r(v) (eq. 1), r = 0.95, r = 0.7.
+/// The three laws of the paper: r(v) (eq. 1), r = 0.95, r = 0.7, and their provenance (for
+/// the CSV files).
 struct Three {
     rv: Plug,
     r95: Plug,
     r70: Plug,
+    prov: [Vec<Provenance>; 3],
 }
 
 fn refs(l: &Plug) -> Laws<&DynRestitution> {
@@ -159,6 +163,11 @@ pub fn run_only(reg: &Registry, out: &Path, size: &Size, only: &[u8]) -> Result<
         rv: law(reg, "mcnamara-falcon", &[])?,
         r95: law(reg, "constant", &[ParamValue::new("r", 0.95)])?,
         r70: law(reg, "constant", &[ParamValue::new("r", 0.7)])?,
+        prov: [
+            provenance(reg, "mcnamara-falcon", &[], None)?,
+            provenance(reg, "constant", &[ParamValue::new("r", 0.95)], None)?,
+            provenance(reg, "constant", &[ParamValue::new("r", 0.7)], None)?,
+        ],
     };
     let clock = std::time::Instant::now();
     let mut md = String::new();
@@ -286,9 +295,9 @@ fn fig2(l: &Three, out: &Path, size: &Size, md: &mut String) -> Result<()> {
     let rv = grid_runs(&l.rv, false, 9.8, &grid, "Fig. 2b r(v)")?;
     let r95 = grid_runs(&l.r95, true, 9.8, &grid, "Fig. 2c r = 0.95")?;
     let r70 = grid_runs(&l.r70, true, 9.8, &grid, "Fig. 2d r = 0.7")?;
-    write_grid_csv(&out.join("fig2b_rv.csv"), &rv)?;
-    write_grid_csv(&out.join("fig2c_r095.csv"), &r95)?;
-    write_grid_csv(&out.join("fig2d_r070.csv"), &r70)?;
+    write_grid_csv(&out.join("fig2b_rv.csv"), &rv, &l.prov[0])?;
+    write_grid_csv(&out.join("fig2c_r095.csv"), &r95, &l.prov[1])?;
+    write_grid_csv(&out.join("fig2d_r070.csv"), &r70, &l.prov[2])?;
     let fig = Figure {
         panels: vec![
             pressure_panel("(b) r = r(v)", &grid, &rv),
@@ -540,16 +549,16 @@ fn fig4(l: &Three, out: &Path, size: &Size, md: &mut String) -> Result<()> {
     };
     let mut panels = Vec::new();
     let mut all: Vec<(&str, Vec<ScalingRow>)> = Vec::new();
-    for (tag, title, law, constant, g) in [
-        ("a", "(a) g = 0, r = 0.95", &l.r95, true, 0.0),
-        ("b", "(b) g = 0, r = r(v)", &l.rv, false, 0.0),
-        ("c", "(c) g = 9.8, r = 0.95", &l.r95, true, 9.8),
-        ("d", "(d) g = 9.8, r = r(v)", &l.rv, false, 9.8),
+    for (tag, title, law, constant, g, prov) in [
+        ("a", "(a) g = 0, r = 0.95", &l.r95, true, 0.0, &l.prov[1]),
+        ("b", "(b) g = 0, r = r(v)", &l.rv, false, 0.0, &l.prov[0]),
+        ("c", "(c) g = 9.8, r = 0.95", &l.r95, true, 9.8, &l.prov[1]),
+        ("d", "(d) g = 9.8, r = r(v)", &l.rv, false, 9.8, &l.prov[0]),
     ] {
         let runs = grid_runs(law, constant, g, &grid, &format!("Fig. 4{tag}"))?;
-        write_grid_csv(&out.join(format!("fig4{tag}_grid.csv")), &runs)?;
+        write_grid_csv(&out.join(format!("fig4{tag}_grid.csv")), &runs, prov)?;
         let rows = fit_all(&grid, &runs);
-        write_fit_csv(&out.join(format!("fig4{tag}_theta.csv")), &rows)?;
+        write_fit_csv(&out.join(format!("fig4{tag}_theta.csv")), &rows, prov)?;
         panels.push(theta_panel(&rows, title));
         all.push((title, rows));
     }
@@ -1033,9 +1042,14 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
         let kk_runs = dem_grid(&grid, "kuwabara-kono", &kk, "DEM Fig. 2 kuwabara-kono")?;
         let hi = dem_grid(&grid, "hsd", &eps_hi, "DEM Fig. 2 hsd 0.95")?;
         let lo = dem_grid(&grid, "hsd", &eps_lo, "DEM Fig. 2 hsd 0.7")?;
-        write_grid_csv(&out.join("dem_fig2_kk.csv"), &kk_runs)?;
-        write_grid_csv(&out.join("dem_fig2_hsd095.csv"), &hi)?;
-        write_grid_csv(&out.join("dem_fig2_hsd070.csv"), &lo)?;
+        let prov = |name: &str, params: &[ParamValue]| provenance(reg, name, params, None);
+        write_grid_csv(
+            &out.join("dem_fig2_kk.csv"),
+            &kk_runs,
+            &prov("kuwabara-kono", &kk)?,
+        )?;
+        write_grid_csv(&out.join("dem_fig2_hsd095.csv"), &hi, &prov("hsd", &eps_hi)?)?;
+        write_grid_csv(&out.join("dem_fig2_hsd070.csv"), &lo, &prov("hsd", &eps_lo)?)?;
         Figure {
             panels: vec![
                 pressure_panel(&format!("DEM, Kuwabara–Kono A = {CROSS_KK_A} s"), &grid, &kk_runs),
@@ -1085,9 +1099,10 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
             ("kk", "DEM, Kuwabara–Kono", "kuwabara-kono", &kk[..]),
         ] {
             let runs = dem_grid(&grid, name, params, &format!("DEM Fig. 4 {tag}"))?;
-            write_grid_csv(&out.join(format!("dem_fig4_{tag}_grid.csv")), &runs)?;
+            let prov = provenance(reg, name, params, None)?;
+            write_grid_csv(&out.join(format!("dem_fig4_{tag}_grid.csv")), &runs, &prov)?;
             let rows = fit_all(&grid, &runs);
-            write_fit_csv(&out.join(format!("dem_fig4_{tag}_theta.csv")), &rows)?;
+            write_fit_csv(&out.join(format!("dem_fig4_{tag}_theta.csv")), &rows, &prov)?;
             panels.push(theta_panel(&rows, title));
             writeln!(
                 md,

@@ -6,9 +6,11 @@ use super::observables::{fit_power_err, PowerFit};
 use super::{BedError, Laws, Restitution};
 use crate::dem::bed::{DemBed, DemBedReport};
 use crate::dem::DemError;
-use crate::output::write_atomic;
+use crate::output::{write_atomic, Provenance};
 use crate::plot::{Mark, Panel, Series};
+use crate::registry::Registry;
 use anyhow::{Context, Result};
+use dashpot_sdk::ParamValue;
 use rayon::prelude::*;
 use serde::Serialize;
 use std::path::Path;
@@ -275,20 +277,56 @@ pub fn fit_all<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<ScalingRow> {
         .collect()
 }
 
-/// Writes every run of the grid as CSV, either engine's: the common columns, then the
-/// engine's own.
-pub fn write_grid_csv<R: Measured>(path: &Path, runs: &[R]) -> Result<()> {
-    let mut s = format!("{CSV_COMMON_HEADER},{}\n", R::CSV_EXTRA_HEADER);
+/// The provenance of the laws of a grid, as every command's results carry it
+/// ([`Provenance`]): the law `name` with the parameters `params`, and the tangential law if
+/// any.
+pub fn provenance(
+    reg: &Registry,
+    name: &str,
+    params: &[ParamValue],
+    tangential: Option<(&str, &[ParamValue])>,
+) -> Result<Vec<Provenance>> {
+    let mut v = vec![Provenance::of(reg, name, params)?];
+    if let Some((t, tp)) = tangential {
+        v.push(Provenance::of(reg, t, tp)?);
+    }
+    Ok(v)
+}
+
+/// The provenance as the JSON of the other commands: `provenance` (the law) and, with a
+/// tangential law, `tangential_provenance`.
+pub fn provenance_json(prov: &[Provenance]) -> serde_json::Map<String, serde_json::Value> {
+    let mut m = serde_json::Map::new();
+    if let Some(p) = prov.first() {
+        m.insert("provenance".into(), p.json());
+    }
+    if let Some(t) = prov.get(1) {
+        m.insert("tangential_provenance".into(), t.json());
+    }
+    m
+}
+
+/// The provenance's `#` comment lines, put before a CSV header.
+fn csv_comments(prov: &[Provenance]) -> String {
+    prov.iter().map(Provenance::csv_comment).collect()
+}
+
+/// Writes every run of the grid as CSV, either engine's: the provenance of its laws as `#`
+/// comment lines, then the common columns, then the engine's own.
+pub fn write_grid_csv<R: Measured>(path: &Path, runs: &[R], prov: &[Provenance]) -> Result<()> {
+    let mut s = csv_comments(prov);
+    s.push_str(&format!("{CSV_COMMON_HEADER},{}\n", R::CSV_EXTRA_HEADER));
     for r in runs {
         s.push_str(&format!("{},{}\n", r.csv_common(), r.csv_extra()));
     }
     write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
 }
 
-/// Writes the exponents as CSV (theta and max |residual| of each observable).
-pub fn write_fit_csv(path: &Path, rows: &[ScalingRow]) -> Result<()> {
-    let mut s =
-        String::from("layers,theta_p,theta_p_stderr,resid_p,theta_t,theta_t_stderr,resid_t,theta_nc,theta_nc_stderr,resid_nc,theta_di,theta_di_stderr,resid_di,tc_share\n");
+/// Writes the exponents as CSV (theta and max |residual| of each observable), after the
+/// provenance of the laws as `#` comment lines.
+pub fn write_fit_csv(path: &Path, rows: &[ScalingRow], prov: &[Provenance]) -> Result<()> {
+    let mut s = csv_comments(prov);
+    s.push_str("layers,theta_p,theta_p_stderr,resid_p,theta_t,theta_t_stderr,resid_t,theta_nc,theta_nc_stderr,resid_nc,theta_di,theta_di_stderr,resid_di,tc_share\n");
     let c = |f: &Option<PowerFit>| match f {
         Some(f) => format!(
             "{},{},{}",

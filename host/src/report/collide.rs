@@ -2,7 +2,7 @@
 //! law plugins, as PNG + SVG + CSV with a markdown report of the numbers behind them.
 
 use crate::collide::two_body::{collide, Collision, Options, PairLaw};
-use crate::output::write_atomic;
+use crate::output::{write_atomic, Provenance};
 use crate::plot::{Figure, Mark, Panel, Series};
 use crate::registry::Registry;
 use anyhow::{Context, Result};
@@ -29,8 +29,25 @@ fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
         .collect()
 }
 
-fn csv_write(path: &Path, header: &str, rows: &[Vec<f64>]) -> Result<()> {
-    let mut s = String::from(header);
+/// The `#` provenance lines of a CSV, as every command's CSV carries them ([`Provenance`]):
+/// each law with its parameters; `swept` names a parameter that varies along the rows (the
+/// column of that name), the lines above it giving its first value.
+fn provenance(reg: &Registry, laws: &[(&str, &[ParamValue])], swept: Option<&str>) -> Result<String> {
+    let mut s = String::new();
+    for (law, params) in laws {
+        s.push_str(&Provenance::of(reg, law, params)?.csv_comment());
+    }
+    if let Some(p) = swept {
+        s.push_str(&format!(
+            "# {p} varies along the rows (the column {p}); the lines above give its first value\n"
+        ));
+    }
+    Ok(s)
+}
+
+/// Writes `rows` under `header`, after the provenance lines `prov`.
+fn csv_write(path: &Path, prov: &str, header: &str, rows: &[Vec<f64>]) -> Result<()> {
+    let mut s = format!("{prov}{header}");
     s.push('\n');
     for r in rows {
         let line: Vec<String> = r.iter().map(|x| format!("{x:.12e}")).collect();
@@ -103,6 +120,7 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
         .collect();
     csv_write(
         &out.join("fig1_phase_trajectories.csv"),
+        &provenance(reg, &[("lsd", &e), ("hsd", &e)], None)?,
         "law_0lsd_1hsd,t_s,delta_m,rate_m_per_s,force_N",
         &rows,
     )?;
@@ -151,8 +169,10 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
         series.push(Series::new(format!("LSD ε = {eps}"), lt, Mark::Line, ci));
         series.push(Series::new(format!("HSD ε = {eps}"), ht, Mark::Dashed, ci));
     }
+    let first = [ParamValue::new("eps", 1.0)];
     csv_write(
         &out.join("fig2_collision_time.csv"),
+        &provenance(reg, &[("lsd", &first), ("hsd", &first)], Some("eps"))?,
         "eps,v0_m_per_s,tau_lsd_s,tau_hsd_s",
         &rows,
     )?;
@@ -212,8 +232,10 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
         hpts.push((eps, rh));
         rows.push(vec![eps, rl, eq25, rh, eq29]);
     }
+    let first = [ParamValue::new("eps", epss[0])];
     csv_write(
         &out.join("fig3_time_ratio.csv"),
+        &provenance(reg, &[("lsd", &first), ("hsd", &first)], Some("eps"))?,
         "eps,lsd_numeric,lsd_eq25,hsd_numeric,hsd_eq29_fit",
         &rows,
     )?;
@@ -292,6 +314,7 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
     }
     csv_write(
         &out.join("kuwabara_kono_restitution.csv"),
+        &provenance(reg, &[("kuwabara-kono", &a)], None)?,
         "v0_m_per_s,eps_overlap,eps_force",
         &rows,
     )?;
@@ -363,6 +386,14 @@ fn plastic_and_oblique(reg: &Registry, out: &Path) -> Result<String> {
     }
     csv_write(
         &out.join("thornton_restitution.csv"),
+        &provenance(
+            reg,
+            &[
+                ("thornton", &[ParamValue::new("py", py)]),
+                ("mcnamara-falcon", &[]),
+            ],
+            None,
+        )?,
         "v_m_per_s,thornton_integrated,thornton_closed_form,mcnamara_falcon",
         &rows,
     )?;
@@ -452,8 +483,17 @@ fn plastic_and_oblique(reg: &Registry, out: &Path) -> Result<String> {
             c.sliding_share,
         ]);
     }
+    let oblique_prov = provenance(
+        reg,
+        &[
+            ("hsd", &[ParamValue::new("eps", 0.98)]),
+            ("mindlin", &[ParamValue::new("mu", mu)]),
+        ],
+        None,
+    )?;
     csv_write(
         &out.join("oblique_test4.csv"),
+        &oblique_prov,
         "incidence_deg,rebound_deg,spin_rad_per_s,tangential_velocity_out_m_per_s,sliding_share",
         &rows,
     )?;
@@ -519,6 +559,7 @@ fn plastic_and_oblique(reg: &Registry, out: &Path) -> Result<String> {
     }
     csv_write(
         &out.join("oblique_test5.csv"),
+        &oblique_prov,
         "spin_in_rad_per_s,tangential_velocity_out_m_per_s,spin_out_rad_per_s",
         &rows5,
     )?;
