@@ -87,6 +87,13 @@ pub struct DemBedArgs {
 /// Runs `dashpot dem`.
 pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
     let Some(path) = &a.scene else {
+        if a.check {
+            // (clap lets `requires = "scene"` pass when --scene conflicts with a given --bed)
+            return Err(crate::cli::UsageError(
+                "--check checks a scene: give --scene FILE (dem --bed has no scene to check)".into(),
+            )
+            .into());
+        }
         return run_bed(reg, &a.bed, a.json);
     };
     let text =

@@ -446,6 +446,44 @@ impl Rng {
     }
 }
 
+/// The sites of [`packing`]'s lattice (spacing 1.05 `dmax`, m) in the region `[lo, hi]` (m)
+/// along each axis, and their number.
+fn sites<const D: usize>(dmax: f64, lo: &VecD<D>, hi: &VecD<D>) -> Result<([usize; D], usize), SceneError> {
+    let a = 1.05 * dmax;
+    let mut sites = [0usize; D];
+    let mut total = 1usize;
+    for k in 0..D {
+        if hi[k] <= lo[k] || !(hi[k] - lo[k]).is_finite() {
+            return Err(bad(format!(
+                "hi[{k}] = {} m must exceed lo[{k}] = {} m (the region filled is lo..hi)",
+                hi[k], lo[k]
+            )));
+        }
+        sites[k] = ((hi[k] - lo[k]) / a).floor().max(0.0) as usize;
+        total = total.saturating_mul(sites[k]);
+    }
+    Ok((sites, total))
+}
+
+/// Why `count` particles of largest diameter `dmax` (m) do not fit in `[lo, hi]` (m), whose
+/// lattice has `sites` along each axis, `total` in all.
+fn crowded<const D: usize>(
+    count: usize,
+    dmax: f64,
+    lo: &VecD<D>,
+    hi: &VecD<D>,
+    sites: &[usize; D],
+    total: usize,
+) -> String {
+    format!(
+        "count = {count} particles cannot fit: the region lo = {:?} .. hi = {:?} m holds at most {total} ({} sites of {:.4e} m, 1.05 times the largest diameter {dmax} m)",
+        lo.as_slice(),
+        hi.as_slice(),
+        sites.map(|s| s.to_string()).join(" x "),
+        1.05 * dmax
+    )
+}
+
 /// `count` particles of diameters uniform in `[dmin, dmax]` (m) in the region `[lo, hi]`: one per
 /// site of a square (cubic) lattice of spacing 1.05 dmax, filled row by row from `lo`, each
 /// jittered at random within its site (no two overlap), with random velocities of magnitude
@@ -459,28 +497,11 @@ pub fn packing<const D: usize>(
     speed: f64,
     seed: u64,
 ) -> Result<Vec<Body<D>>, SceneError> {
-    let a = 1.05 * dmax;
-    let mut sites = [0usize; D];
-    let mut total = 1usize;
-    for k in 0..D {
-        if hi[k] <= lo[k] || !(hi[k] - lo[k]).is_finite() {
-            return Err(bad(format!(
-                "generate: hi[{k}] = {} m must exceed lo[{k}] = {} m (the region filled is lo..hi)",
-                hi[k], lo[k]
-            )));
-        }
-        sites[k] = ((hi[k] - lo[k]) / a).floor().max(0.0) as usize;
-        total = total.saturating_mul(sites[k]);
-    }
+    let (sites, total) = sites::<D>(dmax, &lo, &hi)?;
     if total < count {
-        let per_axis: Vec<String> = sites.iter().map(|s| s.to_string()).collect();
-        return Err(bad(format!(
-            "generate: count = {count} particles cannot fit: the region lo = {:?} .. hi = {:?} m holds at most {total} ({} sites of {a:.4e} m, 1.05 times the largest diameter {dmax} m); lower generate.count to {total} or less, enlarge generate.lo/hi, or give a smaller generate.diameter",
-            lo.as_slice(),
-            hi.as_slice(),
-            per_axis.join(" x ")
-        )));
+        return Err(bad(crowded(count, dmax, &lo, &hi, &sites, total)));
     }
+    let a = 1.05 * dmax;
     let mut rng = Rng(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x1234_5678);
     let mut out = Vec::with_capacity(count);
     for s in 0..count {
@@ -530,5 +551,12 @@ fn generate<const D: usize>(g: &GenerateTable) -> Result<Vec<Body<D>>, SceneErro
     non_negative("generate.speed", "m/s", g.speed)?;
     let lo = vector::<D>("generate.lo", &g.lo)?;
     let hi = vector::<D>("generate.hi", &g.hi)?;
+    let (sites, total) = sites::<D>(dmax, &lo, &hi).map_err(|e| bad(format!("generate: {}", e.0)))?;
+    if total < g.count {
+        return Err(bad(format!(
+            "generate: {}; lower generate.count to {total} or less, enlarge generate.lo/hi, or give a smaller generate.diameter",
+            crowded(g.count, dmax, &lo, &hi, &sites, total)
+        )));
+    }
     packing(g.count, dmin, dmax, lo, hi, g.speed, g.seed)
 }
