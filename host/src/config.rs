@@ -454,4 +454,31 @@ mod tests {
     fn unknown_keys_are_rejected() {
         assert!(toml::from_str::<Config>("[particle]\ndiamter = 1.0\n").is_err());
     }
+
+    #[test]
+    fn toml_errors_put_the_key_and_the_place_on_the_first_line() {
+        let e = from_toml::<Config>("[law]\nname = \"hsd\"\n[particle\n").unwrap_err();
+        let first = e.lines().next().unwrap();
+        assert!(first.starts_with("not valid TOML at line 3, column 10: "), "{e}");
+        // the quotation of the line follows
+        assert!(e.contains("3 | [particle"), "{e}");
+        let e = from_toml::<Config>("[law]\nname = 3\n").unwrap_err();
+        assert!(
+            e.starts_with("`law.name`: expected a string, found integer `3` (line 2, column 8)"),
+            "{e}"
+        );
+        let e = from_toml::<Config>("[law]\nnmae = \"hsd\"\n").unwrap_err();
+        assert!(
+            e.starts_with(
+                "unknown key `law.nmae` (did you mean `name`?): the keys valid in `law` are `name`, `params`"
+            ),
+            "{e}"
+        );
+        // nothing close: the valid keys, no guess
+        let e = from_toml::<Config>("[law]\nzzzz = 1\n").unwrap_err();
+        assert!(
+            !e.contains("did you mean") && e.contains("`name`, `params`"),
+            "{e}"
+        );
+    }
 }
