@@ -24,6 +24,10 @@ pub enum LawKind {
     Restitution = 2,
     /// A tangential (friction) force at the contact point (N), with per-contact history (sdk 0.2).
     Tangential = 3,
+    /// A rolling-resistance force (N) at the contact, with per-contact history (sdk 0.3).
+    Rolling = 4,
+    /// A twisting torque (N·m) about the contact normal, with per-contact history (sdk 0.3).
+    Twisting = 5,
 }
 
 /// When a two-body contact is over. Realized restitution and contact time depend on it, so every
@@ -55,7 +59,7 @@ impl EndCriterion {
 pub struct LawInfo {
     /// The name a user selects the law by (`--law NAME`); unique within a host.
     pub name: RString,
-    /// Contact or restitution law.
+    /// Which kind of law.
     pub kind: LawKind,
     /// One line: what the law is.
     pub summary: RString,

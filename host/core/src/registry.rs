@@ -409,12 +409,14 @@ pub fn explicit_file(path: &Path) -> Result<PathBuf, LawError> {
     Ok(abs)
 }
 
-/// "contact", "restitution" or "tangential".
+/// "contact", "restitution", "tangential", "rolling" or "twisting".
 pub fn kind_str(k: LawKind) -> &'static str {
     match k {
         LawKind::Contact => "contact",
         LawKind::Restitution => "restitution",
         LawKind::Tangential => "tangential",
+        LawKind::Rolling => "rolling",
+        LawKind::Twisting => "twisting",
     }
 }
 

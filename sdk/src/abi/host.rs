@@ -13,8 +13,11 @@ pub enum SdkSeries {
     /// sdk 0.1: contact laws bound to one pair (spoken to through [`v1`]); no history, no
     /// tangential laws.
     V0_1,
-    /// sdk 0.2: material binding, per-contact geometry and history, tangential laws.
+    /// sdk 0.2: material binding, per-contact geometry and history, tangential laws (its law
+    /// list read through [`v2`]).
     V0_2,
+    /// sdk 0.3: adhesive contact laws with a reach, rolling and twisting laws, energy outputs.
+    V0_3,
 }
 
 /// A loaded plugin library. Libraries stay loaded for the life of the process.
@@ -35,11 +38,23 @@ pub struct LoadedPlugin {
     module: Module,
 }
 
-/// A root module of either series.
+/// A root module of any series.
 #[derive(Clone, Copy)]
 enum Module {
     V1(v1::PluginModuleRef),
-    V2(PluginModuleRef),
+    V2(v2::PluginModuleRef),
+    V3(PluginModuleRef),
+}
+
+/// The entry points 0.2 and 0.3 share (same types in both root modules).
+macro_rules! shared {
+    ($module:expr, $field:ident, $v1:expr) => {
+        match $module {
+            Module::V1(m) => $v1(m),
+            Module::V2(m) => m.$field(),
+            Module::V3(m) => m.$field(),
+        }
+    };
 }
 
 impl std::fmt::Debug for LoadedPlugin {
@@ -109,7 +124,6 @@ impl LoadedPlugin {
     /// Loading runs the library's initialisers: load only files you trust, as with any shared
     /// library.
     pub fn load(path: &Path) -> Result<LoadedPlugin, LawError> {
-        use abi_stable::abi_stability::abi_checking::{check_layout_compatibility, AbiInstability};
         use abi_stable::library::{lib_header_from_path, LibraryError};
         let header = lib_header_from_path(path).map_err(|e| match e {
             LibraryError::OpenError { .. } => load_error(path, format!("the library cannot be opened ({e})")),
@@ -126,46 +140,31 @@ impl LoadedPlugin {
                 path,
                 format!(
                     "it was built against dashpot-sdk {plugin_sdk}, but this host uses dashpot-sdk \
-                     {ABI_VERSION}, which loads plugins of sdk 0.1 and 0.2 only; the ABI versions \
+                     {ABI_VERSION}, which loads plugins of sdk 0.1, 0.2 and 0.3 only; the ABI versions \
                      are incompatible. Rebuild the plugin against dashpot-sdk {ABI_VERSION}."
                 ),
             ));
         }
-        let legacy = series(&plugin_sdk) == Some((0, 1)) && series(ABI_VERSION) != Some((0, 1));
-        let module = if legacy {
-            // abi_stable would refuse every type of a 0.1 plugin for its package version alone
-            // (0.1 and 0.2 are different semver series). Run its full layout comparison against
-            // the frozen 0.1 root module and accept exactly that difference: every field of
-            // every type must still match.
-            let Some(layout) = header.layout() else {
-                return Err(load_error(path, "it records no type layout to check"));
-            };
-            if let Err(e) =
-                check_layout_compatibility(<v1::PluginModuleRef as abi_stable::StableAbi>::LAYOUT, layout)
-            {
-                let only_versions = e.errors.iter().all(|err| {
-                    err.errs
-                        .iter()
-                        .all(|a| matches!(a, AbiInstability::PackageVersion(_)))
-                });
-                if !only_versions {
-                    return Err(stale_error(path, &plugin_sdk, &e.to_string()));
-                }
-            }
-            // SAFETY: the layout was checked just above, to the package version.
-            Module::V1(
-                unsafe { header.unchecked_layout::<v1::PluginModuleRef>() }
-                    .map_err(|e| load_error(path, e))?,
-            )
-        } else {
-            Module::V2(
+        let plugin_series = series(&plugin_sdk);
+        let module = match plugin_series {
+            // abi_stable would refuse every type of a 0.1 or 0.2 plugin for its package version
+            // alone (they are different semver series from 0.3). Run its full layout comparison
+            // against the frozen root module of the plugin's series and accept exactly that
+            // difference: every field of every type must still match.
+            Some((0, 1)) => Module::V1(legacy_module::<v1::PluginModuleRef>(path, &plugin_sdk, header)?),
+            Some((0, 2)) => Module::V2(legacy_module::<v2::PluginModuleRef>(path, &plugin_sdk, header)?),
+            _ => Module::V3(
                 header
                     .init_root_module::<PluginModuleRef>()
                     .map_err(|e| match e {
                         LibraryError::AbiInstability(_) => stale_error(path, &plugin_sdk, &e.to_string()),
                         other => load_error(path, other),
                     })?,
-            )
+            ),
+        };
+        let read = |r: RResult<RVec<LawInfo>, FfiError>| match r {
+            RResult::ROk(v) => Ok(v.into_vec()),
+            RResult::RErr(e) => Err(load_error(path, LawError::from(e))),
         };
         let (series, laws, name, version, sdk_version) = match module {
             Module::V1(m) => {
@@ -180,10 +179,22 @@ impl LoadedPlugin {
                     return Err(load_error(path, "its root module lacks the sdk 0.2 law list"));
                 };
                 let laws = match laws2() {
-                    RResult::ROk(v) => v.into_vec(),
+                    RResult::ROk(v) => v.into_iter().map(v2::LawInfo::upgrade).collect(),
                     RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
                 };
                 (SdkSeries::V0_2, laws, m.name(), m.version(), m.sdk_version())
+            }
+            Module::V3(m) => {
+                let Some(laws3) = m.laws3() else {
+                    return Err(load_error(path, "its root module lacks the sdk 0.3 law list"));
+                };
+                (
+                    SdkSeries::V0_3,
+                    read(laws3())?,
+                    m.name(),
+                    m.version(),
+                    m.sdk_version(),
+                )
             }
         };
         Ok(LoadedPlugin {
@@ -213,8 +224,9 @@ impl LoadedPlugin {
                 })),
                 RResult::RErr(e) => return Err(e.into()),
             },
-            Module::V2(m) => {
-                let f = m.new_contact2().ok_or_else(|| missing(name, "new_contact2"))?;
+            Module::V2(_) | Module::V3(_) => {
+                let f = shared!(self.module, new_contact2, |_| None)
+                    .ok_or_else(|| missing(name, "new_contact2"))?;
                 match f(n, p) {
                     RResult::ROk(ffi) => ContactInner::V2(ffi),
                     RResult::RErr(e) => return Err(e.into()),
@@ -231,12 +243,8 @@ impl LoadedPlugin {
     /// Creates tangential law `name` from `params`.
     pub fn new_tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
         let info = self.expect(name, LawKind::Tangential)?;
-        let Module::V2(m) = self.module else {
-            return Err(missing(name, "new_tangential"));
-        };
-        let f = m
-            .new_tangential()
-            .ok_or_else(|| missing(name, "new_tangential"))?;
+        let f =
+            shared!(self.module, new_tangential, |_| None).ok_or_else(|| missing(name, "new_tangential"))?;
         match f(RStr::from_str(name), RSlice::from_slice(params)) {
             RResult::ROk(ffi) => Ok(TangentialLawHandle { ffi, info }),
             RResult::RErr(e) => Err(e.into()),
@@ -250,10 +258,8 @@ impl LoadedPlugin {
         params: &[ParamValue],
     ) -> Result<RestitutionLawHandle, LawError> {
         let info = self.expect(name, LawKind::Restitution)?;
-        let f = match self.module {
-            Module::V1(m) => m.new_restitution(),
-            Module::V2(m) => m.new_restitution(),
-        };
+        let f = shared!(self.module, new_restitution, |m: v1::PluginModuleRef| m
+            .new_restitution());
         match f(RStr::from_str(name), RSlice::from_slice(params)) {
             RResult::ROk(ffi) => Ok(RestitutionLawHandle { ffi, info }),
             RResult::RErr(e) => Err(e.into()),
@@ -269,10 +275,7 @@ impl LoadedPlugin {
         fixed: &[ParamValue],
     ) -> Result<Option<Vec<ParamValue>>, LawError> {
         self.expect(name, LawKind::Contact)?;
-        let f = match self.module {
-            Module::V1(m) => m.calibrate(),
-            Module::V2(m) => m.calibrate(),
-        };
+        let f = shared!(self.module, calibrate, |m: v1::PluginModuleRef| m.calibrate());
         match f(RStr::from_str(name), target, pair, RSlice::from_slice(fixed)) {
             RResult::ROk(v) => Ok(v.into_option().map(RVec::into_vec)),
             RResult::RErr(e) => Err(e.into()),
@@ -297,8 +300,33 @@ impl LoadedPlugin {
 fn missing(name: &str, what: &str) -> LawError {
     LawError::new(
         ErrorKind::Load,
-        format!("law '{name}': its plugin lacks the sdk 0.2 entry point {what}"),
+        format!("law '{name}': its plugin lacks the entry point {what}"),
     )
+}
+
+/// The root module of a 0.1 or 0.2 plugin, read through the frozen module `M` of its series
+/// after abi_stable's full layout comparison, in which only package versions may differ.
+fn legacy_module<M: abi_stable::prefix_type::PrefixRefTrait + abi_stable::StableAbi>(
+    path: &Path,
+    plugin_sdk: &str,
+    header: &'static abi_stable::library::LibHeader,
+) -> Result<M, LawError> {
+    use abi_stable::abi_stability::abi_checking::{check_layout_compatibility, AbiInstability};
+    let Some(layout) = header.layout() else {
+        return Err(load_error(path, "it records no type layout to check"));
+    };
+    if let Err(e) = check_layout_compatibility(<M as abi_stable::StableAbi>::LAYOUT, layout) {
+        let only_versions = e.errors.iter().all(|err| {
+            err.errs
+                .iter()
+                .all(|a| matches!(a, AbiInstability::PackageVersion(_)))
+        });
+        if !only_versions {
+            return Err(stale_error(path, plugin_sdk, &e.to_string()));
+        }
+    }
+    // SAFETY: the layout was checked just above, to the package version.
+    unsafe { header.unchecked_layout::<M>() }.map_err(|e| load_error(path, e))
 }
 
 fn from_v1_info(i: v1::LawInfo) -> LawInfo {

@@ -4,14 +4,15 @@
 //! A plugin exports one root module, [`PluginModule`], through abi_stable's `LibHeader`; the
 //! [`export_laws!`](crate::export_laws) macro writes it. It is an abi_stable *prefix type*: the
 //! fields of sdk 0.1 come first and never change; sdk 0.2 appended its own after them
-//! (`laws2`, `new_contact2`, `new_tangential`), which a host reads as absent in a 0.1 plugin.
+//! (`laws2`, `new_contact2`, `new_tangential`), and sdk 0.3 its own after those (`laws3`, ...).
 //!
 //! The host checks, in this order, before running any of the plugin's code:
 //! 1. the dashpot-sdk version the plugin was built against (its `LibHeader`, a static):
-//!    this host ([`ABI_VERSION`]) loads plugins of sdk 0.1 and 0.2 and refuses any other series
-//!    (0.3, 1.x, ...) with both versions named;
-//! 2. abi_stable's layout check of every type reachable from the root module. For a 0.1 plugin
-//!    the only difference it may report is the sdk's package version (0.1 vs 0.2) of types
+//!    this host ([`ABI_VERSION`]) loads plugins of sdk 0.1, 0.2 and 0.3 and refuses any other
+//!    series (0.4, 1.x, ...) with both versions named;
+//! 2. abi_stable's layout check of every type reachable from the root module. A 0.1 or 0.2
+//!    plugin is checked against the frozen root module of its series ([`v1`], [`v2`]), and the
+//!    only difference it may report is the sdk's package version (0.1 or 0.2 vs 0.3) of types
 //!    whose layout is otherwise identical: anything else refuses the plugin.
 //!
 //! Then it reads the list of laws. Libraries are never unloaded; every object is freed by the
@@ -20,14 +21,16 @@
 //! # Modules
 //! - [`v1`]: the frozen types of sdk 0.1 (contact laws bound to one pair), still spoken to 0.1
 //!   plugins;
-//! - this module: the 0.2 types (contact laws bound to a material pair with per-contact geometry
+//! - [`v2`]: the frozen types of sdk 0.2 that 0.3 changed (the law list, whose kinds 0.3
+//!   extended) and 0.2's root module;
+//! - this module: the types shared by 0.2 and 0.3 (contact laws bound to a material pair with per-contact geometry
 //!   and history, tangential laws, restitution laws unchanged since 0.1) and the root module;
 //! - `plugin`: the trampolines compiled into every plugin and the export macro;
 //! - `host`: [`LoadedPlugin`] and the safe handles a host calls.
 //!
 //! # What breaks the ABI
 //! Any change to a `#[repr(C)]` type of this crate, a vtable, or the meaning of a field. Such a
-//! change starts a new series (0.3 while the major is 0). Appending fields to
+//! change starts a new series (0.4 while the major is 0). Appending fields to
 //! [`PluginModule`] does not.
 //!
 //! # Panics and bad numbers
@@ -41,6 +44,7 @@ mod host;
 #[doc(hidden)]
 pub mod plugin;
 pub mod v1;
+pub mod v2;
 
 pub use host::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
@@ -78,12 +82,12 @@ fn series(v: &str) -> Option<(u64, u64)> {
 }
 
 /// Whether a plugin built against sdk `plugin` may be loaded by a host built against `host`:
-/// the same series (the major version, or the minor while the major is 0), or, for a 0.2 host,
-/// a plugin of sdk 0.1 (spoken to through the frozen [`v1`] types).
+/// the same series (the major version, or the minor while the major is 0), or, for a 0.3 host,
+/// a plugin of sdk 0.1 or 0.2 (spoken to through the frozen [`v1`] and [`v2`] types).
 pub fn abi_compatible(host: &str, plugin: &str) -> bool {
     match (series(host), series(plugin)) {
         (Some(a), Some(b)) if a == b => true,
-        (Some((0, 2)), Some((0, 1))) => true,
+        (Some((0, 3)), Some((0, 1) | (0, 2))) => true,
         _ => false,
     }
 }
@@ -390,9 +394,9 @@ pub struct PluginModule {
         pair: &Pair,
         fixed: RSlice<'_, ParamValue>,
     ) -> RResult<ROption<RVec<ParamValue>>, FfiError>,
-    /// sdk 0.2: every law the plugin exports (contact, restitution, tangential), with history.
+    /// sdk 0.2: the contact, restitution and tangential laws, in 0.2's description.
     #[sabi(missing_field(option))]
-    pub laws2: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
+    pub laws2: extern "C" fn() -> RResult<RVec<v2::LawInfo>, FfiError>,
     /// sdk 0.2: creates contact law `name` (bound later to a [`MaterialPair`]).
     #[sabi(missing_field(option))]
     pub new_contact2:
@@ -401,6 +405,9 @@ pub struct PluginModule {
     #[sabi(missing_field(option))]
     pub new_tangential:
         extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiTangentialLaw, FfiError>,
+    /// sdk 0.3: every law the plugin exports, of every kind.
+    #[sabi(missing_field(option))]
+    pub laws3: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
 }
 
 impl RootModule for PluginModuleRef {
@@ -461,13 +468,17 @@ mod tests {
 
     #[test]
     fn abi_compatibility_rule() {
-        assert!(abi_compatible("0.2.0", "0.2.7"));
-        assert!(abi_compatible("0.2.7", "0.2.0"));
-        // a 0.2 host speaks 0.1 through the frozen v1 types; a 0.1 host cannot speak 0.2
-        assert!(abi_compatible("0.2.0", "0.1.0"));
-        assert!(!abi_compatible("0.1.0", "0.2.0"));
+        assert!(abi_compatible("0.3.0", "0.3.7"));
+        assert!(abi_compatible("0.3.7", "0.3.0"));
+        // a 0.3 host speaks 0.1 and 0.2 through the frozen v1 and v2 types; older hosts cannot
+        // speak 0.3
+        assert!(abi_compatible("0.3.0", "0.1.0"));
+        assert!(abi_compatible("0.3.0", "0.2.5"));
+        assert!(!abi_compatible("0.1.0", "0.3.0"));
         assert!(!abi_compatible("0.2.0", "0.3.0"));
-        assert!(!abi_compatible("0.2.0", "1.0.0"));
+        assert!(!abi_compatible("0.3.0", "0.4.0"));
+        assert!(!abi_compatible("0.3.0", "0.0.9"));
+        assert!(!abi_compatible("0.3.0", "1.0.0"));
         assert!(abi_compatible("1.2.0", "1.0.3"));
         assert!(!abi_compatible("1.0.0", "2.0.0"));
         assert!(!abi_compatible("0.2.0", "garbage"));

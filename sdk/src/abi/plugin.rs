@@ -776,8 +776,8 @@ fn unknown(kind: &str, name: &str, names: Vec<&str>) -> LawError {
     )
 }
 
-/// Every law's 0.2 description.
-pub fn laws2(
+/// Every law's 0.3 description.
+pub fn laws3(
     c: &[ContactEntry],
     r: &[RestitutionEntry],
     t: &[TangentialEntry],
@@ -789,6 +789,19 @@ pub fn laws2(
             .chain(t.iter().map(|e| (e.info)()))
             .collect())
     })
+}
+
+/// The 0.2 description of the laws of the kinds 0.2 knew (a 0.2 host refuses a 0.3 plugin
+/// before it asks, but the field must answer).
+pub fn laws2(
+    c: &[ContactEntry],
+    r: &[RestitutionEntry],
+    t: &[TangentialEntry],
+) -> RResult<RVec<v2::LawInfo>, FfiError> {
+    match laws3(c, r, t) {
+        RResult::ROk(v) => RResult::ROk(v.into_iter().filter_map(v2::LawInfo::downgrade).collect()),
+        RResult::RErr(e) => RResult::RErr(e),
+    }
 }
 
 /// The 0.1 description of the contact and restitution laws (a 0.1 host refuses a 0.2 plugin
@@ -935,8 +948,11 @@ macro_rules! export_laws {
             extern "C" fn laws() -> RResult<RVec<abi::v1::LawInfo>, FfiError> {
                 p::laws_v1(CONTACT, RESTITUTION)
             }
-            extern "C" fn laws2() -> RResult<RVec<LawInfo>, FfiError> {
+            extern "C" fn laws2() -> RResult<RVec<abi::v2::LawInfo>, FfiError> {
                 p::laws2(CONTACT, RESTITUTION, TANGENTIAL)
+            }
+            extern "C" fn laws3() -> RResult<RVec<LawInfo>, FfiError> {
+                p::laws3(CONTACT, RESTITUTION, TANGENTIAL)
             }
             extern "C" fn new_contact(
                 name: RStr<'_>,
@@ -984,6 +1000,7 @@ macro_rules! export_laws {
                     laws2,
                     new_contact2,
                     new_tangential,
+                    laws3,
                 }
                 .leak_into_prefix()
             }
