@@ -47,7 +47,34 @@ pub const SDK02_PLUGINS: [&str; 4] = [
     "dashpot_walton_braun",
 ];
 
-/// A registry of every plugin of the workspace (the seed laws and those of sdk 0.2).
+/// The laws added with sdk 0.3 (adhesive normal, rolling, twisting), by library name.
+pub const SDK03_PLUGINS: [&str; 6] = [
+    "dashpot_jkr",
+    "dashpot_dmt",
+    "dashpot_rolling_sds",
+    "dashpot_rolling_epsd",
+    "dashpot_twisting_sds",
+    "dashpot_twisting_marshall",
+];
+
+/// A registry of every plugin of the workspace, those of sdk 0.3 included.
+pub fn registry_03() -> Registry {
+    let files = SEED_PLUGINS
+        .iter()
+        .chain(SDK02_PLUGINS.iter())
+        .chain(SDK03_PLUGINS.iter())
+        .map(|n| plugin_file(n))
+        .collect();
+    let sp = SearchPath {
+        dirs: vec![],
+        files,
+        use_env: false,
+        use_default: false,
+    };
+    Registry::discover(&sp).expect("the plugins load")
+}
+
+/// A registry of the seed laws and those of sdk 0.2.
 pub fn full_registry() -> Registry {
     let files = SEED_PLUGINS
         .iter()

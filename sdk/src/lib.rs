@@ -58,15 +58,20 @@ mod law;
 mod pair;
 mod params;
 pub mod physics;
+mod rotation;
 
 pub use error::{ErrorKind, FfiError, LawError};
 pub use law::{
     BoundContact, BoundRestitution, BoundTangential, CalibrationTarget, Coefficient, Contact, ContactLaw,
-    EndCriterion, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw, TangentialBatch,
-    TangentialContact, TangentialLaw,
+    EndCriterion, Energy, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
+    TangentialBatch, TangentialContact, TangentialLaw,
 };
 pub use pair::{MaterialPair, Pair, Particle};
 pub use params::{ParamSpec, ParamValue, Params, Range};
+pub use rotation::{
+    BoundRolling, BoundTwisting, RollingBatch, RollingContact, RollingLaw, TwistingBatch, TwistingContact,
+    TwistingLaw,
+};
 
 /// Re-exported so plugins need no direct dependency on abi_stable.
 pub use abi_stable::std_types::{ROption, RString, RVec};

@@ -157,3 +157,44 @@ fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
     assert!(slipped, "the sequence reaches the Coulomb cap");
     assert_eq!(compared, 3 * n * steps);
 }
+
+/// A 0.2 law through the 0.3 calls: reach 0 and energy reported as not available, forces as
+/// before; the 0.3 build of the same law reports its energy.
+#[test]
+fn old_plugins_have_reach_zero_and_no_energy() {
+    let Some(old) = sdk02_registry("debug") else {
+        return;
+    };
+    let new = full_registry();
+    let params = [ParamValue::new("eps", 0.6)];
+    let mo = old.contact("hsd", &params).unwrap().bind(&materials()).unwrap();
+    let mn = new.contact("hsd", &params).unwrap().bind(&materials()).unwrap();
+    let (delta, rate, mass, radius) = ([2e-6, -1e-7], [0.3, -0.1], [1e-4, 1e-4], [1e-3, 1e-3]);
+    let mut out = Vec::new();
+    for m in [&mo, &mn] {
+        let (mut f, mut reach, mut p, mut e) = ([0.0; 2], [f64::NAN; 2], [0.0; 2], [0.0; 2]);
+        let written = m
+            .force_batch_with(
+                NormalBatch {
+                    delta: &delta,
+                    rate: &rate,
+                    mass: &mass,
+                    radius: &radius,
+                    slots: 0,
+                    history: &mut [],
+                    force: &mut f,
+                },
+                Some(&mut reach),
+                dashpot_sdk::abi::EnergyOut {
+                    power: Some(&mut p),
+                    elastic: Some(&mut e),
+                },
+            )
+            .unwrap();
+        assert_eq!(reach, [0.0, 0.0]);
+        out.push((written, f, e));
+    }
+    assert!(!out[0].0, "a 0.2 law reports energy as not available");
+    assert!(out[1].0 && out[1].2[0] > 0.0, "the 0.3 build reports it");
+    assert_eq!(out[0].1.map(f64::to_bits), out[1].1.map(f64::to_bits));
+}

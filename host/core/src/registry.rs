@@ -1,6 +1,8 @@
 //! Finding plugin libraries and selecting laws by name.
 
-use dashpot_sdk::abi::{ContactLawHandle, LoadedPlugin, RestitutionLawHandle, TangentialLawHandle};
+use dashpot_sdk::abi::{
+    ContactLawHandle, LawHandle, LoadedPlugin, RestitutionLawHandle, Rolling, TangentialLawHandle, Twisting,
+};
 use dashpot_sdk::{CalibrationTarget, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -324,6 +326,17 @@ impl Registry {
     pub fn tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
         self.find_kind(name, LawKind::Tangential)?
             .new_tangential(name, params)
+    }
+
+    /// Creates rolling law `name` from `params`.
+    pub fn rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
+        self.find_kind(name, LawKind::Rolling)?.new_rolling(name, params)
+    }
+
+    /// Creates twisting law `name` from `params`.
+    pub fn twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
+        self.find_kind(name, LawKind::Twisting)?
+            .new_twisting(name, params)
     }
 
     /// Creates restitution law `name` from `params`.

@@ -1,7 +1,10 @@
 //! Host side: loading plugins, with their checks, and the safe handles a host calls.
 
+use super::checks::all_finite;
+use super::kind::{self, EnergyOut, Kind};
 use super::v1;
 use super::*;
+use super::{LawHandle, ModelHandle, Normal, NormalCall, Rolling, Tangential, Twisting};
 use crate::error::{ErrorKind, LawError};
 use crate::law::{Contact, LawKind, NormalBatch, TangentialBatch};
 use std::path::{Path, PathBuf};
@@ -233,11 +236,52 @@ impl LoadedPlugin {
                 }
             }
         };
+        let v3 = match self.module {
+            Module::V3(_) => {
+                Some(self.new_kind::<Normal>(name, params, LawKind::Contact, |m| m.new_contact3())?)
+            }
+            _ => None,
+        };
         Ok(ContactLawHandle {
             inner,
             info,
             series: self.series,
+            v3,
         })
+    }
+
+    /// Creates a law of a kind of sdk 0.3 through its root-module entry `entry`; an error for
+    /// a plugin of an older sdk, which has no such kind.
+    fn new_kind<K: Kind>(
+        &self,
+        name: &str,
+        params: &[ParamValue],
+        kind: LawKind,
+        entry: impl FnOnce(
+            PluginModuleRef,
+        ) -> Option<
+            extern "C" fn(RStr<'_>, RSlice<'_, ParamValue>) -> RResult<kind::FfiLaw<K::Ffi>, FfiError>,
+        >,
+    ) -> Result<LawHandle<K>, LawError> {
+        let info = self.expect(name, kind)?;
+        let Module::V3(m) = self.module else {
+            return Err(missing(name, "of sdk 0.3 (the plugin is older)"));
+        };
+        let f = entry(m).ok_or_else(|| missing(name, K::WHAT))?;
+        match f(RStr::from_str(name), RSlice::from_slice(params)) {
+            RResult::ROk(ffi) => Ok(LawHandle::new(ffi, info)),
+            RResult::RErr(e) => Err(e.into()),
+        }
+    }
+
+    /// Creates rolling law `name` from `params` (sdk 0.3 plugins).
+    pub fn new_rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
+        self.new_kind::<Rolling>(name, params, LawKind::Rolling, |m| m.new_rolling())
+    }
+
+    /// Creates twisting law `name` from `params` (sdk 0.3 plugins).
+    pub fn new_twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
+        self.new_kind::<Twisting>(name, params, LawKind::Twisting, |m| m.new_twisting())
     }
 
     /// Creates tangential law `name` from `params`.
@@ -246,7 +290,18 @@ impl LoadedPlugin {
         let f =
             shared!(self.module, new_tangential, |_| None).ok_or_else(|| missing(name, "new_tangential"))?;
         match f(RStr::from_str(name), RSlice::from_slice(params)) {
-            RResult::ROk(ffi) => Ok(TangentialLawHandle { ffi, info }),
+            RResult::ROk(ffi) => {
+                let v3 = match self.module {
+                    Module::V3(_) => Some(self.new_kind::<Tangential>(
+                        name,
+                        params,
+                        LawKind::Tangential,
+                        |m| m.new_tangential3(),
+                    )?),
+                    _ => None,
+                };
+                Ok(TangentialLawHandle { ffi, info, v3 })
+            }
             RResult::RErr(e) => Err(e.into()),
         }
     }
@@ -402,6 +457,7 @@ pub struct ContactLawHandle {
     inner: ContactInner,
     info: LawInfo,
     series: SdkSeries,
+    v3: Option<LawHandle<Normal>>,
 }
 
 impl ContactLawHandle {
@@ -428,10 +484,15 @@ impl ContactLawHandle {
                 young: materials.young,
             },
         };
+        let v3 = match &self.v3 {
+            Some(l) => Some(l.bind(materials)?),
+            None => None,
+        };
         Ok(ContactModelHandle {
             inner,
             name: self.info.name.to_string(),
             slots: self.info.history.len(),
+            v3,
         })
     }
 }
@@ -449,14 +510,14 @@ enum ModelInner {
     V2(FfiContactModel),
 }
 
-fn length_error(what: &str, detail: String) -> LawError {
+pub(crate) fn length_error(what: &str, detail: String) -> LawError {
     LawError::new(
         ErrorKind::Other,
         format!("{what}: the batch's arrays disagree in length: {detail}"),
     )
 }
 
-fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> LawError {
+pub(crate) fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> LawError {
     let what = BatchFault::field_name(field);
     let rule = match field {
         BatchFault::MASS => "must be finite and > 0 (kg)",
@@ -470,7 +531,7 @@ fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> Law
     )
 }
 
-fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError {
+pub(crate) fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError {
     LawError::new(
         ErrorKind::NonFinite,
         format!(
@@ -611,6 +672,8 @@ pub struct ContactModelHandle {
     inner: ModelInner,
     name: String,
     slots: usize,
+    /// The same law through the 0.3 entry (reach and energy), for a 0.3 plugin.
+    v3: Option<ModelHandle<Normal>>,
 }
 
 impl ContactModelHandle {
@@ -644,6 +707,32 @@ impl ContactModelHandle {
                 }
             }),
             ModelInner::V1 { law, young } => self.force_batch_v1(law, *young, b),
+        }
+    }
+
+    /// As [`ContactModelHandle::force_batch`], with each contact's reach (m, ≥ 0: the contact
+    /// ends at δ < −reach) written to `reach` and the energy outputs `energy` asks for:
+    /// `Ok(true)` when those were written. A law of a plugin older than sdk 0.3 has reach 0 and
+    /// reports energy as not available (`Ok(false)`).
+    pub fn force_batch_with(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        match &self.v3 {
+            Some(m) => m.batch(NormalCall { batch: b, reach }, energy),
+            None => {
+                let n = b.force.len();
+                if reach.as_ref().is_some_and(|r| r.len() != n) {
+                    return Err(length_error("force_batch", format!("reach must hold {n} values")));
+                }
+                self.force_batch(b)?;
+                if let Some(r) = reach {
+                    r.fill(0.0);
+                }
+                Ok(false)
+            }
         }
     }
 
@@ -801,6 +890,7 @@ impl Drop for ContactModelHandle {
 pub struct TangentialLawHandle {
     ffi: FfiTangentialLaw,
     info: LawInfo,
+    v3: Option<LawHandle<Tangential>>,
 }
 
 impl TangentialLawHandle {
@@ -817,6 +907,10 @@ impl TangentialLawHandle {
                 ffi,
                 name: self.info.name.to_string(),
                 slots: self.info.history.len(),
+                v3: match &self.v3 {
+                    Some(l) => Some(l.bind(materials)?),
+                    None => None,
+                },
             }),
             RResult::RErr(e) => Err(e.into()),
         }
@@ -834,6 +928,8 @@ pub struct TangentialModelHandle {
     ffi: FfiTangentialModel,
     name: String,
     slots: usize,
+    /// The same law through the 0.3 entry (energy), for a 0.3 plugin.
+    v3: Option<ModelHandle<Tangential>>,
 }
 
 impl TangentialModelHandle {
@@ -845,6 +941,16 @@ impl TangentialModelHandle {
     /// History slots per contact.
     pub fn history_slots(&self) -> usize {
         self.slots
+    }
+
+    /// As [`TangentialModelHandle::force_batch`], with the energy outputs `energy` asks for:
+    /// `Ok(true)` when they were written, `Ok(false)` for a law that does not account for
+    /// energy (every law of a plugin older than sdk 0.3).
+    pub fn force_batch_with(&self, b: TangentialBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        match &self.v3 {
+            Some(m) => m.batch(b, energy),
+            None => self.force_batch(b).map(|()| false),
+        }
     }
 
     /// Evaluates every contact of `b` (see [`TangentialBatch`]).
@@ -989,7 +1095,7 @@ fn run_tangential_batch(
     }
 }
 
-fn bad_vec(what: &str, name: &str, i: usize, v: [f64; 3]) -> LawError {
+pub(crate) fn bad_vec(what: &str, name: &str, i: usize, v: [f64; 3]) -> LawError {
     LawError::new(
         ErrorKind::NonFinite,
         format!(

@@ -40,16 +40,23 @@
 //! inside the plugin, fused with the computation in blocks of 64, and report the first bad
 //! index, which the host turns into an error naming the index, the input and its value.
 
+mod checks;
+mod handle;
 mod host;
+pub mod kind;
+pub mod kinds;
 #[doc(hidden)]
 pub mod plugin;
 pub mod v1;
 pub mod v2;
 
+pub use handle::{LawHandle, ModelHandle, StaticModel};
 pub use host::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
     SdkSeries, StaticContact, StaticTangential, TangentialLawHandle, TangentialModelHandle,
 };
+pub use kind::EnergyOut;
+pub use kinds::{Normal, NormalCall, Rolling, Tangential, Twisting};
 #[doc(hidden)]
 pub use plugin as __private;
 
@@ -136,6 +143,14 @@ impl BatchFault {
     pub const NORMAL_FORCE: u8 = 7;
     /// Input `dt`.
     pub const DT: u8 = 8;
+    /// Output `power` (sdk 0.3).
+    pub const POWER: u8 = 9;
+    /// Output `elastic` (sdk 0.3).
+    pub const ELASTIC: u8 = 10;
+    /// Output `reach` (sdk 0.3).
+    pub const REACH: u8 = 11;
+    /// Output `torque` (sdk 0.3).
+    pub const TORQUE: u8 = 12;
 
     /// The name of array `field`.
     pub fn field_name(field: u8) -> &'static str {
@@ -149,6 +164,10 @@ impl BatchFault {
             Self::VELOCITY => "velocity",
             Self::NORMAL_FORCE => "normal_force",
             Self::DT => "dt",
+            Self::POWER => "power",
+            Self::ELASTIC => "elastic",
+            Self::REACH => "reach",
+            Self::TORQUE => "torque",
             _ => "?",
         }
     }
@@ -408,6 +427,30 @@ pub struct PluginModule {
     /// sdk 0.3: every law the plugin exports, of every kind.
     #[sabi(missing_field(option))]
     pub laws3: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
+    /// sdk 0.3: creates contact law `name` (reach and energy outputs).
+    #[sabi(missing_field(option))]
+    pub new_contact3: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError>,
+    /// sdk 0.3: creates tangential law `name` (energy outputs).
+    #[sabi(missing_field(option))]
+    pub new_tangential3: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+    /// sdk 0.3: creates rolling law `name`.
+    #[sabi(missing_field(option))]
+    pub new_rolling: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+    /// sdk 0.3: creates twisting law `name`.
+    #[sabi(missing_field(option))]
+    pub new_twisting: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError>,
 }
 
 impl RootModule for PluginModuleRef {
@@ -431,28 +474,6 @@ unsafe impl Send for FfiRestitutionLaw {}
 unsafe impl Sync for FfiRestitutionLaw {}
 unsafe impl Send for FfiBoundRestitution {}
 unsafe impl Sync for FfiBoundRestitution {}
-
-/// Whether every value is finite (vectorises with plain SSE2: v − v is NaN exactly when v is not
-/// finite).
-#[inline]
-#[allow(clippy::eq_op)]
-pub(crate) fn all_finite(x: &[f64]) -> bool {
-    let mut acc = [0.0f64; 8];
-    let mut it = x.chunks_exact(8);
-    for c in &mut it {
-        for j in 0..8 {
-            acc[j] += c[j] - c[j];
-        }
-    }
-    let tail = it.remainder().iter().fold(0.0, |a, v| a + (v - v));
-    acc.iter().sum::<f64>() + tail == 0.0
-}
-
-/// Whether every value is finite and > 0.
-#[inline]
-pub(crate) fn all_positive(x: &[f64]) -> bool {
-    x.iter().fold(true, |ok, &v| ok & (v > 0.0) & (v < f64::INFINITY))
-}
 
 #[cfg(test)]
 mod tests {
@@ -482,17 +503,5 @@ mod tests {
         assert!(abi_compatible("1.2.0", "1.0.3"));
         assert!(!abi_compatible("1.0.0", "2.0.0"));
         assert!(!abi_compatible("0.2.0", "garbage"));
-    }
-
-    #[test]
-    fn finiteness_and_positivity_checks() {
-        assert!(all_finite(&[0.0, -1.0, f64::MAX, f64::MIN_POSITIVE]));
-        assert!(!all_finite(&[0.0, f64::NAN]));
-        assert!(!all_finite(&[f64::NEG_INFINITY, 1.0]));
-        assert!(all_finite(&[]));
-        assert!(all_positive(&[1e-30, 2.0]));
-        assert!(!all_positive(&[1.0, 0.0]));
-        assert!(!all_positive(&[f64::NAN]));
-        assert!(!all_positive(&[f64::INFINITY]));
     }
 }

@@ -1,6 +1,7 @@
 //! Plugin side: the trampolines compiled into every plugin, generic over the law types, and the
 //! export macro. Implementation details of [`export_laws!`](crate::export_laws); not a stable API.
 
+use super::checks::*;
 use super::v1;
 use super::*;
 use crate::error::{ErrorKind, LawError};
@@ -60,7 +61,7 @@ pub fn guard<T>(what: &str, f: impl FnOnce() -> Result<T, LawError>) -> RResult<
 
 /// Runs a hot-path call; on a panic stashes its message for `take_panic` and returns `None`.
 #[inline(always)]
-fn hot<T>(f: impl FnOnce() -> T) -> Option<T> {
+pub(crate) fn hot<T>(f: impl FnOnce() -> T) -> Option<T> {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(v) => Some(v),
         Err(p) => {
@@ -76,37 +77,9 @@ pub extern "C" fn take_panic() -> RString {
     LAST_PANIC.with(|s| std::mem::take(&mut *s.borrow_mut())).into()
 }
 
-unsafe extern "C" fn drop_box<T>(obj: *mut c_void) {
+pub(crate) unsafe extern "C" fn drop_box<T>(obj: *mut c_void) {
     // A panic in a destructor is swallowed here rather than unwinding into the host.
     let _ = catch_unwind(AssertUnwindSafe(|| drop(unsafe { Box::from_raw(obj as *mut T) })));
-}
-
-/// Inputs and outputs are checked in blocks of this many contacts, right before and after the
-/// law runs on the block: the block's values are then still in L1, and the fused checks
-/// (vectorised sums and minima, see [`normal_inputs_ok`]) overlap the law's square roots in
-/// the CPU's out-of-order window instead of costing separate passes over memory. Measured on
-/// HSD with per-contact geometry (sdk 0.2): blocks of 64 cost about a fifth less than blocks of
-/// 16 (per-block overhead); larger blocks gained nothing more.
-pub const CHECK_BLOCK: usize = 64;
-
-/// Index of the first non-finite value of `o`, if any.
-#[inline(always)]
-fn first_non_finite(o: &[f64]) -> Option<usize> {
-    if all_finite(o) {
-        None
-    } else {
-        o.iter().position(|v| !v.is_finite())
-    }
-}
-
-/// Index of the first value of `o` that is not finite and > 0.
-#[inline(always)]
-fn first_non_positive(o: &[f64]) -> Option<usize> {
-    if all_positive(o) {
-        None
-    } else {
-        o.iter().position(|&v| !(v > 0.0 && v < f64::INFINITY))
-    }
 }
 
 // ---- contact (0.2) ----
@@ -126,98 +99,21 @@ unsafe extern "C" fn contact_bind<T: ContactLaw>(
     })
 }
 
-/// Whether a block's inputs are surely good: δ, δ̇ finite, m, r finite and > 0. One fused,
-/// branch-free pass that the compiler vectorises, cheap enough to hide behind the law's
-/// arithmetic: a sum of all the values is finite unless one of them is NaN or ±∞ (or the sum
-/// overflows, which only sends a good block to the slow path), and a running minimum of m and r
-/// is > 0 unless one of them is not. When this says no, [`check_normal_inputs`] names the
-/// culprit, or finds none and the block goes on.
-#[inline(always)]
-fn normal_inputs_ok(d: &[f64], r: &[f64], m: &[f64], a: &[f64]) -> bool {
-    #[inline(always)]
-    fn min(x: f64, y: f64) -> f64 {
-        if x < y {
-            x
-        } else {
-            y
-        }
-    }
-    // four independent lanes in locals (not an indexed array, which the compiler keeps in
-    // memory), so that the adds pipeline and pair up into SIMD registers
-    let (mut s0, mut s1, mut s2, mut s3) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let (mut l0, mut l1, mut l2, mut l3) = (f64::INFINITY, f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    let (dc, rc, mc, ac) = (
-        d.chunks_exact(4),
-        r.chunks_exact(4),
-        m.chunks_exact(4),
-        a.chunks_exact(4),
-    );
-    let (dt, rt, mt, at) = (dc.remainder(), rc.remainder(), mc.remainder(), ac.remainder());
-    for (((d, r), m), a) in dc.zip(rc).zip(mc).zip(ac) {
-        s0 += (d[0] + r[0]) + (m[0] + a[0]);
-        s1 += (d[1] + r[1]) + (m[1] + a[1]);
-        s2 += (d[2] + r[2]) + (m[2] + a[2]);
-        s3 += (d[3] + r[3]) + (m[3] + a[3]);
-        l0 = min(l0, min(m[0], a[0]));
-        l1 = min(l1, min(m[1], a[1]));
-        l2 = min(l2, min(m[2], a[2]));
-        l3 = min(l3, min(m[3], a[3]));
-    }
-    for (((&d, &r), &m), &a) in dt.iter().zip(rt).zip(mt).zip(at) {
-        s0 += (d + r) + (m + a);
-        l0 = min(l0, min(m, a));
-    }
-    let s = (s0 + s1) + (s2 + s3);
-    s.is_finite() & (min(min(l0, l1), min(l2, l3)) > 0.0)
-}
-
-/// Checks the inputs of contacts `[lo, lo + len)`, returning the first bad one.
-#[inline(never)]
-#[cold]
-fn check_normal_inputs(d: &[f64], r: &[f64], m: &[f64], a: &[f64]) -> Option<(usize, u8)> {
-    if let Some(i) = first_non_finite(d) {
-        return Some((i, BatchFault::DELTA));
-    }
-    if let Some(i) = first_non_finite(r) {
-        return Some((i, BatchFault::RATE));
-    }
-    if let Some(i) = first_non_positive(m) {
-        return Some((i, BatchFault::MASS));
-    }
-    if let Some(i) = first_non_positive(a) {
-        return Some((i, BatchFault::RADIUS));
-    }
-    None
-}
-
-/// Whether the batch loops run their AVX2 build: when the CPU has AVX2, unless the environment
-/// variable `DASHPOT_SIMD=baseline` was set when the plugin was first called (to measure or rule
-/// out the difference; the results are the same bits either way).
-#[cfg(target_arch = "x86_64")]
-#[inline]
-fn use_avx2() -> bool {
-    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *AVX2.get_or_init(|| {
-        std::arch::is_x86_feature_detected!("avx2")
-            && std::env::var("DASHPOT_SIMD").map_or(true, |v| v != "baseline")
-    })
-}
-
 /// A normal batch's arrays, for the block loop.
-struct NormalBlocks<'a> {
-    delta: &'a [f64],
-    rate: &'a [f64],
-    mass: &'a [f64],
-    radius: &'a [f64],
-    slots: usize,
-    history: &'a mut [f64],
-    force: &'a mut [f64],
+pub(crate) struct NormalBlocks<'a> {
+    pub(crate) delta: &'a [f64],
+    pub(crate) rate: &'a [f64],
+    pub(crate) mass: &'a [f64],
+    pub(crate) radius: &'a [f64],
+    pub(crate) slots: usize,
+    pub(crate) history: &'a mut [f64],
+    pub(crate) force: &'a mut [f64],
 }
 
 /// The block loop of [`model_force_batch`]: check a block's inputs, run the law on it, check
 /// its outputs. Returns the first bad contact and what is wrong with it.
 #[inline(always)]
-fn normal_blocks<B: BoundContact>(law: &B, b: NormalBlocks<'_>) -> Result<(), (usize, u8)> {
+pub(crate) fn normal_blocks<B: BoundContact>(law: &B, b: NormalBlocks<'_>) -> Result<(), (usize, u8)> {
     let n = b.force.len();
     let slots = b.slots;
     let mut lo = 0;
@@ -307,7 +203,7 @@ pub unsafe extern "C" fn model_force_batch<B: BoundContact>(
 }
 
 #[inline(always)]
-fn finish(res: Option<Result<(), (usize, u8)>>, fault: &mut BatchFault) -> BatchStatus {
+pub(crate) fn finish(res: Option<Result<(), (usize, u8)>>, fault: &mut BatchFault) -> BatchStatus {
     match res {
         None => BatchStatus::Panic,
         Some(Ok(())) => BatchStatus::Ok,
@@ -367,74 +263,26 @@ unsafe extern "C" fn tangential_bind<T: TangentialLaw>(
     })
 }
 
-/// Whether a tangential block's inputs are surely good (every component finite, m and r finite
-/// and > 0), by the same fused sums and minima as [`normal_inputs_ok`]; `normal` and `velocity`
-/// are the flattened 3-vectors.
-#[inline(always)]
-fn tangential_inputs_ok(
-    normal: &[f64],
-    velocity: &[f64],
-    fnorm: &[f64],
-    delta: &[f64],
-    m: &[f64],
-    a: &[f64],
-) -> bool {
-    #[inline(always)]
-    fn min(x: f64, y: f64) -> f64 {
-        if x < y {
-            x
-        } else {
-            y
-        }
-    }
-    let (mut s0, mut s1) = (0.0f64, 0.0f64);
-    let (nc, vc) = (normal.chunks_exact(2), velocity.chunks_exact(2));
-    let (nt, vt) = (nc.remainder(), vc.remainder());
-    for (n, v) in nc.zip(vc) {
-        s0 += n[0] + v[0];
-        s1 += n[1] + v[1];
-    }
-    for (n, v) in nt.iter().zip(vt) {
-        s0 += n + v;
-    }
-    let (mut l0, mut l1) = (f64::INFINITY, f64::INFINITY);
-    let (fc, dc, mc, ac) = (
-        fnorm.chunks_exact(2),
-        delta.chunks_exact(2),
-        m.chunks_exact(2),
-        a.chunks_exact(2),
-    );
-    let (ft, dt, mt, at) = (fc.remainder(), dc.remainder(), mc.remainder(), ac.remainder());
-    for (((f, d), m), a) in fc.zip(dc).zip(mc).zip(ac) {
-        s0 += (f[0] + d[0]) + (m[0] + a[0]);
-        s1 += (f[1] + d[1]) + (m[1] + a[1]);
-        l0 = min(l0, min(m[0], a[0]));
-        l1 = min(l1, min(m[1], a[1]));
-    }
-    for (((&f, &d), &m), &a) in ft.iter().zip(dt).zip(mt).zip(at) {
-        s0 += (f + d) + (m + a);
-        l0 = min(l0, min(m, a));
-    }
-    (s0 + s1).is_finite() & (min(l0, l1) > 0.0)
-}
-
 /// A tangential batch's arrays, for the block loop.
-struct TangentialBlocks<'a> {
-    dt: f64,
-    normal: &'a [[f64; 3]],
-    velocity: &'a [[f64; 3]],
-    fnorm: &'a [f64],
-    delta: &'a [f64],
-    mass: &'a [f64],
-    radius: &'a [f64],
-    slots: usize,
-    history: &'a mut [f64],
-    force: &'a mut [[f64; 3]],
+pub(crate) struct TangentialBlocks<'a> {
+    pub(crate) dt: f64,
+    pub(crate) normal: &'a [[f64; 3]],
+    pub(crate) velocity: &'a [[f64; 3]],
+    pub(crate) fnorm: &'a [f64],
+    pub(crate) delta: &'a [f64],
+    pub(crate) mass: &'a [f64],
+    pub(crate) radius: &'a [f64],
+    pub(crate) slots: usize,
+    pub(crate) history: &'a mut [f64],
+    pub(crate) force: &'a mut [[f64; 3]],
 }
 
 /// The block loop of [`tangential_force_batch`] (see [`normal_blocks`]).
 #[inline(always)]
-fn tangential_blocks<B: BoundTangential>(law: &B, b: TangentialBlocks<'_>) -> Result<(), (usize, u8)> {
+pub(crate) fn tangential_blocks<B: BoundTangential>(
+    law: &B,
+    b: TangentialBlocks<'_>,
+) -> Result<(), (usize, u8)> {
     let n = b.force.len();
     let slots = b.slots;
     let mut lo = 0;
@@ -762,7 +610,7 @@ fn create_restitution<T: RestitutionLaw>(given: &[ParamValue]) -> Result<FfiRest
     })
 }
 
-fn unknown(kind: &str, name: &str, names: Vec<&str>) -> LawError {
+pub(crate) fn unknown(kind: &str, name: &str, names: Vec<&str>) -> LawError {
     LawError::new(
         ErrorKind::UnknownLaw,
         format!(
@@ -776,17 +624,19 @@ fn unknown(kind: &str, name: &str, names: Vec<&str>) -> LawError {
     )
 }
 
-/// Every law's 0.3 description.
+/// Every law's 0.3 description (`more`: the rolling and twisting laws' `info`).
 pub fn laws3(
     c: &[ContactEntry],
     r: &[RestitutionEntry],
     t: &[TangentialEntry],
+    more: &[fn() -> LawInfo],
 ) -> RResult<RVec<LawInfo>, FfiError> {
     guard("listing laws", || {
         Ok(c.iter()
             .map(|e| (e.info)())
             .chain(r.iter().map(|e| (e.info)()))
             .chain(t.iter().map(|e| (e.info)()))
+            .chain(more.iter().map(|f| f()))
             .collect())
     })
 }
@@ -798,7 +648,7 @@ pub fn laws2(
     r: &[RestitutionEntry],
     t: &[TangentialEntry],
 ) -> RResult<RVec<v2::LawInfo>, FfiError> {
-    match laws3(c, r, t) {
+    match laws3(c, r, t, &[]) {
         RResult::ROk(v) => RResult::ROk(v.into_iter().filter_map(v2::LawInfo::downgrade).collect()),
         RResult::RErr(e) => RResult::RErr(e),
     }
@@ -914,12 +764,13 @@ pub fn calibrate(
 }
 
 /// Exports laws from a plugin crate (`crate-type = ["cdylib"]`). Use once per crate, naming
-/// the laws of each kind it exports (any of the three groups, in this order):
+/// the laws of each kind it exports (any of the five groups, in this order):
 ///
 /// ```text
 /// dashpot_sdk::export_laws!(contact: [MyLaw]);
 /// dashpot_sdk::export_laws!(restitution: [MyRestitution]);
 /// dashpot_sdk::export_laws!(tangential: [MyFriction]);
+/// dashpot_sdk::export_laws!(rolling: [MyRolling], twisting: [MyTwisting]);
 /// dashpot_sdk::export_laws!(contact: [A, B], restitution: [C], tangential: [D]);
 /// ```
 #[macro_export]
@@ -928,6 +779,8 @@ macro_rules! export_laws {
         $(contact: [$($c:ty),* $(,)?])? $(,)?
         $(restitution: [$($r:ty),* $(,)?])? $(,)?
         $(tangential: [$($t:ty),* $(,)?])? $(,)?
+        $(rolling: [$($ro:ty),* $(,)?])? $(,)?
+        $(twisting: [$($tw:ty),* $(,)?])? $(,)?
     ) => {
         #[doc(hidden)]
         mod __dashpot_export {
@@ -944,6 +797,16 @@ macro_rules! export_laws {
             static CONTACT: &[p::ContactEntry] = &[$($(p::ContactEntry::of::<$c>()),*)?];
             static RESTITUTION: &[p::RestitutionEntry] = &[$($(p::RestitutionEntry::of::<$r>()),*)?];
             static TANGENTIAL: &[p::TangentialEntry] = &[$($(p::TangentialEntry::of::<$t>()),*)?];
+            static CONTACT3: &[$crate::abi::kind::Entry<$crate::abi::Normal>] =
+                &[$($($crate::abi::kind::Entry::of::<$c>()),*)?];
+            static TANGENTIAL3: &[$crate::abi::kind::Entry<$crate::abi::Tangential>] =
+                &[$($($crate::abi::kind::Entry::of::<$t>()),*)?];
+            static ROLLING: &[$crate::abi::kind::Entry<$crate::abi::Rolling>] =
+                &[$($($crate::abi::kind::Entry::of::<$ro>()),*)?];
+            static TWISTING: &[$crate::abi::kind::Entry<$crate::abi::Twisting>] =
+                &[$($($crate::abi::kind::Entry::of::<$tw>()),*)?];
+            static ROLLING_INFO: &[fn() -> LawInfo] = &[$($(<$ro as $crate::RollingLaw>::info),*)?];
+            static TWISTING_INFO: &[fn() -> LawInfo] = &[$($(<$tw as $crate::TwistingLaw>::info),*)?];
 
             extern "C" fn laws() -> RResult<RVec<abi::v1::LawInfo>, FfiError> {
                 p::laws_v1(CONTACT, RESTITUTION)
@@ -952,7 +815,31 @@ macro_rules! export_laws {
                 p::laws2(CONTACT, RESTITUTION, TANGENTIAL)
             }
             extern "C" fn laws3() -> RResult<RVec<LawInfo>, FfiError> {
-                p::laws3(CONTACT, RESTITUTION, TANGENTIAL)
+                p::laws3(CONTACT, RESTITUTION, TANGENTIAL, &[ROLLING_INFO, TWISTING_INFO].concat())
+            }
+            extern "C" fn new_contact3(
+                name: RStr<'_>,
+                params: RSlice<'_, ParamValue>,
+            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiNormalBatch3>, FfiError> {
+                abi::kind::new_law(CONTACT3, name, params)
+            }
+            extern "C" fn new_tangential3(
+                name: RStr<'_>,
+                params: RSlice<'_, ParamValue>,
+            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiVectorBatch>, FfiError> {
+                abi::kind::new_law(TANGENTIAL3, name, params)
+            }
+            extern "C" fn new_rolling(
+                name: RStr<'_>,
+                params: RSlice<'_, ParamValue>,
+            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiVectorBatch>, FfiError> {
+                abi::kind::new_law(ROLLING, name, params)
+            }
+            extern "C" fn new_twisting(
+                name: RStr<'_>,
+                params: RSlice<'_, ParamValue>,
+            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiTwistingBatch>, FfiError> {
+                abi::kind::new_law(TWISTING, name, params)
             }
             extern "C" fn new_contact(
                 name: RStr<'_>,
@@ -1001,6 +888,10 @@ macro_rules! export_laws {
                     new_contact2,
                     new_tangential,
                     laws3,
+                    new_contact3,
+                    new_tangential3,
+                    new_rolling,
+                    new_twisting,
                 }
                 .leak_into_prefix()
             }
@@ -1016,79 +907,4 @@ macro_rules! export_laws {
             };
         }
     };
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The fused check agrees with the exact one on every kind of bad value, at every position
-    /// of a full block and of a short tail block.
-    #[test]
-    fn fused_input_check_finds_every_bad_value() {
-        let bad_any = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
-        let bad_positive = [f64::NAN, f64::INFINITY, 0.0, -0.0, -1e-30, f64::NEG_INFINITY];
-        for n in [CHECK_BLOCK, 7, 1] {
-            let good = || (vec![1e-6; n], vec![-0.5; n], vec![2.0e-4; n], vec![1.5e-3; n]);
-            let (d, r, m, a) = good();
-            assert!(normal_inputs_ok(&d, &r, &m, &a));
-            assert_eq!(check_normal_inputs(&d, &r, &m, &a), None);
-            for i in 0..n {
-                for field in 0..4 {
-                    let values: &[f64] = if field < 2 { &bad_any } else { &bad_positive };
-                    for &v in values {
-                        let (mut d, mut r, mut m, mut a) = good();
-                        [&mut d, &mut r, &mut m, &mut a][field][i] = v;
-                        assert!(
-                            !normal_inputs_ok(&d, &r, &m, &a),
-                            "n {n}, field {field}, index {i}, value {v}"
-                        );
-                        let (at, _) = check_normal_inputs(&d, &r, &m, &a).expect("found");
-                        assert_eq!(at, i);
-                    }
-                }
-            }
-        }
-    }
-
-    /// Huge but finite values may overflow the fused sum: that only sends the block to the exact
-    /// check, which lets it through.
-    #[test]
-    fn an_overflowing_sum_is_not_an_error() {
-        let big = vec![1e308; 8];
-        assert!(!normal_inputs_ok(&big, &big, &big, &big));
-        assert_eq!(check_normal_inputs(&big, &big, &big, &big), None);
-    }
-    /// The fused tangential check catches a bad value in every field and every component.
-    #[test]
-    fn fused_tangential_check_finds_every_bad_value() {
-        for n in [CHECK_BLOCK, 5] {
-            let good = || {
-                vec![
-                    vec![0.6; 3 * n],
-                    vec![-0.1; 3 * n],
-                    vec![3.0; n],
-                    vec![1e-6; n],
-                    vec![2.0e-4; n],
-                    vec![1.5e-3; n],
-                ]
-            };
-            let ok = |v: &[Vec<f64>]| tangential_inputs_ok(&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
-            assert!(ok(&good()));
-            for field in 0..6 {
-                let bad: &[f64] = if field < 4 {
-                    &[f64::NAN, f64::INFINITY]
-                } else {
-                    &[0.0, -2.0, f64::NAN, f64::INFINITY]
-                };
-                for i in 0..good()[field].len() {
-                    for &b in bad {
-                        let mut v = good();
-                        v[field][i] = b;
-                        assert!(!ok(&v), "field {field}, index {i}, value {b}");
-                    }
-                }
-            }
-        }
-    }
 }
