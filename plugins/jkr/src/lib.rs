@@ -96,8 +96,8 @@ impl ContactLaw for Jkr {
         it acts in tension down to δ_c (its reach, |δ_c|), and breaks there (history reset), so an approach at \
         δ < 0 feels no force. History: 'formed' (1 once touched, 0 before and after rupture). Damping (optional): \
         F_d = α(ε) √((4/3) E a m) δ̇ (N), m the effective mass, α(ε) = −√5 ln ε/√(ln²ε + π²) the Tsuji factor \
-        of the hsd law (eps = 1, the default, is undamped); it restores hsd's damping at w = 0, where the law is \
-        Hertz. Energy: elastic = W(a) − W(a0/6^{2/3}) (J), the work the contact gives back when unloaded \
+        of the hsd law (eps = 1, the default, is undamped); as w → 0 the law tends to hsd (Hertz with Tsuji damping). \
+        Energy: elastic = W(a) − W(a0/6^{2/3}) (J), the work the contact gives back when unloaded \
         quasi-statically to rupture, with W(a) = 8E a⁵/(15R²) − (4/3)(E c/R) a^{7/2} + E c² a²/2, \
         c = √(2π w/E) (Hertz's (2/5) K δ^{5/2} at w = 0); power = F_d δ̇ (W). Callers that end contacts at δ = 0 \
         (end criterion 'overlap') see only its compressive part.";

@@ -41,6 +41,7 @@
 //! index, which the host turns into an error naming the index, the input and its value.
 
 mod checks;
+mod export;
 mod handle;
 mod host;
 pub mod kind;
