@@ -57,6 +57,8 @@ impl V1Law {
 pub(super) enum ContactInner {
     V1(Arc<V1Law>),
     V2(FfiContactLaw),
+    /// A 0.3 law, through the generic shape of its kind.
+    V3(LawHandle<Normal>),
 }
 
 /// A configured contact law from a plugin.
@@ -64,7 +66,6 @@ pub struct ContactLawHandle {
     pub(super) inner: ContactInner,
     pub(super) info: LawInfo,
     pub(super) series: SdkSeries,
-    pub(super) v3: Option<LawHandle<Normal>>,
 }
 
 impl ContactLawHandle {
@@ -90,16 +91,12 @@ impl ContactLawHandle {
                 law: law.clone(),
                 young: materials.young,
             },
-        };
-        let v3 = match &self.v3 {
-            Some(l) => Some(l.bind(materials)?),
-            None => None,
+            ContactInner::V3(law) => ModelInner::V3(law.bind(materials)?),
         };
         Ok(ContactModelHandle {
             inner,
             name: self.info.name.to_string(),
             slots: self.info.history.len(),
-            v3,
         })
     }
 }
@@ -115,6 +112,7 @@ impl Drop for ContactLawHandle {
 enum ModelInner {
     V1 { law: Arc<V1Law>, young: f64 },
     V2(FfiContactModel),
+    V3(ModelHandle<Normal>),
 }
 
 /// Runs a checked normal batch through `call` (a plugin's vtable entry, or the same trampoline
@@ -192,11 +190,7 @@ fn check_normal_lengths(name: &str, slots: usize, b: &NormalBatch<'_>) -> Result
 /// A contact law compiled into the host (tests, benchmarks, baselines), bound to a pair of
 /// materials, and called through the very trampoline a plugin exports: the same input and
 /// output checks, statically dispatched.
-pub struct StaticContact<B> {
-    law: B,
-    name: String,
-    slots: usize,
-}
+pub struct StaticContact<B>(StaticModel<Normal, B>);
 
 impl<B: crate::law::BoundContact> StaticContact<B> {
     /// Binds law `L` (configured as `law`) to `materials`.
@@ -204,40 +198,48 @@ impl<B: crate::law::BoundContact> StaticContact<B> {
         law: &L,
         materials: &MaterialPair,
     ) -> Result<Self, LawError> {
-        materials.validate()?;
-        Ok(StaticContact {
-            law: law.bind(materials)?,
-            name: L::NAME.to_string(),
-            slots: L::HISTORY.len(),
-        })
+        Ok(StaticContact(StaticModel::bind(law, materials)?))
     }
 
     /// The law's name.
     pub fn name(&self) -> &str {
-        &self.name
+        self.0.name()
     }
 
     /// History slots per contact.
     pub fn history_slots(&self) -> usize {
-        self.slots
+        self.0.history_slots()
     }
 
     /// The bound law.
     pub fn law(&self) -> &B {
-        &self.law
+        self.0.law()
     }
 
     /// As [`ContactModelHandle::force_batch`].
     #[inline]
     pub fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
-        check_normal_lengths(&self.name, self.slots, &b)?;
-        let obj = &self.law as *const B as *const c_void;
-        run_normal_batch(&self.name, b, |ffi, fault| unsafe {
-            match super::plugin::model_force_batch::<B>(obj, ffi, fault) {
-                BatchStatus::Panic => Err(super::plugin::take_panic()),
-                st => Ok(st),
-            }
-        })
+        check_normal_lengths(self.name(), self.history_slots(), &b)?;
+        self.0
+            .batch(
+                NormalCall {
+                    batch: b,
+                    reach: None,
+                },
+                EnergyOut::none(),
+            )
+            .map(|_| ())
+    }
+
+    /// As [`ContactModelHandle::force_batch_with`].
+    pub fn force_batch_with(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        check_normal_lengths(self.name(), self.history_slots(), &b)?;
+        self.0.batch(NormalCall { batch: b, reach }, energy)
     }
 }
 
@@ -247,8 +249,6 @@ pub struct ContactModelHandle {
     inner: ModelInner,
     name: String,
     slots: usize,
-    /// The same law through the 0.3 entry (reach and energy), for a 0.3 plugin.
-    v3: Option<ModelHandle<Normal>>,
 }
 
 impl ContactModelHandle {
@@ -282,6 +282,15 @@ impl ContactModelHandle {
                 }
             }),
             ModelInner::V1 { law, young } => self.force_batch_v1(law, *young, b),
+            ModelInner::V3(m) => m
+                .batch(
+                    NormalCall {
+                        batch: b,
+                        reach: None,
+                    },
+                    EnergyOut::none(),
+                )
+                .map(|_| ()),
         }
     }
 
@@ -295,9 +304,12 @@ impl ContactModelHandle {
         reach: Option<&mut [f64]>,
         energy: EnergyOut<'_>,
     ) -> Result<bool, LawError> {
-        match &self.v3 {
-            Some(m) => m.batch(NormalCall { batch: b, reach }, energy),
-            None => {
+        match &self.inner {
+            ModelInner::V3(m) => {
+                check_normal_lengths(&self.name, self.slots, &b)?;
+                m.batch(NormalCall { batch: b, reach }, energy)
+            }
+            _ => {
                 let n = b.force.len();
                 if reach.as_ref().is_some_and(|r| r.len() != n) {
                     return Err(length_error("force_batch", format!("reach must hold {n} values")));
@@ -438,6 +450,7 @@ impl ContactModelHandle {
                 RResult::ROk(v) => Ok(v.into_vec()),
                 RResult::RErr(e) => Err(e.into()),
             },
+            ModelInner::V3(m) => m.coefficients(mass, radius),
             ModelInner::V1 { law, young } => {
                 let b = law.bound(mass, radius, *young)?;
                 match unsafe { (b.ffi.vtable.coefficients)(b.ffi.obj) } {

@@ -4,7 +4,7 @@ use super::checks::all_finite;
 use super::kind::{self, EnergyOut, Kind};
 use super::v1;
 use super::*;
-use super::{LawHandle, ModelHandle, Normal, NormalCall, Rolling, Tangential, Twisting};
+use super::{LawHandle, ModelHandle, Normal, NormalCall, Rolling, StaticModel, Tangential, Twisting};
 use crate::error::{ErrorKind, LawError};
 use crate::law::{Contact, LawKind, NormalBatch, TangentialBatch};
 use std::path::{Path, PathBuf};
@@ -17,6 +17,7 @@ mod tangential;
 use contact::{ContactInner, V1Law};
 pub use contact::{ContactLawHandle, ContactModelHandle, StaticContact};
 pub use restitution::{BoundRestitutionHandle, RestitutionLawHandle};
+use tangential::TangentialInner;
 pub use tangential::{StaticTangential, TangentialLawHandle, TangentialModelHandle};
 
 /// The sdk series a plugin was built against.
@@ -233,26 +234,23 @@ impl LoadedPlugin {
                 RResult::ROk(ffi) => ContactInner::V1(Arc::new(V1Law::new(ffi))),
                 RResult::RErr(e) => return Err(e.into()),
             },
-            Module::V2(_) | Module::V3(_) => {
-                let f = shared!(self.module, new_contact2, |_| None)
-                    .ok_or_else(|| missing(name, "new_contact2"))?;
+            Module::V2(m) => {
+                let f = m.new_contact2().ok_or_else(|| missing(name, "new_contact2"))?;
                 match f(n, p) {
                     RResult::ROk(ffi) => ContactInner::V2(ffi),
                     RResult::RErr(e) => return Err(e.into()),
                 }
             }
-        };
-        let v3 = match self.module {
             Module::V3(_) => {
-                Some(self.new_kind::<Normal>(name, params, LawKind::Contact, |m| m.new_contact3())?)
+                ContactInner::V3(
+                    self.new_kind::<Normal>(name, params, LawKind::Contact, |m| m.new_contact3())?,
+                )
             }
-            _ => None,
         };
         Ok(ContactLawHandle {
             inner,
             info,
             series: self.series,
-            v3,
         })
     }
 
@@ -292,22 +290,16 @@ impl LoadedPlugin {
 
     /// Creates tangential law `name` from `params`.
     pub fn new_tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
+        if let Module::V3(_) = self.module {
+            let law =
+                self.new_kind::<Tangential>(name, params, LawKind::Tangential, |m| m.new_tangential3())?;
+            return Ok(TangentialLawHandle(TangentialInner::V3(law)));
+        }
         let info = self.expect(name, LawKind::Tangential)?;
         let f =
             shared!(self.module, new_tangential, |_| None).ok_or_else(|| missing(name, "new_tangential"))?;
         match f(RStr::from_str(name), RSlice::from_slice(params)) {
-            RResult::ROk(ffi) => {
-                let v3 = match self.module {
-                    Module::V3(_) => Some(self.new_kind::<Tangential>(
-                        name,
-                        params,
-                        LawKind::Tangential,
-                        |m| m.new_tangential3(),
-                    )?),
-                    _ => None,
-                };
-                Ok(TangentialLawHandle { ffi, info, v3 })
-            }
+            RResult::ROk(ffi) => Ok(TangentialLawHandle(TangentialInner::V2 { ffi, info })),
             RResult::RErr(e) => Err(e.into()),
         }
     }

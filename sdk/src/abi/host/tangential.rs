@@ -2,50 +2,64 @@
 
 use super::*;
 
-/// A configured tangential law from a plugin.
-pub struct TangentialLawHandle {
-    pub(super) ffi: FfiTangentialLaw,
-    pub(super) info: LawInfo,
-    pub(super) v3: Option<LawHandle<Tangential>>,
+pub(super) enum TangentialInner {
+    V2 {
+        ffi: FfiTangentialLaw,
+        info: LawInfo,
+    },
+    /// A 0.3 law, through the generic shape of its kind.
+    V3(LawHandle<Tangential>),
 }
+
+/// A configured tangential law from a plugin.
+pub struct TangentialLawHandle(pub(super) TangentialInner);
 
 impl TangentialLawHandle {
     /// The law's description.
     pub fn info(&self) -> &LawInfo {
-        &self.info
+        match &self.0 {
+            TangentialInner::V2 { info, .. } => info,
+            TangentialInner::V3(l) => l.info(),
+        }
     }
 
     /// Binds the law to a pair of materials (validated first).
     pub fn bind(&self, materials: &MaterialPair) -> Result<TangentialModelHandle, LawError> {
         materials.validate()?;
-        match unsafe { (self.ffi.vtable.bind)(self.ffi.obj, materials) } {
-            RResult::ROk(ffi) => Ok(TangentialModelHandle {
-                ffi,
-                name: self.info.name.to_string(),
-                slots: self.info.history.len(),
-                v3: match &self.v3 {
-                    Some(l) => Some(l.bind(materials)?),
-                    None => None,
-                },
-            }),
-            RResult::RErr(e) => Err(e.into()),
-        }
+        let info = self.info();
+        let inner = match &self.0 {
+            TangentialInner::V2 { ffi, .. } => match unsafe { (ffi.vtable.bind)(ffi.obj, materials) } {
+                RResult::ROk(ffi) => ModelInner::V2(ffi),
+                RResult::RErr(e) => return Err(e.into()),
+            },
+            TangentialInner::V3(l) => ModelInner::V3(l.bind(materials)?),
+        };
+        Ok(TangentialModelHandle {
+            inner,
+            name: info.name.to_string(),
+            slots: info.history.len(),
+        })
     }
 }
 
 impl Drop for TangentialLawHandle {
     fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
+        if let TangentialInner::V2 { ffi, .. } = &self.0 {
+            unsafe { (ffi.vtable.drop)(ffi.obj) }
+        }
     }
+}
+
+enum ModelInner {
+    V2(FfiTangentialModel),
+    V3(ModelHandle<Tangential>),
 }
 
 /// A tangential law bound to a pair of materials, every input and output checked.
 pub struct TangentialModelHandle {
-    ffi: FfiTangentialModel,
+    inner: ModelInner,
     name: String,
     slots: usize,
-    /// The same law through the 0.3 entry (energy), for a 0.3 plugin.
-    v3: Option<ModelHandle<Tangential>>,
 }
 
 impl TangentialModelHandle {
@@ -63,15 +77,18 @@ impl TangentialModelHandle {
     /// `Ok(true)` when they were written, `Ok(false)` for a law that does not account for
     /// energy (every law of a plugin older than sdk 0.3).
     pub fn force_batch_with(&self, b: TangentialBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
-        match &self.v3 {
-            Some(m) => m.batch(b, energy),
-            None => self.force_batch(b).map(|()| false),
+        match &self.inner {
+            ModelInner::V3(m) => m.batch(b, energy),
+            ModelInner::V2(_) => self.force_batch(b).map(|()| false),
         }
     }
 
     /// Evaluates every contact of `b` (see [`TangentialBatch`]).
     pub fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
-        let ffi = &self.ffi;
+        let ffi = match &self.inner {
+            ModelInner::V2(ffi) => ffi,
+            ModelInner::V3(m) => return m.batch(b, EnergyOut::none()).map(|_| ()),
+        };
         run_tangential_batch(&self.name, self.slots, b, |fb, fault| unsafe {
             match (ffi.vtable.force_batch)(ffi.obj, fb, fault) {
                 BatchStatus::Panic => Err((ffi.vtable.take_panic)()),
@@ -82,11 +99,7 @@ impl TangentialModelHandle {
 }
 
 /// A tangential law compiled into the host, called through the trampoline a plugin exports.
-pub struct StaticTangential<B> {
-    law: B,
-    name: String,
-    slots: usize,
-}
+pub struct StaticTangential<B>(StaticModel<Tangential, B>);
 
 impl<B: crate::law::BoundTangential> StaticTangential<B> {
     /// Binds law `L` (configured as `law`) to `materials`.
@@ -94,34 +107,28 @@ impl<B: crate::law::BoundTangential> StaticTangential<B> {
         law: &L,
         materials: &MaterialPair,
     ) -> Result<Self, LawError> {
-        materials.validate()?;
-        Ok(StaticTangential {
-            law: law.bind(materials)?,
-            name: L::NAME.to_string(),
-            slots: L::HISTORY.len(),
-        })
+        Ok(StaticTangential(StaticModel::bind(law, materials)?))
     }
 
     /// The law's name.
     pub fn name(&self) -> &str {
-        &self.name
+        self.0.name()
     }
 
     /// History slots per contact.
     pub fn history_slots(&self) -> usize {
-        self.slots
+        self.0.history_slots()
     }
 
     /// As [`TangentialModelHandle::force_batch`].
     #[inline]
     pub fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
-        let obj = &self.law as *const B as *const c_void;
-        run_tangential_batch(&self.name, self.slots, b, |fb, fault| unsafe {
-            match super::plugin::tangential_force_batch::<B>(obj, fb, fault) {
-                BatchStatus::Panic => Err(super::plugin::take_panic()),
-                st => Ok(st),
-            }
-        })
+        self.0.batch(b, EnergyOut::none()).map(|_| ())
+    }
+
+    /// As [`TangentialModelHandle::force_batch_with`].
+    pub fn force_batch_with(&self, b: TangentialBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.0.batch(b, energy)
     }
 }
 
@@ -222,6 +229,8 @@ pub(crate) fn bad_vec(what: &str, name: &str, i: usize, v: [f64; 3]) -> LawError
 
 impl Drop for TangentialModelHandle {
     fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
+        if let ModelInner::V2(ffi) = &self.inner {
+            unsafe { (ffi.vtable.drop)(ffi.obj) }
+        }
     }
 }
