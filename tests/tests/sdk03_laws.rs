@@ -530,3 +530,104 @@ fn rolling_epsd_caps_the_torque_at_mu_r_r_fn() {
     }
     assert!(capped);
 }
+
+/// The new kinds' inputs are checked in the plugin like the old ones': a bad value is an error
+/// naming the law, the array, the contact and the value, before anything is computed.
+#[test]
+fn bad_inputs_of_the_new_kinds_are_named() {
+    let reg = registry_03();
+    let rolling = reg
+        .rolling("rolling-sds", &[])
+        .unwrap()
+        .bind(&materials())
+        .unwrap();
+    let mut h = [0.0; 6];
+    let mut f = [[7.0; 3]; 2];
+    let e = rolling
+        .batch(
+            RollingBatch {
+                dt: 1e-4,
+                normal: &[[0.0, 0.0, 1.0]; 2],
+                velocity: &[[0.0; 3], [0.0, f64::NAN, 0.0]],
+                normal_force: &[1.0; 2],
+                delta: &[1e-6; 2],
+                mass: &[M; 2],
+                radius: &[R; 2],
+                slots: 3,
+                history: &mut h,
+                force: &mut f,
+            },
+            EnergyOut::none(),
+        )
+        .unwrap_err();
+    assert!(
+        e.message.contains("rolling law 'rolling-sds': input velocity[1]") && e.message.contains("NaN"),
+        "{}",
+        e.message
+    );
+    let twisting = reg
+        .twisting("twisting-sds", &[])
+        .unwrap()
+        .bind(&materials())
+        .unwrap();
+    let mut h = [0.0];
+    let e = twisting
+        .batch(
+            TwistingBatch {
+                dt: 1e-4,
+                normal: &[[0.0, 0.0, 1.0]],
+                rate: &[1.0],
+                normal_force: &[1.0],
+                delta: &[1e-6],
+                mass: &[0.0],
+                radius: &[R],
+                slots: 1,
+                history: &mut h,
+                torque: &mut [0.0],
+            },
+            EnergyOut::none(),
+        )
+        .unwrap_err();
+    assert!(
+        e.message
+            .contains("twisting law 'twisting-sds': input mass[0] = 0 must be finite and > 0 (kg)"),
+        "{}",
+        e.message
+    );
+    // energy outputs of the wrong length are refused
+    let mut p = [0.0; 2];
+    let e = twisting
+        .batch(
+            TwistingBatch {
+                dt: 1e-4,
+                normal: &[[0.0, 0.0, 1.0]],
+                rate: &[1.0],
+                normal_force: &[1.0],
+                delta: &[1e-6],
+                mass: &[M],
+                radius: &[R],
+                slots: 1,
+                history: &mut h,
+                torque: &mut [0.0],
+            },
+            EnergyOut {
+                power: Some(&mut p),
+                elastic: None,
+            },
+        )
+        .unwrap_err();
+    assert!(
+        e.message
+            .contains("energy outputs must have one value per contact (1)"),
+        "{}",
+        e.message
+    );
+    // a law of one kind is not another's
+    let e = reg.rolling("twisting-sds", &[]).err().expect("refused");
+    assert!(
+        e.message
+            .contains("is a twisting law, but a rolling law is needed"),
+        "{}",
+        e.message
+    );
+}

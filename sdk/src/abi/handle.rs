@@ -26,7 +26,7 @@ fn run<K: Kind>(
     if !energy.lengths_ok(n) {
         return Err(super::host::length_error(
             &format!("{} batch", K::WHAT),
-            format!("the energy outputs must hold {n} values"),
+            format!("the energy outputs must have one value per contact ({n})"),
         ));
     }
     if n == 0 {
