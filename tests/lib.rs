@@ -184,6 +184,23 @@ pub fn wrong_abi_plugin() -> PathBuf {
     .clone()
 }
 
+/// The `constant` plugin rebuilt against a dashpot-sdk that claims the next series, 0.4.0 (a
+/// series this host does not speak), copied to a file of its own.
+pub fn next_series_plugin() -> PathBuf {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        build_external_with(
+            &workspace_root().join("Cargo.toml"),
+            "dashpot-constant",
+            "dashpot_constant",
+            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.4.0")],
+            &[],
+            Some("next_series_constant"),
+        )
+    })
+    .clone()
+}
+
 /// The `constant` plugin rebuilt against a dashpot-sdk of the same version whose `Pair` has an
 /// extra field: a stale or mismatched build that only the layout check can catch.
 pub fn wrong_layout_plugin() -> PathBuf {

@@ -6,7 +6,7 @@
 
 use dashpot::laws::SdkSeries;
 use dashpot_sdk::{LawKind, MaterialPair, NormalBatch, ParamValue, TangentialBatch};
-use dashpot_tests::{full_registry, sdk02_registry};
+use dashpot_tests::{full_registry, next_series_plugin, sdk02_registry};
 
 fn materials() -> MaterialPair {
     MaterialPair::new(7.0e10, 2.7e10).unwrap()
@@ -197,4 +197,21 @@ fn old_plugins_have_reach_zero_and_no_energy() {
     assert!(!out[0].0, "a 0.2 law reports energy as not available");
     assert!(out[1].0 && out[1].2[0] > 0.0, "the 0.3 build reports it");
     assert_eq!(out[0].1.map(f64::to_bits), out[1].1.map(f64::to_bits));
+}
+
+/// A plugin of a series this host does not speak (0.4) is refused, both versions named.
+#[test]
+fn the_next_series_is_refused_naming_both_versions() {
+    let e = dashpot_sdk::abi::LoadedPlugin::load(&next_series_plugin()).unwrap_err();
+    assert_eq!(e.kind, dashpot_sdk::ErrorKind::Load);
+    assert!(
+        e.message.contains("built against dashpot-sdk 0.4.0")
+            && e.message.contains(&format!(
+                "this host uses dashpot-sdk {}",
+                dashpot_sdk::abi::ABI_VERSION
+            ))
+            && e.message.contains("loads plugins of sdk 0.1, 0.2 and 0.3 only"),
+        "{}",
+        e.message
+    );
 }
