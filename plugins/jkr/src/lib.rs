@@ -199,3 +199,33 @@ impl BoundContact for JkrBound {
 }
 
 dashpot_sdk::export_laws!(contact: [Jkr]);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn law() -> JkrBound {
+        Jkr { w: 0.05, eps: 1.0 }
+            .bind(&MaterialPair::new(1e8, 4e7).unwrap())
+            .unwrap()
+    }
+
+    /// The contact radius found for δ gives back δ through δ(a) = a²/R − √(2π w a/E), on the
+    /// stable branch, from rupture to deep compression.
+    #[test]
+    fn contact_radius_inverts_the_overlap() {
+        let b = law();
+        let r = 1e-4;
+        let ac = b.a0(r) / 6f64.powf(2.0 / 3.0);
+        let dc = b.delta_c(r);
+        for i in 0..=1000 {
+            let d = dc + (1e-6 - dc) * (i as f64 / 1000.0).powi(3);
+            let a = b.contact_radius(r, d);
+            assert!(a >= ac * (1.0 - 1e-12), "stable branch at δ = {d:e}");
+            let back = a * a / r - (2.0 * PI * b.w * a / b.young).sqrt();
+            assert!((back - d).abs() <= 1e-9 * dc.abs(), "δ = {d:e}: δ(a) = {back:e}");
+        }
+        // a0 is the zero-load radius: F(a0) = 0
+        assert!(b.force_at(r, b.a0(r)).abs() < 1e-12 * 1.5 * PI * b.w * r);
+    }
+}
