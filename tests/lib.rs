@@ -47,7 +47,34 @@ pub const SDK02_PLUGINS: [&str; 4] = [
     "dashpot_walton_braun",
 ];
 
-/// A registry of every plugin of the workspace (the seed laws and those of sdk 0.2).
+/// The laws added with sdk 0.3 (adhesive normal, rolling, twisting), by library name.
+pub const SDK03_PLUGINS: [&str; 6] = [
+    "dashpot_jkr",
+    "dashpot_dmt",
+    "dashpot_rolling_sds",
+    "dashpot_rolling_epsd",
+    "dashpot_twisting_sds",
+    "dashpot_twisting_marshall",
+];
+
+/// A registry of every plugin of the workspace, those of sdk 0.3 included.
+pub fn registry_03() -> Registry {
+    let files = SEED_PLUGINS
+        .iter()
+        .chain(SDK02_PLUGINS.iter())
+        .chain(SDK03_PLUGINS.iter())
+        .map(|n| plugin_file(n))
+        .collect();
+    let sp = SearchPath {
+        dirs: vec![],
+        files,
+        use_env: false,
+        use_default: false,
+    };
+    Registry::discover(&sp).expect("the plugins load")
+}
+
+/// A registry of the seed laws and those of sdk 0.2.
 pub fn full_registry() -> Registry {
     let files = SEED_PLUGINS
         .iter()
@@ -157,6 +184,23 @@ pub fn wrong_abi_plugin() -> PathBuf {
     .clone()
 }
 
+/// The `constant` plugin rebuilt against a dashpot-sdk that claims the next series, 0.4.0 (a
+/// series this host does not speak), copied to a file of its own.
+pub fn next_series_plugin() -> PathBuf {
+    static P: OnceLock<PathBuf> = OnceLock::new();
+    P.get_or_init(|| {
+        build_external_with(
+            &workspace_root().join("Cargo.toml"),
+            "dashpot-constant",
+            "dashpot_constant",
+            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.4.0")],
+            &[],
+            Some("next_series_constant"),
+        )
+    })
+    .clone()
+}
+
 /// The `constant` plugin rebuilt against a dashpot-sdk of the same version whose `Pair` has an
 /// extra field: a stale or mismatched build that only the layout check can catch.
 pub fn wrong_layout_plugin() -> PathBuf {
@@ -205,49 +249,87 @@ impl BindPair for dashpot_sdk::abi::ContactLawHandle {
     }
 }
 
-/// The commit of this repository whose tree is dashpot-sdk 0.1.0: the last release before
-/// sdk 0.2. Plugins built from it are what users of 0.1 have on disk.
-pub const SDK_0_1_COMMIT: &str = "32de0ccd4878fc8a8166c3337f6dc30793566041";
+/// A release of dashpot-sdk as this repository's history holds it: the commit whose tree is
+/// the last of its series, and the seed plugins a user of it has on disk.
+#[derive(Debug, Clone, Copy)]
+pub struct OldSdk {
+    /// The series, e.g. `"0.1"`.
+    pub series: &'static str,
+    /// The commit of its last tree.
+    pub commit: &'static str,
+    /// The plugin packages built from it.
+    pub packages: &'static [&'static str],
+    /// Their library names.
+    pub libs: &'static [&'static str],
+}
 
-/// The seed plugins built from the sources of [`SDK_0_1_COMMIT`] (extracted with `git archive`,
-/// built in a target directory of their own, in `profile` "debug" or "release"), by library
-/// name. `None`, with the reason printed, when this is not a git checkout holding that commit
-/// (a fatal error under `CI=true`).
-pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
+/// dashpot-sdk 0.1.0: the last release before sdk 0.2 (the five seed plugins).
+pub const SDK_0_1: OldSdk = OldSdk {
+    series: "0.1",
+    commit: "32de0ccd4878fc8a8166c3337f6dc30793566041",
+    packages: &[
+        "dashpot-lsd",
+        "dashpot-hsd",
+        "dashpot-kuwabara-kono",
+        "dashpot-mcnamara-falcon",
+        "dashpot-constant",
+    ],
+    libs: &SEED_PLUGINS,
+};
+
+/// dashpot-sdk 0.2.0: the last commit before sdk 0.3 (HSD, and the history laws Mindlin and
+/// Thornton).
+pub const SDK_0_2: OldSdk = OldSdk {
+    series: "0.2",
+    commit: "ffb1e69f6adcad922353a3f797794e36c0815fcc",
+    packages: &["dashpot-hsd", "dashpot-mindlin", "dashpot-thornton"],
+    libs: &["dashpot_hsd", "dashpot_mindlin", "dashpot_thornton"],
+};
+
+/// The commit of this repository whose tree is dashpot-sdk 0.1.0.
+pub const SDK_0_1_COMMIT: &str = SDK_0_1.commit;
+
+/// The plugins of `sdk` built from the sources of its commit (extracted with `git archive`,
+/// built in a target directory of their own, `target/sdk-<series>/`, in `profile` "debug" or
+/// "release"): the directory holding their libraries. `None`, with the reason printed, when
+/// this is not a git checkout holding that commit (a fatal error under `CI=true`).
+pub fn old_sdk_plugins(sdk: &OldSdk, profile: &str) -> Option<PathBuf> {
     static LOCK: OnceLock<Mutex<()>> = OnceLock::new();
     let _g = LOCK
         .get_or_init(|| Mutex::new(()))
         .lock()
         .unwrap_or_else(|e| e.into_inner());
     let root = workspace_root();
-    let base = target_root().join("sdk-0.1");
+    let base = target_root().join(format!("sdk-{}", sdk.series));
     let src = base.join("src");
     let stamp = src.join(".dashpot-commit");
-    let have = std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == SDK_0_1_COMMIT);
+    let commit = sdk.commit;
+    let have = std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == commit);
     if !have {
         let ok = Command::new("git")
             .arg("-C")
             .arg(&root)
-            .args(["cat-file", "-e", &format!("{SDK_0_1_COMMIT}^{{commit}}")])
+            .args(["cat-file", "-e", &format!("{commit}^{{commit}}")])
             .status()
             .is_ok_and(|s| s.success());
         if !ok {
             let msg = format!(
-                "the sdk 0.1 sources (commit {SDK_0_1_COMMIT}) are not in this checkout's git history"
+                "the sdk {} sources (commit {commit}) are not in this checkout's git history",
+                sdk.series
             );
             assert!(std::env::var_os("CI").is_none(), "{msg}");
             eprintln!("skipped: {msg}");
             return None;
         }
         let _ = std::fs::remove_dir_all(&src);
-        std::fs::create_dir_all(&src).expect("create the sdk 0.1 source dir");
+        std::fs::create_dir_all(&src).expect("create the old sdk's source dir");
         let archive = Command::new("git")
             .arg("-C")
             .arg(&root)
-            .args(["archive", "--format=tar", SDK_0_1_COMMIT])
+            .args(["archive", "--format=tar", commit])
             .output()
             .expect("run git archive");
-        assert!(archive.status.success(), "git archive {SDK_0_1_COMMIT} failed");
+        assert!(archive.status.success(), "git archive {commit} failed");
         let mut tar = Command::new("tar")
             .arg("-x")
             .arg("-C")
@@ -264,7 +346,7 @@ pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
                 .expect("feed tar");
         }
         assert!(tar.wait().expect("tar").success(), "tar failed");
-        std::fs::write(&stamp, SDK_0_1_COMMIT).expect("stamp");
+        std::fs::write(&stamp, commit).expect("stamp");
     }
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".to_string());
     let mut cmd = Command::new(cargo);
@@ -272,17 +354,11 @@ pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
         .arg("--quiet")
         .arg("--locked")
         .arg("--manifest-path")
-        .arg(src.join("Cargo.toml"))
-        .args([
-            "-p",
-            "dashpot-lsd",
-            "-p",
-            "dashpot-hsd",
-            "-p",
-            "dashpot-kuwabara-kono",
-        ])
-        .args(["-p", "dashpot-mcnamara-falcon", "-p", "dashpot-constant"])
-        .arg("--target-dir")
+        .arg(src.join("Cargo.toml"));
+    for p in sdk.packages {
+        cmd.args(["-p", p]);
+    }
+    cmd.arg("--target-dir")
         .arg(base.join("target"))
         .env_remove("DASHPOT_SDK_FAKE_ABI_VERSION")
         .env_remove("RUSTFLAGS");
@@ -290,14 +366,20 @@ pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
         cmd.arg("--release");
     }
     let status = cmd.status().expect("run cargo");
-    assert!(status.success(), "building the sdk 0.1 plugins failed");
+    assert!(status.success(), "building the sdk {} plugins failed", sdk.series);
     Some(base.join("target").join(profile))
 }
 
-/// A registry holding only the five seed plugins as built from the sdk 0.1 sources.
-pub fn sdk01_registry(profile: &str) -> Option<Registry> {
-    let dir = sdk01_plugins(profile)?;
-    let files = SEED_PLUGINS
+/// The seed plugins built from the sdk 0.1 sources (see [`old_sdk_plugins`]).
+pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
+    old_sdk_plugins(&SDK_0_1, profile)
+}
+
+/// A registry holding only the plugins of `sdk`, as built from its sources.
+pub fn old_sdk_registry(sdk: &OldSdk, profile: &str) -> Option<Registry> {
+    let dir = old_sdk_plugins(sdk, profile)?;
+    let files = sdk
+        .libs
         .iter()
         .map(|n| {
             dir.join(format!(
@@ -313,5 +395,18 @@ pub fn sdk01_registry(profile: &str) -> Option<Registry> {
         use_env: false,
         use_default: false,
     };
-    Some(Registry::discover(&sp).expect("the sdk 0.1 plugins load in the 0.2 host"))
+    Some(
+        Registry::discover(&sp)
+            .unwrap_or_else(|e| panic!("the sdk {} plugins load in this host: {}", sdk.series, e.message)),
+    )
+}
+
+/// A registry holding only the five seed plugins as built from the sdk 0.1 sources.
+pub fn sdk01_registry(profile: &str) -> Option<Registry> {
+    old_sdk_registry(&SDK_0_1, profile)
+}
+
+/// A registry holding HSD, Mindlin and Thornton as built from the sdk 0.2 sources.
+pub fn sdk02_registry(profile: &str) -> Option<Registry> {
+    old_sdk_registry(&SDK_0_2, profile)
 }

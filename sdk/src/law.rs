@@ -24,6 +24,10 @@ pub enum LawKind {
     Restitution = 2,
     /// A tangential (friction) force at the contact point (N), with per-contact history (sdk 0.2).
     Tangential = 3,
+    /// A rolling-resistance force (N) at the contact, with per-contact history (sdk 0.3).
+    Rolling = 4,
+    /// A twisting torque (N·m) about the contact normal, with per-contact history (sdk 0.3).
+    Twisting = 5,
 }
 
 /// When a two-body contact is over. Realized restitution and contact time depend on it, so every
@@ -55,7 +59,7 @@ impl EndCriterion {
 pub struct LawInfo {
     /// The name a user selects the law by (`--law NAME`); unique within a host.
     pub name: RString,
-    /// Contact or restitution law.
+    /// Which kind of law.
     pub kind: LawKind,
     /// One line: what the law is.
     pub summary: RString,
@@ -99,7 +103,7 @@ impl History {
     }
 }
 
-fn history_slots(h: &[History]) -> RVec<HistorySlot> {
+pub(crate) fn history_slots(h: &[History]) -> RVec<HistorySlot> {
     h.iter()
         .map(|h| HistorySlot {
             name: h.name.into(),
@@ -193,6 +197,17 @@ pub struct NormalBatch<'a> {
     pub force: &'a mut [f64],
 }
 
+/// What a law reports about the energy of one contact after a step (sdk 0.3).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Energy {
+    /// Power dissipated by the contact at this step's state (W, ≥ 0): damping force × rate,
+    /// plus the rate of plastic or frictional work.
+    pub power: f64,
+    /// Elastic energy stored in the contact (J): the work the law's conservative part would
+    /// give back on unloading from this state.
+    pub elastic: f64,
+}
+
 /// A contact law bound to a material pair: the normal force on the hot path.
 ///
 /// Everything that depends only on the materials and the parameters is computed at
@@ -238,6 +253,21 @@ pub trait BoundContact: Send + Sync + 'static {
     /// (m): stiffness, damping coefficient, ...
     fn coefficients(&self, _mass: f64, _radius: f64) -> Vec<Coefficient> {
         Vec::new()
+    }
+
+    /// How far beyond touching (m, ≥ 0) the contact `c` still acts, given its `history` as the
+    /// last force call left it (sdk 0.3): the contact ends once δ < −reach, and a caller keeps
+    /// it (and its history) until then. An adhesive law returns its pull-off separation, which
+    /// may depend on history (JKR: 0 before the first touch); the default, 0, ends the contact
+    /// when the overlap does.
+    fn reach(&self, _c: &Contact, _history: &[f64]) -> f64 {
+        0.0
+    }
+
+    /// The energy of contact `c` after a force call that returned `force` (N) and left
+    /// `history` (sdk 0.3); `None` (the default) when the law does not account for it.
+    fn energy(&self, _c: &Contact, _history: &[f64], _force: f64) -> Option<Energy> {
+        None
     }
 }
 
@@ -319,6 +349,13 @@ pub trait BoundTangential: Send + Sync + 'static {
             };
             b.force[i] = self.force(&c, h);
         }
+    }
+
+    /// The energy of contact `c` after a call that returned `force` (N) and left `history`
+    /// (sdk 0.3): the spring's elastic energy (J) and the power (W) dissipated by its dashpot
+    /// and by sliding; `None` (the default) when the law does not account for it.
+    fn energy(&self, _c: &TangentialContact, _history: &[f64], _force: [f64; 3]) -> Option<Energy> {
+        None
     }
 }
 

@@ -8,7 +8,18 @@
 //! - a **tangential law** (sdk 0.2): the friction force at the contact point (N), capped by
 //!   Coulomb's μ|F_n|, from the contact points' relative velocity and a per-contact history (a
 //!   spring's displacement), composable at run time with any contact law;
+//! - a **rolling law** (sdk 0.3): a rolling-resistance force F_r (N) from the rolling velocity
+//!   R_eff (ω_i − ω_j) × n̂ (m/s), with its own history; the torque on the particle is
+//!   R_eff n̂ × F_r (see [`RollingLaw`] for the conventions);
+//! - a **twisting law** (sdk 0.3): a twisting torque (N·m) about the normal from the twisting
+//!   rate (ω_i − ω_j)·n̂ (rad/s), with its own history ([`TwistingLaw`]);
 //! - a **restitution law**: the coefficient of restitution r(v) at normal impact speed v (m/s).
+//!
+//! sdk 0.3 also lets a contact law be **adhesive**: its force may be tensile, and it declares its
+//! reach ([`BoundContact::reach`], m): the contact lasts until δ < −reach, so callers keep it (and
+//! its history) beyond touching. And every kind may report the **energy** of each contact
+//! ([`Energy`]: dissipated power, W, and elastic energy stored, J) into optional output arrays
+//! of a batch call; a law that does not (the trait default) reports it as not available.
 //!
 //! Each law publishes a parameter schema ([`ParamSpec`]: name, unit, default, range, doc), is
 //! configured from named values ([`Params`], validated by the sdk), then *bound* once to what
@@ -20,10 +31,11 @@
 //! `Send + Sync`, and a DEM code with a continuous size distribution binds once per pair of
 //! materials, not per pair of sizes.
 //!
-//! A plugin is a `cdylib` crate that implements [`ContactLaw`], [`TangentialLaw`] or
-//! [`RestitutionLaw`] and calls [`export_laws!`] once. The [`abi`] module defines the stable
-//! binary interface (abi_stable) and the host-side loader with its checks; a host of sdk 0.2
-//! still loads plugins built against sdk 0.1.
+//! A plugin is a `cdylib` crate that implements [`ContactLaw`], [`TangentialLaw`],
+//! [`RollingLaw`], [`TwistingLaw`] or [`RestitutionLaw`] and calls [`export_laws!`] once. The
+//! [`abi`] module defines the stable binary interface (abi_stable, one generic shape per law kind)
+//! and the host-side loader with its checks; a host of sdk 0.3 still loads plugins built against
+//! sdk 0.1 and 0.2.
 //!
 //! ```
 //! use dashpot_sdk::*;
@@ -58,15 +70,20 @@ mod law;
 mod pair;
 mod params;
 pub mod physics;
+mod rotation;
 
 pub use error::{ErrorKind, FfiError, LawError};
 pub use law::{
     BoundContact, BoundRestitution, BoundTangential, CalibrationTarget, Coefficient, Contact, ContactLaw,
-    EndCriterion, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw, TangentialBatch,
-    TangentialContact, TangentialLaw,
+    EndCriterion, Energy, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
+    TangentialBatch, TangentialContact, TangentialLaw,
 };
 pub use pair::{MaterialPair, Pair, Particle};
 pub use params::{ParamSpec, ParamValue, Params, Range};
+pub use rotation::{
+    BoundRolling, BoundTwisting, RollingBatch, RollingContact, RollingLaw, TwistingBatch, TwistingContact,
+    TwistingLaw,
+};
 
 /// Re-exported so plugins need no direct dependency on abi_stable.
 pub use abi_stable::std_types::{ROption, RString, RVec};

@@ -50,3 +50,83 @@ mod tests {
         }
     }
 }
+
+/// The spring–dashpot–slider of a twisting law: stiffness (N·m/rad), damping (N·m·s/rad) and
+/// critical torque (N·m). Used by the `twisting-sds` and `twisting-marshall` laws (the latter's constants depend on
+/// the contact radius).
+#[derive(Debug, Clone, Copy)]
+pub struct TwistSpring {
+    /// Stiffness k (N·m/rad), > 0.
+    pub k: f64,
+    /// Damping γ (N·m·s/rad).
+    pub gamma: f64,
+    /// Critical torque M_c (N·m).
+    pub mcrit: f64,
+}
+
+impl TwistSpring {
+    /// Advances the twist angle θ = `h[0]` (rad) by ω dt and returns the torque (N·m):
+    /// M = −k θ − γ ω; if |M| > M_c then θ = (M_c sgn ω − γ ω)/k and M = −M_c sgn ω.
+    pub fn torque(&self, rate: f64, dt: f64, h: &mut [f64]) -> f64 {
+        h[0] += rate * dt;
+        let m = -self.k * h[0] - self.gamma * rate;
+        if m.abs() > self.mcrit {
+            let sign = if rate > 0.0 {
+                1.0
+            } else if rate < 0.0 {
+                -1.0
+            } else {
+                0.0
+            };
+            h[0] = (self.mcrit * sign - self.gamma * rate) / self.k;
+            return -self.mcrit * sign;
+        }
+        m
+    }
+
+    /// Elastic energy k θ²/2 (J) and dissipated power (W): γ ω² while the spring holds, |M ω|
+    /// while it slides.
+    pub fn energy(&self, rate: f64, theta: f64, torque: f64) -> crate::Energy {
+        let sliding = torque.abs() >= self.mcrit && rate != 0.0;
+        crate::Energy {
+            power: if sliding {
+                (-torque * rate).max(0.0)
+            } else {
+                self.gamma * rate * rate
+            },
+            elastic: 0.5 * self.k * theta * theta,
+        }
+    }
+}
+
+/// The energy of a tangential (or rolling) spring–dashpot–slider after a step: elastic
+/// ½ k |ξ|² (J) with ξ the stored displacement `xi` (m) and k the stiffness `k` (N/m), and the
+/// dissipated power (W): the dashpot's η |v|² while the spring holds (|F| below the cap
+/// `cap`, N), the friction work rate −F·v (≥ 0, clamped) while it slides. `v` is the velocity
+/// the spring advanced with (m/s), `force` the returned force (N), `eta` the dashpot (N·s/m).
+pub fn spring_slider_energy(
+    k: f64,
+    eta: f64,
+    cap: f64,
+    xi: [f64; 3],
+    v: [f64; 3],
+    force: [f64; 3],
+) -> crate::Energy {
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let f2 = dot(force, force);
+    let sliding = f2 > 0.0 && f2 >= cap * cap * (1.0 - 1e-12);
+    crate::Energy {
+        power: if sliding {
+            (-dot(force, v)).max(0.0)
+        } else {
+            eta * dot(v, v)
+        },
+        elastic: 0.5 * k * dot(xi, xi),
+    }
+}
+
+/// The tangential velocity v − (v·n̂) n̂ (m/s) of `v` for unit normal `n`.
+pub fn tangential_part(v: [f64; 3], n: [f64; 3]) -> [f64; 3] {
+    let vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+    [v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]]
+}

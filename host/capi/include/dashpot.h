@@ -115,6 +115,14 @@ typedef enum DashpotLawKind {
    A tangential (friction) force with per-contact history (sdk 0.2).
    */
   DASHPOT_TANGENTIAL = 3,
+  /*
+   A rolling-resistance force with per-contact history (sdk 0.3).
+   */
+  DASHPOT_ROLLING = 4,
+  /*
+   A twisting torque about the contact normal with per-contact history (sdk 0.3).
+   */
+  DASHPOT_TWISTING = 5,
 } DashpotLawKind;
 
 /*

@@ -17,6 +17,10 @@ pub enum DashpotLawKind {
     DASHPOT_RESTITUTION = 2,
     /// A tangential (friction) force with per-contact history (sdk 0.2).
     DASHPOT_TANGENTIAL = 3,
+    /// A rolling-resistance force with per-contact history (sdk 0.3).
+    DASHPOT_ROLLING = 4,
+    /// A twisting torque about the contact normal with per-contact history (sdk 0.3).
+    DASHPOT_TWISTING = 5,
 }
 
 /// When a two-body contact is over (realized restitution depends on it).
@@ -300,6 +304,8 @@ pub unsafe extern "C" fn dashpot_registry_law_info(
                 LawKind::Contact => DashpotLawKind::DASHPOT_CONTACT,
                 LawKind::Restitution => DashpotLawKind::DASHPOT_RESTITUTION,
                 LawKind::Tangential => DashpotLawKind::DASHPOT_TANGENTIAL,
+                LawKind::Rolling => DashpotLawKind::DASHPOT_ROLLING,
+                LawKind::Twisting => DashpotLawKind::DASHPOT_TWISTING,
             },
             summary: s.summary.as_ptr(),
             doc: s.doc.as_ptr(),

@@ -4,10 +4,14 @@
 //! the same driver code runs a plugin's handle or a law compiled into the program (benchmark
 //! baselines, tests) through the very same checked trampoline.
 
-use dashpot_sdk::abi::{ContactModelHandle, StaticContact, StaticTangential, TangentialModelHandle};
+use dashpot_sdk::abi::kind::KindBound;
+use dashpot_sdk::abi::{
+    ContactModelHandle, EnergyOut, ModelHandle, Rolling, StaticContact, StaticModel, StaticTangential,
+    TangentialModelHandle, Twisting,
+};
 use dashpot_sdk::{
     BoundContact, BoundTangential, Coefficient, Contact, ContactLaw, LawError, MaterialPair, NormalBatch,
-    TangentialBatch, TangentialLaw,
+    RollingBatch, TangentialBatch, TangentialLaw, TwistingBatch,
 };
 
 pub use dashpot_sdk::abi::SdkSeries;
@@ -24,6 +28,22 @@ pub trait NormalLaw: Send + Sync {
     /// Evaluates every contact of `b`: forces into `b.force` (N), history updated in place;
     /// a non-finite input or output is an error naming the contact.
     fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError>;
+
+    /// [`NormalLaw::force_batch`] with each contact's reach (m: the contact ends at δ < −reach)
+    /// and the energy outputs `energy` asks for; `Ok(true)` when those were written. The
+    /// default (a law without sdk 0.3's outputs): reach 0, energy not available.
+    fn force_batch_with(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        _energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        self.force_batch(b)?;
+        if let Some(r) = reach {
+            r.fill(0.0);
+        }
+        Ok(false)
+    }
 
     /// The normal force (N) on one contact, history updated in place.
     fn force(&self, c: Contact, history: &mut [f64]) -> Result<f64, LawError> {
@@ -57,6 +77,14 @@ impl NormalLaw for ContactModelHandle {
     fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
         ContactModelHandle::force_batch(self, b)
     }
+    fn force_batch_with(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        ContactModelHandle::force_batch_with(self, b, reach, energy)
+    }
     fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
         ContactModelHandle::coefficients(self, mass, radius)
     }
@@ -72,6 +100,14 @@ impl<B: BoundContact> NormalLaw for StaticContact<B> {
     #[inline]
     fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
         StaticContact::force_batch(self, b)
+    }
+    fn force_batch_with(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        StaticContact::force_batch_with(self, b, reach, energy)
     }
     fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
         Ok(self.law().coefficients(mass, radius))
@@ -89,6 +125,14 @@ impl<L: NormalLaw + ?Sized> NormalLaw for &L {
     fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
         (**self).force_batch(b)
     }
+    fn force_batch_with(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        (**self).force_batch_with(b, reach, energy)
+    }
     fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
         (**self).coefficients(mass, radius)
     }
@@ -104,6 +148,14 @@ impl<L: NormalLaw + ?Sized> NormalLaw for Box<L> {
     #[inline]
     fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
         (**self).force_batch(b)
+    }
+    fn force_batch_with(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        (**self).force_batch_with(b, reach, energy)
     }
     fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
         (**self).coefficients(mass, radius)
@@ -121,6 +173,12 @@ pub trait TangentialForce: Send + Sync {
     /// Evaluates every contact of `b`: tangential forces into `b.force` (N), history advanced
     /// by `b.dt` in place.
     fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError>;
+
+    /// [`TangentialForce::force_batch`] with the energy outputs `energy` asks for; `Ok(true)`
+    /// when they were written. The default: energy not available.
+    fn force_batch_with(&self, b: TangentialBatch<'_>, _energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.force_batch(b).map(|()| false)
+    }
 }
 
 impl TangentialForce for TangentialModelHandle {
@@ -133,6 +191,9 @@ impl TangentialForce for TangentialModelHandle {
     #[inline]
     fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
         TangentialModelHandle::force_batch(self, b)
+    }
+    fn force_batch_with(&self, b: TangentialBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        TangentialModelHandle::force_batch_with(self, b, energy)
     }
 }
 
@@ -147,6 +208,9 @@ impl<B: BoundTangential> TangentialForce for StaticTangential<B> {
     fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
         StaticTangential::force_batch(self, b)
     }
+    fn force_batch_with(&self, b: TangentialBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        StaticTangential::force_batch_with(self, b, energy)
+    }
 }
 
 impl<L: TangentialForce + ?Sized> TangentialForce for &L {
@@ -160,6 +224,9 @@ impl<L: TangentialForce + ?Sized> TangentialForce for &L {
     fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
         (**self).force_batch(b)
     }
+    fn force_batch_with(&self, b: TangentialBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        (**self).force_batch_with(b, energy)
+    }
 }
 
 impl<L: TangentialForce + ?Sized> TangentialForce for Box<L> {
@@ -172,6 +239,80 @@ impl<L: TangentialForce + ?Sized> TangentialForce for Box<L> {
     #[inline]
     fn force_batch(&self, b: TangentialBatch<'_>) -> Result<(), LawError> {
         (**self).force_batch(b)
+    }
+    fn force_batch_with(&self, b: TangentialBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        (**self).force_batch_with(b, energy)
+    }
+}
+
+/// A rolling-resistance law bound to a pair of materials (sdk 0.3).
+pub trait RollingResistance: Send + Sync {
+    /// The law's name.
+    fn name(&self) -> &str;
+    /// History slots per contact.
+    fn history_slots(&self) -> usize;
+    /// Evaluates every contact of `b`: rolling-resistance forces into `b.force` (N; the torque on
+    /// the particle is R_eff n̂ × F), history advanced by `b.dt`, with the energy outputs
+    /// `energy` asks for (`Ok(true)` when written).
+    fn force_batch(&self, b: RollingBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError>;
+}
+
+/// A twisting-resistance law bound to a pair of materials (sdk 0.3).
+pub trait TwistingResistance: Send + Sync {
+    /// The law's name.
+    fn name(&self) -> &str;
+    /// History slots per contact.
+    fn history_slots(&self) -> usize;
+    /// Evaluates every contact of `b`: twisting torques about n̂ into `b.torque` (N·m), history
+    /// advanced by `b.dt`, with the energy outputs `energy` asks for (`Ok(true)` when written).
+    fn torque_batch(&self, b: TwistingBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError>;
+}
+
+impl RollingResistance for ModelHandle<Rolling> {
+    fn name(&self) -> &str {
+        ModelHandle::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        ModelHandle::history_slots(self)
+    }
+    fn force_batch(&self, b: RollingBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.batch(b, energy)
+    }
+}
+
+impl<B: KindBound<Rolling>> RollingResistance for StaticModel<Rolling, B> {
+    fn name(&self) -> &str {
+        StaticModel::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        StaticModel::history_slots(self)
+    }
+    fn force_batch(&self, b: RollingBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.batch(b, energy)
+    }
+}
+
+impl TwistingResistance for ModelHandle<Twisting> {
+    fn name(&self) -> &str {
+        ModelHandle::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        ModelHandle::history_slots(self)
+    }
+    fn torque_batch(&self, b: TwistingBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.batch(b, energy)
+    }
+}
+
+impl<B: KindBound<Twisting>> TwistingResistance for StaticModel<Twisting, B> {
+    fn name(&self) -> &str {
+        StaticModel::name(self)
+    }
+    fn history_slots(&self) -> usize {
+        StaticModel::history_slots(self)
+    }
+    fn torque_batch(&self, b: TwistingBatch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.batch(b, energy)
     }
 }
 

@@ -1,6 +1,8 @@
 //! Finding plugin libraries and selecting laws by name.
 
-use dashpot_sdk::abi::{ContactLawHandle, LoadedPlugin, RestitutionLawHandle, TangentialLawHandle};
+use dashpot_sdk::abi::{
+    ContactLawHandle, LawHandle, LoadedPlugin, RestitutionLawHandle, Rolling, TangentialLawHandle, Twisting,
+};
 use dashpot_sdk::{CalibrationTarget, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
@@ -330,6 +332,17 @@ impl Registry {
         p.new_tangential(name, params)
     }
 
+    /// Creates rolling law `name` from `params`.
+    pub fn rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
+        self.find_kind(name, LawKind::Rolling)?.new_rolling(name, params)
+    }
+
+    /// Creates twisting law `name` from `params`.
+    pub fn twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
+        self.find_kind(name, LawKind::Twisting)?
+            .new_twisting(name, params)
+    }
+
     /// Creates restitution law `name` from `params`.
     pub fn restitution(&self, name: &str, params: &[ParamValue]) -> Result<RestitutionLawHandle, LawError> {
         let p = self.find_kind(name, LawKind::Restitution)?;
@@ -463,12 +476,14 @@ pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str
         .unwrap_or_default()
 }
 
-/// "contact", "restitution" or "tangential".
+/// "contact", "restitution", "tangential", "rolling" or "twisting".
 pub fn kind_str(k: LawKind) -> &'static str {
     match k {
         LawKind::Contact => "contact",
         LawKind::Restitution => "restitution",
         LawKind::Tangential => "tangential",
+        LawKind::Rolling => "rolling",
+        LawKind::Twisting => "twisting",
     }
 }
 

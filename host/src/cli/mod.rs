@@ -343,6 +343,13 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
                  `dashpot collide --law NORMAL --tangential {name} --angle DEG`"
             );
         }
+        LawKind::Rolling | LawKind::Twisting => {
+            bail!(
+                "'{name}' is a {} law: it acts together with a contact law on a contact's \
+                 rotation; `dashpot eval` evaluates contact and restitution laws only",
+                kind_str(entry.info.kind)
+            );
+        }
         LawKind::Restitution => {
             if a.delta.is_some() || a.rate.is_some() {
                 bail!("'{name}' is a restitution law: give --speed, not --delta/--rate");

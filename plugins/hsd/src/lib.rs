@@ -2,8 +2,8 @@
 //! (Antypov & Elliott 2011, eqs. 9–11, 17).
 
 use dashpot_sdk::{
-    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, LawError, MaterialPair,
-    Pair, ParamSpec, ParamValue, Params, Range,
+    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError,
+    MaterialPair, Pair, ParamSpec, ParamValue, Params, Range,
 };
 
 /// The exact Tsuji damping factor α(ε) = −√5 ln ε / √(ln²ε + π²) (Antypov & Elliott eq. 17).
@@ -97,6 +97,17 @@ impl BoundContact for HsdBound {
         let s1 = (c.radius * d).sqrt();
         let s2 = (c.mass * s1).sqrt();
         self.a * s1 * d + self.b * s2 * c.rate
+    }
+
+    /// Elastic (2/5) K δ^{5/2} (J); power: the damping force α√(mK) δ^{1/4} δ̇ times δ̇ (W).
+    fn energy(&self, c: &Contact, _history: &[f64], _force: f64) -> Option<Energy> {
+        let d = c.delta.max(0.0);
+        let s1 = (c.radius * d).sqrt();
+        let s2 = (c.mass * s1).sqrt();
+        Some(Energy {
+            power: self.b * s2 * c.rate * c.rate,
+            elastic: 0.4 * self.a * s1 * d * d,
+        })
     }
 
     fn coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {

@@ -2,8 +2,8 @@
 //! (Kuwabara & Kono 1987; Brilliantov, Spahn, Hertzsch & Pöschel, PRE 53, 5382, 1996).
 
 use dashpot_sdk::{
-    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, LawError, MaterialPair, ParamSpec, Params,
-    Range,
+    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError, MaterialPair, ParamSpec,
+    Params, Range,
 };
 
 /// The configured law: dissipative time constant `a` (s).
@@ -70,6 +70,16 @@ impl BoundContact for KuwabaraKonoBound {
     fn force(&self, c: Contact, _history: &mut [f64]) -> f64 {
         let d = c.delta.max(0.0);
         self.a * (c.radius * d).sqrt() * (d + 1.5 * self.time * c.rate)
+    }
+
+    /// Elastic (2/5) K δ^{5/2} (J); power: the damping force (3/2) K A √δ δ̇ times δ̇ (W).
+    fn energy(&self, c: &Contact, _history: &[f64], _force: f64) -> Option<Energy> {
+        let d = c.delta.max(0.0);
+        let s = self.a * (c.radius * d).sqrt();
+        Some(Energy {
+            power: s * 1.5 * self.time * c.rate * c.rate,
+            elastic: 0.4 * s * d * d,
+        })
     }
 
     fn coefficients(&self, _mass: f64, radius: f64) -> Vec<Coefficient> {

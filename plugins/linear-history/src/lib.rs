@@ -48,8 +48,9 @@
 
 #![warn(missing_docs)]
 
+use dashpot_sdk::physics::{spring_slider_energy, tangential_part};
 use dashpot_sdk::{
-    BoundTangential, History, LawError, MaterialPair, ParamSpec, Params, Range, TangentialContact,
+    BoundTangential, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, TangentialContact,
     TangentialLaw,
 };
 
@@ -153,6 +154,23 @@ impl BoundTangential for LinearHistoryBound {
     fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3] {
         let eta = 2.0 * self.damping * (c.mass * self.kt).sqrt();
         spring_friction(self.kt, eta, self.mu, c, history)
+    }
+
+    /// Elastic ½ k_t |ξ|² (J); power: η_t |v_t|² while the spring holds, −F_t·v_t while it
+    /// slides (W); 0 out of contact.
+    fn energy(&self, c: &TangentialContact, history: &[f64], force: [f64; 3]) -> Option<Energy> {
+        if c.delta <= 0.0 {
+            return Some(Energy::default());
+        }
+        let eta = 2.0 * self.damping * (c.mass * self.kt).sqrt();
+        Some(spring_slider_energy(
+            self.kt,
+            eta,
+            self.mu * c.normal_force.max(0.0),
+            [history[0], history[1], history[2]],
+            tangential_part(c.velocity, c.normal),
+            force,
+        ))
     }
 }
 

@@ -7,8 +7,8 @@
 //! general, see [`Pair::mapped_linear_stiffness`]).
 
 use dashpot_sdk::{
-    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, LawError, MaterialPair,
-    Pair, ParamSpec, ParamValue, Params, Range,
+    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError,
+    MaterialPair, Pair, ParamSpec, ParamValue, Params, Range,
 };
 use std::f64::consts::PI;
 
@@ -124,6 +124,18 @@ impl BoundContact for LsdBound {
             let k = self.stiffness(c.radius);
             k * c.delta + self.two_zeta * (k * c.mass).sqrt() * c.rate
         }
+    }
+
+    /// Elastic k δ²/2 (J); power: the dashpot force times δ̇ (W); both 0 for δ < 0.
+    fn energy(&self, c: &Contact, _history: &[f64], _force: f64) -> Option<Energy> {
+        if c.delta < 0.0 {
+            return Some(Energy::default());
+        }
+        let k = self.stiffness(c.radius);
+        Some(Energy {
+            power: self.two_zeta * (k * c.mass).sqrt() * c.rate * c.rate,
+            elastic: 0.5 * k * c.delta * c.delta,
+        })
     }
 
     fn coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {

@@ -38,8 +38,8 @@
 #![warn(missing_docs)]
 
 use dashpot_sdk::{
-    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, History, LawError, MaterialPair, ParamSpec,
-    Params, Range,
+    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError, MaterialPair,
+    ParamSpec, Params, Range,
 };
 use std::f64::consts::PI;
 
@@ -204,6 +204,35 @@ impl BoundContact for ThorntonBound {
         } else {
             u.f_max * ((d - u.delta_p) / (dmax - u.delta_p)).powf(1.5)
         }
+    }
+
+    /// Elastic (J): the work unloading gives back from this state,
+    /// (2/5) F_max (δ_max − δ_p) x^{5/2}, x = (δ − δ_p)/(δ_max − δ_p) (Hertz's (2/5) K δ^{5/2}
+    /// below yield). Power (W): on the plastic loading branch (δ = δ_max > δ_y, δ̇ > 0), where the
+    /// elastic part is E(δ) = (3/10) F²/(E √(Rδ)), the plastic work rate (F − dE/dδ) δ̇; 0
+    /// otherwise.
+    fn energy(&self, c: &Contact, history: &[f64], force: f64) -> Option<Energy> {
+        let (d, dmax) = (c.delta, history[0]);
+        if d <= 0.0 || dmax <= 0.0 {
+            return Some(Energy::default());
+        }
+        let u = self.unloading(c.radius, dmax);
+        let span = dmax - u.delta_p;
+        let elastic = if d <= u.delta_p {
+            0.0
+        } else {
+            0.4 * u.f_max * span * ((d - u.delta_p) / span).powf(2.5)
+        };
+        let dy = self.cy * c.radius;
+        let power = if d >= dmax && d > dy && c.rate > 0.0 {
+            let s = (c.radius * d).sqrt();
+            let slope = PI * self.py * c.radius;
+            let de = 0.3 * force / (self.young * s) * (2.0 * slope - force / (2.0 * d));
+            ((force - de) * c.rate).max(0.0)
+        } else {
+            0.0
+        };
+        Some(Energy { power, elastic })
     }
 
     fn coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {

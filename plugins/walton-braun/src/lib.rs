@@ -27,8 +27,8 @@
 #![warn(missing_docs)]
 
 use dashpot_sdk::{
-    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, History, LawError, MaterialPair, ParamSpec,
-    Params, Range,
+    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError, MaterialPair,
+    ParamSpec, Params, Range,
 };
 use std::f64::consts::FRAC_PI_2;
 
@@ -129,6 +129,21 @@ impl BoundContact for WaltonBraun {
             // k2 (δ − δ_p) with δ_p = δ_max (1 − k1/k2), written so that F(δ_max) = k1 δ_max.
             (self.k1 * dmax - self.k2 * (dmax - d)).max(0.0)
         }
+    }
+
+    /// Elastic F²/(2 k2) (J): what unloading along k2 gives back; power (W): on the loading
+    /// branch (δ = δ_max, δ̇ > 0) the plastic work rate F δ̇ − d/dt(F²/(2 k2)) = k1 δ δ̇ (1 − k1/k2),
+    /// 0 on unloading.
+    fn energy(&self, c: &Contact, history: &[f64], force: f64) -> Option<Energy> {
+        let loading = c.delta > 0.0 && c.delta >= history[0] && c.rate > 0.0;
+        Some(Energy {
+            power: if loading {
+                (self.k1 * c.delta * c.rate * (1.0 - self.k1 / self.k2)).max(0.0)
+            } else {
+                0.0
+            },
+            elastic: force * force / (2.0 * self.k2),
+        })
     }
 
     fn coefficients(&self, mass: f64, _radius: f64) -> Vec<Coefficient> {

@@ -4,14 +4,15 @@
 //! A plugin exports one root module, [`PluginModule`], through abi_stable's `LibHeader`; the
 //! [`export_laws!`](crate::export_laws) macro writes it. It is an abi_stable *prefix type*: the
 //! fields of sdk 0.1 come first and never change; sdk 0.2 appended its own after them
-//! (`laws2`, `new_contact2`, `new_tangential`), which a host reads as absent in a 0.1 plugin.
+//! (`laws2`, `new_contact2`, `new_tangential`), and sdk 0.3 its own after those (`laws3`, ...).
 //!
 //! The host checks, in this order, before running any of the plugin's code:
 //! 1. the dashpot-sdk version the plugin was built against (its `LibHeader`, a static):
-//!    this host ([`ABI_VERSION`]) loads plugins of sdk 0.1 and 0.2 and refuses any other series
-//!    (0.3, 1.x, ...) with both versions named;
-//! 2. abi_stable's layout check of every type reachable from the root module. For a 0.1 plugin
-//!    the only difference it may report is the sdk's package version (0.1 vs 0.2) of types
+//!    this host ([`ABI_VERSION`]) loads plugins of sdk 0.1, 0.2 and 0.3 and refuses any other
+//!    series (0.4, 1.x, ...) with both versions named;
+//! 2. abi_stable's layout check of every type reachable from the root module. A 0.1 or 0.2
+//!    plugin is checked against the frozen root module of its series ([`v1`], [`v2`]), and the
+//!    only difference it may report is the sdk's package version (0.1 or 0.2 vs 0.3) of types
 //!    whose layout is otherwise identical: anything else refuses the plugin.
 //!
 //! Then it reads the list of laws. Libraries are never unloaded; every object is freed by the
@@ -20,14 +21,16 @@
 //! # Modules
 //! - [`v1`]: the frozen types of sdk 0.1 (contact laws bound to one pair), still spoken to 0.1
 //!   plugins;
-//! - this module: the 0.2 types (contact laws bound to a material pair with per-contact geometry
+//! - [`v2`]: the frozen types of sdk 0.2 that 0.3 changed (the law list, whose kinds 0.3
+//!   extended) and 0.2's root module;
+//! - this module: the types shared by 0.2 and 0.3 (contact laws bound to a material pair with per-contact geometry
 //!   and history, tangential laws, restitution laws unchanged since 0.1) and the root module;
 //! - `plugin`: the trampolines compiled into every plugin and the export macro;
 //! - `host`: [`LoadedPlugin`] and the safe handles a host calls.
 //!
 //! # What breaks the ABI
 //! Any change to a `#[repr(C)]` type of this crate, a vtable, or the meaning of a field. Such a
-//! change starts a new series (0.3 while the major is 0). Appending fields to
+//! change starts a new series (0.4 while the major is 0). Appending fields to
 //! [`PluginModule`] does not.
 //!
 //! # Panics and bad numbers
@@ -37,15 +40,24 @@
 //! inside the plugin, fused with the computation in blocks of 64, and report the first bad
 //! index, which the host turns into an error naming the index, the input and its value.
 
+mod checks;
+mod export;
+mod handle;
 mod host;
+pub mod kind;
+pub mod kinds;
 #[doc(hidden)]
 pub mod plugin;
 pub mod v1;
+pub mod v2;
 
+pub use handle::{LawHandle, ModelHandle, StaticModel};
 pub use host::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
     SdkSeries, StaticContact, StaticTangential, TangentialLawHandle, TangentialModelHandle,
 };
+pub use kind::EnergyOut;
+pub use kinds::{Normal, NormalCall, Rolling, Tangential, Twisting};
 #[doc(hidden)]
 pub use plugin as __private;
 
@@ -78,12 +90,12 @@ fn series(v: &str) -> Option<(u64, u64)> {
 }
 
 /// Whether a plugin built against sdk `plugin` may be loaded by a host built against `host`:
-/// the same series (the major version, or the minor while the major is 0), or, for a 0.2 host,
-/// a plugin of sdk 0.1 (spoken to through the frozen [`v1`] types).
+/// the same series (the major version, or the minor while the major is 0), or, for a 0.3 host,
+/// a plugin of sdk 0.1 or 0.2 (spoken to through the frozen [`v1`] and [`v2`] types).
 pub fn abi_compatible(host: &str, plugin: &str) -> bool {
     match (series(host), series(plugin)) {
         (Some(a), Some(b)) if a == b => true,
-        (Some((0, 2)), Some((0, 1))) => true,
+        (Some((0, 3)), Some((0, 1) | (0, 2))) => true,
         _ => false,
     }
 }
@@ -132,6 +144,14 @@ impl BatchFault {
     pub const NORMAL_FORCE: u8 = 7;
     /// Input `dt`.
     pub const DT: u8 = 8;
+    /// Output `power` (sdk 0.3).
+    pub const POWER: u8 = 9;
+    /// Output `elastic` (sdk 0.3).
+    pub const ELASTIC: u8 = 10;
+    /// Output `reach` (sdk 0.3).
+    pub const REACH: u8 = 11;
+    /// Output `torque` (sdk 0.3).
+    pub const TORQUE: u8 = 12;
 
     /// The name of array `field`.
     pub fn field_name(field: u8) -> &'static str {
@@ -145,6 +165,10 @@ impl BatchFault {
             Self::VELOCITY => "velocity",
             Self::NORMAL_FORCE => "normal_force",
             Self::DT => "dt",
+            Self::POWER => "power",
+            Self::ELASTIC => "elastic",
+            Self::REACH => "reach",
+            Self::TORQUE => "torque",
             _ => "?",
         }
     }
@@ -390,9 +414,9 @@ pub struct PluginModule {
         pair: &Pair,
         fixed: RSlice<'_, ParamValue>,
     ) -> RResult<ROption<RVec<ParamValue>>, FfiError>,
-    /// sdk 0.2: every law the plugin exports (contact, restitution, tangential), with history.
+    /// sdk 0.2: the contact, restitution and tangential laws, in 0.2's description.
     #[sabi(missing_field(option))]
-    pub laws2: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
+    pub laws2: extern "C" fn() -> RResult<RVec<v2::LawInfo>, FfiError>,
     /// sdk 0.2: creates contact law `name` (bound later to a [`MaterialPair`]).
     #[sabi(missing_field(option))]
     pub new_contact2:
@@ -401,6 +425,33 @@ pub struct PluginModule {
     #[sabi(missing_field(option))]
     pub new_tangential:
         extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiTangentialLaw, FfiError>,
+    /// sdk 0.3: every law the plugin exports, of every kind.
+    #[sabi(missing_field(option))]
+    pub laws3: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
+    /// sdk 0.3: creates contact law `name` (reach and energy outputs).
+    #[sabi(missing_field(option))]
+    pub new_contact3: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError>,
+    /// sdk 0.3: creates tangential law `name` (energy outputs).
+    #[sabi(missing_field(option))]
+    pub new_tangential3: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+    /// sdk 0.3: creates rolling law `name`.
+    #[sabi(missing_field(option))]
+    pub new_rolling: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+    /// sdk 0.3: creates twisting law `name`.
+    #[sabi(missing_field(option))]
+    pub new_twisting: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError>,
 }
 
 impl RootModule for PluginModuleRef {
@@ -425,28 +476,6 @@ unsafe impl Sync for FfiRestitutionLaw {}
 unsafe impl Send for FfiBoundRestitution {}
 unsafe impl Sync for FfiBoundRestitution {}
 
-/// Whether every value is finite (vectorises with plain SSE2: v − v is NaN exactly when v is not
-/// finite).
-#[inline]
-#[allow(clippy::eq_op)]
-pub(crate) fn all_finite(x: &[f64]) -> bool {
-    let mut acc = [0.0f64; 8];
-    let mut it = x.chunks_exact(8);
-    for c in &mut it {
-        for j in 0..8 {
-            acc[j] += c[j] - c[j];
-        }
-    }
-    let tail = it.remainder().iter().fold(0.0, |a, v| a + (v - v));
-    acc.iter().sum::<f64>() + tail == 0.0
-}
-
-/// Whether every value is finite and > 0.
-#[inline]
-pub(crate) fn all_positive(x: &[f64]) -> bool {
-    x.iter().fold(true, |ok, &v| ok & (v > 0.0) & (v < f64::INFINITY))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -461,27 +490,19 @@ mod tests {
 
     #[test]
     fn abi_compatibility_rule() {
-        assert!(abi_compatible("0.2.0", "0.2.7"));
-        assert!(abi_compatible("0.2.7", "0.2.0"));
-        // a 0.2 host speaks 0.1 through the frozen v1 types; a 0.1 host cannot speak 0.2
-        assert!(abi_compatible("0.2.0", "0.1.0"));
-        assert!(!abi_compatible("0.1.0", "0.2.0"));
+        assert!(abi_compatible("0.3.0", "0.3.7"));
+        assert!(abi_compatible("0.3.7", "0.3.0"));
+        // a 0.3 host speaks 0.1 and 0.2 through the frozen v1 and v2 types; older hosts cannot
+        // speak 0.3
+        assert!(abi_compatible("0.3.0", "0.1.0"));
+        assert!(abi_compatible("0.3.0", "0.2.5"));
+        assert!(!abi_compatible("0.1.0", "0.3.0"));
         assert!(!abi_compatible("0.2.0", "0.3.0"));
-        assert!(!abi_compatible("0.2.0", "1.0.0"));
+        assert!(!abi_compatible("0.3.0", "0.4.0"));
+        assert!(!abi_compatible("0.3.0", "0.0.9"));
+        assert!(!abi_compatible("0.3.0", "1.0.0"));
         assert!(abi_compatible("1.2.0", "1.0.3"));
         assert!(!abi_compatible("1.0.0", "2.0.0"));
         assert!(!abi_compatible("0.2.0", "garbage"));
-    }
-
-    #[test]
-    fn finiteness_and_positivity_checks() {
-        assert!(all_finite(&[0.0, -1.0, f64::MAX, f64::MIN_POSITIVE]));
-        assert!(!all_finite(&[0.0, f64::NAN]));
-        assert!(!all_finite(&[f64::NEG_INFINITY, 1.0]));
-        assert!(all_finite(&[]));
-        assert!(all_positive(&[1e-30, 2.0]));
-        assert!(!all_positive(&[1.0, 0.0]));
-        assert!(!all_positive(&[f64::NAN]));
-        assert!(!all_positive(&[f64::INFINITY]));
     }
 }

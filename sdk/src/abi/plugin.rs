@@ -1,14 +1,14 @@
 //! Plugin side: the trampolines compiled into every plugin, generic over the law types, and the
 //! export macro. Implementation details of [`export_laws!`](crate::export_laws); not a stable API.
 
+use super::checks::*;
 use super::v1;
 use super::*;
 use crate::error::{ErrorKind, LawError};
 use crate::law::{
-    BoundContact, BoundRestitution, BoundTangential, ContactLaw, LawKind, NormalBatch, RestitutionLaw,
+    BoundContact, BoundRestitution, BoundTangential, ContactLaw, NormalBatch, RestitutionLaw,
     TangentialBatch, TangentialLaw,
 };
-use crate::params::Params;
 use std::cell::RefCell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
@@ -60,7 +60,7 @@ pub fn guard<T>(what: &str, f: impl FnOnce() -> Result<T, LawError>) -> RResult<
 
 /// Runs a hot-path call; on a panic stashes its message for `take_panic` and returns `None`.
 #[inline(always)]
-fn hot<T>(f: impl FnOnce() -> T) -> Option<T> {
+pub(crate) fn hot<T>(f: impl FnOnce() -> T) -> Option<T> {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(v) => Some(v),
         Err(p) => {
@@ -76,37 +76,9 @@ pub extern "C" fn take_panic() -> RString {
     LAST_PANIC.with(|s| std::mem::take(&mut *s.borrow_mut())).into()
 }
 
-unsafe extern "C" fn drop_box<T>(obj: *mut c_void) {
+pub(crate) unsafe extern "C" fn drop_box<T>(obj: *mut c_void) {
     // A panic in a destructor is swallowed here rather than unwinding into the host.
     let _ = catch_unwind(AssertUnwindSafe(|| drop(unsafe { Box::from_raw(obj as *mut T) })));
-}
-
-/// Inputs and outputs are checked in blocks of this many contacts, right before and after the
-/// law runs on the block: the block's values are then still in L1, and the fused checks
-/// (vectorised sums and minima, see [`normal_inputs_ok`]) overlap the law's square roots in
-/// the CPU's out-of-order window instead of costing separate passes over memory. Measured on
-/// HSD with per-contact geometry (sdk 0.2): blocks of 64 cost about a fifth less than blocks of
-/// 16 (per-block overhead); larger blocks gained nothing more.
-pub const CHECK_BLOCK: usize = 64;
-
-/// Index of the first non-finite value of `o`, if any.
-#[inline(always)]
-fn first_non_finite(o: &[f64]) -> Option<usize> {
-    if all_finite(o) {
-        None
-    } else {
-        o.iter().position(|v| !v.is_finite())
-    }
-}
-
-/// Index of the first value of `o` that is not finite and > 0.
-#[inline(always)]
-fn first_non_positive(o: &[f64]) -> Option<usize> {
-    if all_positive(o) {
-        None
-    } else {
-        o.iter().position(|&v| !(v > 0.0 && v < f64::INFINITY))
-    }
 }
 
 // ---- contact (0.2) ----
@@ -126,98 +98,21 @@ unsafe extern "C" fn contact_bind<T: ContactLaw>(
     })
 }
 
-/// Whether a block's inputs are surely good: δ, δ̇ finite, m, r finite and > 0. One fused,
-/// branch-free pass that the compiler vectorises, cheap enough to hide behind the law's
-/// arithmetic: a sum of all the values is finite unless one of them is NaN or ±∞ (or the sum
-/// overflows, which only sends a good block to the slow path), and a running minimum of m and r
-/// is > 0 unless one of them is not. When this says no, [`check_normal_inputs`] names the
-/// culprit, or finds none and the block goes on.
-#[inline(always)]
-fn normal_inputs_ok(d: &[f64], r: &[f64], m: &[f64], a: &[f64]) -> bool {
-    #[inline(always)]
-    fn min(x: f64, y: f64) -> f64 {
-        if x < y {
-            x
-        } else {
-            y
-        }
-    }
-    // four independent lanes in locals (not an indexed array, which the compiler keeps in
-    // memory), so that the adds pipeline and pair up into SIMD registers
-    let (mut s0, mut s1, mut s2, mut s3) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
-    let (mut l0, mut l1, mut l2, mut l3) = (f64::INFINITY, f64::INFINITY, f64::INFINITY, f64::INFINITY);
-    let (dc, rc, mc, ac) = (
-        d.chunks_exact(4),
-        r.chunks_exact(4),
-        m.chunks_exact(4),
-        a.chunks_exact(4),
-    );
-    let (dt, rt, mt, at) = (dc.remainder(), rc.remainder(), mc.remainder(), ac.remainder());
-    for (((d, r), m), a) in dc.zip(rc).zip(mc).zip(ac) {
-        s0 += (d[0] + r[0]) + (m[0] + a[0]);
-        s1 += (d[1] + r[1]) + (m[1] + a[1]);
-        s2 += (d[2] + r[2]) + (m[2] + a[2]);
-        s3 += (d[3] + r[3]) + (m[3] + a[3]);
-        l0 = min(l0, min(m[0], a[0]));
-        l1 = min(l1, min(m[1], a[1]));
-        l2 = min(l2, min(m[2], a[2]));
-        l3 = min(l3, min(m[3], a[3]));
-    }
-    for (((&d, &r), &m), &a) in dt.iter().zip(rt).zip(mt).zip(at) {
-        s0 += (d + r) + (m + a);
-        l0 = min(l0, min(m, a));
-    }
-    let s = (s0 + s1) + (s2 + s3);
-    s.is_finite() & (min(min(l0, l1), min(l2, l3)) > 0.0)
-}
-
-/// Checks the inputs of contacts `[lo, lo + len)`, returning the first bad one.
-#[inline(never)]
-#[cold]
-fn check_normal_inputs(d: &[f64], r: &[f64], m: &[f64], a: &[f64]) -> Option<(usize, u8)> {
-    if let Some(i) = first_non_finite(d) {
-        return Some((i, BatchFault::DELTA));
-    }
-    if let Some(i) = first_non_finite(r) {
-        return Some((i, BatchFault::RATE));
-    }
-    if let Some(i) = first_non_positive(m) {
-        return Some((i, BatchFault::MASS));
-    }
-    if let Some(i) = first_non_positive(a) {
-        return Some((i, BatchFault::RADIUS));
-    }
-    None
-}
-
-/// Whether the batch loops run their AVX2 build: when the CPU has AVX2, unless the environment
-/// variable `DASHPOT_SIMD=baseline` was set when the plugin was first called (to measure or rule
-/// out the difference; the results are the same bits either way).
-#[cfg(target_arch = "x86_64")]
-#[inline]
-fn use_avx2() -> bool {
-    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *AVX2.get_or_init(|| {
-        std::arch::is_x86_feature_detected!("avx2")
-            && std::env::var("DASHPOT_SIMD").map_or(true, |v| v != "baseline")
-    })
-}
-
 /// A normal batch's arrays, for the block loop.
-struct NormalBlocks<'a> {
-    delta: &'a [f64],
-    rate: &'a [f64],
-    mass: &'a [f64],
-    radius: &'a [f64],
-    slots: usize,
-    history: &'a mut [f64],
-    force: &'a mut [f64],
+pub(crate) struct NormalBlocks<'a> {
+    pub(crate) delta: &'a [f64],
+    pub(crate) rate: &'a [f64],
+    pub(crate) mass: &'a [f64],
+    pub(crate) radius: &'a [f64],
+    pub(crate) slots: usize,
+    pub(crate) history: &'a mut [f64],
+    pub(crate) force: &'a mut [f64],
 }
 
 /// The block loop of [`model_force_batch`]: check a block's inputs, run the law on it, check
 /// its outputs. Returns the first bad contact and what is wrong with it.
 #[inline(always)]
-fn normal_blocks<B: BoundContact>(law: &B, b: NormalBlocks<'_>) -> Result<(), (usize, u8)> {
+pub(crate) fn normal_blocks<B: BoundContact>(law: &B, b: NormalBlocks<'_>) -> Result<(), (usize, u8)> {
     let n = b.force.len();
     let slots = b.slots;
     let mut lo = 0;
@@ -307,7 +202,7 @@ pub unsafe extern "C" fn model_force_batch<B: BoundContact>(
 }
 
 #[inline(always)]
-fn finish(res: Option<Result<(), (usize, u8)>>, fault: &mut BatchFault) -> BatchStatus {
+pub(crate) fn finish(res: Option<Result<(), (usize, u8)>>, fault: &mut BatchFault) -> BatchStatus {
     match res {
         None => BatchStatus::Panic,
         Some(Ok(())) => BatchStatus::Ok,
@@ -332,9 +227,9 @@ unsafe extern "C" fn model_coefficients<B: BoundContact>(
     })
 }
 
-struct ContactVt<T>(T);
+pub(crate) struct ContactVt<T>(T);
 impl<T: ContactLaw> ContactVt<T> {
-    const VT: &'static ContactLawVTable = &ContactLawVTable {
+    pub(crate) const VT: &'static ContactLawVTable = &ContactLawVTable {
         bind: contact_bind::<T>,
         drop: drop_box::<T>,
     };
@@ -367,74 +262,26 @@ unsafe extern "C" fn tangential_bind<T: TangentialLaw>(
     })
 }
 
-/// Whether a tangential block's inputs are surely good (every component finite, m and r finite
-/// and > 0), by the same fused sums and minima as [`normal_inputs_ok`]; `normal` and `velocity`
-/// are the flattened 3-vectors.
-#[inline(always)]
-fn tangential_inputs_ok(
-    normal: &[f64],
-    velocity: &[f64],
-    fnorm: &[f64],
-    delta: &[f64],
-    m: &[f64],
-    a: &[f64],
-) -> bool {
-    #[inline(always)]
-    fn min(x: f64, y: f64) -> f64 {
-        if x < y {
-            x
-        } else {
-            y
-        }
-    }
-    let (mut s0, mut s1) = (0.0f64, 0.0f64);
-    let (nc, vc) = (normal.chunks_exact(2), velocity.chunks_exact(2));
-    let (nt, vt) = (nc.remainder(), vc.remainder());
-    for (n, v) in nc.zip(vc) {
-        s0 += n[0] + v[0];
-        s1 += n[1] + v[1];
-    }
-    for (n, v) in nt.iter().zip(vt) {
-        s0 += n + v;
-    }
-    let (mut l0, mut l1) = (f64::INFINITY, f64::INFINITY);
-    let (fc, dc, mc, ac) = (
-        fnorm.chunks_exact(2),
-        delta.chunks_exact(2),
-        m.chunks_exact(2),
-        a.chunks_exact(2),
-    );
-    let (ft, dt, mt, at) = (fc.remainder(), dc.remainder(), mc.remainder(), ac.remainder());
-    for (((f, d), m), a) in fc.zip(dc).zip(mc).zip(ac) {
-        s0 += (f[0] + d[0]) + (m[0] + a[0]);
-        s1 += (f[1] + d[1]) + (m[1] + a[1]);
-        l0 = min(l0, min(m[0], a[0]));
-        l1 = min(l1, min(m[1], a[1]));
-    }
-    for (((&f, &d), &m), &a) in ft.iter().zip(dt).zip(mt).zip(at) {
-        s0 += (f + d) + (m + a);
-        l0 = min(l0, min(m, a));
-    }
-    (s0 + s1).is_finite() & (min(l0, l1) > 0.0)
-}
-
 /// A tangential batch's arrays, for the block loop.
-struct TangentialBlocks<'a> {
-    dt: f64,
-    normal: &'a [[f64; 3]],
-    velocity: &'a [[f64; 3]],
-    fnorm: &'a [f64],
-    delta: &'a [f64],
-    mass: &'a [f64],
-    radius: &'a [f64],
-    slots: usize,
-    history: &'a mut [f64],
-    force: &'a mut [[f64; 3]],
+pub(crate) struct TangentialBlocks<'a> {
+    pub(crate) dt: f64,
+    pub(crate) normal: &'a [[f64; 3]],
+    pub(crate) velocity: &'a [[f64; 3]],
+    pub(crate) fnorm: &'a [f64],
+    pub(crate) delta: &'a [f64],
+    pub(crate) mass: &'a [f64],
+    pub(crate) radius: &'a [f64],
+    pub(crate) slots: usize,
+    pub(crate) history: &'a mut [f64],
+    pub(crate) force: &'a mut [[f64; 3]],
 }
 
 /// The block loop of [`tangential_force_batch`] (see [`normal_blocks`]).
 #[inline(always)]
-fn tangential_blocks<B: BoundTangential>(law: &B, b: TangentialBlocks<'_>) -> Result<(), (usize, u8)> {
+pub(crate) fn tangential_blocks<B: BoundTangential>(
+    law: &B,
+    b: TangentialBlocks<'_>,
+) -> Result<(), (usize, u8)> {
     let n = b.force.len();
     let slots = b.slots;
     let mut lo = 0;
@@ -554,9 +401,9 @@ pub unsafe extern "C" fn tangential_force_batch<B: BoundTangential>(
     finish(res, fault)
 }
 
-struct TangentialVt<T>(T);
+pub(crate) struct TangentialVt<T>(T);
 impl<T: TangentialLaw> TangentialVt<T> {
-    const VT: &'static TangentialLawVTable = &TangentialLawVTable {
+    pub(crate) const VT: &'static TangentialLawVTable = &TangentialLawVTable {
         bind: tangential_bind::<T>,
         drop: drop_box::<T>,
     };
@@ -635,9 +482,9 @@ unsafe extern "C" fn bound_restitution_batch<B: BoundRestitution>(
     }
 }
 
-struct RestitutionVt<T>(T);
+pub(crate) struct RestitutionVt<T>(T);
 impl<T: RestitutionLaw> RestitutionVt<T> {
-    const VT: &'static RestitutionLawVTable = &RestitutionLawVTable {
+    pub(crate) const VT: &'static RestitutionLawVTable = &RestitutionLawVTable {
         bind: restitution_bind::<T>,
         drop: drop_box::<T>,
     };
@@ -653,425 +500,4 @@ impl<B: BoundRestitution> BoundRestitutionVt<B> {
     };
 }
 
-// ---- law tables built by the export macro ----
-
-/// A law's closed-form calibration, as stored in the export tables.
-pub type CalibrateFn =
-    fn(&CalibrationTarget, &Pair, &[ParamValue]) -> Result<Option<Vec<ParamValue>>, LawError>;
-
-/// One exported contact law.
-pub struct ContactEntry {
-    /// Its name.
-    pub name: &'static str,
-    /// Its description.
-    pub info: fn() -> LawInfo,
-    /// Creates it from parameters.
-    pub create: fn(&[ParamValue]) -> Result<FfiContactLaw, LawError>,
-    /// Its closed-form calibration.
-    pub calibrate: CalibrateFn,
-}
-
-impl ContactEntry {
-    /// The entry of law `T`.
-    pub const fn of<T: ContactLaw>() -> ContactEntry {
-        ContactEntry {
-            name: T::NAME,
-            info: T::info,
-            create: create_contact::<T>,
-            calibrate: calibrate_contact::<T>,
-        }
-    }
-}
-
-fn create_contact<T: ContactLaw>(given: &[ParamValue]) -> Result<FfiContactLaw, LawError> {
-    let params = Params::resolve(T::NAME, &T::params(), given)?;
-    let law = T::new(&params)?;
-    Ok(FfiContactLaw {
-        obj: Box::into_raw(Box::new(law)) as *mut c_void,
-        vtable: ContactVt::<T>::VT,
-    })
-}
-
-fn calibrate_contact<T: ContactLaw>(
-    target: &CalibrationTarget,
-    pair: &Pair,
-    fixed: &[ParamValue],
-) -> Result<Option<Vec<ParamValue>>, LawError> {
-    pair.validate()?;
-    let params = Params::resolve(T::NAME, &T::params(), fixed)?;
-    T::calibrate(target, pair, &params)
-}
-
-/// One exported tangential law.
-pub struct TangentialEntry {
-    /// Its name.
-    pub name: &'static str,
-    /// Its description.
-    pub info: fn() -> LawInfo,
-    /// Creates it from parameters.
-    pub create: fn(&[ParamValue]) -> Result<FfiTangentialLaw, LawError>,
-}
-
-impl TangentialEntry {
-    /// The entry of law `T`.
-    pub const fn of<T: TangentialLaw>() -> TangentialEntry {
-        TangentialEntry {
-            name: T::NAME,
-            info: T::info,
-            create: create_tangential::<T>,
-        }
-    }
-}
-
-fn create_tangential<T: TangentialLaw>(given: &[ParamValue]) -> Result<FfiTangentialLaw, LawError> {
-    let params = Params::resolve(T::NAME, &T::params(), given)?;
-    let law = T::new(&params)?;
-    Ok(FfiTangentialLaw {
-        obj: Box::into_raw(Box::new(law)) as *mut c_void,
-        vtable: TangentialVt::<T>::VT,
-    })
-}
-
-/// One exported restitution law.
-pub struct RestitutionEntry {
-    /// Its name.
-    pub name: &'static str,
-    /// Its description.
-    pub info: fn() -> LawInfo,
-    /// Creates it from parameters.
-    pub create: fn(&[ParamValue]) -> Result<FfiRestitutionLaw, LawError>,
-}
-
-impl RestitutionEntry {
-    /// The entry of law `T`.
-    pub const fn of<T: RestitutionLaw>() -> RestitutionEntry {
-        RestitutionEntry {
-            name: T::NAME,
-            info: T::info,
-            create: create_restitution::<T>,
-        }
-    }
-}
-
-fn create_restitution<T: RestitutionLaw>(given: &[ParamValue]) -> Result<FfiRestitutionLaw, LawError> {
-    let params = Params::resolve(T::NAME, &T::params(), given)?;
-    let law = T::new(&params)?;
-    Ok(FfiRestitutionLaw {
-        obj: Box::into_raw(Box::new(law)) as *mut c_void,
-        vtable: RestitutionVt::<T>::VT,
-    })
-}
-
-fn unknown(kind: &str, name: &str, names: Vec<&str>) -> LawError {
-    LawError::new(
-        ErrorKind::UnknownLaw,
-        format!(
-            "this plugin has no {kind} law '{name}'; it has: {}",
-            if names.is_empty() {
-                "(none)".to_string()
-            } else {
-                names.join(", ")
-            }
-        ),
-    )
-}
-
-/// Every law's 0.2 description.
-pub fn laws2(
-    c: &[ContactEntry],
-    r: &[RestitutionEntry],
-    t: &[TangentialEntry],
-) -> RResult<RVec<LawInfo>, FfiError> {
-    guard("listing laws", || {
-        Ok(c.iter()
-            .map(|e| (e.info)())
-            .chain(r.iter().map(|e| (e.info)()))
-            .chain(t.iter().map(|e| (e.info)()))
-            .collect())
-    })
-}
-
-/// The 0.1 description of the contact and restitution laws (a 0.1 host refuses a 0.2 plugin
-/// before it asks, but the field must answer).
-pub fn laws_v1(c: &[ContactEntry], r: &[RestitutionEntry]) -> RResult<RVec<v1::LawInfo>, FfiError> {
-    guard("listing laws", || {
-        Ok(c.iter()
-            .map(|e| (e.info)())
-            .chain(r.iter().map(|e| (e.info)()))
-            .map(|i| v1::LawInfo {
-                name: i.name,
-                kind: if i.kind == LawKind::Restitution {
-                    v1::LawKind::Restitution
-                } else {
-                    v1::LawKind::Contact
-                },
-                summary: i.summary,
-                doc: i.doc,
-                params: i.params,
-                end_criterion: i.end_criterion,
-            })
-            .collect())
-    })
-}
-
-/// The 0.1 contact-law constructor of a 0.2 plugin: always an error.
-pub fn new_contact_v1(name: RStr<'_>) -> RResult<v1::FfiContactLaw, FfiError> {
-    RResult::RErr(
-        LawError::unsupported(format!(
-            "contact law '{name}' was built against dashpot-sdk {ABI_VERSION}: create it with new_contact2"
-        ))
-        .into(),
-    )
-}
-
-/// Creates a contact law by name.
-pub fn new_contact2(
-    c: &[ContactEntry],
-    name: RStr<'_>,
-    params: RSlice<'_, ParamValue>,
-) -> RResult<FfiContactLaw, FfiError> {
-    guard(&format!("contact law '{name}' (new)"), || {
-        match c.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => (e.create)(params.as_slice()),
-            None => Err(unknown(
-                "contact",
-                name.as_str(),
-                c.iter().map(|e| e.name).collect(),
-            )),
-        }
-    })
-}
-
-/// Creates a tangential law by name.
-pub fn new_tangential(
-    t: &[TangentialEntry],
-    name: RStr<'_>,
-    params: RSlice<'_, ParamValue>,
-) -> RResult<FfiTangentialLaw, FfiError> {
-    guard(&format!("tangential law '{name}' (new)"), || {
-        match t.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => (e.create)(params.as_slice()),
-            None => Err(unknown(
-                "tangential",
-                name.as_str(),
-                t.iter().map(|e| e.name).collect(),
-            )),
-        }
-    })
-}
-
-/// Creates a restitution law by name.
-pub fn new_restitution(
-    r: &[RestitutionEntry],
-    name: RStr<'_>,
-    params: RSlice<'_, ParamValue>,
-) -> RResult<FfiRestitutionLaw, FfiError> {
-    guard(&format!("restitution law '{name}' (new)"), || {
-        match r.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => (e.create)(params.as_slice()),
-            None => Err(unknown(
-                "restitution",
-                name.as_str(),
-                r.iter().map(|e| e.name).collect(),
-            )),
-        }
-    })
-}
-
-/// A contact law's closed-form calibration, by name.
-pub fn calibrate(
-    c: &[ContactEntry],
-    name: RStr<'_>,
-    target: &CalibrationTarget,
-    pair: &Pair,
-    fixed: RSlice<'_, ParamValue>,
-) -> RResult<ROption<RVec<ParamValue>>, FfiError> {
-    guard(&format!("contact law '{name}' (calibrate)"), || {
-        match c.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => Ok((e.calibrate)(target, pair, fixed.as_slice())?
-                .map(RVec::from)
-                .into()),
-            None => Err(unknown(
-                "contact",
-                name.as_str(),
-                c.iter().map(|e| e.name).collect(),
-            )),
-        }
-    })
-}
-
-/// Exports laws from a plugin crate (`crate-type = ["cdylib"]`). Use once per crate, naming
-/// the laws of each kind it exports (any of the three groups, in this order):
-///
-/// ```text
-/// dashpot_sdk::export_laws!(contact: [MyLaw]);
-/// dashpot_sdk::export_laws!(restitution: [MyRestitution]);
-/// dashpot_sdk::export_laws!(tangential: [MyFriction]);
-/// dashpot_sdk::export_laws!(contact: [A, B], restitution: [C], tangential: [D]);
-/// ```
-#[macro_export]
-macro_rules! export_laws {
-    (
-        $(contact: [$($c:ty),* $(,)?])? $(,)?
-        $(restitution: [$($r:ty),* $(,)?])? $(,)?
-        $(tangential: [$($t:ty),* $(,)?])? $(,)?
-    ) => {
-        #[doc(hidden)]
-        mod __dashpot_export {
-            #[allow(unused_imports)]
-            use super::*;
-            use $crate::abi::__private as p;
-            use $crate::abi::__private::abi_stable::{
-                library::{LibHeader, RootModuleResult, CheckTypeLayout},
-                prefix_type::PrefixTypeTrait,
-                std_types::{ROption, RResult, RSlice, RStr, RVec},
-            };
-            use $crate::{abi, CalibrationTarget, FfiError, LawInfo, Pair, ParamValue};
-
-            static CONTACT: &[p::ContactEntry] = &[$($(p::ContactEntry::of::<$c>()),*)?];
-            static RESTITUTION: &[p::RestitutionEntry] = &[$($(p::RestitutionEntry::of::<$r>()),*)?];
-            static TANGENTIAL: &[p::TangentialEntry] = &[$($(p::TangentialEntry::of::<$t>()),*)?];
-
-            extern "C" fn laws() -> RResult<RVec<abi::v1::LawInfo>, FfiError> {
-                p::laws_v1(CONTACT, RESTITUTION)
-            }
-            extern "C" fn laws2() -> RResult<RVec<LawInfo>, FfiError> {
-                p::laws2(CONTACT, RESTITUTION, TANGENTIAL)
-            }
-            extern "C" fn new_contact(
-                name: RStr<'_>,
-                _params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::v1::FfiContactLaw, FfiError> {
-                p::new_contact_v1(name)
-            }
-            extern "C" fn new_contact2(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::FfiContactLaw, FfiError> {
-                p::new_contact2(CONTACT, name, params)
-            }
-            extern "C" fn new_tangential(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::FfiTangentialLaw, FfiError> {
-                p::new_tangential(TANGENTIAL, name, params)
-            }
-            extern "C" fn new_restitution(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::FfiRestitutionLaw, FfiError> {
-                p::new_restitution(RESTITUTION, name, params)
-            }
-            extern "C" fn calibrate(
-                name: RStr<'_>,
-                target: &CalibrationTarget,
-                pair: &Pair,
-                fixed: RSlice<'_, ParamValue>,
-            ) -> RResult<ROption<RVec<ParamValue>>, FfiError> {
-                p::calibrate(CONTACT, name, target, pair, fixed)
-            }
-
-            fn root_module() -> abi::PluginModuleRef {
-                p::install_quiet_panic_hook();
-                abi::PluginModule {
-                    name: RStr::from_str(env!("CARGO_PKG_NAME")),
-                    version: RStr::from_str(env!("CARGO_PKG_VERSION")),
-                    sdk_version: RStr::from_str(abi::ABI_VERSION),
-                    laws,
-                    new_contact,
-                    new_restitution,
-                    calibrate,
-                    laws2,
-                    new_contact2,
-                    new_tangential,
-                }
-                .leak_into_prefix()
-            }
-
-            // The symbol abi_stable looks for (`abi_stable::library::ROOT_MODULE_LOADER_NAME`;
-            // a test in dashpot-sdk pins the spelling).
-            #[no_mangle]
-            pub static _1as_0lib_1header_0root_bmodule_bloader: LibHeader = {
-                extern "C" fn erased() -> RootModuleResult {
-                    p::abi_stable::library::__call_root_module_loader(root_module)
-                }
-                unsafe { LibHeader::from_constructor::<abi::PluginModuleRef>(erased, CheckTypeLayout::Yes) }
-            };
-        }
-    };
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The fused check agrees with the exact one on every kind of bad value, at every position
-    /// of a full block and of a short tail block.
-    #[test]
-    fn fused_input_check_finds_every_bad_value() {
-        let bad_any = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
-        let bad_positive = [f64::NAN, f64::INFINITY, 0.0, -0.0, -1e-30, f64::NEG_INFINITY];
-        for n in [CHECK_BLOCK, 7, 1] {
-            let good = || (vec![1e-6; n], vec![-0.5; n], vec![2.0e-4; n], vec![1.5e-3; n]);
-            let (d, r, m, a) = good();
-            assert!(normal_inputs_ok(&d, &r, &m, &a));
-            assert_eq!(check_normal_inputs(&d, &r, &m, &a), None);
-            for i in 0..n {
-                for field in 0..4 {
-                    let values: &[f64] = if field < 2 { &bad_any } else { &bad_positive };
-                    for &v in values {
-                        let (mut d, mut r, mut m, mut a) = good();
-                        [&mut d, &mut r, &mut m, &mut a][field][i] = v;
-                        assert!(
-                            !normal_inputs_ok(&d, &r, &m, &a),
-                            "n {n}, field {field}, index {i}, value {v}"
-                        );
-                        let (at, _) = check_normal_inputs(&d, &r, &m, &a).expect("found");
-                        assert_eq!(at, i);
-                    }
-                }
-            }
-        }
-    }
-
-    /// Huge but finite values may overflow the fused sum: that only sends the block to the exact
-    /// check, which lets it through.
-    #[test]
-    fn an_overflowing_sum_is_not_an_error() {
-        let big = vec![1e308; 8];
-        assert!(!normal_inputs_ok(&big, &big, &big, &big));
-        assert_eq!(check_normal_inputs(&big, &big, &big, &big), None);
-    }
-    /// The fused tangential check catches a bad value in every field and every component.
-    #[test]
-    fn fused_tangential_check_finds_every_bad_value() {
-        for n in [CHECK_BLOCK, 5] {
-            let good = || {
-                vec![
-                    vec![0.6; 3 * n],
-                    vec![-0.1; 3 * n],
-                    vec![3.0; n],
-                    vec![1e-6; n],
-                    vec![2.0e-4; n],
-                    vec![1.5e-3; n],
-                ]
-            };
-            let ok = |v: &[Vec<f64>]| tangential_inputs_ok(&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
-            assert!(ok(&good()));
-            for field in 0..6 {
-                let bad: &[f64] = if field < 4 {
-                    &[f64::NAN, f64::INFINITY]
-                } else {
-                    &[0.0, -2.0, f64::NAN, f64::INFINITY]
-                };
-                for i in 0..good()[field].len() {
-                    for &b in bad {
-                        let mut v = good();
-                        v[field][i] = b;
-                        assert!(!ok(&v), "field {field}, index {i}, value {b}");
-                    }
-                }
-            }
-        }
-    }
-}
+pub use super::export::*;

@@ -1,0 +1,91 @@
+//! Spring–dashpot–slider twisting resistance with the semantics of LAMMPS `twisting sds`.
+
+use dashpot_sdk::physics::TwistSpring as Sds;
+use dashpot_sdk::{
+    BoundTwisting, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, TwistingContact,
+    TwistingLaw,
+};
+
+/// The configured law.
+#[derive(Debug, Clone)]
+pub struct TwistingSds {
+    k: f64,
+    gamma: f64,
+    mu: f64,
+}
+
+impl TwistingLaw for TwistingSds {
+    type Bound = TwistingSds;
+    const NAME: &'static str = "twisting-sds";
+    const SUMMARY: &'static str =
+        "Twisting spring–dashpot–slider (LAMMPS `twisting sds k gamma mu`): M = −k θ − γ ω, |M| ≤ μ |F_n|";
+    const DOC: &'static str = "Spring–dashpot–slider twisting resistance with the semantics of LAMMPS \
+        `pair_style granular ... twisting sds k_twist gamma_twist mu_twist` (Marshall 2009, J. Comput. Phys. 228, \
+        1541, eqs. 30, 34, 44). Input: the twisting rate ω = (ω_i − ω_j)·n̂ (rad/s), the normal force F_n (N), \
+        the step dt (s). History: the twist angle θ (rad), 0 at first touch. Each call: θ += ω dt; \
+        M = −k θ − γ ω (N·m, about n̂, on the particle; its opposite on the partner); if |M| > μ|F_n|: \
+        θ = (μ|F_n| sgn ω − γ ω)/k and M = −μ|F_n| sgn ω. Parameters: k (N·m/rad, > 0), gamma (N·m·s/rad), \
+        mu (m: the critical torque is μ|F_n|). Energy: elastic = k θ²/2 (J); power = γ ω² while the spring \
+        holds, |M ω| while it slides (W).";
+    const HISTORY: &'static [History] = &[History::new("theta", "rad", "twist angle θ of the spring")];
+
+    fn params() -> Vec<ParamSpec> {
+        vec![
+            ParamSpec::new(
+                "k",
+                "N·m/rad",
+                1e-3,
+                Range::positive(),
+                "twisting stiffness k_twist",
+            ),
+            ParamSpec::new(
+                "gamma",
+                "N·m·s/rad",
+                0.0,
+                Range::non_negative(),
+                "twisting damping γ_twist",
+            ),
+            ParamSpec::new(
+                "mu",
+                "m",
+                1e-4,
+                Range::non_negative(),
+                "twisting friction μ_twist (torque per newton)",
+            ),
+        ]
+    }
+
+    fn new(p: &Params) -> Result<Self, LawError> {
+        Ok(TwistingSds {
+            k: p.get("k")?,
+            gamma: p.get("gamma")?,
+            mu: p.get("mu")?,
+        })
+    }
+
+    fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
+        Ok(self.clone())
+    }
+}
+
+impl TwistingSds {
+    fn sds(&self, c: &TwistingContact) -> Sds {
+        Sds {
+            k: self.k,
+            gamma: self.gamma,
+            mcrit: self.mu * c.normal_force.abs(),
+        }
+    }
+}
+
+impl BoundTwisting for TwistingSds {
+    fn torque(&self, c: &TwistingContact, h: &mut [f64]) -> f64 {
+        self.sds(c).torque(c.rate, c.dt, h)
+    }
+
+    fn energy(&self, c: &TwistingContact, h: &[f64], torque: f64) -> Option<Energy> {
+        Some(self.sds(c).energy(c.rate, h[0], torque))
+    }
+}
+
+dashpot_sdk::export_laws!(twisting: [TwistingSds]);

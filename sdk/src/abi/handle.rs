@@ -1,0 +1,180 @@
+//! Host side of the generic shape: the safe handles of a law of any 0.3 kind, from a plugin
+//! ([`LawHandle`], [`ModelHandle`]) or compiled into the host ([`StaticModel`]), each calling
+//! the checked trampoline and turning its status into an error that names the contact.
+
+use super::kind::{model_batch, EnergyOut, FfiLaw, FfiModel, Kind, KindBound, KindLaw};
+use super::plugin::take_panic;
+use super::{BatchFault, BatchStatus};
+use crate::error::{ErrorKind, LawError};
+use crate::law::{Coefficient, LawInfo};
+use crate::pair::MaterialPair;
+use abi_stable::std_types::{RResult, RString};
+use std::ffi::c_void;
+
+/// Runs a batch of kind `K` through `call` (a vtable entry or the compiled-in trampoline):
+/// lengths checked first, then the status turned into a result; `Ok(true)` when the energy
+/// outputs were written.
+fn run<K: Kind>(
+    name: &str,
+    slots: usize,
+    mut b: K::Batch<'_>,
+    mut energy: EnergyOut<'_>,
+    call: impl FnOnce(&K::Ffi, &mut BatchFault, &mut bool) -> Result<BatchStatus, RString>,
+) -> Result<bool, LawError> {
+    K::check_lengths(name, slots, &b)?;
+    let n = K::len(&b);
+    if !energy.lengths_ok(n) {
+        return Err(super::host::length_error(
+            &format!("{} batch", K::WHAT),
+            format!("the energy outputs must have one value per contact ({n})"),
+        ));
+    }
+    if n == 0 {
+        return Ok(energy.power.is_none() && energy.elastic.is_none());
+    }
+    let (power, elastic) = energy.raw();
+    let ffi = K::raw(&mut b, power, elastic);
+    let mut fault = BatchFault::default();
+    let mut written = false;
+    let st = call(&ffi, &mut fault, &mut written).map_err(|msg| {
+        LawError::new(
+            ErrorKind::Panic,
+            format!("{} law '{name}' panicked: {msg}", K::WHAT),
+        )
+    })?;
+    match st {
+        BatchStatus::Ok => Ok(written),
+        st => Err(K::fault_error(name, &b, st, fault)),
+    }
+}
+
+/// A configured law of kind `K` from a plugin.
+pub struct LawHandle<K: Kind> {
+    ffi: FfiLaw<K::Ffi>,
+    info: LawInfo,
+}
+
+impl<K: Kind> LawHandle<K> {
+    pub(crate) fn new(ffi: FfiLaw<K::Ffi>, info: LawInfo) -> Self {
+        LawHandle { ffi, info }
+    }
+
+    /// The law's description.
+    pub fn info(&self) -> &LawInfo {
+        &self.info
+    }
+
+    /// Binds the law to a pair of materials (validated first).
+    pub fn bind(&self, materials: &MaterialPair) -> Result<ModelHandle<K>, LawError> {
+        materials.validate()?;
+        match unsafe { (self.ffi.vtable.bind)(self.ffi.obj, materials) } {
+            RResult::ROk(ffi) => Ok(ModelHandle {
+                ffi,
+                name: self.info.name.to_string(),
+                slots: self.info.history.len(),
+            }),
+            RResult::RErr(e) => Err(e.into()),
+        }
+    }
+}
+
+impl<K: Kind> Drop for LawHandle<K> {
+    fn drop(&mut self) {
+        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
+    }
+}
+
+/// A law of kind `K` bound to a pair of materials: the hot path, every input and output
+/// checked.
+pub struct ModelHandle<K: Kind> {
+    ffi: FfiModel<K::Ffi>,
+    name: String,
+    slots: usize,
+}
+
+impl<K: Kind> ModelHandle<K> {
+    /// The law's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// History slots per contact.
+    pub fn history_slots(&self) -> usize {
+        self.slots
+    }
+
+    /// Evaluates every contact of `b`, with the energy outputs `energy` asks for: `Ok(true)`
+    /// when they were written, `Ok(false)` when the law does not account for energy (or none
+    /// was asked for).
+    pub fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        let m = &self.ffi;
+        run::<K>(&self.name, self.slots, b, energy, |ffi, fault, written| unsafe {
+            match (m.vtable.batch)(m.obj, ffi, fault, written) {
+                BatchStatus::Panic => Err((m.vtable.take_panic)()),
+                st => Ok(st),
+            }
+        })
+    }
+
+    /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
+    pub fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        match unsafe { (self.ffi.vtable.coefficients)(self.ffi.obj, mass, radius) } {
+            RResult::ROk(v) => Ok(v.into_vec()),
+            RResult::RErr(e) => Err(e.into()),
+        }
+    }
+}
+
+impl<K: Kind> Drop for ModelHandle<K> {
+    fn drop(&mut self) {
+        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
+    }
+}
+
+/// A law of kind `K` compiled into the host (tests, baselines), called through the very
+/// trampoline a plugin exports.
+pub struct StaticModel<K: Kind, B> {
+    law: B,
+    name: String,
+    slots: usize,
+    kind: std::marker::PhantomData<fn() -> K>,
+}
+
+impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
+    /// Binds law `L` (configured as `law`) to `materials`.
+    pub fn bind<L: KindLaw<K, Bound = B>>(law: &L, materials: &MaterialPair) -> Result<Self, LawError> {
+        materials.validate()?;
+        Ok(StaticModel {
+            law: law.kind_bind(materials)?,
+            name: L::NAME.to_string(),
+            slots: L::SLOTS,
+            kind: std::marker::PhantomData,
+        })
+    }
+
+    /// The law's name.
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// History slots per contact.
+    pub fn history_slots(&self) -> usize {
+        self.slots
+    }
+
+    /// The bound law.
+    pub fn law(&self) -> &B {
+        &self.law
+    }
+
+    /// As [`ModelHandle::batch`].
+    pub fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        let obj = &self.law as *const B as *const c_void;
+        run::<K>(&self.name, self.slots, b, energy, |ffi, fault, written| unsafe {
+            match model_batch::<K, B>(obj, ffi, fault, written) {
+                BatchStatus::Panic => Err(take_panic()),
+                st => Ok(st),
+            }
+        })
+    }
+}

@@ -1,0 +1,430 @@
+//! Host side: loading plugins, with their checks, and the safe handles a host calls.
+
+use super::checks::all_finite;
+use super::kind::{self, EnergyOut, Kind};
+use super::v1;
+use super::*;
+use super::{LawHandle, ModelHandle, Normal, NormalCall, Rolling, StaticModel, Tangential, Twisting};
+use crate::error::{ErrorKind, LawError};
+use crate::law::{Contact, LawKind, NormalBatch, TangentialBatch};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+mod contact;
+mod restitution;
+mod tangential;
+
+use contact::{ContactInner, V1Law};
+pub use contact::{ContactLawHandle, ContactModelHandle, StaticContact};
+pub use restitution::{BoundRestitutionHandle, RestitutionLawHandle};
+use tangential::TangentialInner;
+pub use tangential::{StaticTangential, TangentialLawHandle, TangentialModelHandle};
+
+/// The sdk series a plugin was built against.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SdkSeries {
+    /// sdk 0.1: contact laws bound to one pair (spoken to through [`v1`]); no history, no
+    /// tangential laws.
+    V0_1,
+    /// sdk 0.2: material binding, per-contact geometry and history, tangential laws (its law
+    /// list read through [`v2`]).
+    V0_2,
+    /// sdk 0.3: adhesive contact laws with a reach, rolling and twisting laws, energy outputs.
+    V0_3,
+}
+
+/// A loaded plugin library. Libraries stay loaded for the life of the process.
+#[derive(Clone)]
+pub struct LoadedPlugin {
+    /// The file it was loaded from.
+    pub path: PathBuf,
+    /// The plugin crate's name.
+    pub name: String,
+    /// The plugin crate's version.
+    pub version: String,
+    /// The sdk version it was built against.
+    pub sdk_version: String,
+    /// Its sdk series.
+    pub series: SdkSeries,
+    /// The laws it exports.
+    pub laws: Vec<LawInfo>,
+    module: Module,
+}
+
+/// A root module of any series.
+#[derive(Clone, Copy)]
+enum Module {
+    V1(v1::PluginModuleRef),
+    V2(v2::PluginModuleRef),
+    V3(PluginModuleRef),
+}
+
+/// The entry points 0.2 and 0.3 share (same types in both root modules).
+macro_rules! shared {
+    ($module:expr, $field:ident, $v1:expr) => {
+        match $module {
+            Module::V1(m) => $v1(m),
+            Module::V2(m) => m.$field(),
+            Module::V3(m) => m.$field(),
+        }
+    };
+}
+
+impl std::fmt::Debug for LoadedPlugin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LoadedPlugin")
+            .field("path", &self.path)
+            .field("name", &self.name)
+            .field("version", &self.version)
+            .field("sdk_version", &self.sdk_version)
+            .field(
+                "laws",
+                &self.laws.iter().map(|l| l.name.as_str()).collect::<Vec<_>>(),
+            )
+            .finish()
+    }
+}
+
+/// The verdict of abi_stable's layout comparison without its pages of type dumps (all of it
+/// with `DASHPOT_ABI_DETAILS=1`).
+fn layout_summary(full: &str) -> String {
+    if std::env::var_os("DASHPOT_ABI_DETAILS").is_some() {
+        return format!("Details:\n{full}");
+    }
+    let lines: Vec<&str> = full.lines().collect();
+    match lines.iter().position(|l| l.starts_with("Error:")) {
+        Some(i) => {
+            // the innermost type whose layouts were being compared when the first error was found
+            let ty = lines[..i]
+                .iter()
+                .rposition(|l| l.contains("--- Type Layout ---"))
+                .and_then(|j| lines.get(j + 1))
+                .map(|l| l.trim().trim_start_matches("type:").trim())
+                .filter(|t| !t.is_empty());
+            format!(
+                "First differences{}:\n{}\n(set DASHPOT_ABI_DETAILS=1 for the full layout comparison)",
+                ty.map(|t| format!(", in type {t}")).unwrap_or_default(),
+                lines[i..].iter().take(16).copied().collect::<Vec<_>>().join("\n")
+            )
+        }
+        None => "(set DASHPOT_ABI_DETAILS=1 for the full layout comparison)".to_string(),
+    }
+}
+
+fn load_error(path: &Path, msg: impl std::fmt::Display) -> LawError {
+    LawError::new(
+        ErrorKind::Load,
+        format!("cannot load plugin {}: {msg}", path.display()),
+    )
+}
+
+fn stale_error(path: &Path, plugin_sdk: &str, details: &str) -> LawError {
+    load_error(
+        path,
+        format!(
+            "its types do not have the layout this host expects (built against dashpot-sdk \
+             {plugin_sdk}, host {ABI_VERSION}): it is stale or was built from a different sdk. \
+             Rebuild it. {}",
+            layout_summary(details)
+        ),
+    )
+}
+
+impl LoadedPlugin {
+    /// Loads the plugin at `path`, checking its sdk version and type layouts before running any
+    /// of its code.
+    ///
+    /// Loading runs the library's initialisers: load only files you trust, as with any shared
+    /// library.
+    pub fn load(path: &Path) -> Result<LoadedPlugin, LawError> {
+        use abi_stable::library::{lib_header_from_path, LibraryError};
+        let header = lib_header_from_path(path).map_err(|e| match e {
+            LibraryError::OpenError { .. } => load_error(path, format!("the library cannot be opened ({e})")),
+            LibraryError::GetSymbolError { .. } => load_error(
+                path,
+                "it is not a dashpot plugin (it exports no abi_stable root module; \
+                 a law crate must call dashpot_sdk::export_laws!)",
+            ),
+            other => load_error(path, other),
+        })?;
+        let plugin_sdk = header.version_strings().version.as_str().to_string();
+        if !abi_compatible(ABI_VERSION, &plugin_sdk) {
+            return Err(load_error(
+                path,
+                format!(
+                    "it was built against dashpot-sdk {plugin_sdk}, but this host uses dashpot-sdk \
+                     {ABI_VERSION}, which loads plugins of sdk 0.1, 0.2 and 0.3 only; the ABI versions \
+                     are incompatible. Rebuild the plugin against dashpot-sdk {ABI_VERSION}."
+                ),
+            ));
+        }
+        let plugin_series = series(&plugin_sdk);
+        let module = match plugin_series {
+            // abi_stable would refuse every type of a 0.1 or 0.2 plugin for its package version
+            // alone (they are different semver series from 0.3). Run its full layout comparison
+            // against the frozen root module of the plugin's series and accept exactly that
+            // difference: every field of every type must still match.
+            Some((0, 1)) => Module::V1(legacy_module::<v1::PluginModuleRef>(path, &plugin_sdk, header)?),
+            Some((0, 2)) => Module::V2(legacy_module::<v2::PluginModuleRef>(path, &plugin_sdk, header)?),
+            _ => Module::V3(
+                header
+                    .init_root_module::<PluginModuleRef>()
+                    .map_err(|e| match e {
+                        LibraryError::AbiInstability(_) => stale_error(path, &plugin_sdk, &e.to_string()),
+                        other => load_error(path, other),
+                    })?,
+            ),
+        };
+        let read = |r: RResult<RVec<LawInfo>, FfiError>| match r {
+            RResult::ROk(v) => Ok(v.into_vec()),
+            RResult::RErr(e) => Err(load_error(path, LawError::from(e))),
+        };
+        let (series, laws, name, version, sdk_version) = match module {
+            Module::V1(m) => {
+                let laws = match (m.laws())() {
+                    RResult::ROk(v) => v.into_iter().map(from_v1_info).collect(),
+                    RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
+                };
+                (SdkSeries::V0_1, laws, m.name(), m.version(), m.sdk_version())
+            }
+            Module::V2(m) => {
+                let Some(laws2) = m.laws2() else {
+                    return Err(load_error(path, "its root module lacks the sdk 0.2 law list"));
+                };
+                let laws = match laws2() {
+                    RResult::ROk(v) => v.into_iter().map(v2::LawInfo::upgrade).collect(),
+                    RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
+                };
+                (SdkSeries::V0_2, laws, m.name(), m.version(), m.sdk_version())
+            }
+            Module::V3(m) => {
+                let Some(laws3) = m.laws3() else {
+                    return Err(load_error(path, "its root module lacks the sdk 0.3 law list"));
+                };
+                (
+                    SdkSeries::V0_3,
+                    read(laws3())?,
+                    m.name(),
+                    m.version(),
+                    m.sdk_version(),
+                )
+            }
+        };
+        Ok(LoadedPlugin {
+            path: path.to_path_buf(),
+            name: name.to_string(),
+            version: version.to_string(),
+            sdk_version: sdk_version.to_string(),
+            series,
+            laws,
+            module,
+        })
+    }
+    /// The description of law `name`, if this plugin exports it.
+    pub fn info(&self, name: &str) -> Option<&LawInfo> {
+        self.laws.iter().find(|l| l.name == name)
+    }
+
+    /// Creates contact law `name` from `params` (validated against its schema by the plugin).
+    pub fn new_contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
+        let info = self.expect(name, LawKind::Contact)?;
+        let (n, p) = (RStr::from_str(name), RSlice::from_slice(params));
+        let inner = match self.module {
+            Module::V1(m) => match (m.new_contact())(n, p) {
+                RResult::ROk(ffi) => ContactInner::V1(Arc::new(V1Law::new(ffi))),
+                RResult::RErr(e) => return Err(e.into()),
+            },
+            Module::V2(m) => {
+                let f = m.new_contact2().ok_or_else(|| missing(name, "new_contact2"))?;
+                match f(n, p) {
+                    RResult::ROk(ffi) => ContactInner::V2(ffi),
+                    RResult::RErr(e) => return Err(e.into()),
+                }
+            }
+            Module::V3(_) => {
+                ContactInner::V3(
+                    self.new_kind::<Normal>(name, params, LawKind::Contact, |m| m.new_contact3())?,
+                )
+            }
+        };
+        Ok(ContactLawHandle {
+            inner,
+            info,
+            series: self.series,
+        })
+    }
+
+    /// Creates a law of a kind of sdk 0.3 through its root-module entry `entry`; an error for
+    /// a plugin of an older sdk, which has no such kind.
+    fn new_kind<K: Kind>(
+        &self,
+        name: &str,
+        params: &[ParamValue],
+        kind: LawKind,
+        entry: impl FnOnce(
+            PluginModuleRef,
+        ) -> Option<
+            extern "C" fn(RStr<'_>, RSlice<'_, ParamValue>) -> RResult<kind::FfiLaw<K::Ffi>, FfiError>,
+        >,
+    ) -> Result<LawHandle<K>, LawError> {
+        let info = self.expect(name, kind)?;
+        let Module::V3(m) = self.module else {
+            return Err(missing(name, "of sdk 0.3 (the plugin is older)"));
+        };
+        let f = entry(m).ok_or_else(|| missing(name, K::WHAT))?;
+        match f(RStr::from_str(name), RSlice::from_slice(params)) {
+            RResult::ROk(ffi) => Ok(LawHandle::new(ffi, info)),
+            RResult::RErr(e) => Err(e.into()),
+        }
+    }
+
+    /// Creates rolling law `name` from `params` (sdk 0.3 plugins).
+    pub fn new_rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
+        self.new_kind::<Rolling>(name, params, LawKind::Rolling, |m| m.new_rolling())
+    }
+
+    /// Creates twisting law `name` from `params` (sdk 0.3 plugins).
+    pub fn new_twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
+        self.new_kind::<Twisting>(name, params, LawKind::Twisting, |m| m.new_twisting())
+    }
+
+    /// Creates tangential law `name` from `params`.
+    pub fn new_tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
+        if let Module::V3(_) = self.module {
+            let law =
+                self.new_kind::<Tangential>(name, params, LawKind::Tangential, |m| m.new_tangential3())?;
+            return Ok(TangentialLawHandle(TangentialInner::V3(law)));
+        }
+        let info = self.expect(name, LawKind::Tangential)?;
+        let f =
+            shared!(self.module, new_tangential, |_| None).ok_or_else(|| missing(name, "new_tangential"))?;
+        match f(RStr::from_str(name), RSlice::from_slice(params)) {
+            RResult::ROk(ffi) => Ok(TangentialLawHandle(TangentialInner::V2 { ffi, info })),
+            RResult::RErr(e) => Err(e.into()),
+        }
+    }
+
+    /// Creates restitution law `name` from `params` (validated against its schema by the plugin).
+    pub fn new_restitution(
+        &self,
+        name: &str,
+        params: &[ParamValue],
+    ) -> Result<RestitutionLawHandle, LawError> {
+        let info = self.expect(name, LawKind::Restitution)?;
+        let f = shared!(self.module, new_restitution, |m: v1::PluginModuleRef| m
+            .new_restitution());
+        match f(RStr::from_str(name), RSlice::from_slice(params)) {
+            RResult::ROk(ffi) => Ok(RestitutionLawHandle { ffi, info }),
+            RResult::RErr(e) => Err(e.into()),
+        }
+    }
+
+    /// Closed-form parameters of contact law `name` reproducing `target` for `pair`.
+    pub fn calibrate(
+        &self,
+        name: &str,
+        target: &CalibrationTarget,
+        pair: &Pair,
+        fixed: &[ParamValue],
+    ) -> Result<Option<Vec<ParamValue>>, LawError> {
+        self.expect(name, LawKind::Contact)?;
+        let f = shared!(self.module, calibrate, |m: v1::PluginModuleRef| m.calibrate());
+        match f(RStr::from_str(name), target, pair, RSlice::from_slice(fixed)) {
+            RResult::ROk(v) => Ok(v.into_option().map(RVec::into_vec)),
+            RResult::RErr(e) => Err(e.into()),
+        }
+    }
+
+    fn expect(&self, name: &str, kind: LawKind) -> Result<LawInfo, LawError> {
+        match self.info(name) {
+            Some(i) if i.kind == kind => Ok(i.clone()),
+            Some(i) => Err(LawError::new(
+                ErrorKind::UnknownLaw,
+                format!("law '{name}' is a {:?} law, not a {:?} law", i.kind, kind).to_lowercase(),
+            )),
+            None => Err(LawError::new(
+                ErrorKind::UnknownLaw,
+                format!("plugin {} has no law '{name}'", self.path.display()),
+            )),
+        }
+    }
+}
+
+fn missing(name: &str, what: &str) -> LawError {
+    LawError::new(
+        ErrorKind::Load,
+        format!("law '{name}': its plugin lacks the entry point {what}"),
+    )
+}
+
+/// The root module of a 0.1 or 0.2 plugin, read through the frozen module `M` of its series
+/// after abi_stable's full layout comparison, in which only package versions may differ.
+fn legacy_module<M: abi_stable::prefix_type::PrefixRefTrait + abi_stable::StableAbi>(
+    path: &Path,
+    plugin_sdk: &str,
+    header: &'static abi_stable::library::LibHeader,
+) -> Result<M, LawError> {
+    use abi_stable::abi_stability::abi_checking::{check_layout_compatibility, AbiInstability};
+    let Some(layout) = header.layout() else {
+        return Err(load_error(path, "it records no type layout to check"));
+    };
+    if let Err(e) = check_layout_compatibility(<M as abi_stable::StableAbi>::LAYOUT, layout) {
+        let only_versions = e.errors.iter().all(|err| {
+            err.errs
+                .iter()
+                .all(|a| matches!(a, AbiInstability::PackageVersion(_)))
+        });
+        if !only_versions {
+            return Err(stale_error(path, plugin_sdk, &e.to_string()));
+        }
+    }
+    // SAFETY: the layout was checked just above, to the package version.
+    unsafe { header.unchecked_layout::<M>() }.map_err(|e| load_error(path, e))
+}
+
+fn from_v1_info(i: v1::LawInfo) -> LawInfo {
+    LawInfo {
+        name: i.name,
+        kind: match i.kind {
+            v1::LawKind::Contact => LawKind::Contact,
+            v1::LawKind::Restitution => LawKind::Restitution,
+        },
+        summary: i.summary,
+        doc: i.doc,
+        params: i.params,
+        end_criterion: i.end_criterion,
+        history: RVec::new(),
+    }
+}
+
+pub(crate) fn length_error(what: &str, detail: String) -> LawError {
+    LawError::new(
+        ErrorKind::Other,
+        format!("{what}: the batch's arrays disagree in length: {detail}"),
+    )
+}
+
+pub(crate) fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> LawError {
+    let what = BatchFault::field_name(field);
+    let rule = match field {
+        BatchFault::MASS => "must be finite and > 0 (kg)",
+        BatchFault::RADIUS => "must be finite and > 0 (m)",
+        BatchFault::DT => "must be finite and ≥ 0 (s)",
+        _ => "must be finite",
+    };
+    LawError::new(
+        ErrorKind::NonFinite,
+        format!("{kind} law '{name}': input {what}[{index}] = {value} {rule}; refused before evaluation"),
+    )
+}
+
+pub(crate) fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError {
+    LawError::new(
+        ErrorKind::NonFinite,
+        format!(
+            "contact law '{name}' returned force {value} at delta = {:e} m, rate = {:e} m/s \
+             (effective mass {:e} kg, radius {:e} m)",
+            c.delta, c.rate, c.mass, c.radius
+        ),
+    )
+}

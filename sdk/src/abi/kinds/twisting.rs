@@ -1,0 +1,214 @@
+//! The twisting kind.
+
+use super::*;
+
+/// A raw twisting batch: `normal` is `n` `[x, y, z]` triples, the rest `n` values, `history`
+/// `n × slots`; `power` and `elastic` optional outputs (null when not wanted).
+#[repr(C)]
+#[derive(StableAbi, Debug, Clone, Copy)]
+pub struct FfiTwistingBatch {
+    /// Number of contacts.
+    pub n: usize,
+    /// History slots per contact.
+    pub slots: usize,
+    /// Time step (s).
+    pub dt: f64,
+    /// Unit normals (3n values).
+    pub normal: *const f64,
+    /// Relative twisting rates (rad/s).
+    pub rate: *const f64,
+    /// Normal forces (N).
+    pub normal_force: *const f64,
+    /// Overlaps (m).
+    pub delta: *const f64,
+    /// Effective masses (kg).
+    pub mass: *const f64,
+    /// Effective radii (m).
+    pub radius: *const f64,
+    /// Per-contact history, updated in place.
+    pub history: *mut f64,
+    /// Output: twisting torques about n̂ (N·m).
+    pub torque: *mut f64,
+    /// Output: dissipated power per contact (W), or null.
+    pub power: *mut f64,
+    /// Output: elastic energy per contact (J), or null.
+    pub elastic: *mut f64,
+}
+
+/// The twisting kind of sdk 0.3.
+pub struct Twisting;
+
+impl Kind for Twisting {
+    type Ffi = FfiTwistingBatch;
+    type Batch<'a> = TwistingBatch<'a>;
+    const KIND: LawKind = LawKind::Twisting;
+    const WHAT: &'static str = "twisting";
+    fn len(b: &TwistingBatch<'_>) -> usize {
+        b.torque.len()
+    }
+    fn check_lengths(name: &str, slots: usize, b: &TwistingBatch<'_>) -> Result<(), LawError> {
+        let n = b.torque.len();
+        let lens = [
+            b.normal.len(),
+            b.rate.len(),
+            b.normal_force.len(),
+            b.delta.len(),
+            b.mass.len(),
+            b.radius.len(),
+        ];
+        if lens.iter().any(|&l| l != n) || b.slots != slots || b.history.len() != n * slots {
+            return Err(length_error(
+                "twisting torque_batch",
+                format!(
+                    "normal, rate, normal_force, delta, mass, radius {lens:?}, torque {n}, history {} of {} \
+                     slots (law '{name}' keeps {slots})",
+                    b.history.len(),
+                    b.slots
+                ),
+            ));
+        }
+        Ok(())
+    }
+    fn raw(b: &mut TwistingBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiTwistingBatch {
+        FfiTwistingBatch {
+            n: b.torque.len(),
+            slots: b.slots,
+            dt: b.dt,
+            normal: b.normal.as_ptr() as *const f64,
+            rate: b.rate.as_ptr(),
+            normal_force: b.normal_force.as_ptr(),
+            delta: b.delta.as_ptr(),
+            mass: b.mass.as_ptr(),
+            radius: b.radius.as_ptr(),
+            history: b.history.as_mut_ptr(),
+            torque: b.torque.as_mut_ptr(),
+            power,
+            elastic,
+        }
+    }
+    fn fault_error(name: &str, b: &TwistingBatch<'_>, st: BatchStatus, f: BatchFault) -> LawError {
+        let i = f.index.min(b.torque.len().saturating_sub(1));
+        match (st, f.field) {
+            (BatchStatus::NonFiniteOutput, field) => non_finite_output(
+                "twisting",
+                name,
+                if field == BatchFault::OUTPUT {
+                    BatchFault::TORQUE
+                } else {
+                    field
+                },
+                i,
+                format!("(twisting rate {:e} rad/s, normal force {:e} N)", b.rate[i], b.normal_force[i]),
+            ),
+            (_, BatchFault::NORMAL) => LawError::new(
+                ErrorKind::NonFinite,
+                format!(
+                    "twisting law '{name}': input normal[{i}] = {:?} must be finite; refused before evaluation",
+                    b.normal[i]
+                ),
+            ),
+            (_, field) => {
+                let v = match field {
+                    BatchFault::RATE => b.rate[i],
+                    BatchFault::NORMAL_FORCE => b.normal_force[i],
+                    BatchFault::DELTA => b.delta[i],
+                    BatchFault::MASS => b.mass[i],
+                    BatchFault::RADIUS => b.radius[i],
+                    _ => b.dt,
+                };
+                bad_input("twisting", name, field, i, v)
+            }
+        }
+    }
+}
+
+impl<B: BoundTwisting> KindBound<Twisting> for B {
+    #[inline(always)]
+    unsafe fn run(&self, b: &FfiTwistingBatch) -> Result<bool, (usize, u8)> {
+        if !(b.dt >= 0.0 && b.dt < f64::INFINITY) {
+            return Err((0, BatchFault::DT));
+        }
+        let (n, slots) = (b.n, b.slots);
+        let (history, torque) = unsafe { (slice_mut(b.history, n * slots), slice_mut(b.torque, n)) };
+        let (normal, rate, fnorm, delta, mass, radius) = unsafe {
+            (
+                slice(b.normal as *const [f64; 3], n),
+                slice(b.rate, n),
+                slice(b.normal_force, n),
+                slice(b.delta, n),
+                slice(b.mass, n),
+                slice(b.radius, n),
+            )
+        };
+        blocks(n, |lo, hi| {
+            let checks: [(Option<usize>, u8); 6] = [
+                (
+                    first_non_finite(normal[lo..hi].as_flattened()).map(|i| i / 3),
+                    BatchFault::NORMAL,
+                ),
+                (first_non_finite(&rate[lo..hi]), BatchFault::RATE),
+                (first_non_finite(&fnorm[lo..hi]), BatchFault::NORMAL_FORCE),
+                (first_non_finite(&delta[lo..hi]), BatchFault::DELTA),
+                (first_non_positive(&mass[lo..hi]), BatchFault::MASS),
+                (first_non_positive(&radius[lo..hi]), BatchFault::RADIUS),
+            ];
+            for (i, f) in checks {
+                if let Some(i) = i {
+                    return Err((lo + i, f));
+                }
+            }
+            let out = &mut torque[lo..hi];
+            self.torque_batch(TwistingBatch {
+                dt: b.dt,
+                normal: &normal[lo..hi],
+                rate: &rate[lo..hi],
+                normal_force: &fnorm[lo..hi],
+                delta: &delta[lo..hi],
+                mass: &mass[lo..hi],
+                radius: &radius[lo..hi],
+                slots,
+                history: &mut history[lo * slots..hi * slots],
+                torque: &mut *out,
+            });
+            match first_non_finite(out) {
+                Some(i) => Err((lo + i, BatchFault::OUTPUT)),
+                None => Ok(()),
+            }
+        })?;
+        unsafe {
+            energy_pass(n, b.power, b.elastic, |i| {
+                let c = TwistingContact {
+                    normal: normal[i],
+                    rate: rate[i],
+                    normal_force: fnorm[i],
+                    delta: delta[i],
+                    mass: mass[i],
+                    radius: radius[i],
+                    dt: b.dt,
+                };
+                self.energy(&c, history_of(history, slots, i), torque[i])
+            })
+        }
+    }
+    fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
+        self.coefficients(mass, radius)
+    }
+}
+
+impl<T: TwistingLaw> KindLaw<Twisting> for T {
+    type Bound = T::Bound;
+    const NAME: &'static str = T::NAME;
+    const SLOTS: usize = T::HISTORY.len();
+    fn kind_info() -> LawInfo {
+        T::info()
+    }
+    fn kind_params() -> Vec<ParamSpec> {
+        T::params()
+    }
+    fn kind_new(p: &Params) -> Result<Self, LawError> {
+        T::new(p)
+    }
+    fn kind_bind(&self, m: &MaterialPair) -> Result<T::Bound, LawError> {
+        self.bind(m)
+    }
+}

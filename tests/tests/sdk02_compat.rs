@@ -1,0 +1,217 @@
+//! Backward compatibility with sdk 0.2: HSD, Mindlin and Thornton built against dashpot-sdk
+//! 0.2.0, from this repository's own sources at the last 0.2 commit (not a copy in the tree),
+//! load in the 0.3 host and give the same bits, forces and history alike, as the same laws
+//! built against 0.3, over load–unload sequences that exercise their history (Thornton's largest
+//! overlap, Mindlin's spring through stick and slip).
+
+use dashpot::laws::SdkSeries;
+use dashpot_sdk::{LawKind, MaterialPair, NormalBatch, ParamValue, TangentialBatch};
+use dashpot_tests::{full_registry, next_series_plugin, sdk02_registry};
+
+fn materials() -> MaterialPair {
+    MaterialPair::new(7.0e10, 2.7e10).unwrap()
+}
+
+/// `n` contacts of assorted geometry, their overlaps following a load–unload–reload cycle of
+/// `steps` steps with a per-contact amplitude (some in tension at times).
+/// Masses, radii, and per step the overlaps and rates.
+type Cycle = (Vec<f64>, Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>);
+
+fn cycle(n: usize, steps: usize) -> Cycle {
+    let mass: Vec<f64> = (0..n).map(|i| 1e-4 * (1.0 + 0.37 * i as f64)).collect();
+    let radius: Vec<f64> = (0..n).map(|i| 1e-3 * (1.0 + 0.11 * i as f64)).collect();
+    let mut delta = Vec::new();
+    let mut rate = Vec::new();
+    for s in 0..steps {
+        let ph = 2.0 * std::f64::consts::PI * s as f64 / steps as f64 * 1.5;
+        delta.push(
+            (0..n)
+                .map(|i| 2e-6 * (1.0 + i as f64) * ph.sin() - 1e-7 * (i % 3) as f64)
+                .collect(),
+        );
+        rate.push((0..n).map(|i| 0.3 * (1.0 + i as f64) * ph.cos()).collect());
+    }
+    (mass, radius, delta, rate)
+}
+
+#[test]
+fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
+    let Some(old) = sdk02_registry("debug") else {
+        return;
+    };
+    let new = full_registry();
+    for p in &old.plugins {
+        assert_eq!(p.series, SdkSeries::V0_2, "{}: {}", p.name, p.sdk_version);
+        assert!(p.sdk_version.starts_with("0.2."), "{}", p.sdk_version);
+    }
+    let kinds: Vec<(String, LawKind)> = old
+        .laws
+        .iter()
+        .map(|l| (l.info.name.to_string(), l.info.kind))
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            ("hsd".to_string(), LawKind::Contact),
+            ("mindlin".to_string(), LawKind::Tangential),
+            ("thornton".to_string(), LawKind::Contact),
+        ]
+    );
+    let (n, steps) = (17, 120);
+    let (mass, radius, delta, rate) = cycle(n, steps);
+    let mut compared = 0;
+    for (name, params) in [
+        ("hsd", vec![ParamValue::new("eps", 0.6)]),
+        ("thornton", vec![ParamValue::new("py", 3e8)]),
+    ] {
+        let mo = old.contact(name, &params).unwrap().bind(&materials()).unwrap();
+        let mn = new.contact(name, &params).unwrap().bind(&materials()).unwrap();
+        assert_eq!(mo.history_slots(), mn.history_slots());
+        let slots = mo.history_slots();
+        let (mut ho, mut hn) = (vec![0.0; n * slots], vec![0.0; n * slots]);
+        let mut plastic = false;
+        for s in 0..steps {
+            let (mut fo, mut fnew) = (vec![0.0; n], vec![0.0; n]);
+            for (m, h, f) in [(&mo, &mut ho, &mut fo), (&mn, &mut hn, &mut fnew)] {
+                m.force_batch(NormalBatch {
+                    delta: &delta[s],
+                    rate: &rate[s],
+                    mass: &mass,
+                    radius: &radius,
+                    slots,
+                    history: h,
+                    force: f,
+                })
+                .unwrap();
+            }
+            for i in 0..n {
+                assert_eq!(fo[i].to_bits(), fnew[i].to_bits(), "{name} step {s} contact {i}");
+                compared += 1;
+            }
+            for (a, b) in ho.iter().zip(&hn) {
+                assert_eq!(a.to_bits(), b.to_bits(), "{name} history, step {s}");
+            }
+            // the cycle unloads after yield: Thornton's unloading branch is exercised
+            plastic |= name == "thornton" && fo.iter().zip(&delta[s]).any(|(f, d)| *d > 0.0 && *f < 1.0);
+        }
+        assert!(name != "thornton" || plastic);
+    }
+    // Mindlin, with damping, through stick and slip
+    let params = [ParamValue::new("mu", 0.3), ParamValue::new("damping", 0.2)];
+    let mo = old
+        .tangential("mindlin", &params)
+        .unwrap()
+        .bind(&materials())
+        .unwrap();
+    let mn = new
+        .tangential("mindlin", &params)
+        .unwrap()
+        .bind(&materials())
+        .unwrap();
+    let (mut ho, mut hn) = (vec![0.0; 3 * n], vec![0.0; 3 * n]);
+    let mut slipped = false;
+    for (s, delta_s) in delta.iter().enumerate() {
+        let normal: Vec<[f64; 3]> = (0..n)
+            .map(|i| {
+                let a = 0.01 * (s + i) as f64;
+                [a.cos(), a.sin(), 0.0]
+            })
+            .collect();
+        let velocity: Vec<[f64; 3]> = (0..n)
+            .map(|i| [0.01 * i as f64, -0.2 + 0.003 * s as f64, 0.05 * (i % 4) as f64])
+            .collect();
+        let fnorm: Vec<f64> = delta_s.iter().map(|d| 1e4 * d.max(0.0)).collect();
+        let (mut fo, mut fnew) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n]);
+        for (m, h, f) in [(&mo, &mut ho, &mut fo), (&mn, &mut hn, &mut fnew)] {
+            m.force_batch(TangentialBatch {
+                dt: 1e-6,
+                normal: &normal,
+                velocity: &velocity,
+                normal_force: &fnorm,
+                delta: delta_s,
+                mass: &mass,
+                radius: &radius,
+                slots: 3,
+                history: h,
+                force: f,
+            })
+            .unwrap();
+        }
+        for i in 0..n {
+            for k in 0..3 {
+                assert_eq!(
+                    fo[i][k].to_bits(),
+                    fnew[i][k].to_bits(),
+                    "mindlin step {s} contact {i}"
+                );
+            }
+            let f = fo[i];
+            let mag = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+            slipped |= fnorm[i] > 0.0 && (mag - 0.3 * fnorm[i]).abs() <= 1e-12 * fnorm[i];
+            compared += 1;
+        }
+        for (a, b) in ho.iter().zip(&hn) {
+            assert_eq!(a.to_bits(), b.to_bits(), "mindlin history, step {s}");
+        }
+    }
+    assert!(slipped, "the sequence reaches the Coulomb cap");
+    assert_eq!(compared, 3 * n * steps);
+}
+
+/// A 0.2 law through the 0.3 calls: reach 0 and energy reported as not available, forces as
+/// before; the 0.3 build of the same law reports its energy.
+#[test]
+fn old_plugins_have_reach_zero_and_no_energy() {
+    let Some(old) = sdk02_registry("debug") else {
+        return;
+    };
+    let new = full_registry();
+    let params = [ParamValue::new("eps", 0.6)];
+    let mo = old.contact("hsd", &params).unwrap().bind(&materials()).unwrap();
+    let mn = new.contact("hsd", &params).unwrap().bind(&materials()).unwrap();
+    let (delta, rate, mass, radius) = ([2e-6, -1e-7], [0.3, -0.1], [1e-4, 1e-4], [1e-3, 1e-3]);
+    let mut out = Vec::new();
+    for m in [&mo, &mn] {
+        let (mut f, mut reach, mut p, mut e) = ([0.0; 2], [f64::NAN; 2], [0.0; 2], [0.0; 2]);
+        let written = m
+            .force_batch_with(
+                NormalBatch {
+                    delta: &delta,
+                    rate: &rate,
+                    mass: &mass,
+                    radius: &radius,
+                    slots: 0,
+                    history: &mut [],
+                    force: &mut f,
+                },
+                Some(&mut reach),
+                dashpot_sdk::abi::EnergyOut {
+                    power: Some(&mut p),
+                    elastic: Some(&mut e),
+                },
+            )
+            .unwrap();
+        assert_eq!(reach, [0.0, 0.0]);
+        out.push((written, f, e));
+    }
+    assert!(!out[0].0, "a 0.2 law reports energy as not available");
+    assert!(out[1].0 && out[1].2[0] > 0.0, "the 0.3 build reports it");
+    assert_eq!(out[0].1.map(f64::to_bits), out[1].1.map(f64::to_bits));
+}
+
+/// A plugin of a series this host does not speak (0.4) is refused, both versions named.
+#[test]
+fn the_next_series_is_refused_naming_both_versions() {
+    let e = dashpot_sdk::abi::LoadedPlugin::load(&next_series_plugin()).unwrap_err();
+    assert_eq!(e.kind, dashpot_sdk::ErrorKind::Load);
+    assert!(
+        e.message.contains("built against dashpot-sdk 0.4.0")
+            && e.message.contains(&format!(
+                "this host uses dashpot-sdk {}",
+                dashpot_sdk::abi::ABI_VERSION
+            ))
+            && e.message.contains("loads plugins of sdk 0.1, 0.2 and 0.3 only"),
+        "{}",
+        e.message
+    );
+}
