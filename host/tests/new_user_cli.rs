@@ -642,7 +642,7 @@ fn figures_collide_csvs_carry_the_provenance() {
 /// in a debug build): every CSV carries its laws' provenance.
 #[test]
 fn figures_bed_csvs_carry_the_provenance_on_both_engines() {
-    use dashpot::bed::figures::{run_dem, run_only, Size};
+    use dashpot::report::bed::{run_dem, run_only, Size};
     let reg = dashpot::Registry::discover(&dashpot::SearchPath {
         dirs: vec![plugin_dir()],
         files: vec![],

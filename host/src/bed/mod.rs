@@ -19,10 +19,9 @@
 //! implementation of that trait.
 
 pub mod cells;
-pub mod cli;
 pub mod engine;
 pub mod events;
-pub mod figures;
+
 pub mod observables;
 pub mod piston;
 pub mod scaling;

@@ -111,7 +111,7 @@ fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
     #[derive(clap::Parser)]
     struct BedCommand {
         #[command(flatten)]
-        bed: crate::bed::cli::BedArgs,
+        bed: crate::cli::bed::BedArgs,
     }
     let layers = b.layers.context("--bed needs --layers N")?;
     let freq = b.freq.context("--bed needs --freq HZ")?;
@@ -146,7 +146,7 @@ fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
     }
     let cmd = <BedCommand as clap::Parser>::try_parse_from(&argv)
         .map_err(|e| crate::cli::UsageError(e.to_string()))?;
-    crate::bed::cli::bed(reg, &cmd.bed)
+    crate::cli::bed::bed(reg, &cmd.bed)
 }
 
 fn run_dim<const D: usize>(

@@ -1,6 +1,7 @@
 //! The `dashpot` command line.
 
 pub mod args;
+pub mod bed;
 pub mod collide;
 pub mod dem;
 pub mod grid;
@@ -90,9 +91,9 @@ pub enum Command {
         quick: bool,
     },
     /// The vibrated bed of McNamara & Falcon (2005): one event-driven run, lid pressure and more.
-    Bed(crate::bed::cli::BedArgs),
+    Bed(crate::cli::bed::BedArgs),
     /// Scaling exponents θ of the vibrated bed over a grid of layers and frequencies.
-    Scaling(crate::bed::cli::ScalingArgs),
+    Scaling(crate::cli::bed::ScalingArgs),
     /// Soft-sphere DEM: a scene of disks or spheres, every contact through the contact laws.
     Dem(crate::cli::dem::DemArgs),
 }
@@ -107,7 +108,7 @@ pub enum FigureSet {
         out: PathBuf,
     },
     #[command(flatten)]
-    Bed(crate::bed::cli::FiguresCommand),
+    Bed(crate::cli::bed::FiguresCommand),
 }
 
 /// `dashpot eval`.
@@ -157,10 +158,10 @@ fn dispatch(cli: Cli) -> Result<()> {
             println!("{md}\nwrote figures and {}", out.join("collide.md").display());
             Ok(())
         }
-        Command::Figures(FigureSet::Bed(c)) => crate::bed::cli::figures(&reg, &c),
+        Command::Figures(FigureSet::Bed(c)) => crate::cli::bed::figures(&reg, &c),
         Command::Reproduce { out, quick } => crate::reproduce::run(&reg, &out, quick),
-        Command::Bed(a) => crate::bed::cli::bed(&reg, &a),
-        Command::Scaling(a) => crate::bed::cli::scaling(&reg, &a),
+        Command::Bed(a) => crate::cli::bed::bed(&reg, &a),
+        Command::Scaling(a) => crate::cli::bed::scaling(&reg, &a),
         Command::Dem(a) => crate::cli::dem::run(&reg, &a),
     }
 }

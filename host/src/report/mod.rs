@@ -1,5 +1,6 @@
 //! Figures, plots and reports: what `figures` and `reproduce` write.
 
+pub mod bed;
 pub mod collide;
 pub mod plot;
 pub mod reproduce;

@@ -3,7 +3,7 @@
 //! It reproduces what the laws give directly: the closed forms of Antypov & Elliott (eqs. 8, 9,
 //! 10, 17, 21, 25) for the paper's MCC granule, and the restitution curve of McNamara & Falcon
 //! (eq. 1, their Fig. 1); then the vibrated bed of McNamara & Falcon (Figs. 2-4, on a reduced
-//! grid, [`crate::bed::figures::Size::reproduce`]).
+//! grid, [`crate::report::bed::Size::reproduce`]).
 
 use crate::collide::PairLaw;
 use crate::output::law_json;
@@ -240,15 +240,15 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
     if reg.find("mcnamara-falcon").is_ok() && reg.find("constant").is_ok() {
         let bed_dir = out.join("bed");
         let size = if quick {
-            crate::bed::figures::Size::tiny()
+            crate::report::bed::Size::tiny()
         } else {
-            crate::bed::figures::Size::reproduce()
+            crate::report::bed::Size::reproduce()
         };
         eprintln!(
             "reproduce: the vibrated bed, Figs. 2-4 and the other statements (size {})",
             size.name
         );
-        let bed_md = crate::bed::figures::run(reg, &bed_dir, &size)?;
+        let bed_md = crate::report::bed::run(reg, &bed_dir, &size)?;
         write_atomic(&bed_dir.join("report.md"), bed_md.as_bytes())?;
         // the bed report's sections, one level down
         for line in bed_md.lines().skip(1) {

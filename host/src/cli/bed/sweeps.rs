@@ -1,0 +1,165 @@
+//! `dashpot scaling` and `dashpot figures bed`.
+
+use super::*;
+use crate::bed::view::progress_bar;
+use crate::bed::{scaling, Laws};
+use crate::output::write_atomic;
+use crate::plot::Figure;
+use crate::registry::Registry;
+use anyhow::{bail, Context, Result};
+
+/// `dashpot scaling`.
+pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
+    a.phys.check()?;
+    let freqs = parse_range(&a.freqs)?;
+    if a.layers.is_empty() {
+        bail!("--layers: give at least one number of layers");
+    }
+    for &n in &a.layers {
+        a.phys.config(n, 20.0).validate()?;
+    }
+    for &f in &freqs {
+        a.phys.config(1.0, f).validate()?;
+    }
+    let grid = scaling::Grid {
+        layers: a.layers.clone(),
+        freqs,
+        transient: a.phys.transient,
+        cycles: a.phys.cycles,
+    };
+    let prov = scaling_provenance(reg, &a.phys)?;
+    let pb = progress_bar(grid.len() as u64, "scaling (runs)");
+    let (rows, law) = match a.phys.engine {
+        EngineKind::Event => {
+            let laws = a.phys.laws(reg)?;
+            let laws = Laws {
+                disk: &laws.disk,
+                wall: &laws.wall,
+            };
+            let runs = scaling::run_grid(&laws, &|n, f| a.phys.config(n, f), &grid, &|| pb.inc(1))?;
+            std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
+            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs, &prov)?;
+            (
+                scaling::fit_all(&grid, &runs),
+                a.phys.restitution_name()?.to_string(),
+            )
+        }
+        EngineKind::Dem => {
+            let mat = a.phys.dem_bed(a.phys.config(1.0, 20.0)).material;
+            let laws = (0..grid.len())
+                .map(|_| a.phys.dem_laws(reg, &mat))
+                .collect::<Result<Vec<_>>>()?;
+            let runs =
+                scaling::run_dem_grid(laws, &|n, f| a.phys.dem_bed(a.phys.config(n, f)), &grid, &|| {
+                    pb.inc(1)
+                })?;
+            std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
+            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs, &prov)?;
+            let law = format!(
+                "DEM {}{}, E = {:.3e} Pa",
+                a.phys.law_name()?,
+                a.phys
+                    .tangential
+                    .as_deref()
+                    .map(|t| format!(" + {t} {}", a.phys.tset.join(" ")))
+                    .unwrap_or_default(),
+                mat.young
+            );
+            (scaling::fit_all(&grid, &runs), law)
+        }
+    };
+    pb.finish_and_clear();
+    scaling::write_fit_csv(&a.out.join("scaling.csv"), &rows, &prov)?;
+    let title = format!(
+        "θ(n): {} {}, g = {} m/s²",
+        law,
+        a.phys.set.join(" "),
+        a.phys.gravity
+    );
+    Figure::single(scaling::theta_panel(&rows, &title)).save(&a.out, "theta")?;
+    if a.json {
+        let mut v = scaling::provenance_json(&prov);
+        v.insert("exponents".into(), serde_json::to_value(&rows)?);
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    } else {
+        println!(
+            "scaling exponents θ of X ∝ V^θ, least squares of ln X on ln V over {} frequencies (max |residual| in ln units)",
+            grid.freqs.len()
+        );
+        println!(
+            "{:>6} {:>16} {:>16} {:>16} {:>16}",
+            "n", "θ_P", "θ_T", "θ_Nc", "θ_ΔI"
+        );
+        for r in &rows {
+            let c = |f: &Option<crate::bed::observables::PowerFit>| match f {
+                Some(f) => format!("{:7.3} ({:.3})", f.theta, f.max_residual),
+                None => "-".to_string(),
+            };
+            println!(
+                "{:>6} {:>16} {:>16} {:>16} {:>16}",
+                r.layers,
+                c(&r.pressure),
+                c(&r.temperature),
+                c(&r.lid_collision_rate),
+                c(&r.mean_impulse)
+            );
+        }
+        prov.iter().flat_map(|p| p.lines()).for_each(|l| println!("{l}"));
+        println!(
+            "wrote {}, {} and theta.png/.svg",
+            a.out.join("scaling.csv").display(),
+            a.out.join("grid.csv").display()
+        );
+    }
+    Ok(())
+}
+
+/// The provenance of `dashpot scaling`'s laws: the restitution law (a contact law's own for
+/// `from:NAME`), or on the DEM engine the contact law and the tangential law.
+fn scaling_provenance(reg: &Registry, phys: &PhysArgs) -> Result<Vec<crate::output::Provenance>> {
+    let prov = match phys.engine {
+        EngineKind::Event => {
+            let r = phys.restitution_name()?;
+            let name = r.strip_prefix(crate::bed::FROM_CONTACT).unwrap_or(r);
+            scaling::provenance(reg, name, &phys.params()?, None)?
+        }
+        EngineKind::Dem => {
+            let t = phys.tparams()?;
+            let tangential = phys.tangential.as_deref().map(|n| (n, &t[..]));
+            scaling::provenance(reg, phys.law_name()?, &phys.params()?, tangential)?
+        }
+    };
+    prov.iter().for_each(|p| p.warn_if_shadowed());
+    Ok(prov)
+}
+
+/// `dashpot figures ...`.
+pub fn figures(reg: &Registry, cmd: &FiguresCommand) -> Result<()> {
+    match cmd {
+        FiguresCommand::Bed {
+            out,
+            quick,
+            only,
+            engine,
+            young,
+        } => {
+            let size = if *quick {
+                crate::report::bed::Size::quick()
+            } else {
+                crate::report::bed::Size::paper()
+            };
+            let md = match engine {
+                EngineKind::Event => crate::report::bed::run_only(reg, out, &size, only)?,
+                EngineKind::Dem => {
+                    if !(young.is_finite() && *young > 0.0) {
+                        bail!("--young = {young} Pa is out of range: Young's modulus must be finite and > 0");
+                    }
+                    crate::report::bed::run_dem(reg, out, &size, *young, only)?
+                }
+            };
+            write_atomic(&out.join("report.md"), md.as_bytes())?;
+            println!("wrote {}", out.join("report.md").display());
+            Ok(())
+        }
+    }
+}
