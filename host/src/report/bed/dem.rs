@@ -11,7 +11,6 @@ use crate::plot::Figure;
 use crate::registry::Registry;
 use anyhow::{Context, Result};
 use dashpot_sdk::ParamValue;
-use std::fmt::Write as _;
 use std::path::Path;
 
 /// The runs of `figures bed --engine dem`, by size.

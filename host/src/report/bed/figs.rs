@@ -7,7 +7,6 @@ use crate::bed::scaling::{fit_all, theta_panel, write_fit_csv, write_grid_csv, G
 use crate::bed::view::snapshot_panel;
 use crate::plot::{Figure, Panel};
 use anyhow::Result;
-use std::fmt::Write as _;
 use std::path::Path;
 
 pub(super) fn fig2(l: &Three, out: &Path, size: &Size, md: &mut String) -> Result<()> {
