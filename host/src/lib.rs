@@ -1,12 +1,15 @@
 //! # dashpot host
 //!
-//! The `dashpot` CLI ([`cli`]) and the drivers that need more than the core: the event-driven
-//! vibrated bed ([`bed`]), contact laws as restitution laws ([`tabulate`]), figures and reports
-//! ([`report`]). The registry, the law-facing traits and the two-body collision driver live in
-//! `dashpot-core` and are re-exported here.
+//! The `dashpot` CLI ([`cli`]), reports and figures ([`report`]), the experiments (the vibrated
+//! bed, [`bed`], run by either engine), the two engines (the event-driven engine in
+//! [`bed::engine`], the soft-sphere DEM engine in [`dem`]) and what they share (the [`piston`],
+//! contact laws as restitution laws in [`tabulate`]). The registry, the law-facing traits and
+//! the two-body collision driver live in `dashpot-core` and are re-exported here.
 //!
-//! Dependency rule: `cli` → `report` → drivers (`collide`, `bed`) → `laws` → sdk; nothing
-//! imports `cli`.
+//! Dependency rule: `cli` → `report` → experiments (`bed`, `collide`) → engines (`bed::engine`,
+//! `dem`) → `laws` → sdk. Nothing outside `cli` imports it, the engines import neither `cli`,
+//! `report` nor each other, and only `laws` names the sdk's ABI handles
+//! (`host/tests/architecture.rs` checks it).
 
 pub mod ae_statements;
 pub mod bed;
@@ -14,6 +17,7 @@ pub mod cli;
 pub mod config;
 pub mod dem;
 pub mod output;
+pub mod piston;
 pub mod report;
 pub mod tabulate;
 

@@ -130,7 +130,7 @@ fn run_protocol<R: Restitution>(laws: Laws<R>) -> (f64, f64) {
     (cpu / 10.0, bed.report(1.0).pressure)
 }
 
-fn versus_edref(plugin: &Laws<dashpot_sdk::abi::BoundRestitutionHandle>) {
+fn versus_edref(plugin: &Laws<dashpot::laws::PluginRestitution>) {
     let exe = match edref_dir().and_then(|d| build_edref(&d)) {
         Ok(e) => e,
         Err(why) => {

@@ -1,7 +1,7 @@
 //! The event-driven bed against exact invariants and closed forms, through the real plugins.
 
 use dashpot::bed::{plugin_laws, Bed, BedConfig, Kind, Laws};
-use dashpot_sdk::abi::BoundRestitutionHandle;
+use dashpot::laws::PluginRestitution as BoundRestitutionHandle;
 use dashpot_sdk::ParamValue;
 use dashpot_tests::seed_registry;
 

@@ -6,15 +6,24 @@
 
 use dashpot_sdk::abi::kind::KindBound;
 use dashpot_sdk::abi::{
-    ContactModelHandle, EnergyOut, ModelHandle, Rolling, StaticContact, StaticModel, StaticTangential,
-    TangentialModelHandle, Twisting,
+    EnergyOut, ModelHandle, StaticContact, StaticModel, StaticTangential, TangentialModelHandle,
 };
+/// The rolling and twisting law kinds, as the sdk's generic handles name them.
+pub use dashpot_sdk::abi::{Rolling, Twisting};
 use dashpot_sdk::{
-    BoundContact, BoundTangential, Coefficient, Contact, ContactLaw, LawError, MaterialPair, NormalBatch,
-    RollingBatch, TangentialBatch, TangentialLaw, TwistingBatch,
+    BoundContact, BoundRestitution, BoundTangential, Coefficient, Contact, ContactLaw, LawError,
+    MaterialPair, NormalBatch, RollingBatch, TangentialBatch, TangentialLaw, TwistingBatch,
 };
 
 pub use dashpot_sdk::abi::SdkSeries;
+/// The handles of laws loaded from plugins, before and after binding: the registry hands them
+/// out, and the traits below are implemented for the bound ones.
+pub use dashpot_sdk::abi::{
+    ContactLawHandle, ContactModelHandle, LawHandle, LoadedPlugin, RestitutionLawHandle, TangentialLawHandle,
+};
+
+/// A restitution law loaded from a plugin and bound to a pair (the sdk's handle).
+pub type PluginRestitution = dashpot_sdk::abi::BoundRestitutionHandle;
 
 /// A contact law bound to a pair of materials: normal forces for batches of contacts, each with
 /// its own effective mass and radius and history.
@@ -330,4 +339,52 @@ pub fn compiled_tangential<L: TangentialLaw>(
     materials: &MaterialPair,
 ) -> Result<StaticTangential<L::Bound>, LawError> {
     StaticTangential::bind(law, materials)
+}
+
+/// A coefficient of normal restitution as a function of the normal impact speed: what the engine
+/// needs from a law.
+pub trait Restitution: Sync {
+    /// r(v) (dimensionless, expected in [0, 1]) at normal relative impact speed `v` ≥ 0 (m/s).
+    fn r(&self, v: f64) -> Result<f64, LawError>;
+}
+
+impl Restitution for PluginRestitution {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        self.restitution(v)
+    }
+}
+
+impl<T: Restitution + ?Sized> Restitution for Box<T> {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        (**self).r(v)
+    }
+}
+
+impl<T: Restitution + ?Sized> Restitution for &T {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        (**self).r(v)
+    }
+}
+
+/// A restitution law compiled into the program (no plugin), e.g.
+/// `Compiled(dashpot_mcnamara_falcon::McNamaraFalcon { r0: 0.95, vy: 0.3 })`.
+#[derive(Debug, Clone, Copy)]
+pub struct Compiled<B>(pub B);
+
+impl<B: BoundRestitution> Restitution for Compiled<B> {
+    #[inline]
+    fn r(&self, v: f64) -> Result<f64, LawError> {
+        let r = self.0.restitution(v);
+        if r.is_finite() {
+            Ok(r)
+        } else {
+            Err(LawError::new(
+                dashpot_sdk::ErrorKind::NonFinite,
+                format!("restitution law returned {r} at impact speed {v:e} m/s"),
+            ))
+        }
+    }
 }

@@ -1,6 +1,6 @@
 //! Finding plugin libraries and selecting laws by name.
 
-use dashpot_sdk::abi::{
+use crate::laws::{
     ContactLawHandle, LawHandle, LoadedPlugin, RestitutionLawHandle, Rolling, TangentialLawHandle, Twisting,
 };
 use dashpot_sdk::{CalibrationTarget, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
@@ -334,13 +334,16 @@ impl Registry {
 
     /// Creates rolling law `name` from `params`.
     pub fn rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
-        self.find_kind(name, LawKind::Rolling)?.new_rolling(name, params)
+        let p = self.find_kind(name, LawKind::Rolling)?;
+        self.check_names(name, params)?;
+        p.new_rolling(name, params)
     }
 
     /// Creates twisting law `name` from `params`.
     pub fn twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
-        self.find_kind(name, LawKind::Twisting)?
-            .new_twisting(name, params)
+        let p = self.find_kind(name, LawKind::Twisting)?;
+        self.check_names(name, params)?;
+        p.new_twisting(name, params)
     }
 
     /// Creates restitution law `name` from `params`.

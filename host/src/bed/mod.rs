@@ -14,7 +14,7 @@
 //! is our reading (a 2D random packing of `n` layers is somewhat lower, about 0.9 `n d`).
 //!
 //! The engine ([`engine::Bed`]) is generic over [`Restitution`], implemented for a plugin's
-//! [`BoundRestitutionHandle`] and, through [`Compiled`], for any law compiled into the program;
+//! [`PluginRestitution`] and, through [`Compiled`], for any law compiled into the program;
 //! another kind of law (a contact law integrated into a restitution, say) needs only one more
 //! implementation of that trait.
 
@@ -23,63 +23,15 @@ pub mod engine;
 pub mod events;
 
 pub mod observables;
-pub mod piston;
+pub mod on_dem;
 pub mod scaling;
 pub mod statements;
 pub mod view;
 
 pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};
 
-use dashpot_sdk::abi::BoundRestitutionHandle;
-use dashpot_sdk::{BoundRestitution, LawError, Pair, Particle};
-
-/// A coefficient of normal restitution as a function of the normal impact speed: what the engine
-/// needs from a law.
-pub trait Restitution: Sync {
-    /// r(v) (dimensionless, expected in [0, 1]) at normal relative impact speed `v` ≥ 0 (m/s).
-    fn r(&self, v: f64) -> Result<f64, LawError>;
-}
-
-impl Restitution for BoundRestitutionHandle {
-    #[inline]
-    fn r(&self, v: f64) -> Result<f64, LawError> {
-        self.restitution(v)
-    }
-}
-
-impl<T: Restitution + ?Sized> Restitution for Box<T> {
-    #[inline]
-    fn r(&self, v: f64) -> Result<f64, LawError> {
-        (**self).r(v)
-    }
-}
-
-impl<T: Restitution + ?Sized> Restitution for &T {
-    #[inline]
-    fn r(&self, v: f64) -> Result<f64, LawError> {
-        (**self).r(v)
-    }
-}
-
-/// A restitution law compiled into the program (no plugin), e.g.
-/// `Compiled(dashpot_mcnamara_falcon::McNamaraFalcon { r0: 0.95, vy: 0.3 })`.
-#[derive(Debug, Clone, Copy)]
-pub struct Compiled<B>(pub B);
-
-impl<B: BoundRestitution> Restitution for Compiled<B> {
-    #[inline]
-    fn r(&self, v: f64) -> Result<f64, LawError> {
-        let r = self.0.restitution(v);
-        if r.is_finite() {
-            Ok(r)
-        } else {
-            Err(LawError::new(
-                dashpot_sdk::ErrorKind::NonFinite,
-                format!("restitution law returned {r} at impact speed {v:e} m/s"),
-            ))
-        }
-    }
-}
+pub use dashpot_core::laws::{Compiled, PluginRestitution, Restitution};
+use dashpot_sdk::{LawError, Pair, Particle};
 
 /// The restitution of the two kinds of pair in the bed: two disks, and a disk against a wall
 /// (the lid or the piston, of infinite mass).
@@ -125,7 +77,7 @@ pub fn plugin_laws(
     params: &[dashpot_sdk::ParamValue],
     d: f64,
     m: f64,
-) -> Result<Laws<BoundRestitutionHandle>, LawError> {
+) -> Result<Laws<PluginRestitution>, LawError> {
     plugin_laws_for(reg, name, params, &bed_particle(d, m))
 }
 
@@ -135,7 +87,7 @@ fn plugin_laws_for(
     name: &str,
     params: &[dashpot_sdk::ParamValue],
     p: &Particle,
-) -> Result<Laws<BoundRestitutionHandle>, LawError> {
+) -> Result<Laws<PluginRestitution>, LawError> {
     let law = reg.restitution(name, params)?;
     let (pp, pw) = particle_pairs(p)?;
     Ok(Laws {

@@ -4,7 +4,7 @@
 use super::engine::{Bed, BedConfig, BedReport};
 use super::observables::{fit_power_err, PowerFit};
 use super::{BedError, Laws, Restitution};
-use crate::dem::bed::{DemBed, DemBedReport};
+use crate::bed::on_dem::{DemBed, DemBedReport};
 use crate::dem::DemError;
 use crate::output::{write_atomic, Provenance};
 use crate::plot::{Mark, Panel, Series};

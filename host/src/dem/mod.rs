@@ -17,7 +17,6 @@
 //! - [`scene`]: the TOML scene format and the packing generator; [`xyz`]: trajectories;
 //! - [`bed`]: McNamara & Falcon's vibrated bed on this engine.
 
-pub mod bed;
 pub mod cells;
 pub mod contacts;
 pub mod integrator;

@@ -52,7 +52,7 @@ use super::cells::Domain;
 use super::integrator::{check_steps_per_collision, EngineConfig};
 use super::state::{Body, DiskMass, Material, Vec3, VecD};
 use super::walls::{Motion, Wall};
-use crate::bed::piston::Piston;
+use crate::piston::Piston;
 use dashpot_sdk::ParamValue;
 use serde::Deserialize;
 use std::collections::BTreeMap;

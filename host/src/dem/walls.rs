@@ -2,7 +2,7 @@
 //! radius, through the same laws as particle pairs (`MaterialPair::wall`).
 
 use super::state::VecD;
-use crate::bed::piston::Piston;
+use crate::piston::Piston;
 
 /// How a wall moves along its normal.
 #[derive(Debug, Clone, Copy, PartialEq)]

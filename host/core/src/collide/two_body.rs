@@ -92,11 +92,11 @@ impl<L: NormalLaw> PairLaw<L> {
     }
 }
 
-impl PairLaw<dashpot_sdk::abi::ContactModelHandle> {
+impl PairLaw<crate::laws::ContactModelHandle> {
     /// Plugin law `law` bound to `pair`, both bodies of Poisson's ratio `poisson` (which sets
     /// the shear modulus; no normal law of the project uses it).
     pub fn bind(
-        law: &dashpot_sdk::abi::ContactLawHandle,
+        law: &crate::laws::ContactLawHandle,
         pair: &dashpot_sdk::Pair,
         poisson: f64,
     ) -> Result<Self, LawError> {

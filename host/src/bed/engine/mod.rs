@@ -30,8 +30,8 @@ pub use sampling::{
 
 use super::cells::{Cells, NONE};
 use super::events::Tournament;
-use super::piston::Piston;
 use super::{BedError, Laws, Restitution};
+use crate::piston::Piston;
 use serde::Serialize;
 
 /// The kind of a pending or executed event.

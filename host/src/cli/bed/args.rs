@@ -238,8 +238,8 @@ impl PhysArgs {
     }
 
     /// The DEM bed at `cfg` (the disks' moduli from --young/--poisson, the step from --dt).
-    pub fn dem_bed(&self, cfg: BedConfig) -> crate::dem::bed::DemBed {
-        let mut b = crate::dem::bed::DemBed::new(
+    pub fn dem_bed(&self, cfg: BedConfig) -> crate::bed::on_dem::DemBed {
+        let mut b = crate::bed::on_dem::DemBed::new(
             BedConfig {
                 tangential: None,
                 tc: None,

@@ -128,7 +128,7 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
 
 /// `dashpot bed --engine dem`: the same bed on soft disks, every contact under the contact law.
 fn bed_dem(reg: &Registry, a: &BedArgs) -> Result<()> {
-    use crate::dem::bed::DemBedReport;
+    use crate::bed::on_dem::DemBedReport;
     use rayon::prelude::*;
     if a.snapshot.is_some() || a.trace.is_some() {
         return Err(crate::cli::UsageError(
@@ -207,7 +207,7 @@ pub fn dem_report_json(
     params: &[ParamValue],
     tangential: Option<&str>,
     tparams: &[ParamValue],
-    r: &crate::dem::bed::DemBedReport,
+    r: &crate::bed::on_dem::DemBedReport,
 ) -> serde_json::Value {
     let obj = |ps: &[ParamValue]| -> serde_json::Map<String, serde_json::Value> {
         ps.iter().map(|p| (p.name.to_string(), json!(p.value))).collect()
@@ -233,7 +233,7 @@ pub fn print_dem_report(
     params: &[ParamValue],
     tangential: Option<&str>,
     tparams: &[ParamValue],
-    r: &crate::dem::bed::DemBedReport,
+    r: &crate::bed::on_dem::DemBedReport,
 ) {
     let c = &r.config;
     let ps =

@@ -93,7 +93,7 @@ pub(super) fn dem_laws(
 /// Figs. 2 and 4 with contact laws on soft disks of Young's modulus `young` (Pa). `only`: 2, 4
 /// and 5 (5: the cross-check); empty: all.
 pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8]) -> Result<String> {
-    use crate::dem::bed::{DemBed, DemBedReport};
+    use crate::bed::on_dem::{DemBed, DemBedReport};
     use rayon::prelude::*;
     let want = |k: u8| only.is_empty() || only.contains(&k);
     if only.contains(&3) {

@@ -16,13 +16,13 @@
 //! The disks' mass is the bed's `mass` (the density follows from it), so that the event-driven
 //! bed's `from:LAW` tables and this engine bind the laws to the same particle.
 
-use super::scene::packing;
-use super::state::{DiskMass, Material, VecD};
-use super::walls::{Motion, Wall};
-use super::{DemError, Domain, Engine, EngineConfig, Laws};
 use crate::bed::engine::{mean_over_seeds, seed_observables, stderr_of, SAMPLES_PER_PERIOD};
-use crate::bed::piston::Piston;
 use crate::bed::BedConfig;
+use crate::dem::scene::packing;
+use crate::dem::state::{DiskMass, Material, VecD};
+use crate::dem::walls::{Motion, Wall};
+use crate::dem::{DemError, Domain, Engine, EngineConfig, Laws};
+use crate::piston::Piston;
 
 /// The error for a measuring window of `cycles` periods of `period` (s) in `blocks` blocks
 /// whose blocks are shorter than a step `dt` (s).
