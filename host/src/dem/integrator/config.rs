@@ -1,0 +1,179 @@
+//! The engine's configuration and the choice of its step: the contact time of the run's own law
+//! at the largest expected impact speed, and the bounds on steps per collision.
+
+use crate::collide::{collide, Options, PairLaw};
+use crate::dem::cells::Domain;
+use crate::dem::state::{Material, Particles, VecD};
+use crate::dem::walls::Wall;
+use crate::dem::{DemError, Laws};
+use dashpot_sdk::EndCriterion;
+
+/// The fewest steps per collision (τ/dt, τ the contact time at the largest expected impact
+/// speed) a run accepts. Velocity Verlet is stable for an undamped spring of angular frequency ω
+/// only while ω dt < 2. A linear spring's contact lasts π/ω, so its limit is π/2 ≈ 1.57 steps
+/// per collision; a Hertz contact stiffens with overlap (ω² = (3/2) K δ^{1/2}/m), and at its
+/// deepest overlap ω = 1.37 v/δ_max while τ = 2.94 δ_max/v, so its limit is 2.0. Below it the
+/// contact gains energy step by step. It is a floor, not a guarantee: damping taken from the
+/// explicit velocity narrows the stable range further (for a linear dashpot, to
+/// ω dt < 2(√(1 + ζ²) − ζ) at damping ratio ζ), and well above it the restitution is still off
+/// (about 50 steps per collision give it within 1e-3; [`StepChoice::warning`] speaks up below
+/// [`WARN_STEPS_PER_COLLISION`]).
+pub const MIN_STEPS_PER_COLLISION: f64 = 2.0;
+
+/// Below this many steps per collision a given step draws a warning ([`StepChoice::warning`]).
+pub const WARN_STEPS_PER_COLLISION: f64 = 10.0;
+
+/// Checks a steps-per-collision setting called `name` (the chosen step is τ/k): the message
+/// names the value and the range.
+pub fn check_steps_per_collision(name: &str, k: f64) -> Result<(), String> {
+    if k.is_finite() && k >= MIN_STEPS_PER_COLLISION {
+        return Ok(());
+    }
+    Err(format!(
+        "{name} = {k} is out of range: it must be >= {MIN_STEPS_PER_COLLISION} (below, the explicit step is unstable at a Hertz contact's deepest overlap)"
+    ))
+}
+
+/// Run settings.
+#[derive(Debug, Clone)]
+pub struct EngineConfig<const D: usize> {
+    /// Gravity (m/s²).
+    pub gravity: VecD<D>,
+    /// The time step (s); `None`: chosen from the laws (see the module doc).
+    pub dt: Option<f64>,
+    /// Steps per collision when the step is chosen (default 50).
+    pub steps_per_collision: f64,
+    /// The largest impact speed expected (m/s); `None`: estimated from the initial state, the
+    /// walls' motion and free fall across the particles' extent.
+    pub impact_speed: Option<f64>,
+    /// The neighbour-list skin (m); `None`: 0.3 of the smallest diameter.
+    pub skin: Option<f64>,
+    /// The box.
+    pub domain: Domain<D>,
+    /// The particles' material.
+    pub material: Material,
+    /// Whether a contact's first and last step take the mean force over the part of the step in
+    /// contact (default true; off: the plain step-end rule, for measuring what it changes).
+    pub edge_means: bool,
+}
+
+impl<const D: usize> EngineConfig<D> {
+    /// Defaults: no gravity, step chosen at 50 steps per collision, open unbounded box.
+    pub fn new(material: Material) -> EngineConfig<D> {
+        EngineConfig {
+            gravity: VecD::<D>::zeros(),
+            dt: None,
+            steps_per_collision: 50.0,
+            impact_speed: None,
+            skin: None,
+            domain: Domain {
+                lo: VecD::<D>::zeros(),
+                hi: VecD::<D>::zeros(),
+                periodic: [false; D],
+                bounded: false,
+            },
+            material,
+            edge_means: true,
+        }
+    }
+}
+
+/// How the step was chosen (printed by the CLI).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct StepChoice {
+    /// The step (s).
+    pub dt: f64,
+    /// The shortest contact time τ at `impact_speed` (s) (particle pair or particle–wall).
+    pub collision_time: f64,
+    /// The impact speed τ was computed at (m/s).
+    pub impact_speed: f64,
+    /// Whether the step was given rather than chosen.
+    pub given: bool,
+}
+
+impl StepChoice {
+    /// What a user should hear about a given step: that it resolves a collision in fewer than
+    /// [`WARN_STEPS_PER_COLLISION`] steps, or that the contact time could not be computed (the
+    /// two-body driver failed with this law), so the step went unchecked. None for a chosen
+    /// step or a well-resolved one.
+    pub fn warning(&self) -> Option<String> {
+        if !self.given {
+            return None;
+        }
+        let k = self.collision_time / self.dt;
+        if !k.is_finite() {
+            return Some(format!(
+                "the contact time at {:.3} m/s could not be computed with this law: the step dt = {:.4e} s is not checked against it",
+                self.impact_speed, self.dt
+            ));
+        }
+        (k < WARN_STEPS_PER_COLLISION).then(|| {
+            format!(
+                "{k:.1} steps per collision at {:.3} m/s: the contacts are barely resolved, and the restitution is off by 1e-3 or more (about {:.4e} s, 50 steps per collision, resolves it)",
+                self.impact_speed,
+                self.collision_time / 50.0
+            )
+        })
+    }
+}
+
+/// The largest impact speed expected (m/s): the given one, or twice the largest initial surface
+/// speed plus the largest wall speed plus the speed of a free fall across the extent of the
+/// particles and walls (at least 0.01 m/s).
+pub(super) fn impact_speed<const D: usize>(
+    cfg: &EngineConfig<D>,
+    p: &Particles<D>,
+    walls: &[Wall<D>],
+) -> f64 {
+    if let Some(v) = cfg.impact_speed {
+        return v;
+    }
+    let vmax = (0..p.len())
+        .map(|i| p.vel[i].norm() + p.angular_velocity(i).norm() * p.radius[i])
+        .fold(0.0, f64::max);
+    let wmax = walls.iter().map(|w| w.motion.peak_speed()).fold(0.0, f64::max);
+    let g = cfg.gravity.norm();
+    let mut extent = 0.0f64;
+    if g > 0.0 {
+        let gh = cfg.gravity / g;
+        let hs: Vec<f64> = p
+            .pos
+            .iter()
+            .map(|x| x.dot(&gh))
+            .chain(walls.iter().map(|w| w.point.dot(&gh)))
+            .collect();
+        let (a, b) = hs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
+            (a.min(h), b.max(h))
+        });
+        if a.is_finite() {
+            extent = b - a;
+        }
+    }
+    (2.0 * vmax + 2.0 * wmax + (2.0 * g * extent).sqrt()).max(0.01)
+}
+
+/// The shortest contact time (s) at impact speed `v` (m/s): particles of diameter `d` (m) against
+/// each other and against a wall, by the two-body driver with the run's own laws.
+pub(super) fn collision_time(
+    laws: &Laws,
+    mat: &Material,
+    dim: usize,
+    d: f64,
+    v: f64,
+) -> Result<f64, DemError> {
+    let (m, _) = mat.mass_inertia(dim, d);
+    let r = 0.5 * d;
+    let mut tau = f64::INFINITY;
+    for (law, mass, radius) in [(&*laws.pair, 0.5 * m, 0.5 * r), (&*laws.wall, m, r)] {
+        let c = collide(
+            &PairLaw::new(law, mass, radius),
+            mass,
+            v,
+            EndCriterion::Overlap,
+            &Options::default(),
+        )
+        .map_err(|e| DemError::Timestep(format!("law '{}' at v = {v} m/s: {e}", law.name())))?;
+        tau = tau.min(c.contact_time);
+    }
+    Ok(tau)
+}
