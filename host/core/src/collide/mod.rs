@@ -5,6 +5,8 @@
 pub mod calibrate;
 pub mod extrap;
 pub mod oblique;
+pub mod outcome;
+pub mod pair_law;
 pub mod rk;
 pub mod two_body;
 
