@@ -5,11 +5,10 @@
 //! baselines, tests) through the very same checked trampoline.
 
 use dashpot_sdk::abi::kind::KindBound;
-use dashpot_sdk::abi::{
-    EnergyOut, ModelHandle, StaticContact, StaticModel, StaticTangential, TangentialModelHandle,
-};
-/// The rolling and twisting law kinds, as the sdk's generic handles name them.
-pub use dashpot_sdk::abi::{Rolling, Twisting};
+/// The rolling and twisting law kinds, as the sdk's generic handles name them, and the energy
+/// outputs of a batch call.
+pub use dashpot_sdk::abi::{EnergyOut, Rolling, Twisting};
+use dashpot_sdk::abi::{ModelHandle, StaticContact, StaticModel, StaticTangential, TangentialModelHandle};
 use dashpot_sdk::{
     BoundContact, BoundRestitution, BoundTangential, Coefficient, Contact, ContactLaw, LawError,
     MaterialPair, NormalBatch, RollingBatch, TangentialBatch, TangentialLaw, TwistingBatch,

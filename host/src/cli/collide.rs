@@ -168,6 +168,7 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
                 "v0": v0, "end": end.as_str(),
                 "restitution": c.restitution, "contact_time": c.contact_time,
                 "max_overlap": c.max_overlap, "max_overlap_time": c.max_overlap_time,
+                "stuck": c.stuck, "tensile_peak": c.tensile_peak,
                 "steps": c.steps, "force_evals": c.force_evals, "rtol": opt.rtol,
                 "provenance": prov.json(),
             }))?
@@ -187,8 +188,16 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
                 EndCriterion::Force => "force returns to 0",
             }
         );
-        println!("restitution           = {:.12}", c.restitution);
-        println!("contact time          = {:.10e} s", c.contact_time);
+        if c.stuck {
+            println!("restitution           = 0 (stuck: the rebound turned back before pull-off)");
+            println!("stuck at              t = {:.10e} s", c.contact_time);
+        } else {
+            println!("restitution           = {:.12}", c.restitution);
+            println!("contact time          = {:.10e} s", c.contact_time);
+        }
+        if let Some(f) = c.tensile_peak {
+            println!("most tensile force    = {f:.10e} N");
+        }
         println!(
             "maximum overlap       = {:.10e} m at t = {:.10e} s",
             c.max_overlap, c.max_overlap_time
@@ -614,7 +623,7 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
                 "tangential": a.tangential, "tangential_params": tjson,
                 "v0": v0, "angle": a.angle, "spin_in": a.spin, "end": end.as_str(),
                 "partner": if wall { "wall" } else { "sphere" },
-                "restitution": c.restitution, "contact_time": c.contact_time,
+                "restitution": c.restitution, "stuck": c.stuck, "contact_time": c.contact_time,
                 "max_overlap": c.max_overlap,
                 "normal_velocity_in": c.normal_velocity_in,
                 "tangential_velocity_in": c.tangential_velocity_in,
@@ -645,7 +654,11 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
             a.angle, c.normal_velocity_in, c.tangential_velocity_in, a.spin
         );
         println!("end of contact         : {}", end.as_str());
-        println!("normal restitution     = {:.8}", c.restitution);
+        if c.stuck {
+            println!("normal restitution     = 0 (stuck: the rebound turned back before pull-off)");
+        } else {
+            println!("normal restitution     = {:.8}", c.restitution);
+        }
         println!("tangential velocity out= {:.8} m/s", c.tangential_velocity_out);
         println!("angular velocity out   = {:.8} rad/s", c.angular_velocity_out);
         println!("rebound angle          = {:.6}°", c.rebound_angle);

@@ -2,6 +2,7 @@
 //! without per-contact history) and report what experimentalists measure (restitution, contact
 //! time, maximum overlap); numerical calibration.
 
+pub mod adhesive;
 pub mod calibrate;
 pub mod extrap;
 pub mod oblique;

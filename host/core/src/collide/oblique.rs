@@ -16,7 +16,7 @@
 //! rolling along +x̂ (a sphere rolling on the wall with v_x = R ω_y).
 
 use super::two_body::{collide, CollideError, Options, PairLaw};
-use crate::laws::{NormalLaw, TangentialForce};
+use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
 use dashpot_sdk::{EndCriterion, LawError, NormalBatch, TangentialBatch};
 use nalgebra::Vector3;
 
@@ -69,8 +69,11 @@ pub struct Impact {
 /// The observables of an oblique impact.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct ObliqueCollision {
-    /// Normal restitution −v_n,out / v_n,in of the relative centre velocity.
+    /// Normal restitution −v_n,out / v_n,in of the relative centre velocity (0 when stuck).
     pub restitution: f64,
+    /// An adhesive contact whose rebound turned back before its reach: the particles stuck
+    /// (the other outputs are those of that instant).
+    pub stuck: bool,
     /// Normal relative speed at impact (m/s).
     pub normal_velocity_in: f64,
     /// Tangential relative centre velocity at impact (m/s), along x̂.
@@ -218,6 +221,7 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
     let mut ratios: Vec<f64> = Vec::with_capacity(impact.steps + 16);
     let mut max_overlap = 0.0f64;
     let mut unloading = false;
+    let mut stuck = false;
     let limit = 100.0;
     let max_steps = (limit * impact.steps as f64) as usize;
     let (inv_m1, inv_m2) = (1.0 / m1, if wall { 0.0 } else { 1.0 / m2 });
@@ -244,16 +248,20 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
             (ez, r1 + r2 - (x1 - x2).z)
         };
         let rate = -(v1h - v2h).dot(&n);
-        let mut fn_ = [0.0];
-        normal.force_batch(NormalBatch {
-            delta: &[delta],
-            rate: &[rate],
-            mass: &[m_eff],
-            radius: &[r_eff],
-            slots: sn,
-            history: &mut hn,
-            force: &mut fn_,
-        })?;
+        let (mut fn_, mut reach) = ([0.0], [0.0]);
+        normal.force_batch_with(
+            NormalBatch {
+                delta: &[delta],
+                rate: &[rate],
+                mass: &[m_eff],
+                radius: &[r_eff],
+                slots: sn,
+                history: &mut hn,
+                force: &mut fn_,
+            },
+            Some(&mut reach),
+            EnergyOut::none(),
+        )?;
         let fnv = fn_[0];
         max_overlap = max_overlap.max(delta);
         if rate < 0.0 {
@@ -291,11 +299,17 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
         v2 = v2h - f1 * (0.5 * dt * inv_m2);
         w1 = w1h + t1 * (0.5 * dt * inv_i1);
         w2 = w2h + t2 * (0.5 * dt * inv_i2);
+        // an adhesive contact lasts to its reach (δ < −reach), and sticks if the rebound turns
+        // back before it gets there
         let over = match impact.end {
-            EndCriterion::Overlap => unloading && delta <= 0.0,
+            EndCriterion::Overlap => unloading && delta <= -reach[0],
             EndCriterion::Force => unloading && fnv <= 0.0,
         };
         if over {
+            break;
+        }
+        if unloading && rate > 0.0 {
+            stuck = true;
             break;
         }
         if steps > max_steps {
@@ -308,7 +322,8 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
     let c2 = if wall { Vector3::zeros() } else { r2 * ez };
     let vc = (v1 + w1.cross(&c1)) - (v2 + w2.cross(&c2));
     Ok(ObliqueCollision {
-        restitution: vn_out / vn,
+        restitution: if stuck { 0.0 } else { vn_out / vn },
+        stuck,
         normal_velocity_in: vn,
         tangential_velocity_in: vt,
         tangential_velocity_out: vt_out,

@@ -104,6 +104,11 @@ pub struct Collision {
     pub steps: usize,
     /// Force evaluations.
     pub force_evals: usize,
+    /// An adhesive contact that never ended: the particles stuck (restitution 0; the contact
+    /// time is then that of the turn back that decided it).
+    pub stuck: bool,
+    /// The most tensile force met at an accepted state (N, negative), for a law that pulled.
+    pub tensile_peak: Option<f64>,
     /// The phase trajectory (if recorded).
     #[serde(skip)]
     pub trajectory: Vec<Sample>,

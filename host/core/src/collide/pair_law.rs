@@ -1,6 +1,6 @@
 //! A contact law as the two-body integrator sees it: F(δ, δ̇) for the collision's fixed pair.
 
-use crate::laws::NormalLaw;
+use crate::laws::{EnergyOut, NormalLaw};
 use dashpot_sdk::{Contact, LawError, NormalBatch};
 use std::sync::Mutex;
 
@@ -34,6 +34,13 @@ pub trait ContactForce: Sync {
     /// Forgets the history: a new first touch. [`collide`] calls it first; a law with history
     /// holds the state of one collision at a time, so it must not serve concurrent collisions.
     fn reset(&self) {}
+
+    /// How far beyond touching (m) the contact acts after a force call at (δ, δ̇) from the
+    /// committed history (sdk 0.3's reach: the contact ends once δ < −reach). 0 for a law
+    /// without one.
+    fn reach(&self, _delta: f64, _rate: f64) -> Result<f64, LawError> {
+        Ok(0.0)
+    }
 }
 
 /// A law bound to a collision's pair: its [`NormalLaw`] with the pair's effective mass (kg) and
@@ -156,6 +163,25 @@ impl<L: NormalLaw> ContactForce for PairLaw<L> {
         self.slots > 0
     }
 
+    fn reach(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
+        let mut h = self.history();
+        let (mut f, mut reach) = ([0.0], [0.0]);
+        self.law.force_batch_with(
+            NormalBatch {
+                delta: &[delta],
+                rate: &[rate],
+                mass: &[self.mass],
+                radius: &[self.radius],
+                slots: self.slots,
+                history: &mut h,
+                force: &mut f,
+            },
+            Some(&mut reach),
+            EnergyOut::none(),
+        )?;
+        Ok(reach[0])
+    }
+
     fn reset(&self) {
         if self.slots > 0 {
             let mut h = self.committed.lock().unwrap_or_else(|p| p.into_inner());
@@ -203,5 +229,9 @@ impl<C: ContactForce + ?Sized> ContactForce for &C {
 
     fn reset(&self) {
         (**self).reset()
+    }
+
+    fn reach(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
+        (**self).reach(delta, rate)
     }
 }

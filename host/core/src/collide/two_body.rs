@@ -164,10 +164,10 @@ impl<C: ContactForce> System<2> for UPhase<'_, C> {
 const MAX_BATCH: usize = 10;
 
 /// Phase 2: time is the independent variable, the state is (δ, v).
-struct TPhase<'a, C> {
-    law: &'a C,
-    inv_m: f64,
-    evals: usize,
+pub(crate) struct TPhase<'a, C> {
+    pub(crate) law: &'a C,
+    pub(crate) inv_m: f64,
+    pub(crate) evals: usize,
 }
 
 impl<C: ContactForce> System<2> for TPhase<'_, C> {
@@ -197,7 +197,7 @@ impl<C: ContactForce> System<2> for TPhase<'_, C> {
 /// Locates δ̇ = 0 inside the accepted step `s` of length `h` from `(t, z)`: a cubic Hermite
 /// guess, then Newton's method on fresh steps (the derivative of δ̇ is the acceleration, which
 /// every trial step returns), with a regula-falsi fallback.
-fn locate_speed_zero<S: System<2>>(
+pub(crate) fn locate_speed_zero<S: System<2>>(
     m: Method,
     sys: &mut S,
     t: f64,
@@ -269,6 +269,9 @@ pub fn collide<C: ContactForce>(
     }
     law.reset();
     let dstar = overlap_scale(law, mass, v0)?;
+    if super::adhesive::is_adhesive(law, dstar)? {
+        return super::adhesive::collide_adhesive(law, mass, v0, dstar, opt);
+    }
     let tstar = dstar / v0;
     let inv_m = 1.0 / mass;
     let rtol = opt.rtol;
@@ -469,6 +472,8 @@ pub fn collide<C: ContactForce>(
             end,
             steps,
             force_evals: evals,
+            stuck: false,
+            tensile_peak: None,
             trajectory: traj,
         });
     }
@@ -560,6 +565,8 @@ pub fn collide<C: ContactForce>(
         end,
         steps,
         force_evals: evals,
+        stuck: false,
+        tensile_peak: None,
         trajectory: traj,
     })
 }
