@@ -98,6 +98,17 @@ pub struct CollideArgs {
     /// Time steps per contact time of the oblique integrator (velocity Verlet), ≥ 100.
     #[arg(long, default_value_t = 20_000)]
     pub steps: usize,
+    /// A rolling-resistance law (see `dashpot laws`): instead of an impact, the particle is
+    /// launched at `--v0` rolling without slip on a wall under gravity until the law stops it
+    /// (needs `--tangential` for the friction that makes it roll).
+    #[arg(long, value_name = "NAME")]
+    pub rolling: Option<String>,
+    /// A parameter of the rolling law, NAME=VALUE (repeatable).
+    #[arg(long = "rset", value_name = "NAME=VALUE", value_parser = crate::config::set_arg)]
+    pub rset: Vec<String>,
+    /// Gravity pressing the rolling particle on the wall (m/s², > 0; with `--rolling`).
+    #[arg(long, default_value_t = 9.81)]
+    pub gravity: f64,
 }
 
 fn check_v0(v0: f64) -> Result<f64> {
@@ -144,6 +155,9 @@ pub fn trajectory_csv(c: &Collision) -> Result<Vec<u8>> {
 /// `dashpot collide`.
 pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
     let v0 = check_v0(a.v0)?;
+    if a.rolling.is_some() {
+        return super::roll::run_rolling(reg, a, v0);
+    }
     if a.tangential.is_some() || a.angle != 0.0 {
         return run_oblique(reg, a, v0);
     }
@@ -496,7 +510,7 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
 
 /// The `--set` values split between the contact law and the tangential law: a name is looked up
 /// in the contact law's schema, then in the tangential law's; `LAW.NAME` names the law.
-fn split_sets(
+pub(super) fn split_sets(
     reg: &Registry,
     normal: &str,
     tangential: Option<&str>,

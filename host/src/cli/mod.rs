@@ -5,6 +5,7 @@ pub mod bed;
 pub mod collide;
 pub mod dem;
 pub mod grid;
+pub mod roll;
 
 pub use args::{LawArgs, ParticleArgs, Selection, UsageError};
 

@@ -9,6 +9,7 @@ pub mod oblique;
 pub mod outcome;
 pub mod pair_law;
 pub mod rk;
+pub mod rolling;
 pub mod two_body;
 
 pub use oblique::{oblique, Body, Impact, ObliqueCollision, ObliqueError, Target};
