@@ -94,6 +94,7 @@ fn laws(mat: &Material, eps: f64, friction: Option<CundallStrack>) -> Laws {
         wall: Box::new(compiled(&hsd, &pw).unwrap()),
         pair_tangential: friction.map(|f| Box::new(compiled_tangential(&f, &pp).unwrap()) as _),
         wall_tangential: friction.map(|f| Box::new(compiled_tangential(&f, &pw).unwrap()) as _),
+        rotation: Default::default(),
     }
 }
 

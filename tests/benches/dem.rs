@@ -54,6 +54,7 @@ fn compiled_laws() -> Laws {
         wall: Box::new(compiled(&hsd, &pw).unwrap()),
         pair_tangential: Some(Box::new(compiled_tangential(&m, &pp).unwrap())),
         wall_tangential: Some(Box::new(compiled_tangential(&m, &pw).unwrap())),
+        rotation: Default::default(),
     }
 }
 

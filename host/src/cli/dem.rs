@@ -170,6 +170,17 @@ fn run_dim<const D: usize>(
         &scene.config.material,
     )
     .context("[law] / [tangential]")?;
+    let table =
+        |t: &Option<crate::dem::scene::LawTable>| t.as_ref().map(|t| (t.name.clone(), t.param_values()));
+    let (roll, twist) = (table(&file.rolling), table(&file.twisting));
+    let laws = laws
+        .with_rotation(
+            reg,
+            roll.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
+            twist.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
+            &scene.config.material,
+        )
+        .context("[rolling] / [twisting]")?;
     let mut e = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)?;
     let c = e.step_choice;
     let line = if c.given {

@@ -20,8 +20,8 @@ use super::cells::{Domain, Neighbours};
 use super::state::{spin, to3, Vec3, VecD};
 use super::walls::WallState;
 use super::DemError;
-use crate::laws::{NormalLaw, TangentialForce};
-use dashpot_sdk::{NormalBatch, TangentialBatch};
+use crate::laws::{EnergyOut, NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
+use dashpot_sdk::{NormalBatch, RollingBatch, TangentialBatch, TwistingBatch};
 use std::ops::Range;
 
 /// The particle state a gathering reads: particles `base..base + pos.len()`, each array
@@ -82,6 +82,23 @@ pub struct ContactSet {
     /// Whether each contact's force was last taken as the rest of the contact (see
     /// [`ContactSet::evaluate`]: the step predicted to be its last); carried over.
     pub last: Vec<bool>,
+    /// Rolling- and twisting-law history slots per contact (sdk 0.3); `None`: no such law,
+    /// and the rotational arrays below stay empty.
+    pub slots_r: Option<usize>,
+    /// Twisting-law history slots per contact.
+    pub slots_w: Option<usize>,
+    /// Rolling-law history.
+    pub hist_r: Vec<f64>,
+    /// Twisting-law history.
+    pub hist_w: Vec<f64>,
+    /// Rolling velocities R_eff (ω_i − ω_j) × n̂ (m/s).
+    pub vroll: Vec<[f64; 3]>,
+    /// Twisting rates (ω_i − ω_j)·n̂ (rad/s).
+    pub twist: Vec<f64>,
+    /// Rolling-resistance forces (N): the torque on i is R_eff n̂ × F, on j its opposite.
+    pub froll: Vec<[f64; 3]>,
+    /// Twisting torques about n̂ on i (N·m), on j their opposite.
+    pub mtwist: Vec<f64>,
     /// The chunk's first particle.
     pub first: usize,
     /// Contacts of this set that were not in the previous one (first touches this step).
@@ -90,6 +107,15 @@ pub struct ContactSet {
     cand: Vec<(u32, u32)>,
     /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
     scratch: Vec<f64>,
+}
+
+/// The rolling and twisting laws of one kind of contacts, if any.
+#[derive(Clone, Copy, Default)]
+pub struct Rotating<'a> {
+    /// Rolling resistance.
+    pub rolling: Option<&'a dyn RollingResistance>,
+    /// Twisting resistance.
+    pub twisting: Option<&'a dyn TwistingResistance>,
 }
 
 /// The overlap beyond which a run is refused, as a fraction of the smaller radius.
@@ -109,6 +135,20 @@ impl ContactSet {
             slots_t,
             ..Default::default()
         }
+    }
+
+    /// The set for rolling and twisting laws of `slots_r` and `slots_w` history slots (`None`:
+    /// no such law).
+    pub fn with_rotation(mut self, slots_r: Option<usize>, slots_w: Option<usize>) -> ContactSet {
+        self.slots_r = slots_r;
+        self.slots_w = slots_w;
+        self
+    }
+
+    /// Whether a rolling or twisting law acts (the rotational arrays are kept).
+    #[inline]
+    pub fn rotational(&self) -> bool {
+        self.slots_r.is_some() || self.slots_w.is_some()
     }
 
     /// Number of contacts.
@@ -139,6 +179,15 @@ impl ContactSet {
         self.ftan.resize(count, [0.0; 3]);
         self.fresh.resize(count, false);
         self.last.resize(count, false);
+        if self.rotational() {
+            let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
+            self.hist_r.resize(count * sr, 0.0);
+            self.hist_w.resize(count * sw, 0.0);
+            self.vroll.resize(count, [0.0; 3]);
+            self.twist.resize(count, 0.0);
+            self.froll.resize(count, [0.0; 3]);
+            self.mtwist.resize(count, 0.0);
+        }
     }
 
     /// The history of contact (i, j) in this set, if it exists, found by a merge: `cursor`
@@ -176,6 +225,7 @@ impl ContactSet {
         radius: f64,
         n: Vec3,
         v: Vec3,
+        w: Vec3,
     ) {
         self.i[k] = i as u32;
         self.j[k] = j;
@@ -190,7 +240,8 @@ impl ContactSet {
             &mut self.hist_n[k * sn..(k + 1) * sn],
             &mut self.hist_t[k * st..(k + 1) * st],
         );
-        match prev.find(cursor, i, j) {
+        let found = prev.find(cursor, i, j);
+        match found {
             Some(m) => {
                 hn.copy_from_slice(&prev.hist_n[m * sn..(m + 1) * sn]);
                 ht.copy_from_slice(&prev.hist_t[m * st..(m + 1) * st]);
@@ -203,6 +254,42 @@ impl ContactSet {
                 self.fresh[k] = true;
                 self.last[k] = false;
                 self.formed += 1;
+            }
+        }
+        if self.rotational() {
+            self.put_rotation(k, prev, found, radius, n, w);
+        }
+    }
+
+    /// The rotational part of [`ContactSet::put`]: the rolling velocity and the twisting rate
+    /// of contact `k` from the relative angular velocity `w` = ω_i − ω_j (rad/s), its rolling
+    /// and twisting history from `prev`'s contact `found` (or zero).
+    #[cold]
+    fn put_rotation(
+        &mut self,
+        k: usize,
+        prev: &ContactSet,
+        found: Option<usize>,
+        radius: f64,
+        n: Vec3,
+        w: Vec3,
+    ) {
+        let vr = w.cross(&n) * radius;
+        self.vroll[k] = [vr.x, vr.y, vr.z];
+        self.twist[k] = w.dot(&n);
+        let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
+        let (hr, hw) = (
+            &mut self.hist_r[k * sr..(k + 1) * sr],
+            &mut self.hist_w[k * sw..(k + 1) * sw],
+        );
+        match found {
+            Some(m) => {
+                hr.copy_from_slice(&prev.hist_r[m * sr..(m + 1) * sr]);
+                hw.copy_from_slice(&prev.hist_w[m * sw..(m + 1) * sw]);
+            }
+            None => {
+                hr.fill(0.0);
+                hw.fill(0.0);
             }
         }
     }
@@ -290,6 +377,7 @@ impl ContactSet {
                 radius[i] * radius[ju] / sum,
                 nv,
                 v,
+                wi - wj,
             );
         }
         self.cand = cand;
@@ -357,7 +445,8 @@ impl ContactSet {
                 let nv = to3(&ws.normal);
                 let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
                 let dv = to3(&(vel[i] - ws.velocity));
-                let v = dv - (spin::<D>(omega, i) * radius[i]).cross(&nv);
+                let wi = spin::<D>(omega, i);
+                let v = dv - (wi * radius[i]).cross(&nv);
                 self.put(
                     k,
                     prev,
@@ -370,6 +459,7 @@ impl ContactSet {
                     radius[i],
                     nv,
                     v,
+                    wi,
                 );
                 k += 1;
             }
@@ -398,6 +488,7 @@ impl ContactSet {
         &mut self,
         normal: &dyn NormalLaw,
         tangential: Option<&dyn TangentialForce>,
+        rotation: Rotating<'_>,
         dt: f64,
         edge_means: bool,
     ) -> Result<(), DemError> {
@@ -447,7 +538,50 @@ impl ContactSet {
                     force: &mut self.ftan[a..b],
                 })?;
             }
+            if self.rotational() {
+                self.evaluate_rotation(&rotation, a..b, dt)?;
+            }
             a = b;
+        }
+        Ok(())
+    }
+
+    /// The rolling and twisting laws on contacts `r` (after the normal forces).
+    fn evaluate_rotation(&mut self, rot: &Rotating<'_>, r: Range<usize>, dt: f64) -> Result<(), DemError> {
+        let (a, b) = (r.start, r.end);
+        if let (Some(law), Some(sr)) = (rot.rolling, self.slots_r) {
+            law.force_batch(
+                RollingBatch {
+                    dt,
+                    normal: &self.normal[a..b],
+                    velocity: &self.vroll[a..b],
+                    normal_force: &self.fnorm[a..b],
+                    delta: &self.delta[a..b],
+                    mass: &self.mass[a..b],
+                    radius: &self.radius[a..b],
+                    slots: sr,
+                    history: &mut self.hist_r[a * sr..b * sr],
+                    force: &mut self.froll[a..b],
+                },
+                EnergyOut::none(),
+            )?;
+        }
+        if let (Some(law), Some(sw)) = (rot.twisting, self.slots_w) {
+            law.torque_batch(
+                TwistingBatch {
+                    dt,
+                    normal: &self.normal[a..b],
+                    rate: &self.twist[a..b],
+                    normal_force: &self.fnorm[a..b],
+                    delta: &self.delta[a..b],
+                    mass: &self.mass[a..b],
+                    radius: &self.radius[a..b],
+                    slots: sw,
+                    history: &mut self.hist_w[a * sw..b * sw],
+                    torque: &mut self.mtwist[a..b],
+                },
+                EnergyOut::none(),
+            )?;
         }
         Ok(())
     }
@@ -463,6 +597,8 @@ pub struct Contacts {
     spare: Vec<ContactSet>,
     slots_n: usize,
     slots_t: usize,
+    slots_r: Option<usize>,
+    slots_w: Option<usize>,
 }
 
 impl Contacts {
@@ -473,6 +609,14 @@ impl Contacts {
             slots_t,
             ..Default::default()
         }
+    }
+
+    /// The contacts of rolling and twisting laws of `slots_r` and `slots_w` history slots
+    /// (`None`: no such law).
+    pub fn with_rotation(mut self, slots_r: Option<usize>, slots_w: Option<usize>) -> Contacts {
+        self.slots_r = slots_r;
+        self.slots_w = slots_w;
+        self
     }
 
     /// Number of contacts.
@@ -504,14 +648,18 @@ impl Contacts {
         for c in &mut self.chunks {
             c.hist_n.iter_mut().for_each(|h| *h = 0.0);
             c.hist_t.iter_mut().for_each(|h| *h = 0.0);
+            c.hist_r.iter_mut().for_each(|h| *h = 0.0);
+            c.hist_w.iter_mut().for_each(|h| *h = 0.0);
         }
     }
 
     /// The previous chunks and the spare ones to write, `chunks` of each (created as needed).
     pub fn buffers(&mut self, chunks: usize) -> (&[ContactSet], &mut [ContactSet]) {
-        let (sn, st) = (self.slots_n, self.slots_t);
-        self.chunks.resize_with(chunks, || ContactSet::new(sn, st));
-        self.spare.resize_with(chunks, || ContactSet::new(sn, st));
+        let (sn, st, sr, sw) = (self.slots_n, self.slots_t, self.slots_r, self.slots_w);
+        self.chunks
+            .resize_with(chunks, || ContactSet::new(sn, st).with_rotation(sr, sw));
+        self.spare
+            .resize_with(chunks, || ContactSet::new(sn, st).with_rotation(sr, sw));
         (&self.chunks, &mut self.spare)
     }
 

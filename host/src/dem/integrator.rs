@@ -201,6 +201,13 @@ impl<const D: usize> Engine<D> {
             }
         };
         let nw = walls.len();
+        let rot = &laws.rotation;
+        let (pr, pw, wr, ww) = (
+            rot.pair_rolling.as_ref().map(|l| l.history_slots()),
+            rot.pair_twisting.as_ref().map(|l| l.history_slots()),
+            rot.wall_rolling.as_ref().map(|l| l.history_slots()),
+            rot.wall_twisting.as_ref().map(|l| l.history_slots()),
+        );
         let (sn, st) = (
             laws.pair.history_slots(),
             laws.pair_tangential.as_ref().map_or(0, |t| t.history_slots()),
@@ -224,8 +231,8 @@ impl<const D: usize> Engine<D> {
             steps: 0,
             nb: Neighbours::default(),
             skin,
-            pairs: Contacts::new(sn, st),
-            wall_contacts: Contacts::new(swn, swt),
+            pairs: Contacts::new(sn, st).with_rotation(pr, pw),
+            wall_contacts: Contacts::new(swn, swt).with_rotation(wr, ww),
             overflow: Vec::new(),
             reach: Vec::new(),
             moved: Vec::new(),

@@ -31,7 +31,7 @@ pub use integrator::{Engine, EngineConfig};
 pub use state::{Body, DiskMass, Material, Vec3, VecD};
 pub use walls::{Motion, Wall};
 
-use crate::laws::{NormalLaw, TangentialForce};
+use crate::laws::{NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
 use dashpot_sdk::LawError;
 
 /// The laws of a run, each bound twice: to the particle pair (`MaterialPair::spheres`) and to
@@ -45,6 +45,29 @@ pub struct Laws {
     pub pair_tangential: Option<Box<dyn TangentialForce>>,
     /// Tangential law against walls.
     pub wall_tangential: Option<Box<dyn TangentialForce>>,
+    /// Rolling and twisting resistance (sdk 0.3), if any.
+    pub rotation: Rotation,
+}
+
+/// The rolling and twisting laws of a run (sdk 0.3), each bound to particle pairs and to
+/// particle–wall pairs; none by default.
+#[derive(Default)]
+pub struct Rotation {
+    /// Rolling resistance between particles.
+    pub pair_rolling: Option<Box<dyn RollingResistance>>,
+    /// Rolling resistance against walls.
+    pub wall_rolling: Option<Box<dyn RollingResistance>>,
+    /// Twisting resistance between particles.
+    pub pair_twisting: Option<Box<dyn TwistingResistance>>,
+    /// Twisting resistance against walls.
+    pub wall_twisting: Option<Box<dyn TwistingResistance>>,
+}
+
+impl Rotation {
+    /// Whether any rolling or twisting law is set.
+    pub fn any(&self) -> bool {
+        self.pair_rolling.is_some() || self.pair_twisting.is_some()
+    }
 }
 
 impl Laws {
@@ -74,7 +97,35 @@ impl Laws {
             wall: Box::new(n.bind(&pw)?),
             pair_tangential,
             wall_tangential,
+            rotation: Rotation::default(),
         })
+    }
+
+    /// Adds the rolling law `rolling` and the twisting law `twisting` (name and parameters, each
+    /// optional) from the registry, bound to `mat` for particle pairs and particle–wall pairs.
+    pub fn with_rotation(
+        mut self,
+        reg: &crate::Registry,
+        rolling: Option<(&str, &[dashpot_sdk::ParamValue])>,
+        twisting: Option<(&str, &[dashpot_sdk::ParamValue])>,
+        mat: &Material,
+    ) -> Result<Laws, LawError> {
+        let p = mat.particle(1.0);
+        let (pp, pw) = (
+            dashpot_sdk::MaterialPair::spheres(&p, &p)?,
+            dashpot_sdk::MaterialPair::wall(&p)?,
+        );
+        if let Some((name, params)) = rolling {
+            let l = reg.rolling(name, params)?;
+            self.rotation.pair_rolling = Some(Box::new(l.bind(&pp)?));
+            self.rotation.wall_rolling = Some(Box::new(l.bind(&pw)?));
+        }
+        if let Some((name, params)) = twisting {
+            let l = reg.twisting(name, params)?;
+            self.rotation.pair_twisting = Some(Box::new(l.bind(&pp)?));
+            self.rotation.wall_twisting = Some(Box::new(l.bind(&pw)?));
+        }
+        Ok(self)
     }
 }
 

@@ -18,6 +18,12 @@
 //! [tangential]                       # optional
 //! name = "mindlin"
 //! params = { mu = 0.3 }
+//! [rolling]                          # optional (sdk 0.3): rolling resistance
+//! name = "rolling-sds"
+//! params = { k = 1000.0, mu = 0.1 }
+//! [twisting]                         # optional (sdk 0.3): twisting resistance (3D)
+//! name = "twisting-sds"
+//! params = { k = 1e-3, mu = 1e-4 }
 //! [material]
 //! young = 1.0e8                      # Pa
 //! poisson = 0.3
@@ -197,6 +203,12 @@ pub struct SceneFile {
     /// The tangential law, if any.
     #[serde(default)]
     pub tangential: Option<LawTable>,
+    /// The rolling-resistance law, if any.
+    #[serde(default)]
+    pub rolling: Option<LawTable>,
+    /// The twisting-resistance law, if any.
+    #[serde(default)]
+    pub twisting: Option<LawTable>,
     material: MaterialTable,
     #[serde(default, rename = "box")]
     domain: Option<BoxTable>,

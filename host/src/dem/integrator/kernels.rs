@@ -2,7 +2,7 @@
 //! and the scatter of their forces, over ranges of particles that threads take in turn.
 
 use crate::dem::cells::{Domain, Neighbours};
-use crate::dem::contacts::{ContactSet, View};
+use crate::dem::contacts::{ContactSet, Rotating, View};
 use crate::dem::state::{from3, set_spin, spin, spin_len, Vec3, VecD};
 use crate::dem::walls::WallState;
 use crate::dem::{DemError, Laws};
@@ -108,6 +108,53 @@ pub(super) fn scatter_chunk<const D: usize>(
         f[i] += from3::<D>(&(nv * walls.fnorm[m] + ft));
         add_spin::<D>(tq, i, &-(nv.cross(&ft) * radius[i]));
     }
+    if pairs.rotational() || walls.rotational() {
+        scatter_rotation(pairs, walls, tq, overflow);
+    }
+}
+
+/// The rolling and twisting torques of one chunk's contacts (see [`scatter_chunk`]): on i,
+/// R_eff n̂ × F_roll + M_twist n̂; on a pair's j, the opposite (through `overflow` beyond the
+/// chunk, with no force).
+#[cold]
+fn scatter_rotation<const D: usize>(
+    pairs: &ContactSet,
+    walls: &ContactSet,
+    tq: &mut [f64],
+    overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
+) {
+    let first = pairs.first;
+    let len = tq.len() / spin_len(D);
+    let torque = |s: &ContactSet, m: usize| {
+        let nv = Vec3::from(s.normal[m]);
+        let mut t = Vec3::zeros();
+        if s.slots_r.is_some() {
+            t += nv.cross(&Vec3::from(s.froll[m])) * s.radius[m];
+        }
+        if s.slots_w.is_some() {
+            t += nv * s.mtwist[m];
+        }
+        t
+    };
+    if pairs.rotational() {
+        for m in 0..pairs.len() {
+            let t = torque(pairs, m);
+            let (i, j) = (pairs.i[m] as usize - first, pairs.j[m] as usize);
+            add_spin::<D>(tq, i, &t);
+            let jl = j - first;
+            if jl < len {
+                add_spin::<D>(tq, jl, &-t);
+            } else {
+                overflow.push((j as u32, VecD::<D>::zeros(), -t));
+            }
+        }
+    }
+    if walls.rotational() {
+        for m in 0..walls.len() {
+            let t = torque(walls, m);
+            add_spin::<D>(tq, walls.i[m] as usize - first, &t);
+        }
+    }
 }
 
 /// Adds `v` to spin `i` of the flat array `w` (a − b is a + (−b) in floating point: adding the
@@ -148,8 +195,31 @@ pub(super) fn chunk_forces<const D: usize>(
     np.gather_pairs(pp, range.clone(), ctx.dom, ctx.nb, view)?;
     nw.gather_walls(pw, range.clone(), ctx.walls, view)?;
     let laws = ctx.laws;
-    np.evaluate(&*laws.pair, laws.pair_tangential.as_deref(), ctx.dt, ctx.edges)?;
-    nw.evaluate(&*laws.wall, laws.wall_tangential.as_deref(), ctx.dt, ctx.edges)?;
+    let rot = &laws.rotation;
+    let (pr, wr) = (
+        Rotating {
+            rolling: rot.pair_rolling.as_deref(),
+            twisting: rot.pair_twisting.as_deref(),
+        },
+        Rotating {
+            rolling: rot.wall_rolling.as_deref(),
+            twisting: rot.wall_twisting.as_deref(),
+        },
+    );
+    np.evaluate(
+        &*laws.pair,
+        laws.pair_tangential.as_deref(),
+        pr,
+        ctx.dt,
+        ctx.edges,
+    )?;
+    nw.evaluate(
+        &*laws.wall,
+        laws.wall_tangential.as_deref(),
+        wr,
+        ctx.dt,
+        ctx.edges,
+    )?;
     let radius = &view.radius[range.start - view.base..];
     scatter_chunk(np, nw, radius, f, tq, overflow);
     Ok(())
