@@ -273,6 +273,20 @@ fn run_dim<const D: usize>(
     let mut state = e.state_json();
     state["law"] = serde_json::json!(file.law.name);
     state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
+    state["rolling"] = serde_json::json!(file.rolling.as_ref().map(|t| t.name.clone()));
+    state["twisting"] = serde_json::json!(file.twisting.as_ref().map(|t| t.name.clone()));
+    let tables = [
+        Some(&file.law),
+        file.tangential.as_ref(),
+        file.rolling.as_ref(),
+        file.twisting.as_ref(),
+    ];
+    let provenance = tables
+        .into_iter()
+        .flatten()
+        .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
+        .collect::<Result<Vec<_>, _>>()?;
+    state["provenance"] = serde_json::json!(provenance);
     state["wall_seconds"] = serde_json::json!(wall);
     state["particle_steps_per_second"] =
         serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));
@@ -291,10 +305,10 @@ fn run_dim<const D: usize>(
             e.p.len(),
             D,
             file.law.name,
-            file.tangential
-                .as_ref()
-                .map(|t| format!(" + {}", t.name))
-                .unwrap_or_default()
+            [&file.tangential, &file.rolling, &file.twisting]
+                .iter()
+                .filter_map(|t| t.as_ref().map(|t| format!(" + {}", t.name)))
+                .collect::<String>()
         );
         println!(
             "t = {:.6e} s after {} steps of {:.4e} s ({wall:.2} s wall, {:.3e} particle-steps/s)",
