@@ -181,7 +181,10 @@ fn run_dim<const D: usize>(
             &scene.config.material,
         )
         .context("[rolling] / [twisting]")?;
-    let mut e = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)?;
+    let mut cfg = scene.config.clone();
+    cfg.energy = true;
+    let mut e = Engine::new(cfg, &scene.bodies, scene.walls.clone(), laws)?;
+    let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
     let c = e.step_choice;
     let line = if c.given {
         format!(
@@ -287,6 +290,9 @@ fn run_dim<const D: usize>(
         .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
         .collect::<Result<Vec<_>, _>>()?;
     state["provenance"] = serde_json::json!(provenance);
+    state["energy_initial"] = serde_json::json!(energy_initial);
+    state["elastic"] = serde_json::json!(e.elastic().iter().sum::<f64>());
+    state["dissipated"] = dissipated_json(&e);
     state["wall_seconds"] = serde_json::json!(wall);
     state["particle_steps_per_second"] =
         serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));
@@ -490,4 +496,15 @@ fn frame_png<const D: usize>(e: &Engine<D>, dir: &std::path::Path, k: u64, law: 
     .save(dir, &format!("frame_{k:04}"))
     .with_context(|| format!("drawing frame {k} into {}", dir.display()))?;
     Ok(())
+}
+
+/// `dissipated` of `dem --json`: the energy each family's laws dissipated since the start (J),
+/// `null` for a family whose law does not report it (a plugin of sdk 0.1 or 0.2), and the total
+/// (`null` if any is).
+fn dissipated_json<const D: usize>(e: &Engine<D>) -> serde_json::Value {
+    let fam = |k: usize| (!e.unreported[k]).then_some(e.dissipated[k]);
+    let total = (0..4).map(fam).sum::<Option<f64>>();
+    serde_json::json!({
+        "normal": fam(0), "tangential": fam(1), "rolling": fam(2), "twisting": fam(3), "total": total,
+    })
 }

@@ -99,6 +99,14 @@ pub struct ContactSet {
     pub froll: Vec<[f64; 3]>,
     /// Twisting torques about n̂ on i (N·m), on j their opposite.
     pub mtwist: Vec<f64>,
+    /// Whether the laws are asked for their energy outputs.
+    pub energy: bool,
+    /// Dissipated power of each contact (W), by family: normal, tangential, rolling, twisting.
+    pub power: [Vec<f64>; 4],
+    /// Elastic energy stored in each contact (J), by family.
+    pub elastic: [Vec<f64>; 4],
+    /// The families whose law did not report its energy at the last evaluation.
+    pub unreported: [bool; 4],
     /// The chunk's first particle.
     pub first: usize,
     /// Contacts of this set that were not in the previous one (first touches this step).
@@ -179,6 +187,11 @@ impl ContactSet {
         self.ftan.resize(count, [0.0; 3]);
         self.fresh.resize(count, false);
         self.last.resize(count, false);
+        if self.energy {
+            for v in self.power.iter_mut().chain(self.elastic.iter_mut()) {
+                v.resize(count, 0.0);
+            }
+        }
         if self.rotational() {
             let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
             self.hist_r.resize(count * sr, 0.0);
@@ -496,11 +509,12 @@ impl ContactSet {
         let (sn, st) = (self.slots_n, self.slots_t);
         // a law with history would see its history advanced by the extra calls: plain rule
         let edges = edge_means && sn == 0;
+        self.unreported = [false; 4];
         let mut a = 0;
         while a < n {
             let b = (a + LAW_CHUNK).min(n);
             let f = &mut self.fnorm[a..b];
-            normal.force_batch(NormalBatch {
+            let nb = NormalBatch {
                 delta: &self.delta[a..b],
                 rate: &self.rate[a..b],
                 mass: &self.mass[a..b],
@@ -508,7 +522,18 @@ impl ContactSet {
                 slots: sn,
                 history: &mut self.hist_n[a * sn..b * sn],
                 force: &mut *f,
-            })?;
+            };
+            if self.energy {
+                let [p, ..] = &mut self.power;
+                let [e, ..] = &mut self.elastic;
+                let out = EnergyOut {
+                    power: Some(&mut p[a..b]),
+                    elastic: Some(&mut e[a..b]),
+                };
+                self.unreported[0] |= !normal.force_batch_with(nb, None, out)?;
+            } else {
+                normal.force_batch(nb)?;
+            }
             if edges {
                 step_edge_means(
                     normal,
@@ -525,7 +550,7 @@ impl ContactSet {
                 )?;
             }
             if let Some(t) = tangential {
-                t.force_batch(TangentialBatch {
+                let tb = TangentialBatch {
                     dt,
                     normal: &self.normal[a..b],
                     velocity: &self.vrel[a..b],
@@ -536,7 +561,18 @@ impl ContactSet {
                     slots: st,
                     history: &mut self.hist_t[a * st..b * st],
                     force: &mut self.ftan[a..b],
-                })?;
+                };
+                if self.energy {
+                    let [_, p, ..] = &mut self.power;
+                    let [_, e, ..] = &mut self.elastic;
+                    let out = EnergyOut {
+                        power: Some(&mut p[a..b]),
+                        elastic: Some(&mut e[a..b]),
+                    };
+                    self.unreported[1] |= !t.force_batch_with(tb, out)?;
+                } else {
+                    t.force_batch(tb)?;
+                }
             }
             if self.rotational() {
                 self.evaluate_rotation(&rotation, a..b, dt)?;
@@ -549,8 +585,25 @@ impl ContactSet {
     /// The rolling and twisting laws on contacts `r` (after the normal forces).
     fn evaluate_rotation(&mut self, rot: &Rotating<'_>, r: Range<usize>, dt: f64) -> Result<(), DemError> {
         let (a, b) = (r.start, r.end);
+        let energy = self.energy;
+        let [_, _, pr, pw] = &mut self.power;
+        let [_, _, er, ew] = &mut self.elastic;
+        fn out<'v>(energy: bool, p: &'v mut [f64], e: &'v mut [f64]) -> EnergyOut<'v> {
+            if energy {
+                EnergyOut {
+                    power: Some(p),
+                    elastic: Some(e),
+                }
+            } else {
+                EnergyOut::none()
+            }
+        }
+        let slice = |v: &mut Vec<f64>| if energy { b } else { 0 }.min(v.len());
+        let (nr, nw) = (slice(pr), slice(pw));
+        let (pr, er) = (&mut pr[a.min(nr)..nr], &mut er[a.min(nr)..nr]);
+        let (pw, ew) = (&mut pw[a.min(nw)..nw], &mut ew[a.min(nw)..nw]);
         if let (Some(law), Some(sr)) = (rot.rolling, self.slots_r) {
-            law.force_batch(
+            let written = law.force_batch(
                 RollingBatch {
                     dt,
                     normal: &self.normal[a..b],
@@ -563,11 +616,12 @@ impl ContactSet {
                     history: &mut self.hist_r[a * sr..b * sr],
                     force: &mut self.froll[a..b],
                 },
-                EnergyOut::none(),
+                out(energy, pr, er),
             )?;
+            self.unreported[2] |= energy && !written;
         }
         if let (Some(law), Some(sw)) = (rot.twisting, self.slots_w) {
-            law.torque_batch(
+            let written = law.torque_batch(
                 TwistingBatch {
                     dt,
                     normal: &self.normal[a..b],
@@ -580,8 +634,9 @@ impl ContactSet {
                     history: &mut self.hist_w[a * sw..b * sw],
                     torque: &mut self.mtwist[a..b],
                 },
-                EnergyOut::none(),
+                out(energy, pw, ew),
             )?;
+            self.unreported[3] |= energy && !written;
         }
         Ok(())
     }
@@ -599,6 +654,7 @@ pub struct Contacts {
     slots_t: usize,
     slots_r: Option<usize>,
     slots_w: Option<usize>,
+    energy: bool,
 }
 
 impl Contacts {
@@ -616,6 +672,12 @@ impl Contacts {
     pub fn with_rotation(mut self, slots_r: Option<usize>, slots_w: Option<usize>) -> Contacts {
         self.slots_r = slots_r;
         self.slots_w = slots_w;
+        self
+    }
+
+    /// The contacts with (`on`) or without the laws' energy outputs.
+    pub fn with_energy(mut self, on: bool) -> Contacts {
+        self.energy = on;
         self
     }
 
@@ -655,11 +717,19 @@ impl Contacts {
 
     /// The previous chunks and the spare ones to write, `chunks` of each (created as needed).
     pub fn buffers(&mut self, chunks: usize) -> (&[ContactSet], &mut [ContactSet]) {
-        let (sn, st, sr, sw) = (self.slots_n, self.slots_t, self.slots_r, self.slots_w);
-        self.chunks
-            .resize_with(chunks, || ContactSet::new(sn, st).with_rotation(sr, sw));
-        self.spare
-            .resize_with(chunks, || ContactSet::new(sn, st).with_rotation(sr, sw));
+        let (sn, st, sr, sw, en) = (
+            self.slots_n,
+            self.slots_t,
+            self.slots_r,
+            self.slots_w,
+            self.energy,
+        );
+        let make = || ContactSet {
+            energy: en,
+            ..ContactSet::new(sn, st).with_rotation(sr, sw)
+        };
+        self.chunks.resize_with(chunks, make);
+        self.spare.resize_with(chunks, make);
         (&self.chunks, &mut self.spare)
     }
 

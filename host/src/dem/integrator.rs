@@ -86,6 +86,13 @@ pub struct Engine<const D: usize> {
     pub wall_episodes: Vec<u64>,
     /// Particle-pair contact episodes since the start.
     pub pair_episodes: u64,
+    /// Energy dissipated since the start (J) by the normal, tangential, rolling and twisting
+    /// laws: each contact's reported power × dt, summed at every step (with
+    /// [`EngineConfig::energy`]).
+    pub dissipated: [f64; 4],
+    /// The families whose law did not report its energy at some step (their share in
+    /// [`Engine::dissipated`] is then incomplete).
+    pub unreported: [bool; 4],
 }
 
 impl<const D: usize> Engine<D> {
@@ -201,6 +208,7 @@ impl<const D: usize> Engine<D> {
             }
         };
         let nw = walls.len();
+        let energy = cfg.energy;
         let rot = &laws.rotation;
         let (pr, pw, wr, ww) = (
             rot.pair_rolling.as_ref().map(|l| l.history_slots()),
@@ -231,8 +239,10 @@ impl<const D: usize> Engine<D> {
             steps: 0,
             nb: Neighbours::default(),
             skin,
-            pairs: Contacts::new(sn, st).with_rotation(pr, pw),
-            wall_contacts: Contacts::new(swn, swt).with_rotation(wr, ww),
+            pairs: Contacts::new(sn, st).with_rotation(pr, pw).with_energy(energy),
+            wall_contacts: Contacts::new(swn, swt).with_rotation(wr, ww).with_energy(energy),
+            dissipated: [0.0; 4],
+            unreported: [false; 4],
             overflow: Vec::new(),
             reach: Vec::new(),
             moved: Vec::new(),
@@ -248,6 +258,7 @@ impl<const D: usize> Engine<D> {
         e.pairs.clear_history();
         e.wall_contacts.clear_history();
         e.reset_wall_counters();
+        e.dissipated = [0.0; 4];
         e.pair_episodes = e.pairs.len() as u64;
         let g = e.cfg.gravity;
         for i in 0..e.p.len() {
@@ -408,7 +419,33 @@ impl<const D: usize> Engine<D> {
             }
         }
         self.pair_episodes += self.pairs.formed() as u64;
+        if self.cfg.energy {
+            self.account_energy();
+        }
         Ok(())
+    }
+
+    /// Adds the step's dissipation (each contact's power × dt) to [`Engine::dissipated`], chunk
+    /// by chunk in order.
+    fn account_energy(&mut self) {
+        for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
+            for (k, p) in set.power.iter().enumerate() {
+                self.dissipated[k] += p[..set.len()].iter().sum::<f64>() * self.dt;
+                self.unreported[k] |= set.unreported[k];
+            }
+        }
+    }
+
+    /// The elastic energy stored in the contacts now (J), by family (with
+    /// [`EngineConfig::energy`]; zeros without).
+    pub fn elastic(&self) -> [f64; 4] {
+        let mut e = [0.0; 4];
+        for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
+            for (k, v) in set.elastic.iter().enumerate() {
+                e[k] += v[..set.len()].iter().sum::<f64>();
+            }
+        }
+        e
     }
 
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach

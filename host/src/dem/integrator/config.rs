@@ -55,6 +55,10 @@ pub struct EngineConfig<const D: usize> {
     /// Whether a contact's first and last step take the mean force over the part of the step in
     /// contact (default true; off: the plain step-end rule, for measuring what it changes).
     pub edge_means: bool,
+    /// Whether the laws report each contact's dissipated power and stored elastic energy
+    /// (sdk 0.3), summed by family into [`super::Engine::dissipated`] (default false: the
+    /// laws are called without those outputs).
+    pub energy: bool,
 }
 
 impl<const D: usize> EngineConfig<D> {
@@ -74,6 +78,7 @@ impl<const D: usize> EngineConfig<D> {
             },
             material,
             edge_means: true,
+            energy: false,
         }
     }
 }
