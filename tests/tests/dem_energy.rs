@@ -125,3 +125,27 @@ fn with_friction_and_rolling_every_family_dissipates_a_non_negative_share() {
         "residual {residual:e} J of {lost:e} J lost ({d:?})"
     );
 }
+
+/// An adhesive law is refused by the DEM engine, which would drop its contacts at touching.
+#[test]
+fn an_adhesive_law_is_refused_by_name_until_contacts_are_kept_to_their_reach() {
+    let text = pile("[law]\nname = \"jkr\"\nparams = { w = 0.1 }", "");
+    let file = SceneFile::parse(&text).unwrap();
+    let scene = file.scene::<3>().unwrap();
+    let reg = registry_03();
+    let laws = Laws::from_registry(
+        &reg,
+        ("jkr", &file.law.param_values()),
+        None,
+        &scene.config.material,
+    )
+    .unwrap();
+    let err = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)
+        .err()
+        .expect("an adhesive law must be refused");
+    let msg = err.to_string();
+    assert!(
+        msg.contains("'jkr' is adhesive") && msg.contains("δ = 0"),
+        "{msg}"
+    );
+}

@@ -38,7 +38,7 @@ mod kernels;
 mod pipeline;
 
 pub use config::*;
-use config::{collision_time, impact_speed};
+use config::{collision_time, impact_speed, refuse_adhesion};
 use kernels::*;
 
 /// A soft-sphere DEM run.
@@ -130,6 +130,7 @@ impl<const D: usize> Engine<D> {
                 )));
             }
         }
+        refuse_adhesion(&laws, &mat, bodies)?;
         for (k, w) in walls.iter().enumerate() {
             if !(w.normal.iter().all(|x| x.is_finite()) && (w.normal.norm() - 1.0).abs() < 1e-9) {
                 return Err(DemError::Invalid(format!(

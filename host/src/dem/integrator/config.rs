@@ -3,7 +3,7 @@
 
 use crate::collide::{collide, Options, PairLaw};
 use crate::dem::cells::Domain;
-use crate::dem::state::{Material, Particles, VecD};
+use crate::dem::state::{Body, Material, Particles, VecD};
 use crate::dem::walls::Wall;
 use crate::dem::{DemError, Laws};
 use dashpot_sdk::EndCriterion;
@@ -181,4 +181,37 @@ pub(super) fn collision_time(
         tau = tau.min(c.contact_time);
     }
     Ok(tau)
+}
+
+/// Refuses an adhesive normal law (tensile just past touching, as JKR and DMT are): the engine
+/// finds contacts by overlap and would drop each at δ = 0, short of the law's reach, and so
+/// report wrong physics.
+pub(super) fn refuse_adhesion<const D: usize>(
+    laws: &Laws,
+    mat: &Material,
+    bodies: &[Body<D>],
+) -> Result<(), DemError> {
+    let Some(d) = bodies.iter().map(|b| b.diameter).reduce(f64::min) else {
+        return Ok(());
+    };
+    let p = mat.particle(d);
+    let (m, r) = (0.5 * p.mass(), 0.25 * d);
+    for (what, law) in [("particle pairs", &laws.pair), ("walls", &laws.wall)] {
+        let mut h = vec![0.0; law.history_slots()];
+        let c = dashpot_sdk::Contact {
+            delta: 1e-9 * d,
+            rate: 0.0,
+            mass: m,
+            radius: r,
+        };
+        if law.force(c, &mut h)? < 0.0 {
+            return Err(DemError::Invalid(format!(
+                "law '{}' is adhesive (tensile at touch, against {what}): the DEM engine does not yet keep \
+                 contacts beyond touching to the law's reach, so it would drop them at δ = 0; use \
+                 `dashpot collide` for adhesive impacts, or a non-adhesive law here",
+                law.name()
+            )));
+        }
+    }
+    Ok(())
 }
