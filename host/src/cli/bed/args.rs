@@ -43,6 +43,13 @@ pub struct PhysArgs {
     /// --tset mu=0.3.
     #[arg(long = "tset", value_name = "NAME=VALUE", value_parser = crate::config::set_arg)]
     pub tset: Vec<String>,
+    /// A rolling-resistance law of the DEM engine's contacts (--engine dem), e.g. rolling-sds;
+    /// its parameters by --rset.
+    #[arg(long, value_name = "NAME")]
+    pub rolling: Option<String>,
+    /// Set a parameter of the rolling law (--engine dem), NAME=VALUE (repeatable).
+    #[arg(long = "rset", value_name = "NAME=VALUE", value_parser = crate::config::set_arg)]
+    pub rset: Vec<String>,
     /// Young's modulus of the disks (Pa; default steel, 2e11): the DEM engine's disks, and the
     /// particle a `--restitution from:LAW` table is computed for, so both engines can be
     /// compared on one material. Real steel makes the DEM step ~0.1 µs; 1e8 makes it ~1.6 µs.
@@ -169,6 +176,8 @@ impl PhysArgs {
                     ("--dt", self.dt.is_some()),
                     ("--steps-per-collision", self.steps_per_collision.is_some()),
                     ("--tset", !self.tset.is_empty()),
+                    ("--rolling", self.rolling.is_some()),
+                    ("--rset", !self.rset.is_empty()),
                 ] {
                     if given {
                         return Err(
@@ -259,12 +268,23 @@ impl PhysArgs {
     pub fn dem_laws(&self, reg: &Registry, mat: &crate::dem::Material) -> Result<crate::dem::Laws> {
         let (params, tparams) = (self.params()?, self.tparams()?);
         let law = self.law_name()?;
+        let sets =
+            crate::config::parse_sets(&self.rset).map_err(|e| crate::cli::UsageError(e.to_string()))?;
+        let rparams = crate::config::merge_params(&Default::default(), &sets);
         crate::dem::Laws::from_registry(
             reg,
             (law, params.as_slice()),
             self.tangential.as_deref().map(|t| (t, tparams.as_slice())),
             mat,
         )
+        .and_then(|l| {
+            l.with_rotation(
+                reg,
+                self.rolling.as_deref().map(|r| (r, rparams.as_slice())),
+                None,
+                mat,
+            )
+        })
         .with_context(|| {
             format!(
                 "contact law '{law}'{}",
@@ -272,6 +292,11 @@ impl PhysArgs {
                     .as_deref()
                     .map(|t| format!(" with tangential law '{t}'"))
                     .unwrap_or_default()
+                    + &self
+                        .rolling
+                        .as_deref()
+                        .map(|r| format!(" and rolling law '{r}'"))
+                        .unwrap_or_default()
             )
         })
     }
