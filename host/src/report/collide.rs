@@ -339,6 +339,7 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
         sf[32].1, so[32].1
     )?;
     md.push_str(&plastic_and_oblique(reg, out)?);
+    md.push_str(&super::collide_families::families_figures(reg, out)?);
     Ok(md)
 }
 

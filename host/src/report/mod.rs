@@ -2,5 +2,6 @@
 
 pub mod bed;
 pub mod collide;
+pub mod collide_families;
 pub mod plot;
 pub mod reproduce;
