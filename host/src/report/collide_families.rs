@@ -70,7 +70,7 @@ fn jkr_loop(reg: &Registry, out: &Path, md: &mut String) -> Result<()> {
         };
         lines.push(format!("v0 = {factor} v_c: {what}"));
         series.push(Series::new(
-            &format!("impact at {factor} v_c ({what})"),
+            format!("impact at {factor} v_c ({what})"),
             pts,
             Mark::Line,
             k,
