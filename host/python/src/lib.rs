@@ -1,0 +1,357 @@
+//! `dashpot._dashpot`: the Rust side of the `dashpot` Python package (pyo3 + numpy). The
+//! Python layer (`python/dashpot/__init__.py`) converts inputs to contiguous float64 arrays and
+//! documents the API; this module loads the laws, calls their batch functions without the GIL,
+//! and turns every refusal into a Python exception naming the value.
+
+use dashpot::collide::{collide as collide_one, Options, PairLaw};
+use dashpot::laws::ContactModelHandle;
+use dashpot::output::{law_json, Provenance};
+use dashpot::registry::explicit_file;
+use dashpot::{Registry, SearchPath};
+use dashpot_sdk::{EndCriterion, ErrorKind, LawError, MaterialPair, NormalBatch, Pair, ParamValue, Particle};
+use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadwriteArray1};
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+use std::sync::{Mutex, OnceLock};
+
+pyo3::create_exception!(
+    _dashpot,
+    PluginError,
+    PyException,
+    "A plugin could not be loaded: not a shared library, built against an incompatible sdk, or \
+     missing its entry points."
+);
+
+/// The registry of the process: the directories of `DASHPOT_PLUGIN_PATH` and the package's own
+/// plugin directory, then every file given to `load_plugin`.
+static REGISTRY: OnceLock<Mutex<Registry>> = OnceLock::new();
+
+fn registry(py: Python<'_>) -> PyResult<&'static Mutex<Registry>> {
+    if let Some(r) = REGISTRY.get() {
+        return Ok(r);
+    }
+    let dirs: Vec<PathBuf> = py
+        .import("dashpot")
+        .and_then(|m| m.getattr("_plugin_dirs"))
+        .and_then(|f| f.call0())
+        .and_then(|v| v.extract::<Vec<String>>())
+        .map(|v| v.into_iter().map(PathBuf::from).collect())
+        .unwrap_or_default();
+    let sp = SearchPath {
+        dirs,
+        files: Vec::new(),
+        use_env: true,
+        use_default: false,
+    };
+    let reg = Registry::discover(&sp).map_err(plugin_err)?;
+    Ok(REGISTRY.get_or_init(|| Mutex::new(reg)))
+}
+
+fn with_registry<T>(py: Python<'_>, f: impl FnOnce(&Registry) -> PyResult<T>) -> PyResult<T> {
+    let m = registry(py)?;
+    let reg = m.lock().unwrap_or_else(|p| p.into_inner());
+    f(&reg)
+}
+
+/// A loading error: `PluginError`.
+fn plugin_err(e: LawError) -> PyErr {
+    PluginError::new_err(e.message)
+}
+
+/// A law's refusal: `ValueError` for bad names and values, `PluginError` for loading,
+/// `RuntimeError` for a law that failed (panic, non-finite output).
+fn law_err(e: LawError) -> PyErr {
+    match e.kind {
+        ErrorKind::Load => PluginError::new_err(e.message),
+        // a NaN or infinite *input* is the caller's bad value; a non-finite output the law's failure
+        ErrorKind::NonFinite if e.message.contains("input") => PyValueError::new_err(e.message),
+        ErrorKind::Panic | ErrorKind::NonFinite => pyo3::exceptions::PyRuntimeError::new_err(e.message),
+        _ => PyValueError::new_err(e.message),
+    }
+}
+
+fn params_of(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<ParamValue>> {
+    let mut out = Vec::new();
+    if let Some(k) = kwargs {
+        for (key, value) in k.iter() {
+            let name: String = key.extract()?;
+            let v: f64 = value.extract().map_err(|_| {
+                PyValueError::new_err(format!(
+                    "parameter {name} = {value}: a law parameter must be a number"
+                ))
+            })?;
+            out.push(ParamValue::new(&name, v));
+        }
+    }
+    Ok(out)
+}
+
+/// Every law found: a list of dicts (name, kind, summary, doc, plugin, params, ...), as
+/// `dashpot laws --json` prints them.
+#[pyfunction]
+fn laws(py: Python<'_>) -> PyResult<String> {
+    with_registry(py, |reg| {
+        let v: Vec<serde_json::Value> = reg.laws.iter().map(|l| law_json(reg, &l.info)).collect();
+        Ok(serde_json::Value::Array(v).to_string())
+    })
+}
+
+/// Loads the plugin file `path` (its laws are added to those already found).
+#[pyfunction]
+fn load_plugin(py: Python<'_>, path: PathBuf) -> PyResult<()> {
+    let m = registry(py)?;
+    let mut reg = m.lock().unwrap_or_else(|p| p.into_inner());
+    let file = explicit_file(&path).map_err(plugin_err)?;
+    reg.load_file(&file).map_err(plugin_err)
+}
+
+/// The provenance of law `name` with `params`, as the CLI's JSON gives it.
+#[pyfunction]
+#[pyo3(signature = (name, **params))]
+fn provenance(py: Python<'_>, name: &str, params: Option<&Bound<'_, PyDict>>) -> PyResult<String> {
+    let p = params_of(params)?;
+    with_registry(py, |reg| {
+        Ok(Provenance::of(reg, name, &p).map_err(law_err)?.json().to_string())
+    })
+}
+
+/// A contact law bound to a pair of materials.
+#[pyclass(module = "dashpot._dashpot", frozen)]
+struct BoundContact {
+    law: ContactModelHandle,
+    name: String,
+}
+
+#[pymethods]
+impl BoundContact {
+    /// History slots per contact.
+    #[getter]
+    fn history_slots(&self) -> usize {
+        self.law.history_slots()
+    }
+
+    /// The law's name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Normal forces (N) of the contacts: `delta` (m), `rate` (m/s), `mass` (kg), `radius` (m),
+    /// contiguous float64 arrays of one length; `history` (flat, `history_slots` per contact)
+    /// updated in place.
+    #[pyo3(signature = (delta, rate, mass, radius, history=None))]
+    fn force<'py>(
+        &self,
+        py: Python<'py>,
+        delta: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        history: Option<PyReadwriteArray1<'py, f64>>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let (d, r, m, a) = (
+            delta.as_slice()?,
+            rate.as_slice()?,
+            mass.as_slice()?,
+            radius.as_slice()?,
+        );
+        let n = d.len();
+        for (what, len) in [("rate", r.len()), ("mass", m.len()), ("radius", a.len())] {
+            if len != n {
+                return Err(PyValueError::new_err(format!(
+                    "{what} has {len} values, delta {n}: every array must have one value per contact"
+                )));
+            }
+        }
+        let slots = self.law.history_slots();
+        let mut own = Vec::new();
+        let mut hist_arr = history;
+        let hist: &mut [f64] = match (&mut hist_arr, slots) {
+            (_, 0) => &mut own,
+            (Some(h), s) => {
+                let h = h.as_slice_mut()?;
+                if h.len() != n * s {
+                    return Err(PyValueError::new_err(format!(
+                        "history has {} values: law '{}' keeps {s} per contact, {} for {n} contacts",
+                        h.len(),
+                        self.name,
+                        n * s
+                    )));
+                }
+                h
+            }
+            (None, s) => {
+                return Err(PyValueError::new_err(format!(
+                    "law '{}' keeps {s} history values per contact: pass history (zeros at first touch, {} values)",
+                    self.name,
+                    n * s
+                )))
+            }
+        };
+        let mut out = vec![0.0; n];
+        let law = &self.law;
+        py.allow_threads(|| {
+            law.force_batch(NormalBatch {
+                delta: d,
+                rate: r,
+                mass: m,
+                radius: a,
+                slots,
+                history: hist,
+                force: &mut out,
+            })
+        })
+        .map_err(law_err)?;
+        Ok(out.into_pyarray(py))
+    }
+}
+
+/// Contact law `name` with `params` bound to the materials (Young's moduli in Pa, Poisson's
+/// ratios), the second body another sphere (`young2`, `poisson2`: default the first's) or a
+/// rigid wall.
+#[pyfunction]
+#[pyo3(signature = (name, params, young, poisson, young2=None, poisson2=None, wall=false))]
+fn bind_contact(
+    py: Python<'_>,
+    name: &str,
+    params: Option<&Bound<'_, PyDict>>,
+    young: f64,
+    poisson: f64,
+    young2: Option<f64>,
+    poisson2: Option<f64>,
+    wall: bool,
+) -> PyResult<BoundContact> {
+    let p = params_of(params)?;
+    let body = |e: f64, nu: f64| Particle {
+        diameter: 1.0,
+        density: 1.0,
+        young: e,
+        poisson: nu,
+    };
+    let a = body(young, poisson);
+    let mats = if wall {
+        MaterialPair::wall(&a)
+    } else {
+        MaterialPair::spheres(&a, &body(young2.unwrap_or(young), poisson2.unwrap_or(poisson)))
+    }
+    .map_err(law_err)?;
+    with_registry(py, |reg| {
+        let law = reg
+            .contact(name, &p)
+            .map_err(law_err)?
+            .bind(&mats)
+            .map_err(law_err)?;
+        Ok(BoundContact {
+            law,
+            name: name.to_string(),
+        })
+    })
+}
+
+/// One head-on collision, as `dashpot collide --json` computes it: law `name` with `params`,
+/// the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) against an
+/// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON (a string) and,
+/// with `record`, the trajectory as four arrays (t, δ, δ̇, F).
+#[pyfunction]
+#[pyo3(signature = (name, params, v0, diameter, density, young, poisson, wall, end, rtol, record))]
+#[allow(clippy::too_many_arguments)]
+fn collide<'py>(
+    py: Python<'py>,
+    name: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    v0: f64,
+    diameter: f64,
+    density: f64,
+    young: f64,
+    poisson: f64,
+    wall: bool,
+    end: Option<&str>,
+    rtol: f64,
+    record: bool,
+) -> PyResult<(String, Option<[Bound<'py, PyArray1<f64>>; 4]>)> {
+    if !(v0.is_finite() && v0 > 0.0) {
+        return Err(PyValueError::new_err(format!(
+            "v0 = {v0} m/s is out of range: the impact speed must be finite and > 0"
+        )));
+    }
+    if !(1e-14..=1e-3).contains(&rtol) {
+        return Err(PyValueError::new_err(format!(
+            "rtol = {rtol} is out of range: it must lie in [1e-14, 1e-3]"
+        )));
+    }
+    let end = match end {
+        None | Some("overlap") => EndCriterion::Overlap,
+        Some("force") => EndCriterion::Force,
+        Some(e) => {
+            return Err(PyValueError::new_err(format!(
+                "end = '{e}' is not a criterion: 'overlap' (δ returns to 0) or 'force'"
+            )))
+        }
+    };
+    let p = params_of(params)?;
+    let particle = Particle {
+        diameter,
+        density,
+        young,
+        poisson,
+    };
+    let pair = if wall {
+        Pair::wall(&particle)
+    } else {
+        Pair::spheres(&particle, &particle)
+    }
+    .map_err(law_err)?;
+    let (law, prov) = with_registry(py, |reg| {
+        let law = reg.contact(name, &p).map_err(law_err)?;
+        let prov = Provenance::of(reg, name, &p).map_err(law_err)?;
+        Ok((law, prov))
+    })?;
+    let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&law, &pair, poisson).map_err(law_err)?;
+    let opt = Options {
+        rtol,
+        record,
+        max_step_fraction: if record {
+            0.01
+        } else {
+            Options::default().max_step_fraction
+        },
+        ..Options::default()
+    };
+    let c = py
+        .allow_threads(|| collide_one(&bound, pair.mass, v0, end, &opt))
+        .map_err(|e| PyValueError::new_err(format!("collision of '{name}' at v0 = {v0} m/s: {e}")))?;
+    let json = serde_json::json!({
+        "law": name, "params": prov.params_json(), "v0": v0, "end": end.as_str(),
+        "restitution": c.restitution, "contact_time": c.contact_time,
+        "max_overlap": c.max_overlap, "max_overlap_time": c.max_overlap_time,
+        "stuck": c.stuck, "tensile_peak": c.tensile_peak,
+        "steps": c.steps, "force_evals": c.force_evals, "rtol": rtol,
+        "pair": {"mass": pair.mass, "radius": pair.radius, "young": pair.young},
+        "provenance": prov.json(),
+    });
+    let arrays = record.then(|| {
+        let col =
+            |f: fn(&dashpot::collide::Sample) -> f64| -> Vec<f64> { c.trajectory.iter().map(f).collect() };
+        [
+            col(|s| s.t).into_pyarray(py),
+            col(|s| s.delta).into_pyarray(py),
+            col(|s| s.rate).into_pyarray(py),
+            col(|s| s.force).into_pyarray(py),
+        ]
+    });
+    Ok((json.to_string(), arrays))
+}
+
+#[pymodule]
+fn _dashpot(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("PluginError", m.py().get_type::<PluginError>())?;
+    m.add_function(wrap_pyfunction!(laws, m)?)?;
+    m.add_function(wrap_pyfunction!(load_plugin, m)?)?;
+    m.add_function(wrap_pyfunction!(provenance, m)?)?;
+    m.add_function(wrap_pyfunction!(bind_contact, m)?)?;
+    m.add_function(wrap_pyfunction!(collide, m)?)?;
+    m.add_class::<BoundContact>()?;
+    Ok(())
+}
