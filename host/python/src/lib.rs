@@ -213,6 +213,7 @@ impl BoundContact {
 /// rigid wall.
 #[pyfunction]
 #[pyo3(signature = (name, params, young, poisson, young2=None, poisson2=None, wall=false))]
+#[allow(clippy::too_many_arguments)]
 fn bind_contact(
     py: Python<'_>,
     name: &str,
@@ -250,6 +251,9 @@ fn bind_contact(
     })
 }
 
+/// A recorded trajectory: t (s), δ (m), δ̇ (m/s), F (N).
+type Trajectory<'py> = [Bound<'py, PyArray1<f64>>; 4];
+
 /// One head-on collision, as `dashpot collide --json` computes it: law `name` with `params`,
 /// the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) against an
 /// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON (a string) and,
@@ -270,7 +274,7 @@ fn collide<'py>(
     end: Option<&str>,
     rtol: f64,
     record: bool,
-) -> PyResult<(String, Option<[Bound<'py, PyArray1<f64>>; 4]>)> {
+) -> PyResult<(String, Option<Trajectory<'py>>)> {
     if !(v0.is_finite() && v0 > 0.0) {
         return Err(PyValueError::new_err(format!(
             "v0 = {v0} m/s is out of range: the impact speed must be finite and > 0"
