@@ -9,12 +9,12 @@ use dashpot::output::{law_json, Provenance};
 use dashpot::registry::explicit_file;
 use dashpot::{Registry, SearchPath};
 use dashpot_sdk::{EndCriterion, ErrorKind, LawError, MaterialPair, NormalBatch, Pair, ParamValue, Particle};
-use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadwriteArray1};
+use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1};
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use std::path::PathBuf;
-use std::sync::{Mutex, OnceLock};
+use std::sync::{Arc, Mutex, OnceLock};
 
 pyo3::create_exception!(
     _dashpot,
@@ -104,7 +104,11 @@ fn load_plugin(py: Python<'_>, path: PathBuf) -> PyResult<()> {
     let m = registry(py)?;
     let mut reg = m.lock().unwrap_or_else(|p| p.into_inner());
     let file = explicit_file(&path).map_err(plugin_err)?;
-    reg.load_file(&file).map_err(plugin_err)
+    reg.load_file(&file).map_err(plugin_err)?;
+    if let Some(c) = CONTACT_LAWS.get() {
+        c.lock().unwrap_or_else(|e| e.into_inner()).clear();
+    }
+    Ok(())
 }
 
 /// The provenance of law `name` with `params`, as the CLI's JSON gives it.
@@ -138,10 +142,56 @@ impl BoundContact {
         &self.name
     }
 
+    /// The benchmarks' baseline: the Rust batch call on these contacts, `reps` times into one
+    /// preallocated output, without Python in the loop; returns each call's wall time (s).
+    #[pyo3(signature = (delta, rate, mass, radius, reps))]
+    fn _time_batch<'py>(
+        &self,
+        py: Python<'py>,
+        delta: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        reps: usize,
+    ) -> PyResult<Vec<f64>> {
+        let (d, r, m, a) = (
+            delta.as_slice()?,
+            rate.as_slice()?,
+            mass.as_slice()?,
+            radius.as_slice()?,
+        );
+        if self.law.history_slots() > 0 || [r.len(), m.len(), a.len()] != [d.len(); 3] {
+            return Err(PyValueError::new_err(
+                "_time_batch: a memoryless law and arrays of one length",
+            ));
+        }
+        let mut out = vec![0.0; d.len()];
+        let law = &self.law;
+        py.allow_threads(|| {
+            (0..reps)
+                .map(|_| {
+                    let t = std::time::Instant::now();
+                    law.force_batch(NormalBatch {
+                        delta: d,
+                        rate: r,
+                        mass: m,
+                        radius: a,
+                        slots: 0,
+                        history: &mut [],
+                        force: &mut out,
+                    })
+                    .map(|_| t.elapsed().as_secs_f64())
+                })
+                .collect::<Result<Vec<f64>, LawError>>()
+        })
+        .map_err(law_err)
+    }
+
     /// Normal forces (N) of the contacts: `delta` (m), `rate` (m/s), `mass` (kg), `radius` (m),
     /// contiguous float64 arrays of one length; `history` (flat, `history_slots` per contact)
     /// updated in place.
-    #[pyo3(signature = (delta, rate, mass, radius, history=None))]
+    #[pyo3(signature = (delta, rate, mass, radius, history=None, out=None))]
+    #[allow(clippy::too_many_arguments)]
     fn force<'py>(
         &self,
         py: Python<'py>,
@@ -150,6 +200,7 @@ impl BoundContact {
         mass: PyReadonlyArray1<'py, f64>,
         radius: PyReadonlyArray1<'py, f64>,
         history: Option<PyReadwriteArray1<'py, f64>>,
+        out: Option<Bound<'py, PyArray1<f64>>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let (d, r, m, a) = (
             delta.as_slice()?,
@@ -190,21 +241,35 @@ impl BoundContact {
                 )))
             }
         };
-        let mut out = vec![0.0; n];
-        let law = &self.law;
-        py.allow_threads(|| {
-            law.force_batch(NormalBatch {
-                delta: d,
-                rate: r,
-                mass: m,
-                radius: a,
-                slots,
-                history: hist,
-                force: &mut out,
+        // the caller's output array (reused across calls), or a new one
+        let out = match out {
+            Some(o) => o,
+            None => PyArray1::<f64>::zeros(py, n, false),
+        };
+        {
+            let mut w = out.try_readwrite()?;
+            let f = w.as_slice_mut()?;
+            if f.len() != n {
+                return Err(PyValueError::new_err(format!(
+                    "out has {} values, delta {n}: one per contact",
+                    f.len()
+                )));
+            }
+            let law = &self.law;
+            py.allow_threads(|| {
+                law.force_batch(NormalBatch {
+                    delta: d,
+                    rate: r,
+                    mass: m,
+                    radius: a,
+                    slots,
+                    history: hist,
+                    force: f,
+                })
             })
-        })
-        .map_err(law_err)?;
-        Ok(out.into_pyarray(py))
+            .map_err(law_err)?;
+        }
+        Ok(out)
     }
 }
 
@@ -251,13 +316,10 @@ fn bind_contact(
     })
 }
 
-/// A recorded trajectory: t (s), δ (m), δ̇ (m/s), F (N).
-type Trajectory<'py> = [Bound<'py, PyArray1<f64>>; 4];
-
 /// One head-on collision, as `dashpot collide --json` computes it: law `name` with `params`,
 /// the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) against an
-/// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON (a string) and,
-/// with `record`, the trajectory as four arrays (t, δ, δ̇, F).
+/// identical sphere or a wall, impact speed `v0` (m/s). Returns the numbers of the CLI's JSON
+/// as a dict and, with `record`, the trajectory as four arrays (t, δ, δ̇, F).
 #[pyfunction]
 #[pyo3(signature = (name, params, v0, diameter, density, young, poisson, wall, end, rtol, record))]
 #[allow(clippy::too_many_arguments)]
@@ -274,7 +336,7 @@ fn collide<'py>(
     end: Option<&str>,
     rtol: f64,
     record: bool,
-) -> PyResult<(String, Option<Trajectory<'py>>)> {
+) -> PyResult<Bound<'py, PyDict>> {
     if !(v0.is_finite() && v0 > 0.0) {
         return Err(PyValueError::new_err(format!(
             "v0 = {v0} m/s is out of range: the impact speed must be finite and > 0"
@@ -307,11 +369,7 @@ fn collide<'py>(
         Pair::spheres(&particle, &particle)
     }
     .map_err(law_err)?;
-    let (law, prov) = with_registry(py, |reg| {
-        let law = reg.contact(name, &p).map_err(law_err)?;
-        let prov = Provenance::of(reg, name, &p).map_err(law_err)?;
-        Ok((law, prov))
-    })?;
+    let law = cached_contact(py, name, &p)?;
     let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&law, &pair, poisson).map_err(law_err)?;
     let opt = Options {
         rtol,
@@ -326,26 +384,58 @@ fn collide<'py>(
     let c = py
         .allow_threads(|| collide_one(&bound, pair.mass, v0, end, &opt))
         .map_err(|e| PyValueError::new_err(format!("collision of '{name}' at v0 = {v0} m/s: {e}")))?;
-    let json = serde_json::json!({
-        "law": name, "params": prov.params_json(), "v0": v0, "end": end.as_str(),
-        "restitution": c.restitution, "contact_time": c.contact_time,
-        "max_overlap": c.max_overlap, "max_overlap_time": c.max_overlap_time,
-        "stuck": c.stuck, "tensile_peak": c.tensile_peak,
-        "steps": c.steps, "force_evals": c.force_evals, "rtol": rtol,
-        "pair": {"mass": pair.mass, "radius": pair.radius, "young": pair.young},
-        "provenance": prov.json(),
-    });
-    let arrays = record.then(|| {
+    let out = PyDict::new(py);
+    out.set_item("law", name)?;
+    out.set_item("v0", v0)?;
+    out.set_item("end", end.as_str())?;
+    out.set_item("restitution", c.restitution)?;
+    out.set_item("contact_time", c.contact_time)?;
+    out.set_item("max_overlap", c.max_overlap)?;
+    out.set_item("max_overlap_time", c.max_overlap_time)?;
+    out.set_item("stuck", c.stuck)?;
+    out.set_item("tensile_peak", c.tensile_peak)?;
+    out.set_item("steps", c.steps)?;
+    out.set_item("force_evals", c.force_evals)?;
+    out.set_item("rtol", rtol)?;
+    let pd = PyDict::new(py);
+    pd.set_item("mass", pair.mass)?;
+    pd.set_item("radius", pair.radius)?;
+    pd.set_item("young", pair.young)?;
+    out.set_item("pair", pd)?;
+    if record {
         let col =
             |f: fn(&dashpot::collide::Sample) -> f64| -> Vec<f64> { c.trajectory.iter().map(f).collect() };
-        [
-            col(|s| s.t).into_pyarray(py),
-            col(|s| s.delta).into_pyarray(py),
-            col(|s| s.rate).into_pyarray(py),
-            col(|s| s.force).into_pyarray(py),
-        ]
-    });
-    Ok((json.to_string(), arrays))
+        out.set_item("t", col(|s| s.t).into_pyarray(py))?;
+        out.set_item("delta", col(|s| s.delta).into_pyarray(py))?;
+        out.set_item("rate", col(|s| s.rate).into_pyarray(py))?;
+        out.set_item("force", col(|s| s.force).into_pyarray(py))?;
+    }
+    Ok(out)
+}
+
+/// Contact laws created by `collide`, by name and parameters: a calibration loop calls the same
+/// law thousands of times, and creating it (a call into the plugin that checks every parameter)
+/// costs more than a short collision. Emptied when a plugin is loaded.
+static CONTACT_LAWS: OnceLock<
+    Mutex<std::collections::HashMap<String, Arc<dashpot::laws::ContactLawHandle>>>,
+> = OnceLock::new();
+
+fn cached_contact(
+    py: Python<'_>,
+    name: &str,
+    p: &[ParamValue],
+) -> PyResult<Arc<dashpot::laws::ContactLawHandle>> {
+    let key = format!("{name}|{p:?}");
+    let cache = CONTACT_LAWS.get_or_init(Default::default);
+    if let Some(l) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+        return Ok(l.clone());
+    }
+    let law = Arc::new(with_registry(py, |reg| reg.contact(name, p).map_err(law_err))?);
+    cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .insert(key, law.clone());
+    Ok(law)
 }
 
 #[pymodule]

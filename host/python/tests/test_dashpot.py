@@ -59,6 +59,8 @@ def test_a_million_contacts_split_any_way_give_the_same_bits_and_hertz_when_unda
     parts = np.concatenate([b.force(delta[i:i + 999], rate[i:i + 999], mass[i:i + 999], radius[i:i + 999])
                             for i in range(0, 20_000, 999)])
     assert np.array_equal(parts, f[:parts.shape[0]])
+    out = np.empty(n)
+    assert b.force(delta, rate, mass, radius, out=out) is out and np.array_equal(out, f)
     # at rate 0 HSD is Hertz: F = (4/3) E_eff √r δ^{3/2}
     e_eff = 6e9 / (2 * (1 - 0.3**2))
     f0 = b.force(delta, np.zeros(n), mass, radius)

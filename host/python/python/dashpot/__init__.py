@@ -90,20 +90,24 @@ class BoundContactLaw:
         """History values the law keeps per contact (0 for a memoryless law)."""
         return self._inner.history_slots
 
-    def force(self, delta, rate, mass, radius, history=None) -> _np.ndarray:
+    def force(self, delta, rate, mass, radius, history=None, out=None) -> _np.ndarray:
         """Normal forces (N, > 0 repulsive) of N contacts: overlaps ``delta`` (m), rates
         ``rate`` (m/s, > 0 approaching), effective masses ``mass`` (kg) and radii ``radius``
         (m), each an array of N values (float64 arrays are used without a copy). A law with
         history needs ``history``, a float64 array of shape (N, history_slots), zeros at first
-        touch, which it updates in place."""
+        touch, which it updates in place. ``out``, a float64 array of N values, receives the
+        forces instead of a new array (a loop over steps then allocates nothing)."""
         d = _f64("delta", delta)
         n = d.shape[0]
         args = [d, _f64("rate", rate, n), _f64("mass", mass, n), _f64("radius", radius, n)]
+        if out is not None and not (isinstance(out, _np.ndarray) and out.dtype == _np.float64
+                                    and out.ndim == 1 and out.flags.c_contiguous and out.flags.writeable):
+            raise ValueError("out must be a writeable, contiguous one-dimensional float64 numpy array")
         if history is None:
-            return self._inner.force(*args)
+            return self._inner.force(*args, None, out)
         if not (isinstance(history, _np.ndarray) and history.dtype == _np.float64 and history.flags.c_contiguous):
             raise ValueError("history must be a C-contiguous float64 numpy array of shape (N, history_slots), updated in place")
-        return self._inner.force(*args, history.reshape(-1))
+        return self._inner.force(*args, history.reshape(-1), out)
 
 
 class ContactLaw:
@@ -140,9 +144,20 @@ def collide(law: str, v0: float = 1.0, *, diameter: float = 0.01, density: float
     stuck (adhesive laws), tensile_peak (N), steps, force_evals, pair, params, provenance;
     with ``record=True`` also the trajectory as arrays ``t``, ``delta``, ``rate``, ``force``.
     The GIL is released while it runs."""
-    text, arrays = _dashpot.collide(law, params, float(v0), diameter, density, young, poisson,
-                                    wall, end, rtol, record)
-    out = _json.loads(text)
-    if arrays is not None:
-        out.update(zip(("t", "delta", "rate", "force"), arrays))
+    out = _dashpot.collide(law, params, float(v0), diameter, density, young, poisson, wall, end,
+                           rtol, record)
+    out["params"], out["provenance"] = _provenance(law, params)
     return out
+
+
+_PROVENANCE: Dict[str, Any] = {}
+
+
+def _provenance(law: str, params: Dict[str, float]):
+    """(params, provenance) of a law as the CLI's JSON gives them, computed once per law and
+    parameters (the dicts are shared between results: copy them before changing them)."""
+    key = law + repr(sorted(params.items()))
+    if key not in _PROVENANCE:
+        p = _json.loads(_dashpot.provenance(law, **params))
+        _PROVENANCE[key] = (p["params"], p)
+    return _PROVENANCE[key]
