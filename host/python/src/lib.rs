@@ -121,6 +121,23 @@ fn provenance(py: Python<'_>, name: &str, params: Option<&Bound<'_, PyDict>>) ->
     })
 }
 
+/// The four arrays of a batch (δ, δ̇, m, r) as slices of one length; the error names the array
+/// whose length differs.
+fn contact_slices<'a>(arrays: [&'a PyReadonlyArray1<'_, f64>; 4]) -> PyResult<[&'a [f64]; 4]> {
+    let [d, r, m, a] = arrays;
+    let s = [d.as_slice()?, r.as_slice()?, m.as_slice()?, a.as_slice()?];
+    let n = s[0].len();
+    for (what, x) in ["rate", "mass", "radius"].into_iter().zip(&s[1..]) {
+        if x.len() != n {
+            return Err(PyValueError::new_err(format!(
+                "{what} has {} values, delta {n}: every array must have one value per contact",
+                x.len()
+            )));
+        }
+    }
+    Ok(s)
+}
+
 /// A contact law bound to a pair of materials.
 #[pyclass(module = "dashpot._dashpot", frozen)]
 struct BoundContact {
@@ -154,16 +171,9 @@ impl BoundContact {
         radius: PyReadonlyArray1<'py, f64>,
         reps: usize,
     ) -> PyResult<Vec<f64>> {
-        let (d, r, m, a) = (
-            delta.as_slice()?,
-            rate.as_slice()?,
-            mass.as_slice()?,
-            radius.as_slice()?,
-        );
-        if self.law.history_slots() > 0 || [r.len(), m.len(), a.len()] != [d.len(); 3] {
-            return Err(PyValueError::new_err(
-                "_time_batch: a memoryless law and arrays of one length",
-            ));
+        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
+        if self.law.history_slots() > 0 {
+            return Err(PyValueError::new_err("_time_batch: a memoryless law"));
         }
         let mut out = vec![0.0; d.len()];
         let law = &self.law;
@@ -202,20 +212,8 @@ impl BoundContact {
         history: Option<PyReadwriteArray1<'py, f64>>,
         out: Option<Bound<'py, PyArray1<f64>>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let (d, r, m, a) = (
-            delta.as_slice()?,
-            rate.as_slice()?,
-            mass.as_slice()?,
-            radius.as_slice()?,
-        );
+        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
         let n = d.len();
-        for (what, len) in [("rate", r.len()), ("mass", m.len()), ("radius", a.len())] {
-            if len != n {
-                return Err(PyValueError::new_err(format!(
-                    "{what} has {len} values, delta {n}: every array must have one value per contact"
-                )));
-            }
-        }
         let slots = self.law.history_slots();
         let mut own = Vec::new();
         let mut hist_arr = history;

@@ -79,11 +79,7 @@ impl Laws {
         tangential: Option<(&str, &[dashpot_sdk::ParamValue])>,
         mat: &Material,
     ) -> Result<Laws, LawError> {
-        let p = mat.particle(1.0);
-        let (pp, pw) = (
-            dashpot_sdk::MaterialPair::spheres(&p, &p)?,
-            dashpot_sdk::MaterialPair::wall(&p)?,
-        );
+        let (pp, pw) = material_pairs(mat)?;
         let n = reg.contact(normal.0, normal.1)?;
         let (pair_tangential, wall_tangential): (OptTangential, OptTangential) = match tangential {
             Some((name, params)) => {
@@ -110,11 +106,7 @@ impl Laws {
         twisting: Option<(&str, &[dashpot_sdk::ParamValue])>,
         mat: &Material,
     ) -> Result<Laws, LawError> {
-        let p = mat.particle(1.0);
-        let (pp, pw) = (
-            dashpot_sdk::MaterialPair::spheres(&p, &p)?,
-            dashpot_sdk::MaterialPair::wall(&p)?,
-        );
+        let (pp, pw) = material_pairs(mat)?;
         if let Some((name, params)) = rolling {
             let l = reg.rolling(name, params)?;
             self.rotation.pair_rolling = Some(Box::new(l.bind(&pp)?));
@@ -127,6 +119,17 @@ impl Laws {
         }
         Ok(self)
     }
+}
+
+/// The particle–particle and particle–wall material pairs of `mat` (what each law binds to).
+fn material_pairs(
+    mat: &Material,
+) -> Result<(dashpot_sdk::MaterialPair, dashpot_sdk::MaterialPair), LawError> {
+    let p = mat.particle(1.0);
+    Ok((
+        dashpot_sdk::MaterialPair::spheres(&p, &p)?,
+        dashpot_sdk::MaterialPair::wall(&p)?,
+    ))
 }
 
 /// A tangential law, if any.
