@@ -376,6 +376,121 @@ module dashpot
       integer(c_int) :: dashpot_tangential_model_force_batch
     end function
 
+    ! ---- sdk 0.3: rolling and twisting laws; energy and reach outputs of contact laws ----
+    ! the energy outputs (power, elastic) take arrays of n values; energy_written is 1 when the law
+    ! reported them. Vectors are real(c_double) :: v(3, n), as for the tangential batch.
+    function dashpot_rolling_new(registry, name, param_names, param_values, n_params, law) &
+      bind(c, name='dashpot_rolling_new')
+      import :: c_ptr, c_char, c_double, c_size_t, c_int
+      type(c_ptr), value :: registry
+      character(kind=c_char), intent(in) :: name(*)
+      type(c_ptr), value :: param_names
+      real(c_double), intent(in) :: param_values(*)
+      integer(c_size_t), value :: n_params
+      type(c_ptr), intent(out) :: law
+      integer(c_int) :: dashpot_rolling_new
+    end function
+
+    subroutine dashpot_rolling_free(law) bind(c, name='dashpot_rolling_free')
+      import :: c_ptr
+      type(c_ptr), value :: law
+    end subroutine
+
+    function dashpot_rolling_bind_materials(law, materials, model) bind(c, name='dashpot_rolling_bind_materials')
+      import :: c_ptr, c_int, dashpot_materials_t
+      type(c_ptr), value :: law
+      type(dashpot_materials_t), intent(in) :: materials
+      type(c_ptr), intent(out) :: model
+      integer(c_int) :: dashpot_rolling_bind_materials
+    end function
+
+    subroutine dashpot_rolling_model_free(model) bind(c, name='dashpot_rolling_model_free')
+      import :: c_ptr
+      type(c_ptr), value :: model
+    end subroutine
+
+    function dashpot_rolling_model_history_slots(model, slots) bind(c, name='dashpot_rolling_model_history_slots')
+      import :: c_ptr, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), intent(out) :: slots
+      integer(c_int) :: dashpot_rolling_model_history_slots
+    end function
+
+    function dashpot_rolling_model_force_batch(model, n, dt, normal, velocity, normal_force, delta, mass, radius, &
+      history, n_history, force, power, elastic, energy_written) bind(c, name='dashpot_rolling_model_force_batch')
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), value :: dt
+      real(c_double), intent(in) :: normal(*), velocity(*), normal_force(*), delta(*), mass(*), radius(*)
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: force(*), power(*), elastic(*)
+      integer(c_int), intent(out) :: energy_written
+      integer(c_int) :: dashpot_rolling_model_force_batch
+    end function
+
+    function dashpot_twisting_new(registry, name, param_names, param_values, n_params, law) &
+      bind(c, name='dashpot_twisting_new')
+      import :: c_ptr, c_char, c_double, c_size_t, c_int
+      type(c_ptr), value :: registry
+      character(kind=c_char), intent(in) :: name(*)
+      type(c_ptr), value :: param_names
+      real(c_double), intent(in) :: param_values(*)
+      integer(c_size_t), value :: n_params
+      type(c_ptr), intent(out) :: law
+      integer(c_int) :: dashpot_twisting_new
+    end function
+
+    subroutine dashpot_twisting_free(law) bind(c, name='dashpot_twisting_free')
+      import :: c_ptr
+      type(c_ptr), value :: law
+    end subroutine
+
+    function dashpot_twisting_bind_materials(law, materials, model) bind(c, name='dashpot_twisting_bind_materials')
+      import :: c_ptr, c_int, dashpot_materials_t
+      type(c_ptr), value :: law
+      type(dashpot_materials_t), intent(in) :: materials
+      type(c_ptr), intent(out) :: model
+      integer(c_int) :: dashpot_twisting_bind_materials
+    end function
+
+    subroutine dashpot_twisting_model_free(model) bind(c, name='dashpot_twisting_model_free')
+      import :: c_ptr
+      type(c_ptr), value :: model
+    end subroutine
+
+    function dashpot_twisting_model_history_slots(model, slots) bind(c, name='dashpot_twisting_model_history_slots')
+      import :: c_ptr, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), intent(out) :: slots
+      integer(c_int) :: dashpot_twisting_model_history_slots
+    end function
+
+    function dashpot_twisting_model_torque_batch(model, n, dt, normal, rate, normal_force, delta, mass, radius, &
+      history, n_history, torque, power, elastic, energy_written) bind(c, name='dashpot_twisting_model_torque_batch')
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), value :: dt
+      real(c_double), intent(in) :: normal(*), rate(*), normal_force(*), delta(*), mass(*), radius(*)
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: torque(*), power(*), elastic(*)
+      integer(c_int), intent(out) :: energy_written
+      integer(c_int) :: dashpot_twisting_model_torque_batch
+    end function
+
+    function dashpot_contact_model_force_batch_energy(model, n, delta, rate, mass, radius, history, n_history, &
+      force, reach, power, elastic, energy_written) bind(c, name='dashpot_contact_model_force_batch_energy')
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), intent(in) :: delta(*), rate(*), mass(*), radius(*)
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: force(*), reach(*), power(*), elastic(*)
+      integer(c_int), intent(out) :: energy_written
+      integer(c_int) :: dashpot_contact_model_force_batch_energy
+    end function
+
     function dashpot_c_strlen(s) bind(c, name='strlen')
       import :: c_ptr, c_size_t
       type(c_ptr), value :: s

@@ -174,6 +174,16 @@ typedef struct DashpotRegistry DashpotRegistry;
 typedef struct DashpotRestitutionLaw DashpotRestitutionLaw;
 
 /*
+ A configured rolling-resistance law (opaque).
+ */
+typedef struct DashpotRollingLaw DashpotRollingLaw;
+
+/*
+ A rolling-resistance law bound to a pair of materials (opaque).
+ */
+typedef struct DashpotRollingModel DashpotRollingModel;
+
+/*
  A configured tangential law (opaque).
  */
 typedef struct DashpotTangentialLaw DashpotTangentialLaw;
@@ -182,6 +192,16 @@ typedef struct DashpotTangentialLaw DashpotTangentialLaw;
  A tangential law bound to a pair of materials (opaque): the hot path.
  */
 typedef struct DashpotTangentialModel DashpotTangentialModel;
+
+/*
+ A configured twisting-resistance law (opaque).
+ */
+typedef struct DashpotTwistingLaw DashpotTwistingLaw;
+
+/*
+ A twisting-resistance law bound to a pair of materials (opaque).
+ */
+typedef struct DashpotTwistingModel DashpotTwistingModel;
 
 /*
  What a calibration must reproduce.
@@ -803,6 +823,211 @@ enum DashpotStatus dashpot_restitution_batch(const struct DashpotBoundRestitutio
                                              size_t n_speed,
                                              double *out_restitution,
                                              size_t n_out);
+
+/*
+ Creates rolling law `name` (e.g. `"rolling-sds"`) from `n_params` named values (parameters
+ left out take their defaults; the values are validated against the law's schema).
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW` (also for a law of another kind),
+ `DASHPOT_ERR_UNKNOWN_PARAMETER`, `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`.
+ Ownership: `*out_law` is the caller's (free with `dashpot_rolling_free`). Thread-safe.
+
+ # Safety
+ `param_names`/`param_values` must be null (only if `n_params` is 0) or hold `n_params`
+ elements; strings NUL-terminated; other non-null pointers valid.
+ */
+enum DashpotStatus dashpot_rolling_new(const struct DashpotRegistry *registry,
+                                       const char *name,
+                                       const char *const *param_names,
+                                       const double *param_values,
+                                       size_t n_params,
+                                       struct DashpotRollingLaw **out_law);
+
+/*
+ Frees a rolling law (null is ignored). Models bound from it stay valid.
+
+ # Safety
+ `law` must be null or a live handle from `dashpot_rolling_new`, not used concurrently.
+ */
+void dashpot_rolling_free(struct DashpotRollingLaw *law);
+
+/*
+ Binds a rolling law to a pair of materials (see `dashpot_materials_spheres`, `_wall`).
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR`, `DASHPOT_ERR_INVALID_PARAMETER`,
+ `DASHPOT_ERR_PANIC`. Ownership: `*out_model` is the caller's (free with
+ `dashpot_rolling_model_free`). Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_rolling_bind_materials(const struct DashpotRollingLaw *law,
+                                                  const struct DashpotMaterials *materials,
+                                                  struct DashpotRollingModel **out_model);
+
+/*
+ Frees a bound rolling law (null is ignored).
+
+ # Safety
+ `model` must be null or a live handle, not used concurrently.
+ */
+void dashpot_rolling_model_free(struct DashpotRollingModel *model);
+
+/*
+ The number of history values (doubles) the rolling law keeps per contact.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_rolling_model_history_slots(const struct DashpotRollingModel *model,
+                                                       size_t *out_slots);
+
+/*
+ The rolling-resistance force on `n` contacts, history advanced by the step `dt` (s).
+
+ Per contact i: `normal[3i..3i+3]` the unit normal (partner to particle), `velocity[3i..3i+3]`
+ the rolling velocity R_eff (ω_i − ω_j) × n̂ (m/s), `normal_force[i]` (N), `delta[i]` (m),
+ `mass[i]` (kg), `radius[i]` (m, R_eff), `history` (`n × slots` values, in place),
+ `out_force[3i..3i+3]` the rolling force F_r (N; torque on i: R_eff n̂ × F_r); `out_power`,
+ `out_elastic` (null, or `n` values each) the energy outputs, `*out_energy_written` (may be
+ null) whether the law wrote them.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE`
+ (naming the array, index and value), `DASHPOT_ERR_PANIC`. Thread-safe (distinct outputs).
+
+ # Safety
+ Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
+ */
+enum DashpotStatus dashpot_rolling_model_force_batch(const struct DashpotRollingModel *model,
+                                                     size_t n,
+                                                     double dt,
+                                                     const double *normal,
+                                                     const double *velocity,
+                                                     const double *normal_force,
+                                                     const double *delta,
+                                                     const double *mass,
+                                                     const double *radius,
+                                                     double *history,
+                                                     size_t n_history,
+                                                     double *out_force,
+                                                     double *out_power,
+                                                     double *out_elastic,
+                                                     int *out_energy_written);
+
+/*
+ Creates twisting law `name` (e.g. `"twisting-sds"`), as `dashpot_rolling_new`.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW`, `DASHPOT_ERR_UNKNOWN_PARAMETER`,
+ `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`. Ownership: `*out_law` is the caller's
+ (free with `dashpot_twisting_free`). Thread-safe.
+
+ # Safety
+ As `dashpot_rolling_new`.
+ */
+enum DashpotStatus dashpot_twisting_new(const struct DashpotRegistry *registry,
+                                        const char *name,
+                                        const char *const *param_names,
+                                        const double *param_values,
+                                        size_t n_params,
+                                        struct DashpotTwistingLaw **out_law);
+
+/*
+ Frees a twisting law (null is ignored). Models bound from it stay valid.
+
+ # Safety
+ `law` must be null or a live handle from `dashpot_twisting_new`, not used concurrently.
+ */
+void dashpot_twisting_free(struct DashpotTwistingLaw *law);
+
+/*
+ Binds a twisting law to a pair of materials.
+
+ Errors: as `dashpot_rolling_bind_materials`. Ownership: `*out_model` is the caller's (free
+ with `dashpot_twisting_model_free`). Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_twisting_bind_materials(const struct DashpotTwistingLaw *law,
+                                                   const struct DashpotMaterials *materials,
+                                                   struct DashpotTwistingModel **out_model);
+
+/*
+ Frees a bound twisting law (null is ignored).
+
+ # Safety
+ `model` must be null or a live handle, not used concurrently.
+ */
+void dashpot_twisting_model_free(struct DashpotTwistingModel *model);
+
+/*
+ The number of history values (doubles) the twisting law keeps per contact.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
+
+ # Safety
+ Non-null pointers must be valid.
+ */
+enum DashpotStatus dashpot_twisting_model_history_slots(const struct DashpotTwistingModel *model,
+                                                        size_t *out_slots);
+
+/*
+ The twisting torque on `n` contacts, history advanced by the step `dt` (s).
+
+ Per contact i: `normal[3i..3i+3]` the unit normal, `rate[i]` the twisting rate
+ (ω_i − ω_j)·n̂ (rad/s), `normal_force[i]` (N), `delta[i]` (m), `mass[i]` (kg), `radius[i]`
+ (m), `history` (`n × slots` values, in place), `out_torque[i]` the torque about n̂ on i (N·m);
+ energy outputs as in `dashpot_rolling_model_force_batch`.
+
+ Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE`,
+ `DASHPOT_ERR_PANIC`. Thread-safe (distinct outputs).
+
+ # Safety
+ Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
+ */
+enum DashpotStatus dashpot_twisting_model_torque_batch(const struct DashpotTwistingModel *model,
+                                                       size_t n,
+                                                       double dt,
+                                                       const double *normal,
+                                                       const double *rate,
+                                                       const double *normal_force,
+                                                       const double *delta,
+                                                       const double *mass,
+                                                       const double *radius,
+                                                       double *history,
+                                                       size_t n_history,
+                                                       double *out_torque,
+                                                       double *out_power,
+                                                       double *out_elastic,
+                                                       int *out_energy_written);
+
+/*
+ `dashpot_contact_model_force_batch` with sdk 0.3's outputs, each null or `n` values:
+ `out_reach[i]` how far beyond touching the contact still acts (m: it ends once δ < −reach;
+ 0 for a non-adhesive law), `out_power[i]` the dissipated power (W), `out_elastic[i]` the
+ stored elastic energy (J); `*out_energy_written` (may be null) whether the law reported the
+ energy.
+
+ Errors: as `dashpot_contact_model_force_batch`. Thread-safe (distinct outputs).
+
+ # Safety
+ Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
+ */
+enum DashpotStatus dashpot_contact_model_force_batch_energy(const struct DashpotContactModel *model,
+                                                            size_t n,
+                                                            const double *delta,
+                                                            const double *rate,
+                                                            const double *mass,
+                                                            const double *radius,
+                                                            double *history,
+                                                            size_t n_history,
+                                                            double *out_force,
+                                                            double *out_reach,
+                                                            double *out_power,
+                                                            double *out_elastic,
+                                                            int *out_energy_written);
 
 /*
  Creates tangential law `name` (e.g. `"mindlin"`) from `n_params` named values (parameters

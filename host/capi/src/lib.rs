@@ -36,6 +36,7 @@ pub mod materials;
 pub mod pair;
 pub mod registry;
 pub mod restitution;
+pub mod rotation;
 pub mod tangential;
 pub mod version;
 
@@ -47,6 +48,7 @@ pub use materials::*;
 pub use pair::*;
 pub use registry::*;
 pub use restitution::*;
+pub use rotation::*;
 pub use tangential::*;
 pub use version::*;
 

@@ -484,6 +484,85 @@ int main(int argc, char **argv) {
     EXPECT(dashpot_registry_law_count(reg, &count), DASHPOT_OK, NULL);
     CHECK(strstr(dashpot_last_error(), "still-no-such-law") != NULL);
 
+    /* ---- sdk 0.3: rolling and twisting laws, energy and reach outputs ---- */
+    {
+        DashpotRollingLaw *rl3 = NULL;
+        DashpotRollingModel *rm3 = NULL;
+        const char *sds_names[3] = {"k", "gamma", "mu"};
+        const double sds_vals[3] = {1000.0, 0.0, 10.0};
+        const double sds_bad[3] = {-5.0, 0.0, 10.0};
+        EXPECT(dashpot_rolling_new(NULL, "rolling-sds", sds_names, sds_vals, 3, &rl3), DASHPOT_ERR_NULL_POINTER, "registry");
+        EXPECT(dashpot_rolling_new(reg, NULL, sds_names, sds_vals, 3, &rl3), DASHPOT_ERR_NULL_POINTER, "name");
+        EXPECT(dashpot_rolling_new(reg, "rolling-sds", sds_names, sds_vals, 3, NULL), DASHPOT_ERR_NULL_POINTER, "out_law");
+        EXPECT(dashpot_rolling_new(reg, "hsd", NULL, NULL, 0, &rl3), DASHPOT_ERR_UNKNOWN_LAW, "hsd");
+        EXPECT(dashpot_rolling_new(reg, "rolling-sds", bogus_name, eps_val, 1, &rl3), DASHPOT_ERR_UNKNOWN_PARAMETER, "epsilon");
+        EXPECT(dashpot_rolling_new(reg, "rolling-sds", sds_names, sds_bad, 3, &rl3), DASHPOT_ERR_INVALID_PARAMETER, "-5");
+        EXPECT(dashpot_rolling_new(reg, "rolling-sds", sds_names, sds_vals, 3, &rl3), DASHPOT_OK, NULL);
+        EXPECT(dashpot_rolling_bind_materials(NULL, &mat, &rm3), DASHPOT_ERR_NULL_POINTER, "law");
+        EXPECT(dashpot_rolling_bind_materials(rl3, &badmat, &rm3), DASHPOT_ERR_INVALID_PAIR, "Young");
+        EXPECT(dashpot_rolling_bind_materials(rl3, &mat, &rm3), DASHPOT_OK, NULL);
+        dashpot_rolling_free(rl3);
+        size_t rslots = 0;
+        EXPECT(dashpot_rolling_model_history_slots(rm3, &rslots), DASHPOT_OK, NULL);
+        EXPECT(dashpot_rolling_model_history_slots(NULL, &rslots), DASHPOT_ERR_NULL_POINTER, "model");
+        CHECK(rslots == 3);
+        /* one step of a rolling velocity v along x from zero history: ξ = v dt, F_r = −k ξ
+           (far below the cap μ F_n), elastic energy k ξ²/2, no dissipation (γ = 0) */
+        double rn[3] = {0, 0, 1}, rv[3] = {0.2, 0, 0}, rfn[1] = {1.0}, rdl[1] = {1e-6}, rms[1] = {1e-3}, rrd[1] = {1e-3};
+        double rh[3] = {0, 0, 0}, rf[3], rp[1], re[1];
+        int written = -1;
+        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 3, rf, rp, re, &written), DASHPOT_OK, NULL);
+        CHECK(fabs(rf[0] - (-1000.0 * 0.2 * 1e-4)) < 1e-15 && rf[1] == 0.0 && rf[2] == 0.0);
+        CHECK(fabs(re[0] - 0.5 * 1000.0 * (0.2e-4) * (0.2e-4)) < 1e-18 && rp[0] == 0.0 && written == 1);
+        EXPECT(dashpot_rolling_model_force_batch(NULL, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 3, rf, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, NULL, rv, rfn, rdl, rms, rrd, rh, 3, rf, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "normal");
+        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 2, rf, NULL, NULL, NULL), DASHPOT_ERR_BAD_LENGTH, "n_history = 2");
+        rv[1] = NAN;
+        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 3, rf, NULL, NULL, NULL), DASHPOT_ERR_NON_FINITE, "NaN");
+        dashpot_rolling_model_free(rm3);
+
+        DashpotTwistingLaw *wl3 = NULL;
+        DashpotTwistingModel *wm3 = NULL;
+        const double tw_vals[3] = {1e-3, 0.0, 1.0};
+        EXPECT(dashpot_twisting_new(NULL, "twisting-sds", sds_names, tw_vals, 3, &wl3), DASHPOT_ERR_NULL_POINTER, "registry");
+        EXPECT(dashpot_twisting_new(reg, "rolling-sds", NULL, NULL, 0, &wl3), DASHPOT_ERR_UNKNOWN_LAW, "rolling-sds");
+        EXPECT(dashpot_twisting_new(reg, "twisting-sds", sds_names, tw_vals, 3, &wl3), DASHPOT_OK, NULL);
+        EXPECT(dashpot_twisting_bind_materials(wl3, NULL, &wm3), DASHPOT_ERR_NULL_POINTER, "materials");
+        EXPECT(dashpot_twisting_bind_materials(wl3, &mat, &wm3), DASHPOT_OK, NULL);
+        dashpot_twisting_free(wl3);
+        size_t wslots = 0;
+        EXPECT(dashpot_twisting_model_history_slots(wm3, &wslots), DASHPOT_OK, NULL);
+        EXPECT(dashpot_twisting_model_history_slots(wm3, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");
+        /* one step of spin rate w: θ = w dt, M = −k θ below the cap μ F_n */
+        double wrate[1] = {3.0}, wh[4] = {0, 0, 0, 0}, wt[1];
+        EXPECT(dashpot_twisting_model_torque_batch(wm3, 1, 1e-4, rn, wrate, rfn, rdl, rms, rrd, wh, wslots, wt, NULL, NULL, NULL), DASHPOT_OK, NULL);
+        CHECK(fabs(wt[0] - (-1e-3 * 3.0 * 1e-4)) < 1e-18);
+        EXPECT(dashpot_twisting_model_torque_batch(wm3, 1, 1e-4, rn, NULL, rfn, rdl, rms, rrd, wh, wslots, wt, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "rate");
+        EXPECT(dashpot_twisting_model_torque_batch(wm3, 1, 1e-4, rn, wrate, rfn, rdl, rms, rrd, wh, wslots, NULL, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "out_torque");
+        dashpot_twisting_model_free(wm3);
+
+        /* JKR through the energy batch: formed at touch, its reach is the rupture separation */
+        DashpotContactLaw *jkr = NULL;
+        DashpotContactModel *jm = NULL;
+        const char *w_name[1] = {"w"};
+        const double w_val[1] = {0.1};
+        EXPECT(dashpot_contact_new(reg, "jkr", w_name, w_val, 1, &jkr), DASHPOT_OK, NULL);
+        EXPECT(dashpot_contact_bind_materials(jkr, &mat, &jm), DASHPOT_OK, NULL);
+        double jd[1] = {1e-9}, jr[1] = {0.0}, jmass[1] = {1e-3}, jrad[1] = {2.5e-3}, jh[1] = {0}, jf[1], jreach[1], jp[1], je[1];
+        EXPECT(dashpot_contact_model_force_batch_energy(jm, 1, jd, jr, jmass, jrad, jh, 1, jf, jreach, jp, je, &written), DASHPOT_OK, NULL);
+        double e_eff = mat.young_eff;
+        double delta_c = 0.75 * cbrt(M_PI * M_PI * 0.1 * 0.1 * 2.5e-3 / (e_eff * e_eff));
+        CHECK(jh[0] == 1.0 && jf[0] < 0.0 && fabs(jreach[0] / delta_c - 1.0) < 1e-12 && written == 1);
+        EXPECT(dashpot_contact_model_force_batch_energy(NULL, 1, jd, jr, jmass, jrad, jh, 1, jf, NULL, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_contact_model_force_batch_energy(jm, 1, jd, jr, jmass, jrad, jh, 0, jf, NULL, NULL, NULL, NULL), DASHPOT_ERR_BAD_LENGTH, "n_history = 0");
+        dashpot_contact_model_free(jm);
+        dashpot_contact_free(jkr);
+        dashpot_rolling_free(NULL);
+        dashpot_rolling_model_free(NULL);
+        dashpot_twisting_free(NULL);
+        dashpot_twisting_model_free(NULL);
+    }
+
     /* ---- freeing null is a no-op ---- */
     dashpot_registry_free(NULL);
     dashpot_contact_free(NULL);
