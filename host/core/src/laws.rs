@@ -8,7 +8,7 @@ use dashpot_sdk::abi::kind::KindBound;
 /// The rolling and twisting law kinds, as the sdk's generic handles name them, and the energy
 /// outputs of a batch call.
 pub use dashpot_sdk::abi::{EnergyOut, Rolling, Twisting};
-use dashpot_sdk::abi::{ModelHandle, StaticContact, StaticModel, StaticTangential, TangentialModelHandle};
+use dashpot_sdk::abi::{ModelHandle, StaticContact, StaticModel, StaticTangential};
 use dashpot_sdk::{
     BoundContact, BoundRestitution, BoundTangential, Coefficient, Contact, ContactLaw, LawError,
     MaterialPair, NormalBatch, RollingBatch, TangentialBatch, TangentialLaw, TwistingBatch,
@@ -19,6 +19,7 @@ pub use dashpot_sdk::abi::SdkSeries;
 /// out, and the traits below are implemented for the bound ones.
 pub use dashpot_sdk::abi::{
     ContactLawHandle, ContactModelHandle, LawHandle, LoadedPlugin, RestitutionLawHandle, TangentialLawHandle,
+    TangentialModelHandle,
 };
 
 /// A restitution law loaded from a plugin and bound to a pair (the sdk's handle).

@@ -288,19 +288,7 @@ fn bind_contact(
     wall: bool,
 ) -> PyResult<BoundContact> {
     let p = params_of(params)?;
-    let body = |e: f64, nu: f64| Particle {
-        diameter: 1.0,
-        density: 1.0,
-        young: e,
-        poisson: nu,
-    };
-    let a = body(young, poisson);
-    let mats = if wall {
-        MaterialPair::wall(&a)
-    } else {
-        MaterialPair::spheres(&a, &body(young2.unwrap_or(young), poisson2.unwrap_or(poisson)))
-    }
-    .map_err(law_err)?;
+    let mats = materials(young, poisson, young2, poisson2, wall)?;
     with_registry(py, |reg| {
         let law = reg
             .contact(name, &p)
@@ -436,6 +424,173 @@ fn cached_contact(
     Ok(law)
 }
 
+/// A tangential (friction) law bound to a pair of materials.
+#[pyclass(module = "dashpot._dashpot", frozen)]
+struct BoundTangential {
+    law: dashpot::laws::TangentialModelHandle,
+}
+
+#[pymethods]
+impl BoundTangential {
+    /// History slots per contact.
+    #[getter]
+    fn history_slots(&self) -> usize {
+        self.law.history_slots()
+    }
+
+    /// Tangential forces on N contacts (flat arrays: `normal` and `velocity` hold 3 N values,
+    /// x y z per contact), history (N × slots, flat) advanced by `dt` (s) in place.
+    #[pyo3(signature = (dt, normal, velocity, normal_force, delta, mass, radius, history))]
+    #[allow(clippy::too_many_arguments)]
+    fn force<'py>(
+        &self,
+        py: Python<'py>,
+        dt: f64,
+        normal: PyReadonlyArray1<'py, f64>,
+        velocity: PyReadonlyArray1<'py, f64>,
+        normal_force: PyReadonlyArray1<'py, f64>,
+        delta: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        mut history: PyReadwriteArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let [fnorm, d, m, r] = contact_slices([&normal_force, &delta, &mass, &radius])?;
+        let n = fnorm.len();
+        let (nv, vv) = (normal.as_slice()?, velocity.as_slice()?);
+        for (what, x) in [("normal", nv), ("velocity", vv)] {
+            if x.len() != 3 * n {
+                return Err(PyValueError::new_err(format!(
+                    "{what} has {} values: 3 per contact (x, y, z), {} for {n} contacts",
+                    x.len(),
+                    3 * n
+                )));
+            }
+        }
+        let slots = self.law.history_slots();
+        let h = history.as_slice_mut()?;
+        if h.len() != n * slots {
+            return Err(PyValueError::new_err(format!(
+                "history has {} values: the law keeps {slots} per contact, {} for {n} contacts",
+                h.len(),
+                n * slots
+            )));
+        }
+        let mut out = vec![[0.0f64; 3]; n];
+        let three = |v: &[f64]| -> Vec<[f64; 3]> { v.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect() };
+        let (nt, vt) = (three(nv), three(vv));
+        let law = &self.law;
+        py.allow_threads(|| {
+            law.force_batch(dashpot_sdk::TangentialBatch {
+                dt,
+                normal: &nt,
+                velocity: &vt,
+                normal_force: fnorm,
+                delta: d,
+                mass: m,
+                radius: r,
+                slots,
+                history: h,
+                force: &mut out,
+            })
+        })
+        .map_err(law_err)?;
+        Ok(out.into_iter().flatten().collect::<Vec<f64>>().into_pyarray(py))
+    }
+}
+
+/// Tangential law `name` with `params` bound to the materials (as `bind_contact`).
+#[pyfunction]
+#[pyo3(signature = (name, params, young, poisson, young2=None, poisson2=None, wall=false))]
+#[allow(clippy::too_many_arguments)]
+fn bind_tangential(
+    py: Python<'_>,
+    name: &str,
+    params: Option<&Bound<'_, PyDict>>,
+    young: f64,
+    poisson: f64,
+    young2: Option<f64>,
+    poisson2: Option<f64>,
+    wall: bool,
+) -> PyResult<BoundTangential> {
+    let p = params_of(params)?;
+    let mats = materials(young, poisson, young2, poisson2, wall)?;
+    with_registry(py, |reg| {
+        let law = reg
+            .tangential(name, &p)
+            .map_err(law_err)?
+            .bind(&mats)
+            .map_err(law_err)?;
+        Ok(BoundTangential { law })
+    })
+}
+
+/// r(v) of restitution law `name` with `params`, bound to a particle (diameter m, density
+/// kg/m³, Young's modulus Pa, Poisson's ratio) against an identical one or a wall, at the
+/// impact speeds `speed` (m/s).
+#[pyfunction]
+#[pyo3(signature = (name, params, speed, diameter, density, young, poisson, wall))]
+#[allow(clippy::too_many_arguments)]
+fn restitution<'py>(
+    py: Python<'py>,
+    name: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    speed: PyReadonlyArray1<'py, f64>,
+    diameter: f64,
+    density: f64,
+    young: f64,
+    poisson: f64,
+    wall: bool,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let p = params_of(params)?;
+    let particle = Particle {
+        diameter,
+        density,
+        young,
+        poisson,
+    };
+    let pair = if wall {
+        Pair::wall(&particle)
+    } else {
+        Pair::spheres(&particle, &particle)
+    }
+    .map_err(law_err)?;
+    let law = with_registry(py, |reg| {
+        reg.restitution(name, &p)
+            .map_err(law_err)?
+            .bind(&pair)
+            .map_err(law_err)
+    })?;
+    let v = speed.as_slice()?;
+    let mut out = vec![0.0; v.len()];
+    py.allow_threads(|| law.restitution_batch(v, &mut out))
+        .map_err(law_err)?;
+    Ok(out.into_pyarray(py))
+}
+
+/// The material pair of a first body (Young's modulus Pa, Poisson's ratio) and a second one
+/// (default the same) or a rigid wall.
+fn materials(
+    young: f64,
+    poisson: f64,
+    young2: Option<f64>,
+    poisson2: Option<f64>,
+    wall: bool,
+) -> PyResult<MaterialPair> {
+    let body = |e: f64, nu: f64| Particle {
+        diameter: 1.0,
+        density: 1.0,
+        young: e,
+        poisson: nu,
+    };
+    let a = body(young, poisson);
+    if wall {
+        MaterialPair::wall(&a)
+    } else {
+        MaterialPair::spheres(&a, &body(young2.unwrap_or(young), poisson2.unwrap_or(poisson)))
+    }
+    .map_err(law_err)
+}
+
 #[pymodule]
 fn _dashpot(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("PluginError", m.py().get_type::<PluginError>())?;
@@ -445,5 +600,8 @@ fn _dashpot(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(bind_contact, m)?)?;
     m.add_function(wrap_pyfunction!(collide, m)?)?;
     m.add_class::<BoundContact>()?;
+    m.add_class::<BoundTangential>()?;
+    m.add_function(wrap_pyfunction!(bind_tangential, m)?)?;
+    m.add_function(wrap_pyfunction!(restitution, m)?)?;
     Ok(())
 }

@@ -135,3 +135,26 @@ def test_a_panicking_plugin_is_an_exception_and_python_carries_on():
     with pytest.raises(RuntimeError, match="panic"):
         b.force([1e-5], [0.0], [1e-3], [1e-3])
     assert b.force([1e-7], [0.0], [1e-3], [1e-3]).shape == (1,)
+
+
+def test_mindlin_sticks_as_a_spring_and_slides_at_coulombs_cap():
+    t = dashpot.TangentialLaw("mindlin", mu=0.3).bind(**MCC)
+    h = np.zeros((1, t.history_slots))
+    n = [[0.0, 0.0, 1.0]]
+    # a small slip: the spring force is −k_t v dt along the slip, below μ F_n
+    f = t.force(1e-6, n, [[1e-3, 0.0, 0.0]], [10.0], [1e-5], [M_PAIR], [R_PAIR], h)
+    assert f.shape == (1, 3) and f[0, 0] < 0.0 and f[0, 1] == 0.0 and abs(f[0, 0]) < 3.0
+    # a large slip: capped at μ F_n = 3 N
+    f = t.force(1.0, n, [[1.0, 0.0, 0.0]], [10.0], [1e-5], [M_PAIR], [R_PAIR], h)
+    assert f[0, 0] == pytest.approx(-3.0, rel=1e-12)
+    with pytest.raises(ValueError, match="shape"):
+        t.force(1e-6, [0.0, 0.0, 1.0], [[1e-3, 0.0, 0.0]], [10.0], [1e-5], [M_PAIR], [R_PAIR], h)
+
+
+def test_mcnamara_falcon_is_its_closed_form():
+    r = dashpot.RestitutionLaw("mcnamara-falcon", r0=0.95, vy=0.3)
+    v = np.array([0.01, 0.1, 0.3, 1.0, 3.0])
+    expect = np.where(v <= 0.3, 1 - 0.05 * (v / 0.3) ** 0.2, 0.95 * (v / 0.3) ** -0.25)
+    assert np.allclose(r.r(v), expect, rtol=1e-14)
+    ref = cli("eval", "--law", "mcnamara-falcon", "--set", "r0=0.95", "--set", "vy=0.3", "--speed", "1", "--json")
+    assert r.r([1.0])[0] == ref["restitution"]

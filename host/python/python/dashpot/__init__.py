@@ -36,6 +36,9 @@ __all__ = [
     "load_plugin",
     "ContactLaw",
     "BoundContactLaw",
+    "TangentialLaw",
+    "BoundTangentialLaw",
+    "RestitutionLaw",
     "collide",
 ]
 
@@ -129,6 +132,71 @@ class ContactLaw:
     def provenance(self) -> Dict[str, Any]:
         """The law's plugin file, versions and every parameter, as the CLI's JSON gives them."""
         return _json.loads(_dashpot.provenance(self.name, **self.params))
+
+
+def _vectors(name: str, x: Any, n: int) -> _np.ndarray:
+    """``x`` as a contiguous float64 array of shape (n, 3), flattened."""
+    a = _np.ascontiguousarray(x, dtype=_np.float64)
+    if a.shape != (n, 3):
+        raise ValueError(f"{name} has shape {a.shape}: it must be ({n}, 3), one vector per contact")
+    return a.reshape(-1)
+
+
+class BoundTangentialLaw:
+    """A tangential (friction) law bound to a pair of materials (see ``TangentialLaw.bind``)."""
+
+    def __init__(self, inner: Any) -> None:
+        self._inner = inner
+
+    @property
+    def history_slots(self) -> int:
+        """History values per contact (3 for a tangential spring)."""
+        return self._inner.history_slots
+
+    def force(self, dt, normal, velocity, normal_force, delta, mass, radius, history) -> _np.ndarray:
+        """Tangential forces (N), shape (N, 3), on N contacts over a step ``dt`` (s): unit
+        normals ``normal`` (N, 3) from the partner to the particle, contact-point relative
+        velocities ``velocity`` (N, 3, m/s), normal forces (N), overlaps (m), effective masses
+        (kg) and radii (m); ``history``, a float64 array of shape (N, history_slots), zeros at
+        first touch, is advanced in place."""
+        fn = _f64("normal_force", normal_force)
+        n = fn.shape[0]
+        if not (isinstance(history, _np.ndarray) and history.dtype == _np.float64 and history.flags.c_contiguous):
+            raise ValueError("history must be a C-contiguous float64 numpy array of shape (N, history_slots), updated in place")
+        f = self._inner.force(float(dt), _vectors("normal", normal, n), _vectors("velocity", velocity, n), fn,
+                              _f64("delta", delta, n), _f64("mass", mass, n), _f64("radius", radius, n),
+                              history.reshape(-1))
+        return f.reshape(n, 3)
+
+
+class TangentialLaw:
+    """Tangential law ``name`` (e.g. ``"mindlin"``) with its parameters as keywords."""
+
+    def __init__(self, name: str, **params: float) -> None:
+        self.name = name
+        self.params = dict(params)
+
+    def bind(self, young: float, poisson: float, young2: Optional[float] = None,
+             poisson2: Optional[float] = None, wall: bool = False) -> BoundTangentialLaw:
+        """The law for a pair of materials, as ``ContactLaw.bind``."""
+        return BoundTangentialLaw(_dashpot.bind_tangential(self.name, self.params, young, poisson,
+                                                           young2, poisson2, wall))
+
+
+class RestitutionLaw:
+    """Restitution law ``name`` (e.g. ``"mcnamara-falcon"``) with its parameters as keywords,
+    for a particle (``diameter`` m, ``density`` kg/m³, ``young`` Pa, ``poisson``; defaults:
+    the MCC granule) against an identical one or a ``wall``."""
+
+    def __init__(self, name: str, *, diameter: float = 0.01, density: float = 1500.0,
+                 young: float = 6e9, poisson: float = 0.3, wall: bool = False, **params: float) -> None:
+        self.name = name
+        self.params = dict(params)
+        self._pair = (diameter, density, young, poisson, wall)
+
+    def r(self, speeds) -> _np.ndarray:
+        """The coefficient of restitution at each normal impact speed (m/s)."""
+        return _dashpot.restitution(self.name, self.params, _f64("speeds", speeds), *self._pair)
 
 
 def collide(law: str, v0: float = 1.0, *, diameter: float = 0.01, density: float = 1500.0,
