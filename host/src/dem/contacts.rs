@@ -20,9 +20,15 @@ use super::cells::{Domain, Neighbours};
 use super::state::{spin, to3, Vec3, VecD};
 use super::walls::WallState;
 use super::DemError;
-use crate::laws::{EnergyOut, NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
-use dashpot_sdk::{NormalBatch, RollingBatch, TangentialBatch, TwistingBatch};
+use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
+use dashpot_sdk::{NormalBatch, TangentialBatch};
 use std::ops::Range;
+
+mod edges;
+mod rotation;
+
+use edges::{step_edge_means, Edges};
+pub use rotation::Rotating;
 
 /// The particle state a gathering reads: particles `base..base + pos.len()`, each array
 /// indexed by particle number minus `base` (the engine hands a chunk the particles its
@@ -115,15 +121,6 @@ pub struct ContactSet {
     cand: Vec<(u32, u32)>,
     /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
     scratch: Vec<f64>,
-}
-
-/// The rolling and twisting laws of one kind of contacts, if any.
-#[derive(Clone, Copy, Default)]
-pub struct Rotating<'a> {
-    /// Rolling resistance.
-    pub rolling: Option<&'a dyn RollingResistance>,
-    /// Twisting resistance.
-    pub twisting: Option<&'a dyn TwistingResistance>,
 }
 
 /// The overlap beyond which a run is refused, as a fraction of the smaller radius.
@@ -271,39 +268,6 @@ impl ContactSet {
         }
         if self.rotational() {
             self.put_rotation(k, prev, found, radius, n, w);
-        }
-    }
-
-    /// The rotational part of [`ContactSet::put`]: the rolling velocity and the twisting rate
-    /// of contact `k` from the relative angular velocity `w` = ω_i − ω_j (rad/s), its rolling
-    /// and twisting history from `prev`'s contact `found` (or zero).
-    #[cold]
-    fn put_rotation(
-        &mut self,
-        k: usize,
-        prev: &ContactSet,
-        found: Option<usize>,
-        radius: f64,
-        n: Vec3,
-        w: Vec3,
-    ) {
-        let vr = w.cross(&n) * radius;
-        self.vroll[k] = [vr.x, vr.y, vr.z];
-        self.twist[k] = w.dot(&n);
-        let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
-        let (hr, hw) = (
-            &mut self.hist_r[k * sr..(k + 1) * sr],
-            &mut self.hist_w[k * sw..(k + 1) * sw],
-        );
-        match found {
-            Some(m) => {
-                hr.copy_from_slice(&prev.hist_r[m * sr..(m + 1) * sr]);
-                hw.copy_from_slice(&prev.hist_w[m * sw..(m + 1) * sw]);
-            }
-            None => {
-                hr.fill(0.0);
-                hw.fill(0.0);
-            }
         }
     }
 
@@ -581,65 +545,6 @@ impl ContactSet {
         }
         Ok(())
     }
-
-    /// The rolling and twisting laws on contacts `r` (after the normal forces).
-    fn evaluate_rotation(&mut self, rot: &Rotating<'_>, r: Range<usize>, dt: f64) -> Result<(), DemError> {
-        let (a, b) = (r.start, r.end);
-        let energy = self.energy;
-        let [_, _, pr, pw] = &mut self.power;
-        let [_, _, er, ew] = &mut self.elastic;
-        fn out<'v>(energy: bool, p: &'v mut [f64], e: &'v mut [f64]) -> EnergyOut<'v> {
-            if energy {
-                EnergyOut {
-                    power: Some(p),
-                    elastic: Some(e),
-                }
-            } else {
-                EnergyOut::none()
-            }
-        }
-        let slice = |v: &mut Vec<f64>| if energy { b } else { 0 }.min(v.len());
-        let (nr, nw) = (slice(pr), slice(pw));
-        let (pr, er) = (&mut pr[a.min(nr)..nr], &mut er[a.min(nr)..nr]);
-        let (pw, ew) = (&mut pw[a.min(nw)..nw], &mut ew[a.min(nw)..nw]);
-        if let (Some(law), Some(sr)) = (rot.rolling, self.slots_r) {
-            let written = law.force_batch(
-                RollingBatch {
-                    dt,
-                    normal: &self.normal[a..b],
-                    velocity: &self.vroll[a..b],
-                    normal_force: &self.fnorm[a..b],
-                    delta: &self.delta[a..b],
-                    mass: &self.mass[a..b],
-                    radius: &self.radius[a..b],
-                    slots: sr,
-                    history: &mut self.hist_r[a * sr..b * sr],
-                    force: &mut self.froll[a..b],
-                },
-                out(energy, pr, er),
-            )?;
-            self.unreported[2] |= energy && !written;
-        }
-        if let (Some(law), Some(sw)) = (rot.twisting, self.slots_w) {
-            let written = law.torque_batch(
-                TwistingBatch {
-                    dt,
-                    normal: &self.normal[a..b],
-                    rate: &self.twist[a..b],
-                    normal_force: &self.fnorm[a..b],
-                    delta: &self.delta[a..b],
-                    mass: &self.mass[a..b],
-                    radius: &self.radius[a..b],
-                    slots: sw,
-                    history: &mut self.hist_w[a * sw..b * sw],
-                    torque: &mut self.mtwist[a..b],
-                },
-                out(energy, pw, ew),
-            )?;
-            self.unreported[3] |= energy && !written;
-        }
-        Ok(())
-    }
 }
 
 /// One kind of contacts of a run, in chunks of [`GATHER_CHUNK`] particles (see the module doc),
@@ -737,90 +642,6 @@ impl Contacts {
     pub fn swap(&mut self) {
         std::mem::swap(&mut self.chunks, &mut self.spare);
     }
-}
-
-/// 5-point Gauss–Legendre nodes and weights on [0, 1].
-const GAUSS5: [(f64, f64); 5] = [
-    (0.046_910_077_030_668_02, 0.118_463_442_528_094_54),
-    (0.230_765_344_947_158_45, 0.239_314_335_249_683_23),
-    (0.5, 0.284_444_444_444_444_44),
-    (0.769_234_655_052_841_6, 0.239_314_335_249_683_23),
-    (0.953_089_922_969_332, 0.118_463_442_528_094_54),
-];
-
-/// The contacts of one chunk, as [`step_edge_means`] reads them.
-struct Edges<'a> {
-    delta: &'a [f64],
-    rate: &'a [f64],
-    mass: &'a [f64],
-    radius: &'a [f64],
-    fresh: &'a [bool],
-}
-
-/// The first- and last-step means of [`ContactSet::evaluate`], for one chunk: `f` holds the
-/// law's forces at the step end and is corrected in place; `last` is read (the previous step's
-/// flag) and written.
-fn step_edge_means(
-    law: &dyn NormalLaw,
-    c: Edges<'_>,
-    last: &mut [bool],
-    f: &mut [f64],
-    dt: f64,
-) -> Result<(), DemError> {
-    let h = 0.5 * dt;
-    // (contact, upper overlap D of the mean, the time-to-overlap factor |δ̇| dt)
-    let mut jobs: Vec<(usize, f64, f64)> = Vec::new();
-    for m in 0..f.len() {
-        let (d, r) = (c.delta[m], c.rate[m]);
-        let was_last = last[m];
-        last[m] = false;
-        if c.fresh[m] && r > 0.0 && d <= 1.5 * r * dt {
-            jobs.push((m, d + r * h, r * dt));
-        } else if was_last && r < 0.0 && d < -r * h {
-            f[m] = 0.0;
-        } else if r < 0.0 && d + r * dt - f[m] / c.mass[m] * h * dt <= 0.0 {
-            jobs.push((m, d - r * h, -r * dt));
-            last[m] = true;
-        }
-    }
-    if jobs.is_empty() {
-        return Ok(());
-    }
-    let k = jobs.len() * GAUSS5.len();
-    let (mut qd, mut qr, mut qm, mut qa) = (
-        Vec::with_capacity(k),
-        Vec::with_capacity(k),
-        Vec::with_capacity(k),
-        Vec::with_capacity(k),
-    );
-    for &(m, dd, _) in &jobs {
-        for (u, _) in GAUSS5 {
-            qd.push(dd * u.powi(4));
-            qr.push(c.rate[m]);
-            qm.push(c.mass[m]);
-            qa.push(c.radius[m]);
-        }
-    }
-    let mut qf = vec![0.0; k];
-    law.force_batch(NormalBatch {
-        delta: &qd,
-        rate: &qr,
-        mass: &qm,
-        radius: &qa,
-        slots: 0,
-        history: &mut [],
-        force: &mut qf,
-    })?;
-    for (q, &(m, dd, div)) in jobs.iter().enumerate() {
-        // ∫_0^D F dδ = ∫_0^1 F(D u⁴) 4 D u³ du
-        let integral: f64 = GAUSS5
-            .iter()
-            .enumerate()
-            .map(|(g, (u, w))| w * qf[q * GAUSS5.len() + g] * 4.0 * dd * u.powi(3))
-            .sum();
-        f[m] = integral / div;
-    }
-    Ok(())
 }
 
 /// Below this many particles the engine runs serially: rayon's dispatch per parallel loop costs

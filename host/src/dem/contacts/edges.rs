@@ -1,0 +1,88 @@
+//! The first and last step of a contact: mean forces over the part of the step in contact
+//! (see [`super::ContactSet::evaluate`]).
+
+use super::*;
+
+/// 5-point Gauss–Legendre nodes and weights on [0, 1].
+const GAUSS5: [(f64, f64); 5] = [
+    (0.046_910_077_030_668_02, 0.118_463_442_528_094_54),
+    (0.230_765_344_947_158_45, 0.239_314_335_249_683_23),
+    (0.5, 0.284_444_444_444_444_44),
+    (0.769_234_655_052_841_6, 0.239_314_335_249_683_23),
+    (0.953_089_922_969_332, 0.118_463_442_528_094_54),
+];
+
+/// The contacts of one chunk, as [`step_edge_means`] reads them.
+pub(super) struct Edges<'a> {
+    pub(super) delta: &'a [f64],
+    pub(super) rate: &'a [f64],
+    pub(super) mass: &'a [f64],
+    pub(super) radius: &'a [f64],
+    pub(super) fresh: &'a [bool],
+}
+
+/// The first- and last-step means of [`ContactSet::evaluate`], for one chunk: `f` holds the
+/// law's forces at the step end and is corrected in place; `last` is read (the previous step's
+/// flag) and written.
+pub(super) fn step_edge_means(
+    law: &dyn NormalLaw,
+    c: Edges<'_>,
+    last: &mut [bool],
+    f: &mut [f64],
+    dt: f64,
+) -> Result<(), DemError> {
+    let h = 0.5 * dt;
+    // (contact, upper overlap D of the mean, the time-to-overlap factor |δ̇| dt)
+    let mut jobs: Vec<(usize, f64, f64)> = Vec::new();
+    for m in 0..f.len() {
+        let (d, r) = (c.delta[m], c.rate[m]);
+        let was_last = last[m];
+        last[m] = false;
+        if c.fresh[m] && r > 0.0 && d <= 1.5 * r * dt {
+            jobs.push((m, d + r * h, r * dt));
+        } else if was_last && r < 0.0 && d < -r * h {
+            f[m] = 0.0;
+        } else if r < 0.0 && d + r * dt - f[m] / c.mass[m] * h * dt <= 0.0 {
+            jobs.push((m, d - r * h, -r * dt));
+            last[m] = true;
+        }
+    }
+    if jobs.is_empty() {
+        return Ok(());
+    }
+    let k = jobs.len() * GAUSS5.len();
+    let (mut qd, mut qr, mut qm, mut qa) = (
+        Vec::with_capacity(k),
+        Vec::with_capacity(k),
+        Vec::with_capacity(k),
+        Vec::with_capacity(k),
+    );
+    for &(m, dd, _) in &jobs {
+        for (u, _) in GAUSS5 {
+            qd.push(dd * u.powi(4));
+            qr.push(c.rate[m]);
+            qm.push(c.mass[m]);
+            qa.push(c.radius[m]);
+        }
+    }
+    let mut qf = vec![0.0; k];
+    law.force_batch(NormalBatch {
+        delta: &qd,
+        rate: &qr,
+        mass: &qm,
+        radius: &qa,
+        slots: 0,
+        history: &mut [],
+        force: &mut qf,
+    })?;
+    for (q, &(m, dd, div)) in jobs.iter().enumerate() {
+        // ∫_0^D F dδ = ∫_0^1 F(D u⁴) 4 D u³ du
+        let integral: f64 = GAUSS5
+            .iter()
+            .enumerate()
+            .map(|(g, (u, w))| w * qf[q * GAUSS5.len() + g] * 4.0 * dd * u.powi(3))
+            .sum();
+        f[m] = integral / div;
+    }
+    Ok(())
+}

@@ -1,0 +1,116 @@
+//! The rolling and twisting part of a contact set (sdk 0.3): each contact's rolling velocity
+//! and twisting rate, their laws' histories carried over, and the laws' calls.
+
+use super::{ContactSet, Range};
+use crate::dem::state::Vec3;
+use crate::dem::DemError;
+use crate::laws::{EnergyOut, RollingResistance, TwistingResistance};
+use dashpot_sdk::{RollingBatch, TwistingBatch};
+
+/// The rolling and twisting laws of one kind of contacts, if any.
+#[derive(Clone, Copy, Default)]
+pub struct Rotating<'a> {
+    /// Rolling resistance.
+    pub rolling: Option<&'a dyn RollingResistance>,
+    /// Twisting resistance.
+    pub twisting: Option<&'a dyn TwistingResistance>,
+}
+
+impl ContactSet {
+    /// The rotational part of [`ContactSet::put`]: the rolling velocity and the twisting rate
+    /// of contact `k` from the relative angular velocity `w` = ω_i − ω_j (rad/s), its rolling
+    /// and twisting history from `prev`'s contact `found` (or zero).
+    #[cold]
+    pub(super) fn put_rotation(
+        &mut self,
+        k: usize,
+        prev: &ContactSet,
+        found: Option<usize>,
+        radius: f64,
+        n: Vec3,
+        w: Vec3,
+    ) {
+        let vr = w.cross(&n) * radius;
+        self.vroll[k] = [vr.x, vr.y, vr.z];
+        self.twist[k] = w.dot(&n);
+        let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
+        let (hr, hw) = (
+            &mut self.hist_r[k * sr..(k + 1) * sr],
+            &mut self.hist_w[k * sw..(k + 1) * sw],
+        );
+        match found {
+            Some(m) => {
+                hr.copy_from_slice(&prev.hist_r[m * sr..(m + 1) * sr]);
+                hw.copy_from_slice(&prev.hist_w[m * sw..(m + 1) * sw]);
+            }
+            None => {
+                hr.fill(0.0);
+                hw.fill(0.0);
+            }
+        }
+    }
+
+    /// The rolling and twisting laws on contacts `r` (after the normal forces).
+    pub(super) fn evaluate_rotation(
+        &mut self,
+        rot: &Rotating<'_>,
+        r: Range<usize>,
+        dt: f64,
+    ) -> Result<(), DemError> {
+        let (a, b) = (r.start, r.end);
+        let energy = self.energy;
+        let [_, _, pr, pw] = &mut self.power;
+        let [_, _, er, ew] = &mut self.elastic;
+        fn out<'v>(energy: bool, p: &'v mut [f64], e: &'v mut [f64]) -> EnergyOut<'v> {
+            if energy {
+                EnergyOut {
+                    power: Some(p),
+                    elastic: Some(e),
+                }
+            } else {
+                EnergyOut::none()
+            }
+        }
+        let slice = |v: &mut Vec<f64>| if energy { b } else { 0 }.min(v.len());
+        let (nr, nw) = (slice(pr), slice(pw));
+        let (pr, er) = (&mut pr[a.min(nr)..nr], &mut er[a.min(nr)..nr]);
+        let (pw, ew) = (&mut pw[a.min(nw)..nw], &mut ew[a.min(nw)..nw]);
+        if let (Some(law), Some(sr)) = (rot.rolling, self.slots_r) {
+            let written = law.force_batch(
+                RollingBatch {
+                    dt,
+                    normal: &self.normal[a..b],
+                    velocity: &self.vroll[a..b],
+                    normal_force: &self.fnorm[a..b],
+                    delta: &self.delta[a..b],
+                    mass: &self.mass[a..b],
+                    radius: &self.radius[a..b],
+                    slots: sr,
+                    history: &mut self.hist_r[a * sr..b * sr],
+                    force: &mut self.froll[a..b],
+                },
+                out(energy, pr, er),
+            )?;
+            self.unreported[2] |= energy && !written;
+        }
+        if let (Some(law), Some(sw)) = (rot.twisting, self.slots_w) {
+            let written = law.torque_batch(
+                TwistingBatch {
+                    dt,
+                    normal: &self.normal[a..b],
+                    rate: &self.twist[a..b],
+                    normal_force: &self.fnorm[a..b],
+                    delta: &self.delta[a..b],
+                    mass: &self.mass[a..b],
+                    radius: &self.radius[a..b],
+                    slots: sw,
+                    history: &mut self.hist_w[a * sw..b * sw],
+                    torque: &mut self.mtwist[a..b],
+                },
+                out(energy, pw, ew),
+            )?;
+            self.unreported[3] |= energy && !written;
+        }
+        Ok(())
+    }
+}
