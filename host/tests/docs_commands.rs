@@ -3,6 +3,8 @@
 //! templates (`[--json]`, `PATH`, `FILE`, `DIR`, `...`, alternatives with `|`, a plugin of the
 //! reader's own) and the long ones (`reproduce`, `scaling`, several seeds) are skipped, by rule.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -67,6 +69,8 @@ fn every_command_of_the_readme_and_the_guide_runs() {
                 .map(|a| a.replace("examples/", &format!("{}/", examples.display())))
                 .collect();
             let out = Command::new(env!("CARGO_BIN_EXE_dashpot"))
+                .arg("--plugin-dir")
+                .arg(common::all_plugins_dir())
                 .args(&args)
                 .current_dir(&work)
                 .output()

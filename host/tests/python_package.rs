@@ -2,6 +2,8 @@
 //! and CLI, when a venv with the package is given by `DASHPOT_PY_VENV` (`.ci/run` makes one:
 //! `pip install ./host/python pytest`); otherwise it says why it skips.
 
+mod common;
+
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -15,7 +17,7 @@ fn the_python_package_passes_its_pytest_suite() {
     };
     let python = venv.join("bin").join("python");
     let bin = PathBuf::from(env!("CARGO_BIN_EXE_dashpot"));
-    let plugins = bin.parent().expect("the binary's directory").to_path_buf();
+    let plugins = common::all_plugins_dir();
     let tests = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("python")
         .join("tests");

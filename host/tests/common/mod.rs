@@ -43,6 +43,27 @@ pub fn plugin_dir() -> PathBuf {
     .clone()
 }
 
+/// A plugin directory holding every plugin this test build made (all the workspace's laws and
+/// the fault fixture: the libraries `libdashpot_*` of the deps directory but the C library).
+pub fn all_plugins_dir() -> PathBuf {
+    static D: OnceLock<PathBuf> = OnceLock::new();
+    D.get_or_init(|| {
+        let deps = std::env::current_exe().unwrap().parent().unwrap().to_path_buf();
+        let d = std::env::temp_dir().join(format!("dashpot-all-plugins-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        let (pre, suf) = (std::env::consts::DLL_PREFIX, std::env::consts::DLL_SUFFIX);
+        for e in std::fs::read_dir(&deps).unwrap() {
+            let p = e.unwrap().path();
+            let name = p.file_name().unwrap().to_string_lossy().to_string();
+            if name.starts_with(&format!("{pre}dashpot_")) && name.ends_with(suf) && !name.contains("capi") {
+                std::fs::copy(&p, d.join(&name)).unwrap();
+            }
+        }
+        d
+    })
+    .clone()
+}
+
 /// `dashpot` with exactly the five seed plugins (`--no-default-plugins`: whatever else sits
 /// beside the binary in target/ stays out).
 pub fn dashpot(args: &[&str]) -> Output {
