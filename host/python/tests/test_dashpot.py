@@ -158,3 +158,12 @@ def test_mcnamara_falcon_is_its_closed_form():
     assert np.allclose(r.r(v), expect, rtol=1e-14)
     ref = cli("eval", "--law", "mcnamara-falcon", "--set", "r0=0.95", "--set", "vy=0.3", "--speed", "1", "--json")
     assert r.r([1.0])[0] == ref["restitution"]
+
+
+def test_calibrate_is_the_clis_and_hits_its_target():
+    ref = cli("calibrate", "--law", "kuwabara-kono", "--restitution", "0.8", "--v0", "0.5", "--json")
+    c = dashpot.calibrate("kuwabara-kono", 0.8, v0=0.5)
+    assert c["params"] == ref["params"] and c["restitution"] == ref["restitution"]
+    assert abs(c["restitution"] - 0.8) < 1e-8
+    with pytest.raises(ValueError, match="1.5"):
+        dashpot.calibrate("hsd", 1.5)

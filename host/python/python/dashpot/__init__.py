@@ -40,6 +40,7 @@ __all__ = [
     "BoundTangentialLaw",
     "RestitutionLaw",
     "collide",
+    "calibrate",
 ]
 
 
@@ -229,3 +230,17 @@ def _provenance(law: str, params: Dict[str, float]):
         p = _json.loads(_dashpot.provenance(law, **params))
         _PROVENANCE[key] = (p["params"], p)
     return _PROVENANCE[key]
+
+
+def calibrate(law: str, restitution: float, v0: float = 1.0, *, contact_time: Optional[float] = None,
+              diameter: float = 0.01, density: float = 1500.0, young: float = 6e9, poisson: float = 0.3,
+              wall: bool = False, end: Optional[str] = None, fit: Optional[str] = None,
+              rtol: float = 1e-11, **fixed: float) -> Dict[str, Any]:
+    """Fits ``law``'s parameters to a measured ``restitution`` (and ``contact_time``, s, through
+    Young's modulus) at impact speed ``v0`` (m/s), as ``dashpot calibrate --json``: the other
+    parameters fixed as keywords, the particle as in ``collide``, ``fit`` naming the parameter
+    to fit (default: the law's only dissipation parameter), ``end`` the criterion (default: the
+    law's own). Returns a dict: params (all, fitted included), method, the realized restitution
+    and contact time with their residuals, young, collisions, provenance."""
+    return _json.loads(_dashpot.calibrate(law, fixed, float(restitution), contact_time, float(v0),
+                                          diameter, density, young, poisson, wall, end, fit, rtol))
