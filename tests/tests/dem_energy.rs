@@ -126,26 +126,74 @@ fn with_friction_and_rolling_every_family_dissipates_a_non_negative_share() {
     );
 }
 
-/// An adhesive law is refused by the DEM engine, which would drop its contacts at touching.
+/// A JKR pair in the DEM engine keeps its contact past touching: slower than the critical speed
+/// of the two-body driver it sticks, faster it separates at the pull-off distance with the
+/// driver's restitution.
 #[test]
-fn an_adhesive_law_is_refused_by_name_until_contacts_are_kept_to_their_reach() {
-    let text = pile("[law]\nname = \"jkr\"\nparams = { w = 0.1 }", "");
-    let file = SceneFile::parse(&text).unwrap();
-    let scene = file.scene::<3>().unwrap();
+fn a_jkr_pair_sticks_below_the_critical_speed_and_rebounds_as_the_two_body_driver_says_above() {
+    use dashpot::collide::{collide, Options, PairLaw};
+    use dashpot::dem::{Body, DiskMass, EngineConfig, Material, Vec3, VecD};
+    use dashpot_sdk::{EndCriterion, Pair, ParamValue};
     let reg = registry_03();
-    let laws = Laws::from_registry(
-        &reg,
-        ("jkr", &file.law.param_values()),
+    let mat = Material {
+        young: 1e8,
+        poisson: 0.3,
+        density: 2500.0,
+        disk_mass: DiskMass::Sphere,
+    };
+    let d = 1e-3;
+    let w = [ParamValue::new("w", 0.05)];
+    let p = mat.particle(d);
+    let pair = Pair::spheres(&p, &p).unwrap();
+    let law = reg.contact("jkr", &w).unwrap();
+    let two_body = |v0: f64| {
+        let b = PairLaw::bind(&law, &pair, p.poisson).unwrap();
+        collide(&b, pair.mass, v0, EndCriterion::Overlap, &Options::default()).unwrap()
+    };
+    // the critical speed, by bisection on the two-body driver
+    let (mut lo, mut hi) = (1e-6f64, 1.0f64);
+    while hi / lo > 1.0 + 1e-4 {
+        let mid = (lo * hi).sqrt();
+        if two_body(mid).stuck {
+            lo = mid
+        } else {
+            hi = mid
+        }
+    }
+    let vc = hi;
+    let run = |v0: f64| {
+        let laws = Laws::from_registry(&reg, ("jkr", &w), None, &mat).unwrap();
+        let mut cfg = EngineConfig::<3>::new(mat);
+        cfg.impact_speed = Some(v0);
+        let body = |x: f64, v: f64| Body {
+            position: VecD::<3>::new(x, 0.0, 0.0),
+            velocity: VecD::<3>::new(v, 0.0, 0.0),
+            angular_velocity: Vec3::zeros(),
+            diameter: d,
+        };
+        let bodies = [body(-0.5 * d - 1e-9, 0.5 * v0), body(0.5 * d + 1e-9, -0.5 * v0)];
+        let mut e = Engine::new(cfg, &bodies, Vec::new(), laws).unwrap();
+        let tau = e.step_choice.collision_time;
+        let mut touched = false;
+        while e.time() < 50.0 * tau {
+            e.step().unwrap();
+            touched |= !e.pairs.is_empty();
+            if touched && e.pairs.is_empty() {
+                let vrel = e.p.vel[1][0] - e.p.vel[0][0];
+                return Some(vrel / v0);
+            }
+        }
+        None
+    };
+    assert_eq!(
+        run(0.5 * vc),
         None,
-        &scene.config.material,
-    )
-    .unwrap();
-    let err = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)
-        .err()
-        .expect("an adhesive law must be refused");
-    let msg = err.to_string();
+        "below the critical speed {vc:e} m/s the pair must stick"
+    );
+    let e_dem = run(2.0 * vc).expect("above the critical speed the pair must separate");
+    let e_2b = two_body(2.0 * vc).restitution;
     assert!(
-        msg.contains("'jkr' is adhesive") && msg.contains("δ = 0"),
-        "{msg}"
+        (e_dem / e_2b - 1.0).abs() < 0.01,
+        "restitution at 2 v_c: DEM {e_dem}, two-body driver {e_2b}"
     );
 }

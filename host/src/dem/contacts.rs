@@ -107,6 +107,11 @@ pub struct ContactSet {
     pub mtwist: Vec<f64>,
     /// Whether the laws are asked for their energy outputs.
     pub energy: bool,
+    /// The largest reach of the normal law (m; 0 for a law that is not adhesive): contacts are
+    /// kept beyond touching while δ ≥ −reach of their own (see [`ContactSet::reach`]).
+    pub reach_bound: f64,
+    /// Each contact's reach after its last force call (m), kept when `reach_bound` > 0.
+    pub reach: Vec<f64>,
     /// Dissipated power of each contact (W), by family: normal, tangential, rolling, twisting.
     pub power: [Vec<f64>; 4],
     /// Elastic energy stored in each contact (J), by family.
@@ -189,6 +194,9 @@ impl ContactSet {
                 v.resize(count, 0.0);
             }
         }
+        if self.reach_bound > 0.0 {
+            self.reach.resize(count, 0.0);
+        }
         if self.rotational() {
             let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
             self.hist_r.resize(count * sr, 0.0);
@@ -216,6 +224,16 @@ impl ContactSet {
             *cursor += 1;
         }
         None
+    }
+
+    /// Whether contact (i, j), found in this (previous) set from `cursor` on, still acts at
+    /// overlap `delta` < 0: an adhesive contact whose last reach covers it.
+    #[cold]
+    fn acts_at(&self, mut cursor: usize, i: usize, j: u32, delta: f64) -> bool {
+        match self.find(&mut cursor, i, j) {
+            Some(m) => self.reach.get(m).is_some_and(|&r| delta >= -r),
+            None => false,
+        }
     }
 
     /// Writes contact `k` (the arrays sized by [`ContactSet::size`]), its history carried
@@ -307,7 +325,7 @@ impl ContactSet {
         let mut count = 0;
         let images = dom.images();
         for i in range {
-            let (xi, ri) = (pos[i - base], radius[i - base]);
+            let (xi, ri) = (pos[i - base], radius[i - base] + self.reach_bound);
             for &j in nb.of(i) {
                 let jl = j as usize - base;
                 let r2 = images.delta(&xi, &pos[jl]).norm_squared();
@@ -319,7 +337,8 @@ impl ContactSet {
         // pass 2, over the contacts only
         self.size(count);
         let mut cursor = 0;
-        for (k, &(i, j)) in cand[..count].iter().enumerate() {
+        let mut k = 0;
+        for &(i, j) in &cand[..count] {
             let (ig, jg) = (i as usize, j as usize);
             // indices into the view
             let (i, ju) = (ig - base, jg - base);
@@ -335,6 +354,9 @@ impl ContactSet {
                     delta,
                     radius: rmin,
                 });
+            }
+            if delta < 0.0 && !prev.acts_at(cursor, ig, j, delta) {
+                continue; // within the reach bound, but not an adhesive contact that still acts
             }
             let nv = to3(&(d / dist));
             let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
@@ -356,7 +378,9 @@ impl ContactSet {
                 v,
                 wi - wj,
             );
+            k += 1;
         }
+        self.size(k);
         self.cand = cand;
         Ok(())
     }
@@ -397,7 +421,7 @@ impl ContactSet {
         let mut count = 0;
         for (k, m) in worst.iter().enumerate() {
             cand[count] = ((range.start + k) as u32, 0);
-            count += usize::from((*m > 0.0) | m.is_nan());
+            count += usize::from((*m > -self.reach_bound) | m.is_nan());
         }
         self.scratch = worst;
         self.size(count * walls.len());
@@ -408,7 +432,7 @@ impl ContactSet {
             for (w, ws) in walls.iter().enumerate() {
                 let gap = (pos[i] - ws.point).dot(&ws.normal);
                 let delta = radius[i] - gap;
-                if delta <= 0.0 {
+                if delta <= 0.0 && !(self.reach_bound > 0.0 && prev.acts_at(cursor, ig, w as u32, delta)) {
                     continue;
                 }
                 if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
@@ -487,14 +511,20 @@ impl ContactSet {
                 history: &mut self.hist_n[a * sn..b * sn],
                 force: &mut *f,
             };
-            if self.energy {
+            if self.energy || self.reach_bound > 0.0 {
                 let [p, ..] = &mut self.power;
                 let [e, ..] = &mut self.elastic;
-                let out = EnergyOut {
-                    power: Some(&mut p[a..b]),
-                    elastic: Some(&mut e[a..b]),
+                let out = if self.energy {
+                    EnergyOut {
+                        power: Some(&mut p[a..b]),
+                        elastic: Some(&mut e[a..b]),
+                    }
+                } else {
+                    EnergyOut::none()
                 };
-                self.unreported[0] |= !normal.force_batch_with(nb, None, out)?;
+                let reach = (self.reach_bound > 0.0).then(|| &mut self.reach[a..b]);
+                let written = normal.force_batch_with(nb, reach, out)?;
+                self.unreported[0] |= self.energy && !written;
             } else {
                 normal.force_batch(nb)?;
             }
@@ -560,6 +590,7 @@ pub struct Contacts {
     slots_r: Option<usize>,
     slots_w: Option<usize>,
     energy: bool,
+    reach_bound: f64,
 }
 
 impl Contacts {
@@ -577,6 +608,12 @@ impl Contacts {
     pub fn with_rotation(mut self, slots_r: Option<usize>, slots_w: Option<usize>) -> Contacts {
         self.slots_r = slots_r;
         self.slots_w = slots_w;
+        self
+    }
+
+    /// The contacts of a normal law that reaches `bound` (m) beyond touching at most.
+    pub fn with_reach(mut self, bound: f64) -> Contacts {
+        self.reach_bound = bound;
         self
     }
 
@@ -629,8 +666,10 @@ impl Contacts {
             self.slots_w,
             self.energy,
         );
+        let rb = self.reach_bound;
         let make = || ContactSet {
             energy: en,
+            reach_bound: rb,
             ..ContactSet::new(sn, st).with_rotation(sr, sw)
         };
         self.chunks.resize_with(chunks, make);

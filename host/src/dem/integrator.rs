@@ -38,7 +38,7 @@ mod kernels;
 mod pipeline;
 
 pub use config::*;
-use config::{collision_time, impact_speed, refuse_adhesion};
+use config::{collision_time, impact_speed, reach_bound};
 use kernels::*;
 
 /// A soft-sphere DEM run.
@@ -58,6 +58,9 @@ pub struct Engine<const D: usize> {
     steps: u64,
     nb: Neighbours<D>,
     skin: f64,
+    /// The largest reach of an adhesive normal law (m; 0 for others): the neighbour list reaches
+    /// that much further.
+    law_reach: f64,
     /// Particle-pair contacts of the last evaluation.
     pub pairs: Contacts,
     /// Particle–wall contacts of the last evaluation.
@@ -130,7 +133,7 @@ impl<const D: usize> Engine<D> {
                 )));
             }
         }
-        refuse_adhesion(&laws, &mat, bodies)?;
+        let law_reach = reach_bound(&laws, &mat, bodies)?;
         for (k, w) in walls.iter().enumerate() {
             if !(w.normal.iter().all(|x| x.is_finite()) && (w.normal.norm() - 1.0).abs() < 1e-9) {
                 return Err(DemError::Invalid(format!(
@@ -240,8 +243,15 @@ impl<const D: usize> Engine<D> {
             steps: 0,
             nb: Neighbours::default(),
             skin,
-            pairs: Contacts::new(sn, st).with_rotation(pr, pw).with_energy(energy),
-            wall_contacts: Contacts::new(swn, swt).with_rotation(wr, ww).with_energy(energy),
+            law_reach,
+            pairs: Contacts::new(sn, st)
+                .with_rotation(pr, pw)
+                .with_energy(energy)
+                .with_reach(law_reach),
+            wall_contacts: Contacts::new(swn, swt)
+                .with_rotation(wr, ww)
+                .with_energy(energy)
+                .with_reach(law_reach),
             dissipated: [0.0; 4],
             unreported: [false; 4],
             overflow: Vec::new(),
@@ -452,8 +462,12 @@ impl<const D: usize> Engine<D> {
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach
     /// and displacement bounds.
     fn rebuild(&mut self) {
-        self.nb
-            .build(&self.cfg.domain, &mut self.p.pos, &self.p.radius, self.skin);
+        self.nb.build(
+            &self.cfg.domain,
+            &mut self.p.pos,
+            &self.p.radius,
+            self.skin + self.law_reach,
+        );
         self.nb.chunk_reach(GATHER_CHUNK, &mut self.reach);
         self.moved.clear();
         self.moved.resize(self.reach.len(), 0.0);

@@ -183,35 +183,36 @@ pub(super) fn collision_time(
     Ok(tau)
 }
 
-/// Refuses an adhesive normal law (tensile just past touching, as JKR and DMT are): the engine
-/// finds contacts by overlap and would drop each at δ = 0, short of the law's reach, and so
-/// report wrong physics.
-pub(super) fn refuse_adhesion<const D: usize>(
+/// The largest reach (m) of the run's normal laws: how far beyond touching an adhesive law
+/// (JKR) keeps a contact, from a contact formed at touch between the largest particles (the
+/// reach grows with the radius), with a margin of 1.5; 0 for laws that are not adhesive.
+pub(super) fn reach_bound<const D: usize>(
     laws: &Laws,
     mat: &Material,
     bodies: &[Body<D>],
-) -> Result<(), DemError> {
-    let Some(d) = bodies.iter().map(|b| b.diameter).reduce(f64::min) else {
-        return Ok(());
+) -> Result<f64, DemError> {
+    let Some(d) = bodies.iter().map(|b| b.diameter).reduce(f64::max) else {
+        return Ok(0.0);
     };
     let p = mat.particle(d);
-    let (m, r) = (0.5 * p.mass(), 0.25 * d);
-    for (what, law) in [("particle pairs", &laws.pair), ("walls", &laws.wall)] {
+    let mut bound = 0.0f64;
+    for law in [&laws.pair, &laws.wall] {
         let mut h = vec![0.0; law.history_slots()];
-        let c = dashpot_sdk::Contact {
-            delta: 1e-9 * d,
-            rate: 0.0,
-            mass: m,
-            radius: r,
-        };
-        if law.force(c, &mut h)? < 0.0 {
-            return Err(DemError::Invalid(format!(
-                "law '{}' is adhesive (tensile at touch, against {what}): the DEM engine does not yet keep \
-                 contacts beyond touching to the law's reach, so it would drop them at δ = 0; use \
-                 `dashpot collide` for adhesive impacts, or a non-adhesive law here",
-                law.name()
-            )));
-        }
+        let (mut f, mut reach) = ([0.0], [0.0]);
+        law.force_batch_with(
+            dashpot_sdk::NormalBatch {
+                delta: &[1e-9 * d],
+                rate: &[0.0],
+                mass: &[p.mass()],
+                radius: &[0.5 * d],
+                slots: h.len(),
+                history: &mut h,
+                force: &mut f,
+            },
+            Some(&mut reach),
+            crate::laws::EnergyOut::none(),
+        )?;
+        bound = bound.max(reach[0]);
     }
-    Ok(())
+    Ok(1.5 * bound)
 }
