@@ -653,56 +653,6 @@ impl<const D: usize> Engine<D> {
         Ok(())
     }
 
-    /// The exact state check, particle by particle: the first non-finite particle (velocities
-    /// and spins too if `velocities_too`), or in a bounded box the first one outside it. The
-    /// steps call it only when their running sums were not finite, or in a bounded box.
-    fn check(&self, velocities_too: bool) -> Result<(), DemError> {
-        let p = &self.p;
-        let dom = &self.cfg.domain;
-        let bad_at = |&i: &usize| {
-            let fin = p.pos[i].iter().all(|x| x.is_finite())
-                && (!velocities_too
-                    || (p.vel[i].iter().all(|x| x.is_finite())
-                        && p.angular_velocity(i).iter().all(|x| x.is_finite())));
-            if !fin {
-                return true;
-            }
-            dom.bounded
-                && (0..D).any(|k| !dom.periodic[k] && (p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k]))
-        };
-        let bad = if p.len() < SERIAL_BELOW {
-            (0..p.len()).find(bad_at)
-        } else {
-            (0..p.len()).into_par_iter().find_first(bad_at)
-        };
-        if let Some(i) = bad {
-            let fmt = |v: &VecD<D>| format!("{:?}", v.as_slice());
-            if !p.pos[i].iter().chain(p.vel[i].iter()).all(|x| x.is_finite())
-                || !p.angular_velocity(i).iter().all(|x| x.is_finite())
-            {
-                return Err(DemError::NonFinite {
-                    i,
-                    t: self.t,
-                    pos: fmt(&p.pos[i]),
-                    vel: fmt(&p.vel[i]),
-                    spin: format!("{:?}", p.angular_velocity(i).as_slice()),
-                });
-            }
-            let axis = (0..D)
-                .find(|&k| p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k])
-                .unwrap_or(0);
-            return Err(DemError::Lost {
-                i,
-                t: self.t,
-                pos: fmt(&p.pos[i]),
-                axis,
-                lo: dom.lo[axis],
-                hi: dom.hi[axis],
-            });
-        }
-        Ok(())
-    }
-
     /// The mean over particles of `to3(v)` (m/s): a helper for observables.
     pub fn mean_velocity(&self) -> Vec3 {
         let n = self.p.len().max(1) as f64;

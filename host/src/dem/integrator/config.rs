@@ -3,10 +3,12 @@
 
 use crate::collide::{collide, Options, PairLaw};
 use crate::dem::cells::Domain;
+use crate::dem::contacts::SERIAL_BELOW;
 use crate::dem::state::{Body, Material, Particles, VecD};
 use crate::dem::walls::Wall;
 use crate::dem::{DemError, Laws};
 use dashpot_sdk::EndCriterion;
+use rayon::prelude::*;
 
 /// The fewest steps per collision (τ/dt, τ the contact time at the largest expected impact
 /// speed) a run accepts. Velocity Verlet is stable for an undamped spring of angular frequency ω
@@ -215,4 +217,56 @@ pub(super) fn reach_bound<const D: usize>(
         bound = bound.max(reach[0]);
     }
     Ok(1.5 * bound)
+}
+
+impl<const D: usize> super::Engine<D> {
+    /// The exact state check, particle by particle: the first non-finite particle (velocities
+    /// and spins too if `velocities_too`), or in a bounded box the first one outside it. The
+    /// steps call it only when their running sums were not finite, or in a bounded box.
+    pub(super) fn check(&self, velocities_too: bool) -> Result<(), DemError> {
+        let p = &self.p;
+        let dom = &self.cfg.domain;
+        let bad_at = |&i: &usize| {
+            let fin = p.pos[i].iter().all(|x| x.is_finite())
+                && (!velocities_too
+                    || (p.vel[i].iter().all(|x| x.is_finite())
+                        && p.angular_velocity(i).iter().all(|x| x.is_finite())));
+            if !fin {
+                return true;
+            }
+            dom.bounded
+                && (0..D).any(|k| !dom.periodic[k] && (p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k]))
+        };
+        let bad = if p.len() < SERIAL_BELOW {
+            (0..p.len()).find(bad_at)
+        } else {
+            (0..p.len()).into_par_iter().find_first(bad_at)
+        };
+        if let Some(i) = bad {
+            let fmt = |v: &VecD<D>| format!("{:?}", v.as_slice());
+            if !p.pos[i].iter().chain(p.vel[i].iter()).all(|x| x.is_finite())
+                || !p.angular_velocity(i).iter().all(|x| x.is_finite())
+            {
+                return Err(DemError::NonFinite {
+                    i,
+                    t: self.t,
+                    pos: fmt(&p.pos[i]),
+                    vel: fmt(&p.vel[i]),
+                    spin: format!("{:?}", p.angular_velocity(i).as_slice()),
+                });
+            }
+            let axis = (0..D)
+                .find(|&k| p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k])
+                .unwrap_or(0);
+            return Err(DemError::Lost {
+                i,
+                t: self.t,
+                pos: fmt(&p.pos[i]),
+                axis,
+                lo: dom.lo[axis],
+                hi: dom.hi[axis],
+            });
+        }
+        Ok(())
+    }
 }
