@@ -39,6 +39,60 @@ pub struct DashpotTwistingModel {
     model: ModelHandle<Twisting>,
 }
 
+/// `*out_law` = a new handle made by `make` from the registry, the law's name and its
+/// parameters (the body of every `dashpot_*_new`).
+unsafe fn new_law<T>(
+    registry: *const DashpotRegistry,
+    name: *const c_char,
+    param_names: *const *const c_char,
+    param_values: *const f64,
+    n_params: usize,
+    out_law: *mut *mut T,
+    make: impl FnOnce(
+        &dashpot_core::Registry,
+        &str,
+        &[dashpot_sdk::ParamValue],
+    ) -> Result<T, dashpot_sdk::LawError>,
+) -> DashpotStatus {
+    guard(|| {
+        let r = unsafe { arg(registry, "registry") }?;
+        let name = unsafe { string(name, "name") }?;
+        let o = unsafe { out(out_law, "out_law") }?;
+        let p = unsafe { params(param_names, param_values, n_params) }?;
+        *o = Box::into_raw(Box::new(make(&r.reg, name, &p)?));
+        Ok(())
+    })
+}
+
+/// `*out_model` = `law` bound to `materials` by `bind` (the body of every `_bind_materials`).
+unsafe fn bind_law<L, M>(
+    law: *const L,
+    materials: *const DashpotMaterials,
+    out_model: *mut *mut M,
+    bind: impl FnOnce(&L, &dashpot_sdk::MaterialPair) -> Result<M, dashpot_sdk::LawError>,
+) -> DashpotStatus {
+    guard(|| {
+        let l = unsafe { arg(law, "law") }?;
+        let m = unsafe { arg(materials, "materials") }?.to_materials()?;
+        let o = unsafe { out(out_model, "out_model") }?;
+        *o = Box::into_raw(Box::new(bind(l, &m)?));
+        Ok(())
+    })
+}
+
+/// `*out_slots` = `slots(model)` (the body of every `_history_slots`).
+unsafe fn slots_of<M>(
+    model: *const M,
+    out_slots: *mut usize,
+    slots: impl FnOnce(&M) -> usize,
+) -> DashpotStatus {
+    guard(|| {
+        let m = unsafe { arg(model, "model") }?;
+        *unsafe { out(out_slots, "out_slots") }? = slots(m);
+        Ok(())
+    })
+}
+
 /// Frees a boxed handle (null is ignored), catching a panic of its destructor.
 unsafe fn free_box<T>(p: *mut T) {
     if !p.is_null() {
@@ -102,15 +156,21 @@ pub unsafe extern "C" fn dashpot_rolling_new(
     n_params: usize,
     out_law: *mut *mut DashpotRollingLaw,
 ) -> DashpotStatus {
-    guard(|| {
-        let r = unsafe { arg(registry, "registry") }?;
-        let name = unsafe { string(name, "name") }?;
-        let o = unsafe { out(out_law, "out_law") }?;
-        let p = unsafe { params(param_names, param_values, n_params) }?;
-        let law = r.reg.rolling(name, &p)?;
-        *o = Box::into_raw(Box::new(DashpotRollingLaw { law }));
-        Ok(())
-    })
+    unsafe {
+        new_law(
+            registry,
+            name,
+            param_names,
+            param_values,
+            n_params,
+            out_law,
+            |reg, name, p| {
+                Ok(DashpotRollingLaw {
+                    law: reg.rolling(name, p)?,
+                })
+            },
+        )
+    }
 }
 
 /// Frees a rolling law (null is ignored). Models bound from it stay valid.
@@ -136,14 +196,13 @@ pub unsafe extern "C" fn dashpot_rolling_bind_materials(
     materials: *const DashpotMaterials,
     out_model: *mut *mut DashpotRollingModel,
 ) -> DashpotStatus {
-    guard(|| {
-        let l = unsafe { arg(law, "law") }?;
-        let m = unsafe { arg(materials, "materials") }?.to_materials()?;
-        let o = unsafe { out(out_model, "out_model") }?;
-        let model = l.law.bind(&m)?;
-        *o = Box::into_raw(Box::new(DashpotRollingModel { model }));
-        Ok(())
-    })
+    unsafe {
+        bind_law(law, materials, out_model, |l: &DashpotRollingLaw, m| {
+            Ok(DashpotRollingModel {
+                model: l.law.bind(m)?,
+            })
+        })
+    }
 }
 
 /// Frees a bound rolling law (null is ignored).
@@ -166,11 +225,7 @@ pub unsafe extern "C" fn dashpot_rolling_model_history_slots(
     model: *const DashpotRollingModel,
     out_slots: *mut usize,
 ) -> DashpotStatus {
-    guard(|| {
-        let m = unsafe { arg(model, "model") }?;
-        *unsafe { out(out_slots, "out_slots") }? = m.model.history_slots();
-        Ok(())
-    })
+    unsafe { slots_of(model, out_slots, |m| m.model.history_slots()) }
 }
 
 /// The rolling-resistance force on `n` contacts, history advanced by the step `dt` (s).
@@ -257,15 +312,21 @@ pub unsafe extern "C" fn dashpot_twisting_new(
     n_params: usize,
     out_law: *mut *mut DashpotTwistingLaw,
 ) -> DashpotStatus {
-    guard(|| {
-        let r = unsafe { arg(registry, "registry") }?;
-        let name = unsafe { string(name, "name") }?;
-        let o = unsafe { out(out_law, "out_law") }?;
-        let p = unsafe { params(param_names, param_values, n_params) }?;
-        let law = r.reg.twisting(name, &p)?;
-        *o = Box::into_raw(Box::new(DashpotTwistingLaw { law }));
-        Ok(())
-    })
+    unsafe {
+        new_law(
+            registry,
+            name,
+            param_names,
+            param_values,
+            n_params,
+            out_law,
+            |reg, name, p| {
+                Ok(DashpotTwistingLaw {
+                    law: reg.twisting(name, p)?,
+                })
+            },
+        )
+    }
 }
 
 /// Frees a twisting law (null is ignored). Models bound from it stay valid.
@@ -290,14 +351,13 @@ pub unsafe extern "C" fn dashpot_twisting_bind_materials(
     materials: *const DashpotMaterials,
     out_model: *mut *mut DashpotTwistingModel,
 ) -> DashpotStatus {
-    guard(|| {
-        let l = unsafe { arg(law, "law") }?;
-        let m = unsafe { arg(materials, "materials") }?.to_materials()?;
-        let o = unsafe { out(out_model, "out_model") }?;
-        let model = l.law.bind(&m)?;
-        *o = Box::into_raw(Box::new(DashpotTwistingModel { model }));
-        Ok(())
-    })
+    unsafe {
+        bind_law(law, materials, out_model, |l: &DashpotTwistingLaw, m| {
+            Ok(DashpotTwistingModel {
+                model: l.law.bind(m)?,
+            })
+        })
+    }
 }
 
 /// Frees a bound twisting law (null is ignored).
@@ -320,11 +380,7 @@ pub unsafe extern "C" fn dashpot_twisting_model_history_slots(
     model: *const DashpotTwistingModel,
     out_slots: *mut usize,
 ) -> DashpotStatus {
-    guard(|| {
-        let m = unsafe { arg(model, "model") }?;
-        *unsafe { out(out_slots, "out_slots") }? = m.model.history_slots();
-        Ok(())
-    })
+    unsafe { slots_of(model, out_slots, |m| m.model.history_slots()) }
 }
 
 /// The twisting torque on `n` contacts, history advanced by the step `dt` (s).

@@ -27,18 +27,7 @@ pub(crate) fn calibrate(
 ) -> PyResult<String> {
     use dashpot::collide::calibrate::{calibrate as fit_law, CalibrateSpec};
     let p = params_of(fixed)?;
-    let particle = Particle {
-        diameter,
-        density,
-        young,
-        poisson,
-    };
-    let pair = if wall {
-        Pair::wall(&particle)
-    } else {
-        Pair::spheres(&particle, &particle)
-    }
-    .map_err(law_err)?;
+    let pair = pair_of(diameter, density, young, poisson, wall)?;
     let mats = materials(young, poisson, None, None, wall)?;
     with_registry(py, |reg| {
         let declared = reg

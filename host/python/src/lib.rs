@@ -345,18 +345,7 @@ fn collide<'py>(
         }
     };
     let p = params_of(params)?;
-    let particle = Particle {
-        diameter,
-        density,
-        young,
-        poisson,
-    };
-    let pair = if wall {
-        Pair::wall(&particle)
-    } else {
-        Pair::spheres(&particle, &particle)
-    }
-    .map_err(law_err)?;
+    let pair = pair_of(diameter, density, young, poisson, wall)?;
     let law = cached_contact(py, name, &p)?;
     let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&law, &pair, poisson).map_err(law_err)?;
     let opt = Options {
@@ -544,18 +533,7 @@ fn restitution<'py>(
     wall: bool,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let p = params_of(params)?;
-    let particle = Particle {
-        diameter,
-        density,
-        young,
-        poisson,
-    };
-    let pair = if wall {
-        Pair::wall(&particle)
-    } else {
-        Pair::spheres(&particle, &particle)
-    }
-    .map_err(law_err)?;
+    let pair = pair_of(diameter, density, young, poisson, wall)?;
     let law = with_registry(py, |reg| {
         reg.restitution(name, &p)
             .map_err(law_err)?
@@ -567,6 +545,23 @@ fn restitution<'py>(
     py.allow_threads(|| law.restitution_batch(v, &mut out))
         .map_err(law_err)?;
     Ok(out.into_pyarray(py))
+}
+
+/// The pair of a sphere (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) and
+/// an identical one, or a wall.
+fn pair_of(diameter: f64, density: f64, young: f64, poisson: f64, wall: bool) -> PyResult<Pair> {
+    let particle = Particle {
+        diameter,
+        density,
+        young,
+        poisson,
+    };
+    if wall {
+        Pair::wall(&particle)
+    } else {
+        Pair::spheres(&particle, &particle)
+    }
+    .map_err(law_err)
 }
 
 /// The material pair of a first body (Young's modulus Pa, Poisson's ratio) and a second one
