@@ -129,7 +129,7 @@ pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
         "kind": kind_str(info.kind),
         "summary": info.summary.as_str(),
         "doc": info.doc.as_str(),
-        "end_criterion": info.end_criterion.into_option().map(|e| e.as_str()),
+        "end_criterion": info.end_criterion.map(|e| e.as_str()),
         "plugin": plugin.map(|p| json!({
             "file": p.path.display().to_string(),
             "name": p.name,
@@ -140,7 +140,7 @@ pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
         "params": info.params.iter().map(|s| json!({
             "name": s.name.as_str(),
             "unit": s.unit.as_str(),
-            "default": s.default.into_option(),
+            "default": s.default,
             "range": s.range.to_string(),
             "min": finite_or_null(s.range.min),
             "max": finite_or_null(s.range.max),
@@ -219,7 +219,7 @@ impl Provenance {
                 let n = s.name.to_string();
                 match given.iter().find(|p| p.name == s.name.as_str()) {
                     Some(p) => (n, Some(p.value), ParamSource::Given),
-                    None => match s.default.into_option() {
+                    None => match s.default {
                         Some(d) => (n, Some(d), ParamSource::Default),
                         None => (n, None, ParamSource::Derived),
                     },

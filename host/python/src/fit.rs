@@ -36,7 +36,6 @@ pub(crate) fn calibrate(
             .0
             .info
             .end_criterion
-            .into_option()
             .unwrap_or(EndCriterion::Overlap);
         let end = match end {
             None => declared,

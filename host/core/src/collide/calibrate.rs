@@ -8,7 +8,7 @@
 use super::two_body::{collide, CollideError, Collision, Options, PairLaw};
 use crate::registry::Registry;
 use dashpot_sdk::{
-    CalibrationTarget, EndCriterion, LawError, LawKind, MaterialPair, Pair, ParamValue, ROption, Range,
+    CalibrationTarget, EndCriterion, LawError, LawKind, MaterialPair, Pair, ParamValue, Range,
 };
 
 /// What to calibrate.
@@ -309,8 +309,8 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
     let mut model = Model { reg, spec, runs: 0 };
     let target = CalibrationTarget {
         restitution: eps,
-        contact_time: spec.contact_time.into(),
-        impact_speed: ROption::RSome(spec.v0),
+        contact_time: spec.contact_time,
+        impact_speed: Some(spec.v0),
         end: spec.end,
     };
 
@@ -367,7 +367,7 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
             .iter()
             .find(|p| p.name == fit.as_str())
             .map(|p| p.value)
-            .or(fit_spec.default.into_option())
+            .or(fit_spec.default)
             .unwrap_or(1.0);
         for _round in 0..40 {
             // restitution by the dissipation parameter
@@ -429,7 +429,7 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
     let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
     for s in &schema {
         if !full.iter().any(|(n, _)| n == s.name.as_str()) {
-            if let Some(d) = s.default.into_option() {
+            if let Some(d) = s.default {
                 full.push((s.name.to_string(), d));
             }
         }
