@@ -269,82 +269,104 @@ pub trait BoundContact: Send + Sync + 'static {
     }
 }
 
-/// The state of one contact as a tangential or rolling law sees it. Vectors are 3D (a 2D caller
-/// sets the third components to 0); `normal` is the unit normal pointing from the partner j to
-/// the particle i the force acts on.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct VectorContact {
-    /// Unit contact normal n̂, from partner j to particle i.
-    pub normal: [f64; 3],
+/// Declares the contact and batch types of a kind whose law sees a contact's normal, one
+/// relative motion (`$motion`), the normal force, overlap, effective mass and radius and the
+/// time step, and writes one output per contact (`$out`), with `history` slots per contact; and
+/// the batch's `contact(i)`.
+macro_rules! motion_kind {
+    (
+        $(#[$cdoc:meta])* $contact:ident, $(#[$bdoc:meta])* $batch:ident,
+        $(#[$mdoc:meta])* $motion:ident: $mty:ty, $(#[$odoc:meta])* $out:ident: $oty:ty
+    ) => {
+        $(#[$cdoc])*
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct $contact {
+            /// Unit contact normal n̂, from partner j to particle i.
+            pub normal: [f64; 3],
+            $(#[$mdoc])*
+            pub $motion: $mty,
+            /// The normal force on the contact (N, > 0 repulsive), from the normal law this step:
+            /// what caps friction, rolling and twisting resistance.
+            pub normal_force: f64,
+            /// Overlap δ (m).
+            pub delta: f64,
+            /// Effective mass (kg).
+            pub mass: f64,
+            /// Effective radius R_eff (m).
+            pub radius: f64,
+            /// The time step (s) over which the history advances.
+            pub dt: f64,
+        }
+
+        $(#[$bdoc])*
+        #[derive(Debug)]
+        pub struct $batch<'a> {
+            /// Time step (s) over which the history advances.
+            pub dt: f64,
+            /// Unit normals n̂ (from partner to particle).
+            pub normal: &'a [[f64; 3]],
+            $(#[$mdoc])*
+            pub $motion: &'a [$mty],
+            /// Normal forces (N, > 0 repulsive).
+            pub normal_force: &'a [f64],
+            /// Overlaps (m).
+            pub delta: &'a [f64],
+            /// Effective masses (kg).
+            pub mass: &'a [f64],
+            /// Effective radii (m).
+            pub radius: &'a [f64],
+            /// History slots per contact.
+            pub slots: usize,
+            /// Per-contact history, read and updated in place.
+            pub history: &'a mut [f64],
+            $(#[$odoc])*
+            pub $out: &'a mut [$oty],
+        }
+
+        impl $batch<'_> {
+            /// Contact `i` of the batch.
+            #[inline(always)]
+            pub fn contact(&self, i: usize) -> $contact {
+                $contact {
+                    normal: self.normal[i],
+                    $motion: self.$motion[i],
+                    normal_force: self.normal_force[i],
+                    delta: self.delta[i],
+                    mass: self.mass[i],
+                    radius: self.radius[i],
+                    dt: self.dt,
+                }
+            }
+
+            #[doc = concat!("`", stringify!($out), "[i] = f(contact i, its history)` for every contact: the loop of a batch call.")]
+            #[inline(always)]
+            pub fn each(self, mut f: impl FnMut(&$contact, &mut [f64]) -> $oty) {
+                let slots = self.slots;
+                for i in 0..self.$out.len() {
+                    let c = self.contact(i);
+                    self.$out[i] = f(&c, history_mut(self.history, slots, i));
+                }
+            }
+        }
+    };
+}
+pub(crate) use motion_kind;
+
+motion_kind!(
+    /// The state of one contact as a tangential or rolling law sees it. Vectors are 3D (a 2D
+    /// caller sets the third components to 0).
+    VectorContact,
+    /// Every contact of one material pair for a tangential or rolling law, structure of arrays.
+    /// Vectors are `[x, y, z]` triples; `history` is `n × slots` as in [`NormalBatch`].
+    VectorBatch,
     /// Relative velocity (m/s): for a tangential law, of i's contact point with respect to j's
     /// (ω × r terms included; the law uses its part in the tangent plane); for a rolling law,
     /// the rolling velocity v_roll = R_eff (ω_i − ω_j) × n̂.
-    pub velocity: [f64; 3],
-    /// The normal force on the contact (N, > 0 repulsive), from the normal law this step: what
-    /// caps friction and rolling resistance.
-    pub normal_force: f64,
-    /// Overlap δ (m).
-    pub delta: f64,
-    /// Effective mass (kg).
-    pub mass: f64,
-    /// Effective radius R_eff (m).
-    pub radius: f64,
-    /// The time step (s) over which the history advances.
-    pub dt: f64,
-}
-
-/// Every contact of one material pair for a tangential or rolling law, structure of arrays.
-/// Vectors are `[x, y, z]` triples; `history` is `n × slots` as in [`NormalBatch`].
-#[derive(Debug)]
-pub struct VectorBatch<'a> {
-    /// Time step (s) over which the history advances.
-    pub dt: f64,
-    /// Unit normals n̂ (from partner to particle).
-    pub normal: &'a [[f64; 3]],
-    /// Relative velocities (m/s): of the contact points, or rolling.
-    pub velocity: &'a [[f64; 3]],
-    /// Normal forces (N, > 0 repulsive).
-    pub normal_force: &'a [f64],
-    /// Overlaps (m).
-    pub delta: &'a [f64],
-    /// Effective masses (kg).
-    pub mass: &'a [f64],
-    /// Effective radii (m).
-    pub radius: &'a [f64],
-    /// History slots per contact.
-    pub slots: usize,
-    /// Per-contact history, read and updated in place.
-    pub history: &'a mut [f64],
+    velocity: [f64; 3],
     /// Output: the force on particle i (N): tangential, in the tangent plane; or the
     /// rolling-resistance force F_r, whose torque on i is R_eff n̂ × F_r.
-    pub force: &'a mut [[f64; 3]],
-}
-
-impl VectorBatch<'_> {
-    /// Contact `i` of the batch.
-    #[inline(always)]
-    pub fn contact(&self, i: usize) -> VectorContact {
-        VectorContact {
-            normal: self.normal[i],
-            velocity: self.velocity[i],
-            normal_force: self.normal_force[i],
-            delta: self.delta[i],
-            mass: self.mass[i],
-            radius: self.radius[i],
-            dt: self.dt,
-        }
-    }
-
-    /// `force[i] = f(contact i, its history)` for every contact: the loop of a batch call.
-    #[inline(always)]
-    pub fn each(self, mut f: impl FnMut(&VectorContact, &mut [f64]) -> [f64; 3]) {
-        let slots = self.slots;
-        for i in 0..self.force.len() {
-            let c = self.contact(i);
-            self.force[i] = f(&c, history_mut(self.history, slots, i));
-        }
-    }
-}
+    force: [f64; 3]
+);
 
 /// Contact `i`'s history slots of `h` (`slots` per contact; empty when there are none).
 #[inline(always)]

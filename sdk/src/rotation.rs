@@ -17,7 +17,7 @@
 
 use crate::error::LawError;
 use crate::law::{history_mut, law_info, law_trait, Coefficient, Energy, History, LawInfo, LawKind};
-use crate::law::{VectorBatch, VectorContact};
+use crate::law::{motion_kind, VectorBatch, VectorContact};
 use crate::pair::MaterialPair;
 use crate::params::{LawParams, ParamValue};
 
@@ -53,65 +53,17 @@ pub trait BoundRolling: Send + Sync + 'static {
     }
 }
 
-/// The state of one contact as a twisting law sees it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TwistingContact {
-    /// Unit contact normal n̂, from partner j to particle i.
-    pub normal: [f64; 3],
+motion_kind!(
+    /// The state of one contact as a twisting law sees it.
+    TwistingContact,
+    /// Every contact of one material pair for a twisting law, structure of arrays; `history` is
+    /// `n × slots` as in [`NormalBatch`](crate::NormalBatch).
+    TwistingBatch,
     /// Relative twisting rate ω_tw = (ω_i − ω_j) · n̂ (rad/s).
-    pub rate: f64,
-    /// The normal force that caps twisting resistance (N).
-    pub normal_force: f64,
-    /// Overlap δ (m).
-    pub delta: f64,
-    /// Effective mass (kg).
-    pub mass: f64,
-    /// Effective radius (m).
-    pub radius: f64,
-    /// The time step (s) over which the history advances.
-    pub dt: f64,
-}
-
-/// Every contact of one material pair for a twisting law, structure of arrays.
-#[derive(Debug)]
-pub struct TwistingBatch<'a> {
-    /// Time step (s).
-    pub dt: f64,
-    /// Unit normals n̂.
-    pub normal: &'a [[f64; 3]],
-    /// Relative twisting rates ω_tw (rad/s).
-    pub rate: &'a [f64],
-    /// Normal forces (N).
-    pub normal_force: &'a [f64],
-    /// Overlaps (m).
-    pub delta: &'a [f64],
-    /// Effective masses (kg).
-    pub mass: &'a [f64],
-    /// Effective radii (m).
-    pub radius: &'a [f64],
-    /// History slots per contact.
-    pub slots: usize,
-    /// Per-contact history, read and updated in place.
-    pub history: &'a mut [f64],
+    rate: f64,
     /// Output: the twisting torque M_tw about n̂ on particle i (N·m).
-    pub torque: &'a mut [f64],
-}
-
-impl TwistingBatch<'_> {
-    /// Contact `i` of the batch.
-    #[inline(always)]
-    pub fn contact(&self, i: usize) -> TwistingContact {
-        TwistingContact {
-            normal: self.normal[i],
-            rate: self.rate[i],
-            normal_force: self.normal_force[i],
-            delta: self.delta[i],
-            mass: self.mass[i],
-            radius: self.radius[i],
-            dt: self.dt,
-        }
-    }
-}
+    torque: f64
+);
 
 /// A twisting-resistance law bound to a material pair.
 pub trait BoundTwisting: Send + Sync + 'static {
@@ -121,10 +73,7 @@ pub trait BoundTwisting: Send + Sync + 'static {
     /// `b.torque[i]` for every contact of the batch.
     #[inline(always)]
     fn torque_batch(&self, b: TwistingBatch<'_>) {
-        for i in 0..b.torque.len() {
-            let c = b.contact(i);
-            b.torque[i] = self.torque(&c, history_mut(b.history, b.slots, i));
-        }
+        b.each(|c, h| self.torque(c, h));
     }
 
     /// The energy of contact `c` after a call that returned `torque` and left `history`;

@@ -10,10 +10,15 @@ use crate::pair::Pair;
 use crate::params::{ParamValue, Params};
 use abi_stable::std_types::{ROption, RResult, RSlice, RStr, RVec};
 
-pub use super::guard::{guard, install_quiet_panic_hook};
-pub use super::kind::{new_law, CreateFn};
+use super::guard::guard;
+pub use super::guard::install_quiet_panic_hook;
+pub use super::kind::CreateFn;
+use super::kind::{new_law, Create, FfiLaw};
+use super::kinds::{FfiNormalBatch3, FfiTwistingBatch, FfiVectorBatch};
 pub use super::restitution::CreateRestitution;
+use super::{FfiRestitutionLaw, PluginModule, PluginModuleRef, ABI_VERSION};
 pub use abi_stable;
+use abi_stable::prefix_type::PrefixTypeTrait;
 
 /// A contact law's closed-form calibration, as stored in the export tables.
 pub type CalibrateFn =
@@ -39,16 +44,86 @@ fn calibrate_contact<T: ContactLaw>(
     T::calibrate(target, pair, &params)
 }
 
-/// Every law's description (the root module's `laws`).
-pub fn laws(infos: &[fn() -> LawInfo]) -> RResult<RVec<ffi::LawInfo>, FfiError> {
+/// The laws a plugin exports, kind by kind: what [`export_laws!`](crate::export_laws) writes.
+/// Its root module's entries are generic over it.
+pub trait Tables: 'static {
+    /// The crate's name.
+    const NAME: &'static str;
+    /// The crate's version.
+    const VERSION: &'static str;
+    /// Every law's description, in the order of the macro's groups.
+    const INFO: &'static [fn() -> LawInfo];
+    /// The contact laws.
+    const CONTACT: &'static [Entry<CreateFn<FfiNormalBatch3>>];
+    /// The contact laws' closed-form calibrations.
+    const CALIBRATE: &'static [Entry<CalibrateFn>];
+    /// The tangential laws.
+    const TANGENTIAL: &'static [Entry<CreateFn<FfiVectorBatch>>];
+    /// The rolling laws.
+    const ROLLING: &'static [Entry<CreateFn<FfiVectorBatch>>];
+    /// The twisting laws.
+    const TWISTING: &'static [Entry<CreateFn<FfiTwistingBatch>>];
+    /// The restitution laws.
+    const RESTITUTION: &'static [Entry<CreateRestitution>];
+}
+
+/// The root module of the plugin whose laws are `T` (leaked once, on loading).
+pub fn root_module<T: Tables>() -> PluginModuleRef {
+    install_quiet_panic_hook();
+    PluginModule {
+        name: RStr::from_str(T::NAME),
+        version: RStr::from_str(T::VERSION),
+        sdk_version: RStr::from_str(ABI_VERSION),
+        laws: laws::<T>,
+        new_contact: new_kind::<T, FfiLaw<FfiNormalBatch3>, Contact>,
+        new_tangential: new_kind::<T, FfiLaw<FfiVectorBatch>, TangentialTable>,
+        new_rolling: new_kind::<T, FfiLaw<FfiVectorBatch>, RollingTable>,
+        new_twisting: new_kind::<T, FfiLaw<FfiTwistingBatch>, TwistingTable>,
+        new_restitution: new_kind::<T, FfiRestitutionLaw, RestitutionTable>,
+        calibrate: calibrate::<T>,
+    }
+    .leak_into_prefix()
+}
+
+extern "C" fn laws<T: Tables>() -> RResult<RVec<ffi::LawInfo>, FfiError> {
     guard("listing laws", || {
-        Ok(infos.iter().map(|f| ffi::LawInfo::from(&f())).collect())
+        Ok(T::INFO.iter().map(|f| ffi::LawInfo::from(&f())).collect())
     })
 }
 
+/// One table of [`Tables`]: the laws of kind `WHAT`, made as `F`.
+trait Table<T: Tables, F: 'static> {
+    const WHAT: &'static str;
+    fn table() -> &'static [Entry<Create<F>>];
+}
+
+macro_rules! table {
+    ($name:ident, $what:literal, $made:ty, $field:ident) => {
+        struct $name;
+        impl<T: Tables> Table<T, $made> for $name {
+            const WHAT: &'static str = $what;
+            fn table() -> &'static [Entry<Create<$made>>] {
+                T::$field
+            }
+        }
+    };
+}
+table!(Contact, "contact", FfiLaw<FfiNormalBatch3>, CONTACT);
+table!(TangentialTable, "tangential", FfiLaw<FfiVectorBatch>, TANGENTIAL);
+table!(RollingTable, "rolling", FfiLaw<FfiVectorBatch>, ROLLING);
+table!(TwistingTable, "twisting", FfiLaw<FfiTwistingBatch>, TWISTING);
+table!(RestitutionTable, "restitution", FfiRestitutionLaw, RESTITUTION);
+
+/// The root module's constructor of the laws of table `K` of plugin `T`.
+extern "C" fn new_kind<T: Tables, F: 'static, K: Table<T, F>>(
+    name: RStr<'_>,
+    params: RSlice<'_, ffi::ParamValue>,
+) -> RResult<F, FfiError> {
+    new_law(K::table(), K::WHAT, name, params)
+}
+
 /// A contact law's closed-form calibration, by name (the root module's `calibrate`).
-pub fn calibrate(
-    table: &[Entry<CalibrateFn>],
+extern "C" fn calibrate<T: Tables>(
     name: RStr<'_>,
     target: &ffi::CalibrationTarget,
     pair: &Pair,
@@ -56,7 +131,7 @@ pub fn calibrate(
 ) -> RResult<ROption<RVec<ffi::ParamValue>>, FfiError> {
     guard(&format!("contact law '{name}' (calibrate)"), || {
         let fixed: Vec<ParamValue> = fixed.iter().cloned().map(ParamValue::from).collect();
-        let found = find(table, "contact", name.as_str())?(&(*target).into(), pair, &fixed)?;
+        let found = find(T::CALIBRATE, "contact", name.as_str())?(&(*target).into(), pair, &fixed)?;
         Ok(found.map(|v| ffi::to_ffi(&v)).into())
     })
 }
@@ -84,89 +159,33 @@ macro_rules! export_laws {
         mod __dashpot_export {
             #[allow(unused_imports)]
             use super::*;
-            use $crate::abi::__private as p;
-            use $crate::abi::__private::abi_stable::{
-                library::{LibHeader, RootModuleResult, CheckTypeLayout},
-                prefix_type::PrefixTypeTrait,
-                std_types::{ROption, RResult, RSlice, RStr, RVec},
-            };
-            use $crate::abi::{self, ffi, kind::Entry, kinds, FfiError, Normal, Rolling, Tangential, Twisting};
+            use $crate::abi::__private::{self as p, abi_stable::library::{CheckTypeLayout, LibHeader, RootModuleResult}};
+            use $crate::abi::{kind::Entry, kinds, Normal, PluginModuleRef, Rolling, Tangential, Twisting};
 
-            static INFO: &[fn() -> $crate::LawInfo] = &[
-                $($(<$c as $crate::ContactLaw>::info,)*)?
-                $($(<$r as $crate::RestitutionLaw>::info,)*)?
-                $($(<$t as $crate::TangentialLaw>::info,)*)?
-                $($(<$ro as $crate::RollingLaw>::info,)*)?
-                $($(<$tw as $crate::TwistingLaw>::info,)*)?
-            ];
-            static CONTACT: &[Entry<p::CreateFn<kinds::FfiNormalBatch3>>] =
-                &[$($(Entry::of::<Normal, $c>()),*)?];
-            static CALIBRATE: &[Entry<p::CalibrateFn>] = &[$($(Entry::calibration::<$c>()),*)?];
-            static RESTITUTION: &[Entry<p::CreateRestitution>] = &[$($(Entry::restitution::<$r>()),*)?];
-            static TANGENTIAL: &[Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
-                &[$($(Entry::of::<Tangential, $t>()),*)?];
-            static ROLLING: &[Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
-                &[$($(Entry::of::<Rolling, $ro>()),*)?];
-            static TWISTING: &[Entry<p::CreateFn<kinds::FfiTwistingBatch>>] =
-                &[$($(Entry::of::<Twisting, $tw>()),*)?];
+            /// This crate's laws.
+            pub struct Plugin;
 
-            extern "C" fn laws() -> RResult<RVec<ffi::LawInfo>, FfiError> {
-                p::laws(INFO)
-            }
-            extern "C" fn new_contact(
-                name: RStr<'_>,
-                params: RSlice<'_, ffi::ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError> {
-                p::new_law(CONTACT, "contact", name, params)
-            }
-            extern "C" fn new_tangential(
-                name: RStr<'_>,
-                params: RSlice<'_, ffi::ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<kinds::FfiVectorBatch>, FfiError> {
-                p::new_law(TANGENTIAL, "tangential", name, params)
-            }
-            extern "C" fn new_rolling(
-                name: RStr<'_>,
-                params: RSlice<'_, ffi::ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<kinds::FfiVectorBatch>, FfiError> {
-                p::new_law(ROLLING, "rolling", name, params)
-            }
-            extern "C" fn new_twisting(
-                name: RStr<'_>,
-                params: RSlice<'_, ffi::ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError> {
-                p::new_law(TWISTING, "twisting", name, params)
-            }
-            extern "C" fn new_restitution(
-                name: RStr<'_>,
-                params: RSlice<'_, ffi::ParamValue>,
-            ) -> RResult<abi::FfiRestitutionLaw, FfiError> {
-                p::new_law(RESTITUTION, "restitution", name, params)
-            }
-            extern "C" fn calibrate(
-                name: RStr<'_>,
-                target: &ffi::CalibrationTarget,
-                pair: &$crate::Pair,
-                fixed: RSlice<'_, ffi::ParamValue>,
-            ) -> RResult<ROption<RVec<ffi::ParamValue>>, FfiError> {
-                p::calibrate(CALIBRATE, name, target, pair, fixed)
-            }
-
-            fn root_module() -> abi::PluginModuleRef {
-                p::install_quiet_panic_hook();
-                abi::PluginModule {
-                    name: RStr::from_str(env!("CARGO_PKG_NAME")),
-                    version: RStr::from_str(env!("CARGO_PKG_VERSION")),
-                    sdk_version: RStr::from_str(abi::ABI_VERSION),
-                    laws,
-                    new_contact,
-                    new_tangential,
-                    new_rolling,
-                    new_twisting,
-                    new_restitution,
-                    calibrate,
-                }
-                .leak_into_prefix()
+            impl p::Tables for Plugin {
+                const NAME: &'static str = env!("CARGO_PKG_NAME");
+                const VERSION: &'static str = env!("CARGO_PKG_VERSION");
+                const INFO: &'static [fn() -> $crate::LawInfo] = &[
+                    $($(<$c as $crate::ContactLaw>::info,)*)?
+                    $($(<$r as $crate::RestitutionLaw>::info,)*)?
+                    $($(<$t as $crate::TangentialLaw>::info,)*)?
+                    $($(<$ro as $crate::RollingLaw>::info,)*)?
+                    $($(<$tw as $crate::TwistingLaw>::info,)*)?
+                ];
+                const CONTACT: &'static [Entry<p::CreateFn<kinds::FfiNormalBatch3>>] =
+                    &[$($(Entry::of::<Normal, $c>()),*)?];
+                const CALIBRATE: &'static [Entry<p::CalibrateFn>] = &[$($(Entry::calibration::<$c>()),*)?];
+                const TANGENTIAL: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
+                    &[$($(Entry::of::<Tangential, $t>()),*)?];
+                const ROLLING: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
+                    &[$($(Entry::of::<Rolling, $ro>()),*)?];
+                const TWISTING: &'static [Entry<p::CreateFn<kinds::FfiTwistingBatch>>] =
+                    &[$($(Entry::of::<Twisting, $tw>()),*)?];
+                const RESTITUTION: &'static [Entry<p::CreateRestitution>] =
+                    &[$($(Entry::restitution::<$r>()),*)?];
             }
 
             // The symbol abi_stable looks for (`abi_stable::library::ROOT_MODULE_LOADER_NAME`;
@@ -174,9 +193,9 @@ macro_rules! export_laws {
             #[no_mangle]
             pub static _1as_0lib_1header_0root_bmodule_bloader: LibHeader = {
                 extern "C" fn erased() -> RootModuleResult {
-                    p::abi_stable::library::__call_root_module_loader(root_module)
+                    p::abi_stable::library::__call_root_module_loader(p::root_module::<Plugin>)
                 }
-                unsafe { LibHeader::from_constructor::<abi::PluginModuleRef>(erased, CheckTypeLayout::Yes) }
+                unsafe { LibHeader::from_constructor::<PluginModuleRef>(erased, CheckTypeLayout::Yes) }
             };
         }
     };

@@ -55,37 +55,27 @@ pub(crate) use bound_model;
 bound_model!(impl<K: Kind> K => ModelHandle<K>, batch);
 bound_model!(impl<K: Kind, B: KindBound<K>> K => StaticModel<K, B>, batch);
 
-impl<K: Kind, M: BoundModel<K> + ?Sized> BoundModel<K> for &M {
-    fn name(&self) -> &str {
-        (**self).name()
-    }
-    fn history_slots(&self) -> usize {
-        (**self).history_slots()
-    }
-    #[inline]
-    fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
-        (**self).batch(b, energy)
-    }
-    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
-        (**self).coefficients(mass, radius)
-    }
+/// A reference or a box of a bound model is one.
+macro_rules! forward {
+    ($($t:ty),*) => {$(
+        impl<K: Kind, M: BoundModel<K> + ?Sized> BoundModel<K> for $t {
+            fn name(&self) -> &str {
+                (**self).name()
+            }
+            fn history_slots(&self) -> usize {
+                (**self).history_slots()
+            }
+            #[inline]
+            fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+                (**self).batch(b, energy)
+            }
+            fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+                (**self).coefficients(mass, radius)
+            }
+        }
+    )*};
 }
-
-impl<K: Kind, M: BoundModel<K> + ?Sized> BoundModel<K> for Box<M> {
-    fn name(&self) -> &str {
-        (**self).name()
-    }
-    fn history_slots(&self) -> usize {
-        (**self).history_slots()
-    }
-    #[inline]
-    fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
-        (**self).batch(b, energy)
-    }
-    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
-        (**self).coefficients(mass, radius)
-    }
-}
+forward!(&M, Box<M>);
 
 /// Runs a batch of kind `K` through `call` (a vtable entry or the compiled-in trampoline):
 /// lengths checked first, then the status turned into a result; `Ok(true)` when the energy

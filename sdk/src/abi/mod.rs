@@ -240,6 +240,60 @@ macro_rules! ffi_object {
 }
 pub(crate) use ffi_object;
 
+/// Declares a frozen series' law description: its `LawKind` (the kinds it had) and `LawInfo`
+/// (with the per-contact `history` slots from sdk 0.2 on), and the plain description of one.
+macro_rules! frozen_law_info {
+    ($series:literal, [$($kind:ident = $n:literal: $kdoc:literal),*] $(, $history:ident)?) => {
+        #[doc = concat!("Which kind of law (sdk ", $series, ").")]
+        #[repr(u8)]
+        #[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum LawKind {
+            $(#[doc = $kdoc] $kind = $n,)*
+        }
+
+        #[doc = concat!("A law's description (sdk ", $series, ").")]
+        #[repr(C)]
+        #[derive(StableAbi, Debug, Clone, PartialEq)]
+        pub struct LawInfo {
+            /// Name.
+            pub name: RString,
+            /// Kind.
+            pub kind: LawKind,
+            /// One line.
+            pub summary: RString,
+            /// Documentation.
+            pub doc: RString,
+            /// Parameter schema.
+            pub params: RVec<super::ffi::ParamSpec>,
+            /// End criterion of a contact law.
+            pub end_criterion: ROption<EndCriterion>,
+            $(
+                /// Per-contact history slots.
+                pub $history: RVec<super::ffi::HistorySlot>,
+            )?
+        }
+
+        impl LawInfo {
+            #[doc = concat!("The plain description of an sdk ", $series, " law.")]
+            pub fn upgrade(self) -> crate::LawInfo {
+                let history = [Vec::new() $(, super::ffi::to_plain(self.$history))?];
+                crate::LawInfo {
+                    name: self.name.into_string(),
+                    kind: match self.kind {
+                        $(LawKind::$kind => crate::LawKind::$kind,)*
+                    },
+                    summary: self.summary.into_string(),
+                    doc: self.doc.into_string(),
+                    params: super::ffi::to_plain(self.params),
+                    end_criterion: self.end_criterion.into_option(),
+                    history: history.into_iter().last().unwrap_or_default(),
+                }
+            }
+        }
+    };
+}
+pub(crate) use frozen_law_info;
+
 ffi_object!(law
     /// The functions of a configured restitution law (unchanged since sdk 0.1).
     RestitutionLawVTable {

@@ -3,8 +3,8 @@
 //! with (δ, δ̇) only. Their layout must never change: abi_stable compares it, field by field,
 //! with the one recorded in every 0.1 plugin.
 
-use super::ffi::{Coefficient, ParamSpec};
-use super::ffi_object;
+use super::ffi::Coefficient;
+use super::{ffi_object, frozen_law_info};
 use crate::error::FfiError;
 use crate::law::EndCriterion;
 use crate::pair::Pair;
@@ -14,33 +14,13 @@ use abi_stable::{
 };
 use std::ffi::c_void;
 
-/// Which kind of law (sdk 0.1).
-#[repr(u8)]
-#[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum LawKind {
-    /// A normal contact force F(δ, δ̇) (N).
-    Contact = 1,
-    /// A restitution coefficient r(v).
-    Restitution = 2,
-}
-
-/// A law's description (sdk 0.1).
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq)]
-pub struct LawInfo {
-    /// Name.
-    pub name: RString,
-    /// Kind.
-    pub kind: LawKind,
-    /// One line.
-    pub summary: RString,
-    /// Documentation.
-    pub doc: RString,
-    /// Parameter schema.
-    pub params: RVec<ParamSpec>,
-    /// End criterion of a contact law.
-    pub end_criterion: ROption<EndCriterion>,
-}
+frozen_law_info!(
+    "0.1",
+    [
+        Contact = 1: "A normal contact force F(δ, δ̇) (N).",
+        Restitution = 2: "A restitution coefficient r(v)."
+    ]
+);
 
 /// Outcome of a 0.1 hot-path call (also used by restitution laws, unchanged in 0.2).
 #[repr(u8)]
@@ -120,22 +100,4 @@ pub struct PluginModule {
         pair: &Pair,
         fixed: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
     ) -> RResult<ROption<RVec<super::ffi::ParamValue>>, FfiError>,
-}
-
-impl LawInfo {
-    /// The plain description of a 0.1 law.
-    pub fn upgrade(self) -> crate::LawInfo {
-        crate::LawInfo {
-            name: self.name.into_string(),
-            kind: match self.kind {
-                LawKind::Contact => crate::LawKind::Contact,
-                LawKind::Restitution => crate::LawKind::Restitution,
-            },
-            summary: self.summary.into_string(),
-            doc: self.doc.into_string(),
-            params: super::ffi::to_plain(self.params),
-            end_criterion: self.end_criterion.into_option(),
-            history: Vec::new(),
-        }
-    }
 }

@@ -5,8 +5,8 @@
 //! Their layout must never change: abi_stable compares it, field by field, with the one recorded
 //! in every 0.2 plugin.
 
-use super::ffi::{CalibrationTarget, Coefficient, HistorySlot, ParamSpec, ParamValue};
-use super::{ffi_object, BatchFault, BatchStatus, FfiRestitutionLaw};
+use super::ffi::{CalibrationTarget, Coefficient, ParamValue};
+use super::{ffi_object, frozen_law_info, BatchFault, BatchStatus, FfiRestitutionLaw};
 use crate::error::FfiError;
 use crate::law::EndCriterion;
 use crate::pair::{MaterialPair, Pair};
@@ -16,37 +16,15 @@ use abi_stable::{
 };
 use std::ffi::c_void;
 
-/// Which kind of law (sdk 0.2).
-#[repr(u8)]
-#[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum LawKind {
-    /// A normal contact force F(δ, δ̇) (N), possibly with per-contact history.
-    Contact = 1,
-    /// A restitution coefficient r(v).
-    Restitution = 2,
-    /// A tangential (friction) force (N), with per-contact history.
-    Tangential = 3,
-}
-
-/// A law's description (sdk 0.2).
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq)]
-pub struct LawInfo {
-    /// Name.
-    pub name: RString,
-    /// Kind.
-    pub kind: LawKind,
-    /// One line.
-    pub summary: RString,
-    /// Documentation.
-    pub doc: RString,
-    /// Parameter schema.
-    pub params: RVec<ParamSpec>,
-    /// End criterion of a contact law.
-    pub end_criterion: ROption<EndCriterion>,
-    /// Per-contact history slots.
-    pub history: RVec<HistorySlot>,
-}
+frozen_law_info!(
+    "0.2",
+    [
+        Contact = 1: "A normal contact force F(δ, δ̇) (N), possibly with per-contact history.",
+        Restitution = 2: "A restitution coefficient r(v).",
+        Tangential = 3: "A tangential (friction) force (N), with per-contact history."
+    ],
+    history
+);
 
 /// The root module of an sdk 0.2 plugin, exactly as 0.2 declared it (with its law list in the
 /// 0.2 description).
@@ -90,25 +68,6 @@ pub struct PluginModule {
     #[sabi(missing_field(option))]
     pub new_tangential:
         extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiTangentialLaw, FfiError>,
-}
-
-impl LawInfo {
-    /// The plain description of a 0.2 law.
-    pub fn upgrade(self) -> crate::LawInfo {
-        crate::LawInfo {
-            name: self.name.into_string(),
-            kind: match self.kind {
-                LawKind::Contact => crate::LawKind::Contact,
-                LawKind::Restitution => crate::LawKind::Restitution,
-                LawKind::Tangential => crate::LawKind::Tangential,
-            },
-            summary: self.summary.into_string(),
-            doc: self.doc.into_string(),
-            params: super::ffi::to_plain(self.params),
-            end_criterion: self.end_criterion.into_option(),
-            history: super::ffi::to_plain(self.history),
-        }
-    }
 }
 
 /// A batch of contacts for a normal law, as raw arrays (see [`NormalBatch`](crate::NormalBatch)).
