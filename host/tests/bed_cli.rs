@@ -438,3 +438,56 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
         assert_eq!(r[k + 1], "", "{csv}");
     }
 }
+
+/// `dem --bed` builds the experiment of `bed --engine dem` from its own options and runs it
+/// through the same code: the same values give the same observables and the same steps, to the
+/// bit (only the wall times differ).
+#[test]
+fn dem_bed_is_bed_engine_dem_to_the_bit() {
+    let common = [
+        "--layers",
+        "0.5",
+        "--freq",
+        "25",
+        "--transient",
+        "1",
+        "--cycles",
+        "2",
+        "--law",
+        "hsd",
+        "--set",
+        "eps=0.8",
+        "--tangential",
+        "mindlin",
+        "--tset",
+        "mu=0.3",
+        "--young",
+        "1e8",
+        "--seed",
+        "3",
+        "--json",
+    ];
+    let run = |head: &[&'static str]| -> Value {
+        let mut args = head.to_vec();
+        args.extend_from_slice(&common);
+        ok_json(&args)
+    };
+    let (a, b) = (run(&["bed", "--engine", "dem"]), run(&["dem", "--bed"]));
+    for k in [
+        "pressure",
+        "pressure_stderr",
+        "lid_collision_rate",
+        "mean_impulse",
+        "temperature",
+        "piston_pressure",
+        "measured_time",
+        "dt",
+        "steps",
+        "lid_episodes",
+    ] {
+        assert!(a[k].is_number(), "{k} missing: {a}");
+        assert_eq!(a[k], b[k], "{k}");
+    }
+    assert_eq!(a["law"], b["law"]);
+    assert_eq!(a["tangential"], b["tangential"]);
+}

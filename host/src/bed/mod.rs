@@ -25,6 +25,7 @@ pub mod events;
 pub mod observables;
 pub mod on_dem;
 pub mod scaling;
+pub mod spec;
 pub mod statements;
 pub mod view;
 

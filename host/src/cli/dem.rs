@@ -105,48 +105,44 @@ pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
     }
 }
 
-/// `dem --bed` is `bed --engine dem` with the same values: its arguments are handed to that
-/// command's parser and run by it, so both take the same checks, defaults and output.
+/// `dem --bed` is `bed --engine dem` with the same values: the same experiment, checked and run
+/// by the same code.
 fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
-    #[derive(clap::Parser)]
-    struct BedCommand {
-        #[command(flatten)]
-        bed: crate::cli::bed::BedArgs,
-    }
+    use crate::bed::spec::{BedEngine, BedSpec, LawChoice};
+    use crate::cli::bed::{dem_tangential, param_values};
     let layers = b.layers.context("--bed needs --layers N")?;
     let freq = b.freq.context("--bed needs --freq HZ")?;
     let law = b
         .law
-        .clone()
+        .as_deref()
         .context("--bed needs --law NAME (a contact law, e.g. hsd)")?;
-    let mut argv: Vec<String> = vec!["dashpot dem --bed".into(), "--engine".into(), "dem".into()];
-    let mut put = |flag: &str, value: String| {
-        argv.push(flag.into());
-        argv.push(value);
+    let spec = BedSpec {
+        config: crate::bed::BedConfig {
+            gravity: b.gravity,
+            seed: b.seed,
+            ..crate::bed::BedConfig::paper(layers, freq)
+        },
+        young: b.young,
+        poisson: b.poisson,
+        engine: BedEngine::Dem {
+            law: LawChoice::new(law, param_values(&b.set)?),
+            tangential: dem_tangential(b.tangential.as_deref(), &b.tset)?,
+            rolling: None,
+            dt: b.dt,
+            steps_per_collision: None,
+        },
+        transient: b.transient,
+        cycles: b.cycles,
+        seeds: 1,
     };
-    put("--layers", layers.to_string());
-    put("--freq", freq.to_string());
-    put("--law", law);
-    b.set.iter().for_each(|s| put("--set", s.clone()));
-    if let Some(t) = &b.tangential {
-        put("--tangential", t.clone());
-    }
-    b.tset.iter().for_each(|s| put("--tset", s.clone()));
-    for (flag, v) in [("--young", b.young), ("--poisson", b.poisson), ("--dt", b.dt)] {
-        if let Some(v) = v {
-            put(flag, v.to_string());
-        }
-    }
-    put("--gravity", b.gravity.to_string());
-    put("--transient", b.transient.to_string());
-    put("--cycles", b.cycles.to_string());
-    put("--seed", b.seed.to_string());
-    if json {
-        argv.push("--json".into());
-    }
-    let cmd = <BedCommand as clap::Parser>::try_parse_from(&argv)
-        .map_err(|e| crate::cli::UsageError(e.to_string()))?;
-    crate::cli::bed::bed(reg, &cmd.bed)
+    crate::cli::bed::run(
+        reg,
+        &spec,
+        crate::cli::bed::BedOutput {
+            json,
+            ..Default::default()
+        },
+    )
 }
 
 fn run_dim<const D: usize>(

@@ -192,7 +192,7 @@ pub(super) fn fig3(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
                 &format!("{title}, n = 3, f = 30 Hz, g = 9.8 m/s², piston lowest"),
             );
             let tc = bed.report(1.0).tc_share;
-            let se = crate::bed::engine::stderr_of(&wins).unwrap_or(f64::NAN);
+            let se = crate::bed::observables::stderr_of(&wins).unwrap_or(f64::NAN);
             Ok((panel, (tight, near, cv, ym, tc, win, se)))
         })
         .collect();

@@ -239,7 +239,7 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
                 .layers
                 .iter()
                 .enumerate()
-                .map(|(a, &n)| (n, runs[a * nf + k].pressure().0))
+                .map(|(a, &n)| (n, runs[a * nf + k].pressure))
                 .collect();
             let c = PALETTE.len() + (k * 15) / (nf.max(2) - 1);
             let bars: Vec<(f64, f64, f64)> = grid
@@ -247,8 +247,8 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
                 .iter()
                 .enumerate()
                 .filter_map(|(a, &n)| {
-                    let (p, e) = runs[a * nf + k].pressure();
-                    e.map(|e| (n, p, e))
+                    let r = &runs[a * nf + k];
+                    r.pressure_stderr.map(|e| (n, r.pressure, e))
                 })
                 .collect();
             let mut s = vec![
@@ -276,7 +276,7 @@ fn peaks<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<(f64, f64, f64)> {
         .enumerate()
         .map(|(k, &f)| {
             let p: Vec<f64> = (0..grid.layers.len())
-                .map(|a| runs[a * nf + k].pressure().0)
+                .map(|a| runs[a * nf + k].pressure)
                 .collect();
             let (am, pm) = p
                 .iter()
