@@ -1,4 +1,4 @@
-//! Result files are written whole or not at all.
+//! Result files are written whole or not at all; and the one progress bar of every run.
 
 use crate::registry::{kind_str, Registry};
 use dashpot_sdk::{LawError, LawInfo, ParamValue};
@@ -336,4 +336,23 @@ impl Provenance {
             );
         }
     }
+}
+
+/// The progress bar of every long run (`what`: what it counts), on stderr, hidden when stderr
+/// is not a terminal.
+pub fn progress_bar(len: u64, what: &str) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    use std::io::IsTerminal;
+    let target = if std::io::stderr().is_terminal() {
+        ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::hidden()
+    };
+    let pb = ProgressBar::with_draw_target(Some(len), target);
+    if let Ok(style) = ProgressStyle::with_template(&format!(
+        "{what} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {{msg}} (eta {{eta}})"
+    )) {
+        pb.set_style(style);
+    }
+    pb
 }

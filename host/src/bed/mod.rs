@@ -27,7 +27,6 @@ pub mod on_dem;
 pub mod scaling;
 pub mod spec;
 pub mod statements;
-pub mod view;
 
 pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};
 

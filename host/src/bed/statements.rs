@@ -9,8 +9,8 @@
 
 use super::engine::{BedConfig, BedReport};
 use super::scaling::{run_grid, Grid};
-use super::view::progress_bar;
 use super::{DynRestitution, Laws};
+use crate::output::progress_bar;
 use anyhow::{Context, Result};
 use std::fmt::Write as _;
 

@@ -5,8 +5,6 @@ use crate::dem::{Engine, Laws};
 use crate::registry::Registry;
 use anyhow::{Context, Result};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 /// `dashpot dem`.
@@ -229,7 +227,8 @@ fn run_dim<const D: usize>(
     } else {
         0
     } as u64;
-    let pb = progress(total_steps);
+    let pb = crate::output::progress_bar(total_steps, "dem");
+    pb.set_message("steps");
     let wall0 = std::time::Instant::now();
     let every = (total_steps / 200).max(1);
     // the steps to the next progress tick, frame or the end, as one block
@@ -389,108 +388,13 @@ fn print_check<const D: usize>(e: &Engine<D>, path: &std::path::Path, law: &str,
     Ok(())
 }
 
-fn progress(len: u64) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let pb = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(s) =
-        ProgressStyle::with_template("dem [{elapsed_precise}] {wide_bar} {pos}/{len} steps (eta {eta})")
-    {
-        pb.set_style(s);
-    }
-    pb
-}
-
-/// The two axes a picture shows: x and y in 2D, x and z (the side view) in 3D.
-fn view_axes(d: usize) -> (usize, usize) {
-    (0, d - 1)
-}
-
-/// A picture of the particles (to scale) and the walls at the engine's time.
-pub fn snapshot_panel<const D: usize>(e: &Engine<D>, title: &str) -> crate::plot::Panel {
-    use crate::plot::{Mark, Panel, Series};
-    let (ax, ay) = view_axes(D);
-    let disks: Vec<(f64, f64, f64)> = (0..e.p.len())
-        .map(|i| (e.p.pos[i][ax], e.p.pos[i][ay], e.p.radius[i]))
-        .collect();
-    let rmax = e.p.radius.iter().cloned().fold(0.0, f64::max);
-    let (mut x0, mut x1, mut y0, mut y1) = disks.iter().fold(
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
-        |(a, b, c, d), &(x, y, _)| (a.min(x), b.max(x), c.min(y), d.max(y)),
-    );
-    let dom = &e.config().domain;
-    if dom.bounded || dom.periodic.iter().any(|&p| p) {
-        (x0, x1) = (x0.min(dom.lo[ax]), x1.max(dom.hi[ax]));
-        if dom.bounded {
-            (y0, y1) = (y0.min(dom.lo[ay]), y1.max(dom.hi[ay]));
-        }
-    }
-    let walls = e.wall_states();
-    for w in &walls {
-        // a wall across the view: include its point
-        (x0, x1, y0, y1) = (
-            x0.min(w.point[ax]),
-            x1.max(w.point[ax]),
-            y0.min(w.point[ay]),
-            y1.max(w.point[ay]),
-        );
-    }
-    if !(x0.is_finite() && y0.is_finite()) {
-        (x0, x1, y0, y1) = (-1.0, 1.0, -1.0, 1.0);
-    }
-    let pad = 2.0 * rmax.max(1e-12);
-    let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
-    let diag = ((x1 - x0).powi(2) + (y1 - y0).powi(2)).sqrt();
-    let mut series = Vec::new();
-    for w in &walls {
-        let (nx, ny) = (w.normal[ax], w.normal[ay]);
-        let n = (nx * nx + ny * ny).sqrt();
-        if n < 0.5 {
-            continue; // a wall facing out of the picture's plane
-        }
-        let (tx, ty) = (-ny / n, nx / n);
-        let (px, py) = (w.point[ax], w.point[ay]);
-        series.push(Series::new(
-            "",
-            vec![(px - tx * diag, py - ty * diag), (px + tx * diag, py + ty * diag)],
-            Mark::Line,
-            6,
-        ));
-    }
-    Panel {
-        title: title.to_string(),
-        x_label: if D == 2 { "x (m)" } else { "x (m), side view" }.into(),
-        y_label: if D == 2 { "y (m)" } else { "z (m)" }.into(),
-        equal_aspect: true,
-        x_range: Some((x0, x1)),
-        y_range: Some((y0, y1)),
-        disks,
-        series,
-        ..Default::default()
-    }
-}
-
+/// Frame `k` of the trajectory as a picture, `frame_NNNN.png` (and .svg) in `dir`.
 fn frame_png<const D: usize>(e: &Engine<D>, dir: &std::path::Path, k: u64, law: &str) -> Result<()> {
-    let p = snapshot_panel(
-        e,
-        &format!("{} {}D particles, {law}, t = {:.6e} s", e.p.len(), D, e.time()),
-    );
-    let (w, h) = match (p.x_range, p.y_range) {
-        (Some((a, b)), Some((c, d))) => (b - a, d - c),
-        _ => (1.0, 1.0),
-    };
-    let width = 1200u32;
-    let height = ((width as f64 * h / w.max(1e-300)) as u32 + 120).clamp(240, 2400);
-    crate::plot::Figure {
-        panels: vec![p],
-        columns: 1,
-        panel_size: (width, height),
-    }
-    .save(dir, &format!("frame_{k:04}"))
-    .with_context(|| format!("drawing frame {k} into {}", dir.display()))?;
+    let title = format!("{} {}D particles, {law}, t = {:.6e} s", e.p.len(), D, e.time());
+    crate::report::snapshot::Scene::dem(e)
+        .figure(&title)
+        .save(dir, &format!("frame_{k:04}"))
+        .with_context(|| format!("drawing frame {k} into {}", dir.display()))?;
     Ok(())
 }
 

@@ -5,10 +5,11 @@ use crate::bed::engine::{Bed, BedConfig, BedReport};
 use crate::bed::observables::BedObservables;
 use crate::bed::scaling::InRun;
 use crate::bed::spec::{BedEngine, BedSpec, LawChoice};
-use crate::bed::view::{progress_bar, snapshot_figure, SaveAs};
 use crate::bed::{DynRestitution, Laws};
+use crate::output::progress_bar;
 use crate::output::write_atomic;
 use crate::registry::Registry;
+use crate::report::snapshot::{SaveAs, Scene};
 use anyhow::{Context, Result};
 use dashpot_sdk::ParamValue;
 use serde_json::json;
@@ -104,7 +105,7 @@ fn run_event(reg: &Registry, spec: &BedSpec, restitution: &LawChoice, out: BedOu
             cfg.gravity,
             bed.now()
         );
-        snapshot_figure(&bed, &title).save_as(p)?;
+        Scene::bed(&bed).figure(&title).save_as(p)?;
     }
     if out.json {
         let mut v = report_json(name, &restitution.params, &report);

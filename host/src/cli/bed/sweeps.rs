@@ -2,8 +2,8 @@
 
 use super::*;
 use crate::bed::spec::{BedEngine, BedSpec};
-use crate::bed::view::progress_bar;
 use crate::bed::{scaling, Laws};
+use crate::output::progress_bar;
 use crate::output::write_atomic;
 use crate::plot::Figure;
 use crate::registry::Registry;

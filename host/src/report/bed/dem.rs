@@ -6,7 +6,7 @@ use crate::bed::engine::{Bed, BedConfig, BedReport};
 use crate::bed::scaling::{
     fit_all, provenance, run_dem_grid, theta_panel, write_fit_csv, write_grid_csv, Grid,
 };
-use crate::bed::view::progress_bar;
+use crate::output::progress_bar;
 use crate::plot::Figure;
 use crate::registry::Registry;
 use anyhow::{Context, Result};

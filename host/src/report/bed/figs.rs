@@ -4,8 +4,8 @@
 use super::*;
 use crate::bed::engine::{Bed, BedConfig};
 use crate::bed::scaling::{fit_all, theta_panel, write_fit_csv, write_grid_csv, Grid, ScalingRow};
-use crate::bed::view::snapshot_panel;
 use crate::plot::{Figure, Panel};
+use crate::report::snapshot::Scene;
 use anyhow::Result;
 use std::path::Path;
 
@@ -187,10 +187,8 @@ pub(super) fn fig3(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
                 cv += c / 10.0;
                 ym += bed.positions().iter().map(|p| p.1).sum::<f64>() / bed.len() as f64 / 10.0;
             }
-            let panel = snapshot_panel(
-                &bed,
-                &format!("{title}, n = 3, f = 30 Hz, g = 9.8 m/s², piston lowest"),
-            );
+            let panel =
+                Scene::bed(&bed).panel(&format!("{title}, n = 3, f = 30 Hz, g = 9.8 m/s², piston lowest"));
             let tc = bed.report(1.0).tc_share;
             let se = crate::bed::observables::stderr_of(&wins).unwrap_or(f64::NAN);
             Ok((panel, (tight, near, cv, ym, tc, win, se)))

@@ -3,8 +3,8 @@
 
 use crate::bed::engine::{BedConfig, BedReport};
 use crate::bed::scaling::{provenance, run_grid, Grid, Measured};
-use crate::bed::view::progress_bar;
 use crate::bed::{resolve, DynRestitution, Laws};
+use crate::output::progress_bar;
 use crate::output::Provenance;
 use crate::plot::{Mark, Panel, Series, PALETTE};
 use crate::registry::Registry;
