@@ -111,21 +111,31 @@ impl DemBed {
         }
     }
 
+    /// Checks the bed for soft disks: its configuration, and neither rough disks nor the TC
+    /// model (the event-driven engine's: friction comes from a tangential law, and a soft
+    /// contact needs no TC model).
+    pub fn check(&self) -> Result<(), crate::bed::BedError> {
+        let b = &self.bed;
+        b.validate()?;
+        let bad = |s: String| Err(crate::bed::BedError::Invalid(s));
+        if let Some(rt) = b.tangential {
+            return bad(format!(
+                "tangential restitution r_t = {rt} is the event-driven engine's rough-disk model: the DEM bed takes a tangential law (e.g. mindlin) instead"
+            ));
+        }
+        if let Some(tc) = b.tc {
+            return bad(format!(
+                "--tc {tc} is the event-driven engine's TC model: soft contacts need none, leave it unset with the DEM engine"
+            ));
+        }
+        Ok(())
+    }
+
     /// The engine at t = 0: disks on a jittered lattice above the piston (at its lowest), random
     /// velocities of magnitude `initial_speed`.
     pub fn engine(&self, laws: Laws) -> Result<Engine<2>, DemError> {
         let b = &self.bed;
-        b.validate().map_err(|e| DemError::Invalid(e.to_string()))?;
-        if let Some(rt) = b.tangential {
-            return Err(DemError::Invalid(format!(
-                "tangential restitution r_t = {rt} is the event-driven engine's rough-disk model: the DEM bed takes a tangential law (e.g. mindlin) instead"
-            )));
-        }
-        if let Some(tc) = b.tc {
-            return Err(DemError::Invalid(format!(
-                "tc = {tc} s is the event-driven engine's TC model: soft contacts need none, leave it unset with the DEM engine"
-            )));
-        }
+        self.check().map_err(|e| DemError::Invalid(e.to_string()))?;
         let n = b.disks();
         let d = b.diameter;
         let bottom = -0.5 * b.amplitude;
@@ -174,16 +184,7 @@ impl DemBed {
         cycles: f64,
         progress: &mut dyn FnMut(f64),
     ) -> Result<DemBedReport, DemError> {
-        if !(transient.is_finite() && transient >= 0.0) {
-            return Err(DemError::Invalid(format!(
-                "transient = {transient} periods is out of range: must be >= 0"
-            )));
-        }
-        if !(cycles.is_finite() && cycles > 0.0) {
-            return Err(DemError::Invalid(format!(
-                "cycles = {cycles} periods is out of range: must be > 0"
-            )));
-        }
+        BedConfig::check_protocol(transient, cycles).map_err(|e| DemError::Invalid(e.to_string()))?;
         let clock = std::time::Instant::now();
         let mut e = self.engine(laws)?;
         let period = 1.0 / self.bed.freq;

@@ -92,15 +92,7 @@ impl BedSpec {
     /// the bed's configuration, and what each engine takes (the DEM engine's step; no rough
     /// disks or TC model on soft disks).
     pub fn validate(&self) -> Result<()> {
-        if !(self.cycles.is_finite() && self.cycles > 0.0) {
-            bail!("--cycles = {} is out of range: must be > 0 periods", self.cycles);
-        }
-        if !(self.transient.is_finite() && self.transient >= 0.0) {
-            bail!(
-                "--transient = {} is out of range: must be >= 0 periods",
-                self.transient
-            );
-        }
+        BedConfig::check_protocol(self.transient, self.cycles).map_err(|e| anyhow::anyhow!("--{e}"))?;
         if self.seeds == 0 {
             bail!("--seeds = 0 is out of range: give at least 1 seed");
         }
@@ -114,21 +106,13 @@ impl BedSpec {
                 bail!("--poisson = {nu} is out of range: Poisson's ratio must lie in (-1, 0.5)");
             }
         }
-        self.config.validate()?;
         if let BedEngine::Dem {
             dt,
             steps_per_collision,
             ..
         } = &self.engine
         {
-            if let Some(rt) = self.config.tangential {
-                bail!(
-                    "tangential restitution r_t = {rt} is the event-driven engine's rough-disk model: the DEM bed takes a tangential law (e.g. mindlin) instead"
-                );
-            }
-            if let Some(tc) = self.config.tc {
-                bail!("--tc {tc} is the event-driven engine's TC model: soft contacts need none");
-            }
+            self.dem_bed(self.config).check()?;
             if let Some(dt) = dt {
                 if !(dt.is_finite() && *dt > 0.0) {
                     bail!("--dt = {dt} s is out of range: the step must be finite and > 0");
@@ -138,6 +122,8 @@ impl BedSpec {
                 crate::dem::integrator::check_steps_per_collision("--steps-per-collision", *k)
                     .map_err(anyhow::Error::msg)?;
             }
+        } else {
+            self.config.validate()?;
         }
         Ok(())
     }

@@ -1,6 +1,6 @@
 //! Sampling: the measuring window, the observables and the report.
 
-use super::Bed;
+use super::{Bed, BedConfig};
 use crate::bed::observables::{measured_report, stderr_of, BedObservables};
 use crate::bed::{BedError, Restitution};
 use serde::Serialize;
@@ -273,16 +273,7 @@ impl<R: Restitution> Bed<R> {
         cycles: f64,
         progress: &mut dyn FnMut(f64),
     ) -> Result<BedReport, BedError> {
-        if !(transient >= 0.0 && transient.is_finite()) {
-            return Err(BedError::Invalid(format!(
-                "transient = {transient} periods is out of range: must be >= 0"
-            )));
-        }
-        if !(cycles > 0.0 && cycles.is_finite()) {
-            return Err(BedError::Invalid(format!(
-                "cycles = {cycles} periods is out of range: must be > 0"
-            )));
-        }
+        BedConfig::check_protocol(transient, cycles)?;
         let clock = std::time::Instant::now();
         let period = 1.0 / self.cfg.freq;
         self.run_until(self.now + transient * period, progress)?;
