@@ -21,13 +21,18 @@ pub fn deps_dir() -> PathBuf {
     exe.parent().expect("exe dir").to_path_buf()
 }
 
-/// The path of a plugin library by crate name (`dashpot_hsd` → `deps/libdashpot_hsd.so`).
-pub fn plugin_file(lib_name: &str) -> PathBuf {
-    deps_dir().join(format!(
+/// The file of library `lib_name` in `dir` (`dashpot_hsd` → `DIR/libdashpot_hsd.so`).
+pub fn lib_in(dir: &Path, lib_name: &str) -> PathBuf {
+    dir.join(format!(
         "{}{lib_name}{}",
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
     ))
+}
+
+/// The path of a plugin library by crate name (`dashpot_hsd` → `deps/libdashpot_hsd.so`).
+pub fn plugin_file(lib_name: &str) -> PathBuf {
+    lib_in(&deps_dir(), lib_name)
 }
 
 /// The five seed plugins, by library name.
@@ -57,14 +62,8 @@ pub const SDK03_PLUGINS: [&str; 6] = [
     "dashpot_twisting_marshall",
 ];
 
-/// A registry of every plugin of the workspace, those of sdk 0.3 included.
-pub fn registry_03() -> Registry {
-    let files = SEED_PLUGINS
-        .iter()
-        .chain(SDK02_PLUGINS.iter())
-        .chain(SDK03_PLUGINS.iter())
-        .map(|n| plugin_file(n))
-        .collect();
+/// A registry of exactly the plugin libraries `files`, nothing else.
+pub fn registry_of(files: Vec<PathBuf>) -> Registry {
     let sp = SearchPath {
         dirs: vec![],
         files,
@@ -72,34 +71,32 @@ pub fn registry_03() -> Registry {
         use_default: false,
     };
     Registry::discover(&sp).expect("the plugins load")
+}
+
+/// A registry of the plugins of these groups of library names, from the test build.
+fn registry_of_groups(groups: &[&[&str]]) -> Registry {
+    registry_of(
+        groups
+            .iter()
+            .flat_map(|g| g.iter())
+            .map(|n| plugin_file(n))
+            .collect(),
+    )
+}
+
+/// A registry of every plugin of the workspace, those of sdk 0.3 included.
+pub fn registry_03() -> Registry {
+    registry_of_groups(&[&SEED_PLUGINS, &SDK02_PLUGINS, &SDK03_PLUGINS])
 }
 
 /// A registry of the seed laws and those of sdk 0.2.
 pub fn full_registry() -> Registry {
-    let files = SEED_PLUGINS
-        .iter()
-        .chain(SDK02_PLUGINS.iter())
-        .map(|n| plugin_file(n))
-        .collect();
-    let sp = SearchPath {
-        dirs: vec![],
-        files,
-        use_env: false,
-        use_default: false,
-    };
-    Registry::discover(&sp).expect("the plugins load")
+    registry_of_groups(&[&SEED_PLUGINS, &SDK02_PLUGINS])
 }
 
 /// A registry of exactly the five seed plugins, loaded from their `.so` files.
 pub fn seed_registry() -> Registry {
-    let files = SEED_PLUGINS.iter().map(|n| plugin_file(n)).collect();
-    let sp = SearchPath {
-        dirs: vec![],
-        files,
-        use_env: false,
-        use_default: false,
-    };
-    Registry::discover(&sp).expect("the seed plugins load")
+    registry_of_groups(&[&SEED_PLUGINS])
 }
 
 fn target_root() -> PathBuf {
@@ -152,11 +149,7 @@ pub fn build_external_with(
     }
     let status = cmd.status().expect("run cargo");
     assert!(status.success(), "building {package} failed");
-    let built = target.join("debug").join(format!(
-        "{}{lib_name}{}",
-        std::env::consts::DLL_PREFIX,
-        std::env::consts::DLL_SUFFIX
-    ));
+    let built = lib_in(&target.join("debug"), lib_name);
     match copy_as {
         Some(name) => {
             let dst = built.with_file_name(format!("lib{name}{}", std::env::consts::DLL_SUFFIX));
@@ -378,27 +371,24 @@ pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
 /// A registry holding only the plugins of `sdk`, as built from its sources.
 pub fn old_sdk_registry(sdk: &OldSdk, profile: &str) -> Option<Registry> {
     let dir = old_sdk_plugins(sdk, profile)?;
-    let files = sdk
-        .libs
-        .iter()
-        .map(|n| {
-            dir.join(format!(
-                "{}{n}{}",
-                std::env::consts::DLL_PREFIX,
-                std::env::consts::DLL_SUFFIX
-            ))
-        })
-        .collect();
     let sp = SearchPath {
         dirs: vec![],
-        files,
+        files: sdk.libs.iter().map(|n| lib_in(&dir, n)).collect(),
         use_env: false,
         use_default: false,
     };
-    Some(
-        Registry::discover(&sp)
-            .unwrap_or_else(|e| panic!("the sdk {} plugins load in this host: {}", sdk.series, e.message)),
-    )
+    let reg = Registry::discover(&sp)
+        .unwrap_or_else(|e| panic!("the sdk {} plugins load in this host: {}", sdk.series, e.message));
+    for p in &reg.plugins {
+        let series = format!("{}.", sdk.series);
+        assert!(
+            p.sdk_version.starts_with(&series),
+            "{}: {}",
+            p.name,
+            p.sdk_version
+        );
+    }
+    Some(reg)
 }
 
 /// A registry holding only the five seed plugins as built from the sdk 0.1 sources.

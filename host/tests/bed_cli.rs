@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{dashpot, fails, ok_json};
+use common::{dashpot, fails, ok_json, sh};
 use serde_json::Value;
 
 #[test]
@@ -129,65 +129,36 @@ fn bad_bed_input_is_a_clear_error() {
     );
     fails(&with(&["--layers", "1", "--freq", "-3"]), &["f = -3 Hz"]);
     fails(
-        &with(&["--layers", "1", "--freq", "20", "--width", "0.004"]),
+        &with(&sh("--layers 1 --freq 20 --width 0.004")),
         &["box is too small", "width L = 0.004"],
     );
     fails(
-        &with(&["--layers", "40", "--freq", "20", "--headroom", "-0.07"]),
+        &with(&sh("--layers 40 --freq 20 --headroom -0.07")),
         &["box is too small"],
     );
     fails(
-        &with(&["--layers", "1", "--freq", "20", "--tangential", "2"]),
+        &with(&sh("--layers 1 --freq 20 --tangential 2")),
         &["r_t = 2", "[-1, 1]"],
     );
+    fails(&with(&sh("--layers 1 --freq 20 --cycles 0")), &["--cycles = 0"]);
     fails(
-        &with(&["--layers", "1", "--freq", "20", "--cycles", "0"]),
-        &["--cycles = 0"],
-    );
-    fails(
-        &["bed", "--restitution", "nope", "--layers", "1", "--freq", "20"],
+        &sh("bed --restitution nope --layers 1 --freq 20"),
         &["nope", "mcnamara-falcon"],
     );
     fails(
-        &["bed", "--restitution", "hsd", "--layers", "1", "--freq", "20"],
+        &sh("bed --restitution hsd --layers 1 --freq 20"),
         &["restitution law is needed"],
     );
     fails(
-        &[
-            "bed",
-            "--restitution",
-            "constant",
-            "--set",
-            "r=1.5",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-        ],
+        &sh("bed --restitution constant --set r=1.5 --layers 1 --freq 20"),
         &["1.5"],
     );
     fails(
-        &[
-            "scaling",
-            "--restitution",
-            "constant",
-            "--layers",
-            "1",
-            "--freqs",
-            "10:30",
-        ],
+        &sh("scaling --restitution constant --layers 1 --freqs 10:30"),
         &["FROM:TO:COUNT"],
     );
     fails(
-        &[
-            "scaling",
-            "--restitution",
-            "constant",
-            "--layers",
-            "1,-2",
-            "--freqs",
-            "10:30:3",
-        ],
+        &sh("scaling --restitution constant --layers 1,-2 --freqs 10:30:3"),
         &["layers n = -2"],
     );
 }
@@ -229,27 +200,11 @@ fn a_contact_law_runs_the_bed_as_a_restitution_law() {
     let h = run("from:hsd", "eps=0.8");
     assert!(h["pressure"].as_f64().unwrap() > 0.0);
     fails(
-        &[
-            "bed",
-            "--restitution",
-            "from:constant",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-        ],
+        &sh("bed --restitution from:constant --layers 1 --freq 20"),
         &["restitution law, but a contact law is needed"],
     );
     fails(
-        &[
-            "bed",
-            "--restitution",
-            "from:nope",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-        ],
+        &sh("bed --restitution from:nope --layers 1 --freq 20"),
         &["unknown law 'nope'"],
     );
 }
@@ -325,22 +280,9 @@ fn every_seed_contact_law_as_a_restitution_law_is_trusted_or_stops() {
 
 #[test]
 fn seeds_run_in_parallel_and_report_standard_errors() {
-    let v = ok_json(&[
-        "bed",
-        "--restitution",
-        "mcnamara-falcon",
-        "--layers",
-        "0.5",
-        "--freq",
-        "25",
-        "--transient",
-        "2",
-        "--cycles",
-        "10",
-        "--seeds",
-        "3",
-        "--json",
-    ]);
+    let v = ok_json(&sh(
+        "bed --restitution mcnamara-falcon --layers 0.5 --freq 25 --transient 2 --cycles 10 --seeds 3 --json",
+    ));
     assert_eq!(v["seeds"], 3);
     for k in [
         "pressure",
@@ -353,17 +295,7 @@ fn seeds_run_in_parallel_and_report_standard_errors() {
         assert!(x > 0.0 && e > 0.0 && e < x, "{k} = {x} ± {e}");
     }
     fails(
-        &[
-            "bed",
-            "--restitution",
-            "mcnamara-falcon",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-            "--seeds",
-            "0",
-        ],
+        &sh("bed --restitution mcnamara-falcon --layers 1 --freq 20 --seeds 0"),
         &["--seeds = 0"],
     );
 }
@@ -389,10 +321,8 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
     ];
     let engines: [&[&str]; 3] = [
         &["--restitution", "constant", "--set", "r=0.9"],
-        &["--restitution", "constant", "--set", "r=0.9", "--seeds", "2"],
-        &[
-            "--engine", "dem", "--law", "hsd", "--set", "eps=0.9", "--young", "1e7",
-        ],
+        &sh("--restitution constant --set r=0.9 --seeds 2"),
+        &sh("--engine dem --law hsd --set eps=0.9 --young 1e7"),
     ];
     for e in engines {
         let args: Vec<&str> = quiet.iter().chain(e.iter()).copied().collect();

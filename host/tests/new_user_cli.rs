@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{dashpot, fails, ok_json, plugin_dir};
+use common::{dashpot, fails, ok_json, plugin_dir, sh};
 use std::path::{Path, PathBuf};
 
 fn scene(name: &str, text: &str) -> PathBuf {
@@ -445,23 +445,11 @@ fn law_parameter_and_command_typos_get_the_name_meant() {
     assert!(!err.contains("did you mean"), "{err}");
     // a restitution law and a tangential law, through the other commands
     fails(
-        &["bed", "--restitution", "constnt", "--layers", "1", "--freq", "20"],
+        &sh("bed --restitution constnt --layers 1 --freq 20"),
         &["did you mean `constant`?"],
     );
     fails(
-        &[
-            "bed",
-            "--engine",
-            "dem",
-            "--law",
-            "hsd",
-            "--tangential",
-            "mindln",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-        ],
+        &sh("bed --engine dem --law hsd --tangential mindln --layers 1 --freq 20"),
         &["did you mean `mindlin`?"],
     );
     // commands and flags: clap's own suggestions
@@ -499,25 +487,17 @@ fn out_dir(tag: &str) -> PathBuf {
 
 #[test]
 fn scaling_results_carry_the_provenance_on_both_engines() {
-    let out = out_dir("scaling");
-    let v = ok_json(&[
-        "scaling",
-        "--restitution",
-        "constant",
-        "--set",
-        "r=0.9",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "10:12:2",
-        "--transient",
-        "2",
-        "--cycles",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
+    // a small grid into `out`, with the options `opts`
+    let scaling = |tag: &str, opts: &str, grid: &str| {
+        let out = out_dir(tag);
+        let line = format!(
+            "scaling {opts} --layers 0.5 {grid} --out {} --json",
+            out.display()
+        );
+        (ok_json(&sh(&line)), out)
+    };
+    let event_grid = "--freqs 10:12:2 --transient 2 --cycles 3";
+    let (v, out) = scaling("scaling", "--restitution constant --set r=0.9", event_grid);
     let prov = &v["provenance"];
     assert_eq!(prov["law"], "constant", "{v}");
     assert_eq!(prov["params"]["r"].as_f64(), Some(0.9));
@@ -535,58 +515,20 @@ fn scaling_results_carry_the_provenance_on_both_engines() {
         "{grid}"
     );
     // a contact law as a restitution law: the contact law's provenance, every parameter
-    let out = out_dir("scaling-from");
-    let v = ok_json(&[
-        "scaling",
-        "--restitution",
-        "from:hsd",
-        "--set",
-        "eps=0.8",
-        "--tc",
-        "1e-5",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "10:12:2",
-        "--transient",
-        "2",
-        "--cycles",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
+    let (v, out) = scaling(
+        "scaling-from",
+        "--restitution from:hsd --set eps=0.8 --tc 1e-5",
+        event_grid,
+    );
     assert_eq!(v["provenance"]["law"], "hsd", "{v}");
     assert_eq!(v["provenance"]["params"]["eps"].as_f64(), Some(0.8));
     assert_eq!(csvs_have_provenance(&out), 2);
     // the DEM engine with friction: both laws
-    let out = out_dir("scaling-dem");
-    let v = ok_json(&[
-        "scaling",
-        "--engine",
-        "dem",
-        "--law",
-        "hsd",
-        "--set",
-        "eps=0.9",
-        "--tangential",
-        "mindlin",
-        "--tset",
-        "mu=0.3",
-        "--young",
-        "1e8",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "20:30:2",
-        "--transient",
-        "1",
-        "--cycles",
-        "2",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
+    let (v, out) = scaling(
+        "scaling-dem",
+        "--engine dem --law hsd --set eps=0.9 --tangential mindlin --tset mu=0.3 --young 1e8",
+        "--freqs 20:30:2 --transient 1 --cycles 2",
+    );
     assert_eq!(v["provenance"]["law"], "hsd", "{v}");
     assert_eq!(v["tangential_provenance"]["law"], "mindlin", "{v}");
     assert_eq!(v["tangential_provenance"]["params"]["mu"].as_f64(), Some(0.3));
@@ -599,23 +541,11 @@ fn scaling_results_carry_the_provenance_on_both_engines() {
         "{grid}"
     );
     // the text output prints it too
-    let o = dashpot(&[
-        "scaling",
-        "--restitution",
-        "constant",
-        "--set",
-        "r=0.9",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "10:12:2",
-        "--transient",
-        "2",
-        "--cycles",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let line = format!(
+        "scaling --restitution constant --set r=0.9 --layers 0.5 {event_grid} --out {}",
+        out.display()
+    );
+    let o = dashpot(&sh(&line));
     assert!(String::from_utf8_lossy(&o.stdout).contains("plugin: "));
 }
 

@@ -11,7 +11,7 @@ mod common;
 #[path = "../../tests/lib.rs"]
 mod ext;
 
-use common::{dashpot, lib, plugin_dir, SEED};
+use common::{dashpot, lib, plugin_dir, sh, SEED};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -276,10 +276,10 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
 /// Item 3: a shadowed law is announced when used, and every result carries its provenance.
 #[test]
 fn every_result_names_its_plugin_file_versions_and_all_parameters() {
-    let sh = shadow_hsd();
+    let shadow = shadow_hsd();
     let o = dashpot(&[
         "--plugin",
-        s(&sh),
+        s(&shadow),
         "collide",
         "--law",
         "hsd",
@@ -293,13 +293,13 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     assert!(
         err.contains(&format!(
             "warning: law 'hsd' is taken from {}; it shadows the law of the same name in {}",
-            sh.display(),
+            shadow.display(),
             builtin.display()
         )),
         "{err}"
     );
     let p = &v["provenance"];
-    assert_eq!(p["plugin"]["file"], s(&sh));
+    assert_eq!(p["plugin"]["file"], s(&shadow));
     assert_eq!(p["plugin"]["name"], "dashpot-fixture-shadow-hsd");
     assert_eq!(p["plugin"]["version"], "0.3.1");
     assert_eq!(p["plugin"]["sdk_version"], "0.3.0");
@@ -311,9 +311,7 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     );
 
     // every parameter, including those left at their defaults or derived
-    let v = json(&dashpot(&[
-        "collide", "--law", "lsd", "--set", "eps=0.5", "--v0", "1", "--json",
-    ]));
+    let v = json(&dashpot(&sh("collide --law lsd --set eps=0.5 --v0 1 --json")));
     assert_eq!(v["params"]["eps"], 0.5);
     assert!(
         v["params"]["k"].is_null() && v["params"].as_object().unwrap().len() == 2,
@@ -326,12 +324,12 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     assert_eq!(p["plugin"]["name"], "dashpot-lsd");
     assert_eq!(p["host_sdk_version"], "0.3.0");
     assert!(p["shadows"].as_array().unwrap().is_empty());
-    let v = json(&dashpot(&["collide", "--law", "hsd", "--v0", "1", "--json"]));
+    let v = json(&dashpot(&sh("collide --law hsd --v0 1 --json")));
     assert_eq!(v["params"]["eps"], 0.54);
     assert_eq!(v["provenance"]["param_sources"]["eps"], "default");
 
     // text output
-    let o = dashpot(&["collide", "--law", "lsd", "--set", "eps=0.5", "--v0", "1"]);
+    let o = dashpot(&sh("collide --law lsd --set eps=0.5 --v0 1"));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
         out.contains("law: lsd (contact): eps = 0.5 (given), k = derived from the pair"),
@@ -454,35 +452,25 @@ fn a_bare_file_name_is_the_file_in_the_current_directory() {
 fn misuses_are_answered_with_the_value_and_the_remedy() {
     // the same --set twice, a value with a unit: malformed command lines, exit status 2
     refused(
-        &dashpot(&["collide", "--law", "hsd", "--set", "eps=0.3", "--set", "eps=0.5"]),
+        &dashpot(&sh("collide --law hsd --set eps=0.3 --set eps=0.5")),
         2,
         &["--set eps is given twice (0.3 and 0.5); give each parameter once"],
     );
     refused(
-        &dashpot(&["collide", "--law", "lsd", "--set", "k=1e6N"]),
+        &dashpot(&sh("collide --law lsd --set k=1e6N")),
         2,
         &["'1e6N' is not a number (write plain SI values without units, e.g. k=1e6)"],
     );
     refused(
-        &dashpot(&[
-            "bed",
-            "--restitution",
-            "constant",
-            "--set",
-            "r=0.5",
-            "--set",
-            "r=0.6",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-        ]),
+        &dashpot(&sh(
+            "bed --restitution constant --set r=0.5 --set r=0.6 --layers 1 --freq 20",
+        )),
         2,
         &["--set r is given twice"],
     );
     // a contact law where the bed wants a restitution law: the remedy is from:LAW
     refused(
-        &dashpot(&["bed", "--restitution", "hsd", "--layers", "1", "--freq", "20"]),
+        &dashpot(&sh("bed --restitution hsd --layers 1 --freq 20")),
         1,
         &[
             "law 'hsd' is a contact law, but a restitution law is needed here",
@@ -491,19 +479,9 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
         ],
     );
     // the bed's header without parameters
-    let o = dashpot(&[
-        "bed",
-        "--restitution",
-        "mcnamara-falcon",
-        "--layers",
-        "1",
-        "--freq",
-        "20",
-        "--cycles",
-        "1",
-        "--transient",
-        "0",
-    ]);
+    let o = dashpot(&sh(
+        "bed --restitution mcnamara-falcon --layers 1 --freq 20 --cycles 1 --transient 0",
+    ));
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(

@@ -40,10 +40,7 @@ fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
         return;
     };
     let new = full_registry();
-    for p in &old.plugins {
-        assert_eq!(p.series, SdkSeries::V0_2, "{}: {}", p.name, p.sdk_version);
-        assert!(p.sdk_version.starts_with("0.2."), "{}", p.sdk_version);
-    }
+    assert!(old.plugins.iter().all(|p| p.series == SdkSeries::V0_2));
     let kinds: Vec<(String, LawKind)> = old
         .laws
         .iter()

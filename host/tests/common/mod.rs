@@ -103,3 +103,9 @@ pub fn fails(args: &[&str], needles: &[&str]) {
         "{args:?}: {err}"
     );
 }
+
+/// A command line as the shell splits it (no quoting: the words have no spaces), e.g.
+/// `dashpot(&sh("bed --restitution constant --layers 1 --freq 20"))`.
+pub fn sh(line: &str) -> Vec<&str> {
+    line.split_whitespace().collect()
+}
