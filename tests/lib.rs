@@ -160,55 +160,56 @@ pub fn build_external_with(
     }
 }
 
-/// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 1.0.0 (a future major), copied
-/// to a file of its own (building the real plugin again would overwrite it).
+/// The `constant` plugin rebuilt with the environment `env` and the cargo arguments `extra`,
+/// copied to `lib<copy_as>.so` (building the real plugin again would overwrite it); built once
+/// per test process.
+fn rebuilt_constant(copy_as: &str, env: &[(&str, &str)], extra: &[&str]) -> PathBuf {
+    static BUILT: Mutex<Vec<(String, PathBuf)>> = Mutex::new(Vec::new());
+    let mut built = BUILT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, p)) = built.iter().find(|(n, _)| n == copy_as) {
+        return p.clone();
+    }
+    let root = workspace_root().join("Cargo.toml");
+    let p = build_external_with(
+        &root,
+        "dashpot-constant",
+        "dashpot_constant",
+        env,
+        extra,
+        Some(copy_as),
+    );
+    built.push((copy_as.to_string(), p.clone()));
+    p
+}
+
+/// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 1.0.0 (a future
+/// major).
 pub fn wrong_abi_plugin() -> PathBuf {
-    static P: OnceLock<PathBuf> = OnceLock::new();
-    P.get_or_init(|| {
-        build_external_with(
-            &workspace_root().join("Cargo.toml"),
-            "dashpot-constant",
-            "dashpot_constant",
-            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "1.0.0")],
-            &[],
-            Some("wrong_abi_constant"),
-        )
-    })
-    .clone()
+    rebuilt_constant(
+        "wrong_abi_constant",
+        &[("DASHPOT_SDK_FAKE_ABI_VERSION", "1.0.0")],
+        &[],
+    )
 }
 
 /// The `constant` plugin rebuilt against a dashpot-sdk that claims the next series, 0.4.0 (a
-/// series this host does not speak), copied to a file of its own.
+/// series this host does not speak).
 pub fn next_series_plugin() -> PathBuf {
-    static P: OnceLock<PathBuf> = OnceLock::new();
-    P.get_or_init(|| {
-        build_external_with(
-            &workspace_root().join("Cargo.toml"),
-            "dashpot-constant",
-            "dashpot_constant",
-            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.4.0")],
-            &[],
-            Some("next_series_constant"),
-        )
-    })
-    .clone()
+    rebuilt_constant(
+        "next_series_constant",
+        &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.4.0")],
+        &[],
+    )
 }
 
 /// The `constant` plugin rebuilt against a dashpot-sdk of the same version whose `Pair` has an
 /// extra field: a stale or mismatched build that only the layout check can catch.
 pub fn wrong_layout_plugin() -> PathBuf {
-    static P: OnceLock<PathBuf> = OnceLock::new();
-    P.get_or_init(|| {
-        build_external_with(
-            &workspace_root().join("Cargo.toml"),
-            "dashpot-constant",
-            "dashpot_constant",
-            &[],
-            &["--features", "dashpot-sdk/__layout_skew_for_tests"],
-            Some("wrong_layout_constant"),
-        )
-    })
-    .clone()
+    rebuilt_constant(
+        "wrong_layout_constant",
+        &[],
+        &["--features", "dashpot-sdk/__layout_skew_for_tests"],
+    )
 }
 
 /// The third-party example plugin, built from its own workspace as an outside author would.

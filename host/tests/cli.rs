@@ -280,15 +280,10 @@ fn collide_reports_the_observables_in_json() {
 #[test]
 fn collide_writes_a_trajectory() {
     let f = std::env::temp_dir().join(format!("dashpot-traj-{}.csv", std::process::id()));
-    let o = dashpot(&[
-        "collide",
-        "--law",
-        "lsd",
-        "--v0",
-        "0.5",
-        "--trajectory",
-        f.to_str().unwrap(),
-    ]);
+    let o = dashpot(&sh(&format!(
+        "collide --law lsd --v0 0.5 --trajectory {}",
+        f.to_str().unwrap()
+    )));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(&f).unwrap();
     let mut lines = csv.lines();
@@ -339,17 +334,10 @@ fn collide_bad_input() {
 #[test]
 fn sweep_and_calibrate() {
     let f = std::env::temp_dir().join(format!("dashpot-sweep-{}.csv", std::process::id()));
-    let o = dashpot(&[
-        "sweep",
-        "--law",
-        "hsd",
-        "--v0",
-        "0.01:1:3",
-        "--vary",
-        "eps=0.2,0.8",
-        "--out",
-        f.to_str().unwrap(),
-    ]);
+    let o = dashpot(&sh(&format!(
+        "sweep --law hsd --v0 0.01:1:3 --vary eps=0.2,0.8 --out {}",
+        f.to_str().unwrap()
+    )));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&f).unwrap();
     // provenance first, as comment lines: the law with every parameter, the plugin file

@@ -252,14 +252,11 @@ fn check_prints_the_step_contact_time_count_and_sizes_and_does_not_run() {
     let p = scene("check.toml", &text);
     let out = p.with_extension("out");
     let _ = std::fs::remove_dir_all(&out);
-    let o = dashpot(&[
-        "dem",
-        "--scene",
+    let o = dashpot(&sh(&format!(
+        "dem --scene {} --check --out {}",
         p.to_str().unwrap(),
-        "--check",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        out.to_str().unwrap()
+    )));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for needle in [
@@ -377,15 +374,10 @@ fn scene_errors_name_the_key_path_the_type_and_the_closest_key_on_the_first_line
 #[test]
 fn config_errors_name_the_key_and_the_closest_one() {
     let f = scene("cfg.toml", "[law]\nname = \"hsd\"\n[particle]\ndiamter = 0.002\n");
-    let (err, first) = error_of(&[
-        "eval",
-        "--config",
-        f.to_str().unwrap(),
-        "--delta",
-        "1e-5",
-        "--rate",
-        "0.1",
-    ]);
+    let (err, first) = error_of(&sh(&format!(
+        "eval --config {} --delta 1e-5 --rate 0.1",
+        f.to_str().unwrap()
+    )));
     for n in [
         "not a valid dashpot configuration",
         "unknown key `particle.diamter`",
@@ -395,30 +387,20 @@ fn config_errors_name_the_key_and_the_closest_one() {
         assert!(first.contains(n), "'{n}' not on the first line: {err}");
     }
     let f = scene("cfg2.toml", "[law]\nname = \"hsd\"\n[partner]\ntype = \"wal\"\n");
-    let (err, first) = error_of(&[
-        "eval",
-        "--config",
-        f.to_str().unwrap(),
-        "--delta",
-        "1e-5",
-        "--rate",
-        "0.1",
-    ]);
+    let (err, first) = error_of(&sh(&format!(
+        "eval --config {} --delta 1e-5 --rate 0.1",
+        f.to_str().unwrap()
+    )));
     assert!(first.contains("`partner.type` = \"wal\""), "{err}");
     assert!(first.contains("did you mean `wall`?"), "{err}");
     let f = scene(
         "cfg3.toml",
         "[law]\nname = \"hsd\"\n[particle]\ndensity = \"heavy\"\n",
     );
-    let (err, first) = error_of(&[
-        "eval",
-        "--config",
-        f.to_str().unwrap(),
-        "--delta",
-        "1e-5",
-        "--rate",
-        "0.1",
-    ]);
+    let (err, first) = error_of(&sh(&format!(
+        "eval --config {} --delta 1e-5 --rate 0.1",
+        f.to_str().unwrap()
+    )));
     assert!(
         first.contains("`particle.density`: expected a number, found string \"heavy\""),
         "{err}"

@@ -116,16 +116,10 @@ fn law_names(v: &Value) -> Vec<String> {
 #[test]
 fn a_law_valid_below_1_mm_is_only_probed_below_it() {
     let lp = limited();
-    let v = json(&dashpot(&[
-        "--plugin",
-        s(&lp),
-        "collide",
-        "--law",
-        "hooke-limited",
-        "--v0",
-        "1",
-        "--json",
-    ]));
+    let v = json(&dashpot(&sh(&format!(
+        "--plugin {} collide --law hooke-limited --v0 1 --json",
+        s(&lp)
+    ))));
     let m = v["pair"]["mass"].as_f64().unwrap();
     let dmax = (m / 1e6).sqrt(); // undamped linear spring: δ_max = v0 √(m/k)
     assert!(
@@ -135,38 +129,16 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
     assert!((v["restitution"].as_f64().unwrap() - 1.0).abs() < 1e-9, "{v}");
 
     // calibrate: the default --fit of a law without eps is its only parameter other than k
-    let v = json(&dashpot(&[
-        "--plugin",
-        s(&lp),
-        "calibrate",
-        "--law",
-        "hooke-limited",
-        "--restitution",
-        "0.7",
-        "--json",
-    ]));
+    let v = json(&dashpot(&sh(&format!(
+        "--plugin {} calibrate --law hooke-limited --restitution 0.7 --json",
+        s(&lp)
+    ))));
     assert!(v["restitution_residual"].as_f64().unwrap().abs() < 1e-9, "{v}");
     assert!(v["params"]["c"].as_f64().unwrap() > 0.0, "c was fitted: {v}");
     assert_eq!(v["provenance"]["param_sources"]["c"], "given");
 
     // the bed's r(v) from the law, tabulated over 1e-4 … 20 m/s, and printed (item 6)
-    let o = dashpot(&[
-        "--plugin",
-        s(&lp),
-        "bed",
-        "--restitution",
-        "from:hooke-limited",
-        "--set",
-        "c=0.001",
-        "--layers",
-        "1",
-        "--freq",
-        "20",
-        "--cycles",
-        "1",
-        "--transient",
-        "0",
-    ]);
+    let o = dashpot(&sh(&format!("--plugin {} bed --restitution from:hooke-limited --set c=0.001 --layers 1 --freq 20 --cycles 1 --transient 0", s(&lp))));
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
@@ -183,17 +155,10 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
 
     // a collision that really goes past 1 mm: the error names the overlap, not a probe's 1 m
     let err = refused(
-        &dashpot(&[
-            "--plugin",
-            s(&lp),
-            "collide",
-            "--law",
-            "hooke-limited",
-            "--set",
-            "k=1",
-            "--v0",
-            "1",
-        ]),
+        &dashpot(&sh(&format!(
+            "--plugin {} collide --law hooke-limited --set k=1 --v0 1",
+            s(&lp)
+        ))),
         1,
         &["beyond what this law supports (1 mm)"],
     );
@@ -252,15 +217,11 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     let out = std::env::temp_dir().join(format!("dashpot-repro-none-{}", std::process::id()));
     refused(
         &run_installed(
-            &[
-                "--no-default-plugins",
-                "--plugin",
+            &sh(&format!(
+                "--no-default-plugins --plugin {} reproduce --quick --out {}",
                 s(&lp),
-                "reproduce",
-                "--quick",
-                "--out",
-                s(&out),
-            ],
+                s(&out)
+            )),
             None,
         ),
         1,
@@ -277,16 +238,10 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
 #[test]
 fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     let shadow = shadow_hsd();
-    let o = dashpot(&[
-        "--plugin",
-        s(&shadow),
-        "collide",
-        "--law",
-        "hsd",
-        "--v0",
-        "1",
-        "--json",
-    ]);
+    let o = dashpot(&sh(&format!(
+        "--plugin {} collide --law hsd --v0 1 --json",
+        s(&shadow)
+    )));
     let v = json(&o);
     let err = stderr(&o);
     let builtin = plugin_dir().join("libdashpot_hsd.so");
@@ -491,34 +446,17 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
     // an overdamped law under --end overlap: the error says so and suggests --end force
     let lp = limited();
     refused(
-        &dashpot(&[
-            "--plugin",
-            s(&lp),
-            "collide",
-            "--law",
-            "hooke-limited",
-            "--set",
-            "c=100",
-            "--v0",
-            "1",
-        ]),
+        &dashpot(&sh(&format!(
+            "--plugin {} collide --law hooke-limited --set c=100 --v0 1",
+            s(&lp)
+        ))),
         1,
         &["the law may be overdamped", "With --end force"],
     );
-    let v = json(&dashpot(&[
-        "--plugin",
-        s(&lp),
-        "collide",
-        "--law",
-        "hooke-limited",
-        "--set",
-        "c=100",
-        "--v0",
-        "1",
-        "--end",
-        "force",
-        "--json",
-    ]));
+    let v = json(&dashpot(&sh(&format!(
+        "--plugin {} collide --law hooke-limited --set c=100 --v0 1 --end force --json",
+        s(&lp)
+    ))));
     assert!(v["restitution"].as_f64().unwrap() < 0.1, "{v}");
     // the default of --fit is documented where the user looks
     let h = String::from_utf8_lossy(&dashpot(&["calibrate", "--help"]).stdout).to_string();
