@@ -182,6 +182,28 @@ pub struct NormalBatch<'a> {
     pub force: &'a mut [f64],
 }
 
+impl Contact {
+    /// The force (N) a batch call `batch` gives this one contact, its `history` (the law's
+    /// slots) updated in place: what a single-contact call of a batch-only interface is.
+    pub fn force_through<E>(
+        self,
+        history: &mut [f64],
+        batch: impl FnOnce(NormalBatch<'_>) -> Result<(), E>,
+    ) -> Result<f64, E> {
+        let mut out = [0.0];
+        batch(NormalBatch {
+            delta: &[self.delta],
+            rate: &[self.rate],
+            mass: &[self.mass],
+            radius: &[self.radius],
+            slots: history.len(),
+            history,
+            force: &mut out,
+        })?;
+        Ok(out[0])
+    }
+}
+
 impl NormalBatch<'_> {
     /// Contact `i` of the batch.
     #[inline(always)]

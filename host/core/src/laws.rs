@@ -56,17 +56,7 @@ pub trait NormalLaw: BoundModel<Normal> {
 
     /// The normal force (N) on one contact, history updated in place.
     fn force(&self, c: Contact, history: &mut [f64]) -> Result<f64, LawError> {
-        let mut out = [0.0];
-        self.force_batch(NormalBatch {
-            delta: &[c.delta],
-            rate: &[c.rate],
-            mass: &[c.mass],
-            radius: &[c.radius],
-            slots: self.history_slots(),
-            history,
-            force: &mut out,
-        })?;
-        Ok(out[0])
+        c.force_through(history, |b| self.force_batch(b))
     }
 }
 

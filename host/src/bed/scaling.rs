@@ -29,6 +29,17 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// Every n of `layers` with every f of `freqs` (Hz), each run `periods` = (transient,
+    /// measured) periods.
+    pub fn new(layers: &[f64], freqs: &[f64], (transient, cycles): (f64, f64)) -> Grid {
+        Grid {
+            layers: layers.to_vec(),
+            freqs: freqs.to_vec(),
+            transient,
+            cycles,
+        }
+    }
+
     /// Number of runs.
     pub fn len(&self) -> usize {
         self.layers.len() * self.freqs.len()

@@ -85,7 +85,8 @@ pub(crate) fn run<K: Kind>(
     slots: usize,
     b: &mut K::Batch<'_>,
     mut energy: EnergyOut<'_>,
-    call: impl FnOnce(&K::Ffi, &mut BatchFault, &mut bool) -> Result<BatchStatus, RString>,
+    take_panic: extern "C" fn() -> RString,
+    call: impl FnOnce(&K::Ffi, &mut BatchFault, &mut bool) -> BatchStatus,
 ) -> Result<bool, LawError> {
     K::check_lengths(name, slots, b)?;
     let n = K::len(b);
@@ -102,12 +103,13 @@ pub(crate) fn run<K: Kind>(
     let ffi = K::raw(b, power, elastic);
     let mut fault = BatchFault::default();
     let mut written = false;
-    let st = call(&ffi, &mut fault, &mut written).map_err(|msg| {
-        LawError::new(
+    let st = call(&ffi, &mut fault, &mut written);
+    if st == BatchStatus::Panic {
+        return Err(LawError::new(
             ErrorKind::Panic,
-            format!("{} law '{name}' panicked: {msg}", K::WHAT),
-        )
-    })?;
+            format!("{} law '{name}' panicked: {}", K::WHAT, take_panic()),
+        ));
+    }
     match st {
         BatchStatus::Ok => Ok(written),
         st => Err(K::fault_error(name, b, st, fault)),
@@ -179,12 +181,8 @@ impl<K: Kind> ModelHandle<K> {
             self.slots,
             &mut b,
             energy,
-            |ffi, fault, written| unsafe {
-                match (m.vtable.batch)(m.obj, ffi, fault, written) {
-                    BatchStatus::Panic => Err((m.vtable.take_panic)()),
-                    st => Ok(st),
-                }
-            },
+            m.vtable.take_panic,
+            |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, ffi, fault, written) },
         )
     }
 
@@ -244,12 +242,8 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
             self.slots,
             &mut b,
             energy,
-            |ffi, fault, written| unsafe {
-                match model_batch::<K, B>(obj, ffi, fault, written) {
-                    BatchStatus::Panic => Err(take_panic()),
-                    st => Ok(st),
-                }
-            },
+            take_panic,
+            |ffi, fault, written| unsafe { model_batch::<K, B>(obj, ffi, fault, written) },
         )
     }
 }

@@ -33,7 +33,7 @@ ffi_object!(law
     FfiLaw
 );
 
-ffi_object!(model
+ffi_object!(model_with_coefficients
     /// The hot-path functions of a law bound to a material pair.
     ModelVTable<B> {
         /// Evaluates a batch; checks inputs and outputs in blocks and stops at the first bad one,
@@ -45,12 +45,6 @@ ffi_object!(model
             fault: &mut BatchFault,
             energy: &mut bool,
         ) -> BatchStatus,
-        /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
-        pub coefficients: unsafe extern "C" fn(
-            obj: *const c_void,
-            mass: f64,
-            radius: f64,
-        ) -> RResult<RVec<Coefficient>, FfiError>,
     }
     /// A law bound to a pair of materials, owned by the plugin that made it.
     FfiModel

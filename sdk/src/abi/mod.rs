@@ -212,6 +212,7 @@ pub(crate) use ffi_handle;
 
 /// Declares the functions of a plugin object and its handle ([`ffi_handle!`]-style): a
 /// configured law (`law`: its entries, then `drop`) or a bound one (`model`: its entries, then
+/// `take_panic` and `drop`; `model_with_coefficients`: its entries, `coefficients`,
 /// `take_panic` and `drop`). The entries are written out (abi_stable reads function pointer types
 /// from the tokens); the common ones are appended in this order.
 macro_rules! ffi_object {
@@ -226,6 +227,20 @@ macro_rules! ffi_object {
             pub take_panic: extern "C" fn() -> abi_stable::std_types::RString,
         });
         $crate::abi::ffi_handle!($(#[$hdoc])* $handle $(<$g>)?, $vt $(<$g>)?);
+    };
+    (model_with_coefficients $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
+        $crate::abi::ffi_object!(model $(#[$doc])* $vt $(<$g>)? {
+            $($body)*
+            /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
+            pub coefficients: unsafe extern "C" fn(
+                obj: *const std::ffi::c_void,
+                mass: f64,
+                radius: f64,
+            ) -> abi_stable::std_types::RResult<
+                abi_stable::std_types::RVec<$crate::abi::ffi::Coefficient>,
+                $crate::abi::FfiError,
+            >,
+        } $(#[$hdoc])* $handle);
     };
     (@vtable $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* }) => {
         $(#[$doc])*

@@ -5,7 +5,7 @@
 //! Their layout must never change: abi_stable compares it, field by field, with the one recorded
 //! in every 0.2 plugin.
 
-use super::ffi::{CalibrationTarget, Coefficient, ParamValue};
+use super::ffi::{CalibrationTarget, ParamValue};
 use super::{ffi_object, frozen_law_info, BatchFault, BatchStatus, FfiRestitutionLaw};
 use crate::error::FfiError;
 use crate::law::EndCriterion;
@@ -136,7 +136,7 @@ ffi_object!(law
     FfiContactLaw
 );
 
-ffi_object!(model
+ffi_object!(model_with_coefficients
     /// The hot-path functions of a contact law bound to a pair of materials.
     ContactModelVTable {
         /// Evaluates a batch; checks inputs and outputs in blocks as it goes and stops at the first
@@ -146,12 +146,6 @@ ffi_object!(model
             batch: &FfiNormalBatch,
             fault: &mut BatchFault,
         ) -> BatchStatus,
-        /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
-        pub coefficients: unsafe extern "C" fn(
-            obj: *const c_void,
-            mass: f64,
-            radius: f64,
-        ) -> RResult<RVec<Coefficient>, FfiError>,
     }
     /// A contact law bound to a pair of materials, owned by the plugin that made it.
     FfiContactModel

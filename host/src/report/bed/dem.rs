@@ -282,12 +282,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
     let eps_lo = [ParamValue::new("eps", 0.7)];
     if want(2) {
         stage("Fig. 2 with contact laws: P(n)");
-        let grid = Grid {
-            layers: ds.fig2_layers.clone(),
-            freqs: ds.fig2_freqs.clone(),
-            transient: ds.fig2_periods.0,
-            cycles: ds.fig2_periods.1,
-        };
+        let grid = Grid::new(&ds.fig2_layers, &ds.fig2_freqs, ds.fig2_periods);
         let kk_runs = dem_grid(&grid, "kuwabara-kono", &kk, "DEM Fig. 2 kuwabara-kono")?;
         let hi = dem_grid(&grid, "hsd", &eps_hi, "DEM Fig. 2 hsd 0.95")?;
         let lo = dem_grid(&grid, "hsd", &eps_lo, "DEM Fig. 2 hsd 0.7")?;
@@ -299,15 +294,14 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
         )?;
         write_grid_csv(&out.join("dem_fig2_hsd095.csv"), &hi, &prov("hsd", &eps_hi)?)?;
         write_grid_csv(&out.join("dem_fig2_hsd070.csv"), &lo, &prov("hsd", &eps_lo)?)?;
-        Figure {
-            panels: vec![
+        Figure::in_columns(
+            vec![
                 pressure_panel(&format!("DEM, Kuwabara–Kono A = {CROSS_KK_A} s"), &grid, &kk_runs),
                 pressure_panel("DEM, HSD ε = 0.95", &grid, &hi),
                 pressure_panel("DEM, HSD ε = 0.7", &grid, &lo),
             ],
-            columns: 3,
-            panel_size: (700, 520),
-        }
+            3,
+        )
         .save(out, "dem_fig2_pressure")?;
         let last = grid.layers[grid.layers.len() - 1];
         writeln!(
@@ -330,12 +324,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
     }
     if want(4) {
         stage("Fig. 4 with contact laws: θ(n)");
-        let grid = Grid {
-            layers: ds.fig4_layers.clone(),
-            freqs: ds.fig4_freqs.clone(),
-            transient: ds.fig4_periods.0,
-            cycles: ds.fig4_periods.1,
-        };
+        let grid = Grid::new(&ds.fig4_layers, &ds.fig4_freqs, ds.fig4_periods);
         let mut panels = Vec::new();
         writeln!(
             md,
@@ -379,18 +368,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
             }
             writeln!(md)?;
         }
-        Figure {
-            panels,
-            columns: 2,
-            panel_size: (700, 520),
-        }
-        .save(out, "dem_fig4_theta")?;
+        Figure::in_columns(panels, 2).save(out, "dem_fig4_theta")?;
     }
-    writeln!(
-        md,
-        "\nTotal wall time: {:.0} s on {} threads.",
-        clock.elapsed().as_secs_f64(),
-        rayon::current_num_threads()
-    )?;
-    Ok(md)
+    Ok(with_wall_time(md, clock))
 }

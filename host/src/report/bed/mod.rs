@@ -219,13 +219,7 @@ pub fn run_only(reg: &Registry, out: &Path, size: &Size, only: &[u8]) -> Result<
         writeln!(md, "Statements wall time: {:.0} s.\n", t.elapsed().as_secs_f64())?;
     }
     stage("done");
-    writeln!(
-        md,
-        "\nTotal wall time: {:.0} s on {} threads.",
-        clock.elapsed().as_secs_f64(),
-        rayon::current_num_threads()
-    )?;
-    Ok(md)
+    Ok(with_wall_time(md, clock))
 }
 
 fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
@@ -285,4 +279,14 @@ fn peaks<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<(f64, f64, f64)> {
             (f, grid.layers[am], p[p.len() - 1] / pm)
         })
         .collect()
+}
+
+/// The report `md` ended with its total wall time since `clock` and the threads it ran on.
+fn with_wall_time(mut md: String, clock: std::time::Instant) -> String {
+    md.push_str(&format!(
+        "\nTotal wall time: {:.0} s on {} threads.\n",
+        clock.elapsed().as_secs_f64(),
+        rayon::current_num_threads()
+    ));
+    md
 }

@@ -168,12 +168,10 @@ impl ContactModelHandle {
                     self.slots,
                     &mut call,
                     energy,
+                    m.vtable.take_panic,
                     |ffi, fault, written| unsafe {
                         *written = false;
-                        match (m.vtable.force_batch)(m.obj, &ffi.base, fault) {
-                            BatchStatus::Panic => Err((m.vtable.take_panic)()),
-                            st => Ok(st),
-                        }
+                        (m.vtable.force_batch)(m.obj, &ffi.base, fault)
                     },
                 )?;
                 no_reach(call.reach)
@@ -299,17 +297,7 @@ impl ContactModelHandle {
 
     /// The normal force (N) on one contact, history updated in place.
     pub fn force(&self, c: Contact, history: &mut [f64]) -> Result<f64, LawError> {
-        let mut out = [0.0];
-        self.force_batch(NormalBatch {
-            delta: &[c.delta],
-            rate: &[c.rate],
-            mass: &[c.mass],
-            radius: &[c.radius],
-            slots: self.slots,
-            history,
-            force: &mut out,
-        })?;
-        Ok(out[0])
+        c.force_through(history, |b| self.force_batch(b))
     }
 
     /// The law's derived constants for a contact of effective `mass` (kg) and `radius` (m).

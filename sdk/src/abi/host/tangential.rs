@@ -88,12 +88,10 @@ impl TangentialModelHandle {
                 self.slots,
                 &mut b,
                 energy,
+                m.vtable.take_panic,
                 |ffi, fault, written| unsafe {
                     *written = false;
-                    match (m.vtable.force_batch)(m.obj, &ffi.base, fault) {
-                        BatchStatus::Panic => Err((m.vtable.take_panic)()),
-                        st => Ok(st),
-                    }
+                    (m.vtable.force_batch)(m.obj, &ffi.base, fault)
                 },
             )
             .map(|_| false),
