@@ -190,26 +190,19 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
 
     // ---- Fig. 3: τ(ε)/τ(1) ----
     let epss = logspace(0.01, 1.0, 25);
-    let tl1 = hit(
-        reg,
-        "lsd",
-        &[ParamValue::new("eps", 1.0)],
-        &pair,
-        1.0,
-        EndCriterion::Overlap,
-        &opt,
-    )?
-    .contact_time;
-    let th1 = hit(
-        reg,
-        "hsd",
-        &[ParamValue::new("eps", 1.0)],
-        &pair,
-        1.0,
-        EndCriterion::Overlap,
-        &opt,
-    )?
-    .contact_time;
+    let elastic_time = |law: &str| -> Result<f64> {
+        Ok(hit(
+            reg,
+            law,
+            &[ParamValue::new("eps", 1.0)],
+            &pair,
+            1.0,
+            EndCriterion::Overlap,
+            &opt,
+        )?
+        .contact_time)
+    };
+    let (tl1, th1) = (elastic_time("lsd")?, elastic_time("hsd")?);
     let mut lpts = Vec::new();
     let mut hpts = Vec::new();
     let mut worst25: f64 = 0.0;

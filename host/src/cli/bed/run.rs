@@ -265,19 +265,11 @@ pub fn print_dem_report(
     r: &crate::bed::on_dem::DemBedReport,
 ) {
     let c = &r.config;
-    println!(
-        "DEM bed: law {}{}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
-        law.describe(),
-        tangential
+    let laws = law.describe()
+        + &tangential
             .map(|t| format!(" + {}", t.describe()))
-            .unwrap_or_default(),
-        c.layers,
-        r.disks,
-        c.freq,
-        r.piston_speed,
-        c.gravity,
-        r.lid
-    );
+            .unwrap_or_default();
+    print_header("DEM bed", &laws, &r.measured);
     println!(
         "disks: E = {:.3e} Pa, ν = {}, ρ = {:.1} kg/m³ (m = {:.4e} kg); dt = {:.4e} s{}, contact time {:.4e} s at {:.3} m/s",
         r.young,
@@ -348,6 +340,16 @@ struct Labels<'a> {
     pressure: &'a str,
 }
 
+/// The first line of a bed run's printout, either engine's: `what` with its laws `laws`, the
+/// bed and the piston.
+fn print_header(what: &str, laws: &str, o: &BedObservables) {
+    let c = &o.config;
+    println!(
+        "{what}: law {laws}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
+        c.layers, o.disks, c.freq, o.piston_speed, c.gravity, o.lid
+    );
+}
+
 /// The observables of a bed run, either engine's: value ± standard error.
 fn print_observables(o: &BedObservables, labels: Labels<'_>) {
     println!("measured over {:.3} s after the transient:", o.measured_time);
@@ -390,19 +392,10 @@ fn print_observables(o: &BedObservables, labels: Labels<'_>) {
 
 fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
     let c = &r.config;
-    let ps: Vec<String> = params
-        .iter()
-        .map(|p| format!(" {}={}", p.name, p.value))
-        .collect();
-    println!(
-        "bed: law {law}{}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
-        ps.concat(),
-        c.layers,
-        r.disks,
-        c.freq,
-        r.piston_speed,
-        c.gravity,
-        r.lid
+    print_header(
+        "bed",
+        &LawChoice::new(law, params.to_vec()).describe(),
+        &r.measured,
     );
     print_observables(
         &r.measured,
