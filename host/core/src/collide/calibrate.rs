@@ -172,6 +172,16 @@ fn solve(
     };
     // an interior, valid bracket
     let inside = |x: f64| range.contains(x);
+    // no sign change of f − target over [lo, hi]
+    let unreachable = |lo: f64, hi: f64, f_lo: f64, f_hi: f64| CalibrateError::Unreachable {
+        param: name.into(),
+        what,
+        target,
+        lo,
+        hi,
+        f_lo: f_lo + target,
+        f_hi: f_hi + target,
+    };
     let (mut a, mut b);
     if log {
         let s = if start > 0.0 && start.is_finite() {
@@ -221,15 +231,7 @@ fn solve(
             }
         }
         if !found {
-            return Err(CalibrateError::Unreachable {
-                param: name.into(),
-                what,
-                target,
-                lo: a,
-                hi: b,
-                f_lo: fa + target,
-                f_hi: fb + target,
-            });
+            return Err(unreachable(a, b, fa, fb));
         }
         illinois(to(a), fa, to(b), fb, |y| Ok(f(from(y))? - target)).map(from)
     } else {
@@ -253,15 +255,7 @@ fn solve(
             return Ok(b);
         }
         if (fa > 0.0) == (fb > 0.0) {
-            return Err(CalibrateError::Unreachable {
-                param: name.into(),
-                what,
-                target,
-                lo: a,
-                hi: b,
-                f_lo: fa + target,
-                f_hi: fb + target,
-            });
+            return Err(unreachable(a, b, fa, fb));
         }
         illinois(a, fa, b, fb, |y| Ok(f(y)? - target))
     }

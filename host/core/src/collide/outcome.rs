@@ -30,6 +30,24 @@ impl Method {
         }
     }
 
+    /// [`Method::step`] for the adaptive loops: `Ok(None)` when the trial step left the
+    /// formulation's domain (the caller retries a quarter of it), other errors passed on.
+    #[inline]
+    pub(crate) fn trial<S: System<2>>(
+        self,
+        sys: &mut S,
+        x: f64,
+        y: &[f64; 2],
+        f: &[f64; 2],
+        h: f64,
+    ) -> Result<Option<Step<2>>, RhsError> {
+        match self.step(sys, x, y, f, h) {
+            Ok(s) => Ok(Some(s)),
+            Err(RhsError::OutOfDomain) => Ok(None),
+            Err(e) => Err(e),
+        }
+    }
+
     #[inline]
     pub(crate) fn factor(self, e: f64) -> f64 {
         match self {
@@ -184,5 +202,23 @@ impl From<RhsError> for CollideError {
                 "event location left the domain of the integrator",
             )),
         }
+    }
+}
+
+/// Why a phase of an adaptive integration stops before its end: after `max_steps` steps (`why`
+/// [0]) or past the time `t_limit` (`why` [1]); `None` while it may go on.
+pub(crate) fn overrun(
+    n: usize,
+    max_steps: usize,
+    t: f64,
+    t_limit: f64,
+    why: [&'static str; 2],
+) -> Option<&'static str> {
+    if n > max_steps {
+        Some(why[0])
+    } else if t > t_limit {
+        Some(why[1])
+    } else {
+        None
     }
 }

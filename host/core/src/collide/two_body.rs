@@ -330,13 +330,9 @@ pub fn collide<C: ContactForce>(
                 "too many steps in the compression phase",
             ));
         }
-        let s = match opt.method.step(&mut ph, u, &y, &k, h) {
-            Ok(s) => s,
-            Err(RhsError::OutOfDomain) => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+        let Some(s) = opt.method.trial(&mut ph, u, &y, &k, h)? else {
+            h *= 0.25;
+            continue;
         };
         let e = tol_u.norm(&y, &s.y, &s.err);
         if e <= 1.0 {
@@ -380,17 +376,9 @@ pub fn collide<C: ContactForce>(
             break;
         }
         n += 1;
-        if n > opt.max_steps {
-            return Err(no_return(
-                t,
-                z[0],
-                z[1],
-                steps,
-                "too many steps around maximum compression",
-            ));
-        }
-        if t > t_limit {
-            return Err(no_return(t, z[0], z[1], steps, "contact time limit"));
+        let why = ["too many steps around maximum compression", "contact time limit"];
+        if let Some(why) = overrun(n, opt.max_steps, t, t_limit, why) {
+            return Err(no_return(t, z[0], z[1], steps, why));
         }
         h = h.min(hmax);
         let s = opt.method.step(&mut tp, t, &z, &kz, h)?;
@@ -494,33 +482,18 @@ pub fn collide<C: ContactForce>(
     let mut n = 0;
     while u > 0.0 {
         n += 1;
-        if n > opt.max_steps {
-            return Err(no_return(
-                y[1],
-                u.powi(4),
-                y[0],
-                steps,
-                concat!("too many steps in the rebound phase", overdamped_hint!()),
-            ));
-        }
-        if y[1] > t_limit {
-            return Err(no_return(
-                y[1],
-                u.powi(4),
-                y[0],
-                steps,
-                concat!("contact time limit in the rebound phase", overdamped_hint!()),
-            ));
+        let why = [
+            concat!("too many steps in the rebound phase", overdamped_hint!()),
+            concat!("contact time limit in the rebound phase", overdamped_hint!()),
+        ];
+        if let Some(why) = overrun(n, opt.max_steps, y[1], t_limit, why) {
+            return Err(no_return(y[1], u.powi(4), y[0], steps, why));
         }
         let last = u + h <= 0.0;
         let hh = if last { -u } else { h };
-        let s = match opt.method.step(&mut ph, u, &y, &k, hh) {
-            Ok(s) => s,
-            Err(RhsError::OutOfDomain) => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+        let Some(s) = opt.method.trial(&mut ph, u, &y, &k, hh)? else {
+            h *= 0.25;
+            continue;
         };
         let e = tol_u.norm(&y, &s.y, &s.err);
         if e > 1.0 {
