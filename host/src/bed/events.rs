@@ -43,21 +43,7 @@ pub fn first_contact(g0: f64, v: f64, acc: f64) -> Option<f64> {
 /// approaching. Touching or overlapping and approaching: 0; receding: never.
 #[inline]
 pub fn pair_contact(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64) -> Option<f64> {
-    let b = rx * vx + ry * vy;
-    if b >= 0.0 {
-        return None;
-    }
-    let c = rx * rx + ry * ry - sigma2;
-    if c <= 0.0 {
-        return Some(0.0);
-    }
-    let vv = vx * vx + vy * vy;
-    let disc = b * b - vv * c;
-    if disc < 0.0 {
-        return None;
-    }
-    // τ = (−b − √disc)/vv written without cancellation
-    Some(c / (-b + disc.sqrt()))
+    pair_contact_before(rx, ry, vx, vy, sigma2, f64::INFINITY)
 }
 
 /// [`pair_contact`], but only if the contact comes before `before` (s): a pair that cannot meet
@@ -81,6 +67,7 @@ pub fn pair_contact_before(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64, befo
     if disc < 0.0 {
         return None;
     }
+    // τ = (−b − √disc)/vv written without cancellation
     Some(c / (-b + disc.sqrt()))
 }
 

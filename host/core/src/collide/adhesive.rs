@@ -14,7 +14,7 @@
 //!   motion can give it back (the law is elastic or dissipative), so it stays attached
 //!   (restitution 0).
 
-use super::outcome::overrun;
+use super::outcome::{in_domain, no_return, overrun};
 use super::outcome::{CollideError, Collision, Options};
 use super::rk::{locate, RhsError, System, Tolerance};
 use super::two_body::{locate_speed_zero, TPhase};
@@ -58,14 +58,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
         xscale = xscale.max(reach_formed);
     }
     let inv_m = 1.0 / mass;
-    let no_return = |t: f64, d: f64, v: f64, steps: usize, why: &'static str| CollideError::NoReturn {
-        t,
-        delta: d,
-        rate: v,
-        steps,
-        factor: t / tstar,
-        why,
-    };
+    let no_return = no_return(tstar);
     let mut tp = TPhase { law, inv_m, evals: 0 };
     let tol = Tolerance {
         rtol: opt.rtol,
@@ -105,7 +98,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
         }
         h = h.min(hmax);
         let reach = law.reach(z[0], z[1])?;
-        let Some(s) = opt.method.trial(&mut tp, t, &z, &kz, h)? else {
+        let Some(s) = in_domain(opt.method.step(&mut tp, t, &z, &kz, h))? else {
             h *= 0.25;
             continue;
         };

@@ -30,24 +30,6 @@ impl Method {
         }
     }
 
-    /// [`Method::step`] for the adaptive loops: `Ok(None)` when the trial step left the
-    /// formulation's domain (the caller retries a quarter of it), other errors passed on.
-    #[inline]
-    pub(crate) fn trial<S: System<2>>(
-        self,
-        sys: &mut S,
-        x: f64,
-        y: &[f64; 2],
-        f: &[f64; 2],
-        h: f64,
-    ) -> Result<Option<Step<2>>, RhsError> {
-        match self.step(sys, x, y, f, h) {
-            Ok(s) => Ok(Some(s)),
-            Err(RhsError::OutOfDomain) => Ok(None),
-            Err(e) => Err(e),
-        }
-    }
-
     #[inline]
     pub(crate) fn factor(self, e: f64) -> f64 {
         match self {
@@ -220,5 +202,29 @@ pub(crate) fn overrun(
         Some(why[1])
     } else {
         None
+    }
+}
+
+/// A trial step's result for the adaptive loops: `Ok(None)` when the step left the
+/// formulation's domain (the caller retries a quarter of it), other errors passed on.
+#[inline]
+pub(crate) fn in_domain(r: Result<Step<2>, RhsError>) -> Result<Option<Step<2>>, RhsError> {
+    match r {
+        Ok(s) => Ok(Some(s)),
+        Err(RhsError::OutOfDomain) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// The error of a collision that does not end: at time `t` (s), overlap `delta` (m) and rate
+/// `rate` (m/s) after `steps` steps, `t` being `t / tstar` collision time scales, and why.
+pub(crate) fn no_return(tstar: f64) -> impl Fn(f64, f64, f64, usize, &'static str) -> CollideError {
+    move |t, delta, rate, steps, why| CollideError::NoReturn {
+        t,
+        delta,
+        rate,
+        steps,
+        factor: t / tstar,
+        why,
     }
 }

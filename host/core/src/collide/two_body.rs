@@ -289,14 +289,7 @@ pub fn collide<C: ContactForce>(
         }
         Ok(())
     };
-    let no_return = |t: f64, d: f64, v: f64, steps: usize, why: &'static str| CollideError::NoReturn {
-        t,
-        delta: d,
-        rate: v,
-        steps,
-        factor: t / tstar,
-        why,
-    };
+    let no_return = no_return(tstar);
 
     // ---- phase 1: compression start, u from 0 while v > v0/2 ----
     let mut ph = UPhase {
@@ -330,7 +323,7 @@ pub fn collide<C: ContactForce>(
                 "too many steps in the compression phase",
             ));
         }
-        let Some(s) = opt.method.trial(&mut ph, u, &y, &k, h)? else {
+        let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, h))? else {
             h *= 0.25;
             continue;
         };
@@ -450,20 +443,22 @@ pub fn collide<C: ContactForce>(
     evals += tp.evals;
     let (max_overlap_time, max_overlap) = max_overlap.unwrap_or((t, z[0]));
 
+    // the collision that ended at time `t_end` (s) with rate `v_end` (m/s)
+    let collision = |v_end: f64, t_end: f64, steps, force_evals, trajectory| Collision {
+        v0,
+        restitution: -v_end / v0,
+        contact_time: t_end,
+        max_overlap,
+        max_overlap_time,
+        end,
+        steps,
+        force_evals,
+        stuck: false,
+        tensile_peak: None,
+        trajectory,
+    };
     if let Some((tf, _df, vf)) = force_end {
-        return Ok(Collision {
-            v0,
-            restitution: -vf / v0,
-            contact_time: tf,
-            max_overlap,
-            max_overlap_time,
-            end,
-            steps,
-            force_evals: evals,
-            stuck: false,
-            tensile_peak: None,
-            trajectory: traj,
-        });
+        return Ok(collision(vf, tf, steps, evals, traj));
     }
 
     // ---- phase 3: rebound end, u from (δ)^{1/4} down to 0 ----
@@ -491,7 +486,7 @@ pub fn collide<C: ContactForce>(
         }
         let last = u + h <= 0.0;
         let hh = if last { -u } else { h };
-        let Some(s) = opt.method.trial(&mut ph, u, &y, &k, hh)? else {
+        let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, hh))? else {
             h *= 0.25;
             continue;
         };
@@ -529,17 +524,5 @@ pub fn collide<C: ContactForce>(
         }
     }
     evals += ph.evals;
-    Ok(Collision {
-        v0,
-        restitution: -y[0] / v0,
-        contact_time: y[1],
-        max_overlap,
-        max_overlap_time,
-        end,
-        steps,
-        force_evals: evals,
-        stuck: false,
-        tensile_peak: None,
-        trajectory: traj,
-    })
+    Ok(collision(y[0], y[1], steps, evals, traj))
 }

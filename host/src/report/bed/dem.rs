@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::bed::engine::{Bed, BedConfig, BedReport};
+use crate::bed::observables::BedObservables;
 use crate::bed::scaling::{
     fit_all, provenance, run_dem_grid, theta_panel, write_fit_csv, write_grid_csv, Grid,
 };
@@ -141,6 +142,16 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
             t: f64,
             note: String,
         }
+        let row = |n: f64, what: &'static str, o: &BedObservables, note: String| Row {
+            n,
+            what,
+            p: o.pressure,
+            pe: o.pressure_stderr,
+            nc: o.lid_collision_rate,
+            di: o.mean_impulse,
+            t: o.temperature,
+            note,
+        };
         let mut rows: Vec<Row> = Vec::new();
         for &n in &ds.cross_layers {
             let cfg = BedConfig {
@@ -169,28 +180,11 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
                 .into_par_iter()
                 .map(|(what, l)| Ok((what, bed(n, f).run(l, tr, cy, &mut |_| {})?)))
                 .collect::<Result<Vec<_>>>()?;
-            let evrow = |what, r: &BedReport| Row {
-                n,
-                what,
-                p: r.pressure,
-                pe: r.pressure_stderr,
-                nc: r.lid_collision_rate,
-                di: r.mean_impulse,
-                t: r.temperature,
-                note: format!("TC share {:.1} %", 100.0 * r.tc_share),
-            };
+            let evrow =
+                |what, r: &BedReport| row(n, what, r, format!("TC share {:.1} %", 100.0 * r.tc_share));
             rows.push(evrow("event constant", &ec));
             for (what, r) in &dem {
-                rows.push(Row {
-                    n,
-                    what,
-                    p: r.pressure,
-                    pe: r.pressure_stderr,
-                    nc: r.lid_collision_rate,
-                    di: r.mean_impulse,
-                    t: r.temperature,
-                    note: format!("dt = {:.3e} s", r.dt),
-                });
+                rows.push(row(n, what, r, format!("dt = {:.3e} s", r.dt)));
             }
             rows.push(evrow("event from:kuwabara-kono", &ek));
         }
