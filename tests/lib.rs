@@ -380,14 +380,20 @@ pub fn old_sdk_registry(sdk: &OldSdk, profile: &str) -> Option<Registry> {
     };
     let reg = Registry::discover(&sp)
         .unwrap_or_else(|e| panic!("the sdk {} plugins load in this host: {}", sdk.series, e.message));
+    // every plugin was built against that sdk and is spoken to as one of its series
+    let series = match sdk.series {
+        "0.1" => dashpot::laws::SdkSeries::V0_1,
+        _ => dashpot::laws::SdkSeries::V0_2,
+    };
     for p in &reg.plugins {
-        let series = format!("{}.", sdk.series);
+        let version = format!("{}.", sdk.series);
         assert!(
-            p.sdk_version.starts_with(&series),
+            p.sdk_version.starts_with(&version),
             "{}: {}",
             p.name,
             p.sdk_version
         );
+        assert_eq!(p.series, series, "{}", p.name);
     }
     Some(reg)
 }

@@ -21,8 +21,7 @@ fn run(
     end: EndCriterion,
     opt: &Options,
 ) -> Collision {
-    let b = reg.contact(law, params).unwrap().bind_pair(pair).unwrap();
-    collide(&b, pair.mass, v0, end, opt).unwrap()
+    dashpot::collide::collide_named(reg, law, params, pair, v0, end, opt).unwrap()
 }
 
 fn eps(e: f64) -> [ParamValue; 1] {

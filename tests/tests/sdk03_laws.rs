@@ -13,6 +13,11 @@ const R: f64 = 1.0e-4;
 const M: f64 = 1.0e-9;
 const W: f64 = 0.05;
 
+/// Named parameter values.
+fn pv(p: &[(&str, f64)]) -> Vec<ParamValue> {
+    p.iter().map(|&(n, v)| ParamValue::new(n, v)).collect()
+}
+
 fn materials() -> MaterialPair {
     MaterialPair::new(E, 4.0e7).unwrap()
 }
@@ -326,14 +331,7 @@ fn rolling_sds_is_capped_at_mu_fn_and_stores_k_xi_squared_over_two() {
     let reg = registry_03();
     let (k, gamma, mu, fnorm, v, dt) = (1e3, 0.5, 0.1, 2.0, 0.01, 1e-4);
     let m = reg
-        .rolling(
-            "rolling-sds",
-            &[
-                ParamValue::new("k", k),
-                ParamValue::new("gamma", gamma),
-                ParamValue::new("mu", mu),
-            ],
-        )
+        .rolling("rolling-sds", &pv(&[("k", k), ("gamma", gamma), ("mu", mu)]))
         .unwrap()
         .bind(&materials())
         .unwrap();
@@ -419,14 +417,7 @@ fn twisting_laws_follow_their_formulas() {
     let reg = registry_03();
     let (k, gamma, mu, fnorm, w, dt) = (2e-3, 1e-6, 5e-5, 3.0, 0.4, 1e-4);
     let sds = reg
-        .twisting(
-            "twisting-sds",
-            &[
-                ParamValue::new("k", k),
-                ParamValue::new("gamma", gamma),
-                ParamValue::new("mu", mu),
-            ],
-        )
+        .twisting("twisting-sds", &pv(&[("k", k), ("gamma", gamma), ("mu", mu)]))
         .unwrap()
         .bind(&materials())
         .unwrap();
@@ -452,11 +443,7 @@ fn twisting_laws_follow_their_formulas() {
     let marshall = reg
         .twisting(
             "twisting-marshall",
-            &[
-                ParamValue::new("kt", kt),
-                ParamValue::new("gammat", gt),
-                ParamValue::new("mu_t", mut_),
-            ],
+            &pv(&[("kt", kt), ("gammat", gt), ("mu_t", mut_)]),
         )
         .unwrap()
         .bind(&materials())
@@ -486,14 +473,7 @@ fn rolling_epsd_caps_the_torque_at_mu_r_r_fn() {
     let reg = registry_03();
     let (kt, mu, fnorm, v, dt) = (1e3, 0.2, 1.5, 0.02, 1e-4);
     let m = reg
-        .rolling(
-            "rolling-epsd",
-            &[
-                ParamValue::new("kt", kt),
-                ParamValue::new("mu_r", mu),
-                ParamValue::new("eta", 0.3),
-            ],
-        )
+        .rolling("rolling-epsd", &pv(&[("kt", kt), ("mu_r", mu), ("eta", 0.3)]))
         .unwrap()
         .bind(&materials())
         .unwrap();

@@ -30,8 +30,8 @@ fn hit(
     end: EndCriterion,
     opt: &Options,
 ) -> Result<Collision> {
-    let b = PairLaw::bind(&reg.contact(law, params)?, pair, Particle::MCC.poisson)?;
-    collide(&b, pair.mass, v0, end, opt).with_context(|| format!("{law} at v0 = {v0} m/s"))
+    crate::collide::collide_named(reg, law, params, pair, v0, end, opt)
+        .with_context(|| format!("{law} at v0 = {v0} m/s"))
 }
 
 fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {

@@ -253,6 +253,22 @@ pub(crate) fn locate_speed_zero<S: System<2>>(
     })
 }
 
+/// The head-on collision of `pair` at normal impact speed `v0` (m/s) under contact law `law` of
+/// `reg` with `params`, both bodies of Poisson's ratio 0.3 (which only a shear modulus depends
+/// on): what the reports and the tests run.
+pub fn collide_named(
+    reg: &crate::registry::Registry,
+    law: &str,
+    params: &[dashpot_sdk::ParamValue],
+    pair: &dashpot_sdk::Pair,
+    v0: f64,
+    end: EndCriterion,
+    opt: &Options,
+) -> Result<Collision, CollideError> {
+    let b = PairLaw::bind(&reg.contact(law, params)?, pair, 0.3)?;
+    collide(&b, pair.mass, v0, end, opt)
+}
+
 /// Integrates one collision. `mass` is the effective mass (kg), `v0` the normal impact speed (m/s).
 pub fn collide<C: ContactForce>(
     law: &C,
