@@ -318,35 +318,9 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
 /// bit (only the wall times differ).
 #[test]
 fn dem_bed_is_bed_engine_dem_to_the_bit() {
-    let common = [
-        "--layers",
-        "0.5",
-        "--freq",
-        "25",
-        "--transient",
-        "1",
-        "--cycles",
-        "2",
-        "--law",
-        "hsd",
-        "--set",
-        "eps=0.8",
-        "--tangential",
-        "mindlin",
-        "--tset",
-        "mu=0.3",
-        "--young",
-        "1e8",
-        "--seed",
-        "3",
-        "--json",
-    ];
-    let run = |head: &[&'static str]| -> Value {
-        let mut args = head.to_vec();
-        args.extend_from_slice(&common);
-        ok_json(&args)
-    };
-    let (a, b) = (run(&["bed", "--engine", "dem"]), run(&["dem", "--bed"]));
+    let common = "--layers 0.5 --freq 25 --transient 1 --cycles 2 --law hsd --set eps=0.8 --tangential mindlin --tset mu=0.3 --young 1e8 --seed 3 --json";
+    let run = |head: &str| ok_json(&sh(&format!("{head} {common}")));
+    let (a, b) = (run("bed --engine dem"), run("dem --bed"));
     for k in [
         "pressure",
         "pressure_stderr",

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{dashpot, fails, lib, ok_json, plugin_dir, sh};
+use common::{dashpot, fails, lib, ok_json, plugin_dir, sh, SEED_AND_02_LAWS};
 use serde_json::Value;
 use std::process::Command;
 
@@ -12,20 +12,7 @@ fn laws_json_lists_the_five_laws_with_their_schemas() {
     let laws = v["laws"].as_array().unwrap();
     let mut names: Vec<&str> = laws.iter().map(|l| l["name"].as_str().unwrap()).collect();
     names.sort();
-    assert_eq!(
-        names,
-        [
-            "constant",
-            "hsd",
-            "kuwabara-kono",
-            "linear-history",
-            "lsd",
-            "mcnamara-falcon",
-            "mindlin",
-            "thornton",
-            "walton-braun"
-        ]
-    );
+    assert_eq!(names, SEED_AND_02_LAWS);
     let get = |n: &str| laws.iter().find(|l| l["name"] == n).unwrap();
     let hsd = get("hsd");
     assert_eq!(hsd["kind"], "contact");

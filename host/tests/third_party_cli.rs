@@ -11,7 +11,7 @@ mod common;
 #[path = "../../tests/lib.rs"]
 mod ext;
 
-use common::{dashpot, lib, plugin_dir, sh, SEED};
+use common::{dashpot, lib, plugin_dir, sh, SEED, SEED_AND_02_LAWS};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -170,17 +170,7 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
 #[test]
 fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     let lp = limited();
-    let seed = [
-        "constant",
-        "hsd",
-        "kuwabara-kono",
-        "linear-history",
-        "lsd",
-        "mcnamara-falcon",
-        "mindlin",
-        "thornton",
-        "walton-braun",
-    ];
+    let seed = SEED_AND_02_LAWS;
     let mut all: Vec<String> = seed.iter().map(|s| s.to_string()).collect();
     all.push("hooke-limited".into());
     all.sort();

@@ -109,3 +109,16 @@ pub fn fails(args: &[&str], needles: &[&str]) {
 pub fn sh(line: &str) -> Vec<&str> {
     line.split_whitespace().collect()
 }
+
+/// The laws of the seed plugins and those of sdk 0.2, sorted.
+pub const SEED_AND_02_LAWS: [&str; 9] = [
+    "constant",
+    "hsd",
+    "kuwabara-kono",
+    "linear-history",
+    "lsd",
+    "mcnamara-falcon",
+    "mindlin",
+    "thornton",
+    "walton-braun",
+];

@@ -219,6 +219,17 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
         })
     }
 
+    /// A bound law as it is, named `name`, keeping `slots` history slots (the sdk's own tests).
+    #[cfg(test)]
+    pub(crate) fn of_bound(name: &str, slots: usize, law: B) -> Self {
+        StaticModel {
+            law,
+            name: name.to_string(),
+            slots,
+            kind: std::marker::PhantomData,
+        }
+    }
+
     /// The law's name.
     pub fn name(&self) -> &str {
         &self.name

@@ -306,14 +306,8 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
              | f (Hz) | KK: n at max | KK: P(n={last})/P_max | HSD 0.95: n at max | HSD 0.95: ratio | HSD 0.7: n at max | HSD 0.7: ratio |\n|---|---|---|---|---|---|---|",
             grid.freqs, grid.layers, grid.cycles, grid.transient
         )?;
-        let (a, b, c) = (peaks(&grid, &kk_runs), peaks(&grid, &hi), peaks(&grid, &lo));
-        for k in 0..a.len() {
-            writeln!(
-                md,
-                "| {:.0} | {} | {:.2} | {} | {:.2} | {} | {:.2} |",
-                a[k].0, a[k].1, a[k].2, b[k].1, b[k].2, c[k].1, c[k].2
-            )?;
-        }
+        let peaks = [&kk_runs, &hi, &lo].map(|r| peaks(&grid, r));
+        peak_rows(&mut md, [&peaks[0], &peaks[1], &peaks[2]])?;
         writeln!(md)?;
     }
     if want(4) {

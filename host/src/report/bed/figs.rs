@@ -38,13 +38,7 @@ pub(super) fn fig2(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
         "| f (Hz) | r(v): n at max P | r(v): P(n={last})/P_max | r = 0.95: n at max P | r = 0.95: P(n={last})/P_max | r = 0.7: n at max P | r = 0.7: P(n={last})/P_max |\n|---|---|---|---|---|---|---|"
     )?;
     let (a, b, c) = (peaks(&grid, &rv), peaks(&grid, &r95), peaks(&grid, &r70));
-    for k in 0..a.len() {
-        writeln!(
-            md,
-            "| {:.0} | {} | {:.2} | {} | {:.2} | {} | {:.2} |",
-            a[k].0, a[k].1, a[k].2, b[k].1, b[k].2, c[k].1, c[k].2
-        )?;
-    }
+    peak_rows(md, [&a, &b, &c])?;
     let near1 = a
         .iter()
         .filter(|p| (0.5..=2.0).contains(&p.1) && p.2 < 0.9)

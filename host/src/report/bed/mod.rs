@@ -262,6 +262,20 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
     }
 }
 
+/// The rows of a table of three sets of [`peaks`]: f, then for each set the n of the largest
+/// pressure and P(last n)/P(max).
+fn peak_rows(md: &mut String, [a, b, c]: [&[(f64, f64, f64)]; 3]) -> std::fmt::Result {
+    use std::fmt::Write as _;
+    for k in 0..a.len() {
+        writeln!(
+            md,
+            "| {:.0} | {} | {:.2} | {} | {:.2} | {} | {:.2} |",
+            a[k].0, a[k].1, a[k].2, b[k].1, b[k].2, c[k].1, c[k].2
+        )?;
+    }
+    Ok(())
+}
+
 /// For each frequency: the n of the largest pressure, and P(last n)/P(max).
 fn peaks<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<(f64, f64, f64)> {
     let nf = grid.freqs.len();

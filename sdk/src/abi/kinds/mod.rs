@@ -279,23 +279,10 @@ kind_law!(Normal, ContactLaw);
 mod tests {
     use super::*;
     use crate::abi::{EnergyOut, StaticModel};
-    use crate::{EndCriterion, Energy, MaterialPair};
+    use crate::Energy;
 
-    crate::law_params! {
-        /// F = 1 N, with a NaN power.
-        struct NanPower;
-    }
-
-    impl ContactLaw for NanPower {
-        type Bound = NanPower;
-        const NAME: &'static str = "nan-power";
-        const SUMMARY: &'static str = "test";
-        const DOC: &'static str = "test";
-        const END_CRITERION: EndCriterion = EndCriterion::Overlap;
-        fn bind(&self, _m: &MaterialPair) -> Result<NanPower, LawError> {
-            Ok(NanPower)
-        }
-    }
+    /// F = 1 N, with a NaN power.
+    struct NanPower;
 
     impl BoundContact for NanPower {
         fn force(&self, _c: Contact, _h: &mut [f64]) -> f64 {
@@ -312,8 +299,7 @@ mod tests {
     /// A non-finite energy output is reported as an output of the law, not as a bad input.
     #[test]
     fn a_nan_power_is_the_laws_output() {
-        let m =
-            StaticModel::<Normal, NanPower>::bind(&NanPower, &MaterialPair::new(1e9, 1e9).unwrap()).unwrap();
+        let m = StaticModel::<Normal, NanPower>::of_bound("nan-power", 0, NanPower);
         let (mut f, mut p) = ([0.0; 2], [0.0; 2]);
         let call = NormalCall {
             batch: NormalBatch {
