@@ -516,6 +516,24 @@ macro_rules! law_trait {
 }
 pub(crate) use law_trait;
 
+/// Declares a law kind bound to a material pair that keeps per-contact history (none by
+/// default): tangential, rolling and twisting laws.
+macro_rules! history_law {
+    ($(#[$doc:meta])* $trait:ident: $bound:ident, $kind:expr) => {
+        law_trait!(
+            $(#[$doc])*
+            $trait: $bound, $kind, bind(materials: MaterialPair),
+            end: None, history: Self::HISTORY,
+            {
+                /// The per-contact history the law keeps (a spring: its three displacement
+                /// components; none by default).
+                const HISTORY: &'static [History] = &[];
+            }
+        );
+    };
+}
+pub(crate) use history_law;
+
 law_trait!(
     /// A configurable contact law. Declare its parameters with
     /// [`law_params!`](crate::law_params), implement this, then export with
@@ -541,16 +559,11 @@ law_trait!(
     }
 );
 
-law_trait!(
+history_law!(
     /// A configurable tangential (friction) law, composable at run time with any contact law.
     /// Declare its parameters with [`law_params!`](crate::law_params), implement this, then
     /// export with [`export_laws!`](crate::export_laws) under `tangential: [...]`.
-    TangentialLaw: BoundTangential, LawKind::Tangential, bind(materials: MaterialPair),
-    end: None, history: Self::HISTORY,
-    {
-        /// The per-contact history the law keeps (a spring: its three displacement components).
-        const HISTORY: &'static [History] = &[];
-    }
+    TangentialLaw: BoundTangential, LawKind::Tangential
 );
 
 law_trait!(

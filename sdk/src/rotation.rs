@@ -16,7 +16,9 @@
 //! radius and the time step.
 
 use crate::error::LawError;
-use crate::law::{history_mut, law_info, law_trait, Coefficient, Energy, History, LawInfo, LawKind};
+use crate::law::{
+    history_law, history_mut, law_info, law_trait, Coefficient, Energy, History, LawInfo, LawKind,
+};
 use crate::law::{motion_kind, VectorBatch, VectorContact};
 use crate::pair::MaterialPair;
 use crate::params::{LawParams, ParamValue};
@@ -88,26 +90,16 @@ pub trait BoundTwisting: Send + Sync + 'static {
     }
 }
 
-law_trait!(
+history_law!(
     /// A configurable rolling-resistance law (sdk 0.3). Declare its parameters with
     /// [`law_params!`](crate::law_params), implement this, then export with
     /// [`export_laws!`](crate::export_laws) under `rolling: [...]`.
-    RollingLaw: BoundRolling, LawKind::Rolling, bind(materials: MaterialPair),
-    end: None, history: Self::HISTORY,
-    {
-        /// The per-contact history the law keeps.
-        const HISTORY: &'static [History] = &[];
-    }
+    RollingLaw: BoundRolling, LawKind::Rolling
 );
 
-law_trait!(
+history_law!(
     /// A configurable twisting-resistance law (sdk 0.3). Declare its parameters with
     /// [`law_params!`](crate::law_params), implement this, then export with
     /// [`export_laws!`](crate::export_laws) under `twisting: [...]`.
-    TwistingLaw: BoundTwisting, LawKind::Twisting, bind(materials: MaterialPair),
-    end: None, history: Self::HISTORY,
-    {
-        /// The per-contact history the law keeps.
-        const HISTORY: &'static [History] = &[];
-    }
+    TwistingLaw: BoundTwisting, LawKind::Twisting
 );

@@ -77,6 +77,23 @@ macro_rules! forward {
 }
 forward!(&M, Box<M>);
 
+/// [`run`] for a plugin of sdk 0.2, whose batch entry `call` takes the 0.2 arrays and writes no
+/// energy.
+pub(crate) fn run_v2<K: Kind>(
+    name: &str,
+    slots: usize,
+    b: &mut K::Batch<'_>,
+    energy: EnergyOut<'_>,
+    take_panic: extern "C" fn() -> RString,
+    call: impl FnOnce(&K::Ffi, &mut BatchFault) -> BatchStatus,
+) -> Result<(), LawError> {
+    run::<K>(name, slots, b, energy, take_panic, |ffi, fault, written| {
+        *written = false;
+        call(ffi, fault)
+    })
+    .map(|_| ())
+}
+
 /// Runs a batch of kind `K` through `call` (a vtable entry or the compiled-in trampoline):
 /// lengths checked first, then the status turned into a result; `Ok(true)` when the energy
 /// outputs were written.

@@ -163,16 +163,13 @@ impl ContactModelHandle {
         match &self.inner {
             ModelInner::V3(m) => m.batch(call, energy),
             ModelInner::V2(m) => {
-                run::<Normal>(
+                run_v2::<Normal>(
                     &self.name,
                     self.slots,
                     &mut call,
                     energy,
                     m.vtable.take_panic,
-                    |ffi, fault, written| unsafe {
-                        *written = false;
-                        (m.vtable.force_batch)(m.obj, &ffi.base, fault)
-                    },
+                    |ffi, fault| unsafe { (m.vtable.force_batch)(m.obj, &ffi.base, fault) },
                 )?;
                 no_reach(call.reach)
             }

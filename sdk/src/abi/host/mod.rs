@@ -1,7 +1,7 @@
 //! Host side: loading plugins, with their checks, and the safe handles a host calls.
 
 use super::checks::all_finite;
-use super::handle::run;
+use super::handle::run_v2;
 use super::kind::{EnergyOut, Kind, NewFn};
 use super::*;
 use super::{v1, v2, BoundModel, LawHandle, ModelHandle, Normal, NormalCall, Rolling, Tangential, Twisting};

@@ -83,16 +83,13 @@ impl TangentialModelHandle {
     ) -> Result<bool, LawError> {
         match &self.inner {
             ModelInner::V3(m) => m.batch(b, energy),
-            ModelInner::V2(m) => run::<Tangential>(
+            ModelInner::V2(m) => run_v2::<Tangential>(
                 &self.name,
                 self.slots,
                 &mut b,
                 energy,
                 m.vtable.take_panic,
-                |ffi, fault, written| unsafe {
-                    *written = false;
-                    (m.vtable.force_batch)(m.obj, &ffi.base, fault)
-                },
+                |ffi, fault| unsafe { (m.vtable.force_batch)(m.obj, &ffi.base, fault) },
             )
             .map(|_| false),
         }

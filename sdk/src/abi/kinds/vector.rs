@@ -234,18 +234,25 @@ unsafe fn run<L: VectorLaw>(law: &L, b: &FfiVectorBatch) -> Result<bool, (usize,
             None => Ok(()),
         }
     })?;
+    let batch = VectorBatch {
+        dt: r.dt,
+        normal,
+        velocity,
+        normal_force: fnorm,
+        delta,
+        mass,
+        radius,
+        slots,
+        history,
+        force,
+    };
     unsafe {
         energy_pass(n, b.power, b.elastic, |i| {
-            let c = VectorContact {
-                normal: normal[i],
-                velocity: velocity[i],
-                normal_force: fnorm[i],
-                delta: delta[i],
-                mass: mass[i],
-                radius: radius[i],
-                dt: r.dt,
-            };
-            law.energy_of(&c, history_of(history, slots, i), force[i])
+            law.energy_of(
+                &batch.contact(i),
+                history_of(batch.history, slots, i),
+                batch.force[i],
+            )
         })
     }
 }
