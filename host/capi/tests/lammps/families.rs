@@ -2,7 +2,7 @@
 //! `pair_style granular` and against closed forms), an adhesive normal law (JKR) whose contacts
 //! act past touching across MPI ranks, and each contact's dissipated power.
 
-use super::{failing_deck, lmp, num, run_deck, venv};
+use super::{failing_deck, lib_dir, lmp, num, run_deck, venv};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -267,6 +267,36 @@ fn each_contacts_dissipated_power_is_positive_and_closes_the_energy_balance() {
         for (f, &on) in families.iter().enumerate() {
             assert_eq!(by_family[f] > 0.0, on, "family {f}: {by_family:?}");
         }
+    }
+}
+
+/// The rolling and twisting springs of a long contact drifting across the boundary between two
+/// MPI ranks (`in.twospheres` with both families) travel with the atoms as the tangential one
+/// does: 1 and 2 ranks give the same trajectory (to 1e-9), and so does a run stopped mid-contact,
+/// written to a restart file and read back on 2 ranks with the pair style's laws taken from the
+/// file (to 1e-6, LAMMPS's own restart effect). The families change the spins by far more.
+#[test]
+fn rolling_and_twisting_springs_cross_ranks_and_survive_a_restart_file() {
+    let Some(v) = venv() else { return };
+    let more = ("more", "rolling sds k=20 gamma=0.001 mu=0.05 twisting sds k=1e-5 gamma=1e-9 mu=2e-5".to_string());
+    let plain = run_deck(&v, "in.twospheres", 1, &[]);
+    let one = run_deck(&v, "in.twospheres", 1, &[more.clone()]);
+    let two = run_deck(&v, "in.twospheres", 2, &[more.clone()]);
+    let dir = lib_dir().join("lammps-restart-rotation");
+    std::fs::create_dir_all(&dir).expect("restart dir");
+    let vars = [
+        more,
+        ("restart", "1".into()),
+        ("restart_dir", dir.display().to_string()),
+        ("repeat_pair", "0".into()),
+    ];
+    let restarted = run_deck(&v, "in.twospheres", 2, &vars);
+    eprintln!("plain {plain:?}\nwith rolling and twisting: 1 rank {one:?}\n2 ranks {two:?}\nrestarted {restarted:?}");
+    assert!((num(&one, "w1") / num(&plain, "w1") - 1.0).abs() > 0.1, "{one:?} {plain:?}");
+    for k in ["x1", "y1", "z1", "vx1", "vy1", "vz1", "vx2", "vy2", "w1", "w3"] {
+        let (a, b, c) = (num(&one, k), num(&two, k), num(&restarted, k));
+        assert!((a - b).abs() <= 1e-9 * a.abs().max(1e-3), "{k}: {a} on 1 rank, {b} on 2");
+        assert!((a - c).abs() <= 1e-6 * a.abs().max(1e-3), "{k}: {a} straight, {c} restarted");
     }
 }
 
