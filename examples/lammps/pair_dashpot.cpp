@@ -168,8 +168,8 @@ void PairDashpot::apply_settings(const std::vector<std::string> &arg)
     probe_laws();
     // the history laid out in list order belongs to the previous laws
     slots_ncalls = -1;
-    slot_hist.clear();
-    slot_touched.clear();
+    pair_slots = Slots();
+    wall_slots = Slots();
     nwall_slots = 0;
     stage = Chunk();    // its columns hold the history of the laws: sized again
     sorted = Chunk();
@@ -235,41 +235,42 @@ double PairDashpot::probe_reach(DashpotContactModel *m, double radius)
     return reach;
 }
 
-/* The history layout: each law bound once to probe materials gives its slot count; a normal
- * law that reports a reach beyond touching is adhesive and its contacts carry that reach. */
-void PairDashpot::probe_laws()
+/* The number of history values law `l` of one family keeps (0 for an absent family): bound to
+ * probe materials with `bind`, asked with `count`, freed with `release`. */
+template <typename Law, typename Model>
+int PairDashpot::slots_of(const Law *l, DashpotStatus (*bind)(const Law *, const DashpotMaterials *, Model **),
+                          DashpotStatus (*count)(const Model *, size_t *), void (*release)(Model *),
+                          const char *family)
 {
+    if (!l) return 0;
     DashpotMaterials probe;
     check(dashpot_materials_spheres(1.0e9, 0.3, 1.0e9, 0.3, &probe), "dashpot_materials_spheres");
-    for (int f = 0; f < NFAMILY; f++) nslots[f] = 0;
+    Model *m = nullptr;
     size_t n = 0;
+    check(bind(l, &probe, &m), fmt::format("binding the {} law", family).c_str());
+    check(count(m, &n), fmt::format("the {} law's history slots", family).c_str());
+    release(m);
+    return (int) n;
+}
+
+/* The history layout: each law's slot count; a normal law that reports a reach beyond touching
+ * is adhesive and its contacts carry that reach. */
+void PairDashpot::probe_laws()
+{
+    nslots[NORMAL] = slots_of(law, dashpot_contact_bind_materials, dashpot_contact_model_history_slots,
+                              dashpot_contact_model_free, "normal");
+    nslots[TANGENTIAL] = slots_of(tlaw, dashpot_tangential_bind_materials, dashpot_tangential_model_history_slots,
+                                  dashpot_tangential_model_free, "tangential");
+    nslots[ROLLING] = slots_of(rlaw, dashpot_rolling_bind_materials, dashpot_rolling_model_history_slots,
+                               dashpot_rolling_model_free, "rolling");
+    nslots[TWISTING] = slots_of(wlaw, dashpot_twisting_bind_materials, dashpot_twisting_model_history_slots,
+                                dashpot_twisting_model_free, "twisting");
+    DashpotMaterials probe;
     DashpotContactModel *cm = nullptr;
+    check(dashpot_materials_spheres(1.0e9, 0.3, 1.0e9, 0.3, &probe), "dashpot_materials_spheres");
     check(dashpot_contact_bind_materials(law, &probe, &cm), "binding the normal law");
-    check(dashpot_contact_model_history_slots(cm, &n), "dashpot_contact_model_history_slots");
-    nslots[NORMAL] = (int) n;
     adhesive = probe_reach(cm, 1.0e-3) > 0.0;
     dashpot_contact_model_free(cm);
-    if (tlaw) {
-        DashpotTangentialModel *m = nullptr;
-        check(dashpot_tangential_bind_materials(tlaw, &probe, &m), "binding the tangential law");
-        check(dashpot_tangential_model_history_slots(m, &n), "dashpot_tangential_model_history_slots");
-        nslots[TANGENTIAL] = (int) n;
-        dashpot_tangential_model_free(m);
-    }
-    if (rlaw) {
-        DashpotRollingModel *m = nullptr;
-        check(dashpot_rolling_bind_materials(rlaw, &probe, &m), "binding the rolling law");
-        check(dashpot_rolling_model_history_slots(m, &n), "dashpot_rolling_model_history_slots");
-        nslots[ROLLING] = (int) n;
-        dashpot_rolling_model_free(m);
-    }
-    if (wlaw) {
-        DashpotTwistingModel *m = nullptr;
-        check(dashpot_twisting_bind_materials(wlaw, &probe, &m), "binding the twisting law");
-        check(dashpot_twisting_model_history_slots(m, &n), "dashpot_twisting_model_history_slots");
-        nslots[TWISTING] = (int) n;
-        dashpot_twisting_model_free(m);
-    }
     int at = 0;
     for (int f = 0; f < NFAMILY; f++) {
         offset[f] = at;

@@ -41,18 +41,11 @@
 
 #include "pair.h"
 
+#include "dashpot.h"
+
 #include <string>
 #include <vector>
 
-struct DashpotRegistry;
-struct DashpotContactLaw;
-struct DashpotContactModel;
-struct DashpotTangentialLaw;
-struct DashpotTangentialModel;
-struct DashpotRollingLaw;
-struct DashpotRollingModel;
-struct DashpotTwistingLaw;
-struct DashpotTwistingModel;
 
 namespace LAMMPS_NS {
 
@@ -108,19 +101,30 @@ class PairDashpot : public Pair {
     class FixDashpotHistory *fix_history;
 
     // Per-contact history in neighbour-list order: slot k is the k-th (i, j) pair of the list
-    // (ilist order, then jlist order), valid from one list build to the next. `touched` is 1
-    // when the slot's history may be non-zero (the contact was evaluated since it was zeroed).
-    std::vector<double> slot_hist;
-    std::vector<unsigned char> slot_touched;
+    // (ilist order, then jlist order), valid from one list build to the next; the wall's per
+    // local atom. One array per family, so that each law reads and writes a run of consecutive
+    // slots in place; `touched` is 1 when the slot's history may be non-zero (the contact was
+    // evaluated since it was zeroed). A contact's record (fix DASHPOT/HISTORY, restart files)
+    // is the families' values in order, then the reach.
+ public:
+    struct Slots {
+        std::vector<double> fam[NFAMILY];    // slot k's values at k * nslots[f]
+        std::vector<double> reach;           // an adhesive law's reach after its last call (m)
+        std::vector<unsigned char> touched;
+        void assign(size_t n, const int *ns, bool adhesive);    // n zeroed slots
+        void zero(size_t k, const int *ns);                     // slot k's contact ended
+        void get(size_t k, const int *ns, double *record) const;
+        void set(size_t k, const int *ns, const double *record);
+    };
+
+ private:
+    Slots pair_slots, wall_slots;
     std::vector<int> slot_i, slot_j;          // the pair's local indices, for history_to_atoms
     std::vector<tagint> slot_ti, slot_tj;     // and tags (indices may be reused by then)
     std::vector<int> slot_first;              // per local atom i: the slot of its first list pair
     // energy=1: per slot, the step's power of each family (W) and the elastic energy stored (J)
     static constexpr int NENERGY = NFAMILY + 1;
     std::vector<double> slot_energy;
-    // the same for the zplane wall, per local atom
-    std::vector<double> wall_hist;
-    std::vector<unsigned char> wall_touched;
     std::vector<tagint> wall_tag;
     int nwall_slots;
     bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)
@@ -155,16 +159,19 @@ class PairDashpot : public Pair {
     void create_laws(const std::vector<std::string> (&names)[NFAMILY],
                      const std::vector<double> (&values)[NFAMILY], const std::vector<std::string> &dirs);
     void probe_laws();
+    template <typename Law, typename Model>
+    int slots_of(const Law *l, DashpotStatus (*bind)(const Law *, const DashpotMaterials *, Model **),
+                 DashpotStatus (*count)(const Model *, size_t *), void (*release)(Model *), const char *family);
     double probe_reach(DashpotContactModel *m, double radius);
     int key_of(int itype, int jtype) const;
     void bind_key(int key, double e1, double nu1, double e2, double nu2, bool wall);
     void layout_slots();
     template <int NS, int NT> void compute_t();
     template <int NS, int NT> void evaluate(int n, bool mixed, bool wall);
-    template <int NS, int NT> void scatter(Chunk &c, int n, double *hist, unsigned char *touched, bool direct);
-    template <int NS, int NT> void gather(int n, const double *hist);
+    template <int NS, int NT> void scatter(Chunk &c, int n, Slots *slots, const double *reach);
+    template <int NS, int NT> void gather(int n, const Slots &slots);
     void sort_chunk(int n);
-    void run_laws(Chunk &c, int lo, int m, int key, double *ht_direct);
+    void run_laws(Chunk &c, int lo, int m, int key, double *const *hist, double *reach);
     const double *stored_energy(int i, int j) const;
     void check(int status, const char *what);
     void apply_settings(const std::vector<std::string> &args);

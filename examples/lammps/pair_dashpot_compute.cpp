@@ -67,12 +67,44 @@ void PairDashpot::Chunk::reserve(const int *ns, bool rolling, bool twisting, boo
         }
 }
 
+void PairDashpot::Slots::assign(size_t n, const int *ns, bool adhesive)
+{
+    for (int f = 0; f < NFAMILY; f++) fam[f].assign(n * ns[f], 0.0);
+    reach.assign(adhesive ? n : 0, 0.0);
+    touched.assign(n, 0);
+}
+
+void PairDashpot::Slots::zero(size_t k, const int *ns)
+{
+    for (int f = 0; f < NFAMILY; f++)
+        for (int q = 0; q < ns[f]; q++) fam[f][k * ns[f] + q] = 0.0;
+    if (!reach.empty()) reach[k] = 0.0;
+    touched[k] = 0;
+}
+
+void PairDashpot::Slots::get(size_t k, const int *ns, double *record) const
+{
+    for (int f = 0; f < NFAMILY; f++)
+        for (int q = 0; q < ns[f]; q++) *record++ = fam[f][k * ns[f] + q];
+    if (!reach.empty()) *record = reach[k];
+}
+
+void PairDashpot::Slots::set(size_t k, const int *ns, const double *record)
+{
+    for (int f = 0; f < NFAMILY; f++)
+        for (int q = 0; q < ns[f]; q++) fam[f][k * ns[f] + q] = *record++;
+    if (!reach.empty()) reach[k] = *record;
+    touched[k] = 1;
+}
+
 /* Every family's batch call on contacts lo .. lo+m-1 of chunk c, all of kind `key`, in the order
- * normal → tangential → rolling → twisting. In a run's setup the forces are recomputed at a
- * state already integrated (after a restart, or between runs): the laws get dt = 0, which gives
- * the force of the stored springs, and the caller does not store the history back (as pair
- * granular does), or the springs would advance twice. */
-void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *ht_direct)
+ * normal → tangential → rolling → twisting, with each family's history at hist[f] and an
+ * adhesive law's reach written to `reach` (the chunk's columns, or the slots themselves). In a
+ * run's setup the forces are recomputed at a state already integrated (after a restart, or
+ * between runs): the laws get dt = 0, which gives the force of the stored springs, and the
+ * caller does not store the history back (as pair granular does), or the springs would advance
+ * twice. */
+void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *const *hist, double *reach)
 {
     const size_t ns = nslots[NORMAL], nt = nslots[TANGENTIAL], nr = nslots[ROLLING], nw = nslots[TWISTING];
     const double dt = update->setupflag ? 0.0 : update->dt;
@@ -83,19 +115,18 @@ void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *ht_direct)
     auto pw = [&](int f) { return en ? c.power[f] + lo : nullptr; };
     auto el = [&](int f) { return en ? c.elastic[f] + lo : nullptr; };
     auto wr = [&](int f) { return en ? &written[f] : nullptr; };
-    double *hn = ns ? c.hist[NORMAL] + lo * ns : nullptr;
+    double *hn = ns ? hist[NORMAL] : nullptr;
     if (adhesive || en)
         check(dashpot_contact_model_force_batch_energy(cmodel[key], m, c.delta + lo, c.rate + lo, c.mass + lo,
-                                                       c.rad + lo, hn, m * ns, c.fn + lo,
-                                                       adhesive ? c.reach + lo : nullptr, pw(NORMAL), el(NORMAL),
-                                                       wr(NORMAL)),
+                                                       c.rad + lo, hn, m * ns, c.fn + lo, adhesive ? reach : nullptr,
+                                                       pw(NORMAL), el(NORMAL), wr(NORMAL)),
               "dashpot_contact_model_force_batch_energy");
     else
         check(dashpot_contact_model_force_batch(cmodel[key], m, c.delta + lo, c.rate + lo, c.mass + lo, c.rad + lo,
                                                 hn, m * ns, c.fn + lo),
               "dashpot_contact_model_force_batch");
     if (tlaw) {
-        double *ht = nt ? (ht_direct ? ht_direct : c.hist[TANGENTIAL] + lo * nt) : nullptr;
+        double *ht = nt ? hist[TANGENTIAL] : nullptr;
         if (en)
             check(dashpot_tangential_model_force_batch_energy(tmodel[key], m, dt, c.norm + 3 * lo, c.vel + 3 * lo,
                                                               c.fn + lo, c.delta + lo, c.mass + lo, c.rad + lo, ht,
@@ -111,13 +142,13 @@ void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *ht_direct)
     if (rlaw)
         check(dashpot_rolling_model_force_batch(rmodel[key], m, dt, c.norm + 3 * lo, c.vroll + 3 * lo, c.fn + lo,
                                                 c.delta + lo, c.mass + lo, c.rad + lo,
-                                                nr ? c.hist[ROLLING] + lo * nr : nullptr, m * nr, c.froll + 3 * lo,
+                                                nr ? hist[ROLLING] : nullptr, m * nr, c.froll + 3 * lo,
                                                 pw(ROLLING), el(ROLLING), wr(ROLLING)),
               "dashpot_rolling_model_force_batch");
     if (wlaw)
         check(dashpot_twisting_model_torque_batch(wmodel[key], m, dt, c.norm + 3 * lo, c.twist + lo, c.fn + lo,
                                                   c.delta + lo, c.mass + lo, c.rad + lo,
-                                                  nw ? c.hist[TWISTING] + lo * nw : nullptr, m * nw, c.mtwist + lo,
+                                                  nw ? hist[TWISTING] : nullptr, m * nw, c.mtwist + lo,
                                                   pw(TWISTING), el(TWISTING), wr(TWISTING)),
               "dashpot_twisting_model_torque_batch");
     if (en) {
@@ -131,17 +162,17 @@ void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *ht_direct)
 }
 
 /* Applies the forces and torques of contacts 0 .. n-1 of chunk c and stores their history
- * back into the slots of `hist` (the list's, or the wall's), unless the laws updated it in
- * place (`direct`). Torques: the tangential force's, -r (n x F_t) on each sphere (contact point
- * a radius from each centre: the two-body driver's convention); rolling, R_eff n x F_roll on a
- * and its opposite on b; twisting, M n on a and its opposite on b (LAMMPS pair granular's). */
-template <int NS, int NT>
-void PairDashpot::scatter(Chunk &c, int n, double *hist, unsigned char *touched, bool direct)
+ * back into `slots` (the list's, or the wall's), unless the laws updated it in place (`slots`
+ * null); `reach` holds the adhesive law's reach of each contact. Torques: the tangential
+ * force's, -r (n x F_t) on each sphere (contact point a radius from each centre: the two-body
+ * driver's convention); rolling, R_eff n x F_roll on a and its opposite on b; twisting, M n on a
+ * and its opposite on b (LAMMPS pair granular's). */
+template <int NS, int NT> void PairDashpot::scatter(Chunk &c, int n, Slots *slots, const double *reach)
 {
-    const int ns = NS >= 0 ? NS : nslots[NORMAL], nt = NT >= 0 ? NT : nslots[TANGENTIAL], nv = nvalues;
+    const int ns = NS >= 0 ? NS : nslots[NORMAL], nt = NT >= 0 ? NT : nslots[TANGENTIAL];
     const int nr = nslots[ROLLING], nw = nslots[TWISTING];
     const bool tang = tlaw != nullptr, roll = rlaw != nullptr, twst = wlaw != nullptr, adh = adhesive;
-    const bool store = nv > 0 && !update->setupflag && !direct;
+    const bool store = slots != nullptr;
     double *f0 = atom->f[0], *t0 = atom->torque[0];    // contiguous: indexed from the first row
     const double *radius = atom->radius;
     const int nlocal = atom->nlocal;
@@ -201,12 +232,12 @@ void PairDashpot::scatter(Chunk &c, int n, double *hist, unsigned char *touched,
                 ev_tally_xyz(a, b, nlocal, newton_pair, 0.0, 0.0, fx, fy, fz, nx * r, ny * r, nz * r);
             }
             // an adhesive contact must stay in the neighbour list as long as it acts
-            if (adh && radius[a] + radius[b] + c.reach[k] > key_cut[c.key[k]])
+            if (adh && radius[a] + radius[b] + reach[k] > key_cut[c.key[k]])
                 error->one(FLERR,
                            "pair dashpot: a contact of law '{}' reaches {} m beyond touching, past the neighbour "
                            "cutoff ({} m for radii {} and {} m): its reach depends on more than the radii it was "
                            "probed at",
-                           law_name[NORMAL], c.reach[k], key_cut[c.key[k]], radius[a], radius[b]);
+                           law_name[NORMAL], reach[k], key_cut[c.key[k]], radius[a], radius[b]);
         } else if (vflag_either) {
             // the wall's reaction, as a pair force between the particle and its contact point
             // on the wall, a distance r = radius - delta below its centre along n = +z
@@ -218,14 +249,13 @@ void PairDashpot::scatter(Chunk &c, int n, double *hist, unsigned char *touched,
                 for (int d = 0; d < 6; d++) vatom[a][d] += v[d];
         }
         if (store) {
-            const int s = cs[k];
-            double *h = hist + (size_t) s * nv;
-            for (int q = 0; q < ns; q++) h[q] = c.hist[NORMAL][k * ns + q];
-            for (int q = 0; q < nt; q++) h[ns + q] = c.hist[TANGENTIAL][(size_t) k * nt + q];
-            for (int q = 0; q < nr; q++) h[offset[ROLLING] + q] = c.hist[ROLLING][(size_t) k * nr + q];
-            for (int q = 0; q < nw; q++) h[offset[TWISTING] + q] = c.hist[TWISTING][(size_t) k * nw + q];
-            if (adh) h[reach_at] = c.reach[k];
-            touched[s] = 1;
+            const size_t s = cs[k];
+            for (int q = 0; q < ns; q++) slots->fam[NORMAL][s * ns + q] = c.hist[NORMAL][k * ns + q];
+            for (int q = 0; q < nt; q++) slots->fam[TANGENTIAL][s * nt + q] = c.hist[TANGENTIAL][k * nt + q];
+            for (int q = 0; q < nr; q++) slots->fam[ROLLING][s * nr + q] = c.hist[ROLLING][k * nr + q];
+            for (int q = 0; q < nw; q++) slots->fam[TWISTING][s * nw + q] = c.hist[TWISTING][k * nw + q];
+            if (adh) slots->reach[s] = reach[k];
+            slots->touched[s] = 1;
         }
         if (energy_flag && b >= 0) {
             double *e = slot_energy.data() + (size_t) cs[k] * NENERGY;
@@ -236,21 +266,20 @@ void PairDashpot::scatter(Chunk &c, int n, double *hist, unsigned char *touched,
             }
         }
     }
-    if (direct) std::memset(touched + cs[0], 1, n);
 }
 
 /* Copies the history of the n staged contacts from their slots into the chunk's columns. */
-template <int NS, int NT> void PairDashpot::gather(int n, const double *hist)
+template <int NS, int NT> void PairDashpot::gather(int n, const Slots &slots)
 {
-    const int ns = NS >= 0 ? NS : nslots[NORMAL], nt = NT >= 0 ? NT : nslots[TANGENTIAL], nv = nvalues;
-    const int nr = nslots[ROLLING], nw = nslots[TWISTING], orl = offset[ROLLING], otw = offset[TWISTING];
+    const int ns = NS >= 0 ? NS : nslots[NORMAL], nt = NT >= 0 ? NT : nslots[TANGENTIAL];
+    const int nr = nslots[ROLLING], nw = nslots[TWISTING];
     const int *cs = stage.slot;
     for (int k = 0; k < n; k++) {
-        const double *h = hist + (size_t) cs[k] * nv;
-        for (int q = 0; q < ns; q++) stage.hist[NORMAL][k * ns + q] = h[q];
-        for (int q = 0; q < nt; q++) stage.hist[TANGENTIAL][(size_t) k * nt + q] = h[ns + q];
-        for (int q = 0; q < nr; q++) stage.hist[ROLLING][(size_t) k * nr + q] = h[orl + q];
-        for (int q = 0; q < nw; q++) stage.hist[TWISTING][(size_t) k * nw + q] = h[otw + q];
+        const size_t s = cs[k];
+        for (int q = 0; q < ns; q++) stage.hist[NORMAL][k * ns + q] = slots.fam[NORMAL][s * ns + q];
+        for (int q = 0; q < nt; q++) stage.hist[TANGENTIAL][k * nt + q] = slots.fam[TANGENTIAL][s * nt + q];
+        for (int q = 0; q < nr; q++) stage.hist[ROLLING][k * nr + q] = slots.fam[ROLLING][s * nr + q];
+        for (int q = 0; q < nw; q++) stage.hist[TWISTING][k * nw + q] = slots.fam[TWISTING][s * nw + q];
     }
 }
 
@@ -297,27 +326,32 @@ void PairDashpot::sort_chunk(int n)
 template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed, bool wall)
 {
     if (n == 0) return;
-    const int nv = nvalues;
-    double *hist = nv > 0 ? (wall ? wall_hist.data() : slot_hist.data()) : nullptr;
-    unsigned char *touched = nv > 0 ? (wall ? wall_touched.data() : slot_touched.data()) : nullptr;
-    // Contacts of consecutive slots (a pile: every pair of the list touches) whose only history
-    // is the tangential law's: the law reads and writes the slots in place. Not in a run's
-    // setup, where the history must not advance.
-    const bool direct = NS == 0 && nv > 0 && nv == nslots[TANGENTIAL] && !mixed && !update->setupflag &&
-        stage.slot[n - 1] - stage.slot[0] == n - 1;
-    if (nv > 0 && !direct) gather<NS, NT>(n, hist);
-    if (!mixed) {
-        run_laws(stage, 0, n, stage.key[0], direct ? hist + (size_t) stage.slot[0] * nv : nullptr);
-        scatter<NS, NT>(stage, n, hist, touched, direct);
+    Slots &sl = wall ? wall_slots : pair_slots;
+    const bool keep = nvalues > 0 && !update->setupflag;    // in a run's setup the history must not advance
+    // Contacts of consecutive slots (a pile: every pair of the list touches): the laws read and
+    // write the slots in place, each family its own array.
+    const int slot0 = stage.slot[0];
+    if (keep && !mixed && stage.slot[n - 1] - slot0 == n - 1) {
+        double *h[NFAMILY];
+        for (int f = 0; f < NFAMILY; f++) h[f] = nslots[f] ? sl.fam[f].data() + (size_t) slot0 * nslots[f] : nullptr;
+        double *reach = adhesive ? sl.reach.data() + slot0 : nullptr;
+        run_laws(stage, 0, n, stage.key[0], h, reach);
+        scatter<NS, NT>(stage, n, nullptr, reach);
+        std::memset(sl.touched.data() + slot0, 1, n);
         return;
     }
-    sort_chunk(n);
-    const int nk = (int) cmodel.size();
-    for (int key = 0; key < nk; key++) {
-        const int lo = key_count[key], m = key_count[key + 1] - lo;
-        if (m > 0) run_laws(sorted, lo, m, key, nullptr);
+    if (nvalues > 0) gather<NS, NT>(n, sl);
+    Chunk &c = mixed ? sorted : stage;
+    if (mixed) sort_chunk(n);
+    const int nk = mixed ? (int) cmodel.size() : 1;
+    for (int q = 0; q < nk; q++) {
+        const int lo = mixed ? key_count[q] : 0, m = mixed ? key_count[q + 1] - lo : n;
+        if (m == 0) continue;
+        double *h[NFAMILY];
+        for (int f = 0; f < NFAMILY; f++) h[f] = c.hist[f] + (size_t) lo * nslots[f];
+        run_laws(c, lo, m, mixed ? q : c.key[0], h, adhesive ? c.reach + lo : nullptr);
     }
-    scatter<NS, NT>(sorted, n, hist, touched, false);
+    scatter<NS, NT>(c, n, keep ? &sl : nullptr, c.reach);
 }
 
 void PairDashpot::compute(int eflag, int vflag)
@@ -352,7 +386,6 @@ template <int NS, int NT> void PairDashpot::compute_t()
     const int ntp1 = atom->ntypes + 1;
     const int wall_key0 = ntp1 * ntp1;
     const bool roll = rlaw != nullptr, twst = wlaw != nullptr, adh = adhesive;
-    const int rat = reach_at;
 
     // a new list (flagged by the history fix's post_neighbor hooks: LAMMPS's count of builds
     // restarts at every run's setup, so after a run with no build in its steps, such as `run 0`,
@@ -361,8 +394,9 @@ template <int NS, int NT> void PairDashpot::compute_t()
         ((fix_history && fix_history->rebuilt) || slots_ncalls != neighbor->ncalls ||
          (wall_flag && nlocal != nwall_slots)))
         layout_slots();
-    double *shist = nv > 0 ? slot_hist.data() : nullptr;
-    unsigned char *stouch = nv > 0 ? slot_touched.data() : nullptr;
+    Slots &ps = pair_slots;
+    unsigned char *stouch = nv > 0 ? ps.touched.data() : nullptr;
+    const double *sreach = adh ? ps.reach.data() : nullptr;
     stage.reserve(nslots, roll, twst, adh, energy_flag);
     sorted.reserve(nslots, roll, twst, adh, energy_flag);
     // LAMMPS's per-atom 2D arrays are contiguous: index them from their first row
@@ -452,12 +486,8 @@ template <int NS, int NT> void PairDashpot::compute_t()
             const double rsq = dx * dx + dy * dy + dz * dz;
             const double radj = radius[j];
             const double radsum = radi + radj;
-            if (rsq >= radsum * radsum &&
-                !(adh && stouch[k] && std::sqrt(rsq) - radsum <= shist[(size_t) k * nv + rat])) {
-                if (nv > 0 && stouch[k]) {
-                    for (int q = 0; q < nv; q++) shist[(size_t) k * nv + q] = 0.0;
-                    stouch[k] = 0;
-                }
+            if (rsq >= radsum * radsum && !(adh && stouch[k] && std::sqrt(rsq) - radsum <= sreach[k])) {
+                if (nv > 0 && stouch[k]) ps.zero(k, nslots);
                 continue;
             }
             // orient from the lower tag, so that every rank computes a contact the same way
@@ -491,12 +521,9 @@ template <int NS, int NT> void PairDashpot::compute_t()
     if (wall_flag) {
         for (int i = 0; i < nlocal; i++) {
             const double gap = x[i][2] - wall_z;
-            double *h = nv > 0 ? &wall_hist[(size_t) i * nv] : nullptr;
-            if (gap >= radius[i] && !(adh && wall_touched[i] && gap - radius[i] <= h[rat])) {
-                if (nv > 0 && wall_touched[i]) {
-                    for (int q = 0; q < nv; q++) h[q] = 0.0;
-                    wall_touched[i] = 0;
-                }
+            Slots &ws = wall_slots;
+            if (gap >= radius[i] && !(adh && ws.touched[i] && gap - radius[i] <= ws.reach[i])) {
+                if (nv > 0 && ws.touched[i]) ws.zero(i, nslots);
                 continue;
             }
             stage_contact(wall_key0 + type[i], i, -1, i, 0.0, 0.0, 1.0, radius[i] - gap, radius[i], 0.0, v[i][0],

@@ -32,8 +32,7 @@ void PairDashpot::layout_slots()
     int **firstneigh = list->firstneigh;
     size_t nslot = 0;
     for (int ii = 0; ii < inum; ii++) nslot += (size_t) numneigh[ilist[ii]];
-    slot_hist.assign(nslot * nv, 0.0);
-    slot_touched.assign(nslot, 0);
+    pair_slots.assign(nslot, nslots, adhesive);
     slot_i.resize(nslot);
     slot_j.resize(nslot);
     slot_ti.resize(nslot);
@@ -55,23 +54,16 @@ void PairDashpot::layout_slots()
             // the record is on both atoms when both were owned here; i always is (half list)
             const double *h = fix_history->find(i, tag[j]);
             if (!h && j < nlocal) h = fix_history->find(j, tag[i]);
-            if (h) {
-                std::copy(h, h + nv, &slot_hist[k * nv]);
-                slot_touched[k] = 1;
-            }
+            if (h) pair_slots.set(k, nslots, h);
         }
     }
     nwall_slots = wall_flag ? nlocal : 0;
-    wall_hist.assign((size_t) nwall_slots * nv, 0.0);
-    wall_touched.assign(nwall_slots, 0);
+    wall_slots.assign(nwall_slots, nslots, adhesive);
     wall_tag.resize(nwall_slots);
     for (int i = 0; i < nwall_slots; i++) {
         wall_tag[i] = tag[i];
-        const double *h = fix_history->find(i, 0);
-        if (h) {
-            std::copy(h, h + nv, &wall_hist[(size_t) i * nv]);
-            wall_touched[i] = 1;
-        }
+        const double *h = nv > 0 ? fix_history->find(i, 0) : nullptr;
+        if (h) wall_slots.set(i, nslots, h);
     }
     slots_ncalls = neighbor->ncalls;
     fix_history->rebuilt = 0;
@@ -86,10 +78,12 @@ void PairDashpot::history_to_atoms()
     int nlocal = atom->nlocal;
     fix_history->clear(nlocal);
     bool ok = true;
-    size_t nslot = slot_touched.size();
+    std::vector<double> record(nv > 0 ? nv : 1);
+    const double *h = record.data();
+    size_t nslot = pair_slots.touched.size();
     for (size_t k = 0; k < nslot && ok; k++) {
-        if (!slot_touched[k]) continue;
-        const double *h = &slot_hist[k * nv];
+        if (!pair_slots.touched[k]) continue;
+        pair_slots.get(k, nslots, record.data());
         bool zero = true;
         for (int s = 0; s < nv; s++) zero = zero && h[s] == 0.0;
         if (zero) continue;    // the same as no record: zero at first touch
@@ -98,7 +92,10 @@ void PairDashpot::history_to_atoms()
         if (ok && j < nlocal) ok = fix_history->add(j, slot_ti[k], h);
     }
     for (int i = 0; i < nwall_slots && i < nlocal && ok; i++)
-        if (wall_touched[i]) ok = fix_history->add(i, 0, &wall_hist[(size_t) i * nv]);
+        if (wall_slots.touched[i]) {
+            wall_slots.get(i, nslots, record.data());
+            ok = fix_history->add(i, 0, h);
+        }
     if (!ok)
         error->one(FLERR, "pair dashpot: an atom has more than {} contacts (the history fix's capacity)",
                    fix_history->maxpartner);

@@ -715,68 +715,6 @@ enum DashpotStatus dashpot_restitution_batch(const struct DashpotBoundRestitutio
                                              size_t n_out);
 
 /*
- The rolling-resistance force on `n` contacts, history advanced by the step `dt` (s).
-
- Per contact i: `normal[3i..3i+3]` the unit normal (partner to particle), `velocity[3i..3i+3]`
- the rolling velocity R_eff (ω_i − ω_j) × n̂ (m/s), `normal_force[i]` (N), `delta[i]` (m),
- `mass[i]` (kg), `radius[i]` (m, R_eff), `history` (`n × slots` values, in place),
- `out_force[3i..3i+3]` the rolling force F_r (N; torque on i: R_eff n̂ × F_r); `out_power`,
- `out_elastic` (null, or `n` values each) the energy outputs, `*out_energy_written` (may be
- null) whether the law wrote them.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE`
- (naming the array, index and value), `DASHPOT_ERR_PANIC`. Thread-safe (distinct outputs).
-
- # Safety
- Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
- */
-enum DashpotStatus dashpot_rolling_model_force_batch(const struct DashpotRollingModel *model,
-                                                     size_t n,
-                                                     double dt,
-                                                     const double *normal,
-                                                     const double *velocity,
-                                                     const double *normal_force,
-                                                     const double *delta,
-                                                     const double *mass,
-                                                     const double *radius,
-                                                     double *history,
-                                                     size_t n_history,
-                                                     double *out_force,
-                                                     double *out_power,
-                                                     double *out_elastic,
-                                                     int *out_energy_written);
-
-/*
- The twisting torque on `n` contacts, history advanced by the step `dt` (s).
-
- Per contact i: `normal[3i..3i+3]` the unit normal, `rate[i]` the twisting rate
- (ω_i − ω_j)·n̂ (rad/s), `normal_force[i]` (N), `delta[i]` (m), `mass[i]` (kg), `radius[i]`
- (m), `history` (`n × slots` values, in place), `out_torque[i]` the torque about n̂ on i (N·m);
- energy outputs as in `dashpot_rolling_model_force_batch`.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE`,
- `DASHPOT_ERR_PANIC`. Thread-safe (distinct outputs).
-
- # Safety
- Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
- */
-enum DashpotStatus dashpot_twisting_model_torque_batch(const struct DashpotTwistingModel *model,
-                                                       size_t n,
-                                                       double dt,
-                                                       const double *normal,
-                                                       const double *rate,
-                                                       const double *normal_force,
-                                                       const double *delta,
-                                                       const double *mass,
-                                                       const double *radius,
-                                                       double *history,
-                                                       size_t n_history,
-                                                       double *out_torque,
-                                                       double *out_power,
-                                                       double *out_elastic,
-                                                       int *out_energy_written);
-
-/*
  The tangential force on `n` contacts, history advanced by the time step `dt` (s).
 
  Per contact i: `normal[3i..3i+3]` the unit normal (from partner to particle),
@@ -812,34 +750,6 @@ enum DashpotStatus dashpot_tangential_model_force_batch(const struct DashpotTang
                                                         double *history,
                                                         size_t n_history,
                                                         double *out_force);
-
-/*
- `dashpot_tangential_model_force_batch` with sdk 0.3's energy outputs, each null or `n`
- values: `out_power[i]` the power the contact dissipates (W, ≥ 0: the dashpot's, and the
- spring energy the Coulomb cap removes while it slides), `out_elastic[i]` the energy its
- spring stores (J); `*out_energy_written` (may be null) whether the law reported them (a law
- of an older sdk does not).
-
- Errors: as `dashpot_tangential_model_force_batch`. Thread-safe (distinct outputs).
-
- # Safety
- Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
- */
-enum DashpotStatus dashpot_tangential_model_force_batch_energy(const struct DashpotTangentialModel *model,
-                                                               size_t n,
-                                                               double dt,
-                                                               const double *normal,
-                                                               const double *velocity,
-                                                               const double *normal_force,
-                                                               const double *delta,
-                                                               const double *mass,
-                                                               const double *radius,
-                                                               double *history,
-                                                               size_t n_history,
-                                                               double *out_force,
-                                                               double *out_power,
-                                                               double *out_elastic,
-                                                               int *out_energy_written);
 
 /*
  The ABI version of the library actually loaded. Cannot fail; thread-safe.
@@ -892,6 +802,28 @@ const char *dashpot_version(void);
  *   dashpot_bound_KIND_free(bound) frees it (null is ignored).
  *
  * All are thread-safe except that a *_free must not race with any other use of its handle.
+ *
+ * DASHPOT_ENERGY_BATCH(NAME, Model, INPUT, OUT): the sdk 0.3 batch call with energy outputs of
+ * the tangential (dashpot_tangential_model_force_batch_energy: the force of
+ * dashpot_tangential_model_force_batch), rolling and twisting kinds, on n contacts, the history
+ * advanced by the step dt (s). Per contact i: normal[3i..3i+3] the unit normal (from the
+ * partner to the particle); INPUT: tangential, velocity[3i..3i+3] the velocity of the
+ * particle's contact point relative to the partner's (m/s, omega x r included); rolling,
+ * velocity[3i..3i+3] the rolling velocity R_eff (w_i - w_j) x n (m/s); twisting, rate[i] the
+ * twisting rate (w_i - w_j).n (rad/s); normal_force[i] (N, > 0 repulsive), delta[i] (m),
+ * mass[i] (kg) and radius[i] (m) the effective mass and radius; history, n_history = n x slots
+ * values read and updated in place; OUT: tangential, out_force[3i..3i+3] the force on the
+ * particle (N); rolling, out_force[3i..3i+3] the rolling force F_r (N: the torque on the
+ * particle is R_eff n x F_r, on the partner its opposite; F_r is not applied to the centres);
+ * twisting, out_torque[i] the torque about n on the particle (N m; on the partner its
+ * opposite); out_power[i] the power the contact dissipates (W, >= 0) and out_elastic[i] the
+ * elastic energy it stores (J), each null when not wanted; *out_energy_written (may be null)
+ * 1 when the law reported them (a law of an older sdk does not). Every input is checked inside
+ * the plugin. Errors: DASHPOT_ERR_NULL_POINTER (the handle, or an array when n > 0),
+ * DASHPOT_ERR_BAD_LENGTH (n_history != n x slots), DASHPOT_ERR_NON_FINITE (naming the array,
+ * the index and the value; the outputs are then partly written), DASHPOT_ERR_PANIC (the handle
+ * stays usable). Thread-safe with distinct output and history arrays; outputs must not overlap
+ * each other or the inputs.
  */
 #define DASHPOT_LAW_FUNCTIONS(KIND, Law)                                                             \
     enum DashpotStatus dashpot_##KIND##_new(const struct DashpotRegistry *registry, const char *name, \
@@ -906,6 +838,13 @@ const char *dashpot_version(void);
                                                        struct Model **out_model);                    \
     void dashpot_##KIND##_model_free(struct Model *model);                                           \
     enum DashpotStatus dashpot_##KIND##_model_history_slots(const struct Model *model, size_t *out_slots);
+
+#define DASHPOT_ENERGY_BATCH(NAME, Model, INPUT, OUT)                                               \
+    enum DashpotStatus NAME(const struct Model *model, size_t n, double dt, const double *normal,     \
+                            const double *INPUT, const double *normal_force, const double *delta,   \
+                            const double *mass, const double *radius, double *history,              \
+                            size_t n_history, double *OUT, double *out_power, double *out_elastic,  \
+                            int *out_energy_written);
 
 #define DASHPOT_PAIR_FUNCTIONS(KIND, Law, Bound)                                                     \
     enum DashpotStatus dashpot_##KIND##_bind(const struct Law *law, const struct DashpotPair *pair,  \
@@ -929,6 +868,10 @@ DASHPOT_MODEL_FUNCTIONS(twisting, DashpotTwistingLaw, DashpotTwistingModel)
 
 DASHPOT_PAIR_FUNCTIONS(contact, DashpotContactLaw, DashpotBoundContact)
 DASHPOT_PAIR_FUNCTIONS(restitution, DashpotRestitutionLaw, DashpotBoundRestitution)
+
+DASHPOT_ENERGY_BATCH(dashpot_tangential_model_force_batch_energy, DashpotTangentialModel, velocity, out_force)
+DASHPOT_ENERGY_BATCH(dashpot_rolling_model_force_batch, DashpotRollingModel, velocity, out_force)
+DASHPOT_ENERGY_BATCH(dashpot_twisting_model_torque_batch, DashpotTwistingModel, rate, out_torque)
 
 #ifdef __cplusplus
 }  /* extern "C" */

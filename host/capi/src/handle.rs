@@ -14,7 +14,7 @@ use crate::materials::DashpotMaterials;
 use crate::pair::DashpotPair;
 use crate::registry::{params, DashpotRegistry};
 use dashpot_sdk::abi::EnergyOut;
-use dashpot_sdk::{MaterialPair, Pair, ParamValue};
+use dashpot_sdk::{LawError, MaterialPair, Pair, ParamValue};
 use std::ffi::{c_char, c_int};
 
 /// A law handle made by name from the registry.
@@ -74,6 +74,28 @@ pub(crate) unsafe fn free<T>(p: *mut T) {
     }
 }
 
+/// The body of every binding: `law` bound by `bind` to what `with` points to (checked by
+/// `convert`), the new handle written to `*out` (`names`: the two pointers, for messages).
+///
+/// # Safety
+/// Non-null pointers must be valid.
+unsafe fn bind_with<L, A, T, R>(
+    law: *const L,
+    with: *const A,
+    out: *mut *mut R,
+    names: [&str; 2],
+    convert: impl FnOnce(&A) -> Result<T, LawError>,
+    bind: impl FnOnce(&L, &T) -> Result<R, CError>,
+) -> DashpotStatus {
+    guard(|| {
+        let l = unsafe { arg(law, "law") }?;
+        let w = convert(unsafe { arg(with, names[0]) }?)?;
+        let o = unsafe { self::out(out, names[1]) }?;
+        *o = Box::into_raw(Box::new(bind(l, &w)?));
+        Ok(())
+    })
+}
+
 /// The body of every `*_bind_materials`.
 ///
 /// # Safety
@@ -83,13 +105,17 @@ pub(crate) unsafe fn bind_materials<L: BindMaterials>(
     materials: *const DashpotMaterials,
     out_model: *mut *mut L::Model,
 ) -> DashpotStatus {
-    guard(|| {
-        let l = unsafe { arg(law, "law") }?;
-        let m = unsafe { arg(materials, "materials") }?.to_materials()?;
-        let o = unsafe { out(out_model, "out_model") }?;
-        *o = Box::into_raw(Box::new(l.bind_materials(&m)?));
-        Ok(())
-    })
+    let names = ["materials", "out_model"];
+    unsafe {
+        bind_with(
+            law,
+            materials,
+            out_model,
+            names,
+            DashpotMaterials::to_materials,
+            L::bind_materials,
+        )
+    }
 }
 
 /// The body of every `*_model_history_slots`.
@@ -113,13 +139,49 @@ pub(crate) unsafe fn bind_pair<L: BindPair>(
     pair: *const DashpotPair,
     out_bound: *mut *mut L::Bound,
 ) -> DashpotStatus {
-    guard(|| {
-        let l = unsafe { arg(law, "law") }?;
-        let p = unsafe { arg(pair, "pair") }?.to_pair()?;
-        let o = unsafe { out(out_bound, "out_bound") }?;
-        *o = Box::into_raw(Box::new(l.bind_pair(&p)?));
-        Ok(())
-    })
+    unsafe {
+        bind_with(
+            law,
+            pair,
+            out_bound,
+            ["pair", "out_bound"],
+            DashpotPair::to_pair,
+            L::bind_pair,
+        )
+    }
+}
+
+/// A `*_free` entry point for handle type `$ty`: `DASHPOT_*_FUNCTIONS` in dashpot.h.
+macro_rules! free_function {
+    ($free:ident($arg:ident: $ty:ty)) => {
+        /// Frees a handle (null is ignored): `DASHPOT_*_FUNCTIONS` in dashpot.h.
+        ///
+        /// # Safety
+        /// The handle must be null or live, not used concurrently.
+        #[no_mangle]
+        pub unsafe extern "C" fn $free($arg: *mut $ty) {
+            unsafe { $crate::handle::free($arg) }
+        }
+    };
+}
+
+/// A binding entry point: law type `$law` bound to what `$with` points to, by the body `$body`
+/// (`bind_materials` or `bind_pair`): `DASHPOT_MODEL_FUNCTIONS` and `DASHPOT_PAIR_FUNCTIONS`.
+macro_rules! bind_function {
+    ($bind:ident($law:ty, $with:ident: $with_ty:ty, $out:ident: $out_ty:ty) => $body:ident) => {
+        /// Binds a law: `DASHPOT_MODEL_FUNCTIONS` / `DASHPOT_PAIR_FUNCTIONS` in dashpot.h.
+        ///
+        /// # Safety
+        /// Non-null pointers must be valid.
+        #[no_mangle]
+        pub unsafe extern "C" fn $bind(
+            law: *const $law,
+            $with: *const $with_ty,
+            $out: *mut *mut $out_ty,
+        ) -> $crate::error::DashpotStatus {
+            unsafe { $crate::handle::$body(law, $with, $out) }
+        }
+    };
 }
 
 /// `dashpot_<kind>_new` and `dashpot_<kind>_free` for each law type (the header's
@@ -143,14 +205,7 @@ macro_rules! law_functions {
             unsafe { $crate::handle::new(registry, name, param_names, param_values, n_params, out_law) }
         }
 
-        /// Frees a law (null is ignored): `DASHPOT_LAW_FUNCTIONS` in dashpot.h.
-        ///
-        /// # Safety
-        /// `law` null or a live handle, not used concurrently.
-        #[no_mangle]
-        pub unsafe extern "C" fn $free(law: *mut $law) {
-            unsafe { $crate::handle::free(law) }
-        }
+        $crate::handle::free_function!($free(law: $law));
     )*};
 }
 
@@ -158,27 +213,11 @@ macro_rules! law_functions {
 /// (the header's `DASHPOT_MODEL_FUNCTIONS`).
 macro_rules! model_functions {
     ($($law:ty => $model:ty: $bind:ident, $free:ident, $slots:ident;)*) => {$(
-        /// Binds a law to a pair of materials: `DASHPOT_MODEL_FUNCTIONS` in dashpot.h.
-        ///
-        /// # Safety
-        /// Non-null pointers must be valid.
-        #[no_mangle]
-        pub unsafe extern "C" fn $bind(
-            law: *const $law,
-            materials: *const $crate::materials::DashpotMaterials,
-            out_model: *mut *mut $model,
-        ) -> $crate::error::DashpotStatus {
-            unsafe { $crate::handle::bind_materials(law, materials, out_model) }
-        }
+        $crate::handle::bind_function!(
+            $bind($law, materials: $crate::materials::DashpotMaterials, out_model: $model) => bind_materials
+        );
 
-        /// Frees a bound law (null is ignored): `DASHPOT_MODEL_FUNCTIONS` in dashpot.h.
-        ///
-        /// # Safety
-        /// `model` null or a live handle, not used concurrently.
-        #[no_mangle]
-        pub unsafe extern "C" fn $free(model: *mut $model) {
-            unsafe { $crate::handle::free(model) }
-        }
+        $crate::handle::free_function!($free(model: $model));
 
         /// The history values per contact: `DASHPOT_MODEL_FUNCTIONS` in dashpot.h.
         ///
@@ -195,31 +234,13 @@ macro_rules! model_functions {
 /// header's `DASHPOT_PAIR_FUNCTIONS`).
 macro_rules! pair_functions {
     ($($law:ty => $bound:ty: $bind:ident, $free:ident;)*) => {$(
-        /// Binds a law to a pair: `DASHPOT_PAIR_FUNCTIONS` in dashpot.h.
-        ///
-        /// # Safety
-        /// Non-null pointers must be valid.
-        #[no_mangle]
-        pub unsafe extern "C" fn $bind(
-            law: *const $law,
-            pair: *const $crate::pair::DashpotPair,
-            out_bound: *mut *mut $bound,
-        ) -> $crate::error::DashpotStatus {
-            unsafe { $crate::handle::bind_pair(law, pair, out_bound) }
-        }
+        $crate::handle::bind_function!($bind($law, pair: $crate::pair::DashpotPair, out_bound: $bound) => bind_pair);
 
-        /// Frees a bound law (null is ignored): `DASHPOT_PAIR_FUNCTIONS` in dashpot.h.
-        ///
-        /// # Safety
-        /// `bound` null or a live handle, not used concurrently.
-        #[no_mangle]
-        pub unsafe extern "C" fn $free(bound: *mut $bound) {
-            unsafe { $crate::handle::free(bound) }
-        }
+        $crate::handle::free_function!($free(bound: $bound));
     )*};
 }
 
-pub(crate) use {law_functions, model_functions, pair_functions};
+pub(crate) use {bind_function, free_function, law_functions, model_functions, pair_functions};
 
 // ---- the argument checks every batch call shares ----
 
@@ -252,20 +273,6 @@ pub(crate) unsafe fn vectors<'a>(p: *const f64, n: usize, what: &str) -> Result<
     let v = unsafe { slice(p, triple_len(n)?, what) }?;
     // SAFETY: [f64; 3] has the alignment of f64 and no padding; n whole triples.
     Ok(unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<[f64; 3]>(), n) })
-}
-
-/// As [`vectors`], for an output.
-///
-/// # Safety
-/// A non-null `p` must point to 3n writable values for `'a`, not aliasing other arguments.
-pub(crate) unsafe fn vectors_mut<'a>(
-    p: *mut f64,
-    n: usize,
-    what: &str,
-) -> Result<&'a mut [[f64; 3]], CError> {
-    let v = unsafe { slice_mut(p, triple_len(n)?, what) }?;
-    // SAFETY: as `vectors`, with the unique borrow of `v` moved into the result.
-    Ok(unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<[f64; 3]>(), n) })
 }
 
 fn triple_len(n: usize) -> Result<usize, CError> {
@@ -349,36 +356,147 @@ macro_rules! vector_batch {
 
 vector_batch!(TangentialBatch, RollingBatch);
 
-/// The checked batch of a vector kind's call (`what` names the function in messages).
+/// A model whose batch takes, per contact, a unit normal, an input (a vector, or the twisting
+/// rate), the normal force, overlap, effective mass and radius and its history, and gives an
+/// output of the input's shape, with sdk 0.3's energy outputs: the tangential (its
+/// `_force_batch_energy`), rolling and twisting kinds (`DASHPOT_ENERGY_BATCH` in the header).
+pub(crate) trait EnergyBatch: Model {
+    /// Values per contact of the input and the output: 3 (a vector) or 1.
+    const WIDTH: usize;
+    /// The law on the checked batch: `Ok(true)` when it wrote the energy outputs.
+    fn run(&self, b: Raw<'_>, energy: EnergyOut<'_>) -> Result<bool, dashpot_sdk::LawError>;
+}
+
+/// An energy batch's checked arrays: `input` and `out` hold `WIDTH` values per contact,
+/// `scalars` the normal force, overlap, effective mass and radius.
+pub(crate) struct Raw<'a> {
+    pub dt: f64,
+    pub normal: &'a [[f64; 3]],
+    pub input: &'a [f64],
+    pub scalars: [&'a [f64]; 4],
+    pub slots: usize,
+    pub history: &'a mut [f64],
+    pub out: &'a mut [f64],
+}
+
+impl<'a> Raw<'a> {
+    /// The batch of a vector kind (`input` and `out` as triples).
+    pub fn vector<B: VectorBatch<'a>>(self) -> B {
+        let velocity = triples(self.input);
+        B::of(
+            self.dt,
+            self.normal,
+            velocity,
+            self.scalars,
+            self.slots,
+            self.history,
+            triples_mut(self.out),
+        )
+    }
+}
+
+/// `[x, y, z]` triples of a slice of 3n values.
+pub(crate) fn triples(v: &[f64]) -> &[[f64; 3]] {
+    // SAFETY: [f64; 3] has the alignment of f64 and no padding; len / 3 whole triples.
+    unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<[f64; 3]>(), v.len() / 3) }
+}
+
+/// As [`triples`], mutable.
+pub(crate) fn triples_mut(v: &mut [f64]) -> &mut [[f64; 3]] {
+    // SAFETY: as `triples`, with the unique borrow of `v` moved into the result.
+    unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<[f64; 3]>(), v.len() / 3) }
+}
+
+/// The body of every energy batch (`what` names the function, `[input, out]` its two arrays
+/// whose shape depends on the kind, in messages).
 ///
 /// # Safety
-/// Non-null arrays must hold the lengths the functions state; outputs must not overlap inputs.
+/// Non-null arrays must hold the lengths the header states; outputs must not overlap inputs.
 #[allow(clippy::too_many_arguments)]
-pub(crate) unsafe fn vector_batch<'a, B: VectorBatch<'a>>(
+pub(crate) unsafe fn energy_batch<M: EnergyBatch>(
     what: &str,
-    model: &impl Model,
+    [input_name, out_name]: [&str; 2],
+    model: *const M,
     n: usize,
     dt: f64,
     normal: *const f64,
-    velocity: *const f64,
+    input: *const f64,
     [normal_force, delta, mass, radius]: [*const f64; 4],
     history: *mut f64,
     n_history: usize,
-    out_force: *mut f64,
-) -> Result<B, CError> {
-    let slots = history_width(what, model, n, n_history)?;
-    Ok(B::of(
-        dt,
-        unsafe { vectors(normal, n, "normal") }?,
-        unsafe { vectors(velocity, n, "velocity") }?,
-        [
+    out: *mut f64,
+    [power, elastic]: [*mut f64; 2],
+    written: *mut c_int,
+) -> DashpotStatus {
+    guard(|| {
+        let m = unsafe { arg(model, "model") }?;
+        let slots = history_width(what, m, n, n_history)?;
+        let w = if M::WIDTH == 3 { triple_len(n)? } else { n };
+        let normal = unsafe { vectors(normal, n, "normal") }?;
+        let input = unsafe { slice(input, w, input_name) }?;
+        let scalars = [
             unsafe { slice(normal_force, n, "normal_force") }?,
             unsafe { slice(delta, n, "delta") }?,
             unsafe { slice(mass, n, "mass") }?,
             unsafe { slice(radius, n, "radius") }?,
-        ],
-        slots,
-        unsafe { slice_mut(history, n_history, "history") }?,
-        unsafe { vectors_mut(out_force, n, "out_force") }?,
-    ))
+        ];
+        let history = unsafe { slice_mut(history, n_history, "history") }?;
+        let out = unsafe { slice_mut(out, w, out_name) }?;
+        let e = unsafe { energy(power, elastic, n) }?;
+        let raw = Raw {
+            dt,
+            normal,
+            input,
+            scalars,
+            slots,
+            history,
+            out,
+        };
+        let done = m.run(raw, e)?;
+        unsafe { report_written(written, done) };
+        Ok(())
+    })
 }
+
+/// The sdk 0.3 batches with energy outputs, one per model type (the header's
+/// `DASHPOT_ENERGY_BATCH`).
+macro_rules! energy_batch_functions {
+    ($($model:ty: $name:ident($input:ident, $out:ident);)*) => {$(
+        /// The batch call with energy outputs: `DASHPOT_ENERGY_BATCH` in dashpot.h.
+        ///
+        /// # Safety
+        /// Non-null arrays must hold the lengths the header states; outputs must not overlap
+        /// each other or the inputs.
+        #[allow(clippy::too_many_arguments)]
+        #[no_mangle]
+        pub unsafe extern "C" fn $name(
+            model: *const $model,
+            n: usize,
+            dt: f64,
+            normal: *const f64,
+            $input: *const f64,
+            normal_force: *const f64,
+            delta: *const f64,
+            mass: *const f64,
+            radius: *const f64,
+            history: *mut f64,
+            n_history: usize,
+            $out: *mut f64,
+            out_power: *mut f64,
+            out_elastic: *mut f64,
+            out_energy_written: *mut std::ffi::c_int,
+        ) -> $crate::error::DashpotStatus {
+            let names = [stringify!($input), stringify!($out)];
+            let scalars = [normal_force, delta, mass, radius];
+            let energy = [out_power, out_elastic];
+            unsafe {
+                $crate::handle::energy_batch(
+                    stringify!($name), names, model, n, dt, normal, $input, scalars, history, n_history, $out,
+                    energy, out_energy_written,
+                )
+            }
+        }
+    )*};
+}
+
+pub(crate) use energy_batch_functions;

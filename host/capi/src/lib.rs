@@ -36,6 +36,7 @@
 pub mod calibrate;
 pub mod contact;
 pub mod contact_model;
+pub mod energy;
 pub mod error;
 mod handle;
 pub mod kinds;
@@ -43,20 +44,19 @@ pub mod materials;
 pub mod pair;
 pub mod registry;
 pub mod restitution;
-pub mod rotation;
 pub mod tangential;
 pub mod version;
 
 pub use calibrate::*;
 pub use contact::*;
 pub use contact_model::*;
+pub use energy::*;
 pub use error::*;
 pub use kinds::*;
 pub use materials::*;
 pub use pair::*;
 pub use registry::*;
 pub use restitution::*;
-pub use rotation::*;
 pub use tangential::*;
 pub use version::*;
 

@@ -9,10 +9,9 @@
 //! example) is stored by the caller exactly as for contact laws: zero at first touch, updated in
 //! place by each call, kept when the step is accepted, dropped when the contact ends.
 
-use crate::error::{arg, guard, DashpotStatus};
-use crate::handle::{energy, report_written, vector_batch};
+use crate::error::DashpotStatus;
+use crate::handle::energy_batch;
 use crate::kinds::DashpotTangentialModel;
-use std::ffi::c_int;
 
 /// The tangential force on `n` contacts, history advanced by the time step `dt` (s).
 ///
@@ -52,18 +51,20 @@ pub unsafe extern "C" fn dashpot_tangential_model_force_batch(
     n_history: usize,
     out_force: *mut f64,
 ) -> DashpotStatus {
-    let what = "dashpot_tangential_model_force_batch";
-    let scalars = [normal_force, delta, mass, radius];
-    let null = std::ptr::null_mut();
+    // the energy batch's body, without the energy outputs
+    let (null, what) = (std::ptr::null_mut(), "dashpot_tangential_model_force_batch");
+    let arrays = [normal_force, delta, mass, radius];
+    let names = ["velocity", "out_force"];
     unsafe {
-        batch(
+        energy_batch(
             what,
+            names,
             model,
             n,
             dt,
             normal,
             velocity,
-            scalars,
+            arrays,
             history,
             n_history,
             out_force,
@@ -71,88 +72,4 @@ pub unsafe extern "C" fn dashpot_tangential_model_force_batch(
             null.cast(),
         )
     }
-}
-
-/// `dashpot_tangential_model_force_batch` with sdk 0.3's energy outputs, each null or `n`
-/// values: `out_power[i]` the power the contact dissipates (W, ≥ 0: the dashpot's, and the
-/// spring energy the Coulomb cap removes while it slides), `out_elastic[i]` the energy its
-/// spring stores (J); `*out_energy_written` (may be null) whether the law reported them (a law
-/// of an older sdk does not).
-///
-/// Errors: as `dashpot_tangential_model_force_batch`. Thread-safe (distinct outputs).
-///
-/// # Safety
-/// Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
-#[allow(clippy::too_many_arguments)]
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_tangential_model_force_batch_energy(
-    model: *const DashpotTangentialModel,
-    n: usize,
-    dt: f64,
-    normal: *const f64,
-    velocity: *const f64,
-    normal_force: *const f64,
-    delta: *const f64,
-    mass: *const f64,
-    radius: *const f64,
-    history: *mut f64,
-    n_history: usize,
-    out_force: *mut f64,
-    out_power: *mut f64,
-    out_elastic: *mut f64,
-    out_energy_written: *mut c_int,
-) -> DashpotStatus {
-    let what = "dashpot_tangential_model_force_batch_energy";
-    let scalars = [normal_force, delta, mass, radius];
-    let energy_out = [out_power, out_elastic];
-    unsafe {
-        batch(
-            what,
-            model,
-            n,
-            dt,
-            normal,
-            velocity,
-            scalars,
-            history,
-            n_history,
-            out_force,
-            energy_out,
-            out_energy_written,
-        )
-    }
-}
-
-/// The body of both batch functions.
-///
-/// # Safety
-/// As theirs.
-#[allow(clippy::too_many_arguments)]
-unsafe fn batch(
-    what: &str,
-    model: *const DashpotTangentialModel,
-    n: usize,
-    dt: f64,
-    normal: *const f64,
-    velocity: *const f64,
-    scalars: [*const f64; 4],
-    history: *mut f64,
-    n_history: usize,
-    out_force: *mut f64,
-    [out_power, out_elastic]: [*mut f64; 2],
-    out_energy_written: *mut c_int,
-) -> DashpotStatus {
-    guard(|| {
-        let m = unsafe { arg(model, "model") }?;
-        let b = unsafe {
-            vector_batch(
-                what, m, n, dt, normal, velocity, scalars, history, n_history, out_force,
-            )
-        }?;
-        let written = m
-            .model
-            .force_batch_with(b, unsafe { energy(out_power, out_elastic, n) }?)?;
-        unsafe { report_written(out_energy_written, written) };
-        Ok(())
-    })
 }

@@ -37,8 +37,8 @@ fn committed_header_is_current() {
 }
 
 /// Every `dashpot_*` function the header declares, in order: the declarations cbindgen writes,
-/// then those of the `DASHPOT_*_FUNCTIONS(KIND, ...)` lines, each macro's names with `##KIND##`
-/// replaced.
+/// then those of the `DASHPOT_*(KIND or NAME, ...)` macro lines: each macro's names with
+/// `##KIND##` replaced, or the name itself when the macro declares `NAME`.
 fn header_functions() -> Vec<String> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
     let header = std::fs::read_to_string(dir.join("include/dashpot.h")).expect("read include/dashpot.h");
@@ -79,13 +79,16 @@ fn header_functions() -> Vec<String> {
             continue;
         }
         if let Some((name, templates)) = macros.iter().find(|(m, _)| line.starts_with(&format!("{m}("))) {
-            let kind = line[name.len() + 1..]
+            let first = line[name.len() + 1..]
                 .split([',', ')'])
                 .next()
                 .unwrap_or_default()
                 .trim();
+            if templates.is_empty() && first.starts_with("dashpot_") {
+                add(first.to_string());
+            }
             for t in templates {
-                add(t.replace("##KIND##", kind));
+                add(t.replace("##KIND##", first));
             }
             continue;
         }

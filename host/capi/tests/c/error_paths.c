@@ -546,9 +546,7 @@ int main(int argc, char **argv) {
            slip beyond the cap mu F_n dissipates (power > 0) */
         DashpotTangentialLaw *ml = NULL;
         DashpotTangentialModel *mm = NULL;
-        const char *mu_name[1] = {"mu"};
-        const double mu_val[1] = {0.5};
-        EXPECT(dashpot_tangential_new(reg, "mindlin", mu_name, mu_val, 1, &ml), DASHPOT_OK, NULL);
+        EXPECT(dashpot_tangential_new(reg, "mindlin", (const char *[]){"mu"}, (double[]){0.5}, 1, &ml), DASHPOT_OK, NULL);
         EXPECT(dashpot_tangential_bind_materials(ml, &mat, &mm), DASHPOT_OK, NULL);
         double mv[3] = {1e-3, 0, 0}, mh[3] = {0, 0, 0}, mf[3], mp[1] = {-1}, me[1] = {-1};
         written = -1;

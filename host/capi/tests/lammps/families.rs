@@ -2,7 +2,7 @@
 //! `pair_style granular` and against closed forms), an adhesive normal law (JKR) whose contacts
 //! act past touching across MPI ranks, and each contact's dissipated power.
 
-use super::{failing_deck, lib_dir, lmp, num, run_deck, venv};
+use super::{assert_same, failing_deck, lib_dir, lmp, num, run_deck, venv};
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -49,20 +49,23 @@ fn a_rolling_pour_settles_to_pair_granulars_height_on_one_and_two_ranks() {
         .into_iter()
         .enumerate()
         {
-            let vars = [
-                ("style", style.to_string()),
-                ("wall", wall.to_string()),
-                ("n", "400".into()),
-                ("L", "0.05".into()),
-                ("tpour", "0.25".into()),
-                ("tsettle", "0.12".into()),
-                ("dt", "2e-5".into()),
-                ("rolling", "sds".into()),
-                ("kr", "1e4".into()),
-                ("gr", "0.1".into()),
-                ("mur", "1.0".into()),
-                ("seed", seed.into()),
-            ];
+            let vars: Vec<(&str, String)> = [
+                ("n", "400"),
+                ("L", "0.05"),
+                ("tpour", "0.25"),
+                ("tsettle", "0.12"),
+                ("dt", "2e-5"),
+                ("rolling", "sds"),
+                ("kr", "1e4"),
+                ("gr", "0.1"),
+                ("mur", "1.0"),
+                ("seed", seed),
+                ("style", style),
+                ("wall", wall),
+            ]
+            .iter()
+            .map(|&(k, x)| (k, x.to_string()))
+            .collect();
             let r = run_deck(&v, "in.pour", ranks, &vars);
             eprintln!("rolling pour, seed {seed}, {style} on {ranks} rank(s), wall {wall}: {r:?}");
             assert_eq!(num(&r, "atoms"), 400.0, "{r:?}");
@@ -278,10 +281,13 @@ fn each_contacts_dissipated_power_is_positive_and_closes_the_energy_balance() {
 #[test]
 fn rolling_and_twisting_springs_cross_ranks_and_survive_a_restart_file() {
     let Some(v) = venv() else { return };
-    let more = ("more", "rolling sds k=20 gamma=0.001 mu=0.05 twisting sds k=1e-5 gamma=1e-9 mu=2e-5".to_string());
+    let more = (
+        "more",
+        "rolling sds k=20 gamma=0.001 mu=0.05 twisting sds k=1e-5 gamma=1e-9 mu=2e-5".to_string(),
+    );
     let plain = run_deck(&v, "in.twospheres", 1, &[]);
-    let one = run_deck(&v, "in.twospheres", 1, &[more.clone()]);
-    let two = run_deck(&v, "in.twospheres", 2, &[more.clone()]);
+    let one = run_deck(&v, "in.twospheres", 1, std::slice::from_ref(&more));
+    let two = run_deck(&v, "in.twospheres", 2, std::slice::from_ref(&more));
     let dir = lib_dir().join("lammps-restart-rotation");
     std::fs::create_dir_all(&dir).expect("restart dir");
     let vars = [
@@ -292,11 +298,13 @@ fn rolling_and_twisting_springs_cross_ranks_and_survive_a_restart_file() {
     ];
     let restarted = run_deck(&v, "in.twospheres", 2, &vars);
     eprintln!("plain {plain:?}\nwith rolling and twisting: 1 rank {one:?}\n2 ranks {two:?}\nrestarted {restarted:?}");
-    assert!((num(&one, "w1") / num(&plain, "w1") - 1.0).abs() > 0.1, "{one:?} {plain:?}");
+    assert!(
+        (num(&one, "w1") / num(&plain, "w1") - 1.0).abs() > 0.1,
+        "{one:?} {plain:?}"
+    );
     for k in ["x1", "y1", "z1", "vx1", "vy1", "vz1", "vx2", "vy2", "w1", "w3"] {
-        let (a, b, c) = (num(&one, k), num(&two, k), num(&restarted, k));
-        assert!((a - b).abs() <= 1e-9 * a.abs().max(1e-3), "{k}: {a} on 1 rank, {b} on 2");
-        assert!((a - c).abs() <= 1e-6 * a.abs().max(1e-3), "{k}: {a} straight, {c} restarted");
+        assert_same(k, &one, &two, 1e-9, "on 1 and 2 ranks");
+        assert_same(k, &one, &restarted, 1e-6, "straight and restarted");
     }
 }
 

@@ -120,6 +120,15 @@ fn run_deck_output(
     (result, stdout.into_owned())
 }
 
+/// Asserts that key `k` of two RESULT lines agrees to `rel` (relative to max(|a|, 1e-3)).
+fn assert_same(k: &str, a: &HashMap<String, String>, b: &HashMap<String, String>, rel: f64, what: &str) {
+    let (x, y) = (num(a, k), num(b, k));
+    assert!(
+        (x - y).abs() <= rel * x.abs().max(1e-3),
+        "{k}: {x} against {y} {what}"
+    );
+}
+
 fn num(r: &HashMap<String, String>, k: &str) -> f64 {
     r.get(k)
         .and_then(|v| v.parse().ok())
@@ -365,11 +374,7 @@ fn a_contact_crossing_between_ranks_keeps_its_tangential_spring() {
     for k in [
         "x1", "y1", "z1", "x2", "y2", "z2", "vx1", "vy1", "vz1", "vx2", "vy2", "vz2", "w1", "w3",
     ] {
-        let (a, b) = (num(&one, k), num(&two, k));
-        assert!(
-            (a - b).abs() <= 1e-9 * a.abs().max(1e-3),
-            "{k}: {a} on 1 rank, {b} on 2"
-        );
+        assert_same(k, &one, &two, 1e-9, "on 1 and 2 ranks");
     }
 }
 
