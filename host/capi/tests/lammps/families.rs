@@ -98,9 +98,10 @@ fn a_rolling_pour_settles_to_pair_granulars_height_on_one_and_two_ranks() {
 /// past touching, through its most tensile force −(3/2)π w R (to 1e-6), until the rupture
 /// separation |δ_c| = (3/4)(π² w² R/E²)^{1/3} where dδ/da = 0 (within one step of the pull);
 /// meanwhile the spheres cross from one MPI rank to the other, and 1 and 2 ranks agree to the
-/// digit. LAMMPS's own JKR ends the contact earlier, at its pull-off distance
-/// 1.2277 (R γ²/E²)^{1/3} (γ = w/2), the separation of the force minimum (load control), with
-/// the same most tensile force.
+/// digit. The same holds for a sphere pulled off the `zplane` wall (R = d/2, E = E/(1 − ν²)).
+/// LAMMPS's own JKR ends the contact earlier, at its pull-off distance 1.2277 (R γ²/E²)^{1/3}
+/// (γ = w/2), the separation of the force minimum (load control), with the same most tensile
+/// force.
 #[test]
 fn a_jkr_contact_holds_past_touching_until_its_rupture_separation_on_one_and_two_ranks() {
     let Some(v) = venv() else { return };
@@ -111,8 +112,9 @@ fn a_jkr_contact_holds_past_touching_until_its_rupture_separation_on_one_and_two
     let lammps_pulloff = 1.2277228507842888 * (radius * (w / 2.0) * (w / 2.0) / (e_eff * e_eff)).cbrt();
     let step = 1e-3 * 1e-5; // the pull's speed × dt (m)
                             // (most tensile force, last separation with a force, first without)
-    let pull = |style: &str, ranks: u32| {
-        let rows = thermo_rows(&v, "in.jkr", ranks, &[("style", style.to_string())], 3);
+    let pull = |style: &str, ranks: u32, wall: &str| {
+        let vars = [("style", style.to_string()), ("wall", wall.to_string())];
+        let rows = thermo_rows(&v, "in.jkr", ranks, &vars, 3);
         let fmax = rows.iter().map(|r| r[2]).fold(f64::MIN, f64::max);
         let last = rows
             .iter()
@@ -131,7 +133,7 @@ fn a_jkr_contact_holds_past_touching_until_its_rupture_separation_on_one_and_two
         );
         (rows, fmax, last, gone)
     };
-    let (one, fmax, last, gone) = pull("dashpot", 1);
+    let (one, fmax, last, gone) = pull("dashpot", 1, "0");
     eprintln!("dashpot jkr: max tension {fmax} N (3/2 pi w R = {pulloff_force}), breaks between {last} and {gone} m (|delta_c| = {rupture})");
     assert!(
         (fmax / pulloff_force - 1.0).abs() < 1e-6,
@@ -141,7 +143,7 @@ fn a_jkr_contact_holds_past_touching_until_its_rupture_separation_on_one_and_two
         last <= rupture && rupture < gone && gone - last < 1.5 * step,
         "{last} {gone} {rupture}"
     );
-    let (two, ..) = pull("dashpot", 2);
+    let (two, ..) = pull("dashpot", 2, "0");
     assert_eq!(one.len(), two.len());
     for (a, b) in one.iter().zip(&two) {
         assert!(
@@ -149,7 +151,17 @@ fn a_jkr_contact_holds_past_touching_until_its_rupture_separation_on_one_and_two
             "1 rank {a:?}, 2 ranks {b:?}"
         );
     }
-    let (_, gmax, glast, ggone) = pull("granular", 1);
+    // the wall: the particle's own radius and the rigid wall's modulus
+    let (e_wall, r_wall) = (young / (1.0 - nu * nu), 2.0 * radius);
+    let (_, wmax, wlast, wgone) = pull("dashpot", 1, "1");
+    let wall_rupture = 0.75 * (PI * PI * w * w * r_wall / (e_wall * e_wall)).cbrt();
+    eprintln!("dashpot jkr on the wall: max tension {wmax} N, breaks between {wlast} and {wgone} m (|delta_c| = {wall_rupture})");
+    assert!((wmax / (1.5 * PI * w * r_wall) - 1.0).abs() < 1e-6, "{wmax}");
+    assert!(
+        wlast <= wall_rupture && wall_rupture < wgone && wgone - wlast < 1.5 * step,
+        "{wlast} {wgone}"
+    );
+    let (_, gmax, glast, ggone) = pull("granular", 1, "0");
     eprintln!("granular jkr: max tension {gmax} N, breaks between {glast} and {ggone} m (pull-off distance {lammps_pulloff})");
     assert!((gmax / pulloff_force - 1.0).abs() < 1e-4, "{gmax}");
     assert!(
