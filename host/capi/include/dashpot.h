@@ -724,19 +724,12 @@ enum DashpotStatus dashpot_restitution_batch(const struct DashpotBoundRestitutio
  history (`n_history = n × slots` values, read and updated in place) and
  `out_force[3i..3i+3]` the tangential force on the particle (N).
 
- Every input is checked inside the plugin: a non-finite vector, normal force, overlap or
- `dt`, or a mass or radius not finite and > 0, is refused with `DASHPOT_ERR_NON_FINITE`
- naming the array, the index and the value; so is a non-finite force.
-
- Errors: `DASHPOT_ERR_NULL_POINTER` (the handle, or an array when `n` > 0),
- `DASHPOT_ERR_BAD_LENGTH` (`n_history` ≠ `n × slots`), `DASHPOT_ERR_NON_FINITE` (outputs
- then partly written), `DASHPOT_ERR_PANIC` (the handle stays usable).
- Ownership: the arrays stay the caller's. Thread-safe (distinct output and history arrays
- per thread).
+ Every input is checked inside the plugin, as for `dashpot_contact_model_force_batch` (a
+ non-finite vector, normal force or `dt` too), and so are its errors, ownership and thread
+ safety.
 
  # Safety
- Non-null arrays must hold the lengths stated; `out_force` and `history` must not overlap
- each other or the inputs.
+ As `dashpot_contact_model_force_batch`'s, with `3n` values in each vector array.
  */
 enum DashpotStatus dashpot_tangential_model_force_batch(const struct DashpotTangentialModel *model,
                                                         size_t n,
