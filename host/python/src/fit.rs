@@ -1,6 +1,8 @@
 //! `dashpot.calibrate`: a law fitted to a measured restitution, as the CLI's `calibrate --json`.
 
 use super::*;
+use dashpot::collide::Options;
+use dashpot_sdk::EndCriterion;
 
 /// Fits a law's parameters to a measured restitution (and optionally contact time) at impact
 /// speed `v0` (m/s), as `dashpot calibrate --json` does: law `name` with the `fixed`
@@ -38,16 +40,7 @@ pub(crate) fn calibrate(
             .end_criterion
             .into_option()
             .unwrap_or(EndCriterion::Overlap);
-        let end = match end {
-            None => declared,
-            Some("overlap") => EndCriterion::Overlap,
-            Some("force") => EndCriterion::Force,
-            Some(e) => {
-                return Err(PyValueError::new_err(format!(
-                    "end = '{e}' is not a criterion: 'overlap' (δ returns to 0) or 'force'"
-                )))
-            }
-        };
+        let end = super::runs::end_of(end, declared)?;
         let spec = CalibrateSpec {
             law: name.to_string(),
             fixed: p.clone(),

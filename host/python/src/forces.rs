@@ -1,0 +1,592 @@
+//! Laws on numpy arrays: contact (normal), tangential, rolling and twisting laws bound to a
+//! pair of materials, one batch call per Python call, without the GIL. The inputs are the
+//! caller's contiguous float64 arrays (no copy; vectors are flat arrays of 3 N values, x y z per
+//! contact), the history is the caller's array updated in place, the outputs new arrays or the
+//! caller's `out`.
+
+use super::*;
+use dashpot::laws::{EnergyOut, NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
+use dashpot_sdk::{Contact, NormalBatch, RollingBatch, TangentialBatch, TwistingBatch};
+use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1};
+
+/// The four arrays of a batch (δ, δ̇, m, r) as slices of one length; the error names the array
+/// whose length differs.
+pub(crate) fn contact_slices<'a>(arrays: [&'a PyReadonlyArray1<'_, f64>; 4]) -> PyResult<[&'a [f64]; 4]> {
+    let [d, r, m, a] = arrays;
+    let s = [d.as_slice()?, r.as_slice()?, m.as_slice()?, a.as_slice()?];
+    let n = s[0].len();
+    for (what, x) in ["rate", "mass", "radius"].into_iter().zip(&s[1..]) {
+        if x.len() != n {
+            return Err(PyValueError::new_err(format!(
+                "{what} has {} values, delta {n}: every array must have one value per contact",
+                x.len()
+            )));
+        }
+    }
+    Ok(s)
+}
+
+/// `x` (3 N values, x y z per contact) as N vectors; the error names the array.
+fn vectors<'a>(what: &str, x: &'a [f64], n: usize) -> PyResult<&'a [[f64; 3]]> {
+    if x.len() != 3 * n {
+        return Err(PyValueError::new_err(format!(
+            "{what} has {} values: 3 per contact (x, y, z), {} for {n} contacts",
+            x.len(),
+            3 * n
+        )));
+    }
+    // SAFETY: [f64; 3] is three f64 without padding, aligned as one f64; the length is checked
+    Ok(unsafe { std::slice::from_raw_parts(x.as_ptr().cast::<[f64; 3]>(), n) })
+}
+
+/// [`vectors`] for an output.
+fn vectors_mut(x: &mut [f64]) -> &mut [[f64; 3]] {
+    let n = x.len() / 3;
+    // SAFETY: as in `vectors`; the callers allocate 3 N values
+    unsafe { std::slice::from_raw_parts_mut(x.as_mut_ptr().cast::<[f64; 3]>(), n) }
+}
+
+/// The caller's history array as the `n × slots` values law `name` keeps.
+fn history_slice<'a>(
+    h: Option<&'a mut PyReadwriteArray1<'_, f64>>,
+    n: usize,
+    slots: usize,
+    name: &str,
+) -> PyResult<&'a mut [f64]> {
+    match (h, slots) {
+        (_, 0) => Ok(&mut []),
+        (Some(h), s) => {
+            let h = h.as_slice_mut()?;
+            if h.len() != n * s {
+                return Err(PyValueError::new_err(format!(
+                    "history has {} values: law '{name}' keeps {s} per contact, {} for {n} contacts",
+                    h.len(),
+                    n * s
+                )));
+            }
+            Ok(h)
+        }
+        (None, s) => Err(PyValueError::new_err(format!(
+            "law '{name}' keeps {s} history values per contact: pass history (zeros at first touch, {} values)",
+            n * s
+        ))),
+    }
+}
+
+/// The energy outputs of a batch of `n` contacts, when asked for.
+struct Energies {
+    power: Vec<f64>,
+    elastic: Vec<f64>,
+}
+
+impl Energies {
+    fn new(want: bool, n: usize) -> Option<Energies> {
+        want.then(|| Energies {
+            power: vec![0.0; n],
+            elastic: vec![0.0; n],
+        })
+    }
+
+    fn out(e: &mut Option<Energies>) -> EnergyOut<'_> {
+        match e {
+            Some(e) => EnergyOut {
+                power: Some(&mut e.power),
+                elastic: Some(&mut e.elastic),
+            },
+            None => EnergyOut::none(),
+        }
+    }
+
+    /// `(power, elastic)` as arrays, or `(None, None)` when the law did not write them.
+    fn into_py(self, py: Python<'_>, written: bool) -> (Option<PyObject>, Option<PyObject>) {
+        if !written {
+            return (None, None);
+        }
+        (
+            Some(self.power.into_pyarray(py).into_any().unbind()),
+            Some(self.elastic.into_pyarray(py).into_any().unbind()),
+        )
+    }
+}
+
+/// A contact law bound to a pair of materials.
+#[pyclass(module = "dashpot._dashpot", frozen)]
+pub(crate) struct BoundContact {
+    law: Box<dyn NormalLaw>,
+    name: String,
+}
+
+#[pymethods]
+impl BoundContact {
+    /// History slots per contact.
+    #[getter]
+    fn history_slots(&self) -> usize {
+        self.law.history_slots()
+    }
+
+    /// The law's name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Normal forces (N) of the contacts: `delta` (m), `rate` (m/s), `mass` (kg), `radius` (m),
+    /// contiguous float64 arrays of one length; `history` (flat, `history_slots` per contact)
+    /// updated in place; `out` the caller's array for the forces.
+    #[pyo3(signature = (delta, rate, mass, radius, history=None, out=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn force<'py>(
+        &self,
+        py: Python<'py>,
+        delta: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        mut history: Option<PyReadwriteArray1<'py, f64>>,
+        out: Option<Bound<'py, PyArray1<f64>>>,
+    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
+        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
+        let n = d.len();
+        let slots = self.law.history_slots();
+        let hist = history_slice(history.as_mut(), n, slots, &self.name)?;
+        let out = match out {
+            Some(o) => o,
+            // (every value is written by the call)
+            None => unsafe { PyArray1::<f64>::new(py, n, false) },
+        };
+        {
+            let mut w = out.try_readwrite()?;
+            let f = w.as_slice_mut()?;
+            if f.len() != n {
+                return Err(PyValueError::new_err(format!(
+                    "out has {} values, delta {n}: one per contact",
+                    f.len()
+                )));
+            }
+            let law = &self.law;
+            py.allow_threads(|| {
+                law.force_batch(NormalBatch {
+                    delta: d,
+                    rate: r,
+                    mass: m,
+                    radius: a,
+                    slots,
+                    history: hist,
+                    force: f,
+                })
+            })
+            .map_err(law_err)?;
+        }
+        Ok(out)
+    }
+
+    /// As `force`, with the energy outputs of sdk 0.3: returns `(force, power, elastic, reach)`,
+    /// the dissipated power (W) and elastic energy (J) of each contact (`None` for a law that
+    /// does not report them) and its reach (m: the contact lasts while δ > −reach).
+    #[pyo3(signature = (delta, rate, mass, radius, history=None))]
+    #[allow(clippy::type_complexity)]
+    fn force_energy<'py>(
+        &self,
+        py: Python<'py>,
+        delta: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        mut history: Option<PyReadwriteArray1<'py, f64>>,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<f64>>,
+        Option<PyObject>,
+        Option<PyObject>,
+        Bound<'py, PyArray1<f64>>,
+    )> {
+        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
+        let n = d.len();
+        let slots = self.law.history_slots();
+        let hist = history_slice(history.as_mut(), n, slots, &self.name)?;
+        let (mut f, mut reach, mut en) = (vec![0.0; n], vec![0.0; n], Energies::new(true, n));
+        let law = &self.law;
+        let written = py
+            .allow_threads(|| {
+                law.force_batch_with(
+                    NormalBatch {
+                        delta: d,
+                        rate: r,
+                        mass: m,
+                        radius: a,
+                        slots,
+                        history: hist,
+                        force: &mut f,
+                    },
+                    Some(&mut reach),
+                    Energies::out(&mut en),
+                )
+            })
+            .map_err(law_err)?;
+        let (p, e) = en.map_or((None, None), |en| en.into_py(py, written));
+        Ok((f.into_pyarray(py), p, e, reach.into_pyarray(py)))
+    }
+
+    /// The benchmarks' baseline: the Rust batch call on these contacts, `reps` times into one
+    /// preallocated output, without Python in the loop; returns each call's wall time (s).
+    #[pyo3(signature = (delta, rate, mass, radius, reps))]
+    fn _time_batch<'py>(
+        &self,
+        py: Python<'py>,
+        delta: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        reps: usize,
+    ) -> PyResult<Vec<f64>> {
+        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
+        if self.law.history_slots() > 0 {
+            return Err(PyValueError::new_err("_time_batch: a memoryless law"));
+        }
+        let mut out = vec![0.0; d.len()];
+        let law = &self.law;
+        py.allow_threads(|| {
+            (0..reps)
+                .map(|_| {
+                    let t = std::time::Instant::now();
+                    law.force_batch(NormalBatch {
+                        delta: d,
+                        rate: r,
+                        mass: m,
+                        radius: a,
+                        slots: 0,
+                        history: &mut [],
+                        force: &mut out,
+                    })
+                    .map(|_| t.elapsed().as_secs_f64())
+                })
+                .collect::<Result<Vec<f64>, LawError>>()
+        })
+        .map_err(law_err)
+    }
+
+    /// The tests' references, computed in Rust on copies of the inputs: the forces of one Rust
+    /// batch call into a Rust vector, and those of one call per contact, as `dashpot eval`
+    /// makes it (each from its own copy of `history`, flat, zeros if not given).
+    #[pyo3(signature = (delta, rate, mass, radius, history=None))]
+    fn _reference<'py>(
+        &self,
+        py: Python<'py>,
+        delta: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        history: Option<PyReadonlyArray1<'py, f64>>,
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
+        let (n, slots) = (d.len(), self.law.history_slots());
+        let h0 = match &history {
+            Some(h) => h.as_slice()?.to_vec(),
+            None => vec![0.0; n * slots],
+        };
+        let (mut batch, mut hb, mut hc) = (vec![0.0; n], h0.clone(), h0);
+        let law = &self.law;
+        let one = py
+            .allow_threads(|| {
+                law.force_batch(NormalBatch {
+                    delta: d,
+                    rate: r,
+                    mass: m,
+                    radius: a,
+                    slots,
+                    history: &mut hb,
+                    force: &mut batch,
+                })?;
+                (0..n)
+                    .map(|i| {
+                        let c = Contact {
+                            delta: d[i],
+                            rate: r[i],
+                            mass: m[i],
+                            radius: a[i],
+                        };
+                        law.force(c, &mut hc[i * slots..(i + 1) * slots])
+                    })
+                    .collect::<Result<Vec<f64>, LawError>>()
+            })
+            .map_err(law_err)?;
+        Ok((batch.into_pyarray(py), one.into_pyarray(py)))
+    }
+}
+
+/// Tangential and rolling laws: the same batch layout (n̂, a velocity, F_n, δ, m, R, history)
+/// and a vector out.
+macro_rules! vector_law {
+    ($(#[$doc:meta])* $class:ident, $trait:ident, $batch:ident, $call:ident, $velocity:literal) => {
+        $(#[$doc])*
+        #[pyclass(module = "dashpot._dashpot", frozen)]
+        pub(crate) struct $class {
+            law: Box<dyn $trait>,
+            name: String,
+        }
+
+        #[pymethods]
+        impl $class {
+            /// History slots per contact.
+            #[getter]
+            fn history_slots(&self) -> usize {
+                self.law.history_slots()
+            }
+
+            /// The law's name.
+            #[getter]
+            fn name(&self) -> &str {
+                &self.name
+            }
+
+            #[doc = concat!("Forces (N) on N contacts, flat (3 N values): unit normals `normal` (3 N), `", $velocity, "` (3 N, m/s), normal forces (N), overlaps (m), effective masses (kg) and radii (m); `history` (N × slots, flat) advanced by `dt` (s) in place. With `energy`, returns `(force, power, elastic)`, `None` for a law that does not report them.")]
+            #[pyo3(signature = (dt, normal, velocity, normal_force, delta, mass, radius, history, energy=false))]
+            #[allow(clippy::too_many_arguments)]
+            fn force<'py>(
+                &self,
+                py: Python<'py>,
+                dt: f64,
+                normal: PyReadonlyArray1<'py, f64>,
+                velocity: PyReadonlyArray1<'py, f64>,
+                normal_force: PyReadonlyArray1<'py, f64>,
+                delta: PyReadonlyArray1<'py, f64>,
+                mass: PyReadonlyArray1<'py, f64>,
+                radius: PyReadonlyArray1<'py, f64>,
+                mut history: PyReadwriteArray1<'py, f64>,
+                energy: bool,
+            ) -> PyResult<PyObject> {
+                let [fnorm, d, m, r] = contact_slices([&normal_force, &delta, &mass, &radius])?;
+                let n = fnorm.len();
+                let nv = vectors("normal", normal.as_slice()?, n)?;
+                let vv = vectors($velocity, velocity.as_slice()?, n)?;
+                let slots = self.law.history_slots();
+                let h = history_of(&mut history, n, slots, &self.name)?;
+                let out = unsafe { PyArray1::<f64>::new(py, 3 * n, false) };
+                let mut en = Energies::new(energy, n);
+                let written = {
+                    let mut w = out.try_readwrite()?;
+                    let f = vectors_mut(w.as_slice_mut()?);
+                    let law = &self.law;
+                    py.allow_threads(|| {
+                        law.$call(
+                            $batch {
+                                dt,
+                                normal: nv,
+                                velocity: vv,
+                                normal_force: fnorm,
+                                delta: d,
+                                mass: m,
+                                radius: r,
+                                slots,
+                                history: h,
+                                force: f,
+                            },
+                            Energies::out(&mut en),
+                        )
+                    })
+                    .map_err(law_err)?
+                };
+                Ok(match en {
+                    None => out.into_any().unbind(),
+                    Some(en) => (out, en.into_py(py, written)).into_pyobject(py)?.into_any().unbind(),
+                })
+            }
+        }
+    };
+}
+
+/// `history` for a kind whose history is mandatory.
+fn history_of<'a>(
+    h: &'a mut PyReadwriteArray1<'_, f64>,
+    n: usize,
+    slots: usize,
+    name: &str,
+) -> PyResult<&'a mut [f64]> {
+    history_slice(Some(h), n, slots, name)
+}
+
+vector_law!(
+    /// A tangential (friction) law bound to a pair of materials.
+    BoundTangential,
+    TangentialForce,
+    TangentialBatch,
+    force_batch_with,
+    "velocity"
+);
+
+vector_law!(
+    /// A rolling-resistance law bound to a pair of materials (sdk 0.3).
+    BoundRolling,
+    RollingResistance,
+    RollingBatch,
+    force_batch,
+    "rolling velocity"
+);
+
+/// A twisting-resistance law bound to a pair of materials (sdk 0.3).
+#[pyclass(module = "dashpot._dashpot", frozen)]
+pub(crate) struct BoundTwisting {
+    law: Box<dyn TwistingResistance>,
+    name: String,
+}
+
+#[pymethods]
+impl BoundTwisting {
+    /// History slots per contact.
+    #[getter]
+    fn history_slots(&self) -> usize {
+        self.law.history_slots()
+    }
+
+    /// The law's name.
+    #[getter]
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Twisting torques (N·m, about n̂ on the particle) on N contacts: unit normals `normal`
+    /// (3 N, flat), twisting rates `rate` (rad/s), normal forces (N), overlaps (m), effective
+    /// masses (kg) and radii (m); `history` (N × slots, flat) advanced by `dt` (s) in place.
+    /// With `energy`, returns `(torque, power, elastic)`.
+    #[pyo3(signature = (dt, normal, rate, normal_force, delta, mass, radius, history, energy=false))]
+    #[allow(clippy::too_many_arguments)]
+    fn torque<'py>(
+        &self,
+        py: Python<'py>,
+        dt: f64,
+        normal: PyReadonlyArray1<'py, f64>,
+        rate: PyReadonlyArray1<'py, f64>,
+        normal_force: PyReadonlyArray1<'py, f64>,
+        delta: PyReadonlyArray1<'py, f64>,
+        mass: PyReadonlyArray1<'py, f64>,
+        radius: PyReadonlyArray1<'py, f64>,
+        mut history: PyReadwriteArray1<'py, f64>,
+        energy: bool,
+    ) -> PyResult<PyObject> {
+        let [fnorm, d, m, r] = contact_slices([&normal_force, &delta, &mass, &radius])?;
+        let n = fnorm.len();
+        let nv = vectors("normal", normal.as_slice()?, n)?;
+        let w = rate.as_slice()?;
+        if w.len() != n {
+            return Err(PyValueError::new_err(format!(
+                "rate has {} values, normal_force {n}: one per contact",
+                w.len()
+            )));
+        }
+        let slots = self.law.history_slots();
+        let h = history_of(&mut history, n, slots, &self.name)?;
+        let mut out = vec![0.0; n];
+        let mut en = Energies::new(energy, n);
+        let law = &self.law;
+        let written = py
+            .allow_threads(|| {
+                law.torque_batch(
+                    TwistingBatch {
+                        dt,
+                        normal: nv,
+                        rate: w,
+                        normal_force: fnorm,
+                        delta: d,
+                        mass: m,
+                        radius: r,
+                        slots,
+                        history: h,
+                        torque: &mut out,
+                    },
+                    Energies::out(&mut en),
+                )
+            })
+            .map_err(law_err)?;
+        let out = out.into_pyarray(py);
+        Ok(match en {
+            None => out.into_any().unbind(),
+            Some(en) => (out, en.into_py(py, written))
+                .into_pyobject(py)?
+                .into_any()
+                .unbind(),
+        })
+    }
+}
+
+/// Law `name` of one kind with `params`, bound to the materials of a first body (Young's
+/// modulus Pa, Poisson's ratio) and a second one (default the first's) or a rigid wall.
+macro_rules! binder {
+    ($fn:ident, $class:ident, $kind:ident) => {
+        #[pyfunction]
+        #[pyo3(signature = (name, params, young, poisson, young2=None, poisson2=None, wall=false))]
+        #[allow(clippy::too_many_arguments)]
+        fn $fn(
+            py: Python<'_>,
+            name: &str,
+            params: Option<&Bound<'_, PyDict>>,
+            young: f64,
+            poisson: f64,
+            young2: Option<f64>,
+            poisson2: Option<f64>,
+            wall: bool,
+        ) -> PyResult<$class> {
+            let p = params_of(params)?;
+            let mats = materials(young, poisson, young2, poisson2, wall)?;
+            with_registry(py, |reg| {
+                let law = reg
+                    .$kind(name, &p)
+                    .map_err(law_err)?
+                    .bind(&mats)
+                    .map_err(law_err)?;
+                Ok($class {
+                    law: Box::new(law),
+                    name: name.to_string(),
+                })
+            })
+        }
+    };
+}
+
+binder!(bind_contact, BoundContact, contact);
+binder!(bind_tangential, BoundTangential, tangential);
+binder!(bind_rolling, BoundRolling, rolling);
+binder!(bind_twisting, BoundTwisting, twisting);
+
+/// r(v) of restitution law `name` with `params`, bound to a particle (diameter m, density
+/// kg/m³, Young's modulus Pa, Poisson's ratio) against an identical one or a wall, at the
+/// impact speeds `speed` (m/s).
+#[pyfunction]
+#[pyo3(signature = (name, params, speed, diameter, density, young, poisson, wall))]
+#[allow(clippy::too_many_arguments)]
+fn restitution<'py>(
+    py: Python<'py>,
+    name: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    speed: PyReadonlyArray1<'py, f64>,
+    diameter: f64,
+    density: f64,
+    young: f64,
+    poisson: f64,
+    wall: bool,
+) -> PyResult<Bound<'py, PyArray1<f64>>> {
+    let p = params_of(params)?;
+    let pair = pair_of(diameter, density, young, poisson, wall)?;
+    let law = with_registry(py, |reg| {
+        reg.restitution(name, &p)
+            .map_err(law_err)?
+            .bind(&pair)
+            .map_err(law_err)
+    })?;
+    let v = speed.as_slice()?;
+    let mut out = vec![0.0; v.len()];
+    py.allow_threads(|| law.restitution_batch(v, &mut out))
+        .map_err(law_err)?;
+    Ok(out.into_pyarray(py))
+}
+
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<BoundContact>()?;
+    m.add_class::<BoundTangential>()?;
+    m.add_class::<BoundRolling>()?;
+    m.add_class::<BoundTwisting>()?;
+    m.add_function(wrap_pyfunction!(bind_contact, m)?)?;
+    m.add_function(wrap_pyfunction!(bind_tangential, m)?)?;
+    m.add_function(wrap_pyfunction!(bind_rolling, m)?)?;
+    m.add_function(wrap_pyfunction!(bind_twisting, m)?)?;
+    m.add_function(wrap_pyfunction!(restitution, m)?)?;
+    Ok(())
+}
