@@ -216,11 +216,11 @@ impl Scene {
     fn _advance(&mut self, py: Python<'_>, t_end: f64, stop: u64) -> PyResult<()> {
         let mut block = 1u64;
         loop {
-            let left = on!(&self.e, e => e.steps_to(t_end, stop.saturating_sub(e.steps())));
-            if left == 0 {
+            // (steps_to counts step by step: ask for one block at most)
+            let k = on!(&self.e, e => e.steps_to(t_end, stop.saturating_sub(e.steps()).min(block)));
+            if k == 0 {
                 return Ok(());
             }
-            let k = left.min(block);
             let t0 = Instant::now();
             let e = &mut self.e;
             py.allow_threads(|| on!(e, e => e.advance(k))).map_err(dem_err)?;
