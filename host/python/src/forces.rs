@@ -9,6 +9,12 @@ use dashpot::laws::{EnergyOut, NormalLaw, RollingResistance, TangentialForce, Tw
 use dashpot_sdk::{Contact, NormalBatch, RollingBatch, TangentialBatch, TwistingBatch};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1};
 
+/// A new float64 array of one value per contact.
+type Array<'py> = Bound<'py, PyArray1<f64>>;
+
+/// Forces, dissipated power and elastic energy (`None` when not reported), reach.
+type WithEnergy<'py> = (Array<'py>, Option<PyObject>, Option<PyObject>, Array<'py>);
+
 /// The four arrays of a batch (δ, δ̇, m, r) as slices of one length; the error names the array
 /// whose length differs.
 pub(crate) fn contact_slices<'a>(arrays: [&'a PyReadonlyArray1<'_, f64>; 4]) -> PyResult<[&'a [f64]; 4]> {
@@ -184,7 +190,6 @@ impl BoundContact {
     /// the dissipated power (W) and elastic energy (J) of each contact (`None` for a law that
     /// does not report them) and its reach (m: the contact lasts while δ > −reach).
     #[pyo3(signature = (delta, rate, mass, radius, history=None))]
-    #[allow(clippy::type_complexity)]
     fn force_energy<'py>(
         &self,
         py: Python<'py>,
@@ -193,12 +198,7 @@ impl BoundContact {
         mass: PyReadonlyArray1<'py, f64>,
         radius: PyReadonlyArray1<'py, f64>,
         mut history: Option<PyReadwriteArray1<'py, f64>>,
-    ) -> PyResult<(
-        Bound<'py, PyArray1<f64>>,
-        Option<PyObject>,
-        Option<PyObject>,
-        Bound<'py, PyArray1<f64>>,
-    )> {
+    ) -> PyResult<WithEnergy<'py>> {
         let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
         let n = d.len();
         let slots = self.law.history_slots();
@@ -276,7 +276,7 @@ impl BoundContact {
         mass: PyReadonlyArray1<'py, f64>,
         radius: PyReadonlyArray1<'py, f64>,
         history: Option<PyReadonlyArray1<'py, f64>>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    ) -> PyResult<(Array<'py>, Array<'py>)> {
         let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
         let (n, slots) = (d.len(), self.law.history_slots());
         let h0 = match &history {

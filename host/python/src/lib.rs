@@ -4,12 +4,12 @@
 //! sweeps, beds and DEM scenes of the host crate without the GIL, stops a long run on Ctrl-C,
 //! and turns every refusal into a Python exception naming the value.
 //!
-//! - [`forces`]: contact, tangential, rolling and twisting laws on numpy arrays;
-//! - [`runs`]: `collide` and `sweep` (the two-body driver);
-//! - [`fit`]: `calibrate`;
-//! - [`bed`]: the vibrated bed, as `dashpot bed --json`;
-//! - [`scene`]: DEM scenes, as `dashpot dem --scene FILE --json`;
-//! - [`interrupt`]: Ctrl-C during long runs.
+//! - [`forces`] — contact, tangential, rolling and twisting laws on numpy arrays;
+//! - [`runs`] — `collide` and `sweep` (the two-body driver);
+//! - [`fit`] — `calibrate`;
+//! - [`bed`] — the vibrated bed, as `dashpot bed --json`;
+//! - [`scene`] — DEM scenes, as `dashpot dem --scene FILE --json`;
+//! - [`interrupt`] — Ctrl-C during long runs.
 
 use dashpot::output::{law_json, Provenance};
 use dashpot::registry::explicit_file;

@@ -56,6 +56,10 @@ pub(crate) fn forget_laws() {
     }
 }
 
+/// At most this many laws are kept (a fit that tries a new parameter value at every call would
+/// otherwise grow the cache without bound).
+const CACHED_LAWS: usize = 256;
+
 fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<ContactLawHandle>> {
     let key = format!("{name}|{p:?}");
     let cache = CONTACT_LAWS.get_or_init(Default::default);
@@ -63,11 +67,49 @@ fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<
         return Ok(l.clone());
     }
     let law = Arc::new(with_registry(py, |reg| reg.contact(name, p).map_err(law_err))?);
-    cache
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .insert(key, law.clone());
+    let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
+    if c.len() >= CACHED_LAWS {
+        c.clear();
+    }
+    c.insert(key, law.clone());
     Ok(law)
+}
+
+/// The benchmark's floor: the collisions of a calibration loop in Rust alone, as `collide`
+/// makes each (the law created and bound to the default pair, integrated to its end), for
+/// each `(value, v0)` of parameter `param`; returns the wall time of the loop (s) and the
+/// realized restitutions.
+#[pyfunction]
+#[pyo3(signature = (name, param, cases, rtol, end=None))]
+fn _time_collisions(
+    py: Python<'_>,
+    name: &str,
+    param: &str,
+    cases: Vec<(f64, f64)>,
+    rtol: f64,
+    end: Option<&str>,
+) -> PyResult<(f64, Vec<f64>)> {
+    let opt = options(rtol)?;
+    let end = end_of(end, EndCriterion::Overlap)?;
+    let p = dashpot_sdk::Particle::MCC;
+    let pair = pair_of(p.diameter, p.density, p.young, p.poisson, false)?;
+    let reg = registry(py)?;
+    let reg: &Registry = &reg;
+    py.allow_threads(|| {
+        let t = std::time::Instant::now();
+        let e = cases
+            .iter()
+            .map(|&(value, v0)| {
+                let law = reg.contact(name, &[ParamValue::new(param, value)])?;
+                let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&law, &pair, p.poisson)?;
+                collide_one(&bound, pair.mass, v0, end, &opt)
+                    .map(|c| c.restitution)
+                    .map_err(|e| LawError::new(dashpot_sdk::ErrorKind::Other, e.to_string()))
+            })
+            .collect::<Result<Vec<f64>, LawError>>()?;
+        Ok((t.elapsed().as_secs_f64(), e))
+    })
+    .map_err(law_err)
 }
 
 /// One head-on collision, as `dashpot collide --json` computes it: law `name` with `params`,
@@ -195,7 +237,7 @@ fn sweep(
             v0s: speeds,
             varied: &varied,
             end,
-            options: opt.clone(),
+            options: opt,
         };
         let got = py.allow_threads(|| sweep_rows(&reg, &spec)).map_err(run_err)?;
         // block rows: parameter set i, speed j of the block → row i × |v0| + b × per_block + j
@@ -233,5 +275,6 @@ fn sweep(
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(collide, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(_time_collisions, m)?)?;
     Ok(())
 }

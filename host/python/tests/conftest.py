@@ -33,3 +33,16 @@ def cli(*args):
 def sets(params, flag="--set"):
     """NAME=VALUE arguments, values as Python writes them (the shortest round trip)."""
     return sum(([flag, f"{k}={v!r}"] for k, v in params.items()), [])
+
+
+def third_party_plugin():
+    """The third-party fixture `hooke-limited` (tests/fixtures/third-party, its own workspace, as
+    an outside author builds it): `DASHPOT_THIRD_PARTY_PLUGIN` if the runner built it (cargo test
+    does), else built here into target/external as the Rust tests build it."""
+    given = os.environ.get("DASHPOT_THIRD_PARTY_PLUGIN")
+    if given:
+        return pathlib.Path(given)
+    target = ROOT / "target" / "external"
+    subprocess.run(["cargo", "build", "--quiet", "--manifest-path", str(ROOT / "tests/fixtures/third-party/Cargo.toml"),
+                    "-p", "dashpot-fixture-limited", "--target-dir", str(target)], check=True)
+    return target / "debug" / "libdashpot_fixture_limited.so"
