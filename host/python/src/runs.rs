@@ -44,10 +44,18 @@ fn options(rtol: f64) -> PyResult<Options> {
     })
 }
 
+/// A law `collide` created, with its provenance as the CLI's JSON gives it (`params`,
+/// `provenance`), as Python objects shared by the results of the same law and parameters.
+struct Cached {
+    law: Arc<ContactLawHandle>,
+    params: PyObject,
+    provenance: PyObject,
+}
+
 /// Contact laws created by `collide`, by name and parameters: a calibration loop calls the same
 /// law thousands of times, and creating it (a call into the plugin that checks every parameter)
-/// costs more than a short collision. Emptied when a plugin is loaded.
-static CONTACT_LAWS: OnceLock<Mutex<HashMap<String, Arc<ContactLawHandle>>>> = OnceLock::new();
+/// and its provenance costs about as much as a short collision. Emptied when a plugin is loaded.
+static CONTACT_LAWS: OnceLock<Mutex<HashMap<String, Arc<Cached>>>> = OnceLock::new();
 
 /// Forgets the laws `collide` created (a plugin loaded since may shadow them).
 pub(crate) fn forget_laws() {
@@ -60,19 +68,29 @@ pub(crate) fn forget_laws() {
 /// otherwise grow the cache without bound).
 const CACHED_LAWS: usize = 256;
 
-fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<ContactLawHandle>> {
+fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<Cached>> {
     let key = format!("{name}|{p:?}");
     let cache = CONTACT_LAWS.get_or_init(Default::default);
     if let Some(l) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
         return Ok(l.clone());
     }
-    let law = Arc::new(with_registry(py, |reg| reg.contact(name, p).map_err(law_err))?);
+    let (law, prov) = with_registry(py, |reg| {
+        Ok((
+            reg.contact(name, p).map_err(law_err)?,
+            Provenance::of(reg, name, p).map_err(law_err)?,
+        ))
+    })?;
+    let entry = Arc::new(Cached {
+        law: Arc::new(law),
+        params: json_to_py(py, &prov.params_json())?,
+        provenance: json_to_py(py, &prov.json())?,
+    });
     let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
     if c.len() >= CACHED_LAWS {
         c.clear();
     }
-    c.insert(key, law.clone());
-    Ok(law)
+    c.insert(key, entry.clone());
+    Ok(entry)
 }
 
 /// The benchmark's floor: the collisions of a calibration loop in Rust alone, as `collide`
@@ -114,8 +132,9 @@ fn _time_collisions(
 
 /// One head-on collision, as `dashpot collide --json` computes it: law `name` with `params`,
 /// the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) against an
-/// identical sphere or a wall, impact speed `v0` (m/s). Returns the numbers of the CLI's JSON
-/// as a dict and, with `record`, the trajectory as four arrays (t, δ, δ̇, F).
+/// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON as a dict (its
+/// `params` and `provenance` dicts shared by the results of the same law and parameters) and,
+/// with `record`, the trajectory as four arrays (t, δ, δ̇, F).
 #[pyfunction]
 #[pyo3(signature = (name, params, v0, diameter, density, young, poisson, wall, end, rtol, record))]
 #[allow(clippy::too_many_arguments)]
@@ -138,8 +157,8 @@ fn collide<'py>(
     let end = end_of(end, EndCriterion::Overlap)?;
     let p = params_of(params)?;
     let pair = pair_of(diameter, density, young, poisson, wall)?;
-    let law = cached_contact(py, name, &p)?;
-    let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&law, &pair, poisson).map_err(law_err)?;
+    let cached = cached_contact(py, name, &p)?;
+    let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, poisson).map_err(law_err)?;
     opt.record = record;
     if record {
         opt.max_step_fraction = 0.01;
@@ -165,6 +184,8 @@ fn collide<'py>(
     pd.set_item("radius", pair.radius)?;
     pd.set_item("young", pair.young)?;
     out.set_item("pair", pd)?;
+    out.set_item("params", cached.params.bind(py))?;
+    out.set_item("provenance", cached.provenance.bind(py))?;
     if record {
         let col =
             |f: fn(&dashpot::collide::Sample) -> f64| -> Vec<f64> { c.trajectory.iter().map(f).collect() };
