@@ -9,7 +9,7 @@ use dashpot_sdk::EndCriterion;
 /// parameters, the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio)
 /// against an identical one or a wall. Returns the CLI's JSON as a string.
 #[pyfunction]
-#[pyo3(signature = (name, fixed, restitution, contact_time, v0, diameter, density, young, poisson, wall, end, fit, rtol))]
+#[pyo3(signature = (name, fixed, restitution, contact_time, v0, body, end, fit, rtol))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn calibrate(
     py: Python<'_>,
@@ -18,19 +18,14 @@ pub(crate) fn calibrate(
     restitution: f64,
     contact_time: Option<f64>,
     v0: f64,
-    diameter: f64,
-    density: f64,
-    young: f64,
-    poisson: f64,
-    wall: bool,
+    body: Body,
     end: Option<&str>,
     fit: Option<String>,
     rtol: f64,
 ) -> PyResult<String> {
     use dashpot::collide::calibrate::{calibrate as fit_law, CalibrateSpec};
     let p = params_of(fixed)?;
-    let pair = pair_of(diameter, density, young, poisson, wall)?;
-    let mats = materials(young, poisson, None, None, wall)?;
+    let (pair, mats) = (body.pair()?, body.materials()?);
     with_registry(py, |reg| {
         let declared = reg
             .find(name)
@@ -66,7 +61,7 @@ pub(crate) fn calibrate(
             .collect();
         Ok(serde_json::json!({
             "law": name, "method": c.method, "params": params,
-            "young": young * c.young_factor, "effective_young": c.effective_young, "v0": v0,
+            "young": body.2 * c.young_factor, "effective_young": c.effective_young, "v0": v0,
             "end": end.as_str(),
             "target_restitution": restitution, "target_contact_time": contact_time,
             "restitution": c.realized.restitution, "contact_time": c.realized.contact_time,

@@ -5,15 +5,23 @@
 //! caller's `out`.
 
 use super::*;
-use dashpot::laws::{EnergyOut, NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
-use dashpot_sdk::{Contact, NormalBatch, RollingBatch, TangentialBatch, TwistingBatch};
+use crate::rotation::{BoundRolling, BoundTangential, BoundTwisting};
+use dashpot::laws::{EnergyOut, NormalLaw};
+use dashpot_sdk::{Contact, NormalBatch};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1};
 
 /// A new float64 array of one value per contact.
-type Array<'py> = Bound<'py, PyArray1<f64>>;
+pub(crate) type Array<'py> = Bound<'py, PyArray1<f64>>;
 
 /// Forces, dissipated power and elastic energy (`None` when not reported), reach.
 type WithEnergy<'py> = (Array<'py>, Option<PyObject>, Option<PyObject>, Array<'py>);
+
+/// The batch of contacts `s` (δ, δ̇, m, r), their history and the forces out.
+#[rustfmt::skip]
+fn normal_batch<'a>(s: [&'a [f64]; 4], slots: usize, history: &'a mut [f64], force: &'a mut [f64]) -> NormalBatch<'a> {
+    let [delta, rate, mass, radius] = s;
+    NormalBatch { delta, rate, mass, radius, slots, history, force }
+}
 
 /// The four arrays of a batch (δ, δ̇, m, r) as slices of one length; the error names the array
 /// whose length differs.
@@ -33,7 +41,7 @@ pub(crate) fn contact_slices<'a>(arrays: [&'a PyReadonlyArray1<'_, f64>; 4]) -> 
 }
 
 /// `x` (3 N values, x y z per contact) as N vectors; the error names the array.
-fn vectors<'a>(what: &str, x: &'a [f64], n: usize) -> PyResult<&'a [[f64; 3]]> {
+pub(crate) fn vectors<'a>(what: &str, x: &'a [f64], n: usize) -> PyResult<&'a [[f64; 3]]> {
     if x.len() != 3 * n {
         return Err(PyValueError::new_err(format!(
             "{what} has {} values: 3 per contact (x, y, z), {} for {n} contacts",
@@ -46,14 +54,14 @@ fn vectors<'a>(what: &str, x: &'a [f64], n: usize) -> PyResult<&'a [[f64; 3]]> {
 }
 
 /// [`vectors`] for an output.
-fn vectors_mut(x: &mut [f64]) -> &mut [[f64; 3]] {
+pub(crate) fn vectors_mut(x: &mut [f64]) -> &mut [[f64; 3]] {
     let n = x.len() / 3;
     // SAFETY: as in `vectors`; the callers allocate 3 N values
     unsafe { std::slice::from_raw_parts_mut(x.as_mut_ptr().cast::<[f64; 3]>(), n) }
 }
 
 /// The caller's history array as the `n × slots` values law `name` keeps.
-fn history_slice<'a>(
+pub(crate) fn history_slice<'a>(
     h: Option<&'a mut PyReadwriteArray1<'_, f64>>,
     n: usize,
     slots: usize,
@@ -80,20 +88,20 @@ fn history_slice<'a>(
 }
 
 /// The energy outputs of a batch of `n` contacts, when asked for.
-struct Energies {
+pub(crate) struct Energies {
     power: Vec<f64>,
     elastic: Vec<f64>,
 }
 
 impl Energies {
-    fn new(want: bool, n: usize) -> Option<Energies> {
+    pub(crate) fn new(want: bool, n: usize) -> Option<Energies> {
         want.then(|| Energies {
             power: vec![0.0; n],
             elastic: vec![0.0; n],
         })
     }
 
-    fn out(e: &mut Option<Energies>) -> EnergyOut<'_> {
+    pub(crate) fn out(e: &mut Option<Energies>) -> EnergyOut<'_> {
         match e {
             Some(e) => EnergyOut {
                 power: Some(&mut e.power),
@@ -104,7 +112,7 @@ impl Energies {
     }
 
     /// `(power, elastic)` as arrays, or `(None, None)` when the law did not write them.
-    fn into_py(self, py: Python<'_>, written: bool) -> (Option<PyObject>, Option<PyObject>) {
+    pub(crate) fn into_py(self, py: Python<'_>, written: bool) -> (Option<PyObject>, Option<PyObject>) {
         if !written {
             return (None, None);
         }
@@ -115,213 +123,23 @@ impl Energies {
     }
 }
 
-/// A contact law bound to a pair of materials.
-#[pyclass(module = "dashpot._dashpot", frozen)]
-pub(crate) struct BoundContact {
-    law: Box<dyn NormalLaw>,
-    name: String,
-}
+/// δ, δ̇, m, r of N contacts as Python passes them: a tuple of four float64 arrays.
+pub(crate) type Contacts<'py> = (
+    PyReadonlyArray1<'py, f64>,
+    PyReadonlyArray1<'py, f64>,
+    PyReadonlyArray1<'py, f64>,
+    PyReadonlyArray1<'py, f64>,
+);
 
-#[pymethods]
-impl BoundContact {
-    /// History slots per contact.
-    #[getter]
-    fn history_slots(&self) -> usize {
-        self.law.history_slots()
-    }
-
-    /// The law's name.
-    #[getter]
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// Normal forces (N) of the contacts: `delta` (m), `rate` (m/s), `mass` (kg), `radius` (m),
-    /// contiguous float64 arrays of one length; `history` (flat, `history_slots` per contact)
-    /// updated in place; `out` the caller's array for the forces.
-    #[pyo3(signature = (delta, rate, mass, radius, history=None, out=None))]
-    #[allow(clippy::too_many_arguments)]
-    fn force<'py>(
-        &self,
-        py: Python<'py>,
-        delta: PyReadonlyArray1<'py, f64>,
-        rate: PyReadonlyArray1<'py, f64>,
-        mass: PyReadonlyArray1<'py, f64>,
-        radius: PyReadonlyArray1<'py, f64>,
-        mut history: Option<PyReadwriteArray1<'py, f64>>,
-        out: Option<Bound<'py, PyArray1<f64>>>,
-    ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
-        let n = d.len();
-        let slots = self.law.history_slots();
-        let hist = history_slice(history.as_mut(), n, slots, &self.name)?;
-        let out = match out {
-            Some(o) => o,
-            // (every value is written by the call)
-            None => unsafe { PyArray1::<f64>::new(py, n, false) },
-        };
-        {
-            let mut w = out.try_readwrite()?;
-            let f = w.as_slice_mut()?;
-            if f.len() != n {
-                return Err(PyValueError::new_err(format!(
-                    "out has {} values, delta {n}: one per contact",
-                    f.len()
-                )));
-            }
-            let law = &self.law;
-            py.allow_threads(|| {
-                law.force_batch(NormalBatch {
-                    delta: d,
-                    rate: r,
-                    mass: m,
-                    radius: a,
-                    slots,
-                    history: hist,
-                    force: f,
-                })
-            })
-            .map_err(law_err)?;
-        }
-        Ok(out)
-    }
-
-    /// As `force`, with the energy outputs of sdk 0.3: returns `(force, power, elastic, reach)`,
-    /// the dissipated power (W) and elastic energy (J) of each contact (`None` for a law that
-    /// does not report them) and its reach (m: the contact lasts while δ > −reach).
-    #[pyo3(signature = (delta, rate, mass, radius, history=None))]
-    fn force_energy<'py>(
-        &self,
-        py: Python<'py>,
-        delta: PyReadonlyArray1<'py, f64>,
-        rate: PyReadonlyArray1<'py, f64>,
-        mass: PyReadonlyArray1<'py, f64>,
-        radius: PyReadonlyArray1<'py, f64>,
-        mut history: Option<PyReadwriteArray1<'py, f64>>,
-    ) -> PyResult<WithEnergy<'py>> {
-        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
-        let n = d.len();
-        let slots = self.law.history_slots();
-        let hist = history_slice(history.as_mut(), n, slots, &self.name)?;
-        let (mut f, mut reach, mut en) = (vec![0.0; n], vec![0.0; n], Energies::new(true, n));
-        let law = &self.law;
-        let written = py
-            .allow_threads(|| {
-                law.force_batch_with(
-                    NormalBatch {
-                        delta: d,
-                        rate: r,
-                        mass: m,
-                        radius: a,
-                        slots,
-                        history: hist,
-                        force: &mut f,
-                    },
-                    Some(&mut reach),
-                    Energies::out(&mut en),
-                )
-            })
-            .map_err(law_err)?;
-        let (p, e) = en.map_or((None, None), |en| en.into_py(py, written));
-        Ok((f.into_pyarray(py), p, e, reach.into_pyarray(py)))
-    }
-
-    /// The benchmarks' baseline: the Rust batch call on these contacts, `reps` times into one
-    /// preallocated output, without Python in the loop; returns each call's wall time (s).
-    #[pyo3(signature = (delta, rate, mass, radius, reps))]
-    fn _time_batch<'py>(
-        &self,
-        py: Python<'py>,
-        delta: PyReadonlyArray1<'py, f64>,
-        rate: PyReadonlyArray1<'py, f64>,
-        mass: PyReadonlyArray1<'py, f64>,
-        radius: PyReadonlyArray1<'py, f64>,
-        reps: usize,
-    ) -> PyResult<Vec<f64>> {
-        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
-        if self.law.history_slots() > 0 {
-            return Err(PyValueError::new_err("_time_batch: a memoryless law"));
-        }
-        let mut out = vec![0.0; d.len()];
-        let law = &self.law;
-        py.allow_threads(|| {
-            (0..reps)
-                .map(|_| {
-                    let t = std::time::Instant::now();
-                    law.force_batch(NormalBatch {
-                        delta: d,
-                        rate: r,
-                        mass: m,
-                        radius: a,
-                        slots: 0,
-                        history: &mut [],
-                        force: &mut out,
-                    })
-                    .map(|_| t.elapsed().as_secs_f64())
-                })
-                .collect::<Result<Vec<f64>, LawError>>()
-        })
-        .map_err(law_err)
-    }
-
-    /// The tests' references, computed in Rust on copies of the inputs: the forces of one Rust
-    /// batch call into a Rust vector, and those of one call per contact, as `dashpot eval`
-    /// makes it (each from its own copy of `history`, flat, zeros if not given).
-    #[pyo3(signature = (delta, rate, mass, radius, history=None))]
-    fn _reference<'py>(
-        &self,
-        py: Python<'py>,
-        delta: PyReadonlyArray1<'py, f64>,
-        rate: PyReadonlyArray1<'py, f64>,
-        mass: PyReadonlyArray1<'py, f64>,
-        radius: PyReadonlyArray1<'py, f64>,
-        history: Option<PyReadonlyArray1<'py, f64>>,
-    ) -> PyResult<(Array<'py>, Array<'py>)> {
-        let [d, r, m, a] = contact_slices([&delta, &rate, &mass, &radius])?;
-        let (n, slots) = (d.len(), self.law.history_slots());
-        let h0 = match &history {
-            Some(h) => h.as_slice()?.to_vec(),
-            None => vec![0.0; n * slots],
-        };
-        let (mut batch, mut hb, mut hc) = (vec![0.0; n], h0.clone(), h0);
-        let law = &self.law;
-        let one = py
-            .allow_threads(|| {
-                law.force_batch(NormalBatch {
-                    delta: d,
-                    rate: r,
-                    mass: m,
-                    radius: a,
-                    slots,
-                    history: &mut hb,
-                    force: &mut batch,
-                })?;
-                (0..n)
-                    .map(|i| {
-                        let c = Contact {
-                            delta: d[i],
-                            rate: r[i],
-                            mass: m[i],
-                            radius: a[i],
-                        };
-                        law.force(c, &mut hc[i * slots..(i + 1) * slots])
-                    })
-                    .collect::<Result<Vec<f64>, LawError>>()
-            })
-            .map_err(law_err)?;
-        Ok((batch.into_pyarray(py), one.into_pyarray(py)))
-    }
-}
-
-/// Tangential and rolling laws: the same batch layout (n̂, a velocity, F_n, δ, m, R, history)
-/// and a vector out.
-macro_rules! vector_law {
-    ($(#[$doc:meta])* $class:ident, $trait:ident, $batch:ident, $call:ident, $velocity:literal) => {
+/// A bound law as a Python class: the law, its name, the `history_slots` and `name` getters,
+/// and the methods given.
+macro_rules! bound_class {
+    ($(#[$doc:meta])* $class:ident, $law:ty, { $($methods:tt)* }) => {
         $(#[$doc])*
         #[pyclass(module = "dashpot._dashpot", frozen)]
         pub(crate) struct $class {
-            law: Box<dyn $trait>,
-            name: String,
+            pub(crate) law: Box<$law>,
+            pub(crate) name: String,
         }
 
         #[pymethods]
@@ -338,174 +156,122 @@ macro_rules! vector_law {
                 &self.name
             }
 
-            #[doc = concat!("Forces (N) on N contacts, flat (3 N values): unit normals `normal` (3 N), `", $velocity, "` (3 N, m/s), normal forces (N), overlaps (m), effective masses (kg) and radii (m); `history` (N × slots, flat) advanced by `dt` (s) in place. With `energy`, returns `(force, power, elastic)`, `None` for a law that does not report them.")]
-            #[pyo3(signature = (dt, normal, velocity, normal_force, delta, mass, radius, history, energy=false))]
-            #[allow(clippy::too_many_arguments)]
-            fn force<'py>(
-                &self,
-                py: Python<'py>,
-                dt: f64,
-                normal: PyReadonlyArray1<'py, f64>,
-                velocity: PyReadonlyArray1<'py, f64>,
-                normal_force: PyReadonlyArray1<'py, f64>,
-                delta: PyReadonlyArray1<'py, f64>,
-                mass: PyReadonlyArray1<'py, f64>,
-                radius: PyReadonlyArray1<'py, f64>,
-                mut history: PyReadwriteArray1<'py, f64>,
-                energy: bool,
-            ) -> PyResult<PyObject> {
-                let [fnorm, d, m, r] = contact_slices([&normal_force, &delta, &mass, &radius])?;
-                let n = fnorm.len();
-                let nv = vectors("normal", normal.as_slice()?, n)?;
-                let vv = vectors($velocity, velocity.as_slice()?, n)?;
-                let slots = self.law.history_slots();
-                let h = history_of(&mut history, n, slots, &self.name)?;
-                let out = unsafe { PyArray1::<f64>::new(py, 3 * n, false) };
-                let mut en = Energies::new(energy, n);
-                let written = {
-                    let mut w = out.try_readwrite()?;
-                    let f = vectors_mut(w.as_slice_mut()?);
-                    let law = &self.law;
-                    py.allow_threads(|| {
-                        law.$call(
-                            $batch {
-                                dt,
-                                normal: nv,
-                                velocity: vv,
-                                normal_force: fnorm,
-                                delta: d,
-                                mass: m,
-                                radius: r,
-                                slots,
-                                history: h,
-                                force: f,
-                            },
-                            Energies::out(&mut en),
-                        )
-                    })
-                    .map_err(law_err)?
-                };
-                Ok(match en {
-                    None => out.into_any().unbind(),
-                    Some(en) => (out, en.into_py(py, written)).into_pyobject(py)?.into_any().unbind(),
-                })
-            }
+            $($methods)*
         }
     };
 }
+pub(crate) use bound_class;
 
-/// `history` for a kind whose history is mandatory.
-fn history_of<'a>(
-    h: &'a mut PyReadwriteArray1<'_, f64>,
-    n: usize,
-    slots: usize,
-    name: &str,
-) -> PyResult<&'a mut [f64]> {
-    history_slice(Some(h), n, slots, name)
-}
-
-vector_law!(
-    /// A tangential (friction) law bound to a pair of materials.
-    BoundTangential,
-    TangentialForce,
-    TangentialBatch,
-    force_batch_with,
-    "velocity"
-);
-
-vector_law!(
-    /// A rolling-resistance law bound to a pair of materials (sdk 0.3).
-    BoundRolling,
-    RollingResistance,
-    RollingBatch,
-    force_batch,
-    "rolling velocity"
-);
-
-/// A twisting-resistance law bound to a pair of materials (sdk 0.3).
-#[pyclass(module = "dashpot._dashpot", frozen)]
-pub(crate) struct BoundTwisting {
-    law: Box<dyn TwistingResistance>,
-    name: String,
-}
-
-#[pymethods]
-impl BoundTwisting {
-    /// History slots per contact.
-    #[getter]
-    fn history_slots(&self) -> usize {
-        self.law.history_slots()
-    }
-
-    /// The law's name.
-    #[getter]
-    fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// Twisting torques (N·m, about n̂ on the particle) on N contacts: unit normals `normal`
-    /// (3 N, flat), twisting rates `rate` (rad/s), normal forces (N), overlaps (m), effective
-    /// masses (kg) and radii (m); `history` (N × slots, flat) advanced by `dt` (s) in place.
-    /// With `energy`, returns `(torque, power, elastic)`.
-    #[pyo3(signature = (dt, normal, rate, normal_force, delta, mass, radius, history, energy=false))]
-    #[allow(clippy::too_many_arguments)]
-    fn torque<'py>(
+bound_class!(
+    /// A contact law bound to a pair of materials.
+    BoundContact,
+    dyn NormalLaw,
+    {
+    /// Normal forces (N) of the `contacts` (δ m, δ̇ m/s, m kg, r m: contiguous float64 arrays
+    /// of one length); `history` (flat, `history_slots` per contact) updated in place; `out` the
+    /// caller's array for the forces. With `energy`, returns `(force, power, elastic, reach)`:
+    /// the dissipated power (W) and elastic energy (J) of each contact (`None` for a law that
+    /// does not report them) and its reach (m: the contact lasts while δ > −reach).
+    #[pyo3(signature = (contacts, history=None, out=None, energy=false))]
+    fn force<'py>(
         &self,
         py: Python<'py>,
-        dt: f64,
-        normal: PyReadonlyArray1<'py, f64>,
-        rate: PyReadonlyArray1<'py, f64>,
-        normal_force: PyReadonlyArray1<'py, f64>,
-        delta: PyReadonlyArray1<'py, f64>,
-        mass: PyReadonlyArray1<'py, f64>,
-        radius: PyReadonlyArray1<'py, f64>,
-        mut history: PyReadwriteArray1<'py, f64>,
+        contacts: Contacts<'py>,
+        mut history: Option<PyReadwriteArray1<'py, f64>>,
+        out: Option<Array<'py>>,
         energy: bool,
     ) -> PyResult<PyObject> {
-        let [fnorm, d, m, r] = contact_slices([&normal_force, &delta, &mass, &radius])?;
-        let n = fnorm.len();
-        let nv = vectors("normal", normal.as_slice()?, n)?;
-        let w = rate.as_slice()?;
-        if w.len() != n {
-            return Err(PyValueError::new_err(format!(
-                "rate has {} values, normal_force {n}: one per contact",
-                w.len()
-            )));
-        }
-        let slots = self.law.history_slots();
-        let h = history_of(&mut history, n, slots, &self.name)?;
-        let mut out = vec![0.0; n];
-        let mut en = Energies::new(energy, n);
+        let c = contact_slices([&contacts.0, &contacts.1, &contacts.2, &contacts.3])?;
+        let (n, slots) = (c[0].len(), self.law.history_slots());
+        let hist = history_slice(history.as_mut(), n, slots, &self.name)?;
         let law = &self.law;
-        let written = py
+        if energy {
+            let (mut f, mut reach, mut en) = (vec![0.0; n], vec![0.0; n], Energies::new(true, n));
+            let b = normal_batch(c, slots, hist, &mut f);
+            let written = py
+                .allow_threads(|| law.force_batch_with(b, Some(&mut reach), Energies::out(&mut en)))
+                .map_err(law_err)?;
+            let (p, e) = en.map_or((None, None), |en| en.into_py(py, written));
+            let r: WithEnergy<'py> = (f.into_pyarray(py), p, e, reach.into_pyarray(py));
+            return Ok(r.into_pyobject(py)?.into_any().unbind());
+        }
+        // the caller's output array (reused across calls), or a new one (every value is written)
+        let out = out.unwrap_or_else(|| unsafe { PyArray1::<f64>::new(py, n, false) });
+        {
+            let mut w = out.try_readwrite()?;
+            let f = w.as_slice_mut()?;
+            if f.len() != n {
+                return Err(PyValueError::new_err(format!(
+                    "out has {} values, delta {n}: one per contact",
+                    f.len()
+                )));
+            }
+            py.allow_threads(|| law.force_batch(normal_batch(c, slots, hist, f)))
+                .map_err(law_err)?;
+        }
+        Ok(out.into_any().unbind())
+    }
+
+    /// The benchmarks' baseline: the Rust batch call on these contacts, `reps` times into one
+    /// preallocated output, without Python in the loop; returns each call's wall time (s).
+    fn _time_batch(&self, py: Python<'_>, contacts: Contacts<'_>, reps: usize) -> PyResult<Vec<f64>> {
+        let c = contact_slices([&contacts.0, &contacts.1, &contacts.2, &contacts.3])?;
+        if self.law.history_slots() > 0 {
+            return Err(PyValueError::new_err("_time_batch: a memoryless law"));
+        }
+        let mut out = vec![0.0; c[0].len()];
+        let law = &self.law;
+        py.allow_threads(|| {
+            (0..reps)
+                .map(|_| {
+                    let t = std::time::Instant::now();
+                    law.force_batch(normal_batch(c, 0, &mut [], &mut out))
+                        .map(|_| t.elapsed().as_secs_f64())
+                })
+                .collect::<Result<Vec<f64>, LawError>>()
+        })
+        .map_err(law_err)
+    }
+
+    /// The tests' references, computed in Rust on copies of the inputs: the forces of one Rust
+    /// batch call into a Rust vector, and those of one call per contact, as `dashpot eval`
+    /// makes it (each from its own copy of `history`, flat, zeros if not given).
+    #[pyo3(signature = (contacts, history=None))]
+    fn _reference<'py>(
+        &self,
+        py: Python<'py>,
+        contacts: Contacts<'py>,
+        history: Option<PyReadonlyArray1<'py, f64>>,
+    ) -> PyResult<(Array<'py>, Array<'py>)> {
+        let c = contact_slices([&contacts.0, &contacts.1, &contacts.2, &contacts.3])?;
+        let (n, slots) = (c[0].len(), self.law.history_slots());
+        let h0 = match &history {
+            Some(h) => h.as_slice()?.to_vec(),
+            None => vec![0.0; n * slots],
+        };
+        let (mut batch, mut hb, mut hc) = (vec![0.0; n], h0.clone(), h0);
+        let law = &self.law;
+        let [d, r, m, a] = c;
+        let one = py
             .allow_threads(|| {
-                law.torque_batch(
-                    TwistingBatch {
-                        dt,
-                        normal: nv,
-                        rate: w,
-                        normal_force: fnorm,
-                        delta: d,
-                        mass: m,
-                        radius: r,
-                        slots,
-                        history: h,
-                        torque: &mut out,
-                    },
-                    Energies::out(&mut en),
-                )
+                law.force_batch(normal_batch(c, slots, &mut hb, &mut batch))?;
+                (0..n)
+                    .map(|i| {
+                        let contact = Contact {
+                            delta: d[i],
+                            rate: r[i],
+                            mass: m[i],
+                            radius: a[i],
+                        };
+                        law.force(contact, &mut hc[i * slots..(i + 1) * slots])
+                    })
+                    .collect::<Result<Vec<f64>, LawError>>()
             })
             .map_err(law_err)?;
-        let out = out.into_pyarray(py);
-        Ok(match en {
-            None => out.into_any().unbind(),
-            Some(en) => (out, en.into_py(py, written))
-                .into_pyobject(py)?
-                .into_any()
-                .unbind(),
-        })
+        Ok((batch.into_pyarray(py), one.into_pyarray(py)))
     }
-}
+    }
+);
 
 /// Law `name` of one kind with `params`, bound to the materials of a first body (Young's
 /// modulus Pa, Poisson's ratio) and a second one (default the first's) or a rigid wall.
@@ -550,21 +316,16 @@ binder!(bind_twisting, BoundTwisting, twisting);
 /// kg/m³, Young's modulus Pa, Poisson's ratio) against an identical one or a wall, at the
 /// impact speeds `speed` (m/s).
 #[pyfunction]
-#[pyo3(signature = (name, params, speed, diameter, density, young, poisson, wall))]
-#[allow(clippy::too_many_arguments)]
+#[pyo3(signature = (name, params, speed, body))]
 fn restitution<'py>(
     py: Python<'py>,
     name: &str,
     params: Option<&Bound<'py, PyDict>>,
     speed: PyReadonlyArray1<'py, f64>,
-    diameter: f64,
-    density: f64,
-    young: f64,
-    poisson: f64,
-    wall: bool,
+    body: Body,
 ) -> PyResult<Bound<'py, PyArray1<f64>>> {
     let p = params_of(params)?;
-    let pair = pair_of(diameter, density, young, poisson, wall)?;
+    let pair = body.pair()?;
     let law = with_registry(py, |reg| {
         reg.restitution(name, &p)
             .map_err(law_err)?

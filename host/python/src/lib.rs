@@ -25,6 +25,7 @@ mod bed;
 mod fit;
 mod forces;
 mod interrupt;
+mod rotation;
 mod runs;
 mod scene;
 
@@ -223,6 +224,23 @@ fn provenance(py: Python<'_>, name: &str, params: Option<&Bound<'_, PyDict>>) ->
     with_registry(py, |reg| {
         Ok(Provenance::of(reg, name, &p).map_err(law_err)?.json().to_string())
     })
+}
+
+/// A particle and its partner, as Python passes them: `(diameter, density, young, poisson,
+/// wall)`, a sphere (m, kg/m³, Pa, Poisson's ratio) against an identical one or a rigid wall.
+#[derive(FromPyObject, Clone, Copy)]
+struct Body(f64, f64, f64, f64, bool);
+
+impl Body {
+    /// The effective pair.
+    fn pair(&self) -> PyResult<Pair> {
+        pair_of(self.0, self.1, self.2, self.3, self.4)
+    }
+
+    /// The effective moduli (what a contact law binds to).
+    fn materials(&self) -> PyResult<MaterialPair> {
+        materials(self.2, self.3, None, None, self.4)
+    }
 }
 
 /// The pair of a sphere (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) and

@@ -136,18 +136,14 @@ fn _time_collisions(
 /// `params` and `provenance` dicts shared by the results of the same law and parameters) and,
 /// with `record`, the trajectory as four arrays (t, δ, δ̇, F).
 #[pyfunction]
-#[pyo3(signature = (name, params, v0, diameter, density, young, poisson, wall, end, rtol, record))]
+#[pyo3(signature = (name, params, v0, body, end, rtol, record))]
 #[allow(clippy::too_many_arguments)]
 fn collide<'py>(
     py: Python<'py>,
     name: &str,
     params: Option<&Bound<'py, PyDict>>,
     v0: f64,
-    diameter: f64,
-    density: f64,
-    young: f64,
-    poisson: f64,
-    wall: bool,
+    body: Body,
     end: Option<&str>,
     rtol: f64,
     record: bool,
@@ -156,9 +152,9 @@ fn collide<'py>(
     let mut opt = options(rtol)?;
     let end = end_of(end, EndCriterion::Overlap)?;
     let p = params_of(params)?;
-    let pair = pair_of(diameter, density, young, poisson, wall)?;
+    let pair = body.pair()?;
     let cached = cached_contact(py, name, &p)?;
-    let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, poisson).map_err(law_err)?;
+    let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, body.3).map_err(law_err)?;
     opt.record = record;
     if record {
         opt.max_step_fraction = 0.01;
@@ -215,7 +211,7 @@ fn grid(what: &str, g: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
 /// parameter values, and each row's v0, restitution, contact time, maximum overlap and its
 /// time. Ctrl-C stops it between blocks of collisions.
 #[pyfunction]
-#[pyo3(signature = (name, params, v0, vary, diameter, density, young, poisson, wall, end, rtol))]
+#[pyo3(signature = (name, params, v0, vary, body, end, rtol))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn sweep(
     py: Python<'_>,
@@ -223,11 +219,7 @@ fn sweep(
     params: Option<&Bound<'_, PyDict>>,
     v0: &Bound<'_, PyAny>,
     vary: Vec<(String, Bound<'_, PyAny>)>,
-    diameter: f64,
-    density: f64,
-    young: f64,
-    poisson: f64,
-    wall: bool,
+    body: Body,
     end: Option<&str>,
     rtol: f64,
 ) -> PyResult<(Vec<String>, Vec<Vec<f64>>, Vec<[f64; 5]>)> {
@@ -242,8 +234,7 @@ fn sweep(
         .collect::<PyResult<Vec<_>>>()?;
     let opt = options(rtol)?;
     let end = end_of(end, EndCriterion::Overlap)?;
-    let pair = pair_of(diameter, density, young, poisson, wall)?;
-    let mats = materials(young, poisson, None, None, wall)?;
+    let (pair, mats) = (body.pair()?, body.materials()?);
     let combos: usize = varied.iter().map(|(_, g)| g.len()).product();
     // blocks of about 64 collisions, whole impact speeds each, with a Ctrl-C check between
     let per_block = 64usize.div_ceil(combos.max(1)).max(1);

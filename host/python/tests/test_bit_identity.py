@@ -57,7 +57,7 @@ def test_a_million_contacts_are_the_rust_batch_and_the_clis_eval_to_the_bit(law,
     b = dashpot.ContactLaw(law, **params).bind(**MCC)
     h = np.zeros((N, b.history_slots)) if b.history_slots else None
     f = b.force(delta, rate, mass, radius, history=h)
-    batch, one_by_one = b._inner._reference(delta, rate, mass, radius, None)
+    batch, one_by_one = b._inner._reference((delta, rate, mass, radius))
     assert f.dtype == np.float64 and f.shape == (N,)
     assert np.array_equal(f, batch), f"{law}: Python and the Rust batch differ"
     assert np.array_equal(f, one_by_one), f"{law}: the batch and one call per contact differ"

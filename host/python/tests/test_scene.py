@@ -6,34 +6,10 @@ import numpy as np
 import pytest
 
 import dashpot
-from conftest import cli
+from conftest import ROOT, cli
 
-SCENE = """
-dimension = 3
-gravity = [0.0, 0.0, -9.81]
-duration = 0.004
-
-[law]
-name = "hsd"
-params = { eps = 0.6 }
-[tangential]
-name = "mindlin"
-params = { mu = 0.3 }
-[rolling]
-name = "rolling-sds"
-params = { k = 100.0, mu = 0.05 }
-[twisting]
-name = "twisting-sds"
-params = { k = 1e-4, mu = 1e-5 }
-[material]
-young = 1.0e7
-poisson = 0.3
-density = 2500.0
-
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-"""
+# 300 spheres poured between four walls with friction, rolling and twisting resistance
+PILE = ROOT / "examples" / "dem" / "rolling-pile.toml"
 
 # eight spheres in two layers just above the floor, falling and spinning
 X = np.array([[0.002 * (i % 2), 0.002 * ((i // 2) % 2), 0.00101 + 0.00201 * (i // 4)] for i in range(8)])
@@ -43,12 +19,9 @@ D = np.full(8, 0.002)
 
 
 def scene_file(tmp_path):
-    parts = [SCENE]
-    for x, v, w, d in zip(X, V, W, D):
-        parts.append(f"[[particle]]\nposition = {x.tolist()!r}\nvelocity = {v.tolist()!r}\n"
-                     f"angular_velocity = {w.tolist()!r}\ndiameter = {float(d)!r}\n")
-    p = tmp_path / "scene.toml"
-    p.write_text("\n".join(parts))
+    """The example pile, cut to 2 ms."""
+    p = tmp_path / "pile.toml"
+    p.write_text(dashpot.Scene.from_toml(PILE).to_toml(duration=0.002))
     return p
 
 
@@ -77,10 +50,10 @@ def test_a_scene_file_run_from_python_is_dem_json_to_the_bit(tmp_path):
     p = scene_file(tmp_path)
     ref = cli("dem", "--scene", p, "--json")
     sim = dashpot.Scene.from_toml(p)
-    assert sim.duration == 0.004 and sim.dimension == 3 and len(sim) == 8
+    assert sim.duration == 0.002 and sim.dimension == 3 and len(sim) == 300
     got = sim.run().result()
     same(ref, got)
-    assert got["steps"] > 100 and got["pair_episodes"] > 0
+    assert got["steps"] > 100 and got["time"] >= 0.002 - got["dt"]
     assert got["rolling"] == "rolling-sds" and len(got["provenance"]) == 4
 
 
@@ -165,5 +138,5 @@ def test_scene_refusals_name_the_key_and_the_value(tmp_path):
 
 def _bad_file(tmp_path):
     p = tmp_path / "bad.toml"
-    p.write_text(SCENE.replace("young = 1.0e7", "youngg = 1.0e7"))
+    p.write_text(PILE.read_text().replace("young = 1.0e7", "youngg = 1.0e7"))
     return p

@@ -5,11 +5,12 @@ from __future__ import annotations
 
 import json as _json
 import os as _os
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, Generic, List, Optional, Tuple, TypeVar, Union
 
 import numpy as _np
 
 from . import _dashpot
+from ._attrs import Native
 
 Array = _np.ndarray
 
@@ -63,10 +64,11 @@ def _history(history: Any) -> Array:
     return history.reshape(-1)
 
 
-class _Law:
-    """A law by name with its parameters as keywords (checked by the law when it is bound)."""
+B = TypeVar("B")
 
-    _bind = staticmethod(_dashpot.bind_contact)
+
+class _Named:
+    """A law by name with its parameters as keywords (checked by the law when it is used)."""
 
     def __init__(self, name: str, **params: float) -> None:
         self.name = name
@@ -80,26 +82,32 @@ class _Law:
         """The law's plugin file, versions and every parameter, as the CLI's JSON gives them."""
         return _json.loads(_dashpot.provenance(self.name, **self.params))
 
-    def _bound(self, young: float, poisson: float, young2: Optional[float], poisson2: Optional[float],
-               wall: bool) -> Any:
-        return type(self)._bind(self.name, self.params, float(young), float(poisson), young2, poisson2, wall)
+
+class _Law(_Named, Generic[B]):
+    """A law that binds to a pair of materials."""
+
+    _bind: Any = staticmethod(_dashpot.bind_contact)
+    _bound: Any = None
+
+    def bind(self, young: float, poisson: float, young2: Optional[float] = None,
+             poisson2: Optional[float] = None, wall: bool = False) -> B:
+        """The law for a pair of materials: Young's modulus ``young`` (Pa) and Poisson's ratio
+        ``poisson`` of the first body; the second another sphere (``young2``, ``poisson2``,
+        default the first's) or, with ``wall=True``, a rigid wall. Raises ``ValueError`` for an
+        unknown law or parameter (with "did you mean"), a law of another kind, or a value out of
+        range."""
+        inner = type(self)._bind(self.name, self.params, float(young), float(poisson), young2, poisson2, wall)
+        return type(self)._bound(inner)
 
 
 class _Bound:
     """A law bound to a pair of materials."""
 
+    name = Native[str]("The law's name.")
+    history_slots = Native[int]("History values the law keeps per contact (0 for a memoryless law).")
+
     def __init__(self, inner: Any) -> None:
         self._inner = inner
-
-    @property
-    def name(self) -> str:
-        """The law's name."""
-        return self._inner.name
-
-    @property
-    def history_slots(self) -> int:
-        """History values the law keeps per contact (0 for a memoryless law)."""
-        return self._inner.history_slots
 
     def __repr__(self) -> str:
         return f"<{type(self).__name__} {self.name!r}, {self.history_slots} history slots>"
@@ -124,7 +132,7 @@ class BoundContactLaw(_Bound):
                                     and out.ndim == 1 and out.flags.c_contiguous and out.flags.writeable):
             raise ValueError("out must be a writeable, contiguous one-dimensional float64 numpy array")
         h = None if history is None else _history(history)
-        return self._inner.force(*args, h, out)
+        return self._inner.force(args, h, out)
 
     def force_energy(self, delta: Any, rate: Any, mass: Any, radius: Any,
                      history: Optional[Array] = None) -> Tuple[Array, Optional[Array], Optional[Array], Array]:
@@ -135,23 +143,16 @@ class BoundContactLaw(_Bound):
         d = _f64("delta", delta)
         n = d.shape[0]
         h = None if history is None else _history(history)
-        return self._inner.force_energy(d, _f64("rate", rate, n), _f64("mass", mass, n),
-                                        _f64("radius", radius, n), h)
+        return self._inner.force((d, _f64("rate", rate, n), _f64("mass", mass, n), _f64("radius", radius, n)), h,
+                                 None, True)
 
 
-class ContactLaw(_Law):
+class ContactLaw(_Law[BoundContactLaw]):
     """Contact (normal) law ``name`` (see ``laws()``) with its parameters as keywords, checked
     by the law: ``ContactLaw("hsd", eps=0.3)``."""
 
     _bind = staticmethod(_dashpot.bind_contact)
-
-    def bind(self, young: float, poisson: float, young2: Optional[float] = None,
-             poisson2: Optional[float] = None, wall: bool = False) -> BoundContactLaw:
-        """The law for a pair of materials: Young's modulus ``young`` (Pa) and Poisson's ratio
-        ``poisson`` of the first body; the second another sphere (``young2``, ``poisson2``,
-        default the first's) or, with ``wall=True``, a rigid wall. Raises ``ValueError`` for an
-        unknown law or parameter (with "did you mean") or a value out of range."""
-        return BoundContactLaw(self._bound(young, poisson, young2, poisson2, wall))
+    _bound = BoundContactLaw
 
 
 class _BoundVector(_Bound):
@@ -225,40 +226,28 @@ class BoundTwistingLaw(_Bound):
         return r
 
 
-class TangentialLaw(_Law):
+class TangentialLaw(_Law[BoundTangentialLaw]):
     """Tangential (friction) law ``name`` (e.g. ``"mindlin"``) with its parameters as keywords."""
 
     _bind = staticmethod(_dashpot.bind_tangential)
-
-    def bind(self, young: float, poisson: float, young2: Optional[float] = None,
-             poisson2: Optional[float] = None, wall: bool = False) -> BoundTangentialLaw:
-        """The law for a pair of materials, as ``ContactLaw.bind``."""
-        return BoundTangentialLaw(self._bound(young, poisson, young2, poisson2, wall))
+    _bound = BoundTangentialLaw
 
 
-class RollingLaw(_Law):
+class RollingLaw(_Law[BoundRollingLaw]):
     """Rolling-resistance law ``name`` (e.g. ``"rolling-sds"``) with its parameters as keywords."""
 
     _bind = staticmethod(_dashpot.bind_rolling)
-
-    def bind(self, young: float, poisson: float, young2: Optional[float] = None,
-             poisson2: Optional[float] = None, wall: bool = False) -> BoundRollingLaw:
-        """The law for a pair of materials, as ``ContactLaw.bind``."""
-        return BoundRollingLaw(self._bound(young, poisson, young2, poisson2, wall))
+    _bound = BoundRollingLaw
 
 
-class TwistingLaw(_Law):
+class TwistingLaw(_Law[BoundTwistingLaw]):
     """Twisting-resistance law ``name`` (e.g. ``"twisting-sds"``) with its parameters as keywords."""
 
     _bind = staticmethod(_dashpot.bind_twisting)
-
-    def bind(self, young: float, poisson: float, young2: Optional[float] = None,
-             poisson2: Optional[float] = None, wall: bool = False) -> BoundTwistingLaw:
-        """The law for a pair of materials, as ``ContactLaw.bind``."""
-        return BoundTwistingLaw(self._bound(young, poisson, young2, poisson2, wall))
+    _bound = BoundTwistingLaw
 
 
-class RestitutionLaw(_Law):
+class RestitutionLaw(_Named):
     """Restitution law ``name`` (e.g. ``"mcnamara-falcon"``) with its parameters as keywords,
     for a particle (``diameter`` m, ``density`` kg/m³, ``young`` Pa, ``poisson``; defaults:
     the MCC granule) against an identical one or a ``wall``."""
@@ -270,4 +259,4 @@ class RestitutionLaw(_Law):
 
     def r(self, speeds: Any) -> Array:
         """The coefficient of restitution at each normal impact speed (m/s), shape (N,)."""
-        return _dashpot.restitution(self.name, self.params, _f64("speeds", speeds), *self._pair)
+        return _dashpot.restitution(self.name, self.params, _f64("speeds", speeds), self._pair)

@@ -41,7 +41,7 @@ def collide(law: str, v0: float = 1.0, *, diameter: float = 0.01, density: float
     last two shared by the results of the same law and parameters: copy before changing them);
     with ``record=True`` also the trajectory as arrays ``t`` (s), ``delta`` (m), ``rate``
     (m/s), ``force`` (N). The GIL is released while it runs."""
-    return _dashpot.collide(law, params, float(v0), diameter, density, young, poisson, wall, end, rtol, record)
+    return _dashpot.collide(law, params, float(v0), (diameter, density, young, poisson, wall), end, rtol, record)
 
 
 def sweep(law: str, v0: Grid = "1e-3:10:41", *, vary: Optional[Mapping[str, Grid]] = None,
@@ -62,8 +62,8 @@ def sweep(law: str, v0: Grid = "1e-3:10:41", *, vary: Optional[Mapping[str, Grid
     vary_items = [(str(k), v if isinstance(v, str) else _np.asarray(v, dtype=_np.float64).tolist())
                   for k, v in (vary or {}).items()]
     v0_arg = v0 if isinstance(v0, str) else _np.asarray(v0, dtype=_np.float64).reshape(-1).tolist()
-    names, values, results = _dashpot.sweep(law, params, v0_arg, vary_items, float(diameter), float(density),
-                                            float(young), float(poisson), bool(wall), end, float(rtol))
+    body = (float(diameter), float(density), float(young), float(poisson), bool(wall))
+    names, values, results = _dashpot.sweep(law, params, v0_arg, vary_items, body, end, float(rtol))
     vals = _np.array(values, dtype=_np.float64).reshape(len(results), len(names))
     res = _np.array(results, dtype=_np.float64).reshape(len(results), 5)
     out: Dict[str, Any] = {"law": law, "end": end or "overlap"}
@@ -85,8 +85,9 @@ def calibrate(law: str, restitution: float, v0: float = 1.0, *, contact_time: Op
     to fit (default: the law's only dissipation parameter), ``end`` the criterion (default: the
     law's own). Returns a dict: params (all, fitted included), method, the realized restitution
     and contact time with their residuals, young, collisions, provenance."""
-    return _json.loads(_dashpot.calibrate(law, fixed, float(restitution), contact_time, float(v0),
-                                          diameter, density, young, poisson, wall, end, fit, rtol))
+    body = (diameter, density, young, poisson, wall)
+    return _json.loads(_dashpot.calibrate(law, fixed, float(restitution), contact_time, float(v0), body, end, fit,
+                                          rtol))
 
 
 def _arg(x: Any) -> str:

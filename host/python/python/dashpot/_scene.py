@@ -10,9 +10,10 @@ from typing import Any, Callable, Dict, List, Mapping, Optional, Sequence, Union
 import numpy as _np
 
 from . import _dashpot
-from ._laws import _Law
+from ._attrs import Native, View
+from ._laws import _Named
 
-LawSpec = Union[str, _Law, Mapping[str, Any]]
+LawSpec = Union[str, _Named, Mapping[str, Any]]
 
 
 def _law_table(what: str, spec: LawSpec) -> Dict[str, Any]:
@@ -20,7 +21,7 @@ def _law_table(what: str, spec: LawSpec) -> Dict[str, Any]:
     ``{"name": ..., "params": {...}}``: the scene file's ``{name, params}`` table."""
     if isinstance(spec, str):
         return {"name": spec, "params": {}}
-    if isinstance(spec, _Law):
+    if isinstance(spec, _Named):
         return {"name": spec.name, "params": dict(spec.params)}
     if isinstance(spec, Mapping) and "name" in spec:
         return {"name": spec["name"], "params": dict(spec.get("params", {}))}
@@ -145,17 +146,26 @@ class Scene:
         sim._bind(inner, inner.duration)
         return sim
 
+    dimension = Native[int]("2 (disks) or 3 (spheres).")
+    time = Native[float]("Simulated time (s).")
+    steps = Native[int]("Steps taken since the start.")
+    dt = Native[float]("The time step (s), given or chosen from the contact time (see ``step_choice``).")
+    positions = View("Positions (m), shape (N, D): a read-only view of the engine's array (wrapped into the box "
+                     "along periodic axes at each neighbour-list rebuild).")
+    velocities = View("Velocities (m/s), shape (N, D): a read-only view.")
+    forces = View("Contact forces of the last step (N, gravity excluded), shape (N, D): a read-only view.")
+    angular_velocities = View("Angular velocities (rad/s): shape (N,) in 2D (about z), (N, 3) in 3D; read-only.")
+    torques = View("Contact torques of the last step (N·m), laid out as ``angular_velocities``; read-only.")
+    radii = View("Radii (m), shape (N,).")
+    masses = View("Masses (kg), shape (N,).")
+    inertia = View("Moments of inertia (kg·m²), shape (N,).")
+
     def to_toml(self, duration: Optional[float] = None) -> str:
         """The scene as a scene file (for ``dashpot dem --scene``), with ``duration`` (s) if
         given (needed when the scene was made without one)."""
         if duration is None and self._duration is None:
             raise ValueError("duration: the scene was made without one; give to_toml(duration=...)")
         return self._inner.to_toml(None if duration is None else float(duration))
-
-    @property
-    def dimension(self) -> int:
-        """2 (disks) or 3 (spheres)."""
-        return self._inner.dimension
 
     def __len__(self) -> int:
         return len(self._inner)
@@ -164,21 +174,6 @@ class Scene:
     def duration(self) -> Optional[float]:
         """The scene's own end time (s), or None."""
         return self._duration
-
-    @property
-    def time(self) -> float:
-        """Simulated time (s)."""
-        return self._inner.time
-
-    @property
-    def steps(self) -> int:
-        """Steps taken since the start."""
-        return self._inner.steps
-
-    @property
-    def dt(self) -> float:
-        """The time step (s), given or chosen from the contact time (see ``step_choice``)."""
-        return self._inner.dt
 
     def step_choice(self) -> Dict[str, Any]:
         """How the step was chosen: ``dt`` (s), ``given``, the contact time ``collision_time`` (s)
@@ -227,47 +222,6 @@ class Scene:
         if v is None:
             v = self._views[which] = self._inner._view(which)
         return v
-
-    @property
-    def positions(self) -> _np.ndarray:
-        """Positions (m), shape (N, D): a read-only view of the engine's array (wrapped into
-        the box along periodic axes at each neighbour-list rebuild)."""
-        return self._view("positions")
-
-    @property
-    def velocities(self) -> _np.ndarray:
-        """Velocities (m/s), shape (N, D): a read-only view."""
-        return self._view("velocities")
-
-    @property
-    def forces(self) -> _np.ndarray:
-        """Contact forces of the last step (N, gravity excluded), shape (N, D): a read-only view."""
-        return self._view("forces")
-
-    @property
-    def angular_velocities(self) -> _np.ndarray:
-        """Angular velocities (rad/s): shape (N,) in 2D (about z), (N, 3) in 3D; a read-only view."""
-        return self._view("angular_velocities")
-
-    @property
-    def torques(self) -> _np.ndarray:
-        """Contact torques of the last step (N·m), laid out as ``angular_velocities``."""
-        return self._view("torques")
-
-    @property
-    def radii(self) -> _np.ndarray:
-        """Radii (m), shape (N,)."""
-        return self._view("radii")
-
-    @property
-    def masses(self) -> _np.ndarray:
-        """Masses (kg), shape (N,)."""
-        return self._view("masses")
-
-    @property
-    def inertia(self) -> _np.ndarray:
-        """Moments of inertia (kg·m²), shape (N,)."""
-        return self._view("inertia")
 
     def energy(self) -> Dict[str, Any]:
         """The energies now (J): ``translational``, ``rotational``, ``gravity`` and their
