@@ -89,9 +89,9 @@ class Scene:
                                 "material": {"young": young, "poisson": poisson, "density": density}}
         if disk_mass is not None:
             spec["material"]["disk_mass"] = disk_mass
-        for key, value in [("tangential", tangential), ("rolling", rolling), ("twisting", twisting)]:
-            if value is not None:
-                spec[key] = _law_table(key, value)
+        for key, law_spec in [("tangential", tangential), ("rolling", rolling), ("twisting", twisting)]:
+            if law_spec is not None:
+                spec[key] = _law_table(key, law_spec)
         given_duration = duration is not None
         # (the scene file needs a duration; without one, run() needs its own)
         spec["duration"] = duration if given_duration else 1.0
