@@ -14,9 +14,24 @@ use std::path::Path;
 
 /// `dashpot bed`.
 pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
+    if let Some(v) = run_bed(reg, a, &|_| {})? {
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    Ok(())
+}
+
+/// `dashpot bed` for a caller other than the CLI (the Python package): with `a.json` it returns
+/// the document `--json` prints, else it prints the report and returns `None`. Every seed's run
+/// calls `progress(t)` now and then with its simulated time (s); `progress` may unwind to
+/// abandon the runs (nothing is written before they end).
+pub fn run_bed(
+    reg: &Registry,
+    a: &BedArgs,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
     a.phys.check()?;
     if a.phys.engine == EngineKind::Dem {
-        return bed_dem(reg, a);
+        return bed_dem(reg, a, progress);
     }
     let restitution = a.phys.restitution_name()?;
     let cfg = a.phys.config(a.layers, a.freq);
@@ -51,7 +66,8 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
     let (first, others) = rayon::join(
         || {
             bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |t| {
-                pb.set_position((t * 1000.0) as u64)
+                pb.set_position((t * 1000.0) as u64);
+                progress(t)
             })
         },
         || {
@@ -70,7 +86,9 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
                             wall: &laws.wall,
                         },
                     )
-                    .and_then(|mut bed| bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |_| {}))
+                    .and_then(|mut bed| {
+                        bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |t| progress(t))
+                    })
                     .map_err(|e| e.in_run(format!("seed {}", cfg.seed)))
                 })
                 .collect::<Result<Vec<BedReport>, _>>()
@@ -115,7 +133,7 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
                 o.insert("restitution_used".into(), json!(rows));
             }
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(Some(v));
     } else {
         print_report(restitution, &params, &report);
         prov.lines().iter().for_each(|l| println!("{l}"));
@@ -123,11 +141,15 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
             print_r_samples(restitution, t);
         }
     }
-    Ok(())
+    Ok(None)
 }
 
 /// `dashpot bed --engine dem`: the same bed on soft disks, every contact under the contact law.
-fn bed_dem(reg: &Registry, a: &BedArgs) -> Result<()> {
+fn bed_dem(
+    reg: &Registry,
+    a: &BedArgs,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
     use crate::bed::on_dem::DemBedReport;
     use rayon::prelude::*;
     if a.snapshot.is_some() || a.trace.is_some() {
@@ -176,6 +198,7 @@ fn bed_dem(reg: &Registry, a: &BedArgs) -> Result<()> {
                 if s == 0 {
                     pb.set_position((t * 1000.0) as u64)
                 }
+                progress(t)
             })
             .with_context(|| {
                 format!(
@@ -193,12 +216,11 @@ fn bed_dem(reg: &Registry, a: &BedArgs) -> Result<()> {
         if let Some(o) = v.as_object_mut() {
             o.insert("provenance".into(), prov.json());
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
-    } else {
-        print_dem_report(law, &params, a.phys.tangential.as_deref(), &tparams, &r);
-        prov.lines().iter().for_each(|l| println!("{l}"));
+        return Ok(Some(v));
     }
-    Ok(())
+    print_dem_report(law, &params, a.phys.tangential.as_deref(), &tparams, &r);
+    prov.lines().iter().for_each(|l| println!("{l}"));
+    Ok(None)
 }
 
 /// The JSON of a DEM bed report: the event-driven bed's keys, `engine: "dem"`, the laws.
