@@ -225,12 +225,7 @@ pub unsafe extern "C" fn dashpot_registry_open(
 /// `registry` must be null or a handle from `dashpot_registry_open` not yet freed.
 #[no_mangle]
 pub unsafe extern "C" fn dashpot_registry_free(registry: *mut DashpotRegistry) {
-    if !registry.is_null() {
-        let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            // SAFETY: a live handle from dashpot_registry_open, by contract.
-            drop(unsafe { Box::from_raw(registry) })
-        }));
-    }
+    unsafe { crate::handle::free(registry) }
 }
 
 /// The number of laws in the registry.

@@ -133,14 +133,14 @@ fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
         cycles: b.cycles,
         seeds: 1,
     };
-    crate::cli::bed::run(
-        reg,
-        &spec,
-        crate::cli::bed::BedOutput {
-            json,
-            ..Default::default()
-        },
-    )
+    let out = crate::cli::bed::BedOutput {
+        json,
+        ..Default::default()
+    };
+    if let Some(v) = crate::cli::bed::run(reg, &spec, out, &|_| {})? {
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    Ok(())
 }
 
 fn run_dim<const D: usize>(
@@ -152,33 +152,7 @@ fn run_dim<const D: usize>(
     let scene = file
         .scene::<D>()
         .with_context(|| format!("in {}", path.display()))?;
-    let normal = file.law.param_values();
-    let tang = file
-        .tangential
-        .as_ref()
-        .map(|t| (t.name.as_str(), t.param_values()));
-    let laws = Laws::from_registry(
-        reg,
-        (&file.law.name, &normal),
-        tang.as_ref().map(|(n, p)| (*n, p.as_slice())),
-        &scene.config.material,
-    )
-    .context("[law] / [tangential]")?;
-    let table =
-        |t: &Option<crate::dem::scene::LawTable>| t.as_ref().map(|t| (t.name.clone(), t.param_values()));
-    let (roll, twist) = (table(&file.rolling), table(&file.twisting));
-    let laws = laws
-        .with_rotation(
-            reg,
-            roll.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
-            twist.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
-            &scene.config.material,
-        )
-        .context("[rolling] / [twisting]")?;
-    let mut cfg = scene.config.clone();
-    cfg.energy = true;
-    let mut e = Engine::new(cfg, &scene.bodies, scene.walls.clone(), laws)?;
-    let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
+    let (mut e, energy_initial) = scene_engine(reg, file, &scene)?;
     let c = e.step_choice;
     let line = if c.given {
         format!(
@@ -268,29 +242,7 @@ fn run_dim<const D: usize>(
     if let Some(w) = traj {
         w.commit().context("writing the trajectory")?;
     }
-    let mut state = e.state_json();
-    state["law"] = serde_json::json!(file.law.name);
-    state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
-    state["rolling"] = serde_json::json!(file.rolling.as_ref().map(|t| t.name.clone()));
-    state["twisting"] = serde_json::json!(file.twisting.as_ref().map(|t| t.name.clone()));
-    let tables = [
-        Some(&file.law),
-        file.tangential.as_ref(),
-        file.rolling.as_ref(),
-        file.twisting.as_ref(),
-    ];
-    let provenance = tables
-        .into_iter()
-        .flatten()
-        .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
-        .collect::<Result<Vec<_>, _>>()?;
-    state["provenance"] = serde_json::json!(provenance);
-    state["energy_initial"] = serde_json::json!(energy_initial);
-    state["elastic"] = serde_json::json!(e.elastic().iter().sum::<f64>());
-    state["dissipated"] = dissipated_json(&e);
-    state["wall_seconds"] = serde_json::json!(wall);
-    state["particle_steps_per_second"] =
-        serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));
+    let state = final_json(reg, file, &e, energy_initial, wall)?;
     if let Some(dir) = &a.out {
         crate::output::write_atomic(
             &dir.join("final.json"),
@@ -341,6 +293,80 @@ fn run_dim<const D: usize>(
         }
     }
     Ok(())
+}
+
+/// The engine of a scene as `dashpot dem` runs it: the laws of `file` (`[law]`, `[tangential]`,
+/// `[rolling]`, `[twisting]`) from `reg`, bound to the scene's material, energy accounting on;
+/// and the energy at the start (J: kinetic, gravity and elastic), which `dem --json` reports.
+pub fn scene_engine<const D: usize>(
+    reg: &Registry,
+    file: &SceneFile,
+    scene: &crate::dem::scene::Scene<D>,
+) -> Result<(Engine<D>, f64)> {
+    let normal = file.law.param_values();
+    let tang = file
+        .tangential
+        .as_ref()
+        .map(|t| (t.name.as_str(), t.param_values()));
+    let laws = Laws::from_registry(
+        reg,
+        (&file.law.name, &normal),
+        tang.as_ref().map(|(n, p)| (*n, p.as_slice())),
+        &scene.config.material,
+    )
+    .context("[law] / [tangential]")?;
+    let table =
+        |t: &Option<crate::dem::scene::LawTable>| t.as_ref().map(|t| (t.name.clone(), t.param_values()));
+    let (roll, twist) = (table(&file.rolling), table(&file.twisting));
+    let laws = laws
+        .with_rotation(
+            reg,
+            roll.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
+            twist.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
+            &scene.config.material,
+        )
+        .context("[rolling] / [twisting]")?;
+    let mut cfg = scene.config.clone();
+    cfg.energy = true;
+    let e = Engine::new(cfg, &scene.bodies, scene.walls.clone(), laws)?;
+    let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
+    Ok((e, energy_initial))
+}
+
+/// What `dashpot dem --json` prints after a run of `file` on `e` (made by [`scene_engine`],
+/// which gave `energy_initial`, J): the final state, the laws and their provenance, the energy
+/// balance, and the rates of `wall` seconds of wall-clock time.
+pub fn final_json<const D: usize>(
+    reg: &Registry,
+    file: &SceneFile,
+    e: &Engine<D>,
+    energy_initial: f64,
+    wall: f64,
+) -> Result<serde_json::Value> {
+    let mut state = e.state_json();
+    state["law"] = serde_json::json!(file.law.name);
+    state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
+    state["rolling"] = serde_json::json!(file.rolling.as_ref().map(|t| t.name.clone()));
+    state["twisting"] = serde_json::json!(file.twisting.as_ref().map(|t| t.name.clone()));
+    let tables = [
+        Some(&file.law),
+        file.tangential.as_ref(),
+        file.rolling.as_ref(),
+        file.twisting.as_ref(),
+    ];
+    let provenance = tables
+        .into_iter()
+        .flatten()
+        .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
+        .collect::<Result<Vec<_>, _>>()?;
+    state["provenance"] = serde_json::json!(provenance);
+    state["energy_initial"] = serde_json::json!(energy_initial);
+    state["elastic"] = serde_json::json!(e.elastic().iter().sum::<f64>());
+    state["dissipated"] = dissipated_json(e);
+    state["wall_seconds"] = serde_json::json!(wall);
+    state["particle_steps_per_second"] =
+        serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));
+    Ok(state)
 }
 
 /// `dem --scene FILE --check`: what the run would start with (the checks have passed).

@@ -28,31 +28,55 @@ pub struct BedOutput<'a> {
 
 /// `dashpot bed`.
 pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
-    let spec = a.phys.spec(a.layers, a.freq, a.seeds.seeds)?;
-    run(
-        reg,
-        &spec,
-        BedOutput {
-            json: a.json,
-            snapshot: a.snapshot.as_deref(),
-            trace: a.trace.as_deref(),
-        },
-    )
+    if let Some(v) = run_bed(reg, a, &|_| {})? {
+        println!("{}", serde_json::to_string_pretty(&v)?);
+    }
+    Ok(())
 }
 
-/// Runs the bed experiment `spec` on its engine (`dashpot bed`, `dashpot dem --bed`): its
-/// checks, the runs (one per seed, in parallel, behind one progress bar), then the printout or
-/// the JSON.
-pub fn run(reg: &Registry, spec: &BedSpec, out: BedOutput<'_>) -> Result<()> {
+/// `dashpot bed` for a caller other than the CLI (the Python package): with `a.json` it returns
+/// the document `--json` prints, else it prints the report and returns `None`. Every seed's run
+/// calls `progress(t)` now and then with its simulated time (s); `progress` may unwind to
+/// abandon the runs (nothing is written before they end).
+pub fn run_bed(
+    reg: &Registry,
+    a: &BedArgs,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
+    let spec = a.phys.spec(a.layers, a.freq, a.seeds.seeds)?;
+    let out = BedOutput {
+        json: a.json,
+        snapshot: a.snapshot.as_deref(),
+        trace: a.trace.as_deref(),
+    };
+    run(reg, &spec, out, progress)
+}
+
+/// Runs the bed experiment `spec` on its engine (`dashpot bed`, `dashpot dem --bed`, the Python
+/// package): its checks, the runs (one per seed, in parallel, behind one progress bar, each
+/// calling `progress` with its simulated time), then the printout, or with `out.json` the
+/// document, returned.
+pub fn run(
+    reg: &Registry,
+    spec: &BedSpec,
+    out: BedOutput<'_>,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
     spec.validate()?;
     match &spec.engine {
-        BedEngine::Event { restitution } => run_event(reg, spec, restitution, out),
-        BedEngine::Dem { law, tangential, .. } => run_dem(reg, spec, law, tangential.as_ref(), out),
+        BedEngine::Event { restitution } => run_event(reg, spec, restitution, out, progress),
+        BedEngine::Dem { law, tangential, .. } => run_dem(reg, spec, law, tangential.as_ref(), out, progress),
     }
 }
 
 /// The bed on the event-driven engine.
-fn run_event(reg: &Registry, spec: &BedSpec, restitution: &LawChoice, out: BedOutput<'_>) -> Result<()> {
+fn run_event(
+    reg: &Registry,
+    spec: &BedSpec,
+    restitution: &LawChoice,
+    out: BedOutput<'_>,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
     let cfg = spec.config;
     let name = restitution.name.as_str();
     let laws = spec.restitution_laws(reg)?;
@@ -84,7 +108,7 @@ fn run_event(reg: &Registry, spec: &BedSpec, restitution: &LawChoice, out: BedOu
         || {
             other_seeds(spec, |cfg| {
                 Bed::new(cfg, laws)
-                    .and_then(|mut bed| bed.run_protocol(spec.transient, spec.cycles, &mut |_| {}))
+                    .and_then(|mut bed| bed.run_protocol(spec.transient, spec.cycles, &mut |t| progress(t)))
                     .map_err(|e| e.in_run(format!("seed {}", cfg.seed)))
             })
         },
@@ -125,7 +149,7 @@ fn run_event(reg: &Registry, spec: &BedSpec, restitution: &LawChoice, out: BedOu
                 o.insert("restitution_used".into(), json!(rows));
             }
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(Some(v));
     } else {
         print_report(name, &restitution.params, &report);
         prov.lines().iter().for_each(|l| println!("{l}"));
@@ -133,7 +157,7 @@ fn run_event(reg: &Registry, spec: &BedSpec, restitution: &LawChoice, out: BedOu
             print_r_samples(name, t);
         }
     }
-    Ok(())
+    Ok(None)
 }
 
 /// The one progress bar of a bed run: simulated milliseconds of the first seed's protocol.
@@ -166,7 +190,8 @@ fn run_dem(
     law: &LawChoice,
     tangential: Option<&LawChoice>,
     out: BedOutput<'_>,
-) -> Result<()> {
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
     use crate::bed::on_dem::DemBedReport;
     if out.snapshot.is_some() || out.trace.is_some() {
         return Err(crate::cli::UsageError(
@@ -212,8 +237,13 @@ fn run_dem(
         })
     };
     let (first, others) = rayon::join(
-        || run(cfg, &mut |t| pb.set_position((t * 1000.0) as u64)),
-        || other_seeds(spec, |cfg| run(cfg, &mut |_| {})),
+        || {
+            run(cfg, &mut |t| {
+                pb.set_position((t * 1000.0) as u64);
+                progress(t)
+            })
+        },
+        || other_seeds(spec, |cfg| run(cfg, &mut |t| progress(t))),
     );
     let mut runs = vec![first?];
     runs.extend(others?);
@@ -224,12 +254,11 @@ fn run_dem(
         if let Some(o) = v.as_object_mut() {
             o.insert("provenance".into(), prov.json());
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
-    } else {
-        print_dem_report(law, tangential, &r);
-        prov.lines().iter().for_each(|l| println!("{l}"));
+        return Ok(Some(v));
     }
-    Ok(())
+    print_dem_report(law, tangential, &r);
+    prov.lines().iter().for_each(|l| println!("{l}"));
+    Ok(None)
 }
 
 /// The JSON of a DEM bed report: the event-driven bed's keys, `engine: "dem"`, the laws.
