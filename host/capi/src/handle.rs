@@ -354,7 +354,8 @@ macro_rules! vector_batch {
     )*};
 }
 
-vector_batch!(TangentialBatch, RollingBatch);
+// (the tangential and rolling batches are one type, dashpot_sdk::VectorBatch)
+vector_batch!(VectorBatch);
 
 /// A model whose batch takes, per contact, a unit normal, an input (a vector, or the twisting
 /// rate), the normal force, overlap, effective mass and radius and its history, and gives an

@@ -305,7 +305,7 @@ pub unsafe extern "C" fn dashpot_registry_law_info(
             summary: s.summary.as_ptr(),
             doc: s.doc.as_ptr(),
             n_params: info.params.len(),
-            end_criterion: info.end_criterion.into_option().into(),
+            end_criterion: info.end_criterion.into(),
         };
         Ok(())
     })
@@ -340,7 +340,7 @@ pub unsafe extern "C" fn dashpot_registry_param_info(
             )
         })?;
         let s = &r.strings[law].params[param];
-        let default = p.default.into_option();
+        let default = p.default;
         *o = DashpotParamInfo {
             name: s.name.as_ptr(),
             unit: s.unit.as_ptr(),

@@ -33,7 +33,6 @@ pub(crate) fn calibrate(
             .0
             .info
             .end_criterion
-            .into_option()
             .unwrap_or(EndCriterion::Overlap);
         let end = super::runs::end_of(end, declared)?;
         let spec = CalibrateSpec {

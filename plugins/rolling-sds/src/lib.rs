@@ -1,16 +1,20 @@
 //! Spring–dashpot–slider rolling resistance with the semantics of LAMMPS `rolling sds`.
 
 use dashpot_sdk::{
-    BoundRolling, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, RollingBatch,
-    RollingContact, RollingLaw,
+    BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingBatch, RollingContact, RollingLaw,
 };
 
-/// The configured law.
-#[derive(Debug, Clone)]
-pub struct RollingSds {
-    k: f64,
-    gamma: f64,
-    mu: f64,
+dashpot_sdk::law_params! {
+    /// The configured law.
+    #[derive(Debug, Clone)]
+    pub struct RollingSds {
+        /// rolling stiffness k_roll
+        k: f64 { unit: "N/m", default: 1e3, range: Range::positive() },
+        /// rolling damping γ_roll
+        gamma: f64 { unit: "N·s/m", default: 0.0, range: Range::non_negative() },
+        /// rolling friction coefficient μ_roll
+        mu: f64 { unit: "1", default: 0.1, range: Range::non_negative() },
+    }
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -41,34 +45,6 @@ impl RollingLaw for RollingSds {
         History::new("xi_y", "m", "rolling displacement ξ, y component"),
         History::new("xi_z", "m", "rolling displacement ξ, z component"),
     ];
-
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new("k", "N/m", 1e3, Range::positive(), "rolling stiffness k_roll"),
-            ParamSpec::new(
-                "gamma",
-                "N·s/m",
-                0.0,
-                Range::non_negative(),
-                "rolling damping γ_roll",
-            ),
-            ParamSpec::new(
-                "mu",
-                "1",
-                0.1,
-                Range::non_negative(),
-                "rolling friction coefficient μ_roll",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(RollingSds {
-            k: p.get("k")?,
-            gamma: p.get("gamma")?,
-            mu: p.get("mu")?,
-        })
-    }
 
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
         Ok(self.clone())

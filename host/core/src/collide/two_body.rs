@@ -253,6 +253,22 @@ pub(crate) fn locate_speed_zero<S: System<2>>(
     })
 }
 
+/// The head-on collision of `pair` at normal impact speed `v0` (m/s) under contact law `law` of
+/// `reg` with `params`, both bodies of Poisson's ratio 0.3 (which only a shear modulus depends
+/// on): what the reports and the tests run.
+pub fn collide_named(
+    reg: &crate::registry::Registry,
+    law: &str,
+    params: &[dashpot_sdk::ParamValue],
+    pair: &dashpot_sdk::Pair,
+    v0: f64,
+    end: EndCriterion,
+    opt: &Options,
+) -> Result<Collision, CollideError> {
+    let b = PairLaw::bind(&reg.contact(law, params)?, pair, 0.3)?;
+    collide(&b, pair.mass, v0, end, opt)
+}
+
 /// Integrates one collision. `mass` is the effective mass (kg), `v0` the normal impact speed (m/s).
 pub fn collide<C: ContactForce>(
     law: &C,
@@ -289,14 +305,7 @@ pub fn collide<C: ContactForce>(
         }
         Ok(())
     };
-    let no_return = |t: f64, d: f64, v: f64, steps: usize, why: &'static str| CollideError::NoReturn {
-        t,
-        delta: d,
-        rate: v,
-        steps,
-        factor: t / tstar,
-        why,
-    };
+    let no_return = no_return(tstar);
 
     // ---- phase 1: compression start, u from 0 while v > v0/2 ----
     let mut ph = UPhase {
@@ -330,13 +339,9 @@ pub fn collide<C: ContactForce>(
                 "too many steps in the compression phase",
             ));
         }
-        let s = match opt.method.step(&mut ph, u, &y, &k, h) {
-            Ok(s) => s,
-            Err(RhsError::OutOfDomain) => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+        let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, h))? else {
+            h *= 0.25;
+            continue;
         };
         let e = tol_u.norm(&y, &s.y, &s.err);
         if e <= 1.0 {
@@ -380,17 +385,9 @@ pub fn collide<C: ContactForce>(
             break;
         }
         n += 1;
-        if n > opt.max_steps {
-            return Err(no_return(
-                t,
-                z[0],
-                z[1],
-                steps,
-                "too many steps around maximum compression",
-            ));
-        }
-        if t > t_limit {
-            return Err(no_return(t, z[0], z[1], steps, "contact time limit"));
+        let why = ["too many steps around maximum compression", "contact time limit"];
+        if let Some(why) = overrun(n, opt.max_steps, t, t_limit, why) {
+            return Err(no_return(t, z[0], z[1], steps, why));
         }
         h = h.min(hmax);
         let s = opt.method.step(&mut tp, t, &z, &kz, h)?;
@@ -462,20 +459,22 @@ pub fn collide<C: ContactForce>(
     evals += tp.evals;
     let (max_overlap_time, max_overlap) = max_overlap.unwrap_or((t, z[0]));
 
+    // the collision that ended at time `t_end` (s) with rate `v_end` (m/s)
+    let collision = |v_end: f64, t_end: f64, steps, force_evals, trajectory| Collision {
+        v0,
+        restitution: -v_end / v0,
+        contact_time: t_end,
+        max_overlap,
+        max_overlap_time,
+        end,
+        steps,
+        force_evals,
+        stuck: false,
+        tensile_peak: None,
+        trajectory,
+    };
     if let Some((tf, _df, vf)) = force_end {
-        return Ok(Collision {
-            v0,
-            restitution: -vf / v0,
-            contact_time: tf,
-            max_overlap,
-            max_overlap_time,
-            end,
-            steps,
-            force_evals: evals,
-            stuck: false,
-            tensile_peak: None,
-            trajectory: traj,
-        });
+        return Ok(collision(vf, tf, steps, evals, traj));
     }
 
     // ---- phase 3: rebound end, u from (δ)^{1/4} down to 0 ----
@@ -494,33 +493,18 @@ pub fn collide<C: ContactForce>(
     let mut n = 0;
     while u > 0.0 {
         n += 1;
-        if n > opt.max_steps {
-            return Err(no_return(
-                y[1],
-                u.powi(4),
-                y[0],
-                steps,
-                concat!("too many steps in the rebound phase", overdamped_hint!()),
-            ));
-        }
-        if y[1] > t_limit {
-            return Err(no_return(
-                y[1],
-                u.powi(4),
-                y[0],
-                steps,
-                concat!("contact time limit in the rebound phase", overdamped_hint!()),
-            ));
+        let why = [
+            concat!("too many steps in the rebound phase", overdamped_hint!()),
+            concat!("contact time limit in the rebound phase", overdamped_hint!()),
+        ];
+        if let Some(why) = overrun(n, opt.max_steps, y[1], t_limit, why) {
+            return Err(no_return(y[1], u.powi(4), y[0], steps, why));
         }
         let last = u + h <= 0.0;
         let hh = if last { -u } else { h };
-        let s = match opt.method.step(&mut ph, u, &y, &k, hh) {
-            Ok(s) => s,
-            Err(RhsError::OutOfDomain) => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+        let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, hh))? else {
+            h *= 0.25;
+            continue;
         };
         let e = tol_u.norm(&y, &s.y, &s.err);
         if e > 1.0 {
@@ -556,17 +540,5 @@ pub fn collide<C: ContactForce>(
         }
     }
     evals += ph.evals;
-    Ok(Collision {
-        v0,
-        restitution: -y[0] / v0,
-        contact_time: y[1],
-        max_overlap,
-        max_overlap_time,
-        end,
-        steps,
-        force_evals: evals,
-        stuck: false,
-        tensile_peak: None,
-        trajectory: traj,
-    })
+    Ok(collision(y[0], y[1], steps, evals, traj))
 }
