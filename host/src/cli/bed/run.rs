@@ -102,7 +102,8 @@ fn run_event(
     let (first, others) = rayon::join(
         || {
             bed.run_protocol(spec.transient, spec.cycles, &mut |t| {
-                pb.set_position((t * 1000.0) as u64)
+                pb.set_position((t * 1000.0) as u64);
+                progress(t)
             })
         },
         || {
