@@ -21,13 +21,18 @@ pub fn deps_dir() -> PathBuf {
     exe.parent().expect("exe dir").to_path_buf()
 }
 
-/// The path of a plugin library by crate name (`dashpot_hsd` → `deps/libdashpot_hsd.so`).
-pub fn plugin_file(lib_name: &str) -> PathBuf {
-    deps_dir().join(format!(
+/// The file of library `lib_name` in `dir` (`dashpot_hsd` → `DIR/libdashpot_hsd.so`).
+pub fn lib_in(dir: &Path, lib_name: &str) -> PathBuf {
+    dir.join(format!(
         "{}{lib_name}{}",
         std::env::consts::DLL_PREFIX,
         std::env::consts::DLL_SUFFIX
     ))
+}
+
+/// The path of a plugin library by crate name (`dashpot_hsd` → `deps/libdashpot_hsd.so`).
+pub fn plugin_file(lib_name: &str) -> PathBuf {
+    lib_in(&deps_dir(), lib_name)
 }
 
 /// The five seed plugins, by library name.
@@ -57,14 +62,8 @@ pub const SDK03_PLUGINS: [&str; 6] = [
     "dashpot_twisting_marshall",
 ];
 
-/// A registry of every plugin of the workspace, those of sdk 0.3 included.
-pub fn registry_03() -> Registry {
-    let files = SEED_PLUGINS
-        .iter()
-        .chain(SDK02_PLUGINS.iter())
-        .chain(SDK03_PLUGINS.iter())
-        .map(|n| plugin_file(n))
-        .collect();
+/// A registry of exactly the plugin libraries `files`, nothing else.
+pub fn registry_of(files: Vec<PathBuf>) -> Registry {
     let sp = SearchPath {
         dirs: vec![],
         files,
@@ -72,34 +71,32 @@ pub fn registry_03() -> Registry {
         use_default: false,
     };
     Registry::discover(&sp).expect("the plugins load")
+}
+
+/// A registry of the plugins of these groups of library names, from the test build.
+fn registry_of_groups(groups: &[&[&str]]) -> Registry {
+    registry_of(
+        groups
+            .iter()
+            .flat_map(|g| g.iter())
+            .map(|n| plugin_file(n))
+            .collect(),
+    )
+}
+
+/// A registry of every plugin of the workspace, those of sdk 0.3 included.
+pub fn registry_03() -> Registry {
+    registry_of_groups(&[&SEED_PLUGINS, &SDK02_PLUGINS, &SDK03_PLUGINS])
 }
 
 /// A registry of the seed laws and those of sdk 0.2.
 pub fn full_registry() -> Registry {
-    let files = SEED_PLUGINS
-        .iter()
-        .chain(SDK02_PLUGINS.iter())
-        .map(|n| plugin_file(n))
-        .collect();
-    let sp = SearchPath {
-        dirs: vec![],
-        files,
-        use_env: false,
-        use_default: false,
-    };
-    Registry::discover(&sp).expect("the plugins load")
+    registry_of_groups(&[&SEED_PLUGINS, &SDK02_PLUGINS])
 }
 
 /// A registry of exactly the five seed plugins, loaded from their `.so` files.
 pub fn seed_registry() -> Registry {
-    let files = SEED_PLUGINS.iter().map(|n| plugin_file(n)).collect();
-    let sp = SearchPath {
-        dirs: vec![],
-        files,
-        use_env: false,
-        use_default: false,
-    };
-    Registry::discover(&sp).expect("the seed plugins load")
+    registry_of_groups(&[&SEED_PLUGINS])
 }
 
 fn target_root() -> PathBuf {
@@ -152,11 +149,7 @@ pub fn build_external_with(
     }
     let status = cmd.status().expect("run cargo");
     assert!(status.success(), "building {package} failed");
-    let built = target.join("debug").join(format!(
-        "{}{lib_name}{}",
-        std::env::consts::DLL_PREFIX,
-        std::env::consts::DLL_SUFFIX
-    ));
+    let built = lib_in(&target.join("debug"), lib_name);
     match copy_as {
         Some(name) => {
             let dst = built.with_file_name(format!("lib{name}{}", std::env::consts::DLL_SUFFIX));
@@ -167,55 +160,56 @@ pub fn build_external_with(
     }
 }
 
-/// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 1.0.0 (a future major), copied
-/// to a file of its own (building the real plugin again would overwrite it).
+/// The `constant` plugin rebuilt with the environment `env` and the cargo arguments `extra`,
+/// copied to `lib<copy_as>.so` (building the real plugin again would overwrite it); built once
+/// per test process.
+fn rebuilt_constant(copy_as: &str, env: &[(&str, &str)], extra: &[&str]) -> PathBuf {
+    static BUILT: Mutex<Vec<(String, PathBuf)>> = Mutex::new(Vec::new());
+    let mut built = BUILT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, p)) = built.iter().find(|(n, _)| n == copy_as) {
+        return p.clone();
+    }
+    let root = workspace_root().join("Cargo.toml");
+    let p = build_external_with(
+        &root,
+        "dashpot-constant",
+        "dashpot_constant",
+        env,
+        extra,
+        Some(copy_as),
+    );
+    built.push((copy_as.to_string(), p.clone()));
+    p
+}
+
+/// The `constant` plugin rebuilt against a dashpot-sdk that claims ABI version 1.0.0 (a future
+/// major).
 pub fn wrong_abi_plugin() -> PathBuf {
-    static P: OnceLock<PathBuf> = OnceLock::new();
-    P.get_or_init(|| {
-        build_external_with(
-            &workspace_root().join("Cargo.toml"),
-            "dashpot-constant",
-            "dashpot_constant",
-            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "1.0.0")],
-            &[],
-            Some("wrong_abi_constant"),
-        )
-    })
-    .clone()
+    rebuilt_constant(
+        "wrong_abi_constant",
+        &[("DASHPOT_SDK_FAKE_ABI_VERSION", "1.0.0")],
+        &[],
+    )
 }
 
 /// The `constant` plugin rebuilt against a dashpot-sdk that claims the next series, 0.4.0 (a
-/// series this host does not speak), copied to a file of its own.
+/// series this host does not speak).
 pub fn next_series_plugin() -> PathBuf {
-    static P: OnceLock<PathBuf> = OnceLock::new();
-    P.get_or_init(|| {
-        build_external_with(
-            &workspace_root().join("Cargo.toml"),
-            "dashpot-constant",
-            "dashpot_constant",
-            &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.4.0")],
-            &[],
-            Some("next_series_constant"),
-        )
-    })
-    .clone()
+    rebuilt_constant(
+        "next_series_constant",
+        &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.4.0")],
+        &[],
+    )
 }
 
 /// The `constant` plugin rebuilt against a dashpot-sdk of the same version whose `Pair` has an
 /// extra field: a stale or mismatched build that only the layout check can catch.
 pub fn wrong_layout_plugin() -> PathBuf {
-    static P: OnceLock<PathBuf> = OnceLock::new();
-    P.get_or_init(|| {
-        build_external_with(
-            &workspace_root().join("Cargo.toml"),
-            "dashpot-constant",
-            "dashpot_constant",
-            &[],
-            &["--features", "dashpot-sdk/__layout_skew_for_tests"],
-            Some("wrong_layout_constant"),
-        )
-    })
-    .clone()
+    rebuilt_constant(
+        "wrong_layout_constant",
+        &[],
+        &["--features", "dashpot-sdk/__layout_skew_for_tests"],
+    )
 }
 
 /// The third-party example plugin, built from its own workspace as an outside author would.
@@ -378,27 +372,30 @@ pub fn sdk01_plugins(profile: &str) -> Option<PathBuf> {
 /// A registry holding only the plugins of `sdk`, as built from its sources.
 pub fn old_sdk_registry(sdk: &OldSdk, profile: &str) -> Option<Registry> {
     let dir = old_sdk_plugins(sdk, profile)?;
-    let files = sdk
-        .libs
-        .iter()
-        .map(|n| {
-            dir.join(format!(
-                "{}{n}{}",
-                std::env::consts::DLL_PREFIX,
-                std::env::consts::DLL_SUFFIX
-            ))
-        })
-        .collect();
     let sp = SearchPath {
         dirs: vec![],
-        files,
+        files: sdk.libs.iter().map(|n| lib_in(&dir, n)).collect(),
         use_env: false,
         use_default: false,
     };
-    Some(
-        Registry::discover(&sp)
-            .unwrap_or_else(|e| panic!("the sdk {} plugins load in this host: {}", sdk.series, e.message)),
-    )
+    let reg = Registry::discover(&sp)
+        .unwrap_or_else(|e| panic!("the sdk {} plugins load in this host: {}", sdk.series, e.message));
+    // every plugin was built against that sdk and is spoken to as one of its series
+    let series = match sdk.series {
+        "0.1" => dashpot::laws::SdkSeries::V0_1,
+        _ => dashpot::laws::SdkSeries::V0_2,
+    };
+    for p in &reg.plugins {
+        let version = format!("{}.", sdk.series);
+        assert!(
+            p.sdk_version.starts_with(&version),
+            "{}: {}",
+            p.name,
+            p.sdk_version
+        );
+        assert_eq!(p.series, series, "{}", p.name);
+    }
+    Some(reg)
 }
 
 /// A registry holding only the five seed plugins as built from the sdk 0.1 sources.

@@ -3,7 +3,11 @@
 ! header is the reference for each one's contract (ownership, thread safety, the ABI version
 ! rule). Handles are type(c_ptr); statuses and enums are integer(c_int) with the values of the
 ! header's enums. Arrays are passed as assumed-size arrays (a C pointer to the first element);
-! vectors of the tangential batch are real(c_double) :: v(3, n), x y z of contact i in v(:, i).
+! vectors of the tangential and rolling batches are real(c_double) :: v(3, n), x y z of contact
+! i in v(:, i); history(slots, n) holds contact i's history in history(:, i) (pass a 1-element
+! dummy when n_history = 0). The functions every kind of law shares (new, free, binding, history
+! width, the energy batch) have one abstract interface each, and one procedure line per kind, as
+! the header declares them with one macro line per kind.
 module dashpot
   use iso_c_binding
   implicit none
@@ -32,7 +36,8 @@ module dashpot
   end type dashpot_materials_t
 
   ! enum DashpotLawKind
-  integer(c_int), parameter :: DASHPOT_CONTACT = 1, DASHPOT_RESTITUTION = 2, DASHPOT_TANGENTIAL = 3
+  integer(c_int), parameter :: DASHPOT_CONTACT = 1, DASHPOT_RESTITUTION = 2, DASHPOT_TANGENTIAL = 3, &
+    DASHPOT_ROLLING = 4, DASHPOT_TWISTING = 5
   ! enum DashpotEndCriterion
   integer(c_int), parameter :: DASHPOT_END_NONE = 0, DASHPOT_END_OVERLAP = 1, DASHPOT_END_FORCE = 2
 
@@ -59,6 +64,112 @@ module dashpot
     integer(c_int32_t) :: end_criterion
   end type dashpot_calibration_target_t
 
+  ! ---- the shapes every kind of law shares ----
+  abstract interface
+    ! dashpot_KIND_new: param_names is c_loc of an array of c_ptr (or c_null_ptr with n_params = 0)
+    function law_new_i(registry, name, param_names, param_values, n_params, law) bind(c)
+      import :: c_ptr, c_char, c_double, c_size_t, c_int
+      type(c_ptr), value :: registry
+      character(kind=c_char), intent(in) :: name(*)
+      type(c_ptr), value :: param_names
+      real(c_double), intent(in) :: param_values(*)
+      integer(c_size_t), value :: n_params
+      type(c_ptr), intent(out) :: law
+      integer(c_int) :: law_new_i
+    end function
+
+    ! every *_free (null is ignored)
+    subroutine handle_free_i(handle) bind(c)
+      import :: c_ptr
+      type(c_ptr), value :: handle
+    end subroutine
+
+    ! dashpot_KIND_bind_materials
+    function bind_materials_i(law, materials, model) bind(c)
+      import :: c_ptr, c_int, dashpot_materials_t
+      type(c_ptr), value :: law
+      type(dashpot_materials_t), intent(in) :: materials
+      type(c_ptr), intent(out) :: model
+      integer(c_int) :: bind_materials_i
+    end function
+
+    ! dashpot_KIND_model_history_slots
+    function history_slots_i(model, slots) bind(c)
+      import :: c_ptr, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), intent(out) :: slots
+      integer(c_int) :: history_slots_i
+    end function
+
+    ! dashpot_KIND_bind (to a pair)
+    function bind_pair_i(law, pair, bound) bind(c)
+      import :: c_ptr, c_int, dashpot_pair_t
+      type(c_ptr), value :: law
+      type(dashpot_pair_t), intent(in) :: pair
+      type(c_ptr), intent(out) :: bound
+      integer(c_int) :: bind_pair_i
+    end function
+
+    ! the sdk 0.3 batch of the tangential (force_batch_energy), rolling and twisting kinds:
+    ! normal(3, n); velocity(3, n) (tangential, rolling) or rate(n) (twisting); out(3, n) or
+    ! out(n); power(n) and elastic(n) the energy outputs, energy_written 1 when the law wrote them
+    function energy_batch_i(model, n, dt, normal, velocity, normal_force, delta, mass, radius, history, &
+      n_history, out, power, elastic, energy_written) bind(c)
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), value :: dt
+      real(c_double), intent(in) :: normal(*), velocity(*), normal_force(*), delta(*), mass(*), radius(*)
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: out(*), power(*), elastic(*)
+      integer(c_int), intent(out) :: energy_written
+      integer(c_int) :: energy_batch_i
+    end function
+  end interface
+
+  procedure(law_new_i), bind(c, name='dashpot_contact_new') :: dashpot_contact_new
+  procedure(law_new_i), bind(c, name='dashpot_tangential_new') :: dashpot_tangential_new
+  procedure(law_new_i), bind(c, name='dashpot_restitution_new') :: dashpot_restitution_new
+  procedure(law_new_i), bind(c, name='dashpot_rolling_new') :: dashpot_rolling_new
+  procedure(law_new_i), bind(c, name='dashpot_twisting_new') :: dashpot_twisting_new
+
+  procedure(handle_free_i), bind(c, name='dashpot_registry_free') :: dashpot_registry_free
+  procedure(handle_free_i), bind(c, name='dashpot_contact_free') :: dashpot_contact_free
+  procedure(handle_free_i), bind(c, name='dashpot_tangential_free') :: dashpot_tangential_free
+  procedure(handle_free_i), bind(c, name='dashpot_restitution_free') :: dashpot_restitution_free
+  procedure(handle_free_i), bind(c, name='dashpot_rolling_free') :: dashpot_rolling_free
+  procedure(handle_free_i), bind(c, name='dashpot_twisting_free') :: dashpot_twisting_free
+  procedure(handle_free_i), bind(c, name='dashpot_contact_model_free') :: dashpot_contact_model_free
+  procedure(handle_free_i), bind(c, name='dashpot_tangential_model_free') :: dashpot_tangential_model_free
+  procedure(handle_free_i), bind(c, name='dashpot_rolling_model_free') :: dashpot_rolling_model_free
+  procedure(handle_free_i), bind(c, name='dashpot_twisting_model_free') :: dashpot_twisting_model_free
+  procedure(handle_free_i), bind(c, name='dashpot_bound_contact_free') :: dashpot_bound_contact_free
+  procedure(handle_free_i), bind(c, name='dashpot_bound_restitution_free') :: dashpot_bound_restitution_free
+
+  procedure(bind_materials_i), bind(c, name='dashpot_contact_bind_materials') :: dashpot_contact_bind_materials
+  procedure(bind_materials_i), bind(c, name='dashpot_tangential_bind_materials') :: &
+    dashpot_tangential_bind_materials
+  procedure(bind_materials_i), bind(c, name='dashpot_rolling_bind_materials') :: dashpot_rolling_bind_materials
+  procedure(bind_materials_i), bind(c, name='dashpot_twisting_bind_materials') :: dashpot_twisting_bind_materials
+
+  procedure(history_slots_i), bind(c, name='dashpot_contact_model_history_slots') :: &
+    dashpot_contact_model_history_slots
+  procedure(history_slots_i), bind(c, name='dashpot_tangential_model_history_slots') :: &
+    dashpot_tangential_model_history_slots
+  procedure(history_slots_i), bind(c, name='dashpot_rolling_model_history_slots') :: &
+    dashpot_rolling_model_history_slots
+  procedure(history_slots_i), bind(c, name='dashpot_twisting_model_history_slots') :: &
+    dashpot_twisting_model_history_slots
+
+  procedure(bind_pair_i), bind(c, name='dashpot_contact_bind') :: dashpot_contact_bind
+  procedure(bind_pair_i), bind(c, name='dashpot_restitution_bind') :: dashpot_restitution_bind
+
+  procedure(energy_batch_i), bind(c, name='dashpot_tangential_model_force_batch_energy') :: &
+    dashpot_tangential_model_force_batch_energy
+  procedure(energy_batch_i), bind(c, name='dashpot_rolling_model_force_batch') :: dashpot_rolling_model_force_batch
+  procedure(energy_batch_i), bind(c, name='dashpot_twisting_model_torque_batch') :: dashpot_twisting_model_torque_batch
+
+  ! ---- the functions of one kind each ----
   interface
     function dashpot_abi_version() bind(c, name='dashpot_abi_version')
       import :: c_int32_t
@@ -86,11 +197,6 @@ module dashpot
       integer(c_int) :: dashpot_registry_open
     end function
 
-    subroutine dashpot_registry_free(registry) bind(c, name='dashpot_registry_free')
-      import :: c_ptr
-      type(c_ptr), value :: registry
-    end subroutine
-
     function dashpot_registry_law_count(registry, count) bind(c, name='dashpot_registry_law_count')
       import :: c_ptr, c_size_t, c_int
       type(c_ptr), value :: registry
@@ -98,42 +204,12 @@ module dashpot
       integer(c_int) :: dashpot_registry_law_count
     end function
 
-    function dashpot_contact_new(registry, name, param_names, param_values, n_params, law) &
-      bind(c, name='dashpot_contact_new')
-      import :: c_ptr, c_char, c_double, c_size_t, c_int
-      type(c_ptr), value :: registry
-      character(kind=c_char), intent(in) :: name(*)
-      type(c_ptr), value :: param_names
-      real(c_double), intent(in) :: param_values(*)
-      integer(c_size_t), value :: n_params
-      type(c_ptr), intent(out) :: law
-      integer(c_int) :: dashpot_contact_new
-    end function
-
-    subroutine dashpot_contact_free(law) bind(c, name='dashpot_contact_free')
-      import :: c_ptr
-      type(c_ptr), value :: law
-    end subroutine
-
     function dashpot_pair_spheres(a, b, pair) bind(c, name='dashpot_pair_spheres')
       import :: c_int, dashpot_particle_t, dashpot_pair_t
       type(dashpot_particle_t), intent(in) :: a, b
       type(dashpot_pair_t), intent(out) :: pair
       integer(c_int) :: dashpot_pair_spheres
     end function
-
-    function dashpot_contact_bind(law, pair, bound) bind(c, name='dashpot_contact_bind')
-      import :: c_ptr, c_int, dashpot_pair_t
-      type(c_ptr), value :: law
-      type(dashpot_pair_t), intent(in) :: pair
-      type(c_ptr), intent(out) :: bound
-      integer(c_int) :: dashpot_contact_bind
-    end function
-
-    subroutine dashpot_bound_contact_free(bound) bind(c, name='dashpot_bound_contact_free')
-      import :: c_ptr
-      type(c_ptr), value :: bound
-    end subroutine
 
     function dashpot_contact_force(bound, delta, rate, force) bind(c, name='dashpot_contact_force')
       import :: c_ptr, c_double, c_int
@@ -213,36 +289,6 @@ module dashpot
       integer(c_int) :: dashpot_contact_coefficient
     end function
 
-    function dashpot_restitution_new(registry, name, param_names, param_values, n_params, law) &
-      bind(c, name='dashpot_restitution_new')
-      import :: c_ptr, c_char, c_double, c_size_t, c_int
-      type(c_ptr), value :: registry
-      character(kind=c_char), intent(in) :: name(*)
-      type(c_ptr), value :: param_names
-      real(c_double), intent(in) :: param_values(*)
-      integer(c_size_t), value :: n_params
-      type(c_ptr), intent(out) :: law
-      integer(c_int) :: dashpot_restitution_new
-    end function
-
-    subroutine dashpot_restitution_free(law) bind(c, name='dashpot_restitution_free')
-      import :: c_ptr
-      type(c_ptr), value :: law
-    end subroutine
-
-    function dashpot_restitution_bind(law, pair, bound) bind(c, name='dashpot_restitution_bind')
-      import :: c_ptr, c_int, dashpot_pair_t
-      type(c_ptr), value :: law
-      type(dashpot_pair_t), intent(in) :: pair
-      type(c_ptr), intent(out) :: bound
-      integer(c_int) :: dashpot_restitution_bind
-    end function
-
-    subroutine dashpot_bound_restitution_free(bound) bind(c, name='dashpot_bound_restitution_free')
-      import :: c_ptr
-      type(c_ptr), value :: bound
-    end subroutine
-
     function dashpot_restitution_eval(bound, speed, restitution) bind(c, name='dashpot_restitution_eval')
       import :: c_ptr, c_double, c_int
       type(c_ptr), value :: bound
@@ -294,26 +340,6 @@ module dashpot
       integer(c_int) :: dashpot_materials_wall
     end function
 
-    function dashpot_contact_bind_materials(law, materials, model) bind(c, name='dashpot_contact_bind_materials')
-      import :: c_ptr, c_int, dashpot_materials_t
-      type(c_ptr), value :: law
-      type(dashpot_materials_t), intent(in) :: materials
-      type(c_ptr), intent(out) :: model
-      integer(c_int) :: dashpot_contact_bind_materials
-    end function
-
-    subroutine dashpot_contact_model_free(model) bind(c, name='dashpot_contact_model_free')
-      import :: c_ptr
-      type(c_ptr), value :: model
-    end subroutine
-
-    function dashpot_contact_model_history_slots(model, slots) bind(c, name='dashpot_contact_model_history_slots')
-      import :: c_ptr, c_size_t, c_int
-      type(c_ptr), value :: model
-      integer(c_size_t), intent(out) :: slots
-      integer(c_int) :: dashpot_contact_model_history_slots
-    end function
-
     ! history(slots, n): contact i's history in history(:, i); pass a 1-element dummy when n_history = 0
     function dashpot_contact_model_force_batch(model, n, delta, rate, mass, radius, history, n_history, force) &
       bind(c, name='dashpot_contact_model_force_batch')
@@ -324,43 +350,6 @@ module dashpot
       real(c_double), intent(inout) :: history(*)
       real(c_double), intent(out) :: force(*)
       integer(c_int) :: dashpot_contact_model_force_batch
-    end function
-
-    function dashpot_tangential_new(registry, name, param_names, param_values, n_params, law) &
-      bind(c, name='dashpot_tangential_new')
-      import :: c_ptr, c_char, c_double, c_size_t, c_int
-      type(c_ptr), value :: registry
-      character(kind=c_char), intent(in) :: name(*)
-      type(c_ptr), value :: param_names
-      real(c_double), intent(in) :: param_values(*)
-      integer(c_size_t), value :: n_params
-      type(c_ptr), intent(out) :: law
-      integer(c_int) :: dashpot_tangential_new
-    end function
-
-    subroutine dashpot_tangential_free(law) bind(c, name='dashpot_tangential_free')
-      import :: c_ptr
-      type(c_ptr), value :: law
-    end subroutine
-
-    function dashpot_tangential_bind_materials(law, materials, model) bind(c, name='dashpot_tangential_bind_materials')
-      import :: c_ptr, c_int, dashpot_materials_t
-      type(c_ptr), value :: law
-      type(dashpot_materials_t), intent(in) :: materials
-      type(c_ptr), intent(out) :: model
-      integer(c_int) :: dashpot_tangential_bind_materials
-    end function
-
-    subroutine dashpot_tangential_model_free(model) bind(c, name='dashpot_tangential_model_free')
-      import :: c_ptr
-      type(c_ptr), value :: model
-    end subroutine
-
-    function dashpot_tangential_model_history_slots(model, slots) bind(c, name='dashpot_tangential_model_history_slots')
-      import :: c_ptr, c_size_t, c_int
-      type(c_ptr), value :: model
-      integer(c_size_t), intent(out) :: slots
-      integer(c_int) :: dashpot_tangential_model_history_slots
     end function
 
     ! normal(3, n), velocity(3, n), force(3, n); history(slots, n)
@@ -374,109 +363,6 @@ module dashpot
       real(c_double), intent(inout) :: history(*)
       real(c_double), intent(out) :: force(*)
       integer(c_int) :: dashpot_tangential_model_force_batch
-    end function
-
-    ! ---- sdk 0.3: rolling and twisting laws; energy and reach outputs of contact laws ----
-    ! the energy outputs (power, elastic) take arrays of n values; energy_written is 1 when the law
-    ! reported them. Vectors are real(c_double) :: v(3, n), as for the tangential batch.
-    function dashpot_rolling_new(registry, name, param_names, param_values, n_params, law) &
-      bind(c, name='dashpot_rolling_new')
-      import :: c_ptr, c_char, c_double, c_size_t, c_int
-      type(c_ptr), value :: registry
-      character(kind=c_char), intent(in) :: name(*)
-      type(c_ptr), value :: param_names
-      real(c_double), intent(in) :: param_values(*)
-      integer(c_size_t), value :: n_params
-      type(c_ptr), intent(out) :: law
-      integer(c_int) :: dashpot_rolling_new
-    end function
-
-    subroutine dashpot_rolling_free(law) bind(c, name='dashpot_rolling_free')
-      import :: c_ptr
-      type(c_ptr), value :: law
-    end subroutine
-
-    function dashpot_rolling_bind_materials(law, materials, model) bind(c, name='dashpot_rolling_bind_materials')
-      import :: c_ptr, c_int, dashpot_materials_t
-      type(c_ptr), value :: law
-      type(dashpot_materials_t), intent(in) :: materials
-      type(c_ptr), intent(out) :: model
-      integer(c_int) :: dashpot_rolling_bind_materials
-    end function
-
-    subroutine dashpot_rolling_model_free(model) bind(c, name='dashpot_rolling_model_free')
-      import :: c_ptr
-      type(c_ptr), value :: model
-    end subroutine
-
-    function dashpot_rolling_model_history_slots(model, slots) bind(c, name='dashpot_rolling_model_history_slots')
-      import :: c_ptr, c_size_t, c_int
-      type(c_ptr), value :: model
-      integer(c_size_t), intent(out) :: slots
-      integer(c_int) :: dashpot_rolling_model_history_slots
-    end function
-
-    function dashpot_rolling_model_force_batch(model, n, dt, normal, velocity, normal_force, delta, mass, radius, &
-      history, n_history, force, power, elastic, energy_written) bind(c, name='dashpot_rolling_model_force_batch')
-      import :: c_ptr, c_double, c_size_t, c_int
-      type(c_ptr), value :: model
-      integer(c_size_t), value :: n, n_history
-      real(c_double), value :: dt
-      real(c_double), intent(in) :: normal(*), velocity(*), normal_force(*), delta(*), mass(*), radius(*)
-      real(c_double), intent(inout) :: history(*)
-      real(c_double), intent(out) :: force(*), power(*), elastic(*)
-      integer(c_int), intent(out) :: energy_written
-      integer(c_int) :: dashpot_rolling_model_force_batch
-    end function
-
-    function dashpot_twisting_new(registry, name, param_names, param_values, n_params, law) &
-      bind(c, name='dashpot_twisting_new')
-      import :: c_ptr, c_char, c_double, c_size_t, c_int
-      type(c_ptr), value :: registry
-      character(kind=c_char), intent(in) :: name(*)
-      type(c_ptr), value :: param_names
-      real(c_double), intent(in) :: param_values(*)
-      integer(c_size_t), value :: n_params
-      type(c_ptr), intent(out) :: law
-      integer(c_int) :: dashpot_twisting_new
-    end function
-
-    subroutine dashpot_twisting_free(law) bind(c, name='dashpot_twisting_free')
-      import :: c_ptr
-      type(c_ptr), value :: law
-    end subroutine
-
-    function dashpot_twisting_bind_materials(law, materials, model) bind(c, name='dashpot_twisting_bind_materials')
-      import :: c_ptr, c_int, dashpot_materials_t
-      type(c_ptr), value :: law
-      type(dashpot_materials_t), intent(in) :: materials
-      type(c_ptr), intent(out) :: model
-      integer(c_int) :: dashpot_twisting_bind_materials
-    end function
-
-    subroutine dashpot_twisting_model_free(model) bind(c, name='dashpot_twisting_model_free')
-      import :: c_ptr
-      type(c_ptr), value :: model
-    end subroutine
-
-    function dashpot_twisting_model_history_slots(model, slots) bind(c, name='dashpot_twisting_model_history_slots')
-      import :: c_ptr, c_size_t, c_int
-      type(c_ptr), value :: model
-      integer(c_size_t), intent(out) :: slots
-      integer(c_int) :: dashpot_twisting_model_history_slots
-    end function
-
-    function dashpot_twisting_model_torque_batch(model, n, dt, normal, rate, normal_force, delta, mass, radius, &
-      history, n_history, torque, power, elastic, energy_written) bind(c, name='dashpot_twisting_model_torque_batch')
-      import :: c_ptr, c_double, c_size_t, c_int
-      type(c_ptr), value :: model
-      integer(c_size_t), value :: n, n_history
-      real(c_double), value :: dt
-      real(c_double), intent(in) :: normal(*), rate(*), normal_force(*), delta(*), mass(*), radius(*)
-      real(c_double), intent(inout) :: history(*)
-      real(c_double), intent(out) :: torque(*), power(*), elastic(*)
-      integer(c_int), intent(out) :: energy_written
-      integer(c_int) :: dashpot_twisting_model_torque_batch
     end function
 
     function dashpot_contact_model_force_batch_energy(model, n, delta, rate, mass, radius, history, n_history, &
@@ -496,6 +382,7 @@ module dashpot
       type(c_ptr), value :: s
       integer(c_size_t) :: dashpot_c_strlen
     end function
+
   end interface
 
 contains

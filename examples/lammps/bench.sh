@@ -1,17 +1,24 @@
 #!/usr/bin/env bash
 # Benchmark: the settling pile of in.pile (20,000 spheres by default) on 1 and 2 MPI ranks,
 # with Mindlin friction and history (BENCH_FRICTION=mindlin, the default) or without (none);
-# or the polydisperse frictional pour of in.pour (BENCH_DECK=pour, 2,000 spheres, fix pour).
+# or the polydisperse frictional pour of in.pour (BENCH_DECK=pour, 2,000 spheres, fix pour, in a
+# box BENCH_L = 0.08 m wide, whose pile stays below the region fix pour inserts into: both
+# styles pour the same spheres),
+# with rolling resistance too when BENCH_ROLLING=sds (`rolling sds` with k = BENCH_KR N/m,
+# gamma = BENCH_GR N s/m, mu = BENCH_MUR in both styles, on the pairs and the floor).
 # `pair_style dashpot hsd` (through the dashpot C ABI) against LAMMPS's nearest built-in,
 # `pair_style granular` with `hertz/material ... damping coeff_restitution` (for Hertz the same
 # alpha(eps) as hsd) and the same friction (`tangential mindlin NULL 0 MU` against dashpot's
 # `tangential mindlin mu=MU`, or `linear_nohistory 0 0` without friction).
-# Both runs have the same floor (fix wall/gran), integrator and neighbor settings; the score is
-# particle-steps per second of the whole run loop (atoms x steps / LAMMPS's "Loop time"), best of
-# REPEATS runs, with the two styles alternating so that machine noise hits both. Each run's
-# RESULT line goes to stderr.
+# Both runs have the same floor (fix wall/gran), integrator and neighbor settings. Each repeat
+# runs the two styles one after the other (alternating, so that machine noise hits both); the
+# score is the CPU seconds of LAMMPS's run loops ("Loop time" x processes x "% CPU use"), and
+# the ratio is the median over the repeats of each pair's granular/dashpot ratio. Particle-steps
+# per second (atoms x steps / loop time) are printed beside. Each run's RESULT line goes to
+# stderr.
 #
 #   DASHPOT_LAMMPS_VENV=/path/to/venv examples/lammps/bench.sh [NSTEPS] [REPEATS]
+# (BENCH_RANKS="1 2" by default: the MPI rank counts to run)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -23,16 +30,19 @@ nz="${BENCH_NZ:-50}"
 d2="${BENCH_D2:-0.01}"   # 0.008: a bidisperse pile (half the spheres 8 mm)
 friction="${BENCH_FRICTION:-mindlin}"
 deck="${BENCH_DECK:-pile}"
+rolling="${BENCH_ROLLING:-none}"
 plugin="$("$here/build.sh" "$root/target/lammps" | tail -n1)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 
-# prints "particle_steps_per_s pair_seconds loop_seconds"
+# prints "cpu_seconds particle_steps_per_s pair_seconds loop_seconds"
 run() {
     local ranks="$1" style="$2" log="$work/$2.$1.log"
     if [ "$deck" = pour ]; then
-        set -- -var n "${BENCH_N:-2000}" -var tpour "${BENCH_TPOUR:-0.8}" -var tsettle "${BENCH_TSETTLE:-0.2}"
+        set -- -var n "${BENCH_N:-2000}" -var L "${BENCH_L:-0.08}" -var tpour "${BENCH_TPOUR:-0.8}" \
+            -var tsettle "${BENCH_TSETTLE:-0.2}" \
+            -var rolling "$rolling" -var kr "${BENCH_KR:-1e4}" -var gr "${BENCH_GR:-0.1}" -var mur "${BENCH_MUR:-1.0}"
     else
         set -- -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" -var d2 "$d2" -var friction "$friction"
     fi
@@ -54,31 +64,31 @@ run() {
             if (!ok) { print "not a sane pile (want " want " atoms, none below the floor, finite): " $0; exit 1 }
         }' >&2 || exit 1
     fi
-    # every run of the deck: particle-steps over loop time, summed
-    awk '/^Loop time of/ { t += $4; ps += $9 * $12 } /^Pair  *\|/ { p += $5 }
-         END { if (t <= 0) exit 1; printf "%.6g %.6g %.6g\n", ps / t, p, t }' "$log" ||
+    # every run of the deck: CPU seconds of the loops, particle-steps over loop time, summed
+    awk '/^Loop time of/ { t += $4; ps += $9 * $12; lt = $4; np = $6 }
+         /% CPU use with/ { cpu += lt * np * $1 / 100 } /^Pair  *\|/ { p += $5 }
+         END { if (t <= 0) exit 1; printf "%.6g %.6g %.6g %.6g\n", cpu, ps / t, p, t }' "$log" ||
         { echo "$style on $ranks rank(s): no loop time" >&2; exit 1; }
 }
 
 if [ "$deck" = pour ]; then
-    echo "polydisperse pour: ${BENCH_N:-2000} spheres, best of $repeats; $(nproc) cores"
+    echo "polydisperse pour: ${BENCH_N:-2000} spheres, rolling $rolling, $repeats pairs; $(nproc) cores"
 else
-    echo "settling pile: $((nx * nx * nz)) spheres (d2 = $d2 m, friction $friction), $nsteps steps, best of $repeats; $(nproc) cores"
+    echo "settling pile: $((nx * nx * nz)) spheres (d2 = $d2 m, friction $friction), $nsteps steps, $repeats pairs; $(nproc) cores"
 fi
-printf "%-6s %-10s %16s %10s %10s\n" ranks style particle-steps/s pair_s loop_s
-for ranks in 1 2; do
-    best_g=0 best_d=0
+median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
+printf "%-6s %-10s %10s %16s %10s %10s\n" ranks style cpu_s particle-steps/s pair_s loop_s
+for ranks in ${BENCH_RANKS:-1 2}; do
+    ratios="" cpu_g="" cpu_d=""
     for _ in $(seq "$repeats"); do
         for style in granular dashpot; do
-            read -r ps pair loop < <(run "$ranks" "$style")
-            printf "%-6s %-10s %16.4g %10.4g %10.4g\n" "$ranks" "$style" "$ps" "$pair" "$loop"
-            if [ "$style" = granular ]; then
-                best_g=$(awk -v a="$best_g" -v b="$ps" 'BEGIN { print (b > a ? b : a) }')
-            else
-                best_d=$(awk -v a="$best_d" -v b="$ps" 'BEGIN { print (b > a ? b : a) }')
-            fi
+            read -r cpu ps pair loop < <(run "$ranks" "$style")
+            printf "%-6s %-10s %10.4g %16.4g %10.4g %10.4g\n" "$ranks" "$style" "$cpu" "$ps" "$pair" "$loop"
+            if [ "$style" = granular ]; then g=$cpu; cpu_g="$cpu_g $cpu"; else cpu_d="$cpu_d $cpu"; fi
         done
+        ratios="$ratios $(awk -v g="$g" -v d="$cpu" 'BEGIN { print g / d }')"
     done
-    awk -v r="$ranks" -v g="$best_g" -v d="$best_d" 'BEGIN {
-        printf "RATIO ranks=%d dashpot=%.4g granular=%.4g particle-steps/s: dashpot/granular = %.2fx\n", r, d, g, d / g }'
+    mg=$(echo $cpu_g | tr ' ' '\n' | median) md=$(echo $cpu_d | tr ' ' '\n' | median)
+    mr=$(echo $ratios | tr ' ' '\n' | median)
+    printf "RATIO ranks=%s CPU seconds: granular %s, dashpot %s (medians); granular/dashpot pair ratios:%s; median %.2fx\n" "$ranks" "$mg" "$md" "$ratios" "$mr"
 done

@@ -33,7 +33,8 @@ mkdir -p "$out"
 "${CXX:-g++}" -O3 -fno-semantic-interposition ${DASHPOT_CXXFLAGS:-} -std=c++17 -Wall -Wextra -fPIC -shared -DLAMMPS_SMALLBIG \
     -DDASHPOT_LAMMPS_VERSION="\"$lmpver\"" \
     -I"$lmpinc" -I"$mpiinc" -I"$root/host/capi/include" \
-    "$here/pair_dashpot.cpp" "$here/fix_dashpot_history.cpp" "$here/dashpot_plugin.cpp" \
+    "$here/pair_dashpot.cpp" "$here/pair_dashpot_compute.cpp" "$here/pair_dashpot_history.cpp" \
+    "$here/fix_dashpot_history.cpp" "$here/dashpot_plugin.cpp" \
     "$DASHPOT_CAPI_LIB" -Wl,--exclude-libs,ALL \
     -lpthread -ldl -lm -lgcc_s \
     -o "$out/dashpotplugin.so"

@@ -26,7 +26,7 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *register_fn)
     record.version = DASHPOT_LAMMPS_VERSION;
     record.style = "pair";
     record.name = "dashpot";
-    record.info = "granular contact (normal + tangential laws with history) from dashpot laws through the C ABI";
+    record.info = "granular contact (normal, tangential, rolling, twisting laws with history) from dashpot laws through the C ABI";
     record.author = "dashpot project";
     record.creator.v1 = &create_pair_dashpot;
     record.handle = handle;

@@ -2,9 +2,10 @@
 dashpot.collide, and plot it with matplotlib.
 
 The "measurements" are Kuwabara–Kono collisions of 1 cm MCC spheres at A = 2e-6 s with 1 %
-noise; the fit finds A back. Run from a dashpot checkout after `cargo build --release`:
+noise; the fit finds A back. With the package installed (`pip install ./host/python`) and
+SciPy and matplotlib:
 
-    DASHPOT_PLUGIN_PATH=target/release python examples/python/fit_restitution.py
+    python examples/python/fit_restitution.py
 """
 
 import numpy as np

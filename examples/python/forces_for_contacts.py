@@ -1,7 +1,7 @@
 """Normal forces for a numpy array of contacts from another code (a DEM step, a post-processor):
 one call, no copies of contiguous float64 arrays, the GIL released while the law runs.
 
-    DASHPOT_PLUGIN_PATH=target/release python examples/python/forces_for_contacts.py
+    python examples/python/forces_for_contacts.py
 """
 
 import time

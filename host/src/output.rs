@@ -1,4 +1,4 @@
-//! Result files are written whole or not at all.
+//! Result files are written whole or not at all; and the one progress bar of every run.
 
 use crate::registry::{kind_str, Registry};
 use dashpot_sdk::{LawError, LawInfo, ParamValue};
@@ -129,7 +129,7 @@ pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
         "kind": kind_str(info.kind),
         "summary": info.summary.as_str(),
         "doc": info.doc.as_str(),
-        "end_criterion": info.end_criterion.into_option().map(|e| e.as_str()),
+        "end_criterion": info.end_criterion.map(|e| e.as_str()),
         "plugin": plugin.map(|p| json!({
             "file": p.path.display().to_string(),
             "name": p.name,
@@ -140,7 +140,7 @@ pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
         "params": info.params.iter().map(|s| json!({
             "name": s.name.as_str(),
             "unit": s.unit.as_str(),
-            "default": s.default.into_option(),
+            "default": s.default,
             "range": s.range.to_string(),
             "min": finite_or_null(s.range.min),
             "max": finite_or_null(s.range.max),
@@ -219,7 +219,7 @@ impl Provenance {
                 let n = s.name.to_string();
                 match given.iter().find(|p| p.name == s.name.as_str()) {
                     Some(p) => (n, Some(p.value), ParamSource::Given),
-                    None => match s.default.into_option() {
+                    None => match s.default {
                         Some(d) => (n, Some(d), ParamSource::Default),
                         None => (n, None, ParamSource::Derived),
                     },
@@ -336,4 +336,23 @@ impl Provenance {
             );
         }
     }
+}
+
+/// The progress bar of every long run (`what`: what it counts), on stderr, hidden when stderr
+/// is not a terminal.
+pub fn progress_bar(len: u64, what: &str) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    use std::io::IsTerminal;
+    let target = if std::io::stderr().is_terminal() {
+        ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::hidden()
+    };
+    let pb = ProgressBar::with_draw_target(Some(len), target);
+    if let Ok(style) = ProgressStyle::with_template(&format!(
+        "{what} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {{msg}} (eta {{eta}})"
+    )) {
+        pb.set_style(style);
+    }
+    pb
 }

@@ -217,7 +217,6 @@ pub fn contact_restitution(
         .0
         .info
         .end_criterion
-        .into_option()
         .unwrap_or(EndCriterion::Overlap);
     let (pp, pw) = (Pair::spheres(p, p)?, Pair::wall(p)?);
     let opt = Options {

@@ -2,30 +2,17 @@
 
 mod common;
 
-use common::{dashpot, fails, lib, ok_json, plugin_dir};
+use common::{dashpot, fails, lib, ok_json, plugin_dir, sh, SEED_AND_02_LAWS};
 use serde_json::Value;
 use std::process::Command;
 
 #[test]
-fn laws_json_lists_the_five_laws_with_their_schemas() {
+fn laws_json_lists_the_laws_with_their_schemas() {
     let v = ok_json(&["laws", "--json"]);
     let laws = v["laws"].as_array().unwrap();
     let mut names: Vec<&str> = laws.iter().map(|l| l["name"].as_str().unwrap()).collect();
     names.sort();
-    assert_eq!(
-        names,
-        [
-            "constant",
-            "hsd",
-            "kuwabara-kono",
-            "linear-history",
-            "lsd",
-            "mcnamara-falcon",
-            "mindlin",
-            "thornton",
-            "walton-braun"
-        ]
-    );
+    assert_eq!(names, SEED_AND_02_LAWS);
     let get = |n: &str| laws.iter().find(|l| l["name"] == n).unwrap();
     let hsd = get("hsd");
     assert_eq!(hsd["kind"], "contact");
@@ -79,9 +66,7 @@ fn law_shows_documentation() {
 
 #[test]
 fn eval_contact_law_gives_the_hsd_force() {
-    let v = ok_json(&[
-        "eval", "--law", "hsd", "--set", "eps=0.3", "--delta", "2e-5", "--rate", "0.4", "--json",
-    ]);
+    let v = ok_json(&sh("eval --law hsd --set eps=0.3 --delta 2e-5 --rate 0.4 --json"));
     let (m, r, e) = (
         v["pair"]["mass"].as_f64().unwrap(),
         v["pair"]["radius"].as_f64().unwrap(),
@@ -100,22 +85,12 @@ fn eval_contact_law_gives_the_hsd_force() {
 
 #[test]
 fn eval_restitution_law_and_wall() {
-    let v = ok_json(&["eval", "--law", "mcnamara-falcon", "--speed", "1", "--json"]);
+    let v = ok_json(&sh("eval --law mcnamara-falcon --speed 1 --json"));
     let r = v["restitution"].as_f64().unwrap();
     assert!((r - 0.95 * (1.0f64 / 0.3).powf(-0.25)).abs() < 1e-14);
-    let v = ok_json(&[
-        "eval",
-        "--law",
-        "lsd",
-        "--wall",
-        "--diameter",
-        "0.002",
-        "--delta",
-        "0",
-        "--rate",
-        "0",
-        "--json",
-    ]);
+    let v = ok_json(&sh(
+        "eval --law lsd --wall --diameter 0.002 --delta 0 --rate 0 --json",
+    ));
     assert!((v["pair"]["radius"].as_f64().unwrap() - 0.001).abs() < 1e-18);
     assert_eq!(v["force"], 0.0);
 }
@@ -144,123 +119,59 @@ fn toml_config_with_set_override() {
 #[test]
 fn bad_input_is_a_clear_error_with_nonzero_exit() {
     fails(
-        &["eval", "--law", "hertz", "--speed", "1"],
+        &sh("eval --law hertz --speed 1"),
         &["unknown law 'hertz'", "hsd", "mcnamara-falcon"],
     );
     fails(
-        &[
-            "eval", "--law", "hsd", "--set", "eps=1.5", "--delta", "1e-5", "--rate", "1",
-        ],
+        &sh("eval --law hsd --set eps=1.5 --delta 1e-5 --rate 1"),
         &["'eps'", "1.5", "(0, 1]"],
     );
     fails(
-        &[
-            "eval", "--law", "hsd", "--set", "eps=0", "--delta", "1e-5", "--rate", "1",
-        ],
+        &sh("eval --law hsd --set eps=0 --delta 1e-5 --rate 1"),
         &["'eps'", "(0, 1]"],
     );
     fails(
-        &[
-            "eval", "--law", "hsd", "--set", "eps=nan", "--delta", "1e-5", "--rate", "1",
-        ],
+        &sh("eval --law hsd --set eps=nan --delta 1e-5 --rate 1"),
         &["NaN", "(0, 1]"],
     );
     fails(
-        &[
-            "eval", "--law", "hsd", "--set", "gamma=1", "--delta", "1e-5", "--rate", "1",
-        ],
+        &sh("eval --law hsd --set gamma=1 --delta 1e-5 --rate 1"),
         &["no parameter 'gamma'", "eps"],
     );
     fails(
-        &[
-            "eval", "--law", "hsd", "--set", "eps", "--delta", "1e-5", "--rate", "1",
-        ],
+        &sh("eval --law hsd --set eps --delta 1e-5 --rate 1"),
         &["NAME=VALUE"],
     );
     fails(
-        &[
-            "eval",
-            "--law",
-            "hsd",
-            "--poisson",
-            "0.5",
-            "--delta",
-            "1e-5",
-            "--rate",
-            "1",
-        ],
+        &sh("eval --law hsd --poisson 0.5 --delta 1e-5 --rate 1"),
         &["poisson = 0.5", "(-1, 0.5)"],
     );
     fails(
-        &[
-            "eval",
-            "--law",
-            "hsd",
-            "--poisson",
-            "-1",
-            "--delta",
-            "1e-5",
-            "--rate",
-            "1",
-        ],
+        &sh("eval --law hsd --poisson -1 --delta 1e-5 --rate 1"),
         &["poisson = -1"],
     );
     fails(
-        &[
-            "eval", "--law", "hsd", "--young", "0", "--delta", "1e-5", "--rate", "1",
-        ],
+        &sh("eval --law hsd --young 0 --delta 1e-5 --rate 1"),
         &["young = 0", "> 0"],
     );
     fails(
-        &[
-            "eval",
-            "--law",
-            "hsd",
-            "--density",
-            "-1500",
-            "--delta",
-            "1e-5",
-            "--rate",
-            "1",
-        ],
+        &sh("eval --law hsd --density -1500 --delta 1e-5 --rate 1"),
         &["density = -1500"],
     );
     fails(
-        &[
-            "eval",
-            "--law",
-            "hsd",
-            "--diameter",
-            "nan",
-            "--delta",
-            "1e-5",
-            "--rate",
-            "1",
-        ],
+        &sh("eval --law hsd --diameter nan --delta 1e-5 --rate 1"),
         &["diameter = NaN"],
     );
+    fails(&sh("eval --law hsd --delta nan --rate 1"), &["--delta = NaN"]);
+    fails(&sh("eval --law hsd --delta 1e-5"), &["--rate"]);
+    fails(&sh("eval --law hsd --speed 1"), &["contact law", "--delta"]);
     fails(
-        &["eval", "--law", "hsd", "--delta", "nan", "--rate", "1"],
-        &["--delta = NaN"],
-    );
-    fails(&["eval", "--law", "hsd", "--delta", "1e-5"], &["--rate"]);
-    fails(
-        &["eval", "--law", "hsd", "--speed", "1"],
-        &["contact law", "--delta"],
-    );
-    fails(
-        &["eval", "--law", "constant", "--delta", "1", "--rate", "1"],
+        &sh("eval --law constant --delta 1 --rate 1"),
         &["restitution law", "--speed"],
     );
-    fails(
-        &["eval", "--law", "constant", "--speed", "-1"],
-        &["--speed = -1", ">= 0"],
-    );
+    fails(&sh("eval --law constant --speed -1"), &["--speed = -1", ">= 0"]);
     fails(&["eval", "--speed", "1"], &["no law given"]);
-    fails(
-        &["eval", "--law", "hsd", "--delta", "abc", "--rate", "1"],
-        &["abc"],
-    );
+    fails(&sh("eval --law hsd --delta abc --rate 1"), &["abc"]);
 }
 
 #[test]
@@ -338,37 +249,28 @@ fn reproduce_writes_the_report() {
 
 #[test]
 fn collide_reports_the_observables_in_json() {
-    let v = ok_json(&[
-        "collide", "--law", "hsd", "--set", "eps=0.54", "--v0", "1", "--json",
-    ]);
+    let v = ok_json(&sh("collide --law hsd --set eps=0.54 --v0 1 --json"));
     for k in ["restitution", "contact_time", "max_overlap", "law", "v0", "end"] {
         assert!(!v[k].is_null(), "key {k} missing");
     }
     assert!((v["restitution"].as_f64().unwrap() - 0.54).abs() < 1e-9);
     assert_eq!(v["end"], "overlap");
     assert_eq!(v["law"], "hsd");
-    let f = ok_json(&[
-        "collide", "--law", "hsd", "--set", "eps=0.54", "--v0", "1", "--end", "force", "--json",
-    ]);
+    let f = ok_json(&sh("collide --law hsd --set eps=0.54 --v0 1 --end force --json"));
     assert_eq!(f["end"], "force");
     assert!(f["restitution"].as_f64().unwrap() > 0.54);
     // a wall: the particle's own mass
-    let w = ok_json(&["collide", "--law", "lsd", "--wall", "--v0", "1", "--json"]);
+    let w = ok_json(&sh("collide --law lsd --wall --v0 1 --json"));
     assert!((w["pair"]["mass"].as_f64().unwrap() - std::f64::consts::PI / 6.0 * 1500.0 * 1e-6).abs() < 1e-12);
 }
 
 #[test]
 fn collide_writes_a_trajectory() {
     let f = std::env::temp_dir().join(format!("dashpot-traj-{}.csv", std::process::id()));
-    let o = dashpot(&[
-        "collide",
-        "--law",
-        "lsd",
-        "--v0",
-        "0.5",
-        "--trajectory",
-        f.to_str().unwrap(),
-    ]);
+    let o = dashpot(&sh(&format!(
+        "collide --law lsd --v0 0.5 --trajectory {}",
+        f.to_str().unwrap()
+    )));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let csv = std::fs::read_to_string(&f).unwrap();
     let mut lines = csv.lines();
@@ -388,22 +290,19 @@ fn collide_writes_a_trajectory() {
 
 #[test]
 fn collide_bad_input() {
-    fails(&["collide", "--law", "hsd", "--v0", "0"], &["--v0 = 0", "> 0"]);
-    fails(&["collide", "--law", "hsd", "--v0", "-2"], &["--v0 = -2"]);
-    fails(&["collide", "--law", "hsd", "--v0", "nan"], &["--v0 = NaN"]);
+    fails(&sh("collide --law hsd --v0 0"), &["--v0 = 0", "> 0"]);
+    fails(&sh("collide --law hsd --v0 -2"), &["--v0 = -2"]);
+    fails(&sh("collide --law hsd --v0 nan"), &["--v0 = NaN"]);
+    fails(&sh("collide --law nope --v0 1"), &["unknown law 'nope'", "hsd"]);
     fails(
-        &["collide", "--law", "nope", "--v0", "1"],
-        &["unknown law 'nope'", "hsd"],
-    );
-    fails(
-        &["collide", "--law", "mcnamara-falcon", "--v0", "1"],
+        &sh("collide --law mcnamara-falcon --v0 1"),
         &["restitution law", "contact law is needed", "lsd"],
     );
     fails(
-        &["collide", "--law", "hsd", "--rtol", "1"],
+        &sh("collide --law hsd --rtol 1"),
         &["--rtol = 1", "[1e-14, 1e-3]"],
     );
-    fails(&["collide", "--law", "hsd", "--end", "sideways"], &["sideways"]);
+    fails(&sh("collide --law hsd --end sideways"), &["sideways"]);
     // a law that never pushes the particles apart: a clear error, not a hang
     let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
         .arg("--plugin")
@@ -422,17 +321,10 @@ fn collide_bad_input() {
 #[test]
 fn sweep_and_calibrate() {
     let f = std::env::temp_dir().join(format!("dashpot-sweep-{}.csv", std::process::id()));
-    let o = dashpot(&[
-        "sweep",
-        "--law",
-        "hsd",
-        "--v0",
-        "0.01:1:3",
-        "--vary",
-        "eps=0.2,0.8",
-        "--out",
-        f.to_str().unwrap(),
-    ]);
+    let o = dashpot(&sh(&format!(
+        "sweep --law hsd --v0 0.01:1:3 --vary eps=0.2,0.8 --out {}",
+        f.to_str().unwrap()
+    )));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&f).unwrap();
     // provenance first, as comment lines: the law with every parameter, the plugin file
@@ -451,50 +343,28 @@ fn sweep_and_calibrate() {
         assert!((eps - r).abs() < 1e-9, "{l}");
     }
     std::fs::remove_file(&f).ok();
-    fails(&["sweep", "--law", "hsd", "--v0", "1:2:x"], &["invalid grid"]);
+    fails(&sh("sweep --law hsd --v0 1:2:x"), &["invalid grid"]);
 
-    let v = ok_json(&[
-        "calibrate",
-        "--law",
-        "kuwabara-kono",
-        "--restitution",
-        "0.8",
-        "--v0",
-        "0.5",
-        "--json",
-    ]);
+    let v = ok_json(&sh(
+        "calibrate --law kuwabara-kono --restitution 0.8 --v0 0.5 --json",
+    ));
     assert_eq!(v["method"], "numerical");
     assert_eq!(
         v["end"], "force",
         "KK is calibrated under the criterion it declares"
     );
     assert!(v["restitution_residual"].as_f64().unwrap().abs() < 1e-9);
-    let v = ok_json(&[
-        "calibrate",
-        "--law",
-        "lsd",
-        "--restitution",
-        "0.5",
-        "--contact-time",
-        "1e-4",
-        "--json",
-    ]);
+    let v = ok_json(&sh(
+        "calibrate --law lsd --restitution 0.5 --contact-time 1e-4 --json",
+    ));
     assert_eq!(v["method"], "closed form");
     assert!(v["contact_time_residual"].as_f64().unwrap().abs() < 1e-14);
     fails(
-        &["calibrate", "--law", "hsd", "--restitution", "0"],
+        &sh("calibrate --law hsd --restitution 0"),
         &["--restitution = 0", "(0, 1]"],
     );
     fails(
-        &[
-            "calibrate",
-            "--law",
-            "hsd",
-            "--restitution",
-            "0.5",
-            "--contact-time",
-            "-1",
-        ],
+        &sh("calibrate --law hsd --restitution 0.5 --contact-time -1"),
         &["--contact-time = -1"],
     );
 }

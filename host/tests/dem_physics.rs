@@ -9,16 +9,20 @@ use dashpot::dem::{Body, DiskMass, Domain, Engine, EngineConfig, Laws, Material,
 use dashpot::laws::{compiled, compiled_tangential, NormalLaw};
 use dashpot_hsd::Hsd;
 use dashpot_sdk::{
-    BoundTangential, EndCriterion, History, LawError, MaterialPair, ParamSpec, Params, Range,
-    TangentialContact, TangentialLaw,
+    BoundTangential, EndCriterion, History, LawError, MaterialPair, Range, TangentialContact, TangentialLaw,
 };
 
-/// Cundall–Strack: a linear tangential spring of stiffness `kt` (N/m) on the displacement ξ of
-/// the contact point, rotated into the current tangent plane at its length, capped by Coulomb.
-#[derive(Clone, Copy)]
-struct CundallStrack {
-    kt: f64,
-    mu: f64,
+dashpot_sdk::law_params! {
+    /// Cundall–Strack: a linear tangential spring of stiffness `kt` (N/m) on the displacement ξ
+    /// of the contact point, rotated into the current tangent plane at its length, capped by
+    /// Coulomb.
+    #[derive(Clone, Copy)]
+    struct CundallStrack {
+        /// stiffness
+        kt: f64 { unit: "N/m", default: 1e3, range: Range::positive() },
+        /// friction
+        mu: f64 { unit: "1", default: 0.3, range: Range::non_negative() },
+    }
 }
 
 impl BoundTangential for CundallStrack {
@@ -54,18 +58,6 @@ impl TangentialLaw for CundallStrack {
         History::new("xi_y", "m", "spring"),
         History::new("xi_z", "m", "spring"),
     ];
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new("kt", "N/m", 1e3, Range::positive(), "stiffness"),
-            ParamSpec::new("mu", "1", 0.3, Range::non_negative(), "friction"),
-        ]
-    }
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(CundallStrack {
-            kt: p.get("kt")?,
-            mu: p.get("mu")?,
-        })
-    }
     fn bind(&self, _m: &MaterialPair) -> Result<CundallStrack, LawError> {
         Ok(*self)
     }

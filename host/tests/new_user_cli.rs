@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{dashpot, fails, ok_json, plugin_dir};
+use common::{dashpot, fails, ok_json, plugin_dir, sh};
 use std::path::{Path, PathBuf};
 
 fn scene(name: &str, text: &str) -> PathBuf {
@@ -252,14 +252,11 @@ fn check_prints_the_step_contact_time_count_and_sizes_and_does_not_run() {
     let p = scene("check.toml", &text);
     let out = p.with_extension("out");
     let _ = std::fs::remove_dir_all(&out);
-    let o = dashpot(&[
-        "dem",
-        "--scene",
+    let o = dashpot(&sh(&format!(
+        "dem --scene {} --check --out {}",
         p.to_str().unwrap(),
-        "--check",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+        out.to_str().unwrap()
+    )));
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     for needle in [
@@ -377,15 +374,10 @@ fn scene_errors_name_the_key_path_the_type_and_the_closest_key_on_the_first_line
 #[test]
 fn config_errors_name_the_key_and_the_closest_one() {
     let f = scene("cfg.toml", "[law]\nname = \"hsd\"\n[particle]\ndiamter = 0.002\n");
-    let (err, first) = error_of(&[
-        "eval",
-        "--config",
-        f.to_str().unwrap(),
-        "--delta",
-        "1e-5",
-        "--rate",
-        "0.1",
-    ]);
+    let (err, first) = error_of(&sh(&format!(
+        "eval --config {} --delta 1e-5 --rate 0.1",
+        f.to_str().unwrap()
+    )));
     for n in [
         "not a valid dashpot configuration",
         "unknown key `particle.diamter`",
@@ -395,30 +387,20 @@ fn config_errors_name_the_key_and_the_closest_one() {
         assert!(first.contains(n), "'{n}' not on the first line: {err}");
     }
     let f = scene("cfg2.toml", "[law]\nname = \"hsd\"\n[partner]\ntype = \"wal\"\n");
-    let (err, first) = error_of(&[
-        "eval",
-        "--config",
-        f.to_str().unwrap(),
-        "--delta",
-        "1e-5",
-        "--rate",
-        "0.1",
-    ]);
+    let (err, first) = error_of(&sh(&format!(
+        "eval --config {} --delta 1e-5 --rate 0.1",
+        f.to_str().unwrap()
+    )));
     assert!(first.contains("`partner.type` = \"wal\""), "{err}");
     assert!(first.contains("did you mean `wall`?"), "{err}");
     let f = scene(
         "cfg3.toml",
         "[law]\nname = \"hsd\"\n[particle]\ndensity = \"heavy\"\n",
     );
-    let (err, first) = error_of(&[
-        "eval",
-        "--config",
-        f.to_str().unwrap(),
-        "--delta",
-        "1e-5",
-        "--rate",
-        "0.1",
-    ]);
+    let (err, first) = error_of(&sh(&format!(
+        "eval --config {} --delta 1e-5 --rate 0.1",
+        f.to_str().unwrap()
+    )));
     assert!(
         first.contains("`particle.density`: expected a number, found string \"heavy\""),
         "{err}"
@@ -445,23 +427,11 @@ fn law_parameter_and_command_typos_get_the_name_meant() {
     assert!(!err.contains("did you mean"), "{err}");
     // a restitution law and a tangential law, through the other commands
     fails(
-        &["bed", "--restitution", "constnt", "--layers", "1", "--freq", "20"],
+        &sh("bed --restitution constnt --layers 1 --freq 20"),
         &["did you mean `constant`?"],
     );
     fails(
-        &[
-            "bed",
-            "--engine",
-            "dem",
-            "--law",
-            "hsd",
-            "--tangential",
-            "mindln",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-        ],
+        &sh("bed --engine dem --law hsd --tangential mindln --layers 1 --freq 20"),
         &["did you mean `mindlin`?"],
     );
     // commands and flags: clap's own suggestions
@@ -499,25 +469,17 @@ fn out_dir(tag: &str) -> PathBuf {
 
 #[test]
 fn scaling_results_carry_the_provenance_on_both_engines() {
-    let out = out_dir("scaling");
-    let v = ok_json(&[
-        "scaling",
-        "--restitution",
-        "constant",
-        "--set",
-        "r=0.9",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "10:12:2",
-        "--transient",
-        "2",
-        "--cycles",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
+    // a small grid into `out`, with the options `opts`
+    let scaling = |tag: &str, opts: &str, grid: &str| {
+        let out = out_dir(tag);
+        let line = format!(
+            "scaling {opts} --layers 0.5 {grid} --out {} --json",
+            out.display()
+        );
+        (ok_json(&sh(&line)), out)
+    };
+    let event_grid = "--freqs 10:12:2 --transient 2 --cycles 3";
+    let (v, out) = scaling("scaling", "--restitution constant --set r=0.9", event_grid);
     let prov = &v["provenance"];
     assert_eq!(prov["law"], "constant", "{v}");
     assert_eq!(prov["params"]["r"].as_f64(), Some(0.9));
@@ -535,58 +497,20 @@ fn scaling_results_carry_the_provenance_on_both_engines() {
         "{grid}"
     );
     // a contact law as a restitution law: the contact law's provenance, every parameter
-    let out = out_dir("scaling-from");
-    let v = ok_json(&[
-        "scaling",
-        "--restitution",
-        "from:hsd",
-        "--set",
-        "eps=0.8",
-        "--tc",
-        "1e-5",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "10:12:2",
-        "--transient",
-        "2",
-        "--cycles",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
+    let (v, out) = scaling(
+        "scaling-from",
+        "--restitution from:hsd --set eps=0.8 --tc 1e-5",
+        event_grid,
+    );
     assert_eq!(v["provenance"]["law"], "hsd", "{v}");
     assert_eq!(v["provenance"]["params"]["eps"].as_f64(), Some(0.8));
     assert_eq!(csvs_have_provenance(&out), 2);
     // the DEM engine with friction: both laws
-    let out = out_dir("scaling-dem");
-    let v = ok_json(&[
-        "scaling",
-        "--engine",
-        "dem",
-        "--law",
-        "hsd",
-        "--set",
-        "eps=0.9",
-        "--tangential",
-        "mindlin",
-        "--tset",
-        "mu=0.3",
-        "--young",
-        "1e8",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "20:30:2",
-        "--transient",
-        "1",
-        "--cycles",
-        "2",
-        "--out",
-        out.to_str().unwrap(),
-        "--json",
-    ]);
+    let (v, out) = scaling(
+        "scaling-dem",
+        "--engine dem --law hsd --set eps=0.9 --tangential mindlin --tset mu=0.3 --young 1e8",
+        "--freqs 20:30:2 --transient 1 --cycles 2",
+    );
     assert_eq!(v["provenance"]["law"], "hsd", "{v}");
     assert_eq!(v["tangential_provenance"]["law"], "mindlin", "{v}");
     assert_eq!(v["tangential_provenance"]["params"]["mu"].as_f64(), Some(0.3));
@@ -599,23 +523,11 @@ fn scaling_results_carry_the_provenance_on_both_engines() {
         "{grid}"
     );
     // the text output prints it too
-    let o = dashpot(&[
-        "scaling",
-        "--restitution",
-        "constant",
-        "--set",
-        "r=0.9",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "10:12:2",
-        "--transient",
-        "2",
-        "--cycles",
-        "3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let line = format!(
+        "scaling --restitution constant --set r=0.9 --layers 0.5 {event_grid} --out {}",
+        out.display()
+    );
+    let o = dashpot(&sh(&line));
     assert!(String::from_utf8_lossy(&o.stdout).contains("plugin: "));
 }
 

@@ -11,7 +11,7 @@ mod common;
 #[path = "../../tests/lib.rs"]
 mod ext;
 
-use common::{dashpot, lib, plugin_dir, SEED};
+use common::{dashpot, lib, plugin_dir, sh, SEED, SEED_AND_02_LAWS};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -116,16 +116,10 @@ fn law_names(v: &Value) -> Vec<String> {
 #[test]
 fn a_law_valid_below_1_mm_is_only_probed_below_it() {
     let lp = limited();
-    let v = json(&dashpot(&[
-        "--plugin",
-        s(&lp),
-        "collide",
-        "--law",
-        "hooke-limited",
-        "--v0",
-        "1",
-        "--json",
-    ]));
+    let v = json(&dashpot(&sh(&format!(
+        "--plugin {} collide --law hooke-limited --v0 1 --json",
+        s(&lp)
+    ))));
     let m = v["pair"]["mass"].as_f64().unwrap();
     let dmax = (m / 1e6).sqrt(); // undamped linear spring: δ_max = v0 √(m/k)
     assert!(
@@ -135,38 +129,16 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
     assert!((v["restitution"].as_f64().unwrap() - 1.0).abs() < 1e-9, "{v}");
 
     // calibrate: the default --fit of a law without eps is its only parameter other than k
-    let v = json(&dashpot(&[
-        "--plugin",
-        s(&lp),
-        "calibrate",
-        "--law",
-        "hooke-limited",
-        "--restitution",
-        "0.7",
-        "--json",
-    ]));
+    let v = json(&dashpot(&sh(&format!(
+        "--plugin {} calibrate --law hooke-limited --restitution 0.7 --json",
+        s(&lp)
+    ))));
     assert!(v["restitution_residual"].as_f64().unwrap().abs() < 1e-9, "{v}");
     assert!(v["params"]["c"].as_f64().unwrap() > 0.0, "c was fitted: {v}");
     assert_eq!(v["provenance"]["param_sources"]["c"], "given");
 
     // the bed's r(v) from the law, tabulated over 1e-4 … 20 m/s, and printed (item 6)
-    let o = dashpot(&[
-        "--plugin",
-        s(&lp),
-        "bed",
-        "--restitution",
-        "from:hooke-limited",
-        "--set",
-        "c=0.001",
-        "--layers",
-        "1",
-        "--freq",
-        "20",
-        "--cycles",
-        "1",
-        "--transient",
-        "0",
-    ]);
+    let o = dashpot(&sh(&format!("--plugin {} bed --restitution from:hooke-limited --set c=0.001 --layers 1 --freq 20 --cycles 1 --transient 0", s(&lp))));
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
@@ -183,17 +155,10 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
 
     // a collision that really goes past 1 mm: the error names the overlap, not a probe's 1 m
     let err = refused(
-        &dashpot(&[
-            "--plugin",
-            s(&lp),
-            "collide",
-            "--law",
-            "hooke-limited",
-            "--set",
-            "k=1",
-            "--v0",
-            "1",
-        ]),
+        &dashpot(&sh(&format!(
+            "--plugin {} collide --law hooke-limited --set k=1 --v0 1",
+            s(&lp)
+        ))),
         1,
         &["beyond what this law supports (1 mm)"],
     );
@@ -205,17 +170,7 @@ fn a_law_valid_below_1_mm_is_only_probed_below_it() {
 #[test]
 fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     let lp = limited();
-    let seed = [
-        "constant",
-        "hsd",
-        "kuwabara-kono",
-        "linear-history",
-        "lsd",
-        "mcnamara-falcon",
-        "mindlin",
-        "thornton",
-        "walton-braun",
-    ];
+    let seed = SEED_AND_02_LAWS;
     let mut all: Vec<String> = seed.iter().map(|s| s.to_string()).collect();
     all.push("hooke-limited".into());
     all.sort();
@@ -252,15 +207,11 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     let out = std::env::temp_dir().join(format!("dashpot-repro-none-{}", std::process::id()));
     refused(
         &run_installed(
-            &[
-                "--no-default-plugins",
-                "--plugin",
+            &sh(&format!(
+                "--no-default-plugins --plugin {} reproduce --quick --out {}",
                 s(&lp),
-                "reproduce",
-                "--quick",
-                "--out",
-                s(&out),
-            ],
+                s(&out)
+            )),
             None,
         ),
         1,
@@ -276,30 +227,24 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
 /// Item 3: a shadowed law is announced when used, and every result carries its provenance.
 #[test]
 fn every_result_names_its_plugin_file_versions_and_all_parameters() {
-    let sh = shadow_hsd();
-    let o = dashpot(&[
-        "--plugin",
-        s(&sh),
-        "collide",
-        "--law",
-        "hsd",
-        "--v0",
-        "1",
-        "--json",
-    ]);
+    let shadow = shadow_hsd();
+    let o = dashpot(&sh(&format!(
+        "--plugin {} collide --law hsd --v0 1 --json",
+        s(&shadow)
+    )));
     let v = json(&o);
     let err = stderr(&o);
     let builtin = plugin_dir().join("libdashpot_hsd.so");
     assert!(
         err.contains(&format!(
             "warning: law 'hsd' is taken from {}; it shadows the law of the same name in {}",
-            sh.display(),
+            shadow.display(),
             builtin.display()
         )),
         "{err}"
     );
     let p = &v["provenance"];
-    assert_eq!(p["plugin"]["file"], s(&sh));
+    assert_eq!(p["plugin"]["file"], s(&shadow));
     assert_eq!(p["plugin"]["name"], "dashpot-fixture-shadow-hsd");
     assert_eq!(p["plugin"]["version"], "0.3.1");
     assert_eq!(p["plugin"]["sdk_version"], "0.3.0");
@@ -311,9 +256,7 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     );
 
     // every parameter, including those left at their defaults or derived
-    let v = json(&dashpot(&[
-        "collide", "--law", "lsd", "--set", "eps=0.5", "--v0", "1", "--json",
-    ]));
+    let v = json(&dashpot(&sh("collide --law lsd --set eps=0.5 --v0 1 --json")));
     assert_eq!(v["params"]["eps"], 0.5);
     assert!(
         v["params"]["k"].is_null() && v["params"].as_object().unwrap().len() == 2,
@@ -326,12 +269,12 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     assert_eq!(p["plugin"]["name"], "dashpot-lsd");
     assert_eq!(p["host_sdk_version"], "0.3.0");
     assert!(p["shadows"].as_array().unwrap().is_empty());
-    let v = json(&dashpot(&["collide", "--law", "hsd", "--v0", "1", "--json"]));
+    let v = json(&dashpot(&sh("collide --law hsd --v0 1 --json")));
     assert_eq!(v["params"]["eps"], 0.54);
     assert_eq!(v["provenance"]["param_sources"]["eps"], "default");
 
     // text output
-    let o = dashpot(&["collide", "--law", "lsd", "--set", "eps=0.5", "--v0", "1"]);
+    let o = dashpot(&sh("collide --law lsd --set eps=0.5 --v0 1"));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
         out.contains("law: lsd (contact): eps = 0.5 (given), k = derived from the pair"),
@@ -454,35 +397,25 @@ fn a_bare_file_name_is_the_file_in_the_current_directory() {
 fn misuses_are_answered_with_the_value_and_the_remedy() {
     // the same --set twice, a value with a unit: malformed command lines, exit status 2
     refused(
-        &dashpot(&["collide", "--law", "hsd", "--set", "eps=0.3", "--set", "eps=0.5"]),
+        &dashpot(&sh("collide --law hsd --set eps=0.3 --set eps=0.5")),
         2,
         &["--set eps is given twice (0.3 and 0.5); give each parameter once"],
     );
     refused(
-        &dashpot(&["collide", "--law", "lsd", "--set", "k=1e6N"]),
+        &dashpot(&sh("collide --law lsd --set k=1e6N")),
         2,
         &["'1e6N' is not a number (write plain SI values without units, e.g. k=1e6)"],
     );
     refused(
-        &dashpot(&[
-            "bed",
-            "--restitution",
-            "constant",
-            "--set",
-            "r=0.5",
-            "--set",
-            "r=0.6",
-            "--layers",
-            "1",
-            "--freq",
-            "20",
-        ]),
+        &dashpot(&sh(
+            "bed --restitution constant --set r=0.5 --set r=0.6 --layers 1 --freq 20",
+        )),
         2,
         &["--set r is given twice"],
     );
     // a contact law where the bed wants a restitution law: the remedy is from:LAW
     refused(
-        &dashpot(&["bed", "--restitution", "hsd", "--layers", "1", "--freq", "20"]),
+        &dashpot(&sh("bed --restitution hsd --layers 1 --freq 20")),
         1,
         &[
             "law 'hsd' is a contact law, but a restitution law is needed here",
@@ -491,19 +424,9 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
         ],
     );
     // the bed's header without parameters
-    let o = dashpot(&[
-        "bed",
-        "--restitution",
-        "mcnamara-falcon",
-        "--layers",
-        "1",
-        "--freq",
-        "20",
-        "--cycles",
-        "1",
-        "--transient",
-        "0",
-    ]);
+    let o = dashpot(&sh(
+        "bed --restitution mcnamara-falcon --layers 1 --freq 20 --cycles 1 --transient 0",
+    ));
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(
@@ -513,34 +436,17 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
     // an overdamped law under --end overlap: the error says so and suggests --end force
     let lp = limited();
     refused(
-        &dashpot(&[
-            "--plugin",
-            s(&lp),
-            "collide",
-            "--law",
-            "hooke-limited",
-            "--set",
-            "c=100",
-            "--v0",
-            "1",
-        ]),
+        &dashpot(&sh(&format!(
+            "--plugin {} collide --law hooke-limited --set c=100 --v0 1",
+            s(&lp)
+        ))),
         1,
         &["the law may be overdamped", "With --end force"],
     );
-    let v = json(&dashpot(&[
-        "--plugin",
-        s(&lp),
-        "collide",
-        "--law",
-        "hooke-limited",
-        "--set",
-        "c=100",
-        "--v0",
-        "1",
-        "--end",
-        "force",
-        "--json",
-    ]));
+    let v = json(&dashpot(&sh(&format!(
+        "--plugin {} collide --law hooke-limited --set c=100 --v0 1 --end force --json",
+        s(&lp)
+    ))));
     assert!(v["restitution"].as_f64().unwrap() < 0.1, "{v}");
     // the default of --fit is documented where the user looks
     let h = String::from_utf8_lossy(&dashpot(&["calibrate", "--help"]).stdout).to_string();

@@ -1,17 +1,16 @@
-//! The two kinds of law and what a law author implements.
+//! The kinds of law and what a law author implements: plain Rust types only (the stable ABI's
+//! mirrors of them live behind the export macro, in [`abi`](crate::abi)).
 //!
-//! Every kind has two stages, as in every DEM code: *configure* (from validated named
-//! parameters) and *bind* (once, to what does not change from contact to contact: a
-//! [`MaterialPair`] for contact and tangential laws, a [`Pair`] for restitution laws), so that
-//! the hot path is a pure function of the contact state with every constant precomputed.
+//! Every kind has two stages, as in every DEM code: *configure* (from parameters validated
+//! against the law's schema: the law is its [`LawParams`] struct) and *bind* (once, to what does
+//! not change from contact to contact: a [`MaterialPair`] for contact, tangential, rolling and
+//! twisting laws, a [`Pair`] for restitution laws), so that the hot path is a pure function of
+//! the contact state with every constant precomputed.
 
 use crate::error::LawError;
 use crate::pair::{MaterialPair, Pair};
-use crate::params::{ParamSpec, ParamValue, Params};
-use abi_stable::{
-    std_types::{ROption, RString, RVec},
-    StableAbi,
-};
+use crate::params::{LawParams, ParamSpec, ParamValue, Params};
+use abi_stable::StableAbi;
 
 /// Which kind of law.
 #[repr(u8)]
@@ -54,35 +53,33 @@ impl EndCriterion {
 }
 
 /// Everything a host needs to know about a law without creating it.
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct LawInfo {
     /// The name a user selects the law by (`--law NAME`); unique within a host.
-    pub name: RString,
+    pub name: String,
     /// Which kind of law.
     pub kind: LawKind,
     /// One line: what the law is.
-    pub summary: RString,
+    pub summary: String,
     /// Longer documentation: the formula, the parameters' meaning, conventions, references.
-    pub doc: RString,
+    pub doc: String,
     /// The parameter schema.
-    pub params: RVec<ParamSpec>,
+    pub params: Vec<ParamSpec>,
     /// For a contact law: the end-of-contact criterion its closed-form calibration assumes.
-    pub end_criterion: ROption<EndCriterion>,
+    pub end_criterion: Option<EndCriterion>,
     /// The per-contact history slots the law keeps (f64 each; empty for a memoryless law).
-    pub history: RVec<HistorySlot>,
+    pub history: Vec<HistorySlot>,
 }
 
 /// One per-contact history slot, as published by a law (the caller stores the value).
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct HistorySlot {
     /// Short name, e.g. `"delta_max"` or `"xi_x"`.
-    pub name: RString,
+    pub name: String,
     /// SI unit of the stored value.
-    pub unit: RString,
+    pub unit: String,
     /// One line: what the slot holds.
-    pub doc: RString,
+    pub doc: String,
 }
 
 /// A history slot as a law author declares it (`const HISTORY: &[History] = &[...]`).
@@ -103,28 +100,17 @@ impl History {
     }
 }
 
-pub(crate) fn history_slots(h: &[History]) -> RVec<HistorySlot> {
-    h.iter()
-        .map(|h| HistorySlot {
-            name: h.name.into(),
-            unit: h.unit.into(),
-            doc: h.doc.into(),
-        })
-        .collect()
-}
-
 /// A derived constant of a bound law (for example a damping coefficient), for display and tests.
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Coefficient {
     /// Symbol, e.g. `"gamma"`.
-    pub name: RString,
+    pub name: String,
     /// SI unit.
-    pub unit: RString,
+    pub unit: String,
     /// Value in `unit`.
     pub value: f64,
     /// One line: what it is, with the equation it comes from.
-    pub doc: RString,
+    pub doc: String,
 }
 
 impl Coefficient {
@@ -140,16 +126,15 @@ impl Coefficient {
 }
 
 /// What a calibration must reproduce: a measured restitution and, optionally, a contact time.
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct CalibrationTarget {
     /// Measured coefficient of restitution, in (0, 1].
     pub restitution: f64,
     /// Measured contact time (s), if any.
-    pub contact_time: ROption<f64>,
+    pub contact_time: Option<f64>,
     /// Normal impact speed (m/s) of the measurement, if known. Needed by laws whose restitution
     /// or contact time depends on it.
-    pub impact_speed: ROption<f64>,
+    pub impact_speed: Option<f64>,
     /// The end-of-contact criterion under which restitution and contact time were defined.
     pub end: EndCriterion,
 }
@@ -195,6 +180,41 @@ pub struct NormalBatch<'a> {
     pub history: &'a mut [f64],
     /// Output: the normal force on each contact (N), positive when repulsive.
     pub force: &'a mut [f64],
+}
+
+impl Contact {
+    /// The force (N) a batch call `batch` gives this one contact, its `history` (the law's
+    /// slots) updated in place: what a single-contact call of a batch-only interface is.
+    pub fn force_through<E>(
+        self,
+        history: &mut [f64],
+        batch: impl FnOnce(NormalBatch<'_>) -> Result<(), E>,
+    ) -> Result<f64, E> {
+        let mut out = [0.0];
+        batch(NormalBatch {
+            delta: &[self.delta],
+            rate: &[self.rate],
+            mass: &[self.mass],
+            radius: &[self.radius],
+            slots: history.len(),
+            history,
+            force: &mut out,
+        })?;
+        Ok(out[0])
+    }
+}
+
+impl NormalBatch<'_> {
+    /// Contact `i` of the batch.
+    #[inline(always)]
+    pub fn contact(&self, i: usize) -> Contact {
+        Contact {
+            delta: self.delta[i],
+            rate: self.rate[i],
+            mass: self.mass[i],
+            radius: self.radius[i],
+        }
+    }
 }
 
 /// What a law reports about the energy of one contact after a step (sdk 0.3).
@@ -271,53 +291,120 @@ pub trait BoundContact: Send + Sync + 'static {
     }
 }
 
-/// The state of one contact as a tangential law sees it. Vectors are 3D (a 2D caller sets the
-/// third components to 0); `normal` is the unit normal pointing from the partner to the
-/// particle the force acts on.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TangentialContact {
-    /// Unit contact normal n̂, from partner j to particle i.
-    pub normal: [f64; 3],
-    /// Relative velocity (m/s) of i's contact point with respect to j's, ω × r terms included;
-    /// the law uses its part in the tangent plane.
-    pub velocity: [f64; 3],
-    /// The normal force on the contact (N, > 0 repulsive), from the normal law this step.
-    pub normal_force: f64,
-    /// Overlap δ (m).
-    pub delta: f64,
-    /// Effective mass (kg).
-    pub mass: f64,
-    /// Effective radius (m).
-    pub radius: f64,
-    /// The time step (s) over which the history advances.
-    pub dt: f64,
+/// Declares the contact and batch types of a kind whose law sees a contact's normal, one
+/// relative motion (`$motion`), the normal force, overlap, effective mass and radius and the
+/// time step, and writes one output per contact (`$out`), with `history` slots per contact; and
+/// the batch's `contact(i)`.
+macro_rules! motion_kind {
+    (
+        $(#[$cdoc:meta])* $contact:ident, $(#[$bdoc:meta])* $batch:ident,
+        $(#[$mdoc:meta])* $motion:ident: $mty:ty, $(#[$odoc:meta])* $out:ident: $oty:ty
+    ) => {
+        $(#[$cdoc])*
+        #[derive(Debug, Clone, Copy, PartialEq)]
+        pub struct $contact {
+            /// Unit contact normal n̂, from partner j to particle i.
+            pub normal: [f64; 3],
+            $(#[$mdoc])*
+            pub $motion: $mty,
+            /// The normal force on the contact (N, > 0 repulsive), from the normal law this step:
+            /// what caps friction, rolling and twisting resistance.
+            pub normal_force: f64,
+            /// Overlap δ (m).
+            pub delta: f64,
+            /// Effective mass (kg).
+            pub mass: f64,
+            /// Effective radius R_eff (m).
+            pub radius: f64,
+            /// The time step (s) over which the history advances.
+            pub dt: f64,
+        }
+
+        $(#[$bdoc])*
+        #[derive(Debug)]
+        pub struct $batch<'a> {
+            /// Time step (s) over which the history advances.
+            pub dt: f64,
+            /// Unit normals n̂ (from partner to particle).
+            pub normal: &'a [[f64; 3]],
+            $(#[$mdoc])*
+            pub $motion: &'a [$mty],
+            /// Normal forces (N, > 0 repulsive).
+            pub normal_force: &'a [f64],
+            /// Overlaps (m).
+            pub delta: &'a [f64],
+            /// Effective masses (kg).
+            pub mass: &'a [f64],
+            /// Effective radii (m).
+            pub radius: &'a [f64],
+            /// History slots per contact.
+            pub slots: usize,
+            /// Per-contact history, read and updated in place.
+            pub history: &'a mut [f64],
+            $(#[$odoc])*
+            pub $out: &'a mut [$oty],
+        }
+
+        impl $batch<'_> {
+            /// Contact `i` of the batch.
+            #[inline(always)]
+            pub fn contact(&self, i: usize) -> $contact {
+                $contact {
+                    normal: self.normal[i],
+                    $motion: self.$motion[i],
+                    normal_force: self.normal_force[i],
+                    delta: self.delta[i],
+                    mass: self.mass[i],
+                    radius: self.radius[i],
+                    dt: self.dt,
+                }
+            }
+
+            #[doc = concat!("`", stringify!($out), "[i] = f(contact i, its history)` for every contact: the loop of a batch call.")]
+            #[inline(always)]
+            pub fn each(self, mut f: impl FnMut(&$contact, &mut [f64]) -> $oty) {
+                let slots = self.slots;
+                for i in 0..self.$out.len() {
+                    let c = self.contact(i);
+                    self.$out[i] = f(&c, history_mut(self.history, slots, i));
+                }
+            }
+        }
+    };
+}
+pub(crate) use motion_kind;
+
+motion_kind!(
+    /// The state of one contact as a tangential or rolling law sees it. Vectors are 3D (a 2D
+    /// caller sets the third components to 0).
+    VectorContact,
+    /// Every contact of one material pair for a tangential or rolling law, structure of arrays.
+    /// Vectors are `[x, y, z]` triples; `history` is `n × slots` as in [`NormalBatch`].
+    VectorBatch,
+    /// Relative velocity (m/s): for a tangential law, of i's contact point with respect to j's
+    /// (ω × r terms included; the law uses its part in the tangent plane); for a rolling law,
+    /// the rolling velocity v_roll = R_eff (ω_i − ω_j) × n̂.
+    velocity: [f64; 3],
+    /// Output: the force on particle i (N): tangential, in the tangent plane; or the
+    /// rolling-resistance force F_r, whose torque on i is R_eff n̂ × F_r.
+    force: [f64; 3]
+);
+
+/// Contact `i`'s history slots of `h` (`slots` per contact; empty when there are none).
+#[inline(always)]
+pub(crate) fn history_mut(h: &mut [f64], slots: usize, i: usize) -> &mut [f64] {
+    if slots == 0 {
+        &mut []
+    } else {
+        &mut h[i * slots..(i + 1) * slots]
+    }
 }
 
-/// Every contact of one kind of material pair for a tangential law, structure of arrays.
-/// Vectors are `[x, y, z]` triples; `history` is `n × slots` as in [`NormalBatch`].
-#[derive(Debug)]
-pub struct TangentialBatch<'a> {
-    /// Time step (s) over which the history advances.
-    pub dt: f64,
-    /// Unit normals n̂ (from partner to particle).
-    pub normal: &'a [[f64; 3]],
-    /// Relative velocities of the contact points (m/s).
-    pub velocity: &'a [[f64; 3]],
-    /// Normal forces (N, > 0 repulsive).
-    pub normal_force: &'a [f64],
-    /// Overlaps (m).
-    pub delta: &'a [f64],
-    /// Effective masses (kg).
-    pub mass: &'a [f64],
-    /// Effective radii (m).
-    pub radius: &'a [f64],
-    /// History slots per contact.
-    pub slots: usize,
-    /// Per-contact history, read and updated in place.
-    pub history: &'a mut [f64],
-    /// Output: the tangential force on the particle (N), in the tangent plane.
-    pub force: &'a mut [[f64; 3]],
-}
+/// The state of one contact as a tangential law sees it (see [`VectorContact`]).
+pub type TangentialContact = VectorContact;
+
+/// Every contact of one material pair for a tangential law (see [`VectorBatch`]).
+pub type TangentialBatch<'a> = VectorBatch<'a>;
 
 /// A tangential (friction) law bound to a material pair.
 ///
@@ -330,25 +417,7 @@ pub trait BoundTangential: Send + Sync + 'static {
     /// `b.force[i]` for every contact of the batch.
     #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
-        let n = b.force.len();
-        let mut empty: [f64; 0] = [];
-        for i in 0..n {
-            let c = TangentialContact {
-                normal: b.normal[i],
-                velocity: b.velocity[i],
-                normal_force: b.normal_force[i],
-                delta: b.delta[i],
-                mass: b.mass[i],
-                radius: b.radius[i],
-                dt: b.dt,
-            };
-            let h = if b.slots == 0 {
-                &mut empty[..]
-            } else {
-                &mut b.history[i * b.slots..(i + 1) * b.slots]
-            };
-            b.force[i] = self.force(&c, h);
-        }
+        b.each(|c, h| self.force(c, h));
     }
 
     /// The energy of contact `c` after a call that returned `force` (N) and left `history`
@@ -373,124 +442,135 @@ pub trait BoundRestitution: Send + Sync + 'static {
     }
 }
 
-/// A configurable contact law. Implement this, then export with
-/// [`export_laws!`](crate::export_laws).
-pub trait ContactLaw: Sized + Send + Sync + 'static {
-    /// The law bound to a pair (may be `Self`).
-    type Bound: BoundContact;
-    /// The name users select it by.
-    const NAME: &'static str;
-    /// One line.
-    const SUMMARY: &'static str;
-    /// The formula, conventions and references.
-    const DOC: &'static str;
-    /// The end-of-contact criterion the law's calibration (its `eps`, say) refers to.
-    const END_CRITERION: EndCriterion;
-    /// The per-contact history the law keeps (none by default).
-    const HISTORY: &'static [History] = &[];
-
-    /// The parameter schema.
-    fn params() -> Vec<ParamSpec>;
-
-    /// Creates the law from parameters already validated against [`ContactLaw::params`].
-    fn new(params: &Params) -> Result<Self, LawError>;
-
-    /// Binds to a pair of materials (already validated): precompute everything that depends
-    /// only on the materials and the parameters. Per-contact geometry comes with each call.
-    fn bind(&self, materials: &MaterialPair) -> Result<Self::Bound, LawError>;
-
-    /// Parameters that reproduce `target` for `pair` in closed form, or `Ok(None)` if the law
-    /// has no closed form for it (hosts then fit numerically). `fixed` are values the user set.
-    fn calibrate(
-        _target: &CalibrationTarget,
-        _pair: &Pair,
-        _fixed: &Params,
-    ) -> Result<Option<Vec<ParamValue>>, LawError> {
-        Ok(None)
-    }
-
-    /// The law's description, for registries.
-    fn info() -> LawInfo {
-        LawInfo {
-            name: Self::NAME.into(),
-            kind: LawKind::Contact,
-            summary: Self::SUMMARY.into(),
-            doc: Self::DOC.into(),
-            params: Self::params().into(),
-            end_criterion: ROption::RSome(Self::END_CRITERION),
-            history: history_slots(Self::HISTORY),
-        }
+/// The description of a law of `kind` from its trait's constants and parameter struct.
+pub(crate) fn law_info<P: LawParams>(
+    kind: LawKind,
+    [name, summary, doc]: [&str; 3],
+    end_criterion: Option<EndCriterion>,
+    history: &[History],
+) -> LawInfo {
+    LawInfo {
+        name: name.into(),
+        kind,
+        summary: summary.into(),
+        doc: doc.into(),
+        params: P::schema(),
+        end_criterion,
+        history: history
+            .iter()
+            .map(|h| HistorySlot {
+                name: h.name.into(),
+                unit: h.unit.into(),
+                doc: h.doc.into(),
+            })
+            .collect(),
     }
 }
 
-/// A configurable restitution law. Implement this, then export with
-/// [`export_laws!`](crate::export_laws).
-pub trait RestitutionLaw: Sized + Send + Sync + 'static {
-    /// The law bound to a pair (may be `Self`).
-    type Bound: BoundRestitution;
-    /// The name users select it by.
-    const NAME: &'static str;
-    /// One line.
-    const SUMMARY: &'static str;
-    /// The formula, conventions and references.
-    const DOC: &'static str;
+/// Declares a configurable law kind: the law is its parameters ([`LawParams`]), has a name, a
+/// summary and a doc, optionally checks its parameters together, and binds to what `$bind_ty`
+/// describes.
+macro_rules! law_trait {
+    (
+        $(#[$doc:meta])*
+        $trait:ident: $bound:ident, $kind:expr, bind($arg:ident: $bind_ty:ty),
+        end: $end:expr, history: $history:expr,
+        { $($items:tt)* }
+    ) => {
+        $(#[$doc])*
+        pub trait $trait: LawParams + Send + Sync + 'static {
+            /// The law bound (may be `Self`).
+            type Bound: $bound;
+            /// The name users select it by.
+            const NAME: &'static str;
+            /// One line.
+            const SUMMARY: &'static str;
+            /// The formula, conventions, units and references.
+            const DOC: &'static str;
 
-    /// The parameter schema.
-    fn params() -> Vec<ParamSpec>;
+            $($items)*
 
-    /// Creates the law from parameters already validated against [`RestitutionLaw::params`].
-    fn new(params: &Params) -> Result<Self, LawError>;
+            /// Checks the parameters together, once each is known to lie in its range (for
+            /// example that one stiffness is not below another); the default accepts them.
+            fn check(&self) -> Result<(), LawError> {
+                Ok(())
+            }
 
-    /// Binds to a pair (already validated).
-    fn bind(&self, pair: &Pair) -> Result<Self::Bound, LawError>;
+            /// Binds the law (its parameters already checked) to what does not change from
+            /// contact to contact (already validated): precompute everything that depends only
+            /// on it and the parameters.
+            fn bind(&self, $arg: &$bind_ty) -> Result<Self::Bound, LawError>;
 
-    /// The law's description, for registries.
-    fn info() -> LawInfo {
-        LawInfo {
-            name: Self::NAME.into(),
-            kind: LawKind::Restitution,
-            summary: Self::SUMMARY.into(),
-            doc: Self::DOC.into(),
-            params: Self::params().into(),
-            end_criterion: ROption::RNone,
-            history: RVec::new(),
+            /// The law from named values, as a plugin creates it: validated against its schema,
+            /// read as its struct, then checked together ([`Self::check`]).
+            fn from_values(given: &[ParamValue]) -> Result<Self, LawError> {
+                crate::abi::kind::configure::<Self>(Self::NAME, given, Self::check)
+            }
+
+            /// The law's description, for registries.
+            fn info() -> LawInfo {
+                law_info::<Self>($kind, [Self::NAME, Self::SUMMARY, Self::DOC], $end, $history)
+            }
+        }
+    };
+}
+pub(crate) use law_trait;
+
+/// Declares a law kind bound to a material pair that keeps per-contact history (none by
+/// default): tangential, rolling and twisting laws.
+macro_rules! history_law {
+    ($(#[$doc:meta])* $trait:ident: $bound:ident, $kind:expr) => {
+        law_trait!(
+            $(#[$doc])*
+            $trait: $bound, $kind, bind(materials: MaterialPair),
+            end: None, history: Self::HISTORY,
+            {
+                /// The per-contact history the law keeps (a spring: its three displacement
+                /// components; none by default).
+                const HISTORY: &'static [History] = &[];
+            }
+        );
+    };
+}
+pub(crate) use history_law;
+
+law_trait!(
+    /// A configurable contact law. Declare its parameters with
+    /// [`law_params!`](crate::law_params), implement this, then export with
+    /// [`export_laws!`](crate::export_laws).
+    ContactLaw: BoundContact, LawKind::Contact, bind(materials: MaterialPair),
+    end: Some(Self::END_CRITERION), history: Self::HISTORY,
+    {
+        /// The end-of-contact criterion the law's calibration (its `eps`, say) refers to.
+        const END_CRITERION: EndCriterion;
+        /// The per-contact history the law keeps (none by default).
+        const HISTORY: &'static [History] = &[];
+
+        /// Parameters that reproduce `target` for `pair` in closed form, or `Ok(None)` if the
+        /// law has no closed form for it (hosts then fit numerically). `fixed` are values the
+        /// user set.
+        fn calibrate(
+            _target: &CalibrationTarget,
+            _pair: &Pair,
+            _fixed: &Params,
+        ) -> Result<Option<Vec<ParamValue>>, LawError> {
+            Ok(None)
         }
     }
-}
+);
 
-/// A configurable tangential (friction) law, composable at run time with any contact law.
-/// Implement this, then export with [`export_laws!`](crate::export_laws).
-pub trait TangentialLaw: Sized + Send + Sync + 'static {
-    /// The law bound to a material pair.
-    type Bound: BoundTangential;
-    /// The name users select it by.
-    const NAME: &'static str;
-    /// One line.
-    const SUMMARY: &'static str;
-    /// The formula, conventions and references.
-    const DOC: &'static str;
-    /// The per-contact history the law keeps (a spring: its three displacement components).
-    const HISTORY: &'static [History];
+history_law!(
+    /// A configurable tangential (friction) law, composable at run time with any contact law.
+    /// Declare its parameters with [`law_params!`](crate::law_params), implement this, then
+    /// export with [`export_laws!`](crate::export_laws) under `tangential: [...]`.
+    TangentialLaw: BoundTangential, LawKind::Tangential
+);
 
-    /// The parameter schema.
-    fn params() -> Vec<ParamSpec>;
-
-    /// Creates the law from parameters already validated against [`TangentialLaw::params`].
-    fn new(params: &Params) -> Result<Self, LawError>;
-
-    /// Binds to a pair of materials (already validated).
-    fn bind(&self, materials: &MaterialPair) -> Result<Self::Bound, LawError>;
-
-    /// The law's description, for registries.
-    fn info() -> LawInfo {
-        LawInfo {
-            name: Self::NAME.into(),
-            kind: LawKind::Tangential,
-            summary: Self::SUMMARY.into(),
-            doc: Self::DOC.into(),
-            params: Self::params().into(),
-            end_criterion: ROption::RNone,
-            history: history_slots(Self::HISTORY),
-        }
-    }
-}
+law_trait!(
+    /// A configurable restitution law. Declare its parameters with
+    /// [`law_params!`](crate::law_params), implement this, then export with
+    /// [`export_laws!`](crate::export_laws) under `restitution: [...]`.
+    RestitutionLaw: BoundRestitution, LawKind::Restitution, bind(pair: Pair),
+    end: None, history: &[],
+    {}
+);

@@ -21,8 +21,10 @@
 //! ([`Energy`]: dissipated power, W, and elastic energy stored, J) into optional output arrays
 //! of a batch call; a law that does not (the trait default) reports it as not available.
 //!
-//! Each law publishes a parameter schema ([`ParamSpec`]: name, unit, default, range, doc), is
-//! configured from named values ([`Params`], validated by the sdk), then *bound* once to what
+//! A law is its parameters: a plain struct declared once with [`law_params!`], which writes its
+//! schema ([`ParamSpec`]: name, unit, default, range, doc) from the same list; the sdk validates
+//! named values ([`Params`]) against the schema and reads the struct from them, so a law never
+//! looks a parameter up by name. Then it is *bound* once to what
 //! does not change from contact to contact: a [`MaterialPair`] (effective Young's and shear
 //! moduli) for contact and tangential laws, a [`Pair`] for restitution laws. The hot path is a
 //! batch call over structure-of-arrays ([`NormalBatch`], [`TangentialBatch`]) in which every
@@ -32,16 +34,22 @@
 //! materials, not per pair of sizes.
 //!
 //! A plugin is a `cdylib` crate that implements [`ContactLaw`], [`TangentialLaw`],
-//! [`RollingLaw`], [`TwistingLaw`] or [`RestitutionLaw`] and calls [`export_laws!`] once. The
-//! [`abi`] module defines the stable binary interface (abi_stable, one generic shape per law kind)
-//! and the host-side loader with its checks; a host of sdk 0.3 still loads plugins built against
-//! sdk 0.1 and 0.2.
+//! [`RollingLaw`], [`TwistingLaw`] or [`RestitutionLaw`] and calls [`export_laws!`] once; it
+//! sees plain Rust types only (`String`, `Vec`, `Option`). The [`abi`] module defines the stable
+//! binary interface (abi_stable, one generic shape per law kind, and the stable mirrors of the
+//! plain types) and the host-side loader with its checks; a host of sdk 0.3 still loads plugins
+//! built against sdk 0.1 and 0.2.
 //!
 //! ```
 //! use dashpot_sdk::*;
 //!
-//! /// F = k δ (a plain Hooke spring).
-//! pub struct Hooke { k: f64 }
+//! law_params! {
+//!     /// F = k δ (a plain Hooke spring).
+//!     pub struct Hooke {
+//!         /// spring constant
+//!         k: f64 { unit: "N/m", default: 1e5, range: Range::positive() },
+//!     }
+//! }
 //!
 //! impl ContactLaw for Hooke {
 //!     type Bound = Self;
@@ -49,10 +57,6 @@
 //!     const SUMMARY: &'static str = "Hooke spring F = k δ, no damping";
 //!     const DOC: &'static str = "F = k δ for δ > 0.";
 //!     const END_CRITERION: EndCriterion = EndCriterion::Overlap;
-//!     fn params() -> Vec<ParamSpec> {
-//!         vec![ParamSpec::new("k", "N/m", 1e5, Range::positive(), "spring constant")]
-//!     }
-//!     fn new(p: &Params) -> Result<Self, LawError> { Ok(Hooke { k: p.get("k")? }) }
 //!     fn bind(&self, _materials: &MaterialPair) -> Result<Self, LawError> { Ok(Hooke { k: self.k }) }
 //! }
 //! impl BoundContact for Hooke {
@@ -72,18 +76,17 @@ mod params;
 pub mod physics;
 mod rotation;
 
-pub use error::{ErrorKind, FfiError, LawError};
+pub use error::{ErrorKind, LawError};
 pub use law::{
     BoundContact, BoundRestitution, BoundTangential, CalibrationTarget, Coefficient, Contact, ContactLaw,
     EndCriterion, Energy, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
-    TangentialBatch, TangentialContact, TangentialLaw,
+    TangentialBatch, TangentialContact, TangentialLaw, VectorBatch, VectorContact,
 };
 pub use pair::{MaterialPair, Pair, Particle};
-pub use params::{ParamSpec, ParamValue, Params, Range};
+#[doc(hidden)]
+pub use params::join_doc as __join_doc;
+pub use params::{LawParams, ParamField, ParamSpec, ParamValue, Params, Range};
 pub use rotation::{
     BoundRolling, BoundTwisting, RollingBatch, RollingContact, RollingLaw, TwistingBatch, TwistingContact,
     TwistingLaw,
 };
-
-/// Re-exported so plugins need no direct dependency on abi_stable.
-pub use abi_stable::std_types::{ROption, RString, RVec};

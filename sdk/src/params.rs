@@ -3,10 +3,7 @@
 //! ever sees a value.
 
 use crate::error::{ErrorKind, LawError};
-use abi_stable::{
-    std_types::{ROption, RString},
-    StableAbi,
-};
+use abi_stable::StableAbi;
 
 /// A closed or open interval of valid values. Bounds may be infinite.
 #[repr(C)]
@@ -97,19 +94,18 @@ impl std::fmt::Display for Range {
 }
 
 /// The description of one parameter of a law.
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ParamSpec {
     /// The name used in `--set name=value`, TOML files and the C ABI.
-    pub name: RString,
+    pub name: String,
     /// SI unit of the value ("1" for dimensionless).
-    pub unit: RString,
-    /// Value used when the user gives none. `RNone`: the law derives it from the pair (see `doc`).
-    pub default: ROption<f64>,
+    pub unit: String,
+    /// Value used when the user gives none. `None`: the law derives it from the pair (see `doc`).
+    pub default: Option<f64>,
     /// Valid values.
     pub range: Range,
     /// One line of documentation.
-    pub doc: RString,
+    pub doc: String,
 }
 
 impl ParamSpec {
@@ -118,7 +114,7 @@ impl ParamSpec {
         ParamSpec {
             name: name.into(),
             unit: unit.into(),
-            default: ROption::RSome(default),
+            default: Some(default),
             range,
             doc: doc.into(),
         }
@@ -129,7 +125,7 @@ impl ParamSpec {
         ParamSpec {
             name: name.into(),
             unit: unit.into(),
-            default: ROption::RNone,
+            default: None,
             range,
             doc: doc.into(),
         }
@@ -137,11 +133,10 @@ impl ParamSpec {
 }
 
 /// A named value, as given by a user or reported by a law (in the unit of its schema).
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq, serde::Serialize)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct ParamValue {
     /// Parameter name.
-    pub name: RString,
+    pub name: String,
     /// Value in the unit of the parameter's schema.
     pub value: f64,
 }
@@ -168,10 +163,8 @@ impl Params {
     /// Validates `given` against `schema` for the law `law`: unknown names, duplicates, NaN and
     /// out-of-range values are errors that name the parameter and its range.
     pub fn resolve(law: &str, schema: &[ParamSpec], given: &[ParamValue]) -> Result<Params, LawError> {
-        let mut values: Vec<(String, Option<f64>)> = schema
-            .iter()
-            .map(|s| (s.name.to_string(), s.default.into_option()))
-            .collect();
+        let mut values: Vec<(String, Option<f64>)> =
+            schema.iter().map(|s| (s.name.clone(), s.default)).collect();
         let mut seen = vec![false; schema.len()];
         for g in given {
             let Some(i) = schema.iter().position(|s| s.name == g.name) else {
@@ -250,11 +243,198 @@ impl Params {
     pub fn iter(&self) -> impl Iterator<Item = (&str, Option<f64>)> {
         self.values.iter().map(|(n, v)| (n.as_str(), *v))
     }
+
+    /// The parameters as the typed struct `P` (declared with [`law_params!`](crate::law_params)).
+    pub fn parse<P: LawParams>(&self) -> Result<P, LawError> {
+        P::from_params(self)
+    }
+}
+
+/// A law's parameters as a plain Rust struct: its schema, and how to read it from validated
+/// [`Params`]. Declare one with [`law_params!`](crate::law_params), which writes the struct and
+/// this implementation from one list (name, type, unit, default, range and doc of each field),
+/// so that the schema and the struct cannot disagree. A law *is* its parameters: every law
+/// trait ([`ContactLaw`](crate::ContactLaw), ...) requires `LawParams`.
+pub trait LawParams: Sized {
+    /// The schema: one entry per field, in order.
+    fn schema() -> Vec<ParamSpec>;
+    /// The struct from parameters already validated against [`LawParams::schema`] (every
+    /// value in range, defaults filled in).
+    fn from_params(p: &Params) -> Result<Self, LawError>;
+}
+
+/// The type of a field of a [`law_params!`](crate::law_params) struct: `f64` for a parameter
+/// with a default, `Option<f64>` for one the law derives when it is not given.
+pub trait ParamField: Sized {
+    /// Whether the parameter has no default (the law derives it when absent).
+    const DERIVED: bool;
+    /// The value of parameter `name` of `p`.
+    fn read(p: &Params, name: &str) -> Result<Self, LawError>;
+}
+
+impl ParamField for f64 {
+    const DERIVED: bool = false;
+    fn read(p: &Params, name: &str) -> Result<f64, LawError> {
+        p.get(name)
+    }
+}
+
+impl ParamField for Option<f64> {
+    const DERIVED: bool = true;
+    fn read(p: &Params, name: &str) -> Result<Option<f64>, LawError> {
+        p.get_opt(name)
+    }
+}
+
+/// The doc lines of a field as one line of schema documentation.
+#[doc(hidden)]
+pub fn join_doc(lines: &[&str]) -> String {
+    lines
+        .iter()
+        .map(|l| l.trim())
+        .filter(|l| !l.is_empty())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// Declares a law's parameters once: the struct (the law itself, usually) and its
+/// [`LawParams`] implementation, schema included. Each field is `name: f64 { unit, default,
+/// range }` (a parameter with a default) or `name: Option<f64> { unit, range }` (one the law
+/// derives when it is absent); its doc comment is the parameter's one-line documentation, its
+/// name the parameter's name. A field's type and whether it has a default must agree (checked
+/// at compile time). A law without parameters is a unit struct: `law_params! { pub struct L; }`.
+///
+/// ```
+/// use dashpot_sdk::{law_params, Range};
+///
+/// law_params! {
+///     /// A linear spring-dashpot, configured.
+///     #[derive(Debug, Clone)]
+///     pub struct Spring {
+///         /// spring constant
+///         pub k: f64 { unit: "N/m", default: 1e5, range: Range::positive() },
+///         /// damping coefficient; derived from the restitution when absent
+///         pub c: Option<f64> { unit: "N·s/m", range: Range::non_negative() },
+///     }
+/// }
+///
+/// use dashpot_sdk::{LawParams, ParamValue, Params};
+/// let p = Params::resolve("spring", &Spring::schema(), &[ParamValue::new("k", 2e5)]).unwrap();
+/// let s: Spring = p.parse().unwrap();
+/// assert_eq!((s.k, s.c), (2e5, None));
+/// assert_eq!(Spring::schema()[0].doc, "spring constant");
+/// ```
+#[macro_export]
+macro_rules! law_params {
+    (
+        $(#[$attr:meta])*
+        $vis:vis struct $name:ident {
+            $(
+                $(#[doc = $doc:literal])*
+                $fvis:vis $field:ident : $ty:ty {
+                    unit: $unit:expr
+                    $(, default: $default:expr)?
+                    , range: $range:expr $(,)?
+                }
+            ),* $(,)?
+        }
+    ) => {
+        $(#[$attr])*
+        $vis struct $name {
+            $($(#[doc = $doc])* $fvis $field: $ty,)*
+        }
+
+        impl $crate::LawParams for $name {
+            fn schema() -> ::std::vec::Vec<$crate::ParamSpec> {
+                ::std::vec![$({
+                    const _: () = ::std::assert!(
+                        <$ty as $crate::ParamField>::DERIVED
+                            == $crate::law_params!(@none $($default)?),
+                        ::std::concat!(
+                            "parameter '", ::std::stringify!($field),
+                            "': an f64 field takes a default, an Option<f64> field none"
+                        )
+                    );
+                    $crate::ParamSpec {
+                        name: ::std::stringify!($field).into(),
+                        unit: ::std::string::String::from($unit),
+                        default: $crate::law_params!(@default $($default)?),
+                        range: $range,
+                        doc: $crate::__join_doc(&[$($doc),*]),
+                    }
+                }),*]
+            }
+
+            fn from_params(_p: &$crate::Params) -> ::std::result::Result<Self, $crate::LawError> {
+                ::std::result::Result::Ok($name {
+                    $($field: <$ty as $crate::ParamField>::read(_p, ::std::stringify!($field))?,)*
+                })
+            }
+        }
+    };
+    ($(#[$attr:meta])* $vis:vis struct $name:ident;) => {
+        $(#[$attr])*
+        $vis struct $name;
+
+        impl $crate::LawParams for $name {
+            fn schema() -> ::std::vec::Vec<$crate::ParamSpec> {
+                ::std::vec::Vec::new()
+            }
+
+            fn from_params(_p: &$crate::Params) -> ::std::result::Result<Self, $crate::LawError> {
+                ::std::result::Result::Ok($name)
+            }
+        }
+    };
+    (@none) => { true };
+    (@none $default:expr) => { false };
+    (@default) => { ::std::option::Option::None };
+    (@default $default:expr) => { ::std::option::Option::Some($default) };
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    crate::law_params! {
+        /// Two parameters, one derived.
+        #[derive(Debug, PartialEq)]
+        struct Two {
+            /// restitution,
+            /// over two lines
+            eps: f64 { unit: "1", default: 0.5, range: Range::open_closed(0.0, 1.0) },
+            /// stiffness
+            k: Option<f64> { unit: "N/m", range: Range::positive() },
+        }
+    }
+
+    #[test]
+    fn the_macro_writes_the_schema_and_reads_the_struct() {
+        assert_eq!(Two::schema(), schema_of_two());
+        let p = Params::resolve("two", &Two::schema(), &[ParamValue::new("k", 3.0)]).unwrap();
+        assert_eq!(
+            p.parse::<Two>().unwrap(),
+            Two {
+                eps: 0.5,
+                k: Some(3.0)
+            }
+        );
+        let p = Params::resolve("two", &Two::schema(), &[]).unwrap();
+        assert_eq!(p.parse::<Two>().unwrap(), Two { eps: 0.5, k: None });
+    }
+
+    fn schema_of_two() -> Vec<ParamSpec> {
+        vec![
+            ParamSpec::new(
+                "eps",
+                "1",
+                0.5,
+                Range::open_closed(0.0, 1.0),
+                "restitution, over two lines",
+            ),
+            ParamSpec::derived("k", "N/m", Range::positive(), "stiffness"),
+        ]
+    }
 
     fn schema() -> Vec<ParamSpec> {
         vec![

@@ -126,7 +126,84 @@ pub fn spring_slider_energy(
 }
 
 /// The tangential velocity v − (v·n̂) n̂ (m/s) of `v` for unit normal `n`.
+#[inline(always)]
 pub fn tangential_part(v: [f64; 3], n: [f64; 3]) -> [f64; 3] {
     let vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
     [v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]]
+}
+
+/// The dot product of two 3-vectors.
+#[inline(always)]
+pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// One step of a tangential spring–dashpot with a Coulomb slider (the bookkeeping of Luding
+/// 2008 and LAMMPS `pair granular`), for a spring of stiffness `kt` (N/m), a dashpot `eta`
+/// (N·s/m) and a friction coefficient `mu`, on contact `c` whose history `h[..3]` is the spring
+/// displacement ξ (m). Returns the tangential force (N). If δ ≤ 0 the force is 0 and ξ = 0;
+/// otherwise (1) rotate ξ into the tangent plane keeping its length, (2) v_t = v − (v·n̂) n̂,
+/// (3) ξ += v_t dt, (4) F_t = −k_t ξ − η_t v_t, (5) if |F_t| > μ max(F_n, 0) scale F_t to
+/// μ max(F_n, 0) and reset ξ = −(F_t + η_t v_t)/k_t (0 when k_t = 0). Used by the
+/// `linear-history` (constant k_t) and `mindlin` (k_t = 8 G a) laws.
+#[inline(always)]
+pub fn spring_friction(kt: f64, eta: f64, mu: f64, c: &crate::TangentialContact, h: &mut [f64]) -> [f64; 3] {
+    if c.delta <= 0.0 {
+        h[..3].fill(0.0);
+        return [0.0; 3];
+    }
+    let n = c.normal;
+    let mut xi = [h[0], h[1], h[2]];
+    // Rotate into the current tangent plane, keeping the length.
+    let xn = dot(xi, n);
+    if xn != 0.0 {
+        let len2 = dot(xi, xi);
+        let p = [xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]];
+        let plen2 = dot(p, p);
+        let s = if plen2 > 0.0 { (len2 / plen2).sqrt() } else { 0.0 };
+        xi = [p[0] * s, p[1] * s, p[2] * s];
+    }
+    // Tangential relative velocity, advance, trial force.
+    let vt = tangential_part(c.velocity, n);
+    let mut f = [0.0; 3];
+    for i in 0..3 {
+        xi[i] += vt[i] * c.dt;
+        f[i] = -kt * xi[i] - eta * vt[i];
+    }
+    // Coulomb cap, with the spring reset to the capped force.
+    let cap = mu * c.normal_force.max(0.0);
+    let f2 = dot(f, f);
+    if f2 > cap * cap {
+        let s = cap / f2.sqrt();
+        for i in 0..3 {
+            f[i] *= s;
+            xi[i] = if kt > 0.0 { -(f[i] + eta * vt[i]) / kt } else { 0.0 };
+        }
+    }
+    h[..3].copy_from_slice(&xi);
+    f
+}
+
+/// The energy of [`spring_friction`] after a step that returned `force` and left `history`:
+/// elastic ½ k_t |ξ|² (J); power η_t |v_t|² while the spring holds, −F_t·v_t while it slides
+/// (W); 0 out of contact (δ ≤ 0).
+pub fn spring_friction_energy(
+    kt: f64,
+    eta: f64,
+    mu: f64,
+    c: &crate::TangentialContact,
+    history: &[f64],
+    force: [f64; 3],
+) -> crate::Energy {
+    if c.delta <= 0.0 {
+        return crate::Energy::default();
+    }
+    spring_slider_energy(
+        kt,
+        eta,
+        mu * c.normal_force.max(0.0),
+        [history[0], history[1], history[2]],
+        tangential_part(c.velocity, c.normal),
+        force,
+    )
 }

@@ -16,57 +16,21 @@
 //! radius and the time step.
 
 use crate::error::LawError;
-use crate::law::{history_slots, Coefficient, Energy, History, LawInfo, LawKind};
+use crate::law::{
+    history_law, history_mut, law_info, law_trait, Coefficient, Energy, History, LawInfo, LawKind,
+};
+use crate::law::{motion_kind, VectorBatch, VectorContact};
 use crate::pair::MaterialPair;
-use crate::params::{ParamSpec, Params};
-use abi_stable::std_types::ROption;
+use crate::params::{LawParams, ParamValue};
 
-/// The state of one contact as a rolling law sees it (3-vectors; a 2D caller sets the third
-/// components to 0).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RollingContact {
-    /// Unit contact normal n̂, from partner j to particle i.
-    pub normal: [f64; 3],
-    /// Relative rolling velocity v_roll = R_eff (ω_i − ω_j) × n̂ (m/s).
-    pub velocity: [f64; 3],
-    /// The normal force that caps rolling resistance (N): the normal law's force this step
-    /// (LAMMPS caps with |F_n|).
-    pub normal_force: f64,
-    /// Overlap δ (m).
-    pub delta: f64,
-    /// Effective mass (kg).
-    pub mass: f64,
-    /// Effective radius R_eff (m), the torque arm.
-    pub radius: f64,
-    /// The time step (s) over which the history advances.
-    pub dt: f64,
-}
+/// The state of one contact as a rolling law sees it ([`VectorContact`]; its `velocity` is the
+/// relative rolling velocity v_roll = R_eff (ω_i − ω_j) × n̂, m/s, and its `radius` R_eff the
+/// torque arm).
+pub type RollingContact = VectorContact;
 
-/// Every contact of one material pair for a rolling law, structure of arrays; `history` is
-/// `n × slots` as in [`NormalBatch`](crate::NormalBatch).
-#[derive(Debug)]
-pub struct RollingBatch<'a> {
-    /// Time step (s).
-    pub dt: f64,
-    /// Unit normals n̂.
-    pub normal: &'a [[f64; 3]],
-    /// Relative rolling velocities v_roll (m/s).
-    pub velocity: &'a [[f64; 3]],
-    /// Normal forces (N).
-    pub normal_force: &'a [f64],
-    /// Overlaps (m).
-    pub delta: &'a [f64],
-    /// Effective masses (kg).
-    pub mass: &'a [f64],
-    /// Effective radii (m).
-    pub radius: &'a [f64],
-    /// History slots per contact.
-    pub slots: usize,
-    /// Per-contact history, read and updated in place.
-    pub history: &'a mut [f64],
-    /// Output: the rolling-resistance force F_roll (N); the torque on i is R_eff n̂ × F_roll.
-    pub force: &'a mut [[f64; 3]],
-}
+/// Every contact of one material pair for a rolling law ([`VectorBatch`]; its `force` is the
+/// rolling-resistance force F_roll (N), whose torque on i is R_eff n̂ × F_roll).
+pub type RollingBatch<'a> = VectorBatch<'a>;
 
 /// A rolling-resistance law bound to a material pair.
 pub trait BoundRolling: Send + Sync + 'static {
@@ -76,24 +40,7 @@ pub trait BoundRolling: Send + Sync + 'static {
     /// `b.force[i]` for every contact of the batch.
     #[inline(always)]
     fn force_batch(&self, b: RollingBatch<'_>) {
-        let mut empty: [f64; 0] = [];
-        for i in 0..b.force.len() {
-            let c = RollingContact {
-                normal: b.normal[i],
-                velocity: b.velocity[i],
-                normal_force: b.normal_force[i],
-                delta: b.delta[i],
-                mass: b.mass[i],
-                radius: b.radius[i],
-                dt: b.dt,
-            };
-            let h = if b.slots == 0 {
-                &mut empty[..]
-            } else {
-                &mut b.history[i * b.slots..(i + 1) * b.slots]
-            };
-            b.force[i] = self.force(&c, h);
-        }
+        b.each(|c, h| self.force(c, h));
     }
 
     /// The energy of contact `c` after a call that returned `force` and left `history`;
@@ -108,49 +55,17 @@ pub trait BoundRolling: Send + Sync + 'static {
     }
 }
 
-/// The state of one contact as a twisting law sees it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TwistingContact {
-    /// Unit contact normal n̂, from partner j to particle i.
-    pub normal: [f64; 3],
+motion_kind!(
+    /// The state of one contact as a twisting law sees it.
+    TwistingContact,
+    /// Every contact of one material pair for a twisting law, structure of arrays; `history` is
+    /// `n × slots` as in [`NormalBatch`](crate::NormalBatch).
+    TwistingBatch,
     /// Relative twisting rate ω_tw = (ω_i − ω_j) · n̂ (rad/s).
-    pub rate: f64,
-    /// The normal force that caps twisting resistance (N).
-    pub normal_force: f64,
-    /// Overlap δ (m).
-    pub delta: f64,
-    /// Effective mass (kg).
-    pub mass: f64,
-    /// Effective radius (m).
-    pub radius: f64,
-    /// The time step (s) over which the history advances.
-    pub dt: f64,
-}
-
-/// Every contact of one material pair for a twisting law, structure of arrays.
-#[derive(Debug)]
-pub struct TwistingBatch<'a> {
-    /// Time step (s).
-    pub dt: f64,
-    /// Unit normals n̂.
-    pub normal: &'a [[f64; 3]],
-    /// Relative twisting rates ω_tw (rad/s).
-    pub rate: &'a [f64],
-    /// Normal forces (N).
-    pub normal_force: &'a [f64],
-    /// Overlaps (m).
-    pub delta: &'a [f64],
-    /// Effective masses (kg).
-    pub mass: &'a [f64],
-    /// Effective radii (m).
-    pub radius: &'a [f64],
-    /// History slots per contact.
-    pub slots: usize,
-    /// Per-contact history, read and updated in place.
-    pub history: &'a mut [f64],
+    rate: f64,
     /// Output: the twisting torque M_tw about n̂ on particle i (N·m).
-    pub torque: &'a mut [f64],
-}
+    torque: f64
+);
 
 /// A twisting-resistance law bound to a material pair.
 pub trait BoundTwisting: Send + Sync + 'static {
@@ -160,24 +75,7 @@ pub trait BoundTwisting: Send + Sync + 'static {
     /// `b.torque[i]` for every contact of the batch.
     #[inline(always)]
     fn torque_batch(&self, b: TwistingBatch<'_>) {
-        let mut empty: [f64; 0] = [];
-        for i in 0..b.torque.len() {
-            let c = TwistingContact {
-                normal: b.normal[i],
-                rate: b.rate[i],
-                normal_force: b.normal_force[i],
-                delta: b.delta[i],
-                mass: b.mass[i],
-                radius: b.radius[i],
-                dt: b.dt,
-            };
-            let h = if b.slots == 0 {
-                &mut empty[..]
-            } else {
-                &mut b.history[i * b.slots..(i + 1) * b.slots]
-            };
-            b.torque[i] = self.torque(&c, h);
-        }
+        b.each(|c, h| self.torque(c, h));
     }
 
     /// The energy of contact `c` after a call that returned `torque` and left `history`;
@@ -192,59 +90,16 @@ pub trait BoundTwisting: Send + Sync + 'static {
     }
 }
 
-macro_rules! rotational_law {
-    ($(#[$doc:meta])* $trait:ident, $bound:ident, $kind:expr, $what:literal) => {
-        $(#[$doc])*
-        pub trait $trait: Sized + Send + Sync + 'static {
-            /// The law bound to a material pair.
-            type Bound: $bound;
-            /// The name users select it by.
-            const NAME: &'static str;
-            /// One line.
-            const SUMMARY: &'static str;
-            /// The formula, conventions, units and references.
-            const DOC: &'static str;
-            /// The per-contact history the law keeps.
-            const HISTORY: &'static [History];
-
-            /// The parameter schema.
-            fn params() -> Vec<ParamSpec>;
-
-            #[doc = concat!("Creates the law from parameters already validated against [`", stringify!($trait), "::params`].")]
-            fn new(params: &Params) -> Result<Self, LawError>;
-
-            /// Binds to a pair of materials (already validated).
-            fn bind(&self, materials: &MaterialPair) -> Result<Self::Bound, LawError>;
-
-            /// The law's description, for registries.
-            fn info() -> LawInfo {
-                LawInfo {
-                    name: Self::NAME.into(),
-                    kind: $kind,
-                    summary: Self::SUMMARY.into(),
-                    doc: Self::DOC.into(),
-                    params: Self::params().into(),
-                    end_criterion: ROption::RNone,
-                    history: history_slots(Self::HISTORY),
-                }
-            }
-        }
-    };
-}
-
-rotational_law!(
-    /// A configurable rolling-resistance law (sdk 0.3). Implement this, then export with
+history_law!(
+    /// A configurable rolling-resistance law (sdk 0.3). Declare its parameters with
+    /// [`law_params!`](crate::law_params), implement this, then export with
     /// [`export_laws!`](crate::export_laws) under `rolling: [...]`.
-    RollingLaw,
-    BoundRolling,
-    LawKind::Rolling,
-    "rolling"
+    RollingLaw: BoundRolling, LawKind::Rolling
 );
-rotational_law!(
-    /// A configurable twisting-resistance law (sdk 0.3). Implement this, then export with
+
+history_law!(
+    /// A configurable twisting-resistance law (sdk 0.3). Declare its parameters with
+    /// [`law_params!`](crate::law_params), implement this, then export with
     /// [`export_laws!`](crate::export_laws) under `twisting: [...]`.
-    TwistingLaw,
-    BoundTwisting,
-    LawKind::Twisting,
-    "twisting"
+    TwistingLaw: BoundTwisting, LawKind::Twisting
 );

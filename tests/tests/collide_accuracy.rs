@@ -21,8 +21,7 @@ fn run(
     end: EndCriterion,
     opt: &Options,
 ) -> Collision {
-    let b = reg.contact(law, params).unwrap().bind_pair(pair).unwrap();
-    collide(&b, pair.mass, v0, end, opt).unwrap()
+    dashpot::collide::collide_named(reg, law, params, pair, v0, end, opt).unwrap()
 }
 
 fn eps(e: f64) -> [ParamValue; 1] {
@@ -336,33 +335,18 @@ fn force_criterion_restitution_is_above_eps_and_equal_for_lsd_and_hsd() {
     let reg = seed_registry();
     let pair = mcc();
     for e in [0.1, 0.54, 0.9] {
-        let l = run(
-            &reg,
-            "lsd",
-            &eps(e),
-            &pair,
-            1.0,
-            EndCriterion::Force,
-            &Options::default(),
-        );
-        let h = run(
-            &reg,
-            "hsd",
-            &eps(e),
-            &pair,
-            1.0,
-            EndCriterion::Force,
-            &Options::default(),
-        );
-        let h2 = run(
-            &reg,
-            "hsd",
-            &eps(e),
-            &pair,
-            0.01,
-            EndCriterion::Force,
-            &Options::default(),
-        );
+        let force = |law: &str, v0: f64| {
+            run(
+                &reg,
+                law,
+                &eps(e),
+                &pair,
+                v0,
+                EndCriterion::Force,
+                &Options::default(),
+            )
+        };
+        let (l, h, h2) = (force("lsd", 1.0), force("hsd", 1.0), force("hsd", 0.01));
         assert!(l.restitution > e + 1e-3, "eps {e}: LSD ε_F = {}", l.restitution);
         assert!(
             (h.restitution - l.restitution).abs() < 1e-9,

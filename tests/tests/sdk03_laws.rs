@@ -2,7 +2,9 @@
 //! normal laws (JKR, DMT) with their reach, rolling and twisting laws, and the energy outputs.
 
 use dashpot_sdk::abi::{ContactModelHandle, EnergyOut};
-use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, RollingBatch, TangentialBatch, TwistingBatch};
+use dashpot_sdk::{
+    LawError, MaterialPair, NormalBatch, ParamValue, RollingBatch, TwistingBatch, VectorBatch,
+};
 use dashpot_tests::registry_03;
 use std::f64::consts::PI;
 
@@ -10,6 +12,11 @@ const E: f64 = 1.0e8;
 const R: f64 = 1.0e-4;
 const M: f64 = 1.0e-9;
 const W: f64 = 0.05;
+
+/// Named parameter values.
+fn pv(p: &[(&str, f64)]) -> Vec<ParamValue> {
+    p.iter().map(|&(n, v)| ParamValue::new(n, v)).collect()
+}
 
 fn materials() -> MaterialPair {
     MaterialPair::new(E, 4.0e7).unwrap()
@@ -37,6 +44,37 @@ fn step(m: &ContactModelHandle, h: &mut [f64], delta: f64, rate: f64) -> (f64, f
         )
         .unwrap();
     (f[0], reach[0], p[0], e[0], written)
+}
+
+/// One contact of a tangential or rolling law at overlap `d` (m), normal n̂ = z, velocity `v`
+/// (m/s) and normal force `fnorm` (N) over `dt` (s), through `call` (the bound law's batch),
+/// with both energy outputs: (force, power, elastic, energy written).
+fn vector_step(
+    call: impl FnOnce(VectorBatch<'_>, EnergyOut<'_>) -> Result<bool, LawError>,
+    h: &mut [f64],
+    (dt, v, fnorm, d): (f64, [f64; 3], f64, f64),
+) -> ([f64; 3], f64, f64, bool) {
+    let (mut f, mut p, mut e) = ([[0.0; 3]], [0.0], [0.0]);
+    let written = call(
+        VectorBatch {
+            dt,
+            normal: &[[0.0, 0.0, 1.0]],
+            velocity: &[v],
+            normal_force: &[fnorm],
+            delta: &[d],
+            mass: &[M],
+            radius: &[R],
+            slots: h.len(),
+            history: h,
+            force: &mut f,
+        },
+        EnergyOut {
+            power: Some(&mut p),
+            elastic: Some(&mut e),
+        },
+    )
+    .unwrap();
+    (f[0], p[0], e[0], written)
 }
 
 /// A slow cycle of overlaps: from −δ0 up to δ1 and back down to −δ0, `n` steps each way, the
@@ -269,38 +307,19 @@ fn tangential_energy_is_the_springs_and_the_slip_power() {
     let mut h = [0.0; 3];
     let kt = 8.0 * mat.shear * (R * d).sqrt();
     for i in 0..400 {
-        let (mut f, mut p, mut e) = ([[0.0; 3]], [0.0], [0.0]);
-        let written = m
-            .force_batch_with(
-                TangentialBatch {
-                    dt: 1e-7,
-                    normal: &[[0.0, 0.0, 1.0]],
-                    velocity: &[[v, 0.0, 0.0]],
-                    normal_force: &[fnorm],
-                    delta: &[d],
-                    mass: &[M],
-                    radius: &[R],
-                    slots: 3,
-                    history: &mut h,
-                    force: &mut f,
-                },
-                EnergyOut {
-                    power: Some(&mut p),
-                    elastic: Some(&mut e),
-                },
-            )
-            .unwrap();
+        let (f, p, e, written) = vector_step(
+            |b, e| m.force_batch_with(b, e),
+            &mut h,
+            (1e-7, [v, 0.0, 0.0], fnorm, d),
+        );
         assert!(written);
         let xi2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        assert!(
-            (e[0] - 0.5 * kt * xi2).abs() <= 1e-12 * e[0].max(1e-300),
-            "step {i}"
-        );
-        if f[0][0].abs() < 0.3 * fnorm * (1.0 - 1e-9) {
-            assert_eq!(p[0], 0.0, "undamped spring holding, step {i}");
+        assert!((e - 0.5 * kt * xi2).abs() <= 1e-12 * e.max(1e-300), "step {i}");
+        if f[0].abs() < 0.3 * fnorm * (1.0 - 1e-9) {
+            assert_eq!(p, 0.0, "undamped spring holding, step {i}");
         } else {
             assert!(
-                (p[0] - 0.3 * fnorm * v).abs() < 1e-12,
+                (p - 0.3 * fnorm * v).abs() < 1e-12,
                 "sliding power μ F_n v, step {i}"
             );
         }
@@ -312,58 +331,28 @@ fn rolling_sds_is_capped_at_mu_fn_and_stores_k_xi_squared_over_two() {
     let reg = registry_03();
     let (k, gamma, mu, fnorm, v, dt) = (1e3, 0.5, 0.1, 2.0, 0.01, 1e-4);
     let m = reg
-        .rolling(
-            "rolling-sds",
-            &[
-                ParamValue::new("k", k),
-                ParamValue::new("gamma", gamma),
-                ParamValue::new("mu", mu),
-            ],
-        )
+        .rolling("rolling-sds", &pv(&[("k", k), ("gamma", gamma), ("mu", mu)]))
         .unwrap()
         .bind(&materials())
         .unwrap();
     let mut h = [0.0; 3];
     let mut capped = false;
     for i in 1..=3000 {
-        let (mut f, mut p, mut e) = ([[0.0; 3]], [0.0], [0.0]);
-        let written = m
-            .batch(
-                RollingBatch {
-                    dt,
-                    normal: &[[0.0, 0.0, 1.0]],
-                    velocity: &[[0.0, v, 0.0]],
-                    normal_force: &[fnorm],
-                    delta: &[1e-6],
-                    mass: &[M],
-                    radius: &[R],
-                    slots: 3,
-                    history: &mut h,
-                    force: &mut f,
-                },
-                EnergyOut {
-                    power: Some(&mut p),
-                    elastic: Some(&mut e),
-                },
-            )
-            .unwrap();
+        let (f, p, e, written) = vector_step(|b, e| m.batch(b, e), &mut h, (dt, [0.0, v, 0.0], fnorm, 1e-6));
         assert!(written);
-        let mag = f[0][1].abs();
+        let mag = f[1].abs();
         let xi = h[1];
-        assert!((e[0] - 0.5 * k * xi * xi).abs() <= 1e-12 * e[0].max(1e-300));
+        assert!((e - 0.5 * k * xi * xi).abs() <= 1e-12 * e.max(1e-300));
         let trial = k * v * dt * i as f64 + gamma * v;
         if (trial - mu * fnorm).abs() < 1e-9 {
             continue; // at the cap itself, holding and sliding coincide
         }
         if trial <= mu * fnorm {
+            assert!((f[1] + trial).abs() <= 1e-12 * trial, "spring–dashpot, step {i}");
             assert!(
-                (f[0][1] + trial).abs() <= 1e-12 * trial,
-                "spring–dashpot, step {i}"
-            );
-            assert!(
-                (p[0] - gamma * v * v).abs() < 1e-15,
+                (p - gamma * v * v).abs() < 1e-15,
                 "dashpot power, step {i}: {} vs {}",
-                p[0],
+                p,
                 gamma * v * v
             );
         } else {
@@ -373,13 +362,40 @@ fn rolling_sds_is_capped_at_mu_fn_and_stores_k_xi_squared_over_two() {
                 "capped at μ F_n, step {i}"
             );
             assert!((xi - (mu * fnorm - gamma * v) / k).abs() < 1e-15, "spring reset");
-            assert!((p[0] - mu * fnorm * v).abs() < 1e-14, "sliding power");
+            assert!((p - mu * fnorm * v).abs() < 1e-14, "sliding power");
         }
-        assert_eq!([f[0][0], f[0][2]], [0.0, 0.0]);
+        assert_eq!([f[0], f[2]], [0.0, 0.0]);
     }
     assert!(capped);
 }
 
+/// A twisting batch of one contact at twisting rate `w` (rad/s), normal force `fnorm` (N),
+/// overlap `d` (m) and effective mass `mass` (kg), with the energy outputs `energy`.
+fn twist_batch(
+    m: &dashpot_sdk::abi::ModelHandle<dashpot_sdk::abi::Twisting>,
+    h: &mut [f64],
+    (w, fnorm, d, mass): (f64, f64, f64, f64),
+    torque: &mut [f64; 1],
+    energy: EnergyOut<'_>,
+) -> Result<bool, LawError> {
+    m.batch(
+        TwistingBatch {
+            dt: 1e-4,
+            normal: &[[0.0, 0.0, 1.0]],
+            rate: &[w],
+            normal_force: &[fnorm],
+            delta: &[d],
+            mass: &[mass],
+            radius: &[R],
+            slots: 1,
+            history: h,
+            torque,
+        },
+        energy,
+    )
+}
+
+/// One contact's twisting step with both energy outputs: (torque, power, elastic).
 fn twist(
     m: &dashpot_sdk::abi::ModelHandle<dashpot_sdk::abi::Twisting>,
     h: &mut [f64],
@@ -388,26 +404,11 @@ fn twist(
     d: f64,
 ) -> (f64, f64, f64) {
     let (mut t, mut p, mut e) = ([0.0], [0.0], [0.0]);
-    assert!(m
-        .batch(
-            TwistingBatch {
-                dt: 1e-4,
-                normal: &[[0.0, 0.0, 1.0]],
-                rate: &[w],
-                normal_force: &[fnorm],
-                delta: &[d],
-                mass: &[M],
-                radius: &[R],
-                slots: 1,
-                history: h,
-                torque: &mut t,
-            },
-            EnergyOut {
-                power: Some(&mut p),
-                elastic: Some(&mut e),
-            },
-        )
-        .unwrap());
+    let energy = EnergyOut {
+        power: Some(&mut p),
+        elastic: Some(&mut e),
+    };
+    assert!(twist_batch(m, h, (w, fnorm, d, M), &mut t, energy).unwrap());
     (t[0], p[0], e[0])
 }
 
@@ -416,14 +417,7 @@ fn twisting_laws_follow_their_formulas() {
     let reg = registry_03();
     let (k, gamma, mu, fnorm, w, dt) = (2e-3, 1e-6, 5e-5, 3.0, 0.4, 1e-4);
     let sds = reg
-        .twisting(
-            "twisting-sds",
-            &[
-                ParamValue::new("k", k),
-                ParamValue::new("gamma", gamma),
-                ParamValue::new("mu", mu),
-            ],
-        )
+        .twisting("twisting-sds", &pv(&[("k", k), ("gamma", gamma), ("mu", mu)]))
         .unwrap()
         .bind(&materials())
         .unwrap();
@@ -449,11 +443,7 @@ fn twisting_laws_follow_their_formulas() {
     let marshall = reg
         .twisting(
             "twisting-marshall",
-            &[
-                ParamValue::new("kt", kt),
-                ParamValue::new("gammat", gt),
-                ParamValue::new("mu_t", mut_),
-            ],
+            &pv(&[("kt", kt), ("gammat", gt), ("mu_t", mut_)]),
         )
         .unwrap()
         .bind(&materials())
@@ -483,14 +473,7 @@ fn rolling_epsd_caps_the_torque_at_mu_r_r_fn() {
     let reg = registry_03();
     let (kt, mu, fnorm, v, dt) = (1e3, 0.2, 1.5, 0.02, 1e-4);
     let m = reg
-        .rolling(
-            "rolling-epsd",
-            &[
-                ParamValue::new("kt", kt),
-                ParamValue::new("mu_r", mu),
-                ParamValue::new("eta", 0.3),
-            ],
-        )
+        .rolling("rolling-epsd", &pv(&[("kt", kt), ("mu_r", mu), ("eta", 0.3)]))
         .unwrap()
         .bind(&materials())
         .unwrap();
@@ -498,33 +481,17 @@ fn rolling_epsd_caps_the_torque_at_mu_r_r_fn() {
     let mut h = [0.0; 3];
     let mut capped = false;
     for i in 1..=2000 {
-        let mut f = [[0.0; 3]];
-        m.batch(
-            RollingBatch {
-                dt,
-                normal: &[[0.0, 0.0, 1.0]],
-                velocity: &[[v, 0.0, 0.0]],
-                normal_force: &[fnorm],
-                delta: &[1e-6],
-                mass: &[M],
-                radius: &[R],
-                slots: 3,
-                history: &mut h,
-                force: &mut f,
-            },
-            EnergyOut::none(),
-        )
-        .unwrap();
+        let (f, ..) = vector_step(|b, e| m.batch(b, e), &mut h, (dt, [v, 0.0, 0.0], fnorm, 1e-6));
         let spring = kt * v * dt * i as f64;
         if spring <= mu * fnorm && !capped {
-            assert!((f[0][0] + spring + gamma * v).abs() <= 1e-12 * (spring + gamma * v));
+            assert!((f[0] + spring + gamma * v).abs() <= 1e-12 * (spring + gamma * v));
         } else {
             capped = true;
             // the torque R |F_r| is μ_r R F_n: the force is μ_r F_n, no damping while mobilized
             assert!(
-                (f[0][0] + mu * fnorm).abs() <= 1e-12 * mu * fnorm,
+                (f[0] + mu * fnorm).abs() <= 1e-12 * mu * fnorm,
                 "step {i}: {:?}",
-                f[0]
+                f
             );
         }
     }
@@ -571,23 +538,14 @@ fn bad_inputs_of_the_new_kinds_are_named() {
         .bind(&materials())
         .unwrap();
     let mut h = [0.0];
-    let e = twisting
-        .batch(
-            TwistingBatch {
-                dt: 1e-4,
-                normal: &[[0.0, 0.0, 1.0]],
-                rate: &[1.0],
-                normal_force: &[1.0],
-                delta: &[1e-6],
-                mass: &[0.0],
-                radius: &[R],
-                slots: 1,
-                history: &mut h,
-                torque: &mut [0.0],
-            },
-            EnergyOut::none(),
-        )
-        .unwrap_err();
+    let e = twist_batch(
+        &twisting,
+        &mut h,
+        (1.0, 1.0, 1e-6, 0.0),
+        &mut [0.0],
+        EnergyOut::none(),
+    )
+    .unwrap_err();
     assert!(
         e.message
             .contains("twisting law 'twisting-sds': input mass[0] = 0 must be finite and > 0 (kg)"),
@@ -596,26 +554,11 @@ fn bad_inputs_of_the_new_kinds_are_named() {
     );
     // energy outputs of the wrong length are refused
     let mut p = [0.0; 2];
-    let e = twisting
-        .batch(
-            TwistingBatch {
-                dt: 1e-4,
-                normal: &[[0.0, 0.0, 1.0]],
-                rate: &[1.0],
-                normal_force: &[1.0],
-                delta: &[1e-6],
-                mass: &[M],
-                radius: &[R],
-                slots: 1,
-                history: &mut h,
-                torque: &mut [0.0],
-            },
-            EnergyOut {
-                power: Some(&mut p),
-                elastic: None,
-            },
-        )
-        .unwrap_err();
+    let energy = EnergyOut {
+        power: Some(&mut p),
+        elastic: None,
+    };
+    let e = twist_batch(&twisting, &mut h, (1.0, 1.0, 1e-6, M), &mut [0.0], energy).unwrap_err();
     assert!(
         e.message
             .contains("energy outputs must have one value per contact (1)"),

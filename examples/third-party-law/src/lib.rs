@@ -3,9 +3,12 @@
 
 use dashpot_sdk::*;
 
-/// The law: damping coefficient η (N·s/m).
-pub struct HertzLinearDamping {
-    eta: f64,
+law_params! {
+    /// The law: damping coefficient η (N·s/m).
+    pub struct HertzLinearDamping {
+        /// dashpot coefficient
+        eta: f64 { unit: "N*s/m", default: 1.0, range: Range::non_negative() },
+    }
 }
 
 /// The law bound to a pair of materials: K = a √r for a contact of effective radius r.
@@ -22,16 +25,11 @@ impl ContactLaw for HertzLinearDamping {
     const DOC: &'static str = "F = K δ^{3/2} + η δ̇ for δ ≥ 0, 0 for δ < 0, K = (4/3) E_eff √r_eff.";
     const END_CRITERION: EndCriterion = EndCriterion::Force;
 
-    fn params() -> Vec<ParamSpec> {
-        vec![ParamSpec::new("eta", "N*s/m", 1.0, Range::non_negative(), "dashpot coefficient")]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(HertzLinearDamping { eta: p.get("eta")? })
-    }
-
     fn bind(&self, materials: &MaterialPair) -> Result<Bound, LawError> {
-        Ok(Bound { eta: self.eta, a: 4.0 / 3.0 * materials.young })
+        Ok(Bound {
+            eta: self.eta,
+            a: 4.0 / 3.0 * materials.young,
+        })
     }
 }
 

@@ -23,6 +23,9 @@
  *
  * Units are SI throughout. Pair conventions: m = m1 m2/(m1+m2), r = r1 r2/(r1+r2),
  * 1/E = (1-nu1^2)/E1 + (1-nu2^2)/E2; a flat wall has infinite mass and radius and is rigid.
+ *
+ * Every kind of law has the same functions to create, bind and free it: they are declared
+ * once, by the DASHPOT_*_FUNCTIONS macros at the end of this header (one line per kind).
  */
 
 #ifndef DASHPOT_H
@@ -144,7 +147,7 @@ typedef enum DashpotEndCriterion {
 } DashpotEndCriterion;
 
 /*
- A contact law bound to a pair (opaque): the hot path.
+ A contact law bound to one pair (opaque): the sdk 0.1 hot path.
  */
 typedef struct DashpotBoundContact DashpotBoundContact;
 
@@ -154,7 +157,7 @@ typedef struct DashpotBoundContact DashpotBoundContact;
 typedef struct DashpotBoundRestitution DashpotBoundRestitution;
 
 /*
- A configured contact law (opaque).
+ A configured contact (normal-force) law (opaque).
  */
 typedef struct DashpotContactLaw DashpotContactLaw;
 
@@ -169,7 +172,7 @@ typedef struct DashpotContactModel DashpotContactModel;
 typedef struct DashpotRegistry DashpotRegistry;
 
 /*
- A configured restitution law (opaque).
+ A configured restitution law r(v) (opaque).
  */
 typedef struct DashpotRestitutionLaw DashpotRestitutionLaw;
 
@@ -184,12 +187,12 @@ typedef struct DashpotRollingLaw DashpotRollingLaw;
 typedef struct DashpotRollingModel DashpotRollingModel;
 
 /*
- A configured tangential law (opaque).
+ A configured tangential (friction) law (opaque).
  */
 typedef struct DashpotTangentialLaw DashpotTangentialLaw;
 
 /*
- A tangential law bound to a pair of materials (opaque): the hot path.
+ A tangential law bound to a pair of materials (opaque).
  */
 typedef struct DashpotTangentialModel DashpotTangentialModel;
 
@@ -388,63 +391,6 @@ enum DashpotStatus dashpot_calibrate(const struct DashpotRegistry *registry,
                                      size_t *out_n_set);
 
 /*
- Creates contact law `name` from `n_params` named values (parameters left out take their
- defaults; the values are validated against the law's schema).
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW` (also for a restitution law's
- name), `DASHPOT_ERR_UNKNOWN_PARAMETER`, `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`.
- Ownership: inputs are copied; `*out_law` is owned by the caller (free with
- `dashpot_contact_free`) and may outlive the registry. Thread-safe.
-
- # Safety
- `param_names`/`param_values` must be null (only if `n_params` is 0) or hold `n_params`
- elements; strings NUL-terminated; other non-null pointers valid.
- */
-enum DashpotStatus dashpot_contact_new(const struct DashpotRegistry *registry,
-                                       const char *name,
-                                       const char *const *param_names,
-                                       const double *param_values,
-                                       size_t n_params,
-                                       struct DashpotContactLaw **out_law);
-
-/*
- Frees a contact law (null is ignored). Bound laws made from it stay valid.
-
- # Safety
- `law` must be null or a live handle from `dashpot_contact_new`, not used concurrently.
- */
-void dashpot_contact_free(struct DashpotContactLaw *law);
-
-/*
- Binds a contact law to a pair: every constant of the force is computed here, once.
-
- The pair carries no shear modulus; this binding takes the one of two bodies of Poisson's
- ratio 0.3 (no normal law of the project uses it). A law with per-contact history (e.g.
- `thornton`) cannot be bound to a pair: use the material binding of the sdk 0.2 functions,
- which carry each contact's history.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a pair field not finite or not
- positive), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair, or keeps history),
- `DASHPOT_ERR_PANIC`.
- Ownership: `*out_bound` is owned by the caller (free with `dashpot_bound_contact_free`) and
- may outlive the law. Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_contact_bind(const struct DashpotContactLaw *law,
-                                        const struct DashpotPair *pair,
-                                        struct DashpotBoundContact **out_bound);
-
-/*
- Frees a bound contact law (null is ignored).
-
- # Safety
- `bound` must be null or a live handle from `dashpot_contact_bind`, not used concurrently.
- */
-void dashpot_bound_contact_free(struct DashpotBoundContact *bound);
-
-/*
  The normal force F(δ, δ̇) (N) at overlap `delta` (m) and overlap rate `rate` (m/s).
 
  Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_NON_FINITE` (the law returned NaN or inf;
@@ -497,43 +443,6 @@ enum DashpotStatus dashpot_contact_coefficient(const struct DashpotBoundContact 
                                                double *out_value);
 
 /*
- Binds a contact law to a pair of materials: every constant that depends only on the
- materials and the parameters is computed here, once. Any law may be bound this way, with
- or without history.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a modulus not finite and > 0),
- `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects these materials), `DASHPOT_ERR_PANIC`.
- Ownership: `*out_model` is owned by the caller (free with `dashpot_contact_model_free`) and
- may outlive the law. Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_contact_bind_materials(const struct DashpotContactLaw *law,
-                                                  const struct DashpotMaterials *materials,
-                                                  struct DashpotContactModel **out_model);
-
-/*
- Frees a material-bound contact law (null is ignored).
-
- # Safety
- `model` must be null or a live handle from `dashpot_contact_bind_materials`, not used
- concurrently.
- */
-void dashpot_contact_model_free(struct DashpotContactModel *model);
-
-/*
- The number of history values (doubles) the law keeps per contact (0 for a memoryless law).
-
- Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_contact_model_history_slots(const struct DashpotContactModel *model,
-                                                       size_t *out_slots);
-
-/*
  The normal force on `n` contacts, each with its own geometry and history:
  `out_force[i] = F(delta[i], rate[i]; mass[i], radius[i], history[i*slots .. (i+1)*slots])`.
 
@@ -566,6 +475,32 @@ enum DashpotStatus dashpot_contact_model_force_batch(const struct DashpotContact
                                                      double *history,
                                                      size_t n_history,
                                                      double *out_force);
+
+/*
+ `dashpot_contact_model_force_batch` with sdk 0.3's outputs, each null or `n` values:
+ `out_reach[i]` how far beyond touching the contact still acts (m: it ends once δ < −reach;
+ 0 for a non-adhesive law), `out_power[i]` the dissipated power (W), `out_elastic[i]` the
+ stored elastic energy (J); `*out_energy_written` (may be null) whether the law reported the
+ energy.
+
+ Errors: as `dashpot_contact_model_force_batch`. Thread-safe (distinct outputs).
+
+ # Safety
+ Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
+ */
+enum DashpotStatus dashpot_contact_model_force_batch_energy(const struct DashpotContactModel *model,
+                                                            size_t n,
+                                                            const double *delta,
+                                                            const double *rate,
+                                                            const double *mass,
+                                                            const double *radius,
+                                                            double *history,
+                                                            size_t n_history,
+                                                            double *out_force,
+                                                            double *out_reach,
+                                                            double *out_power,
+                                                            double *out_elastic,
+                                                            int *out_energy_written);
 
 /*
  The message of the last failed call on the calling thread (NUL-terminated UTF-8, empty if
@@ -753,51 +688,6 @@ enum DashpotStatus dashpot_registry_param_info(const struct DashpotRegistry *reg
                                                struct DashpotParamInfo *out_param);
 
 /*
- Creates restitution law `name` from `n_params` named values.
-
- Errors, ownership and thread safety as `dashpot_contact_new` (`DASHPOT_ERR_UNKNOWN_LAW` also
- for a contact law's name). Free with `dashpot_restitution_free`.
-
- # Safety
- As `dashpot_contact_new`.
- */
-enum DashpotStatus dashpot_restitution_new(const struct DashpotRegistry *registry,
-                                           const char *name,
-                                           const char *const *param_names,
-                                           const double *param_values,
-                                           size_t n_params,
-                                           struct DashpotRestitutionLaw **out_law);
-
-/*
- Frees a restitution law (null is ignored).
-
- # Safety
- `law` must be null or a live handle from `dashpot_restitution_new`, not used concurrently.
- */
-void dashpot_restitution_free(struct DashpotRestitutionLaw *law);
-
-/*
- Binds a restitution law to a pair.
-
- Errors, ownership and thread safety as `dashpot_contact_bind`. Free with
- `dashpot_bound_restitution_free`.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_restitution_bind(const struct DashpotRestitutionLaw *law,
-                                            const struct DashpotPair *pair,
-                                            struct DashpotBoundRestitution **out_bound);
-
-/*
- Frees a bound restitution law (null is ignored).
-
- # Safety
- `bound` must be null or a live handle from `dashpot_restitution_bind`, not used concurrently.
- */
-void dashpot_bound_restitution_free(struct DashpotBoundRestitution *bound);
-
-/*
  r(v): the coefficient of restitution at normal impact speed `speed` (m/s).
 
  Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_NON_FINITE`, `DASHPOT_ERR_PANIC`.
@@ -825,275 +715,6 @@ enum DashpotStatus dashpot_restitution_batch(const struct DashpotBoundRestitutio
                                              size_t n_out);
 
 /*
- Creates rolling law `name` (e.g. `"rolling-sds"`) from `n_params` named values (parameters
- left out take their defaults; the values are validated against the law's schema).
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW` (also for a law of another kind),
- `DASHPOT_ERR_UNKNOWN_PARAMETER`, `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`.
- Ownership: `*out_law` is the caller's (free with `dashpot_rolling_free`). Thread-safe.
-
- # Safety
- `param_names`/`param_values` must be null (only if `n_params` is 0) or hold `n_params`
- elements; strings NUL-terminated; other non-null pointers valid.
- */
-enum DashpotStatus dashpot_rolling_new(const struct DashpotRegistry *registry,
-                                       const char *name,
-                                       const char *const *param_names,
-                                       const double *param_values,
-                                       size_t n_params,
-                                       struct DashpotRollingLaw **out_law);
-
-/*
- Frees a rolling law (null is ignored). Models bound from it stay valid.
-
- # Safety
- `law` must be null or a live handle from `dashpot_rolling_new`, not used concurrently.
- */
-void dashpot_rolling_free(struct DashpotRollingLaw *law);
-
-/*
- Binds a rolling law to a pair of materials (see `dashpot_materials_spheres`, `_wall`).
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR`, `DASHPOT_ERR_INVALID_PARAMETER`,
- `DASHPOT_ERR_PANIC`. Ownership: `*out_model` is the caller's (free with
- `dashpot_rolling_model_free`). Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_rolling_bind_materials(const struct DashpotRollingLaw *law,
-                                                  const struct DashpotMaterials *materials,
-                                                  struct DashpotRollingModel **out_model);
-
-/*
- Frees a bound rolling law (null is ignored).
-
- # Safety
- `model` must be null or a live handle, not used concurrently.
- */
-void dashpot_rolling_model_free(struct DashpotRollingModel *model);
-
-/*
- The number of history values (doubles) the rolling law keeps per contact.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_rolling_model_history_slots(const struct DashpotRollingModel *model,
-                                                       size_t *out_slots);
-
-/*
- The rolling-resistance force on `n` contacts, history advanced by the step `dt` (s).
-
- Per contact i: `normal[3i..3i+3]` the unit normal (partner to particle), `velocity[3i..3i+3]`
- the rolling velocity R_eff (ω_i − ω_j) × n̂ (m/s), `normal_force[i]` (N), `delta[i]` (m),
- `mass[i]` (kg), `radius[i]` (m, R_eff), `history` (`n × slots` values, in place),
- `out_force[3i..3i+3]` the rolling force F_r (N; torque on i: R_eff n̂ × F_r); `out_power`,
- `out_elastic` (null, or `n` values each) the energy outputs, `*out_energy_written` (may be
- null) whether the law wrote them.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE`
- (naming the array, index and value), `DASHPOT_ERR_PANIC`. Thread-safe (distinct outputs).
-
- # Safety
- Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
- */
-enum DashpotStatus dashpot_rolling_model_force_batch(const struct DashpotRollingModel *model,
-                                                     size_t n,
-                                                     double dt,
-                                                     const double *normal,
-                                                     const double *velocity,
-                                                     const double *normal_force,
-                                                     const double *delta,
-                                                     const double *mass,
-                                                     const double *radius,
-                                                     double *history,
-                                                     size_t n_history,
-                                                     double *out_force,
-                                                     double *out_power,
-                                                     double *out_elastic,
-                                                     int *out_energy_written);
-
-/*
- Creates twisting law `name` (e.g. `"twisting-sds"`), as `dashpot_rolling_new`.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW`, `DASHPOT_ERR_UNKNOWN_PARAMETER`,
- `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`. Ownership: `*out_law` is the caller's
- (free with `dashpot_twisting_free`). Thread-safe.
-
- # Safety
- As `dashpot_rolling_new`.
- */
-enum DashpotStatus dashpot_twisting_new(const struct DashpotRegistry *registry,
-                                        const char *name,
-                                        const char *const *param_names,
-                                        const double *param_values,
-                                        size_t n_params,
-                                        struct DashpotTwistingLaw **out_law);
-
-/*
- Frees a twisting law (null is ignored). Models bound from it stay valid.
-
- # Safety
- `law` must be null or a live handle from `dashpot_twisting_new`, not used concurrently.
- */
-void dashpot_twisting_free(struct DashpotTwistingLaw *law);
-
-/*
- Binds a twisting law to a pair of materials.
-
- Errors: as `dashpot_rolling_bind_materials`. Ownership: `*out_model` is the caller's (free
- with `dashpot_twisting_model_free`). Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_twisting_bind_materials(const struct DashpotTwistingLaw *law,
-                                                   const struct DashpotMaterials *materials,
-                                                   struct DashpotTwistingModel **out_model);
-
-/*
- Frees a bound twisting law (null is ignored).
-
- # Safety
- `model` must be null or a live handle, not used concurrently.
- */
-void dashpot_twisting_model_free(struct DashpotTwistingModel *model);
-
-/*
- The number of history values (doubles) the twisting law keeps per contact.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_twisting_model_history_slots(const struct DashpotTwistingModel *model,
-                                                        size_t *out_slots);
-
-/*
- The twisting torque on `n` contacts, history advanced by the step `dt` (s).
-
- Per contact i: `normal[3i..3i+3]` the unit normal, `rate[i]` the twisting rate
- (ω_i − ω_j)·n̂ (rad/s), `normal_force[i]` (N), `delta[i]` (m), `mass[i]` (kg), `radius[i]`
- (m), `history` (`n × slots` values, in place), `out_torque[i]` the torque about n̂ on i (N·m);
- energy outputs as in `dashpot_rolling_model_force_batch`.
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_BAD_LENGTH`, `DASHPOT_ERR_NON_FINITE`,
- `DASHPOT_ERR_PANIC`. Thread-safe (distinct outputs).
-
- # Safety
- Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
- */
-enum DashpotStatus dashpot_twisting_model_torque_batch(const struct DashpotTwistingModel *model,
-                                                       size_t n,
-                                                       double dt,
-                                                       const double *normal,
-                                                       const double *rate,
-                                                       const double *normal_force,
-                                                       const double *delta,
-                                                       const double *mass,
-                                                       const double *radius,
-                                                       double *history,
-                                                       size_t n_history,
-                                                       double *out_torque,
-                                                       double *out_power,
-                                                       double *out_elastic,
-                                                       int *out_energy_written);
-
-/*
- `dashpot_contact_model_force_batch` with sdk 0.3's outputs, each null or `n` values:
- `out_reach[i]` how far beyond touching the contact still acts (m: it ends once δ < −reach;
- 0 for a non-adhesive law), `out_power[i]` the dissipated power (W), `out_elastic[i]` the
- stored elastic energy (J); `*out_energy_written` (may be null) whether the law reported the
- energy.
-
- Errors: as `dashpot_contact_model_force_batch`. Thread-safe (distinct outputs).
-
- # Safety
- Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
- */
-enum DashpotStatus dashpot_contact_model_force_batch_energy(const struct DashpotContactModel *model,
-                                                            size_t n,
-                                                            const double *delta,
-                                                            const double *rate,
-                                                            const double *mass,
-                                                            const double *radius,
-                                                            double *history,
-                                                            size_t n_history,
-                                                            double *out_force,
-                                                            double *out_reach,
-                                                            double *out_power,
-                                                            double *out_elastic,
-                                                            int *out_energy_written);
-
-/*
- Creates tangential law `name` (e.g. `"mindlin"`) from `n_params` named values (parameters
- left out take their defaults; the values are validated against the law's schema).
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW` (also for a law of another kind),
- `DASHPOT_ERR_UNKNOWN_PARAMETER`, `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`.
- Ownership: inputs are copied; `*out_law` is owned by the caller (free with
- `dashpot_tangential_free`) and may outlive the registry. Thread-safe.
-
- # Safety
- `param_names`/`param_values` must be null (only if `n_params` is 0) or hold `n_params`
- elements; strings NUL-terminated; other non-null pointers valid.
- */
-enum DashpotStatus dashpot_tangential_new(const struct DashpotRegistry *registry,
-                                          const char *name,
-                                          const char *const *param_names,
-                                          const double *param_values,
-                                          size_t n_params,
-                                          struct DashpotTangentialLaw **out_law);
-
-/*
- Frees a tangential law (null is ignored). Models bound from it stay valid.
-
- # Safety
- `law` must be null or a live handle from `dashpot_tangential_new`, not used concurrently.
- */
-void dashpot_tangential_free(struct DashpotTangentialLaw *law);
-
-/*
- Binds a tangential law to a pair of materials (see `dashpot_materials_spheres`, `_wall`).
-
- Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a modulus not finite and > 0),
- `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects these materials), `DASHPOT_ERR_PANIC`.
- Ownership: `*out_model` is owned by the caller (free with `dashpot_tangential_model_free`)
- and may outlive the law. Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_tangential_bind_materials(const struct DashpotTangentialLaw *law,
-                                                     const struct DashpotMaterials *materials,
-                                                     struct DashpotTangentialModel **out_model);
-
-/*
- Frees a bound tangential law (null is ignored).
-
- # Safety
- `model` must be null or a live handle from `dashpot_tangential_bind_materials`, not used
- concurrently.
- */
-void dashpot_tangential_model_free(struct DashpotTangentialModel *model);
-
-/*
- The number of history values (doubles) the law keeps per contact (3 for a tangential
- spring).
-
- Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
-
- # Safety
- Non-null pointers must be valid.
- */
-enum DashpotStatus dashpot_tangential_model_history_slots(const struct DashpotTangentialModel *model,
-                                                          size_t *out_slots);
-
-/*
  The tangential force on `n` contacts, history advanced by the time step `dt` (s).
 
  Per contact i: `normal[3i..3i+3]` the unit normal (from partner to particle),
@@ -1103,19 +724,12 @@ enum DashpotStatus dashpot_tangential_model_history_slots(const struct DashpotTa
  history (`n_history = n × slots` values, read and updated in place) and
  `out_force[3i..3i+3]` the tangential force on the particle (N).
 
- Every input is checked inside the plugin: a non-finite vector, normal force, overlap or
- `dt`, or a mass or radius not finite and > 0, is refused with `DASHPOT_ERR_NON_FINITE`
- naming the array, the index and the value; so is a non-finite force.
-
- Errors: `DASHPOT_ERR_NULL_POINTER` (the handle, or an array when `n` > 0),
- `DASHPOT_ERR_BAD_LENGTH` (`n_history` ≠ `n × slots`), `DASHPOT_ERR_NON_FINITE` (outputs
- then partly written), `DASHPOT_ERR_PANIC` (the handle stays usable).
- Ownership: the arrays stay the caller's. Thread-safe (distinct output and history arrays
- per thread).
+ Every input is checked inside the plugin, as for `dashpot_contact_model_force_batch` (a
+ non-finite vector, normal force or `dt` too), and so are its errors, ownership and thread
+ safety.
 
  # Safety
- Non-null arrays must hold the lengths stated; `out_force` and `history` must not overlap
- each other or the inputs.
+ As `dashpot_contact_model_force_batch`'s, with `3n` values in each vector array.
  */
 enum DashpotStatus dashpot_tangential_model_force_batch(const struct DashpotTangentialModel *model,
                                                         size_t n,
@@ -1144,5 +758,116 @@ const char *dashpot_version(void);
 #ifdef __cplusplus
 }  // extern "C"
 #endif  // __cplusplus
+
+/*
+ * The functions every kind of law has, declared once per kind. KIND is contact, tangential,
+ * restitution, rolling or twisting; Law and Model its handle types.
+ *
+ * DASHPOT_LAW_FUNCTIONS(KIND, Law):
+ *   dashpot_KIND_new(registry, name, param_names, param_values, n_params, &law) creates law
+ *     `name` from `n_params` named values (parameters left out take their defaults; values are
+ *     checked against the law's schema). Errors: DASHPOT_ERR_NULL_POINTER,
+ *     DASHPOT_ERR_UNKNOWN_LAW (also for a law of another kind; the message lists the laws),
+ *     DASHPOT_ERR_UNKNOWN_PARAMETER, DASHPOT_ERR_INVALID_PARAMETER (naming the value and its
+ *     valid range), DASHPOT_ERR_PANIC. Inputs are copied; `*out_law` is the caller's and may
+ *     outlive the registry. param_names/param_values may be null only if n_params is 0.
+ *   dashpot_KIND_free(law) frees it (null is ignored); handles bound from it stay valid.
+ *
+ * DASHPOT_MODEL_FUNCTIONS(KIND, Law, Model): the sdk 0.2/0.3 binding to a pair of materials
+ * (dashpot_materials_spheres, dashpot_materials_wall), whose batch call takes each contact's
+ * effective mass, radius and history:
+ *   dashpot_KIND_bind_materials(law, materials, &model): every constant that depends only on
+ *     the materials and the parameters is computed here, once. Errors:
+ *     DASHPOT_ERR_NULL_POINTER, DASHPOT_ERR_INVALID_PAIR (a modulus not finite and > 0),
+ *     DASHPOT_ERR_INVALID_PARAMETER (the law rejects these materials), DASHPOT_ERR_PANIC.
+ *     `*out_model` is the caller's and may outlive the law.
+ *   dashpot_KIND_model_free(model) frees it (null is ignored).
+ *   dashpot_KIND_model_history_slots(model, &slots): the number of history values (doubles)
+ *     the law keeps per contact (0 for a memoryless law). Errors: DASHPOT_ERR_NULL_POINTER.
+ *
+ * DASHPOT_PAIR_FUNCTIONS(KIND, Law, Bound): the sdk 0.1 binding to one pair (DashpotPair:
+ * effective mass, radius and modulus):
+ *   dashpot_KIND_bind(law, pair, &bound). Errors: DASHPOT_ERR_NULL_POINTER,
+ *     DASHPOT_ERR_INVALID_PAIR (a field not finite and > 0), DASHPOT_ERR_INVALID_PARAMETER
+ *     (the law rejects this pair; a contact law with per-contact history, which a pair binding
+ *     has nowhere to keep: bind it to materials), DASHPOT_ERR_PANIC. A contact law takes the
+ *     shear modulus of two bodies of Poisson's ratio 0.3 (no normal law of the project uses it).
+ *   dashpot_bound_KIND_free(bound) frees it (null is ignored).
+ *
+ * All are thread-safe except that a *_free must not race with any other use of its handle.
+ *
+ * DASHPOT_ENERGY_BATCH(NAME, Model, INPUT, OUT): the sdk 0.3 batch call with energy outputs of
+ * the tangential (dashpot_tangential_model_force_batch_energy: the force of
+ * dashpot_tangential_model_force_batch), rolling and twisting kinds, on n contacts, the history
+ * advanced by the step dt (s). Per contact i: normal[3i..3i+3] the unit normal (from the
+ * partner to the particle); INPUT: tangential, velocity[3i..3i+3] the velocity of the
+ * particle's contact point relative to the partner's (m/s, omega x r included); rolling,
+ * velocity[3i..3i+3] the rolling velocity R_eff (w_i - w_j) x n (m/s); twisting, rate[i] the
+ * twisting rate (w_i - w_j).n (rad/s); normal_force[i] (N, > 0 repulsive), delta[i] (m),
+ * mass[i] (kg) and radius[i] (m) the effective mass and radius; history, n_history = n x slots
+ * values read and updated in place; OUT: tangential, out_force[3i..3i+3] the force on the
+ * particle (N); rolling, out_force[3i..3i+3] the rolling force F_r (N: the torque on the
+ * particle is R_eff n x F_r, on the partner its opposite; F_r is not applied to the centres);
+ * twisting, out_torque[i] the torque about n on the particle (N m; on the partner its
+ * opposite); out_power[i] the power the contact dissipates (W, >= 0) and out_elastic[i] the
+ * elastic energy it stores (J), each null when not wanted; *out_energy_written (may be null)
+ * 1 when the law reported them (a law of an older sdk does not). Every input is checked inside
+ * the plugin. Errors: DASHPOT_ERR_NULL_POINTER (the handle, or an array when n > 0),
+ * DASHPOT_ERR_BAD_LENGTH (n_history != n x slots), DASHPOT_ERR_NON_FINITE (naming the array,
+ * the index and the value; the outputs are then partly written), DASHPOT_ERR_PANIC (the handle
+ * stays usable). Thread-safe with distinct output and history arrays; outputs must not overlap
+ * each other or the inputs.
+ */
+#define DASHPOT_LAW_FUNCTIONS(KIND, Law)                                                             \
+    enum DashpotStatus dashpot_##KIND##_new(const struct DashpotRegistry *registry, const char *name, \
+                                            const char *const *param_names,                          \
+                                            const double *param_values, size_t n_params,             \
+                                            struct Law **out_law);                                   \
+    void dashpot_##KIND##_free(struct Law *law);
+
+#define DASHPOT_MODEL_FUNCTIONS(KIND, Law, Model)                                                    \
+    enum DashpotStatus dashpot_##KIND##_bind_materials(const struct Law *law,                        \
+                                                       const struct DashpotMaterials *materials,     \
+                                                       struct Model **out_model);                    \
+    void dashpot_##KIND##_model_free(struct Model *model);                                           \
+    enum DashpotStatus dashpot_##KIND##_model_history_slots(const struct Model *model, size_t *out_slots);
+
+#define DASHPOT_ENERGY_BATCH(NAME, Model, INPUT, OUT)                                               \
+    enum DashpotStatus NAME(const struct Model *model, size_t n, double dt, const double *normal,     \
+                            const double *INPUT, const double *normal_force, const double *delta,   \
+                            const double *mass, const double *radius, double *history,              \
+                            size_t n_history, double *OUT, double *out_power, double *out_elastic,  \
+                            int *out_energy_written);
+
+#define DASHPOT_PAIR_FUNCTIONS(KIND, Law, Bound)                                                     \
+    enum DashpotStatus dashpot_##KIND##_bind(const struct Law *law, const struct DashpotPair *pair,  \
+                                             struct Bound **out_bound);                              \
+    void dashpot_bound_##KIND##_free(struct Bound *bound);
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+DASHPOT_LAW_FUNCTIONS(contact, DashpotContactLaw)
+DASHPOT_LAW_FUNCTIONS(tangential, DashpotTangentialLaw)
+DASHPOT_LAW_FUNCTIONS(restitution, DashpotRestitutionLaw)
+DASHPOT_LAW_FUNCTIONS(rolling, DashpotRollingLaw)
+DASHPOT_LAW_FUNCTIONS(twisting, DashpotTwistingLaw)
+
+DASHPOT_MODEL_FUNCTIONS(contact, DashpotContactLaw, DashpotContactModel)
+DASHPOT_MODEL_FUNCTIONS(tangential, DashpotTangentialLaw, DashpotTangentialModel)
+DASHPOT_MODEL_FUNCTIONS(rolling, DashpotRollingLaw, DashpotRollingModel)
+DASHPOT_MODEL_FUNCTIONS(twisting, DashpotTwistingLaw, DashpotTwistingModel)
+
+DASHPOT_PAIR_FUNCTIONS(contact, DashpotContactLaw, DashpotBoundContact)
+DASHPOT_PAIR_FUNCTIONS(restitution, DashpotRestitutionLaw, DashpotBoundRestitution)
+
+DASHPOT_ENERGY_BATCH(dashpot_tangential_model_force_batch_energy, DashpotTangentialModel, velocity, out_force)
+DASHPOT_ENERGY_BATCH(dashpot_rolling_model_force_batch, DashpotRollingModel, velocity, out_force)
+DASHPOT_ENERGY_BATCH(dashpot_twisting_model_torque_batch, DashpotTwistingModel, rate, out_torque)
+
+#ifdef __cplusplus
+}  /* extern "C" */
+#endif
 
 #endif  /* DASHPOT_H */

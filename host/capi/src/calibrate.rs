@@ -4,7 +4,7 @@
 use crate::error::{arg, guard, out, slice_mut, string, CError, DashpotStatus, DashpotStatus::*};
 use crate::pair::DashpotPair;
 use crate::registry::{params, DashpotRegistry};
-use dashpot_sdk::{CalibrationTarget, EndCriterion, ROption};
+use dashpot_sdk::{CalibrationTarget, EndCriterion};
 use std::ffi::c_char;
 
 /// What a calibration must reproduce.
@@ -22,11 +22,11 @@ pub struct DashpotCalibrationTarget {
     pub end_criterion: i32,
 }
 
-fn opt(v: f64) -> ROption<f64> {
+fn opt(v: f64) -> Option<f64> {
     if v.is_nan() {
-        ROption::RNone
+        None
     } else {
-        ROption::RSome(v)
+        Some(v)
     }
 }
 

@@ -1,27 +1,13 @@
-//! Contact laws: create by name, bind to a pair, evaluate the normal force per pair or over
-//! arrays.
+//! Contact laws bound to a pair (sdk 0.1): the normal force per pair or over arrays. (Creating,
+//! binding and freeing: `kinds.rs`.)
 //!
 //! Sign convention: δ ≥ 0 is the overlap (m), δ̇ its rate (m/s, > 0 while the bodies approach),
 //! and the force (N) is positive when repulsive. For δ < 0 a law returns 0.
 
 use crate::error::{arg, guard, out, slice, slice_mut, string, CError, DashpotStatus, DashpotStatus::*};
-use crate::pair::DashpotPair;
-use crate::registry::{params, DashpotRegistry};
-use dashpot_sdk::abi::{ContactLawHandle, ContactModelHandle};
+use crate::kinds::DashpotBoundContact;
 use dashpot_sdk::{Contact, NormalBatch};
 use std::ffi::c_char;
-
-/// A configured contact law (opaque).
-pub struct DashpotContactLaw {
-    pub(crate) law: ContactLawHandle,
-}
-
-/// A contact law bound to a pair (opaque): the hot path.
-pub struct DashpotBoundContact {
-    pub(crate) model: ContactModelHandle,
-    pub(crate) mass: f64,
-    pub(crate) radius: f64,
-}
 
 /// Contacts per call of the law in the pair-bound batch (stack arrays of the pair's geometry).
 const CHUNK: usize = 64;
@@ -85,111 +71,6 @@ fn shift_indices(msg: &str, offset: usize) -> String {
     }
     out.push_str(rest);
     out
-}
-
-/// Creates contact law `name` from `n_params` named values (parameters left out take their
-/// defaults; the values are validated against the law's schema).
-///
-/// Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_UNKNOWN_LAW` (also for a restitution law's
-/// name), `DASHPOT_ERR_UNKNOWN_PARAMETER`, `DASHPOT_ERR_INVALID_PARAMETER`, `DASHPOT_ERR_PANIC`.
-/// Ownership: inputs are copied; `*out_law` is owned by the caller (free with
-/// `dashpot_contact_free`) and may outlive the registry. Thread-safe.
-///
-/// # Safety
-/// `param_names`/`param_values` must be null (only if `n_params` is 0) or hold `n_params`
-/// elements; strings NUL-terminated; other non-null pointers valid.
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_new(
-    registry: *const DashpotRegistry,
-    name: *const c_char,
-    param_names: *const *const c_char,
-    param_values: *const f64,
-    n_params: usize,
-    out_law: *mut *mut DashpotContactLaw,
-) -> DashpotStatus {
-    guard(|| {
-        let r = unsafe { arg(registry, "registry") }?;
-        let name = unsafe { string(name, "name") }?;
-        let o = unsafe { out(out_law, "out_law") }?;
-        let p = unsafe { params(param_names, param_values, n_params) }?;
-        let law = r.reg.contact(name, &p)?;
-        *o = Box::into_raw(Box::new(DashpotContactLaw { law }));
-        Ok(())
-    })
-}
-
-/// Frees a contact law (null is ignored). Bound laws made from it stay valid.
-///
-/// # Safety
-/// `law` must be null or a live handle from `dashpot_contact_new`, not used concurrently.
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_free(law: *mut DashpotContactLaw) {
-    if !law.is_null() {
-        // SAFETY: a live handle, by contract.
-        let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            drop(unsafe { Box::from_raw(law) })
-        }));
-    }
-}
-
-/// Binds a contact law to a pair: every constant of the force is computed here, once.
-///
-/// The pair carries no shear modulus; this binding takes the one of two bodies of Poisson's
-/// ratio 0.3 (no normal law of the project uses it). A law with per-contact history (e.g.
-/// `thornton`) cannot be bound to a pair: use the material binding of the sdk 0.2 functions,
-/// which carry each contact's history.
-///
-/// Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a pair field not finite or not
-/// positive), `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects this pair, or keeps history),
-/// `DASHPOT_ERR_PANIC`.
-/// Ownership: `*out_bound` is owned by the caller (free with `dashpot_bound_contact_free`) and
-/// may outlive the law. Thread-safe.
-///
-/// # Safety
-/// Non-null pointers must be valid.
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_bind(
-    law: *const DashpotContactLaw,
-    pair: *const DashpotPair,
-    out_bound: *mut *mut DashpotBoundContact,
-) -> DashpotStatus {
-    guard(|| {
-        let l = unsafe { arg(law, "law") }?;
-        let p = unsafe { arg(pair, "pair") }?.to_pair()?;
-        let o = unsafe { out(out_bound, "out_bound") }?;
-        let slots = l.law.info().history.len();
-        if slots > 0 {
-            return Err(CError::new(
-                DASHPOT_ERR_INVALID_PARAMETER,
-                format!(
-                    "contact law '{}' keeps per-contact history ({slots} slots), which a pair-bound \
-                     law has nowhere to store: bind it to materials and pass the history with each batch",
-                    l.law.info().name
-                ),
-            ));
-        }
-        let model = l.law.bind(&p.materials(0.3)?)?;
-        *o = Box::into_raw(Box::new(DashpotBoundContact {
-            model,
-            mass: p.mass,
-            radius: p.radius,
-        }));
-        Ok(())
-    })
-}
-
-/// Frees a bound contact law (null is ignored).
-///
-/// # Safety
-/// `bound` must be null or a live handle from `dashpot_contact_bind`, not used concurrently.
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_bound_contact_free(bound: *mut DashpotBoundContact) {
-    if !bound.is_null() {
-        // SAFETY: a live handle, by contract.
-        let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            drop(unsafe { Box::from_raw(bound) })
-        }));
-    }
 }
 
 /// The normal force F(δ, δ̇) (N) at overlap `delta` (m) and overlap rate `rate` (m/s).

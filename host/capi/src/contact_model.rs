@@ -1,8 +1,9 @@
-//! Contact laws bound to materials (sdk 0.2): per-contact geometry and history in the batch call.
+//! Contact laws bound to materials (sdk 0.2, 0.3): per-contact geometry and history in the batch
+//! call, and sdk 0.3's reach and energy outputs. (Creating, binding and freeing: `kinds.rs`.)
 //!
 //! Sign convention as for the pair-bound functions: δ ≥ 0 is the overlap (m), δ̇ its rate
 //! (m/s, positive while approaching), the force (N) is positive when repulsive, and a law
-//! returns 0 for δ < 0.
+//! that is not adhesive returns 0 for δ < 0.
 //!
 //! History: a law may keep per-contact state (`dashpot_contact_model_history_slots` values of
 //! type double per contact, e.g. the largest overlap of a plastic law). The caller stores it:
@@ -10,74 +11,45 @@
 //! updated value in place), kept when the step is accepted, dropped when the contact ends. For a
 //! trial evaluation (an integrator stage) pass a scratch copy.
 
-use crate::contact::DashpotContactLaw;
-use crate::error::{arg, guard, out, slice, slice_mut, CError, DashpotStatus, DashpotStatus::*};
-use crate::materials::DashpotMaterials;
-use dashpot_sdk::abi::ContactModelHandle;
+use crate::error::{arg, guard, slice, slice_mut, DashpotStatus};
+use crate::handle::{energy, history_width, optional, report_written};
+use crate::kinds::DashpotContactModel;
 use dashpot_sdk::NormalBatch;
+use std::ffi::c_int;
 
-/// A contact law bound to a pair of materials (opaque): the hot path of a polydisperse DEM code.
-pub struct DashpotContactModel {
-    pub(crate) model: ContactModelHandle,
-}
-
-/// Binds a contact law to a pair of materials: every constant that depends only on the
-/// materials and the parameters is computed here, once. Any law may be bound this way, with
-/// or without history.
-///
-/// Errors: `DASHPOT_ERR_NULL_POINTER`, `DASHPOT_ERR_INVALID_PAIR` (a modulus not finite and > 0),
-/// `DASHPOT_ERR_INVALID_PARAMETER` (the law rejects these materials), `DASHPOT_ERR_PANIC`.
-/// Ownership: `*out_model` is owned by the caller (free with `dashpot_contact_model_free`) and
-/// may outlive the law. Thread-safe.
+/// The body of both batch functions: the checks, then the law.
 ///
 /// # Safety
-/// Non-null pointers must be valid.
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_bind_materials(
-    law: *const DashpotContactLaw,
-    materials: *const DashpotMaterials,
-    out_model: *mut *mut DashpotContactModel,
-) -> DashpotStatus {
-    guard(|| {
-        let l = unsafe { arg(law, "law") }?;
-        let m = unsafe { arg(materials, "materials") }?.to_materials()?;
-        let o = unsafe { out(out_model, "out_model") }?;
-        let model = l.law.bind(&m)?;
-        *o = Box::into_raw(Box::new(DashpotContactModel { model }));
-        Ok(())
-    })
-}
-
-/// Frees a material-bound contact law (null is ignored).
-///
-/// # Safety
-/// `model` must be null or a live handle from `dashpot_contact_bind_materials`, not used
-/// concurrently.
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_model_free(model: *mut DashpotContactModel) {
-    if !model.is_null() {
-        // SAFETY: a live handle, by contract.
-        let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            drop(unsafe { Box::from_raw(model) })
-        }));
-    }
-}
-
-/// The number of history values (doubles) the law keeps per contact (0 for a memoryless law).
-///
-/// Errors: `DASHPOT_ERR_NULL_POINTER`. Thread-safe.
-///
-/// # Safety
-/// Non-null pointers must be valid.
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_model_history_slots(
+/// As their contracts.
+#[allow(clippy::too_many_arguments)]
+unsafe fn batch(
+    what: &str,
     model: *const DashpotContactModel,
-    out_slots: *mut usize,
+    n: usize,
+    [delta, rate, mass, radius]: [*const f64; 4],
+    history: *mut f64,
+    n_history: usize,
+    out_force: *mut f64,
+    [out_reach, out_power, out_elastic]: [*mut f64; 3],
+    out_energy_written: *mut c_int,
 ) -> DashpotStatus {
     guard(|| {
         let m = unsafe { arg(model, "model") }?;
-        let o = unsafe { out(out_slots, "out_slots") }?;
-        *o = m.model.history_slots();
+        let slots = history_width(what, m, n, n_history)?;
+        let b = NormalBatch {
+            delta: unsafe { slice(delta, n, "delta") }?,
+            rate: unsafe { slice(rate, n, "rate") }?,
+            mass: unsafe { slice(mass, n, "mass") }?,
+            radius: unsafe { slice(radius, n, "radius") }?,
+            slots,
+            history: unsafe { slice_mut(history, n_history, "history") }?,
+            force: unsafe { slice_mut(out_force, n, "out_force") }?,
+        };
+        let reach = unsafe { optional(out_reach, n, "out_reach") }?;
+        let written = m
+            .model
+            .force_batch_with(b, reach, unsafe { energy(out_power, out_elastic, n) }?)?;
+        unsafe { report_written(out_energy_written, written) };
         Ok(())
     })
 }
@@ -117,34 +89,63 @@ pub unsafe extern "C" fn dashpot_contact_model_force_batch(
     n_history: usize,
     out_force: *mut f64,
 ) -> DashpotStatus {
-    guard(|| {
-        let m = unsafe { arg(model, "model") }?;
-        let slots = m.model.history_slots();
-        if Some(n_history) != n.checked_mul(slots) {
-            return Err(CError::new(
-                DASHPOT_ERR_BAD_LENGTH,
-                format!(
-                    "dashpot_contact_model_force_batch: history must hold n × slots = {n} × {slots} \
-                     values (law '{}'), got n_history = {n_history}",
-                    m.model.name()
-                ),
-            ));
-        }
-        let delta = unsafe { slice(delta, n, "delta") }?;
-        let rate = unsafe { slice(rate, n, "rate") }?;
-        let mass = unsafe { slice(mass, n, "mass") }?;
-        let radius = unsafe { slice(radius, n, "radius") }?;
-        let history = unsafe { slice_mut(history, n_history, "history") }?;
-        let force = unsafe { slice_mut(out_force, n, "out_force") }?;
-        m.model.force_batch(NormalBatch {
-            delta,
-            rate,
-            mass,
-            radius,
-            slots,
+    let what = "dashpot_contact_model_force_batch";
+    let null = std::ptr::null_mut();
+    unsafe {
+        batch(
+            what,
+            model,
+            n,
+            [delta, rate, mass, radius],
             history,
-            force,
-        })?;
-        Ok(())
-    })
+            n_history,
+            out_force,
+            [null; 3],
+            null.cast(),
+        )
+    }
+}
+
+/// `dashpot_contact_model_force_batch` with sdk 0.3's outputs, each null or `n` values:
+/// `out_reach[i]` how far beyond touching the contact still acts (m: it ends once δ < −reach;
+/// 0 for a non-adhesive law), `out_power[i]` the dissipated power (W), `out_elastic[i]` the
+/// stored elastic energy (J); `*out_energy_written` (may be null) whether the law reported the
+/// energy.
+///
+/// Errors: as `dashpot_contact_model_force_batch`. Thread-safe (distinct outputs).
+///
+/// # Safety
+/// Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
+#[allow(clippy::too_many_arguments)]
+#[no_mangle]
+pub unsafe extern "C" fn dashpot_contact_model_force_batch_energy(
+    model: *const DashpotContactModel,
+    n: usize,
+    delta: *const f64,
+    rate: *const f64,
+    mass: *const f64,
+    radius: *const f64,
+    history: *mut f64,
+    n_history: usize,
+    out_force: *mut f64,
+    out_reach: *mut f64,
+    out_power: *mut f64,
+    out_elastic: *mut f64,
+    out_energy_written: *mut c_int,
+) -> DashpotStatus {
+    let what = "dashpot_contact_model_force_batch_energy";
+    let outs = [out_reach, out_power, out_elastic];
+    unsafe {
+        batch(
+            what,
+            model,
+            n,
+            [delta, rate, mass, radius],
+            history,
+            n_history,
+            out_force,
+            outs,
+            out_energy_written,
+        )
+    }
 }

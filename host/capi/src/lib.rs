@@ -17,6 +17,11 @@
 //! - Handles are opaque. Each `*_new`/`*_open`/`*_bind` has a matching `*_free`, which accepts
 //!   null. Handles are independent: a law or a bound law may outlive the registry that made it
 //!   (plugin libraries are never unloaded).
+//! - Every kind of law (contact, tangential, restitution, rolling, twisting) has the same
+//!   `new`/`free`/binding functions, generated from one shape per step (`handle.rs`, listed per
+//!   kind in `kinds.rs`) and declared in the header by the `DASHPOT_LAW_FUNCTIONS`,
+//!   `DASHPOT_MODEL_FUNCTIONS` and `DASHPOT_PAIR_FUNCTIONS` macros; each kind's batch call is
+//!   its own function.
 //! - Thread safety: every handle may be used from several threads at once (all calls on them
 //!   are read-only), except that a `*_free` must not race with any other use of that handle.
 //!
@@ -31,24 +36,27 @@
 pub mod calibrate;
 pub mod contact;
 pub mod contact_model;
+pub mod energy;
 pub mod error;
+mod handle;
+pub mod kinds;
 pub mod materials;
 pub mod pair;
 pub mod registry;
 pub mod restitution;
-pub mod rotation;
 pub mod tangential;
 pub mod version;
 
 pub use calibrate::*;
 pub use contact::*;
 pub use contact_model::*;
+pub use energy::*;
 pub use error::*;
+pub use kinds::*;
 pub use materials::*;
 pub use pair::*;
 pub use registry::*;
 pub use restitution::*;
-pub use rotation::*;
 pub use tangential::*;
 pub use version::*;
 

@@ -225,12 +225,7 @@ pub unsafe extern "C" fn dashpot_registry_open(
 /// `registry` must be null or a handle from `dashpot_registry_open` not yet freed.
 #[no_mangle]
 pub unsafe extern "C" fn dashpot_registry_free(registry: *mut DashpotRegistry) {
-    if !registry.is_null() {
-        let _ = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            // SAFETY: a live handle from dashpot_registry_open, by contract.
-            drop(unsafe { Box::from_raw(registry) })
-        }));
-    }
+    unsafe { crate::handle::free(registry) }
 }
 
 /// The number of laws in the registry.
@@ -310,7 +305,7 @@ pub unsafe extern "C" fn dashpot_registry_law_info(
             summary: s.summary.as_ptr(),
             doc: s.doc.as_ptr(),
             n_params: info.params.len(),
-            end_criterion: info.end_criterion.into_option().into(),
+            end_criterion: info.end_criterion.into(),
         };
         Ok(())
     })
@@ -345,7 +340,7 @@ pub unsafe extern "C" fn dashpot_registry_param_info(
             )
         })?;
         let s = &r.strings[law].params[param];
-        let default = p.default.into_option();
+        let default = p.default;
         *o = DashpotParamInfo {
             name: s.name.as_ptr(),
             unit: s.unit.as_ptr(),

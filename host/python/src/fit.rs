@@ -1,13 +1,15 @@
 //! `dashpot.calibrate`: a law fitted to a measured restitution, as the CLI's `calibrate --json`.
 
 use super::*;
+use dashpot::collide::Options;
+use dashpot_sdk::EndCriterion;
 
 /// Fits a law's parameters to a measured restitution (and optionally contact time) at impact
 /// speed `v0` (m/s), as `dashpot calibrate --json` does: law `name` with the `fixed`
 /// parameters, the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio)
 /// against an identical one or a wall. Returns the CLI's JSON as a string.
 #[pyfunction]
-#[pyo3(signature = (name, fixed, restitution, contact_time, v0, diameter, density, young, poisson, wall, end, fit, rtol))]
+#[pyo3(signature = (name, fixed, restitution, contact_time, v0, body, end, fit, rtol))]
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn calibrate(
     py: Python<'_>,
@@ -16,19 +18,14 @@ pub(crate) fn calibrate(
     restitution: f64,
     contact_time: Option<f64>,
     v0: f64,
-    diameter: f64,
-    density: f64,
-    young: f64,
-    poisson: f64,
-    wall: bool,
+    body: Body,
     end: Option<&str>,
     fit: Option<String>,
     rtol: f64,
 ) -> PyResult<String> {
     use dashpot::collide::calibrate::{calibrate as fit_law, CalibrateSpec};
     let p = params_of(fixed)?;
-    let pair = pair_of(diameter, density, young, poisson, wall)?;
-    let mats = materials(young, poisson, None, None, wall)?;
+    let (pair, mats) = (body.pair()?, body.materials()?);
     with_registry(py, |reg| {
         let declared = reg
             .find(name)
@@ -36,18 +33,8 @@ pub(crate) fn calibrate(
             .0
             .info
             .end_criterion
-            .into_option()
             .unwrap_or(EndCriterion::Overlap);
-        let end = match end {
-            None => declared,
-            Some("overlap") => EndCriterion::Overlap,
-            Some("force") => EndCriterion::Force,
-            Some(e) => {
-                return Err(PyValueError::new_err(format!(
-                    "end = '{e}' is not a criterion: 'overlap' (δ returns to 0) or 'force'"
-                )))
-            }
-        };
+        let end = super::runs::end_of(end, declared)?;
         let spec = CalibrateSpec {
             law: name.to_string(),
             fixed: p.clone(),
@@ -73,7 +60,7 @@ pub(crate) fn calibrate(
             .collect();
         Ok(serde_json::json!({
             "law": name, "method": c.method, "params": params,
-            "young": young * c.young_factor, "effective_young": c.effective_young, "v0": v0,
+            "young": body.2 * c.young_factor, "effective_young": c.effective_young, "v0": v0,
             "end": end.as_str(),
             "target_restitution": restitution, "target_contact_time": contact_time,
             "restitution": c.realized.restitution, "contact_time": c.realized.contact_time,

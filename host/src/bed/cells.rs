@@ -78,22 +78,19 @@ impl Cells {
     /// Puts disk `i` into cell `c`.
     #[inline]
     pub fn insert(&mut self, i: usize, c: u32) {
-        let h = self.head[c as usize];
-        self.next[i] = h;
-        self.prev[i] = NONE;
-        if h != NONE {
-            self.prev[h as usize] = i as u32;
-        }
-        self.head[c as usize] = i as u32;
-        self.cell[i] = c;
-        self.col_row[i] = (c % self.nx as u32, c / self.nx as u32);
+        self.link(i, c, (c % self.nx as u32, c / self.nx as u32));
     }
 
     /// Moves disk `i` to the cell of column `cx` and row `cy`.
     #[inline]
     pub fn moveto_xy(&mut self, i: usize, cx: usize, cy: usize) {
         self.remove(i);
-        let c = (cy * self.nx + cx) as u32;
+        self.link(i, (cy * self.nx + cx) as u32, (cx as u32, cy as u32));
+    }
+
+    /// Links disk `i` at the head of cell `c` (of column and row `col_row`).
+    #[inline(always)]
+    fn link(&mut self, i: usize, c: u32, col_row: (u32, u32)) {
         let h = self.head[c as usize];
         self.next[i] = h;
         self.prev[i] = NONE;
@@ -102,7 +99,7 @@ impl Cells {
         }
         self.head[c as usize] = i as u32;
         self.cell[i] = c;
-        self.col_row[i] = (cx as u32, cy as u32);
+        self.col_row[i] = col_row;
     }
 
     /// Takes disk `i` out of its cell.

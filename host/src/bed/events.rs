@@ -43,21 +43,7 @@ pub fn first_contact(g0: f64, v: f64, acc: f64) -> Option<f64> {
 /// approaching. Touching or overlapping and approaching: 0; receding: never.
 #[inline]
 pub fn pair_contact(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64) -> Option<f64> {
-    let b = rx * vx + ry * vy;
-    if b >= 0.0 {
-        return None;
-    }
-    let c = rx * rx + ry * ry - sigma2;
-    if c <= 0.0 {
-        return Some(0.0);
-    }
-    let vv = vx * vx + vy * vy;
-    let disc = b * b - vv * c;
-    if disc < 0.0 {
-        return None;
-    }
-    // τ = (−b − √disc)/vv written without cancellation
-    Some(c / (-b + disc.sqrt()))
+    pair_contact_before(rx, ry, vx, vy, sigma2, f64::INFINITY)
 }
 
 /// [`pair_contact`], but only if the contact comes before `before` (s): a pair that cannot meet
@@ -81,6 +67,7 @@ pub fn pair_contact_before(rx: f64, ry: f64, vx: f64, vy: f64, sigma2: f64, befo
     if disc < 0.0 {
         return None;
     }
+    // τ = (−b − √disc)/vv written without cancellation
     Some(c / (-b + disc.sqrt()))
 }
 
@@ -300,6 +287,14 @@ impl Tournament {
 mod tests {
     use super::*;
 
+    /// The next number of a xorshift64 generator (Marsaglia 2003) at `seed`.
+    fn xorshift(seed: &mut u64) -> u64 {
+        *seed ^= *seed << 13;
+        *seed ^= *seed >> 7;
+        *seed ^= *seed << 17;
+        *seed
+    }
+
     #[test]
     fn tiny_gap_gives_an_accurate_tiny_root() {
         // g0 = 1e-12 m closing at 1 m/s under gravity: τ = g0 − 4.9 g0² + ... to full precision
@@ -341,12 +336,7 @@ mod tests {
         // and bounds (0, small, large, ∞): a contact before the bound is the full test's, to the
         // bit, and no contact before it is ever reported
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut u = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut u = || (xorshift(&mut seed) >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
         let s2 = 4e-6;
         let mut hits = 0;
         for k in 0..200_000 {
@@ -430,12 +420,7 @@ mod tests {
         // against a linear scan, over updates that raise and lower keys, with many ties (keys
         // drawn from a few values) and sizes that are and are not powers of two
         let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            seed
-        };
+        let mut next = || xorshift(&mut seed);
         for n in [1usize, 2, 3, 7, 8, 300, 513] {
             let mut t = Tournament::new(n);
             let mut keys = vec![f64::INFINITY; n];

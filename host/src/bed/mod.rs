@@ -25,8 +25,8 @@ pub mod events;
 pub mod observables;
 pub mod on_dem;
 pub mod scaling;
+pub mod spec;
 pub mod statements;
-pub mod view;
 
 pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};
 

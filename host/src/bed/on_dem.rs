@@ -16,7 +16,8 @@
 //! The disks' mass is the bed's `mass` (the density follows from it), so that the event-driven
 //! bed's `from:LAW` tables and this engine bind the laws to the same particle.
 
-use crate::bed::engine::{mean_over_seeds, seed_observables, stderr_of, SAMPLES_PER_PERIOD};
+use crate::bed::engine::SAMPLES_PER_PERIOD;
+use crate::bed::observables::{measured_report, stderr_of, BedObservables};
 use crate::bed::BedConfig;
 use crate::dem::scene::packing;
 use crate::dem::state::{DiskMass, Material, VecD};
@@ -47,43 +48,13 @@ pub struct DemBed {
     pub steps_per_collision: f64,
 }
 
-/// What a DEM bed run measured: the event-driven bed's keys (`pressure`, `lid_collision_rate`,
-/// `mean_impulse`, `temperature`, `piston_pressure` and their `_stderr`), plus the step.
+/// What a DEM bed run measured ([`BedObservables`], under the event-driven bed's JSON keys and
+/// read through `report.pressure`, ...), and the step it took.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct DemBedReport {
-    /// The bed (geometry, frequency, gravity, mass, seed).
-    pub config: BedConfig,
-    /// Number of disks N.
-    pub disks: usize,
-    /// Lid height (m).
-    pub lid: f64,
-    /// Piston peak speed V = 4Af (m/s).
-    pub piston_speed: f64,
-    /// Measured time (s).
-    pub measured_time: f64,
-    /// Lid pressure P (N/m): the lid's impulse over the measured time and the width.
-    pub pressure: f64,
-    /// Lid contact episodes per second (1/s).
-    pub lid_collision_rate: f64,
-    /// Mean impulse per lid episode (N·s); `None` (JSON `null`) when no disk touched the lid:
-    /// not measured, and left out of a mean over seeds.
-    pub mean_impulse: Option<f64>,
-    /// Mean translational kinetic energy per disk (J).
-    pub temperature: f64,
-    /// Standard error of `pressure` (N/m): block means, or the spread of seeds.
-    pub pressure_stderr: Option<f64>,
-    /// Standard error of `lid_collision_rate` (1/s).
-    pub lid_collision_rate_stderr: Option<f64>,
-    /// Standard error of `mean_impulse` (N·s).
-    pub mean_impulse_stderr: Option<f64>,
-    /// Standard error of `temperature` (J).
-    pub temperature_stderr: Option<f64>,
-    /// Time-averaged pressure on the piston (N/m); by momentum balance `pressure` + N m g / L.
-    pub piston_pressure: f64,
-    /// Standard error of `piston_pressure` (N/m).
-    pub piston_pressure_stderr: Option<f64>,
-    /// Independent seeds averaged (1: one run, standard errors by block means).
-    pub seeds: usize,
+    /// The observables (their JSON keys at the report's top level).
+    #[serde(flatten)]
+    pub measured: BedObservables,
     /// Lid contact episodes counted.
     pub lid_episodes: u64,
     /// The step (s).
@@ -102,23 +73,20 @@ pub struct DemBedReport {
     pub poisson: f64,
     /// Density of the disks (kg/m³), from the bed's mass.
     pub density: f64,
-    /// Wall time (s), summed over seeds.
-    pub wall_seconds: f64,
-    /// Wall seconds per simulated second (of one run).
-    pub wall_per_simulated_second: f64,
 }
 
+measured_report!(DemBedReport);
+
 impl DemBedReport {
-    /// The mean of independent runs, standard errors from their spread (one run: itself).
+    /// The mean of independent runs ([`BedObservables::combine`]), lid episodes summed (one run:
+    /// itself).
     pub fn combine(runs: &[DemBedReport]) -> Option<DemBedReport> {
-        let mut r = mean_over_seeds(runs)?;
+        let mut r = runs.first()?.clone();
+        r.measured = BedObservables::combine(runs.iter().map(|r| &r.measured))?;
         r.lid_episodes = runs.iter().map(|r| r.lid_episodes).sum();
-        r.wall_seconds = runs.iter().map(|r| r.wall_seconds).sum();
         Some(r)
     }
 }
-
-seed_observables!(DemBedReport);
 
 impl DemBed {
     /// Steel disks in the paper's bed with `layers` layers at `freq` (Hz).
@@ -143,21 +111,31 @@ impl DemBed {
         }
     }
 
+    /// Checks the bed for soft disks: its configuration, and neither rough disks nor the TC
+    /// model (the event-driven engine's: friction comes from a tangential law, and a soft
+    /// contact needs no TC model).
+    pub fn check(&self) -> Result<(), crate::bed::BedError> {
+        let b = &self.bed;
+        b.validate()?;
+        let bad = |s: String| Err(crate::bed::BedError::Invalid(s));
+        if let Some(rt) = b.tangential {
+            return bad(format!(
+                "tangential restitution r_t = {rt} is the event-driven engine's rough-disk model: the DEM bed takes a tangential law (e.g. mindlin) instead"
+            ));
+        }
+        if let Some(tc) = b.tc {
+            return bad(format!(
+                "--tc {tc} is the event-driven engine's TC model: soft contacts need none, leave it unset with the DEM engine"
+            ));
+        }
+        Ok(())
+    }
+
     /// The engine at t = 0: disks on a jittered lattice above the piston (at its lowest), random
     /// velocities of magnitude `initial_speed`.
     pub fn engine(&self, laws: Laws) -> Result<Engine<2>, DemError> {
         let b = &self.bed;
-        b.validate().map_err(|e| DemError::Invalid(e.to_string()))?;
-        if let Some(rt) = b.tangential {
-            return Err(DemError::Invalid(format!(
-                "tangential restitution r_t = {rt} is the event-driven engine's rough-disk model: the DEM bed takes a tangential law (e.g. mindlin) instead"
-            )));
-        }
-        if let Some(tc) = b.tc {
-            return Err(DemError::Invalid(format!(
-                "tc = {tc} s is the event-driven engine's TC model: soft contacts need none, leave it unset with the DEM engine"
-            )));
-        }
+        self.check().map_err(|e| DemError::Invalid(e.to_string()))?;
         let n = b.disks();
         let d = b.diameter;
         let bottom = -0.5 * b.amplitude;
@@ -206,16 +184,7 @@ impl DemBed {
         cycles: f64,
         progress: &mut dyn FnMut(f64),
     ) -> Result<DemBedReport, DemError> {
-        if !(transient.is_finite() && transient >= 0.0) {
-            return Err(DemError::Invalid(format!(
-                "transient = {transient} periods is out of range: must be >= 0"
-            )));
-        }
-        if !(cycles.is_finite() && cycles > 0.0) {
-            return Err(DemError::Invalid(format!(
-                "cycles = {cycles} periods is out of range: must be > 0"
-            )));
-        }
+        BedConfig::check_protocol(transient, cycles).map_err(|e| DemError::Invalid(e.to_string()))?;
         let clock = std::time::Instant::now();
         let mut e = self.engine(laws)?;
         let period = 1.0 / self.bed.freq;
@@ -269,23 +238,28 @@ impl DemBed {
         let se =
             |f: &dyn Fn(&[f64; 6]) -> Option<f64>| stderr_of(&rows.iter().filter_map(f).collect::<Vec<_>>());
         let c = e.step_choice;
+        let wall = clock.elapsed().as_secs_f64();
         Ok(DemBedReport {
-            config: self.bed,
-            disks: e.p.len(),
-            lid: self.bed.lid(),
-            piston_speed: Piston::new(self.bed.amplitude, self.bed.freq).peak_speed(),
-            measured_time: tm,
-            pressure: impulse / (tm * w),
-            lid_collision_rate: episodes / tm,
-            mean_impulse: (episodes > 0.0).then(|| impulse / episodes),
-            temperature: if samples > 0.0 { ke / samples } else { 0.0 },
-            pressure_stderr: se(&|r| Some(r[1] / (r[0] * w))),
-            lid_collision_rate_stderr: se(&|r| Some(r[3] / r[0])),
-            mean_impulse_stderr: se(&|r| (r[3] > 0.0).then(|| r[1] / r[3])),
-            temperature_stderr: se(&|r| (r[5] > 0.0).then(|| r[4] / r[5])),
-            piston_pressure: piston / (tm * w),
-            piston_pressure_stderr: se(&|r| Some(r[2] / (r[0] * w))),
-            seeds: 1,
+            measured: BedObservables {
+                config: self.bed,
+                disks: e.p.len(),
+                lid: self.bed.lid(),
+                piston_speed: Piston::new(self.bed.amplitude, self.bed.freq).peak_speed(),
+                measured_time: tm,
+                pressure: impulse / (tm * w),
+                lid_collision_rate: episodes / tm,
+                mean_impulse: (episodes > 0.0).then(|| impulse / episodes),
+                temperature: if samples > 0.0 { ke / samples } else { 0.0 },
+                pressure_stderr: se(&|r| Some(r[1] / (r[0] * w))),
+                lid_collision_rate_stderr: se(&|r| Some(r[3] / r[0])),
+                mean_impulse_stderr: se(&|r| (r[3] > 0.0).then(|| r[1] / r[3])),
+                temperature_stderr: se(&|r| (r[5] > 0.0).then(|| r[4] / r[5])),
+                piston_pressure: piston / (tm * w),
+                piston_pressure_stderr: se(&|r| Some(r[2] / (r[0] * w))),
+                seeds: 1,
+                wall_seconds: wall,
+                wall_per_simulated_second: wall / e.time().max(1e-300),
+            },
             lid_episodes: episodes as u64,
             dt: e.dt(),
             collision_time: c.collision_time,
@@ -295,8 +269,6 @@ impl DemBed {
             young: self.material.young,
             poisson: self.material.poisson,
             density: self.material.density,
-            wall_seconds: clock.elapsed().as_secs_f64(),
-            wall_per_simulated_second: clock.elapsed().as_secs_f64() / e.time().max(1e-300),
         })
     }
 }

@@ -2,7 +2,7 @@
 //! least-squares exponents θ of X ∝ V^θ for X = P, T, Nc, ΔI at each n (the paper's Fig. 4).
 
 use super::engine::{Bed, BedConfig, BedReport};
-use super::observables::{fit_power_err, PowerFit};
+use super::observables::{fit_power_err, BedObservables, PowerFit};
 use super::{BedError, Laws, Restitution};
 use crate::bed::on_dem::{DemBed, DemBedReport};
 use crate::dem::DemError;
@@ -29,6 +29,17 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// Every n of `layers` with every f of `freqs` (Hz), each run `periods` = (transient,
+    /// measured) periods.
+    pub fn new(layers: &[f64], freqs: &[f64], (transient, cycles): (f64, f64)) -> Grid {
+        Grid {
+            layers: layers.to_vec(),
+            freqs: freqs.to_vec(),
+            transient,
+            cycles,
+        }
+    }
+
     /// Number of runs.
     pub fn len(&self) -> usize {
         self.layers.len() * self.freqs.len()
@@ -138,74 +149,18 @@ pub struct ScalingRow {
     pub tc_share: f64,
 }
 
-/// What the exponent fits need from a run, of either engine.
-pub trait Measured {
-    /// Piston peak speed V (m/s).
-    fn speed(&self) -> f64;
-    /// (P, its standard error), (T, ...), (Nc, ...), (ΔI, ...); `None` where not measured (ΔI
-    /// without lid collisions).
-    fn observables(&self) -> [(Option<f64>, Option<f64>); 4];
-    /// (P, its standard error): always measured.
-    fn pressure(&self) -> (f64, Option<f64>) {
-        let (p, e) = self.observables()[0];
-        (p.unwrap_or(0.0), e)
-    }
+/// A run of either engine, for the exponent fits and the grid CSV: its observables, and the
+/// engine's own columns.
+pub trait Measured: std::ops::Deref<Target = BedObservables> {
     /// Share of collisions made elastic by the TC model (0 without one).
     fn tc_share(&self) -> f64;
-    /// The grid CSV's columns common to both engines, in order: n, f, V, P, Nc, ΔI, T and the
-    /// piston pressure, each with its standard error.
-    fn csv_common(&self) -> String;
-    /// The engine's own CSV columns after those: their header, and a run's values.
+    /// The engine's own CSV columns after the observables': their header, and a run's values.
     const CSV_EXTRA_HEADER: &'static str;
     /// See [`Measured::CSV_EXTRA_HEADER`].
     fn csv_extra(&self) -> String;
 }
 
-/// The methods of [`Measured`] both engines' reports share, from their fields (named alike):
-/// the speed, the observables and the common CSV columns.
-macro_rules! measured_common {
-    () => {
-        fn speed(&self) -> f64 {
-            self.piston_speed
-        }
-        fn observables(&self) -> [(Option<f64>, Option<f64>); 4] {
-            [
-                (Some(self.pressure), self.pressure_stderr),
-                (Some(self.temperature), self.temperature_stderr),
-                (
-                    Some(self.lid_collision_rate),
-                    self.lid_collision_rate_stderr,
-                ),
-                (self.mean_impulse, self.mean_impulse_stderr),
-            ]
-        }
-        fn csv_common(&self) -> String {
-            let e = |x: Option<f64>| x.map(|v| format!("{v:e}")).unwrap_or_default();
-            format!(
-                "{},{},{},{:e},{},{:e},{},{},{},{:e},{},{:e},{}",
-                self.config.layers,
-                self.config.freq,
-                self.piston_speed,
-                self.pressure,
-                e(self.pressure_stderr),
-                self.lid_collision_rate,
-                e(self.lid_collision_rate_stderr),
-                e(self.mean_impulse),
-                e(self.mean_impulse_stderr),
-                self.temperature,
-                e(self.temperature_stderr),
-                self.piston_pressure,
-                e(self.piston_pressure_stderr),
-            )
-        }
-    };
-}
-
-/// The header of [`Measured::csv_common`].
-const CSV_COMMON_HEADER: &str = "layers,freq_hz,piston_speed_m_s,pressure_n_m,pressure_stderr,lid_collision_rate_per_s,lid_collision_rate_stderr,mean_impulse_n_s,mean_impulse_stderr,temperature_j,temperature_stderr,piston_pressure_n_m,piston_pressure_stderr";
-
 impl Measured for BedReport {
-    measured_common!();
     fn tc_share(&self) -> f64 {
         self.tc_share
     }
@@ -219,7 +174,6 @@ impl Measured for BedReport {
 }
 
 impl Measured for DemBedReport {
-    measured_common!();
     fn tc_share(&self) -> f64 {
         0.0
     }
@@ -259,8 +213,8 @@ pub fn fit_all<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<ScalingRow> {
                 fit_power_err(
                     &rs.iter()
                         .filter_map(|r| {
-                            let (v, e) = r.observables()[k];
-                            v.map(|v| (r.speed(), v, e))
+                            let (v, e) = r.fit_values()[k];
+                            v.map(|v| (r.piston_speed, v, e))
                         })
                         .collect::<Vec<_>>(),
                 )
@@ -315,9 +269,13 @@ fn csv_comments(prov: &[Provenance]) -> String {
 /// comment lines, then the common columns, then the engine's own.
 pub fn write_grid_csv<R: Measured>(path: &Path, runs: &[R], prov: &[Provenance]) -> Result<()> {
     let mut s = csv_comments(prov);
-    s.push_str(&format!("{CSV_COMMON_HEADER},{}\n", R::CSV_EXTRA_HEADER));
+    s.push_str(&format!(
+        "{},{}\n",
+        BedObservables::CSV_HEADER,
+        R::CSV_EXTRA_HEADER
+    ));
     for r in runs {
-        s.push_str(&format!("{},{}\n", r.csv_common(), r.csv_extra()));
+        s.push_str(&format!("{},{}\n", r.csv(), r.csv_extra()));
     }
     write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
 }

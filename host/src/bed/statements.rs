@@ -9,8 +9,8 @@
 
 use super::engine::{BedConfig, BedReport};
 use super::scaling::{run_grid, Grid};
-use super::view::progress_bar;
 use super::{DynRestitution, Laws};
+use crate::output::progress_bar;
 use anyhow::{Context, Result};
 use std::fmt::Write as _;
 
@@ -49,12 +49,7 @@ fn sweep(
     what: &str,
     cfg: &(dyn Fn(f64) -> BedConfig + Sync),
 ) -> Result<Vec<BedReport>> {
-    let grid = Grid {
-        layers: size.layers.clone(),
-        freqs: vec![F],
-        transient: size.periods.0,
-        cycles: size.periods.1,
-    };
+    let grid = Grid::new(&size.layers, &[F], size.periods);
     let pb = progress_bar(grid.len() as u64, what);
     let l = Laws {
         disk: &law.disk,

@@ -440,7 +440,6 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
         .0
         .info
         .end_criterion
-        .into_option()
         .unwrap_or(EndCriterion::Overlap);
     let spec = CalibrateSpec {
         law: sel.name.clone(),
@@ -593,7 +592,6 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
             .0
             .info
             .end_criterion
-            .into_option()
             .unwrap_or(EndCriterion::Overlap),
     );
     let model = reg.contact(&sel.name, &sel.params)?.bind(&sel.materials)?;

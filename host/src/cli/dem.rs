@@ -5,8 +5,6 @@ use crate::dem::{Engine, Laws};
 use crate::registry::Registry;
 use anyhow::{Context, Result};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use std::io::IsTerminal;
 use std::path::PathBuf;
 
 /// `dashpot dem`.
@@ -105,48 +103,44 @@ pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
     }
 }
 
-/// `dem --bed` is `bed --engine dem` with the same values: its arguments are handed to that
-/// command's parser and run by it, so both take the same checks, defaults and output.
+/// `dem --bed` is `bed --engine dem` with the same values: the same experiment, checked and run
+/// by the same code.
 fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
-    #[derive(clap::Parser)]
-    struct BedCommand {
-        #[command(flatten)]
-        bed: crate::cli::bed::BedArgs,
-    }
+    use crate::bed::spec::{BedEngine, BedSpec, LawChoice};
+    use crate::cli::bed::{dem_tangential, param_values};
     let layers = b.layers.context("--bed needs --layers N")?;
     let freq = b.freq.context("--bed needs --freq HZ")?;
     let law = b
         .law
-        .clone()
+        .as_deref()
         .context("--bed needs --law NAME (a contact law, e.g. hsd)")?;
-    let mut argv: Vec<String> = vec!["dashpot dem --bed".into(), "--engine".into(), "dem".into()];
-    let mut put = |flag: &str, value: String| {
-        argv.push(flag.into());
-        argv.push(value);
+    let spec = BedSpec {
+        config: crate::bed::BedConfig {
+            gravity: b.gravity,
+            seed: b.seed,
+            ..crate::bed::BedConfig::paper(layers, freq)
+        },
+        young: b.young,
+        poisson: b.poisson,
+        engine: BedEngine::Dem {
+            law: LawChoice::new(law, param_values(&b.set)?),
+            tangential: dem_tangential(b.tangential.as_deref(), &b.tset)?,
+            rolling: None,
+            dt: b.dt,
+            steps_per_collision: None,
+        },
+        transient: b.transient,
+        cycles: b.cycles,
+        seeds: 1,
     };
-    put("--layers", layers.to_string());
-    put("--freq", freq.to_string());
-    put("--law", law);
-    b.set.iter().for_each(|s| put("--set", s.clone()));
-    if let Some(t) = &b.tangential {
-        put("--tangential", t.clone());
+    let out = crate::cli::bed::BedOutput {
+        json,
+        ..Default::default()
+    };
+    if let Some(v) = crate::cli::bed::run(reg, &spec, out, &|_| {})? {
+        println!("{}", serde_json::to_string_pretty(&v)?);
     }
-    b.tset.iter().for_each(|s| put("--tset", s.clone()));
-    for (flag, v) in [("--young", b.young), ("--poisson", b.poisson), ("--dt", b.dt)] {
-        if let Some(v) = v {
-            put(flag, v.to_string());
-        }
-    }
-    put("--gravity", b.gravity.to_string());
-    put("--transient", b.transient.to_string());
-    put("--cycles", b.cycles.to_string());
-    put("--seed", b.seed.to_string());
-    if json {
-        argv.push("--json".into());
-    }
-    let cmd = <BedCommand as clap::Parser>::try_parse_from(&argv)
-        .map_err(|e| crate::cli::UsageError(e.to_string()))?;
-    crate::cli::bed::bed(reg, &cmd.bed)
+    Ok(())
 }
 
 fn run_dim<const D: usize>(
@@ -158,33 +152,7 @@ fn run_dim<const D: usize>(
     let scene = file
         .scene::<D>()
         .with_context(|| format!("in {}", path.display()))?;
-    let normal = file.law.param_values();
-    let tang = file
-        .tangential
-        .as_ref()
-        .map(|t| (t.name.as_str(), t.param_values()));
-    let laws = Laws::from_registry(
-        reg,
-        (&file.law.name, &normal),
-        tang.as_ref().map(|(n, p)| (*n, p.as_slice())),
-        &scene.config.material,
-    )
-    .context("[law] / [tangential]")?;
-    let table =
-        |t: &Option<crate::dem::scene::LawTable>| t.as_ref().map(|t| (t.name.clone(), t.param_values()));
-    let (roll, twist) = (table(&file.rolling), table(&file.twisting));
-    let laws = laws
-        .with_rotation(
-            reg,
-            roll.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
-            twist.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
-            &scene.config.material,
-        )
-        .context("[rolling] / [twisting]")?;
-    let mut cfg = scene.config.clone();
-    cfg.energy = true;
-    let mut e = Engine::new(cfg, &scene.bodies, scene.walls.clone(), laws)?;
-    let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
+    let (mut e, energy_initial) = scene_engine(reg, file, &scene)?;
     let c = e.step_choice;
     let line = if c.given {
         format!(
@@ -233,7 +201,8 @@ fn run_dim<const D: usize>(
     } else {
         0
     } as u64;
-    let pb = progress(total_steps);
+    let pb = crate::output::progress_bar(total_steps, "dem");
+    pb.set_message("steps");
     let wall0 = std::time::Instant::now();
     let every = (total_steps / 200).max(1);
     // the steps to the next progress tick, frame or the end, as one block
@@ -273,29 +242,7 @@ fn run_dim<const D: usize>(
     if let Some(w) = traj {
         w.commit().context("writing the trajectory")?;
     }
-    let mut state = e.state_json();
-    state["law"] = serde_json::json!(file.law.name);
-    state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
-    state["rolling"] = serde_json::json!(file.rolling.as_ref().map(|t| t.name.clone()));
-    state["twisting"] = serde_json::json!(file.twisting.as_ref().map(|t| t.name.clone()));
-    let tables = [
-        Some(&file.law),
-        file.tangential.as_ref(),
-        file.rolling.as_ref(),
-        file.twisting.as_ref(),
-    ];
-    let provenance = tables
-        .into_iter()
-        .flatten()
-        .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
-        .collect::<Result<Vec<_>, _>>()?;
-    state["provenance"] = serde_json::json!(provenance);
-    state["energy_initial"] = serde_json::json!(energy_initial);
-    state["elastic"] = serde_json::json!(e.elastic().iter().sum::<f64>());
-    state["dissipated"] = dissipated_json(&e);
-    state["wall_seconds"] = serde_json::json!(wall);
-    state["particle_steps_per_second"] =
-        serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));
+    let state = final_json(reg, file, &e, energy_initial, wall)?;
     if let Some(dir) = &a.out {
         crate::output::write_atomic(
             &dir.join("final.json"),
@@ -348,6 +295,80 @@ fn run_dim<const D: usize>(
     Ok(())
 }
 
+/// The engine of a scene as `dashpot dem` runs it: the laws of `file` (`[law]`, `[tangential]`,
+/// `[rolling]`, `[twisting]`) from `reg`, bound to the scene's material, energy accounting on;
+/// and the energy at the start (J: kinetic, gravity and elastic), which `dem --json` reports.
+pub fn scene_engine<const D: usize>(
+    reg: &Registry,
+    file: &SceneFile,
+    scene: &crate::dem::scene::Scene<D>,
+) -> Result<(Engine<D>, f64)> {
+    let normal = file.law.param_values();
+    let tang = file
+        .tangential
+        .as_ref()
+        .map(|t| (t.name.as_str(), t.param_values()));
+    let laws = Laws::from_registry(
+        reg,
+        (&file.law.name, &normal),
+        tang.as_ref().map(|(n, p)| (*n, p.as_slice())),
+        &scene.config.material,
+    )
+    .context("[law] / [tangential]")?;
+    let table =
+        |t: &Option<crate::dem::scene::LawTable>| t.as_ref().map(|t| (t.name.clone(), t.param_values()));
+    let (roll, twist) = (table(&file.rolling), table(&file.twisting));
+    let laws = laws
+        .with_rotation(
+            reg,
+            roll.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
+            twist.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
+            &scene.config.material,
+        )
+        .context("[rolling] / [twisting]")?;
+    let mut cfg = scene.config.clone();
+    cfg.energy = true;
+    let e = Engine::new(cfg, &scene.bodies, scene.walls.clone(), laws)?;
+    let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
+    Ok((e, energy_initial))
+}
+
+/// What `dashpot dem --json` prints after a run of `file` on `e` (made by [`scene_engine`],
+/// which gave `energy_initial`, J): the final state, the laws and their provenance, the energy
+/// balance, and the rates of `wall` seconds of wall-clock time.
+pub fn final_json<const D: usize>(
+    reg: &Registry,
+    file: &SceneFile,
+    e: &Engine<D>,
+    energy_initial: f64,
+    wall: f64,
+) -> Result<serde_json::Value> {
+    let mut state = e.state_json();
+    state["law"] = serde_json::json!(file.law.name);
+    state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
+    state["rolling"] = serde_json::json!(file.rolling.as_ref().map(|t| t.name.clone()));
+    state["twisting"] = serde_json::json!(file.twisting.as_ref().map(|t| t.name.clone()));
+    let tables = [
+        Some(&file.law),
+        file.tangential.as_ref(),
+        file.rolling.as_ref(),
+        file.twisting.as_ref(),
+    ];
+    let provenance = tables
+        .into_iter()
+        .flatten()
+        .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
+        .collect::<Result<Vec<_>, _>>()?;
+    state["provenance"] = serde_json::json!(provenance);
+    state["energy_initial"] = serde_json::json!(energy_initial);
+    state["elastic"] = serde_json::json!(e.elastic().iter().sum::<f64>());
+    state["dissipated"] = dissipated_json(e);
+    state["wall_seconds"] = serde_json::json!(wall);
+    state["particle_steps_per_second"] =
+        serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));
+    Ok(state)
+}
+
 /// `dem --scene FILE --check`: what the run would start with (the checks have passed).
 fn print_check<const D: usize>(e: &Engine<D>, path: &std::path::Path, law: &str, json: bool) -> Result<()> {
     let c = e.step_choice;
@@ -393,108 +414,13 @@ fn print_check<const D: usize>(e: &Engine<D>, path: &std::path::Path, law: &str,
     Ok(())
 }
 
-fn progress(len: u64) -> ProgressBar {
-    let target = if std::io::stderr().is_terminal() {
-        ProgressDrawTarget::stderr()
-    } else {
-        ProgressDrawTarget::hidden()
-    };
-    let pb = ProgressBar::with_draw_target(Some(len), target);
-    if let Ok(s) =
-        ProgressStyle::with_template("dem [{elapsed_precise}] {wide_bar} {pos}/{len} steps (eta {eta})")
-    {
-        pb.set_style(s);
-    }
-    pb
-}
-
-/// The two axes a picture shows: x and y in 2D, x and z (the side view) in 3D.
-fn view_axes(d: usize) -> (usize, usize) {
-    (0, d - 1)
-}
-
-/// A picture of the particles (to scale) and the walls at the engine's time.
-pub fn snapshot_panel<const D: usize>(e: &Engine<D>, title: &str) -> crate::plot::Panel {
-    use crate::plot::{Mark, Panel, Series};
-    let (ax, ay) = view_axes(D);
-    let disks: Vec<(f64, f64, f64)> = (0..e.p.len())
-        .map(|i| (e.p.pos[i][ax], e.p.pos[i][ay], e.p.radius[i]))
-        .collect();
-    let rmax = e.p.radius.iter().cloned().fold(0.0, f64::max);
-    let (mut x0, mut x1, mut y0, mut y1) = disks.iter().fold(
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
-        |(a, b, c, d), &(x, y, _)| (a.min(x), b.max(x), c.min(y), d.max(y)),
-    );
-    let dom = &e.config().domain;
-    if dom.bounded || dom.periodic.iter().any(|&p| p) {
-        (x0, x1) = (x0.min(dom.lo[ax]), x1.max(dom.hi[ax]));
-        if dom.bounded {
-            (y0, y1) = (y0.min(dom.lo[ay]), y1.max(dom.hi[ay]));
-        }
-    }
-    let walls = e.wall_states();
-    for w in &walls {
-        // a wall across the view: include its point
-        (x0, x1, y0, y1) = (
-            x0.min(w.point[ax]),
-            x1.max(w.point[ax]),
-            y0.min(w.point[ay]),
-            y1.max(w.point[ay]),
-        );
-    }
-    if !(x0.is_finite() && y0.is_finite()) {
-        (x0, x1, y0, y1) = (-1.0, 1.0, -1.0, 1.0);
-    }
-    let pad = 2.0 * rmax.max(1e-12);
-    let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
-    let diag = ((x1 - x0).powi(2) + (y1 - y0).powi(2)).sqrt();
-    let mut series = Vec::new();
-    for w in &walls {
-        let (nx, ny) = (w.normal[ax], w.normal[ay]);
-        let n = (nx * nx + ny * ny).sqrt();
-        if n < 0.5 {
-            continue; // a wall facing out of the picture's plane
-        }
-        let (tx, ty) = (-ny / n, nx / n);
-        let (px, py) = (w.point[ax], w.point[ay]);
-        series.push(Series::new(
-            "",
-            vec![(px - tx * diag, py - ty * diag), (px + tx * diag, py + ty * diag)],
-            Mark::Line,
-            6,
-        ));
-    }
-    Panel {
-        title: title.to_string(),
-        x_label: if D == 2 { "x (m)" } else { "x (m), side view" }.into(),
-        y_label: if D == 2 { "y (m)" } else { "z (m)" }.into(),
-        equal_aspect: true,
-        x_range: Some((x0, x1)),
-        y_range: Some((y0, y1)),
-        disks,
-        series,
-        ..Default::default()
-    }
-}
-
+/// Frame `k` of the trajectory as a picture, `frame_NNNN.png` (and .svg) in `dir`.
 fn frame_png<const D: usize>(e: &Engine<D>, dir: &std::path::Path, k: u64, law: &str) -> Result<()> {
-    let p = snapshot_panel(
-        e,
-        &format!("{} {}D particles, {law}, t = {:.6e} s", e.p.len(), D, e.time()),
-    );
-    let (w, h) = match (p.x_range, p.y_range) {
-        (Some((a, b)), Some((c, d))) => (b - a, d - c),
-        _ => (1.0, 1.0),
-    };
-    let width = 1200u32;
-    let height = ((width as f64 * h / w.max(1e-300)) as u32 + 120).clamp(240, 2400);
-    crate::plot::Figure {
-        panels: vec![p],
-        columns: 1,
-        panel_size: (width, height),
-    }
-    .save(dir, &format!("frame_{k:04}"))
-    .with_context(|| format!("drawing frame {k} into {}", dir.display()))?;
+    let title = format!("{} {}D particles, {law}, t = {:.6e} s", e.p.len(), D, e.time());
+    crate::report::snapshot::Scene::dem(e)
+        .figure(&title)
+        .save(dir, &format!("frame_{k:04}"))
+        .with_context(|| format!("drawing frame {k} into {}", dir.display()))?;
     Ok(())
 }
 

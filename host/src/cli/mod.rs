@@ -205,7 +205,7 @@ fn laws(reg: &Registry, json_out: bool) -> Result<()> {
             p.version
         );
         for s in l.info.params.iter() {
-            let def = match s.default.into_option() {
+            let def = match s.default {
                 Some(v) => format!("default {v}"),
                 None => "derived if unset".to_string(),
             };
@@ -236,14 +236,14 @@ fn law(reg: &Registry, name: &str, json_out: bool) -> Result<()> {
         p.version,
         p.sdk_version
     );
-    if let Some(c) = i.end_criterion.into_option() {
+    if let Some(c) = i.end_criterion {
         println!("calibrated for contact ending by: {}", c.as_str());
     }
     println!("\n{}\n", i.summary);
     println!("{}\n", textwrap(i.doc.as_str(), 96));
     println!("parameters:");
     for s in i.params.iter() {
-        let def = match s.default.into_option() {
+        let def = match s.default {
             Some(v) => format!("default {v}"),
             None => "derived if unset".to_string(),
         };

@@ -10,6 +10,17 @@ use dashpot_sdk::{EndCriterion, Pair, ParamValue, Particle};
 use std::fmt::Write as _;
 use std::path::Path;
 
+/// A CSV of LSD against HSD whose rows vary eps (the provenance lists both laws at `eps`).
+fn lsd_hsd_csv(reg: &Registry, path: &Path, eps: f64, header: &str, rows: &[Vec<f64>]) -> Result<()> {
+    let first = [ParamValue::new("eps", eps)];
+    csv_write(
+        path,
+        &provenance(reg, &[("lsd", &first), ("hsd", &first)], Some("eps"))?,
+        header,
+        rows,
+    )
+}
+
 fn hit(
     reg: &Registry,
     law: &str,
@@ -19,8 +30,8 @@ fn hit(
     end: EndCriterion,
     opt: &Options,
 ) -> Result<Collision> {
-    let b = PairLaw::bind(&reg.contact(law, params)?, pair, Particle::MCC.poisson)?;
-    collide(&b, pair.mass, v0, end, opt).with_context(|| format!("{law} at v0 = {v0} m/s"))
+    crate::collide::collide_named(reg, law, params, pair, v0, end, opt)
+        .with_context(|| format!("{law} at v0 = {v0} m/s"))
 }
 
 fn logspace(a: f64, b: f64, n: usize) -> Vec<f64> {
@@ -169,10 +180,10 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
         series.push(Series::new(format!("LSD ε = {eps}"), lt, Mark::Line, ci));
         series.push(Series::new(format!("HSD ε = {eps}"), ht, Mark::Dashed, ci));
     }
-    let first = [ParamValue::new("eps", 1.0)];
-    csv_write(
+    lsd_hsd_csv(
+        reg,
         &out.join("fig2_collision_time.csv"),
-        &provenance(reg, &[("lsd", &first), ("hsd", &first)], Some("eps"))?,
+        1.0,
         "eps,v0_m_per_s,tau_lsd_s,tau_hsd_s",
         &rows,
     )?;
@@ -190,26 +201,19 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
 
     // ---- Fig. 3: τ(ε)/τ(1) ----
     let epss = logspace(0.01, 1.0, 25);
-    let tl1 = hit(
-        reg,
-        "lsd",
-        &[ParamValue::new("eps", 1.0)],
-        &pair,
-        1.0,
-        EndCriterion::Overlap,
-        &opt,
-    )?
-    .contact_time;
-    let th1 = hit(
-        reg,
-        "hsd",
-        &[ParamValue::new("eps", 1.0)],
-        &pair,
-        1.0,
-        EndCriterion::Overlap,
-        &opt,
-    )?
-    .contact_time;
+    let elastic_time = |law: &str| -> Result<f64> {
+        Ok(hit(
+            reg,
+            law,
+            &[ParamValue::new("eps", 1.0)],
+            &pair,
+            1.0,
+            EndCriterion::Overlap,
+            &opt,
+        )?
+        .contact_time)
+    };
+    let (tl1, th1) = (elastic_time("lsd")?, elastic_time("hsd")?);
     let mut lpts = Vec::new();
     let mut hpts = Vec::new();
     let mut worst25: f64 = 0.0;
@@ -232,13 +236,8 @@ pub fn collide_figures(reg: &Registry, out: &Path) -> Result<String> {
         hpts.push((eps, rh));
         rows.push(vec![eps, rl, eq25, rh, eq29]);
     }
-    let first = [ParamValue::new("eps", epss[0])];
-    csv_write(
-        &out.join("fig3_time_ratio.csv"),
-        &provenance(reg, &[("lsd", &first), ("hsd", &first)], Some("eps"))?,
-        "eps,lsd_numeric,lsd_eq25,hsd_numeric,hsd_eq29_fit",
-        &rows,
-    )?;
+    let header = "eps,lsd_numeric,lsd_eq25,hsd_numeric,hsd_eq29_fit";
+    lsd_hsd_csv(reg, &out.join("fig3_time_ratio.csv"), epss[0], header, &rows)?;
     // eq. 28: first-order coefficient of τ_HSD(ε)/τ_HSD(1) in −ln ε
     let e1 = 0.99999;
     let slope28 = (hit(

@@ -5,3 +5,4 @@ pub mod collide;
 pub mod collide_families;
 pub mod plot;
 pub mod reproduce;
+pub mod snapshot;

@@ -157,6 +157,15 @@ impl Figure {
         }
     }
 
+    /// A figure of `panels` in `columns` columns, 700 × 520 pixels each (the bed's figures).
+    pub fn in_columns(panels: Vec<Panel>, columns: usize) -> Figure {
+        Figure {
+            panels,
+            columns,
+            panel_size: (700, 520),
+        }
+    }
+
     /// Writes `dir/name.png` and `dir/name.svg`.
     pub fn save(&self, dir: &Path, name: &str) -> Result<(), PlotError> {
         register_fonts();

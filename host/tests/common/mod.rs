@@ -103,3 +103,22 @@ pub fn fails(args: &[&str], needles: &[&str]) {
         "{args:?}: {err}"
     );
 }
+
+/// A command line as the shell splits it (no quoting: the words have no spaces), e.g.
+/// `dashpot(&sh("bed --restitution constant --layers 1 --freq 20"))`.
+pub fn sh(line: &str) -> Vec<&str> {
+    line.split_whitespace().collect()
+}
+
+/// The laws of the seed plugins and those of sdk 0.2, sorted.
+pub const SEED_AND_02_LAWS: [&str; 9] = [
+    "constant",
+    "hsd",
+    "kuwabara-kono",
+    "linear-history",
+    "lsd",
+    "mcnamara-falcon",
+    "mindlin",
+    "thornton",
+    "walton-braun",
+];

@@ -1,12 +1,14 @@
 //! A constant coefficient of restitution, r(v) = r.
 
-use dashpot_sdk::{BoundRestitution, LawError, Pair, ParamSpec, Params, Range, RestitutionLaw};
+use dashpot_sdk::{BoundRestitution, LawError, Pair, Range, RestitutionLaw};
 
-/// r(v) = r for every impact speed.
-#[derive(Debug, Clone, Copy)]
-pub struct Constant {
-    /// The coefficient of restitution (dimensionless).
-    pub r: f64,
+dashpot_sdk::law_params! {
+    /// r(v) = r for every impact speed.
+    #[derive(Debug, Clone, Copy)]
+    pub struct Constant {
+        /// coefficient of restitution
+        pub r: f64 { unit: "1", default: 0.95, range: Range::closed(0.0, 1.0) },
+    }
 }
 
 impl RestitutionLaw for Constant {
@@ -17,20 +19,6 @@ impl RestitutionLaw for Constant {
         same normal restitution r, whatever the impact speed. With many particles and r < 1 an \
         event-driven simulation can reach inelastic collapse (infinitely many collisions in finite \
         time); use the bed driver's TC model against it. Independent of the pair.";
-
-    fn params() -> Vec<ParamSpec> {
-        vec![ParamSpec::new(
-            "r",
-            "1",
-            0.95,
-            Range::closed(0.0, 1.0),
-            "coefficient of restitution",
-        )]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(Constant { r: p.get("r")? })
-    }
 
     fn bind(&self, _pair: &Pair) -> Result<Self, LawError> {
         Ok(*self)

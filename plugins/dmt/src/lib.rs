@@ -2,16 +2,19 @@
 //! optional Tsuji damping.
 
 use dashpot_sdk::{
-    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError, MaterialPair, ParamSpec,
-    Params, Range,
+    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError, MaterialPair, Range,
 };
 use std::f64::consts::PI;
 
-/// The configured law: work of adhesion `w` (J/m²) and restitution parameter `eps`.
-#[derive(Debug, Clone)]
-pub struct Dmt {
-    w: f64,
-    eps: f64,
+dashpot_sdk::law_params! {
+    /// The configured law: work of adhesion `w` (J/m²) and restitution parameter `eps`.
+    #[derive(Debug, Clone)]
+    pub struct Dmt {
+        /// work of adhesion w
+        w: f64 { unit: "J/m^2", default: 0.1, range: Range::positive() },
+        /// restitution parameter of the Tsuji damping α(ε) (1: undamped)
+        eps: f64 { unit: "1", default: 1.0, range: Range::open_closed(0.0, 1.0) },
+    }
 }
 
 /// DMT bound to a pair of materials.
@@ -39,26 +42,6 @@ impl ContactLaw for Dmt {
         elastic = (2/5) K δ^{5/2} (J, Hertz's; the adhesive term is a constant force, not stored), power = the \
         damping force × δ̇ (W).";
     const END_CRITERION: EndCriterion = EndCriterion::Overlap;
-
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new("w", "J/m^2", 0.1, Range::positive(), "work of adhesion w"),
-            ParamSpec::new(
-                "eps",
-                "1",
-                1.0,
-                Range::open_closed(0.0, 1.0),
-                "restitution parameter of the Tsuji damping α(ε) (1: undamped)",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(Dmt {
-            w: p.get("w")?,
-            eps: p.get("eps")?,
-        })
-    }
 
     fn bind(&self, m: &MaterialPair) -> Result<DmtBound, LawError> {
         let a = 4.0 / 3.0 * m.young;

@@ -3,7 +3,7 @@
 
 use dashpot_sdk::{
     BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError,
-    MaterialPair, Pair, ParamSpec, ParamValue, Params, Range,
+    MaterialPair, Pair, ParamValue, Params, Range,
 };
 
 /// The exact Tsuji damping factor α(ε) = −√5 ln ε / √(ln²ε + π²) (Antypov & Elliott eq. 17).
@@ -11,10 +11,13 @@ pub fn alpha(eps: f64) -> f64 {
     dashpot_sdk::physics::tsuji_alpha(eps)
 }
 
-/// The configured law: restitution `eps`.
-#[derive(Debug, Clone)]
-pub struct Hsd {
-    eps: f64,
+dashpot_sdk::law_params! {
+    /// The configured law: restitution `eps`.
+    #[derive(Debug, Clone)]
+    pub struct Hsd {
+        /// coefficient of restitution (contact ends when δ returns to 0)
+        eps: f64 { unit: "1", default: 0.54, range: Range::open_closed(0.0, 1.0) },
+    }
 }
 
 impl Hsd {
@@ -51,20 +54,6 @@ impl ContactLaw for Hsd {
         to 0 has restitution exactly ε at every impact speed, and its contact time scales as \
         v0^{-1/5}. Calibration in closed form: ε sets eps (the stiffness is the pair's E_eff).";
     const END_CRITERION: EndCriterion = EndCriterion::Overlap;
-
-    fn params() -> Vec<ParamSpec> {
-        vec![ParamSpec::new(
-            "eps",
-            "1",
-            0.54,
-            Range::open_closed(0.0, 1.0),
-            "coefficient of restitution (contact ends when δ returns to 0)",
-        )]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(Hsd { eps: p.get("eps")? })
-    }
 
     fn bind(&self, materials: &MaterialPair) -> Result<HsdBound, LawError> {
         let a = 4.0 / 3.0 * materials.young;

@@ -2,15 +2,19 @@
 
 use dashpot_sdk::{
     BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError, MaterialPair,
-    ParamSpec, Params, Range,
+    Range,
 };
 use std::f64::consts::PI;
 
-/// The configured law: work of adhesion `w` (J/m²) and restitution parameter `eps`.
-#[derive(Debug, Clone)]
-pub struct Jkr {
-    w: f64,
-    eps: f64,
+dashpot_sdk::law_params! {
+    /// The configured law: work of adhesion `w` (J/m²) and restitution parameter `eps`.
+    #[derive(Debug, Clone)]
+    pub struct Jkr {
+        /// work of adhesion w
+        w: f64 { unit: "J/m^2", default: 0.1, range: Range::positive() },
+        /// restitution parameter of the Tsuji damping α(ε) (1: undamped)
+        eps: f64 { unit: "1", default: 1.0, range: Range::open_closed(0.0, 1.0) },
+    }
 }
 
 /// JKR bound to a pair of materials.
@@ -107,26 +111,6 @@ impl ContactLaw for Jkr {
         "1",
         "1 once the contact has formed at touch, 0 before and after it breaks",
     )];
-
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new("w", "J/m^2", 0.1, Range::positive(), "work of adhesion w"),
-            ParamSpec::new(
-                "eps",
-                "1",
-                1.0,
-                Range::open_closed(0.0, 1.0),
-                "restitution parameter of the Tsuji damping α(ε) (1: undamped)",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(Jkr {
-            w: p.get("w")?,
-            eps: p.get("eps")?,
-        })
-    }
 
     fn bind(&self, m: &MaterialPair) -> Result<JkrBound, LawError> {
         Ok(JkrBound {

@@ -2,20 +2,23 @@
 //! (Kuwabara & Kono 1987; Brilliantov, Spahn, Hertzsch & Pöschel, PRE 53, 5382, 1996).
 
 use dashpot_sdk::{
-    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError, MaterialPair, ParamSpec,
-    Params, Range,
+    BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError, MaterialPair, Range,
 };
 
-/// The configured law: dissipative time constant `a` (s).
-#[derive(Debug, Clone)]
-pub struct KuwabaraKono {
-    a: f64,
+dashpot_sdk::law_params! {
+    /// The configured law: dissipative time constant `A` (s).
+    #[derive(Debug, Clone)]
+    #[allow(non_snake_case)]
+    pub struct KuwabaraKono {
+        /// dissipative time constant (0: elastic Hertz); the default is illustrative, not a material value
+        A: f64 { unit: "s", default: 1.0e-6, range: Range::non_negative() },
+    }
 }
 
 impl KuwabaraKono {
     /// The law with dissipative constant `a` (s).
     pub fn with(a: f64) -> KuwabaraKono {
-        KuwabaraKono { a }
+        KuwabaraKono { A: a }
     }
 }
 
@@ -42,24 +45,10 @@ impl ContactLaw for KuwabaraKono {
         closed-form calibration: fit A to a measured restitution with the collision driver.";
     const END_CRITERION: EndCriterion = EndCriterion::Force;
 
-    fn params() -> Vec<ParamSpec> {
-        vec![ParamSpec::new(
-            "A",
-            "s",
-            1.0e-6,
-            Range::non_negative(),
-            "dissipative time constant (0: elastic Hertz); the default is illustrative, not a material value",
-        )]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(KuwabaraKono { a: p.get("A")? })
-    }
-
     fn bind(&self, materials: &MaterialPair) -> Result<KuwabaraKonoBound, LawError> {
         Ok(KuwabaraKonoBound {
             a: 4.0 / 3.0 * materials.young,
-            time: self.a,
+            time: self.A,
         })
     }
 }

@@ -8,15 +8,19 @@
 
 use dashpot_sdk::{
     BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, Energy, LawError,
-    MaterialPair, Pair, ParamSpec, ParamValue, Params, Range,
+    MaterialPair, Pair, ParamValue, Params, Range,
 };
 use std::f64::consts::PI;
 
-/// The configured law: restitution `eps` and optional stiffness `k` (N/m).
-#[derive(Debug, Clone)]
-pub struct Lsd {
-    eps: f64,
-    k: Option<f64>,
+dashpot_sdk::law_params! {
+    /// The configured law: restitution `eps` and optional stiffness `k` (N/m).
+    #[derive(Debug, Clone)]
+    pub struct Lsd {
+        /// coefficient of restitution (contact ends when δ returns to 0)
+        eps: f64 { unit: "1", default: 0.54, range: Range::open_closed(0.0, 1.0) },
+        /// spring constant; default (8/3) E_eff r_eff = (2/3) E_eff d for identical spheres
+        k: Option<f64> { unit: "N/m", range: Range::positive() },
+    }
 }
 
 /// The law bound to a pair of materials.
@@ -63,31 +67,6 @@ impl ContactLaw for Lsd {
         contact time τ sets k = m (ln²ε + π²)/τ².";
     const END_CRITERION: EndCriterion = EndCriterion::Overlap;
 
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new(
-                "eps",
-                "1",
-                0.54,
-                Range::open_closed(0.0, 1.0),
-                "coefficient of restitution (contact ends when δ returns to 0)",
-            ),
-            ParamSpec::derived(
-                "k",
-                "N/m",
-                Range::positive(),
-                "spring constant; default (8/3) E_eff r_eff = (2/3) E_eff d for identical spheres",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(Lsd {
-            eps: p.get("eps")?,
-            k: p.get_opt("k")?,
-        })
-    }
-
     fn bind(&self, materials: &MaterialPair) -> Result<LsdBound, LawError> {
         Ok(LsdBound {
             k: self.k,
@@ -107,7 +86,7 @@ impl ContactLaw for Lsd {
         }
         let eps = target.restitution;
         let mut out = vec![ParamValue::new("eps", eps)];
-        if let Some(tau) = target.contact_time.into_option() {
+        if let Some(tau) = target.contact_time {
             let l = eps.ln();
             out.push(ParamValue::new("k", pair.mass * (l * l + PI * PI) / (tau * tau)));
         }

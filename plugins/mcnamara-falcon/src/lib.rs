@@ -1,15 +1,17 @@
 //! The velocity-dependent restitution of McNamara & Falcon (PRE 71, 031302, 2005, eq. 1):
 //! viscoelastic 1 − r ∝ v^{1/5} below the yield speed v_y, plastic r ∝ v^{−1/4} above.
 
-use dashpot_sdk::{BoundRestitution, LawError, Pair, ParamSpec, Params, Range, RestitutionLaw};
+use dashpot_sdk::{BoundRestitution, LawError, Pair, Range, RestitutionLaw};
 
-/// r(v) = 1 − (1 − r0)(v/v_y)^{1/5} for v ≤ v_y; r0 (v/v_y)^{−1/4} for v ≥ v_y.
-#[derive(Debug, Clone, Copy)]
-pub struct McNamaraFalcon {
-    /// Restitution at the yield speed (dimensionless).
-    pub r0: f64,
-    /// Yield speed (m/s).
-    pub vy: f64,
+dashpot_sdk::law_params! {
+    /// r(v) = 1 − (1 − r0)(v/v_y)^{1/5} for v ≤ v_y; r0 (v/v_y)^{−1/4} for v ≥ v_y.
+    #[derive(Debug, Clone, Copy)]
+    pub struct McNamaraFalcon {
+        /// restitution at the yield speed
+        pub r0: f64 { unit: "1", default: 0.95, range: Range::open_closed(0.0, 1.0) },
+        /// yield speed
+        pub vy: f64 { unit: "m/s", default: 0.3, range: Range::positive() },
+    }
 }
 
 impl RestitutionLaw for McNamaraFalcon {
@@ -23,26 +25,6 @@ impl RestitutionLaw for McNamaraFalcon {
         relative impact speed (its absolute value is used). r → 1 as v → 0, which keeps \
         event-driven simulations free of inelastic collapse. Defaults: stainless steel, r0 = 0.95, \
         vy = 0.3 m/s, giving r(1 m/s) ≈ 0.703. Independent of the pair.";
-
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new(
-                "r0",
-                "1",
-                0.95,
-                Range::open_closed(0.0, 1.0),
-                "restitution at the yield speed",
-            ),
-            ParamSpec::new("vy", "m/s", 0.3, Range::positive(), "yield speed"),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(McNamaraFalcon {
-            r0: p.get("r0")?,
-            vy: p.get("vy")?,
-        })
-    }
 
     fn bind(&self, _pair: &Pair) -> Result<Self, LawError> {
         Ok(*self)

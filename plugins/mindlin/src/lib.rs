@@ -52,17 +52,21 @@
 
 #![warn(missing_docs)]
 
-use dashpot_sdk::physics::{spring_slider_energy, tangential_part};
+use dashpot_sdk::physics::{dot, spring_friction, spring_friction_energy};
 use dashpot_sdk::{
-    BoundTangential, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, TangentialBatch,
-    TangentialContact, TangentialLaw,
+    BoundTangential, Energy, History, LawError, MaterialPair, Range, TangentialBatch, TangentialContact,
+    TangentialLaw,
 };
 
-/// The configured law: friction coefficient `mu` and damping ratio `damping`.
-#[derive(Debug, Clone)]
-pub struct Mindlin {
-    mu: f64,
-    damping: f64,
+dashpot_sdk::law_params! {
+    /// The configured law: friction coefficient `mu` and damping ratio `damping`.
+    #[derive(Debug, Clone)]
+    pub struct Mindlin {
+        /// Coulomb friction coefficient μ
+        mu: f64 { unit: "1", default: 0.5, range: Range::non_negative() },
+        /// tangential damping ratio ζ_t: η_t = 2 ζ_t √(m k_t)
+        damping: f64 { unit: "1", default: 0.0, range: Range::non_negative() },
+    }
 }
 
 impl Mindlin {
@@ -119,32 +123,6 @@ impl TangentialLaw for Mindlin {
         History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
     ];
 
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new(
-                "mu",
-                "1",
-                0.5,
-                Range::non_negative(),
-                "Coulomb friction coefficient μ",
-            ),
-            ParamSpec::new(
-                "damping",
-                "1",
-                0.0,
-                Range::non_negative(),
-                "tangential damping ratio ζ_t: η_t = 2 ζ_t √(m k_t)",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(Mindlin {
-            mu: p.get("mu")?,
-            damping: p.get("damping")?,
-        })
-    }
-
     fn bind(&self, materials: &MaterialPair) -> Result<MindlinBound, LawError> {
         Ok(MindlinBound {
             eight_g: 8.0 * materials.shear,
@@ -181,19 +159,9 @@ impl BoundTangential for MindlinBound {
     /// Elastic ½ k_t |ξ|² (J); power: η_t |v_t|² while the spring holds, −F_t·v_t while it
     /// slides (W); 0 out of contact.
     fn energy(&self, c: &TangentialContact, history: &[f64], force: [f64; 3]) -> Option<Energy> {
-        if c.delta <= 0.0 {
-            return Some(Energy::default());
-        }
         let kt = self.stiffness(c.radius, c.delta);
         let eta = 2.0 * self.damping * (c.mass * kt).sqrt();
-        Some(spring_slider_energy(
-            kt,
-            eta,
-            self.mu * c.normal_force.max(0.0),
-            [history[0], history[1], history[2]],
-            tangential_part(c.velocity, c.normal),
-            force,
-        ))
+        Some(spring_friction_energy(kt, eta, self.mu, c, history, force))
     }
 }
 
@@ -282,54 +250,6 @@ fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
         }
         lo += m;
     }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// Steps 1–6 of the crate docs for a spring of stiffness `kt` (N/m) and dashpot `eta` (N·s/m).
-#[inline(always)]
-fn spring_friction(kt: f64, eta: f64, mu: f64, c: &TangentialContact, h: &mut [f64]) -> [f64; 3] {
-    if c.delta <= 0.0 {
-        h[..3].fill(0.0);
-        return [0.0; 3];
-    }
-    let n = c.normal;
-    let mut xi = [h[0], h[1], h[2]];
-    // Rotate into the current tangent plane, keeping the length.
-    let xn = dot(xi, n);
-    if xn != 0.0 {
-        let len2 = dot(xi, xi);
-        let p = [xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]];
-        let plen2 = dot(p, p);
-        let s = if plen2 > 0.0 { (len2 / plen2).sqrt() } else { 0.0 };
-        xi = [p[0] * s, p[1] * s, p[2] * s];
-    }
-    // Tangential relative velocity, advance, trial force.
-    let vn = dot(c.velocity, n);
-    let vt = [
-        c.velocity[0] - vn * n[0],
-        c.velocity[1] - vn * n[1],
-        c.velocity[2] - vn * n[2],
-    ];
-    let mut f = [0.0; 3];
-    for i in 0..3 {
-        xi[i] += vt[i] * c.dt;
-        f[i] = -kt * xi[i] - eta * vt[i];
-    }
-    // Coulomb cap, with the spring reset to the capped force.
-    let cap = mu * c.normal_force.max(0.0);
-    let f2 = dot(f, f);
-    if f2 > cap * cap {
-        let s = cap / f2.sqrt();
-        for i in 0..3 {
-            f[i] *= s;
-            xi[i] = if kt > 0.0 { -(f[i] + eta * vt[i]) / kt } else { 0.0 };
-        }
-    }
-    h[..3].copy_from_slice(&xi);
-    f
 }
 
 dashpot_sdk::export_laws!(tangential: [Mindlin]);

@@ -1,17 +1,19 @@
 //! Elastic–plastic spring–dashpot (EPSD) rolling resistance of Ai et al. (2011).
 
 use dashpot_sdk::physics::spring_slider_energy;
-use dashpot_sdk::{
-    BoundRolling, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, RollingContact,
-    RollingLaw,
-};
+use dashpot_sdk::{BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingContact, RollingLaw};
 
-/// The configured law.
-#[derive(Debug, Clone)]
-pub struct RollingEpsd {
-    kt: f64,
-    mu: f64,
-    eta: f64,
+dashpot_sdk::law_params! {
+    /// The configured law.
+    #[derive(Debug, Clone)]
+    pub struct RollingEpsd {
+        /// tangential stiffness k_t (k_r = k_t R²)
+        kt: f64 { unit: "N/m", default: 1e5, range: Range::positive() },
+        /// rolling friction coefficient μ_r
+        mu_r: f64 { unit: "1", default: 0.1, range: Range::non_negative() },
+        /// rolling damping ratio η_r
+        eta: f64 { unit: "1", default: 0.3, range: Range::non_negative() },
+    }
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -48,40 +50,6 @@ impl RollingLaw for RollingEpsd {
         History::new("xi_z", "m", "rolling displacement ξ = R θ_r, z component"),
     ];
 
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new(
-                "kt",
-                "N/m",
-                1e5,
-                Range::positive(),
-                "tangential stiffness k_t (k_r = k_t R²)",
-            ),
-            ParamSpec::new(
-                "mu_r",
-                "1",
-                0.1,
-                Range::non_negative(),
-                "rolling friction coefficient μ_r",
-            ),
-            ParamSpec::new(
-                "eta",
-                "1",
-                0.3,
-                Range::non_negative(),
-                "rolling damping ratio η_r",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(RollingEpsd {
-            kt: p.get("kt")?,
-            mu: p.get("mu_r")?,
-            eta: p.get("eta")?,
-        })
-    }
-
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
         Ok(self.clone())
     }
@@ -102,7 +70,7 @@ impl BoundRolling for RollingEpsd {
         for (x, v) in xi.iter_mut().zip(c.velocity) {
             *x += v * c.dt;
         }
-        let cap = self.mu * c.normal_force.abs();
+        let cap = self.mu_r * c.normal_force.abs();
         let spring = self.kt * dot(xi, xi).sqrt();
         let f = if spring > cap {
             let s = cap / spring;
@@ -123,7 +91,7 @@ impl BoundRolling for RollingEpsd {
 
     fn energy(&self, c: &RollingContact, h: &[f64], f: [f64; 3]) -> Option<Energy> {
         let xi = [h[0], h[1], h[2]];
-        let cap = self.mu * c.normal_force.abs();
+        let cap = self.mu_r * c.normal_force.abs();
         let mobilized = cap > 0.0 && self.kt * dot(xi, xi).sqrt() >= cap * (1.0 - 1e-12);
         Some(spring_slider_energy(
             self.kt,

@@ -1,16 +1,20 @@
 //! Spring–dashpot–slider rolling resistance with the semantics of LAMMPS `rolling sds`.
 
 use dashpot_sdk::{
-    BoundRolling, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, RollingContact,
-    RollingLaw,
+    BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingBatch, RollingContact, RollingLaw,
 };
 
-/// The configured law.
-#[derive(Debug, Clone)]
-pub struct RollingSds {
-    k: f64,
-    gamma: f64,
-    mu: f64,
+dashpot_sdk::law_params! {
+    /// The configured law.
+    #[derive(Debug, Clone)]
+    pub struct RollingSds {
+        /// rolling stiffness k_roll
+        k: f64 { unit: "N/m", default: 1e3, range: Range::positive() },
+        /// rolling damping γ_roll
+        gamma: f64 { unit: "N·s/m", default: 0.0, range: Range::non_negative() },
+        /// rolling friction coefficient μ_roll
+        mu: f64 { unit: "1", default: 0.1, range: Range::non_negative() },
+    }
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
@@ -42,40 +46,13 @@ impl RollingLaw for RollingSds {
         History::new("xi_z", "m", "rolling displacement ξ, z component"),
     ];
 
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new("k", "N/m", 1e3, Range::positive(), "rolling stiffness k_roll"),
-            ParamSpec::new(
-                "gamma",
-                "N·s/m",
-                0.0,
-                Range::non_negative(),
-                "rolling damping γ_roll",
-            ),
-            ParamSpec::new(
-                "mu",
-                "1",
-                0.1,
-                Range::non_negative(),
-                "rolling friction coefficient μ_roll",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(RollingSds {
-            k: p.get("k")?,
-            gamma: p.get("gamma")?,
-            mu: p.get("mu")?,
-        })
-    }
-
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
         Ok(self.clone())
     }
 }
 
 impl BoundRolling for RollingSds {
+    #[inline]
     fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
         let n = c.normal;
         let fcrit = self.mu * c.normal_force.abs();
@@ -114,6 +91,22 @@ impl BoundRolling for RollingSds {
         f
     }
 
+    /// The same arithmetic as [`BoundRolling::force`], contact for contact, rearranged for SIMD:
+    /// lanes of `LANES` contacts are transposed into component arrays, each branch becomes a
+    /// select (both sides computed, the unused one discarded), and the results are transposed
+    /// back. A test checks the bits against the per-contact form.
+    #[inline(always)]
+    fn force_batch(&self, b: RollingBatch<'_>) {
+        // the host checks every batch against the law's declared slots (three: ξ)
+        assert_eq!(b.slots, 3, "rolling-sds keeps 3 history slots per contact");
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            return unsafe { lanes_avx2(self, b) };
+        }
+        lanes(self, b)
+    }
+
     fn energy(&self, c: &RollingContact, h: &[f64], f: [f64; 3]) -> Option<Energy> {
         Some(dashpot_sdk::physics::spring_slider_energy(
             self.k,
@@ -126,4 +119,175 @@ impl BoundRolling for RollingSds {
     }
 }
 
+/// Contacts per SIMD lane group.
+const LANES: usize = 8;
+
+/// [`lanes`] compiled for AVX2: the same bits, four lanes at a time. (The sdk's AVX2 copy of the
+/// batch loop does not reach into the rolling kind's per-block closure, so the law asks itself.)
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn lanes_avx2(law: &RollingSds, b: RollingBatch<'_>) {
+    lanes(law, b)
+}
+
+/// Up to `LANES` vectors as three component arrays (idle lanes 0).
+#[inline(always)]
+fn columns<'a>(v: impl Iterator<Item = &'a [f64]>) -> [[f64; LANES]; 3] {
+    let mut c = [[0.0; LANES]; 3];
+    for (l, x) in v.enumerate() {
+        for q in 0..3 {
+            c[q][l] = x[q];
+        }
+    }
+    c
+}
+
+/// [`BoundRolling::force`] over a batch, `LANES` contacts at a time, branch-free.
+#[inline(always)]
+fn lanes(law: &RollingSds, b: RollingBatch<'_>) {
+    let n = b.force.len();
+    let (k, gamma, mu, dt) = (law.k, law.gamma, law.mu, b.dt);
+    let mut lo = 0;
+    while lo < n {
+        let m = LANES.min(n - lo);
+        // transpose in (idle lanes: a contact at rest with no normal force)
+        let nv = columns(b.normal[lo..lo + m].iter().map(|x| &x[..]));
+        let v = columns(b.velocity[lo..lo + m].iter().map(|x| &x[..]));
+        let mut h = columns(b.history[3 * lo..3 * (lo + m)].chunks_exact(3));
+        let mut fnorm = [0.0f64; LANES];
+        fnorm[..m].copy_from_slice(&b.normal_force[lo..lo + m]);
+        let mut f = [[0.0f64; LANES]; 3];
+        for l in 0..LANES {
+            let n3 = [nv[0][l], nv[1][l], nv[2][l]];
+            let v3 = [v[0][l], v[1][l], v[2][l]];
+            let x0 = [h[0][l], h[1][l], h[2][l]];
+            let fcrit = mu * fnorm[l].abs();
+            // (1) the frame update: projected into the tangent plane, rescaled to its length
+            let xn = dot(x0, n3);
+            let rot = xn.abs() * k > FRAME_EPS * fcrit;
+            let len = dot(x0, x0).sqrt();
+            let p = [x0[0] - xn * n3[0], x0[1] - xn * n3[1], x0[2] - xn * n3[2]];
+            let prj = dot(p, p).sqrt();
+            let s = if prj > 0.0 { len / prj } else { 0.0 };
+            // (2) advance, (3) trial force
+            let mut xi = [0.0; 3];
+            let mut ft = [0.0; 3];
+            for q in 0..3 {
+                xi[q] = if rot { p[q] * s } else { x0[q] };
+                xi[q] += v3[q] * dt;
+                ft[q] = -k * xi[q] - gamma * v3[q];
+            }
+            // (4) the cap: the spring reset to the capped force, or no force from a zero spring
+            let mag = dot(ft, ft).sqrt();
+            let capped = mag > fcrit;
+            let spring = dot(xi, xi) != 0.0;
+            for q in 0..3 {
+                let xs = -(fcrit * ft[q] / mag + gamma * v3[q]) / k;
+                let fs = ft[q] * (fcrit / mag);
+                let (fo, xo) = match (capped, spring) {
+                    (true, true) => (fs, xs),
+                    (true, false) => (0.0, xi[q]),
+                    _ => (ft[q], xi[q]),
+                };
+                f[q][l] = fo;
+                h[q][l] = xo;
+            }
+        }
+        // transpose out
+        for l in 0..m {
+            let i = lo + l;
+            b.force[i] = [f[0][l], f[1][l], f[2][l]];
+            b.history[3 * i..3 * i + 3].copy_from_slice(&[h[0][l], h[1][l], h[2][l]]);
+        }
+        lo += m;
+    }
+}
+
 dashpot_sdk::export_laws!(rolling: [RollingSds]);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The SIMD batch gives the per-contact form's bits on every path: a fresh spring, one to
+    /// rotate into the tangent plane, one held, one capped (with and without a spring), idle
+    /// lanes of a last partial group.
+    #[test]
+    fn the_batch_gives_the_per_contact_bits() {
+        let law = RollingSds {
+            k: 1.3e3,
+            gamma: 0.07,
+            mu: 0.2,
+        };
+        let n = 11;
+        let mut normal = Vec::new();
+        let mut velocity = Vec::new();
+        let mut fnorm = Vec::new();
+        let mut hist = Vec::new();
+        for i in 0..n {
+            let t = i as f64;
+            let (a, b) = (0.3 * t, 0.7 + 0.2 * t);
+            normal.push([a.cos() * b.sin(), a.sin() * b.sin(), b.cos()]);
+            velocity.push([
+                0.01 * (t - 5.0),
+                0.02 * t.sin(),
+                if i % 4 == 0 { 3.0 } else { 0.001 },
+            ]);
+            fnorm.push(if i == 7 { -0.5 } else { 0.4 + 0.1 * t });
+            let x = if i % 3 == 0 {
+                [0.0; 3]
+            } else {
+                [1e-4 * t, -2e-4, 3e-5 * t]
+            };
+            hist.extend_from_slice(&x);
+        }
+        let contacts: Vec<RollingContact> = (0..n)
+            .map(|i| RollingContact {
+                normal: normal[i],
+                velocity: velocity[i],
+                normal_force: fnorm[i],
+                delta: 1e-5,
+                mass: 1e-3,
+                radius: 2e-3,
+                dt: 1e-4,
+            })
+            .collect();
+        let mut h1 = hist.clone();
+        let f1: Vec<[f64; 3]> = contacts
+            .iter()
+            .enumerate()
+            .map(|(i, c)| law.force(c, &mut h1[3 * i..3 * i + 3]))
+            .collect();
+        // the same contacts as one batch
+        let column = |get: fn(&RollingContact) -> f64| contacts.iter().map(get).collect::<Vec<_>>();
+        let (delta, mass, radius) = (column(|c| c.delta), column(|c| c.mass), column(|c| c.radius));
+        let (mut h2, mut f2) = (hist.clone(), vec![[0.0; 3]; n]);
+        law.force_batch(RollingBatch {
+            dt: contacts[0].dt,
+            normal: &normal,
+            velocity: &velocity,
+            normal_force: &fnorm,
+            delta: &delta,
+            mass: &mass,
+            radius: &radius,
+            slots: 3,
+            history: &mut h2,
+            force: &mut f2,
+        });
+        let capped = (0..n)
+            .filter(|&i| {
+                (f1[i].iter().map(|x| x * x).sum::<f64>().sqrt() - law.mu * fnorm[i].abs()).abs() < 1e-12
+            })
+            .count();
+        assert!(capped >= 2, "the cases must include capped contacts ({capped})");
+        for i in 0..n {
+            for q in 0..3 {
+                assert_eq!(f1[i][q].to_bits(), f2[i][q].to_bits(), "force {i}.{q}");
+                assert_eq!(h1[3 * i + q].to_bits(), h2[3 * i + q].to_bits(), "spring {i}.{q}");
+            }
+        }
+    }
+}

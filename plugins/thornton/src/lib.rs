@@ -39,7 +39,7 @@
 
 use dashpot_sdk::{
     BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError, MaterialPair,
-    ParamSpec, Params, Range,
+    Range,
 };
 use std::f64::consts::PI;
 
@@ -50,10 +50,13 @@ pub fn restitution(x: f64) -> f64 {
     dashpot_sdk::physics::thornton_restitution(x)
 }
 
-/// The configured law: limiting contact pressure `py` (Pa).
-#[derive(Debug, Clone)]
-pub struct Thornton {
-    py: f64,
+dashpot_sdk::law_params! {
+    /// The configured law: limiting contact pressure `py` (Pa).
+    #[derive(Debug, Clone)]
+    pub struct Thornton {
+        /// limiting (yield) contact pressure p_y; the default is illustrative, not a material value
+        py: f64 { unit: "Pa", default: 1.0e9, range: Range::positive() },
+    }
 }
 
 impl Thornton {
@@ -160,20 +163,6 @@ impl ContactLaw for Thornton {
         "m",
         "largest overlap reached by this contact (0 at first touch)",
     )];
-
-    fn params() -> Vec<ParamSpec> {
-        vec![ParamSpec::new(
-            "py",
-            "Pa",
-            1.0e9,
-            Range::positive(),
-            "limiting (yield) contact pressure p_y; the default is illustrative, not a material value",
-        )]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(Thornton { py: p.get("py")? })
-    }
 
     fn bind(&self, materials: &MaterialPair) -> Result<ThorntonBound, LawError> {
         let s = PI * self.py / (2.0 * materials.young);

@@ -3,16 +3,20 @@
 
 use dashpot_sdk::physics::TwistSpring;
 use dashpot_sdk::{
-    BoundTwisting, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, TwistingContact,
-    TwistingLaw,
+    BoundTwisting, Energy, History, LawError, MaterialPair, Range, TwistingContact, TwistingLaw,
 };
 
-/// The configured law.
-#[derive(Debug, Clone)]
-pub struct TwistingMarshall {
-    kt: f64,
-    gammat: f64,
-    mut_: f64,
+dashpot_sdk::law_params! {
+    /// The configured law.
+    #[derive(Debug, Clone)]
+    pub struct TwistingMarshall {
+        /// tangential spring stiffness k_t
+        kt: f64 { unit: "N/m", default: 1e5, range: Range::positive() },
+        /// tangential damping coefficient γ_t
+        gammat: f64 { unit: "N·s/m", default: 0.0, range: Range::non_negative() },
+        /// tangential friction coefficient μ_t
+        mu_t: f64 { unit: "1", default: 0.5, range: Range::non_negative() },
+    }
 }
 
 impl TwistingLaw for TwistingMarshall {
@@ -33,40 +37,6 @@ impl TwistingLaw for TwistingMarshall {
         Energy: elastic = k θ²/2 (J); power = γ ω² while the spring holds, |M ω| while it slides (W).";
     const HISTORY: &'static [History] = &[History::new("theta", "rad", "twist angle θ of the spring")];
 
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new(
-                "kt",
-                "N/m",
-                1e5,
-                Range::positive(),
-                "tangential spring stiffness k_t",
-            ),
-            ParamSpec::new(
-                "gammat",
-                "N·s/m",
-                0.0,
-                Range::non_negative(),
-                "tangential damping coefficient γ_t",
-            ),
-            ParamSpec::new(
-                "mu_t",
-                "1",
-                0.5,
-                Range::non_negative(),
-                "tangential friction coefficient μ_t",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(TwistingMarshall {
-            kt: p.get("kt")?,
-            gammat: p.get("gammat")?,
-            mut_: p.get("mu_t")?,
-        })
-    }
-
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
         Ok(self.clone())
     }
@@ -78,7 +48,7 @@ impl TwistingMarshall {
         TwistSpring {
             k: 0.5 * self.kt * a * a,
             gamma: 0.5 * self.gammat * a * a,
-            mcrit: 2.0 / 3.0 * self.mut_ * a * c.normal_force.abs(),
+            mcrit: 2.0 / 3.0 * self.mu_t * a * c.normal_force.abs(),
         }
     }
 }

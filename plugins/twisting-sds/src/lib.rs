@@ -2,16 +2,20 @@
 
 use dashpot_sdk::physics::TwistSpring as Sds;
 use dashpot_sdk::{
-    BoundTwisting, Energy, History, LawError, MaterialPair, ParamSpec, Params, Range, TwistingContact,
-    TwistingLaw,
+    BoundTwisting, Energy, History, LawError, MaterialPair, Range, TwistingContact, TwistingLaw,
 };
 
-/// The configured law.
-#[derive(Debug, Clone)]
-pub struct TwistingSds {
-    k: f64,
-    gamma: f64,
-    mu: f64,
+dashpot_sdk::law_params! {
+    /// The configured law.
+    #[derive(Debug, Clone)]
+    pub struct TwistingSds {
+        /// twisting stiffness k_twist
+        k: f64 { unit: "N·m/rad", default: 1e-3, range: Range::positive() },
+        /// twisting damping γ_twist
+        gamma: f64 { unit: "N·m·s/rad", default: 0.0, range: Range::non_negative() },
+        /// twisting friction μ_twist (torque per newton)
+        mu: f64 { unit: "m", default: 1e-4, range: Range::non_negative() },
+    }
 }
 
 impl TwistingLaw for TwistingSds {
@@ -28,40 +32,6 @@ impl TwistingLaw for TwistingSds {
         mu (m: the critical torque is μ|F_n|). Energy: elastic = k θ²/2 (J); power = γ ω² while the spring \
         holds, |M ω| while it slides (W).";
     const HISTORY: &'static [History] = &[History::new("theta", "rad", "twist angle θ of the spring")];
-
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new(
-                "k",
-                "N·m/rad",
-                1e-3,
-                Range::positive(),
-                "twisting stiffness k_twist",
-            ),
-            ParamSpec::new(
-                "gamma",
-                "N·m·s/rad",
-                0.0,
-                Range::non_negative(),
-                "twisting damping γ_twist",
-            ),
-            ParamSpec::new(
-                "mu",
-                "m",
-                1e-4,
-                Range::non_negative(),
-                "twisting friction μ_twist (torque per newton)",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        Ok(TwistingSds {
-            k: p.get("k")?,
-            gamma: p.get("gamma")?,
-            mu: p.get("mu")?,
-        })
-    }
 
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
         Ok(self.clone())

@@ -28,35 +28,28 @@
 
 use dashpot_sdk::{
     BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError, MaterialPair,
-    ParamSpec, Params, Range,
+    Range,
 };
 use std::f64::consts::FRAC_PI_2;
 
-/// The configured law (also its binding: it does not depend on the materials).
-#[derive(Debug, Clone, PartialEq)]
-pub struct WaltonBraun {
-    /// Loading stiffness k1 (N/m).
-    pub k1: f64,
-    /// Unloading stiffness k2 (N/m), ≥ k1.
-    pub k2: f64,
+dashpot_sdk::law_params! {
+    /// The configured law (also its binding: it does not depend on the materials).
+    #[derive(Debug, Clone, PartialEq)]
+    pub struct WaltonBraun {
+        /// loading stiffness; the default is illustrative
+        pub k1: f64 { unit: "N/m", default: 1.0e5, range: Range::positive() },
+        /// unloading stiffness, must be ≥ k1; restitution is √(k1/k2)
+        pub k2: f64 { unit: "N/m", default: 1.5e5, range: Range::positive() },
+    }
 }
 
 impl WaltonBraun {
     /// The law with loading stiffness `k1` > 0 and unloading stiffness `k2` ≥ `k1` (N/m); an
     /// error naming both values otherwise.
     pub fn with(k1: f64, k2: f64) -> Result<WaltonBraun, LawError> {
-        if !(k1.is_finite() && k1 > 0.0 && k2.is_finite() && k2 > 0.0) {
-            return Err(LawError::invalid_parameter(format!(
-                "walton-braun: k1 = {k1} N/m and k2 = {k2} N/m must both be finite and > 0"
-            )));
-        }
-        if k2 < k1 {
-            return Err(LawError::invalid_parameter(format!(
-                "walton-braun: the unloading stiffness k2 = {k2} N/m is smaller than the loading \
-                 stiffness k1 = {k1} N/m; k2 must be ≥ k1 (restitution √(k1/k2) ≤ 1)"
-            )));
-        }
-        Ok(WaltonBraun { k1, k2 })
+        let law = WaltonBraun { k1, k2 };
+        law.check()?;
+        Ok(law)
     }
 
     /// The restitution √(k1/k2) under the force criterion, at every impact speed.
@@ -87,27 +80,21 @@ impl ContactLaw for WaltonBraun {
         "largest overlap reached by this contact (0 at first touch)",
     )];
 
-    fn params() -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::new(
-                "k1",
-                "N/m",
-                1.0e5,
-                Range::positive(),
-                "loading stiffness; the default is illustrative",
-            ),
-            ParamSpec::new(
-                "k2",
-                "N/m",
-                1.5e5,
-                Range::positive(),
-                "unloading stiffness, must be ≥ k1; restitution is √(k1/k2)",
-            ),
-        ]
-    }
-
-    fn new(p: &Params) -> Result<Self, LawError> {
-        WaltonBraun::with(p.get("k1")?, p.get("k2")?)
+    /// k1 and k2 finite and > 0 (also for a law made by [`WaltonBraun::with`]), and k2 ≥ k1.
+    fn check(&self) -> Result<(), LawError> {
+        let (k1, k2) = (self.k1, self.k2);
+        if !(k1.is_finite() && k1 > 0.0 && k2.is_finite() && k2 > 0.0) {
+            return Err(LawError::invalid_parameter(format!(
+                "walton-braun: k1 = {k1} N/m and k2 = {k2} N/m must both be finite and > 0"
+            )));
+        }
+        if k2 < k1 {
+            return Err(LawError::invalid_parameter(format!(
+                "walton-braun: the unloading stiffness k2 = {k2} N/m is smaller than the loading \
+                 stiffness k1 = {k1} N/m; k2 must be ≥ k1 (restitution √(k1/k2) ≤ 1)"
+            )));
+        }
+        Ok(())
     }
 
     fn bind(&self, _materials: &MaterialPair) -> Result<WaltonBraun, LawError> {
@@ -180,13 +167,7 @@ mod tests {
     use dashpot_sdk::ParamValue;
 
     fn law(k1: f64, k2: f64) -> WaltonBraun {
-        let p = Params::resolve(
-            WaltonBraun::NAME,
-            &WaltonBraun::params(),
-            &[ParamValue::new("k1", k1), ParamValue::new("k2", k2)],
-        )
-        .unwrap();
-        WaltonBraun::new(&p)
+        WaltonBraun::from_values(&[ParamValue::new("k1", k1), ParamValue::new("k2", k2)])
             .unwrap()
             .bind(&MaterialPair::new(1e9, 1e9).unwrap())
             .unwrap()
@@ -252,13 +233,8 @@ mod tests {
 
     #[test]
     fn k2_below_k1_is_refused_naming_both() {
-        let p = Params::resolve(
-            WaltonBraun::NAME,
-            &WaltonBraun::params(),
-            &[ParamValue::new("k1", 2.0e5), ParamValue::new("k2", 1.0e5)],
-        )
-        .unwrap();
-        let e = WaltonBraun::new(&p).unwrap_err();
+        let e = WaltonBraun::from_values(&[ParamValue::new("k1", 2.0e5), ParamValue::new("k2", 1.0e5)])
+            .unwrap_err();
         assert_eq!(e.kind, dashpot_sdk::ErrorKind::InvalidParameter);
         assert!(
             e.message.contains("k1 = 200000") && e.message.contains("k2 = 100000"),
@@ -266,8 +242,7 @@ mod tests {
             e.message
         );
         // The defaults are valid.
-        let p = Params::resolve(WaltonBraun::NAME, &WaltonBraun::params(), &[]).unwrap();
-        assert!(WaltonBraun::new(&p).is_ok());
+        assert!(WaltonBraun::from_values(&[]).is_ok());
     }
 
     #[test]

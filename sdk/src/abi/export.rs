@@ -1,48 +1,37 @@
-//! The law tables the export macro builds and the root-module functions that read them, and
-//! the export macro itself. Implementation details of [`export_laws!`](crate::export_laws).
+//! The law tables the export macro builds, the root-module functions that read them, and the
+//! export macro itself. Implementation details of [`export_laws!`](crate::export_laws); not a
+//! stable API.
 
-use super::plugin::*;
-use super::v1;
-use super::*;
-use crate::error::{ErrorKind, LawError};
-use crate::law::{ContactLaw, LawKind, RestitutionLaw, TangentialLaw};
-use crate::params::Params;
+use super::ffi;
+use super::kind::{find, Entry};
+use crate::error::{FfiError, LawError};
+use crate::law::{CalibrationTarget, ContactLaw, LawInfo};
+use crate::pair::Pair;
+use crate::params::{ParamValue, Params};
+use abi_stable::std_types::{ROption, RResult, RSlice, RStr, RVec};
 
-/// A law's closed-form calibration, as stored in the export tables.
+use super::guard::guard;
+pub use super::guard::install_quiet_panic_hook;
+pub use super::kind::CreateFn;
+use super::kind::{new_law, Create, FfiLaw};
+use super::kinds::{FfiNormalBatch3, FfiTwistingBatch, FfiVectorBatch};
+pub use super::restitution::CreateRestitution;
+use super::{FfiRestitutionLaw, PluginModule, PluginModuleRef, ABI_VERSION};
+pub use abi_stable;
+use abi_stable::prefix_type::PrefixTypeTrait;
+
+/// A contact law's closed-form calibration, as stored in the export tables.
 pub type CalibrateFn =
     fn(&CalibrationTarget, &Pair, &[ParamValue]) -> Result<Option<Vec<ParamValue>>, LawError>;
 
-/// One exported contact law.
-pub struct ContactEntry {
-    /// Its name.
-    pub name: &'static str,
-    /// Its description.
-    pub info: fn() -> LawInfo,
-    /// Creates it from parameters.
-    pub create: fn(&[ParamValue]) -> Result<FfiContactLaw, LawError>,
-    /// Its closed-form calibration.
-    pub calibrate: CalibrateFn,
-}
-
-impl ContactEntry {
-    /// The entry of law `T`.
-    pub const fn of<T: ContactLaw>() -> ContactEntry {
-        ContactEntry {
+impl Entry<CalibrateFn> {
+    /// The calibration of contact law `T`.
+    pub const fn calibration<T: ContactLaw>() -> Entry<CalibrateFn> {
+        Entry {
             name: T::NAME,
-            info: T::info,
-            create: create_contact::<T>,
-            calibrate: calibrate_contact::<T>,
+            make: calibrate_contact::<T>,
         }
     }
-}
-
-fn create_contact<T: ContactLaw>(given: &[ParamValue]) -> Result<FfiContactLaw, LawError> {
-    let params = Params::resolve(T::NAME, &T::params(), given)?;
-    let law = T::new(&params)?;
-    Ok(FfiContactLaw {
-        obj: Box::into_raw(Box::new(law)) as *mut c_void,
-        vtable: ContactVt::<T>::VT,
-    })
 }
 
 fn calibrate_contact<T: ContactLaw>(
@@ -51,220 +40,99 @@ fn calibrate_contact<T: ContactLaw>(
     fixed: &[ParamValue],
 ) -> Result<Option<Vec<ParamValue>>, LawError> {
     pair.validate()?;
-    let params = Params::resolve(T::NAME, &T::params(), fixed)?;
+    let params = Params::resolve(T::NAME, &T::schema(), fixed)?;
     T::calibrate(target, pair, &params)
 }
 
-/// One exported tangential law.
-pub struct TangentialEntry {
-    /// Its name.
-    pub name: &'static str,
-    /// Its description.
-    pub info: fn() -> LawInfo,
-    /// Creates it from parameters.
-    pub create: fn(&[ParamValue]) -> Result<FfiTangentialLaw, LawError>,
+/// The laws a plugin exports, kind by kind: what [`export_laws!`](crate::export_laws) writes.
+/// Its root module's entries are generic over it.
+pub trait Tables: 'static {
+    /// The crate's name.
+    const NAME: &'static str;
+    /// The crate's version.
+    const VERSION: &'static str;
+    /// Every law's description, in the order of the macro's groups.
+    const INFO: &'static [fn() -> LawInfo];
+    /// The contact laws.
+    const CONTACT: &'static [Entry<CreateFn<FfiNormalBatch3>>];
+    /// The contact laws' closed-form calibrations.
+    const CALIBRATE: &'static [Entry<CalibrateFn>];
+    /// The tangential laws.
+    const TANGENTIAL: &'static [Entry<CreateFn<FfiVectorBatch>>];
+    /// The rolling laws.
+    const ROLLING: &'static [Entry<CreateFn<FfiVectorBatch>>];
+    /// The twisting laws.
+    const TWISTING: &'static [Entry<CreateFn<FfiTwistingBatch>>];
+    /// The restitution laws.
+    const RESTITUTION: &'static [Entry<CreateRestitution>];
 }
 
-impl TangentialEntry {
-    /// The entry of law `T`.
-    pub const fn of<T: TangentialLaw>() -> TangentialEntry {
-        TangentialEntry {
-            name: T::NAME,
-            info: T::info,
-            create: create_tangential::<T>,
-        }
+/// The root module of the plugin whose laws are `T` (leaked once, on loading).
+pub fn root_module<T: Tables>() -> PluginModuleRef {
+    install_quiet_panic_hook();
+    PluginModule {
+        name: RStr::from_str(T::NAME),
+        version: RStr::from_str(T::VERSION),
+        sdk_version: RStr::from_str(ABI_VERSION),
+        laws: laws::<T>,
+        new_contact: new_kind::<T, FfiLaw<FfiNormalBatch3>, Contact>,
+        new_tangential: new_kind::<T, FfiLaw<FfiVectorBatch>, TangentialTable>,
+        new_rolling: new_kind::<T, FfiLaw<FfiVectorBatch>, RollingTable>,
+        new_twisting: new_kind::<T, FfiLaw<FfiTwistingBatch>, TwistingTable>,
+        new_restitution: new_kind::<T, FfiRestitutionLaw, RestitutionTable>,
+        calibrate: calibrate::<T>,
     }
+    .leak_into_prefix()
 }
 
-fn create_tangential<T: TangentialLaw>(given: &[ParamValue]) -> Result<FfiTangentialLaw, LawError> {
-    let params = Params::resolve(T::NAME, &T::params(), given)?;
-    let law = T::new(&params)?;
-    Ok(FfiTangentialLaw {
-        obj: Box::into_raw(Box::new(law)) as *mut c_void,
-        vtable: TangentialVt::<T>::VT,
+extern "C" fn laws<T: Tables>() -> RResult<RVec<ffi::LawInfo>, FfiError> {
+    guard("listing laws", || {
+        Ok(T::INFO.iter().map(|f| ffi::LawInfo::from(&f())).collect())
     })
 }
 
-/// One exported restitution law.
-pub struct RestitutionEntry {
-    /// Its name.
-    pub name: &'static str,
-    /// Its description.
-    pub info: fn() -> LawInfo,
-    /// Creates it from parameters.
-    pub create: fn(&[ParamValue]) -> Result<FfiRestitutionLaw, LawError>,
+/// One table of [`Tables`]: the laws of kind `WHAT`, made as `F`.
+trait Table<T: Tables, F: 'static> {
+    const WHAT: &'static str;
+    fn table() -> &'static [Entry<Create<F>>];
 }
 
-impl RestitutionEntry {
-    /// The entry of law `T`.
-    pub const fn of<T: RestitutionLaw>() -> RestitutionEntry {
-        RestitutionEntry {
-            name: T::NAME,
-            info: T::info,
-            create: create_restitution::<T>,
-        }
-    }
-}
-
-fn create_restitution<T: RestitutionLaw>(given: &[ParamValue]) -> Result<FfiRestitutionLaw, LawError> {
-    let params = Params::resolve(T::NAME, &T::params(), given)?;
-    let law = T::new(&params)?;
-    Ok(FfiRestitutionLaw {
-        obj: Box::into_raw(Box::new(law)) as *mut c_void,
-        vtable: RestitutionVt::<T>::VT,
-    })
-}
-
-pub(crate) fn unknown(kind: &str, name: &str, names: Vec<&str>) -> LawError {
-    LawError::new(
-        ErrorKind::UnknownLaw,
-        format!(
-            "this plugin has no {kind} law '{name}'; it has: {}",
-            if names.is_empty() {
-                "(none)".to_string()
-            } else {
-                names.join(", ")
+macro_rules! table {
+    ($name:ident, $what:literal, $made:ty, $field:ident) => {
+        struct $name;
+        impl<T: Tables> Table<T, $made> for $name {
+            const WHAT: &'static str = $what;
+            fn table() -> &'static [Entry<Create<$made>>] {
+                T::$field
             }
-        ),
-    )
-}
-
-/// Every law's 0.3 description (`more`: the rolling and twisting laws' `info`).
-pub fn laws3(
-    c: &[ContactEntry],
-    r: &[RestitutionEntry],
-    t: &[TangentialEntry],
-    more: &[fn() -> LawInfo],
-) -> RResult<RVec<LawInfo>, FfiError> {
-    guard("listing laws", || {
-        Ok(c.iter()
-            .map(|e| (e.info)())
-            .chain(r.iter().map(|e| (e.info)()))
-            .chain(t.iter().map(|e| (e.info)()))
-            .chain(more.iter().map(|f| f()))
-            .collect())
-    })
-}
-
-/// The 0.2 description of the laws of the kinds 0.2 knew (a 0.2 host refuses a 0.3 plugin
-/// before it asks, but the field must answer).
-pub fn laws2(
-    c: &[ContactEntry],
-    r: &[RestitutionEntry],
-    t: &[TangentialEntry],
-) -> RResult<RVec<v2::LawInfo>, FfiError> {
-    match laws3(c, r, t, &[]) {
-        RResult::ROk(v) => RResult::ROk(v.into_iter().filter_map(v2::LawInfo::downgrade).collect()),
-        RResult::RErr(e) => RResult::RErr(e),
-    }
-}
-
-/// The 0.1 description of the contact and restitution laws (a 0.1 host refuses a 0.2 plugin
-/// before it asks, but the field must answer).
-pub fn laws_v1(c: &[ContactEntry], r: &[RestitutionEntry]) -> RResult<RVec<v1::LawInfo>, FfiError> {
-    guard("listing laws", || {
-        Ok(c.iter()
-            .map(|e| (e.info)())
-            .chain(r.iter().map(|e| (e.info)()))
-            .map(|i| v1::LawInfo {
-                name: i.name,
-                kind: if i.kind == LawKind::Restitution {
-                    v1::LawKind::Restitution
-                } else {
-                    v1::LawKind::Contact
-                },
-                summary: i.summary,
-                doc: i.doc,
-                params: i.params,
-                end_criterion: i.end_criterion,
-            })
-            .collect())
-    })
-}
-
-/// The 0.1 contact-law constructor of a 0.2 plugin: always an error.
-pub fn new_contact_v1(name: RStr<'_>) -> RResult<v1::FfiContactLaw, FfiError> {
-    RResult::RErr(
-        LawError::unsupported(format!(
-            "contact law '{name}' was built against dashpot-sdk {ABI_VERSION}: create it with new_contact2"
-        ))
-        .into(),
-    )
-}
-
-/// Creates a contact law by name.
-pub fn new_contact2(
-    c: &[ContactEntry],
-    name: RStr<'_>,
-    params: RSlice<'_, ParamValue>,
-) -> RResult<FfiContactLaw, FfiError> {
-    guard(&format!("contact law '{name}' (new)"), || {
-        match c.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => (e.create)(params.as_slice()),
-            None => Err(unknown(
-                "contact",
-                name.as_str(),
-                c.iter().map(|e| e.name).collect(),
-            )),
         }
-    })
+    };
+}
+table!(Contact, "contact", FfiLaw<FfiNormalBatch3>, CONTACT);
+table!(TangentialTable, "tangential", FfiLaw<FfiVectorBatch>, TANGENTIAL);
+table!(RollingTable, "rolling", FfiLaw<FfiVectorBatch>, ROLLING);
+table!(TwistingTable, "twisting", FfiLaw<FfiTwistingBatch>, TWISTING);
+table!(RestitutionTable, "restitution", FfiRestitutionLaw, RESTITUTION);
+
+/// The root module's constructor of the laws of table `K` of plugin `T`.
+extern "C" fn new_kind<T: Tables, F: 'static, K: Table<T, F>>(
+    name: RStr<'_>,
+    params: RSlice<'_, ffi::ParamValue>,
+) -> RResult<F, FfiError> {
+    new_law(K::table(), K::WHAT, name, params)
 }
 
-/// Creates a tangential law by name.
-pub fn new_tangential(
-    t: &[TangentialEntry],
+/// A contact law's closed-form calibration, by name (the root module's `calibrate`).
+extern "C" fn calibrate<T: Tables>(
     name: RStr<'_>,
-    params: RSlice<'_, ParamValue>,
-) -> RResult<FfiTangentialLaw, FfiError> {
-    guard(&format!("tangential law '{name}' (new)"), || {
-        match t.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => (e.create)(params.as_slice()),
-            None => Err(unknown(
-                "tangential",
-                name.as_str(),
-                t.iter().map(|e| e.name).collect(),
-            )),
-        }
-    })
-}
-
-/// Creates a restitution law by name.
-pub fn new_restitution(
-    r: &[RestitutionEntry],
-    name: RStr<'_>,
-    params: RSlice<'_, ParamValue>,
-) -> RResult<FfiRestitutionLaw, FfiError> {
-    guard(&format!("restitution law '{name}' (new)"), || {
-        match r.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => (e.create)(params.as_slice()),
-            None => Err(unknown(
-                "restitution",
-                name.as_str(),
-                r.iter().map(|e| e.name).collect(),
-            )),
-        }
-    })
-}
-
-/// A contact law's closed-form calibration, by name.
-pub fn calibrate(
-    c: &[ContactEntry],
-    name: RStr<'_>,
-    target: &CalibrationTarget,
+    target: &ffi::CalibrationTarget,
     pair: &Pair,
-    fixed: RSlice<'_, ParamValue>,
-) -> RResult<ROption<RVec<ParamValue>>, FfiError> {
+    fixed: RSlice<'_, ffi::ParamValue>,
+) -> RResult<ROption<RVec<ffi::ParamValue>>, FfiError> {
     guard(&format!("contact law '{name}' (calibrate)"), || {
-        match c.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => Ok((e.calibrate)(target, pair, fixed.as_slice())?
-                .map(RVec::from)
-                .into()),
-            None => Err(unknown(
-                "contact",
-                name.as_str(),
-                c.iter().map(|e| e.name).collect(),
-            )),
-        }
+        let fixed: Vec<ParamValue> = fixed.iter().cloned().map(ParamValue::from).collect();
+        let found = find(T::CALIBRATE, "contact", name.as_str())?(&(*target).into(), pair, &fixed)?;
+        Ok(found.map(|v| ffi::to_ffi(&v)).into())
     })
 }
 
@@ -291,114 +159,33 @@ macro_rules! export_laws {
         mod __dashpot_export {
             #[allow(unused_imports)]
             use super::*;
-            use $crate::abi::__private as p;
-            use $crate::abi::__private::abi_stable::{
-                library::{LibHeader, RootModuleResult, CheckTypeLayout},
-                prefix_type::PrefixTypeTrait,
-                std_types::{ROption, RResult, RSlice, RStr, RVec},
-            };
-            use $crate::{abi, CalibrationTarget, FfiError, LawInfo, Pair, ParamValue};
+            use $crate::abi::__private::{self as p, abi_stable::library::{CheckTypeLayout, LibHeader, RootModuleResult}};
+            use $crate::abi::{kind::Entry, kinds, Normal, PluginModuleRef, Rolling, Tangential, Twisting};
 
-            static CONTACT: &[p::ContactEntry] = &[$($(p::ContactEntry::of::<$c>()),*)?];
-            static RESTITUTION: &[p::RestitutionEntry] = &[$($(p::RestitutionEntry::of::<$r>()),*)?];
-            static TANGENTIAL: &[p::TangentialEntry] = &[$($(p::TangentialEntry::of::<$t>()),*)?];
-            static CONTACT3: &[$crate::abi::kind::Entry<$crate::abi::Normal>] =
-                &[$($($crate::abi::kind::Entry::of::<$c>()),*)?];
-            static TANGENTIAL3: &[$crate::abi::kind::Entry<$crate::abi::Tangential>] =
-                &[$($($crate::abi::kind::Entry::of::<$t>()),*)?];
-            static ROLLING: &[$crate::abi::kind::Entry<$crate::abi::Rolling>] =
-                &[$($($crate::abi::kind::Entry::of::<$ro>()),*)?];
-            static TWISTING: &[$crate::abi::kind::Entry<$crate::abi::Twisting>] =
-                &[$($($crate::abi::kind::Entry::of::<$tw>()),*)?];
-            static ROLLING_INFO: &[fn() -> LawInfo] = &[$($(<$ro as $crate::RollingLaw>::info),*)?];
-            static TWISTING_INFO: &[fn() -> LawInfo] = &[$($(<$tw as $crate::TwistingLaw>::info),*)?];
+            /// This crate's laws.
+            pub struct Plugin;
 
-            extern "C" fn laws() -> RResult<RVec<abi::v1::LawInfo>, FfiError> {
-                p::laws_v1(CONTACT, RESTITUTION)
-            }
-            extern "C" fn laws2() -> RResult<RVec<abi::v2::LawInfo>, FfiError> {
-                p::laws2(CONTACT, RESTITUTION, TANGENTIAL)
-            }
-            extern "C" fn laws3() -> RResult<RVec<LawInfo>, FfiError> {
-                p::laws3(CONTACT, RESTITUTION, TANGENTIAL, &[ROLLING_INFO, TWISTING_INFO].concat())
-            }
-            extern "C" fn new_contact3(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiNormalBatch3>, FfiError> {
-                abi::kind::new_law(CONTACT3, name, params)
-            }
-            extern "C" fn new_tangential3(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiVectorBatch>, FfiError> {
-                abi::kind::new_law(TANGENTIAL3, name, params)
-            }
-            extern "C" fn new_rolling(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiVectorBatch>, FfiError> {
-                abi::kind::new_law(ROLLING, name, params)
-            }
-            extern "C" fn new_twisting(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::kind::FfiLaw<abi::kinds::FfiTwistingBatch>, FfiError> {
-                abi::kind::new_law(TWISTING, name, params)
-            }
-            extern "C" fn new_contact(
-                name: RStr<'_>,
-                _params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::v1::FfiContactLaw, FfiError> {
-                p::new_contact_v1(name)
-            }
-            extern "C" fn new_contact2(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::FfiContactLaw, FfiError> {
-                p::new_contact2(CONTACT, name, params)
-            }
-            extern "C" fn new_tangential(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::FfiTangentialLaw, FfiError> {
-                p::new_tangential(TANGENTIAL, name, params)
-            }
-            extern "C" fn new_restitution(
-                name: RStr<'_>,
-                params: RSlice<'_, ParamValue>,
-            ) -> RResult<abi::FfiRestitutionLaw, FfiError> {
-                p::new_restitution(RESTITUTION, name, params)
-            }
-            extern "C" fn calibrate(
-                name: RStr<'_>,
-                target: &CalibrationTarget,
-                pair: &Pair,
-                fixed: RSlice<'_, ParamValue>,
-            ) -> RResult<ROption<RVec<ParamValue>>, FfiError> {
-                p::calibrate(CONTACT, name, target, pair, fixed)
-            }
-
-            fn root_module() -> abi::PluginModuleRef {
-                p::install_quiet_panic_hook();
-                abi::PluginModule {
-                    name: RStr::from_str(env!("CARGO_PKG_NAME")),
-                    version: RStr::from_str(env!("CARGO_PKG_VERSION")),
-                    sdk_version: RStr::from_str(abi::ABI_VERSION),
-                    laws,
-                    new_contact,
-                    new_restitution,
-                    calibrate,
-                    laws2,
-                    new_contact2,
-                    new_tangential,
-                    laws3,
-                    new_contact3,
-                    new_tangential3,
-                    new_rolling,
-                    new_twisting,
-                }
-                .leak_into_prefix()
+            impl p::Tables for Plugin {
+                const NAME: &'static str = env!("CARGO_PKG_NAME");
+                const VERSION: &'static str = env!("CARGO_PKG_VERSION");
+                const INFO: &'static [fn() -> $crate::LawInfo] = &[
+                    $($(<$c as $crate::ContactLaw>::info,)*)?
+                    $($(<$r as $crate::RestitutionLaw>::info,)*)?
+                    $($(<$t as $crate::TangentialLaw>::info,)*)?
+                    $($(<$ro as $crate::RollingLaw>::info,)*)?
+                    $($(<$tw as $crate::TwistingLaw>::info,)*)?
+                ];
+                const CONTACT: &'static [Entry<p::CreateFn<kinds::FfiNormalBatch3>>] =
+                    &[$($(Entry::of::<Normal, $c>()),*)?];
+                const CALIBRATE: &'static [Entry<p::CalibrateFn>] = &[$($(Entry::calibration::<$c>()),*)?];
+                const TANGENTIAL: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
+                    &[$($(Entry::of::<Tangential, $t>()),*)?];
+                const ROLLING: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
+                    &[$($(Entry::of::<Rolling, $ro>()),*)?];
+                const TWISTING: &'static [Entry<p::CreateFn<kinds::FfiTwistingBatch>>] =
+                    &[$($(Entry::of::<Twisting, $tw>()),*)?];
+                const RESTITUTION: &'static [Entry<p::CreateRestitution>] =
+                    &[$($(Entry::restitution::<$r>()),*)?];
             }
 
             // The symbol abi_stable looks for (`abi_stable::library::ROOT_MODULE_LOADER_NAME`;
@@ -406,9 +193,9 @@ macro_rules! export_laws {
             #[no_mangle]
             pub static _1as_0lib_1header_0root_bmodule_bloader: LibHeader = {
                 extern "C" fn erased() -> RootModuleResult {
-                    p::abi_stable::library::__call_root_module_loader(root_module)
+                    p::abi_stable::library::__call_root_module_loader(p::root_module::<Plugin>)
                 }
-                unsafe { LibHeader::from_constructor::<abi::PluginModuleRef>(erased, CheckTypeLayout::Yes) }
+                unsafe { LibHeader::from_constructor::<PluginModuleRef>(erased, CheckTypeLayout::Yes) }
             };
         }
     };

@@ -1,9 +1,10 @@
 //! Host side of the generic shape: the safe handles of a law of any 0.3 kind, from a plugin
 //! ([`LawHandle`], [`ModelHandle`]) or compiled into the host ([`StaticModel`]), each calling
-//! the checked trampoline and turning its status into an error that names the contact.
+//! the checked trampoline and turning its status into an error that names the contact; and
+//! [`BoundModel`], what every bound law of a kind offers a host.
 
+use super::guard::take_panic;
 use super::kind::{model_batch, EnergyOut, FfiLaw, FfiModel, Kind, KindBound, KindLaw};
-use super::plugin::take_panic;
 use super::{BatchFault, BatchStatus};
 use crate::error::{ErrorKind, LawError};
 use crate::law::{Coefficient, LawInfo};
@@ -11,18 +12,101 @@ use crate::pair::MaterialPair;
 use abi_stable::std_types::{RResult, RString};
 use std::ffi::c_void;
 
+/// A law of kind `K` bound to a pair of materials, as a host calls it: from a plugin of any sdk
+/// series or compiled into the host, every input and output checked.
+pub trait BoundModel<K: Kind>: Send + Sync {
+    /// The law's name.
+    fn name(&self) -> &str;
+    /// History slots per contact (0 for a memoryless law).
+    fn history_slots(&self) -> usize;
+    /// Evaluates every contact of `b`, with the energy outputs `energy` asks for: `Ok(true)`
+    /// when they were written, `Ok(false)` when the law does not account for energy (or none
+    /// was asked for). A non-finite input or output is an error naming the contact.
+    fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError>;
+    /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
+    fn coefficients(&self, _mass: f64, _radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        Ok(Vec::new())
+    }
+}
+
+/// Implements [`BoundModel`] of kind `$k` for `$t` by its inherent methods `name`,
+/// `history_slots`, `$batch` and `coefficients`.
+macro_rules! bound_model {
+    (impl<$($g:ident $(: $b:path)?),*> $k:ty => $t:ty, $batch:ident) => {
+        impl<$($g $(: $b)?),*> BoundModel<$k> for $t {
+            fn name(&self) -> &str {
+                <$t>::name(self)
+            }
+            fn history_slots(&self) -> usize {
+                <$t>::history_slots(self)
+            }
+            #[inline]
+            fn batch(&self, b: <$k as Kind>::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+                <$t>::$batch(self, b, energy)
+            }
+            fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+                <$t>::coefficients(self, mass, radius)
+            }
+        }
+    };
+}
+pub(crate) use bound_model;
+
+bound_model!(impl<K: Kind> K => ModelHandle<K>, batch);
+bound_model!(impl<K: Kind, B: KindBound<K>> K => StaticModel<K, B>, batch);
+
+/// A reference or a box of a bound model is one.
+macro_rules! forward {
+    ($($t:ty),*) => {$(
+        impl<K: Kind, M: BoundModel<K> + ?Sized> BoundModel<K> for $t {
+            fn name(&self) -> &str {
+                (**self).name()
+            }
+            fn history_slots(&self) -> usize {
+                (**self).history_slots()
+            }
+            #[inline]
+            fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+                (**self).batch(b, energy)
+            }
+            fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+                (**self).coefficients(mass, radius)
+            }
+        }
+    )*};
+}
+forward!(&M, Box<M>);
+
+/// [`run`] for a plugin of sdk 0.2, whose batch entry `call` takes the 0.2 arrays and writes no
+/// energy.
+pub(crate) fn run_v2<K: Kind>(
+    name: &str,
+    slots: usize,
+    b: &mut K::Batch<'_>,
+    energy: EnergyOut<'_>,
+    take_panic: extern "C" fn() -> RString,
+    call: impl FnOnce(&K::Ffi, &mut BatchFault) -> BatchStatus,
+) -> Result<(), LawError> {
+    run::<K>(name, slots, b, energy, take_panic, |ffi, fault, written| {
+        *written = false;
+        call(ffi, fault)
+    })
+    .map(|_| ())
+}
+
 /// Runs a batch of kind `K` through `call` (a vtable entry or the compiled-in trampoline):
 /// lengths checked first, then the status turned into a result; `Ok(true)` when the energy
 /// outputs were written.
-fn run<K: Kind>(
+pub(crate) fn run<K: Kind>(
     name: &str,
     slots: usize,
-    mut b: K::Batch<'_>,
+    b: &mut K::Batch<'_>,
     mut energy: EnergyOut<'_>,
-    call: impl FnOnce(&K::Ffi, &mut BatchFault, &mut bool) -> Result<BatchStatus, RString>,
+    take_panic: extern "C" fn() -> RString,
+    call: impl FnOnce(&K::Ffi, &mut BatchFault, &mut bool) -> BatchStatus,
 ) -> Result<bool, LawError> {
-    K::check_lengths(name, slots, &b)?;
-    let n = K::len(&b);
+    K::check_lengths(name, slots, b)?;
+    let n = K::len(b);
     if !energy.lengths_ok(n) {
         return Err(super::host::length_error(
             &format!("{} batch", K::WHAT),
@@ -30,21 +114,22 @@ fn run<K: Kind>(
         ));
     }
     if n == 0 {
-        return Ok(energy.power.is_none() && energy.elastic.is_none());
+        return Ok(energy.is_none());
     }
     let (power, elastic) = energy.raw();
-    let ffi = K::raw(&mut b, power, elastic);
+    let ffi = K::raw(b, power, elastic);
     let mut fault = BatchFault::default();
     let mut written = false;
-    let st = call(&ffi, &mut fault, &mut written).map_err(|msg| {
-        LawError::new(
+    let st = call(&ffi, &mut fault, &mut written);
+    if st == BatchStatus::Panic {
+        return Err(LawError::new(
             ErrorKind::Panic,
-            format!("{} law '{name}' panicked: {msg}", K::WHAT),
-        )
-    })?;
+            format!("{} law '{name}' panicked: {}", K::WHAT, take_panic()),
+        ));
+    }
     match st {
         BatchStatus::Ok => Ok(written),
-        st => Err(K::fault_error(name, &b, st, fault)),
+        st => Err(K::fault_error(name, b, st, fault)),
     }
 }
 
@@ -106,22 +191,21 @@ impl<K: Kind> ModelHandle<K> {
     /// Evaluates every contact of `b`, with the energy outputs `energy` asks for: `Ok(true)`
     /// when they were written, `Ok(false)` when the law does not account for energy (or none
     /// was asked for).
-    pub fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+    pub fn batch(&self, mut b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         let m = &self.ffi;
-        run::<K>(&self.name, self.slots, b, energy, |ffi, fault, written| unsafe {
-            match (m.vtable.batch)(m.obj, ffi, fault, written) {
-                BatchStatus::Panic => Err((m.vtable.take_panic)()),
-                st => Ok(st),
-            }
-        })
+        run::<K>(
+            &self.name,
+            self.slots,
+            &mut b,
+            energy,
+            m.vtable.take_panic,
+            |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, ffi, fault, written) },
+        )
     }
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
     pub fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
-        match unsafe { (self.ffi.vtable.coefficients)(self.ffi.obj, mass, radius) } {
-            RResult::ROk(v) => Ok(v.into_vec()),
-            RResult::RErr(e) => Err(e.into()),
-        }
+        super::host::coefficients(unsafe { (self.ffi.vtable.coefficients)(self.ffi.obj, mass, radius) })
     }
 }
 
@@ -152,6 +236,17 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
         })
     }
 
+    /// A bound law as it is, named `name`, keeping `slots` history slots (the sdk's own tests).
+    #[cfg(test)]
+    pub(crate) fn of_bound(name: &str, slots: usize, law: B) -> Self {
+        StaticModel {
+            law,
+            name: name.to_string(),
+            slots,
+            kind: std::marker::PhantomData,
+        }
+    }
+
     /// The law's name.
     pub fn name(&self) -> &str {
         &self.name
@@ -168,13 +263,22 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
     }
 
     /// As [`ModelHandle::batch`].
-    pub fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+    pub fn batch(&self, mut b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         let obj = &self.law as *const B as *const c_void;
-        run::<K>(&self.name, self.slots, b, energy, |ffi, fault, written| unsafe {
-            match model_batch::<K, B>(obj, ffi, fault, written) {
-                BatchStatus::Panic => Err(take_panic()),
-                st => Ok(st),
-            }
-        })
+        run::<K>(
+            &self.name,
+            self.slots,
+            &mut b,
+            energy,
+            take_panic,
+            |ffi, fault, written| unsafe { model_batch::<K, B>(obj, ffi, fault, written) },
+        )
+    }
+}
+
+impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
+    /// The bound law's derived constants for a contact of effective `mass` (kg) and `radius` (m).
+    pub fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        Ok(self.law.kind_coefficients(mass, radius))
     }
 }

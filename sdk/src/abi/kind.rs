@@ -4,84 +4,55 @@
 //! AVX2 dispatch and optional energy outputs for every kind. A kind is a [`Kind`]: its raw batch
 //! type, its plain-Rust batch (what hosts pass), and how to turn one into the other and a fault
 //! into an error; the law side is [`KindBound`] (the checked block loop over a bound law) and
-//! [`KindLaw`] (create and bind). Normal, tangential, rolling and twisting laws are instances
+//! [`KindLaw`] (configure and bind). Normal, tangential, rolling and twisting laws are instances
 //! (see `kinds`); law authors implement only the plain traits ([`ContactLaw`](crate::ContactLaw),
 //! [`RollingLaw`](crate::RollingLaw), ...).
 
 use super::checks::CHECK_BLOCK;
-use super::plugin::{drop_box, finish, guard, hot, take_panic};
-use super::{BatchFault, BatchStatus};
-use crate::error::{FfiError, LawError};
-use crate::law::{Coefficient, Energy, LawInfo, LawKind};
+use super::ffi::{self, Coefficient};
+use super::guard::{drop_box, finish, guard, hot, take_panic};
+use super::{ffi_object, BatchFault, BatchStatus};
+use crate::error::{ErrorKind, FfiError, LawError};
+use crate::law::{Energy, LawKind};
 use crate::pair::MaterialPair;
-use crate::params::{ParamSpec, ParamValue, Params};
+use crate::params::{LawParams, ParamValue, Params};
 use abi_stable::{
-    std_types::{RResult, RString, RVec},
+    std_types::{RResult, RSlice, RStr, RVec},
     StableAbi,
 };
 use std::ffi::c_void;
 
-/// The functions of a configured law of the kind whose raw batch is `B`.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct LawVTable<B: 'static> {
-    /// Binds the law at `obj` to a pair of materials.
-    pub bind:
-        unsafe extern "C" fn(obj: *const c_void, materials: &MaterialPair) -> RResult<FfiModel<B>, FfiError>,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
+ffi_object!(law
+    /// The functions of a configured law of the kind whose raw batch is `B`.
+    LawVTable<B> {
+        /// Binds the law at `obj` to a pair of materials.
+        pub bind:
+            unsafe extern "C" fn(obj: *const c_void, materials: &MaterialPair) -> RResult<FfiModel<B>, FfiError>,
+    }
+    /// A configured law owned by the plugin that made it.
+    FfiLaw
+);
 
-/// A configured law owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiLaw<B: 'static> {
-    /// Opaque pointer to the law.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static LawVTable<B>,
-}
+ffi_object!(model_with_coefficients
+    /// The hot-path functions of a law bound to a material pair.
+    ModelVTable<B> {
+        /// Evaluates a batch; checks inputs and outputs in blocks and stops at the first bad one,
+        /// described in `*fault`. `*energy` is set to whether the energy outputs the batch asked
+        /// for were written (false when the law does not account for energy).
+        pub batch: unsafe extern "C" fn(
+            obj: *const c_void,
+            batch: &B,
+            fault: &mut BatchFault,
+            energy: &mut bool,
+        ) -> BatchStatus,
+    }
+    /// A law bound to a pair of materials, owned by the plugin that made it.
+    FfiModel
+);
 
-/// The hot-path functions of a law bound to a material pair.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct ModelVTable<B: 'static> {
-    /// Evaluates a batch; checks inputs and outputs in blocks and stops at the first bad one,
-    /// described in `*fault`. `*energy` is set to whether the energy outputs the batch asked
-    /// for were written (false when the law does not account for energy).
-    pub batch: unsafe extern "C" fn(
-        obj: *const c_void,
-        batch: &B,
-        fault: &mut BatchFault,
-        energy: &mut bool,
-    ) -> BatchStatus,
-    /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
-    pub coefficients: unsafe extern "C" fn(
-        obj: *const c_void,
-        mass: f64,
-        radius: f64,
-    ) -> RResult<RVec<Coefficient>, FfiError>,
-    /// The message of the last panic caught on this thread by this plugin (empty if none).
-    pub take_panic: extern "C" fn() -> RString,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
-
-/// A law bound to a pair of materials, owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiModel<B: 'static> {
-    /// Opaque pointer.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static ModelVTable<B>,
-}
-
-// SAFETY: the objects are `Send + Sync` (the law traits require it); the vtables are statics.
-unsafe impl<B> Send for FfiLaw<B> {}
-unsafe impl<B> Sync for FfiLaw<B> {}
-unsafe impl<B> Send for FfiModel<B> {}
-unsafe impl<B> Sync for FfiModel<B> {}
+/// A root-module entry that creates a law of the kind whose raw batch is `B` by name.
+pub type NewFn<B> =
+    extern "C" fn(name: RStr<'_>, params: RSlice<'_, ffi::ParamValue>) -> RResult<FfiLaw<B>, FfiError>;
 
 /// Optional per-contact energy outputs of a batch call (sdk 0.3): `None` when the host does not
 /// want them (nothing is computed then).
@@ -99,20 +70,23 @@ impl EnergyOut<'_> {
         EnergyOut::default()
     }
 
+    /// Whether no output is wanted.
+    pub fn is_none(&self) -> bool {
+        self.power.is_none() && self.elastic.is_none()
+    }
+
     pub(crate) fn raw(&mut self) -> (*mut f64, *mut f64) {
-        (
-            self.power
-                .as_deref_mut()
-                .map_or(std::ptr::null_mut(), <[f64]>::as_mut_ptr),
-            self.elastic
-                .as_deref_mut()
-                .map_or(std::ptr::null_mut(), <[f64]>::as_mut_ptr),
-        )
+        (raw_out(&mut self.power), raw_out(&mut self.elastic))
     }
 
     pub(crate) fn lengths_ok(&self, n: usize) -> bool {
         self.power.as_ref().is_none_or(|p| p.len() == n) && self.elastic.as_ref().is_none_or(|e| e.len() == n)
     }
+}
+
+/// The pointer of an optional output array (null when not wanted).
+pub(crate) fn raw_out(o: &mut Option<&mut [f64]>) -> *mut f64 {
+    o.as_deref_mut().map_or(std::ptr::null_mut(), <[f64]>::as_mut_ptr)
 }
 
 /// A law kind: its raw batch and how a host speaks it.
@@ -145,11 +119,12 @@ pub trait KindBound<K: Kind>: Send + Sync + 'static {
     /// The batch's pointers are valid for its lengths.
     unsafe fn run(&self, b: &K::Ffi) -> Result<bool, (usize, u8)>;
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
-    fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient>;
+    fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<crate::Coefficient>;
 }
 
-/// A configurable law of kind `K`.
-pub trait KindLaw<K: Kind>: Sized + Send + Sync + 'static {
+/// A configurable law of kind `K` (a blanket implementation for every law of the kind's
+/// trait).
+pub trait KindLaw<K: Kind>: LawParams + Send + Sync + 'static {
     /// The bound law.
     type Bound: KindBound<K>;
     /// Its name.
@@ -157,14 +132,33 @@ pub trait KindLaw<K: Kind>: Sized + Send + Sync + 'static {
     /// History slots per contact.
     const SLOTS: usize;
     /// Its description.
-    fn kind_info() -> LawInfo;
-    /// Its parameter schema.
-    fn kind_params() -> Vec<ParamSpec>;
-    /// Creates it from validated parameters.
-    fn kind_new(p: &Params) -> Result<Self, LawError>;
+    fn kind_info() -> crate::LawInfo;
+    /// Checks its parameters together.
+    fn kind_check(&self) -> Result<(), LawError>;
     /// Binds it.
     fn kind_bind(&self, m: &MaterialPair) -> Result<Self::Bound, LawError>;
 }
+
+/// Implements [`KindLaw`] of kind `$kind` for every law of trait `$law`.
+macro_rules! kind_law {
+    ($kind:ty, $law:ident) => {
+        impl<T: $law> $crate::abi::kind::KindLaw<$kind> for T {
+            type Bound = T::Bound;
+            const NAME: &'static str = T::NAME;
+            const SLOTS: usize = T::HISTORY.len();
+            fn kind_info() -> $crate::LawInfo {
+                T::info()
+            }
+            fn kind_check(&self) -> Result<(), LawError> {
+                self.check()
+            }
+            fn kind_bind(&self, m: &MaterialPair) -> Result<T::Bound, LawError> {
+                self.bind(m)
+            }
+        }
+    };
+}
+pub(crate) use kind_law;
 
 /// The batch trampoline of kind `K` for bound law `B` (what a plugin exports).
 ///
@@ -188,8 +182,10 @@ pub unsafe extern "C" fn model_batch<K: Kind, B: KindBound<K>>(
     finish(res.map(|r| r.map(|_| ())), fault)
 }
 
-/// [`KindBound::run`] compiled for AVX2 (the law's code inlined into it): the same bits, four
-/// lanes.
+/// [`KindBound::run`] compiled for AVX2 (four f64 lanes instead of SSE2's two), chosen at run
+/// time when the CPU has it; the law's code is inlined here and compiled for AVX2 too. The
+/// results are the same bits: IEEE arithmetic is exactly rounded lane by lane, and Rust never
+/// fuses a multiply and an add on its own.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn run_avx2<K: Kind, B: KindBound<K>>(law: &B, b: &K::Ffi) -> Result<bool, (usize, u8)> {
@@ -202,9 +198,9 @@ unsafe extern "C" fn model_coefficients<K: Kind, B: KindBound<K>>(
     radius: f64,
 ) -> RResult<RVec<Coefficient>, FfiError> {
     guard("coefficients", || {
-        Ok(unsafe { &*(obj as *const B) }
-            .kind_coefficients(mass, radius)
-            .into())
+        Ok(ffi::to_ffi(
+            &unsafe { &*(obj as *const B) }.kind_coefficients(mass, radius),
+        ))
     })
 }
 
@@ -240,55 +236,84 @@ impl<K: Kind, T: KindLaw<K>> LawVt<K, T> {
     };
 }
 
-/// Creates a law of kind `K` from parameters.
-pub type CreateFn<K> = fn(&[ParamValue]) -> Result<FfiLaw<<K as Kind>::Ffi>, LawError>;
-
-/// One exported law of kind `K`, as the export macro lists it.
-pub struct Entry<K: Kind> {
+/// One law of a plugin's table of kind `what`: its name, and what makes it (a constructor, or a
+/// closed-form calibration).
+pub struct Entry<F: 'static> {
     /// Its name.
     pub name: &'static str,
-    /// Its description.
-    pub info: fn() -> LawInfo,
-    /// Creates it from parameters.
-    pub create: CreateFn<K>,
+    /// What the table holds for it.
+    pub make: F,
 }
 
-impl<K: Kind> Entry<K> {
-    /// The entry of law `T`.
-    pub const fn of<T: KindLaw<K>>() -> Entry<K> {
+/// Creates a law object `F` from parameters.
+pub type Create<F> = fn(&[ParamValue]) -> Result<F, LawError>;
+
+/// Creates a law of the kind whose raw batch is `B` from parameters.
+pub type CreateFn<B> = Create<FfiLaw<B>>;
+
+impl<B: 'static> Entry<CreateFn<B>> {
+    /// The entry of law `T` of kind `K`.
+    pub const fn of<K: Kind<Ffi = B>, T: KindLaw<K>>() -> Entry<CreateFn<B>> {
         Entry {
             name: T::NAME,
-            info: T::kind_info,
-            create: create::<K, T>,
+            make: create::<K, T>,
         }
     }
 }
 
-/// Creates law `T` of kind `K` from parameters (validated against its schema).
-pub fn create<K: Kind, T: KindLaw<K>>(given: &[ParamValue]) -> Result<FfiLaw<K::Ffi>, LawError> {
-    let params = Params::resolve(T::NAME, &T::kind_params(), given)?;
-    let law = T::kind_new(&params)?;
+/// Law `T` (named `name`) from parameters: validated against its schema, read as its struct,
+/// then checked together by `check`.
+pub(crate) fn configure<T: LawParams>(
+    name: &str,
+    given: &[ParamValue],
+    check: fn(&T) -> Result<(), LawError>,
+) -> Result<T, LawError> {
+    let law: T = Params::resolve(name, &T::schema(), given)?.parse()?;
+    check(&law)?;
+    Ok(law)
+}
+
+/// Creates law `T` of kind `K` from parameters.
+fn create<K: Kind, T: KindLaw<K>>(given: &[ParamValue]) -> Result<FfiLaw<K::Ffi>, LawError> {
+    let law = configure::<T>(T::NAME, given, T::kind_check)?;
     Ok(FfiLaw {
         obj: Box::into_raw(Box::new(law)) as *mut c_void,
         vtable: LawVt::<K, T>::VT,
     })
 }
 
-/// Creates the law `name` of kind `K` from the plugin's table.
-pub fn new_law<K: Kind>(
-    table: &[Entry<K>],
-    name: abi_stable::std_types::RStr<'_>,
-    params: abi_stable::std_types::RSlice<'_, ParamValue>,
-) -> RResult<FfiLaw<K::Ffi>, FfiError> {
-    guard(&format!("{} law '{name}' (new)", K::WHAT), || {
-        match table.iter().find(|e| e.name == name.as_str()) {
-            Some(e) => (e.create)(params.as_slice()),
-            None => Err(super::plugin::unknown(
-                K::WHAT,
-                name.as_str(),
-                table.iter().map(|e| e.name).collect(),
-            )),
+/// The entry `name` of `table`, a plugin's laws of kind `what`; an error listing them if there
+/// is none.
+pub(crate) fn find<'a, F>(table: &'a [Entry<F>], what: &str, name: &str) -> Result<&'a F, LawError> {
+    match table.iter().find(|e| e.name == name) {
+        Some(e) => Ok(&e.make),
+        None => {
+            let names: Vec<&str> = table.iter().map(|e| e.name).collect();
+            Err(LawError::new(
+                ErrorKind::UnknownLaw,
+                format!(
+                    "this plugin has no {what} law '{name}'; it has: {}",
+                    if names.is_empty() {
+                        "(none)".to_string()
+                    } else {
+                        names.join(", ")
+                    }
+                ),
+            ))
         }
+    }
+}
+
+/// Creates the law `name` of kind `what` from the plugin's `table` (a root-module entry).
+pub fn new_law<F>(
+    table: &[Entry<Create<F>>],
+    what: &str,
+    name: RStr<'_>,
+    params: RSlice<'_, ffi::ParamValue>,
+) -> RResult<F, FfiError> {
+    guard(&format!("{what} law '{name}' (new)"), || {
+        let given: Vec<ParamValue> = params.iter().cloned().map(ParamValue::from).collect();
+        find(table, what, name.as_str())?(&given)
     })
 }
 
@@ -328,17 +353,16 @@ pub(crate) unsafe fn energy_pass(
         let Some(e) = each(i) else {
             return Ok(false);
         };
-        if !power.is_null() {
-            if !e.power.is_finite() {
-                return Err((i, BatchFault::POWER));
+        for (out, v, field) in [
+            (power, e.power, BatchFault::POWER),
+            (elastic, e.elastic, BatchFault::ELASTIC),
+        ] {
+            if !out.is_null() {
+                if !v.is_finite() {
+                    return Err((i, field));
+                }
+                unsafe { *out.add(i) = v };
             }
-            unsafe { *power.add(i) = e.power };
-        }
-        if !elastic.is_null() {
-            if !e.elastic.is_finite() {
-                return Err((i, BatchFault::ELASTIC));
-            }
-            unsafe { *elastic.add(i) = e.elastic };
         }
     }
     Ok(true)

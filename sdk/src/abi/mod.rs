@@ -2,9 +2,9 @@
 //!
 //! # Layout
 //! A plugin exports one root module, [`PluginModule`], through abi_stable's `LibHeader`; the
-//! [`export_laws!`](crate::export_laws) macro writes it. It is an abi_stable *prefix type*: the
-//! fields of sdk 0.1 come first and never change; sdk 0.2 appended its own after them
-//! (`laws2`, `new_contact2`, `new_tangential`), and sdk 0.3 its own after those (`laws3`, ...).
+//! [`export_laws!`](crate::export_laws) macro writes it. It is an abi_stable *prefix type*, so
+//! that a later 0.3 release may append fields. sdk 0.1 and 0.2 plugins export the root modules
+//! of their series, which this host reads through frozen copies ([`v1`], [`v2`]).
 //!
 //! The host checks, in this order, before running any of the plugin's code:
 //! 1. the dashpot-sdk version the plugin was built against (its `LibHeader`, a static):
@@ -19,13 +19,16 @@
 //! library that allocated it (through its vtable's `drop`).
 //!
 //! # Modules
+//! - [`ffi`]: the stable mirrors of the plain types (law descriptions, parameters,
+//!   coefficients, calibration targets), frozen since 0.1 except the 0.3 law description;
 //! - [`v1`]: the frozen types of sdk 0.1 (contact laws bound to one pair), still spoken to 0.1
 //!   plugins;
-//! - [`v2`]: the frozen types of sdk 0.2 that 0.3 changed (the law list, whose kinds 0.3
-//!   extended) and 0.2's root module;
-//! - this module: the types shared by 0.2 and 0.3 (contact laws bound to a material pair with per-contact geometry
-//!   and history, tangential laws, restitution laws unchanged since 0.1) and the root module;
-//! - `plugin`: the trampolines compiled into every plugin and the export macro;
+//! - [`v2`]: the frozen types of sdk 0.2 (its law list and root module), and here its contact and
+//!   tangential vtables and batches, which the host still calls in 0.2 plugins;
+//! - [`kind`] and [`kinds`]: the one generic shape of every 0.3 law kind (normal, tangential,
+//!   rolling, twisting), plugin and host side;
+//! - `restitution`: restitution laws, whose ABI is unchanged since 0.1;
+//! - `export`: the law tables of a plugin and the export macro;
 //! - `host`: [`LoadedPlugin`] and the safe handles a host calls.
 //!
 //! # What breaks the ABI
@@ -41,36 +44,37 @@
 //! index, which the host turns into an error naming the index, the input and its value.
 
 mod checks;
-mod export;
+#[doc(hidden)]
+pub mod export;
+pub mod ffi;
+mod guard;
 mod handle;
 mod host;
 pub mod kind;
 pub mod kinds;
-#[doc(hidden)]
-pub mod plugin;
+mod restitution;
 pub mod v1;
 pub mod v2;
 
-pub use handle::{LawHandle, ModelHandle, StaticModel};
+pub use crate::error::FfiError;
+#[doc(hidden)]
+pub use export as __private;
+pub use handle::{BoundModel, LawHandle, ModelHandle, StaticModel};
 pub use host::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
-    SdkSeries, StaticContact, StaticTangential, TangentialLawHandle, TangentialModelHandle,
+    SdkSeries, TangentialLawHandle, TangentialModelHandle,
 };
 pub use kind::EnergyOut;
 pub use kinds::{Normal, NormalCall, Rolling, Tangential, Twisting};
-#[doc(hidden)]
-pub use plugin as __private;
 
-use crate::error::FfiError;
-use crate::law::{CalibrationTarget, Coefficient, LawInfo};
 use crate::pair::{MaterialPair, Pair};
-use crate::params::ParamValue;
 use abi_stable::{
     library::RootModule,
     sabi_types::VersionStrings,
     std_types::{ROption, RResult, RSlice, RStr, RString, RVec},
     StableAbi,
 };
+use ffi::{CalibrationTarget, LawInfo, ParamValue};
 use std::ffi::c_void;
 
 /// The dashpot-sdk version a plugin or host is built against (`major.minor.patch`).
@@ -100,7 +104,7 @@ pub fn abi_compatible(host: &str, plugin: &str) -> bool {
     }
 }
 
-/// Outcome of a 0.2 batch call.
+/// Outcome of a batch call (sdk 0.2 and 0.3).
 #[repr(u8)]
 #[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BatchStatus {
@@ -153,6 +157,15 @@ impl BatchFault {
     /// Output `torque` (sdk 0.3).
     pub const TORQUE: u8 = 12;
 
+    /// Whether array `field` is an output (the force, torque, power, elastic energy or reach)
+    /// rather than an input.
+    pub fn is_output(field: u8) -> bool {
+        matches!(
+            field,
+            Self::OUTPUT | Self::POWER | Self::ELASTIC | Self::REACH | Self::TORQUE
+        )
+    }
+
     /// The name of array `field`.
     pub fn field_name(field: u8) -> &'static str {
         match field {
@@ -174,217 +187,160 @@ impl BatchFault {
     }
 }
 
-/// A batch of contacts for a normal law, as raw arrays (see [`NormalBatch`](crate::NormalBatch)).
-/// All pointers refer to `n` values except `history` (`n × slots`); they may dangle when
-/// `n == 0`.
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, Copy)]
-pub struct FfiNormalBatch {
-    /// Number of contacts.
-    pub n: usize,
-    /// History slots per contact.
-    pub slots: usize,
-    /// Overlaps δ (m).
-    pub delta: *const f64,
-    /// Overlap rates δ̇ (m/s), > 0 approaching.
-    pub rate: *const f64,
-    /// Effective masses (kg).
-    pub mass: *const f64,
-    /// Effective radii (m).
-    pub radius: *const f64,
-    /// Per-contact history (`n × slots`), updated in place.
-    pub history: *mut f64,
-    /// Output: normal forces (N).
-    pub force: *mut f64,
-}
+/// Declares an object owned by a plugin: an opaque pointer and its functions (a static vtable).
+/// `Send + Sync`: the objects behind them are (the law traits require it), and the vtables are
+/// immutable statics.
+macro_rules! ffi_handle {
+    ($(#[$doc:meta])* $name:ident $(<$g:ident>)?, $vt:ty) => {
+        $(#[$doc])*
+        #[repr(C)]
+        #[derive(abi_stable::StableAbi)]
+        pub struct $name$(<$g: 'static>)? {
+            /// Opaque pointer to the object.
+            pub obj: *mut std::ffi::c_void,
+            /// Its functions.
+            pub vtable: &'static $vt,
+        }
 
-/// A batch of contacts for a tangential law, as raw arrays (see
-/// [`TangentialBatch`](crate::TangentialBatch)); vectors are `n` `[x, y, z]` triples.
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, Copy)]
-pub struct FfiTangentialBatch {
-    /// Number of contacts.
-    pub n: usize,
-    /// History slots per contact.
-    pub slots: usize,
-    /// Time step (s).
-    pub dt: f64,
-    /// Unit normals (3n values).
-    pub normal: *const f64,
-    /// Relative contact-point velocities (m/s, 3n values).
-    pub velocity: *const f64,
-    /// Normal forces (N).
-    pub normal_force: *const f64,
-    /// Overlaps (m).
-    pub delta: *const f64,
-    /// Effective masses (kg).
-    pub mass: *const f64,
-    /// Effective radii (m).
-    pub radius: *const f64,
-    /// Per-contact history (`n × slots`), updated in place.
-    pub history: *mut f64,
-    /// Output: tangential forces (N, 3n values).
-    pub force: *mut f64,
+        // SAFETY: see above.
+        unsafe impl$(<$g>)? Send for $name$(<$g>)? {}
+        // SAFETY: see above.
+        unsafe impl$(<$g>)? Sync for $name$(<$g>)? {}
+    };
 }
+pub(crate) use ffi_handle;
 
-/// The functions of a configured 0.2 contact law (not yet bound to materials).
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct ContactLawVTable {
-    /// Binds the law at `obj` to a pair of materials.
-    pub bind: unsafe extern "C" fn(
-        obj: *const c_void,
-        materials: &MaterialPair,
-    ) -> RResult<FfiContactModel, FfiError>,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
+/// Declares the functions of a plugin object and its handle ([`ffi_handle!`]-style): a
+/// configured law (`law`: its entries, then `drop`) or a bound one (`model`: its entries, then
+/// `take_panic` and `drop`; `model_with_coefficients`: its entries, `coefficients`,
+/// `take_panic` and `drop`). The entries are written out (abi_stable reads function pointer types
+/// from the tokens); the common ones are appended in this order.
+macro_rules! ffi_object {
+    (law $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
+        $crate::abi::ffi_object!(@vtable $(#[$doc])* $vt $(<$g>)? { $($body)* });
+        $crate::abi::ffi_handle!($(#[$hdoc])* $handle $(<$g>)?, $vt $(<$g>)?);
+    };
+    (model $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
+        $crate::abi::ffi_object!(@vtable $(#[$doc])* $vt $(<$g>)? {
+            $($body)*
+            /// The message of the last panic caught on this thread by this plugin (empty if none).
+            pub take_panic: extern "C" fn() -> abi_stable::std_types::RString,
+        });
+        $crate::abi::ffi_handle!($(#[$hdoc])* $handle $(<$g>)?, $vt $(<$g>)?);
+    };
+    (model_with_coefficients $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
+        $crate::abi::ffi_object!(model $(#[$doc])* $vt $(<$g>)? {
+            $($body)*
+            /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
+            pub coefficients: unsafe extern "C" fn(
+                obj: *const std::ffi::c_void,
+                mass: f64,
+                radius: f64,
+            ) -> abi_stable::std_types::RResult<
+                abi_stable::std_types::RVec<$crate::abi::ffi::Coefficient>,
+                $crate::abi::FfiError,
+            >,
+        } $(#[$hdoc])* $handle);
+    };
+    (@vtable $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* }) => {
+        $(#[$doc])*
+        #[repr(C)]
+        #[derive(abi_stable::StableAbi)]
+        pub struct $vt$(<$g: 'static>)? {
+            $($body)*
+            /// Frees `obj`.
+            pub drop: unsafe extern "C" fn(obj: *mut std::ffi::c_void),
+        }
+    };
 }
+pub(crate) use ffi_object;
 
-/// A configured 0.2 contact law owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiContactLaw {
-    /// Opaque pointer to the law.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static ContactLawVTable,
+/// Declares a frozen series' law description: its `LawKind` (the kinds it had) and `LawInfo`
+/// (with the per-contact `history` slots from sdk 0.2 on), and the plain description of one.
+macro_rules! frozen_law_info {
+    ($series:literal, [$($kind:ident = $n:literal: $kdoc:literal),*] $(, $history:ident)?) => {
+        #[doc = concat!("Which kind of law (sdk ", $series, ").")]
+        #[repr(u8)]
+        #[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+        pub enum LawKind {
+            $(#[doc = $kdoc] $kind = $n,)*
+        }
+
+        #[doc = concat!("A law's description (sdk ", $series, ").")]
+        #[repr(C)]
+        #[derive(StableAbi, Debug, Clone, PartialEq)]
+        pub struct LawInfo {
+            /// Name.
+            pub name: RString,
+            /// Kind.
+            pub kind: LawKind,
+            /// One line.
+            pub summary: RString,
+            /// Documentation.
+            pub doc: RString,
+            /// Parameter schema.
+            pub params: RVec<super::ffi::ParamSpec>,
+            /// End criterion of a contact law.
+            pub end_criterion: ROption<EndCriterion>,
+            $(
+                /// Per-contact history slots.
+                pub $history: RVec<super::ffi::HistorySlot>,
+            )?
+        }
+
+        impl LawInfo {
+            #[doc = concat!("The plain description of an sdk ", $series, " law.")]
+            pub fn upgrade(self) -> crate::LawInfo {
+                let history = [Vec::new() $(, super::ffi::to_plain(self.$history))?];
+                crate::LawInfo {
+                    name: self.name.into_string(),
+                    kind: match self.kind {
+                        $(LawKind::$kind => crate::LawKind::$kind,)*
+                    },
+                    summary: self.summary.into_string(),
+                    doc: self.doc.into_string(),
+                    params: super::ffi::to_plain(self.params),
+                    end_criterion: self.end_criterion.into_option(),
+                    history: history.into_iter().last().unwrap_or_default(),
+                }
+            }
+        }
+    };
 }
+pub(crate) use frozen_law_info;
 
-/// The hot-path functions of a contact law bound to a pair of materials.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct ContactModelVTable {
-    /// Evaluates a batch; checks inputs and outputs in blocks as it goes and stops at the first
-    /// bad one, described in `*fault`.
-    pub force_batch: unsafe extern "C" fn(
-        obj: *const c_void,
-        batch: &FfiNormalBatch,
-        fault: &mut BatchFault,
-    ) -> BatchStatus,
-    /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
-    pub coefficients: unsafe extern "C" fn(
-        obj: *const c_void,
-        mass: f64,
-        radius: f64,
-    ) -> RResult<RVec<Coefficient>, FfiError>,
-    /// The message of the last panic caught on this thread by this plugin (empty if none).
-    pub take_panic: extern "C" fn() -> RString,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
+ffi_object!(law
+    /// The functions of a configured restitution law (unchanged since sdk 0.1).
+    RestitutionLawVTable {
+        /// Binds the law at `obj` to `pair`.
+        pub bind: unsafe extern "C" fn(obj: *const c_void, pair: &Pair) -> RResult<FfiBoundRestitution, FfiError>,
+    }
+    /// A configured restitution law owned by the plugin that made it.
+    FfiRestitutionLaw
+);
 
-/// A contact law bound to a pair of materials, owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiContactModel {
-    /// Opaque pointer.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static ContactModelVTable,
-}
+ffi_object!(model
+    /// The hot-path functions of a restitution law bound to a pair (unchanged since sdk 0.1).
+    BoundRestitutionVTable {
+        /// `*out = r(speed)` for normal impact speed `speed` (m/s).
+        pub restitution: unsafe extern "C" fn(obj: *const c_void, speed: f64, out: *mut f64) -> v1::CallStatus,
+        /// `out[i] = r(speed[i])` for `i < n`; outputs checked in blocks, the first bad index in
+        /// `*first_bad`.
+        pub restitution_batch: unsafe extern "C" fn(
+            obj: *const c_void,
+            speed: *const f64,
+            out: *mut f64,
+            n: usize,
+            first_bad: *mut usize,
+        ) -> v1::CallStatus,
+    }
+    /// A restitution law bound to a pair, owned by the plugin that made it.
+    FfiBoundRestitution
+);
 
-/// The functions of a configured tangential law.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct TangentialLawVTable {
-    /// Binds the law at `obj` to a pair of materials.
-    pub bind: unsafe extern "C" fn(
-        obj: *const c_void,
-        materials: &MaterialPair,
-    ) -> RResult<FfiTangentialModel, FfiError>,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
-
-/// A configured tangential law owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiTangentialLaw {
-    /// Opaque pointer.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static TangentialLawVTable,
-}
-
-/// The hot-path functions of a tangential law bound to a pair of materials.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct TangentialModelVTable {
-    /// Evaluates a batch, checked like [`ContactModelVTable::force_batch`].
-    pub force_batch: unsafe extern "C" fn(
-        obj: *const c_void,
-        batch: &FfiTangentialBatch,
-        fault: &mut BatchFault,
-    ) -> BatchStatus,
-    /// The message of the last panic caught on this thread by this plugin (empty if none).
-    pub take_panic: extern "C" fn() -> RString,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
-
-/// A tangential law bound to a pair of materials, owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiTangentialModel {
-    /// Opaque pointer.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static TangentialModelVTable,
-}
-
-/// The functions of a configured restitution law (unchanged since sdk 0.1).
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct RestitutionLawVTable {
-    /// Binds the law at `obj` to `pair`.
-    pub bind: unsafe extern "C" fn(obj: *const c_void, pair: &Pair) -> RResult<FfiBoundRestitution, FfiError>,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
-
-/// A configured restitution law owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiRestitutionLaw {
-    /// Opaque pointer to the law.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static RestitutionLawVTable,
-}
-
-/// The hot-path functions of a restitution law bound to a pair (unchanged since sdk 0.1).
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct BoundRestitutionVTable {
-    /// `*out = r(speed)` for normal impact speed `speed` (m/s).
-    pub restitution: unsafe extern "C" fn(obj: *const c_void, speed: f64, out: *mut f64) -> v1::CallStatus,
-    /// `out[i] = r(speed[i])` for `i < n`; outputs checked in blocks, the first bad index in
-    /// `*first_bad`.
-    pub restitution_batch: unsafe extern "C" fn(
-        obj: *const c_void,
-        speed: *const f64,
-        out: *mut f64,
-        n: usize,
-        first_bad: *mut usize,
-    ) -> v1::CallStatus,
-    /// The message of the last panic caught on this thread by this plugin (empty if none).
-    pub take_panic: extern "C" fn() -> RString,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
-
-/// A restitution law bound to a pair, owned by the plugin that made it.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiBoundRestitution {
-    /// Opaque pointer to the bound law.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static BoundRestitutionVTable,
-}
-
-/// The root module every plugin exports (an abi_stable prefix type: fields are appended after
-/// the last prefix field without breaking older plugins, whose missing fields read as `None`).
+/// The root module every sdk 0.3 plugin exports (an abi_stable prefix type: a later 0.3 release
+/// may append fields after the last prefix field without breaking older plugins, whose missing
+/// fields then read as `None`).
 #[repr(C)]
 #[derive(StableAbi)]
 #[sabi(kind(Prefix(prefix_ref = PluginModuleRef)))]
@@ -396,13 +352,29 @@ pub struct PluginModule {
     pub version: RStr<'static>,
     /// The dashpot-sdk version it was built against ([`ABI_VERSION`] on its side).
     pub sdk_version: RStr<'static>,
-    /// sdk 0.1: the contact and restitution laws, in 0.1's description.
-    pub laws: extern "C" fn() -> RResult<RVec<v1::LawInfo>, FfiError>,
-    /// sdk 0.1: creates a contact law bound later to one [`Pair`]. A 0.2 plugin answers with an
-    /// error (its contact laws are created by `new_contact2`).
-    pub new_contact:
-        extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<v1::FfiContactLaw, FfiError>,
-    /// Creates the restitution law `name` from parameters (validated against its schema).
+    /// Every law the plugin exports, of every kind.
+    pub laws: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
+    /// Creates contact law `name` from parameters (validated against its schema).
+    pub new_contact: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError>,
+    /// Creates tangential law `name`.
+    pub new_tangential: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+    /// Creates rolling law `name`.
+    pub new_rolling: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+    /// Creates twisting law `name`.
+    pub new_twisting: extern "C" fn(
+        name: RStr<'_>,
+        params: RSlice<'_, ParamValue>,
+    ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError>,
+    /// Creates restitution law `name` (the ABI of sdk 0.1).
     pub new_restitution:
         extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiRestitutionLaw, FfiError>,
     /// Closed-form parameters of contact law `name` that reproduce `target` for `pair`, given the
@@ -414,44 +386,6 @@ pub struct PluginModule {
         pair: &Pair,
         fixed: RSlice<'_, ParamValue>,
     ) -> RResult<ROption<RVec<ParamValue>>, FfiError>,
-    /// sdk 0.2: the contact, restitution and tangential laws, in 0.2's description.
-    #[sabi(missing_field(option))]
-    pub laws2: extern "C" fn() -> RResult<RVec<v2::LawInfo>, FfiError>,
-    /// sdk 0.2: creates contact law `name` (bound later to a [`MaterialPair`]).
-    #[sabi(missing_field(option))]
-    pub new_contact2:
-        extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiContactLaw, FfiError>,
-    /// sdk 0.2: creates tangential law `name`.
-    #[sabi(missing_field(option))]
-    pub new_tangential:
-        extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiTangentialLaw, FfiError>,
-    /// sdk 0.3: every law the plugin exports, of every kind.
-    #[sabi(missing_field(option))]
-    pub laws3: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
-    /// sdk 0.3: creates contact law `name` (reach and energy outputs).
-    #[sabi(missing_field(option))]
-    pub new_contact3: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError>,
-    /// sdk 0.3: creates tangential law `name` (energy outputs).
-    #[sabi(missing_field(option))]
-    pub new_tangential3: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
-    /// sdk 0.3: creates rolling law `name`.
-    #[sabi(missing_field(option))]
-    pub new_rolling: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
-    /// sdk 0.3: creates twisting law `name`.
-    #[sabi(missing_field(option))]
-    pub new_twisting: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError>,
 }
 
 impl RootModule for PluginModuleRef {
@@ -460,21 +394,6 @@ impl RootModule for PluginModuleRef {
     const NAME: &'static str = "dashpot plugin";
     const VERSION_STRINGS: VersionStrings = VersionStrings::new(ABI_VERSION);
 }
-
-// SAFETY: the objects behind these handles are `Send + Sync` (the law traits require it), and the
-// vtables are immutable statics.
-unsafe impl Send for FfiContactLaw {}
-unsafe impl Sync for FfiContactLaw {}
-unsafe impl Send for FfiContactModel {}
-unsafe impl Sync for FfiContactModel {}
-unsafe impl Send for FfiTangentialLaw {}
-unsafe impl Sync for FfiTangentialLaw {}
-unsafe impl Send for FfiTangentialModel {}
-unsafe impl Sync for FfiTangentialModel {}
-unsafe impl Send for FfiRestitutionLaw {}
-unsafe impl Sync for FfiRestitutionLaw {}
-unsafe impl Send for FfiBoundRestitution {}
-unsafe impl Sync for FfiBoundRestitution {}
 
 #[cfg(test)]
 mod tests {

@@ -3,43 +3,24 @@
 //! with (δ, δ̇) only. Their layout must never change: abi_stable compares it, field by field,
 //! with the one recorded in every 0.1 plugin.
 
+use super::ffi::Coefficient;
+use super::{ffi_object, frozen_law_info};
 use crate::error::FfiError;
-use crate::law::{Coefficient, EndCriterion};
+use crate::law::EndCriterion;
 use crate::pair::Pair;
-use crate::params::ParamSpec;
 use abi_stable::{
     std_types::{ROption, RResult, RString, RVec},
     StableAbi,
 };
 use std::ffi::c_void;
 
-/// Which kind of law (sdk 0.1).
-#[repr(u8)]
-#[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum LawKind {
-    /// A normal contact force F(δ, δ̇) (N).
-    Contact = 1,
-    /// A restitution coefficient r(v).
-    Restitution = 2,
-}
-
-/// A law's description (sdk 0.1).
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq)]
-pub struct LawInfo {
-    /// Name.
-    pub name: RString,
-    /// Kind.
-    pub kind: LawKind,
-    /// One line.
-    pub summary: RString,
-    /// Documentation.
-    pub doc: RString,
-    /// Parameter schema.
-    pub params: RVec<ParamSpec>,
-    /// End criterion of a contact law.
-    pub end_criterion: ROption<EndCriterion>,
-}
+frozen_law_info!(
+    "0.1",
+    [
+        Contact = 1: "A normal contact force F(δ, δ̇) (N).",
+        Restitution = 2: "A restitution coefficient r(v)."
+    ]
+);
 
 /// Outcome of a 0.1 hot-path call (also used by restitution laws, unchanged in 0.2).
 #[repr(u8)]
@@ -53,65 +34,37 @@ pub enum CallStatus {
     NonFinite = 2,
 }
 
-/// The functions of a configured 0.1 contact law.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct ContactLawVTable {
-    /// Binds the law at `obj` to `pair`.
-    pub bind: unsafe extern "C" fn(obj: *const c_void, pair: &Pair) -> RResult<FfiBoundContact, FfiError>,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
+ffi_object!(law
+    /// The functions of a configured 0.1 contact law.
+    ContactLawVTable {
+        /// Binds the law at `obj` to `pair`.
+        pub bind: unsafe extern "C" fn(obj: *const c_void, pair: &Pair) -> RResult<FfiBoundContact, FfiError>,
+    }
+    /// A configured 0.1 contact law.
+    FfiContactLaw
+);
 
-/// A configured 0.1 contact law.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiContactLaw {
-    /// Opaque pointer.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static ContactLawVTable,
-}
-
-/// The hot-path functions of a 0.1 contact law bound to a pair.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct BoundContactVTable {
-    /// `*out = F(delta, rate)` (N).
-    pub force: unsafe extern "C" fn(obj: *const c_void, delta: f64, rate: f64, out: *mut f64) -> CallStatus,
-    /// `out[i] = F(delta[i], rate[i])` for `i < n`, outputs checked, first bad index in
-    /// `*first_bad`.
-    pub force_batch: unsafe extern "C" fn(
-        obj: *const c_void,
-        delta: *const f64,
-        rate: *const f64,
-        out: *mut f64,
-        n: usize,
-        first_bad: *mut usize,
-    ) -> CallStatus,
-    /// The bound law's derived constants.
-    pub coefficients: unsafe extern "C" fn(obj: *const c_void) -> RResult<RVec<Coefficient>, FfiError>,
-    /// The message of the last panic caught on this thread by this plugin.
-    pub take_panic: extern "C" fn() -> RString,
-    /// Frees `obj`.
-    pub drop: unsafe extern "C" fn(obj: *mut c_void),
-}
-
-/// A 0.1 contact law bound to a pair.
-#[repr(C)]
-#[derive(StableAbi)]
-pub struct FfiBoundContact {
-    /// Opaque pointer.
-    pub obj: *mut c_void,
-    /// Its functions.
-    pub vtable: &'static BoundContactVTable,
-}
-
-// SAFETY: as for the 0.2 handles: Send + Sync objects, immutable static vtables.
-unsafe impl Send for FfiContactLaw {}
-unsafe impl Sync for FfiContactLaw {}
-unsafe impl Send for FfiBoundContact {}
-unsafe impl Sync for FfiBoundContact {}
+ffi_object!(model
+    /// The hot-path functions of a 0.1 contact law bound to a pair.
+    BoundContactVTable {
+        /// `*out = F(delta, rate)` (N).
+        pub force: unsafe extern "C" fn(obj: *const c_void, delta: f64, rate: f64, out: *mut f64) -> CallStatus,
+        /// `out[i] = F(delta[i], rate[i])` for `i < n`, outputs checked, first bad index in
+        /// `*first_bad`.
+        pub force_batch: unsafe extern "C" fn(
+            obj: *const c_void,
+            delta: *const f64,
+            rate: *const f64,
+            out: *mut f64,
+            n: usize,
+            first_bad: *mut usize,
+        ) -> CallStatus,
+        /// The bound law's derived constants.
+        pub coefficients: unsafe extern "C" fn(obj: *const c_void) -> RResult<RVec<Coefficient>, FfiError>,
+    }
+    /// A 0.1 contact law bound to a pair.
+    FfiBoundContact
+);
 
 /// The root module of an sdk 0.1 plugin, exactly as 0.1 declared it (abi_stable refuses to read
 /// a library whose prefix type has fewer fields than the host's, so 0.1 plugins are read through
@@ -132,19 +85,19 @@ pub struct PluginModule {
     /// Creates a contact law.
     pub new_contact: extern "C" fn(
         name: abi_stable::std_types::RStr<'_>,
-        params: abi_stable::std_types::RSlice<'_, crate::params::ParamValue>,
+        params: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
     ) -> RResult<FfiContactLaw, FfiError>,
     /// Creates a restitution law.
     pub new_restitution: extern "C" fn(
         name: abi_stable::std_types::RStr<'_>,
-        params: abi_stable::std_types::RSlice<'_, crate::params::ParamValue>,
+        params: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
     ) -> RResult<super::FfiRestitutionLaw, FfiError>,
     /// Closed-form calibration.
     #[sabi(last_prefix_field)]
     pub calibrate: extern "C" fn(
         name: abi_stable::std_types::RStr<'_>,
-        target: &crate::law::CalibrationTarget,
+        target: &super::ffi::CalibrationTarget,
         pair: &Pair,
-        fixed: abi_stable::std_types::RSlice<'_, crate::params::ParamValue>,
-    ) -> RResult<ROption<RVec<crate::params::ParamValue>>, FfiError>,
+        fixed: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
+    ) -> RResult<ROption<RVec<super::ffi::ParamValue>>, FfiError>,
 }

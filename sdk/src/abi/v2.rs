@@ -1,52 +1,30 @@
-//! The frozen types of sdk 0.2 that sdk 0.3 changed, through which a 0.3 host still talks to
-//! plugins built against sdk 0.2. sdk 0.3 added law kinds (rolling, twisting) to [`LawKind`],
-//! which changes the layout of every type that reaches it; a 0.2 plugin's law list is therefore
-//! read through these copies. Every other type a 0.2 plugin's root module reaches (the contact,
-//! tangential and restitution vtables and batches) is unchanged in 0.3 and shared. Their layout
-//! must never change: abi_stable compares it, field by field, with the one recorded in every
-//! 0.2 plugin.
+//! The frozen types of sdk 0.2, through which a 0.3 host still talks to plugins built against
+//! sdk 0.2: its law list (sdk 0.3 added law kinds to [`LawKind`], which changes the layout of
+//! every type that reaches it), its root module, and its contact and tangential laws (vtables and
+//! raw batches; the 0.3 normal batch embeds the 0.2 one). The restitution ABI is 0.1's, shared.
+//! Their layout must never change: abi_stable compares it, field by field, with the one recorded
+//! in every 0.2 plugin.
 
-use super::{FfiContactLaw, FfiRestitutionLaw, FfiTangentialLaw};
+use super::ffi::{CalibrationTarget, ParamValue};
+use super::{ffi_object, frozen_law_info, BatchFault, BatchStatus, FfiRestitutionLaw};
 use crate::error::FfiError;
-use crate::law::{CalibrationTarget, EndCriterion, HistorySlot};
-use crate::pair::Pair;
-use crate::params::{ParamSpec, ParamValue};
+use crate::law::EndCriterion;
+use crate::pair::{MaterialPair, Pair};
 use abi_stable::{
     std_types::{ROption, RResult, RSlice, RStr, RString, RVec},
     StableAbi,
 };
+use std::ffi::c_void;
 
-/// Which kind of law (sdk 0.2).
-#[repr(u8)]
-#[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum LawKind {
-    /// A normal contact force F(δ, δ̇) (N), possibly with per-contact history.
-    Contact = 1,
-    /// A restitution coefficient r(v).
-    Restitution = 2,
-    /// A tangential (friction) force (N), with per-contact history.
-    Tangential = 3,
-}
-
-/// A law's description (sdk 0.2).
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, PartialEq)]
-pub struct LawInfo {
-    /// Name.
-    pub name: RString,
-    /// Kind.
-    pub kind: LawKind,
-    /// One line.
-    pub summary: RString,
-    /// Documentation.
-    pub doc: RString,
-    /// Parameter schema.
-    pub params: RVec<ParamSpec>,
-    /// End criterion of a contact law.
-    pub end_criterion: ROption<EndCriterion>,
-    /// Per-contact history slots.
-    pub history: RVec<HistorySlot>,
-}
+frozen_law_info!(
+    "0.2",
+    [
+        Contact = 1: "A normal contact force F(δ, δ̇) (N), possibly with per-contact history.",
+        Restitution = 2: "A restitution coefficient r(v).",
+        Tangential = 3: "A tangential (friction) force (N), with per-contact history."
+    ],
+    history
+);
 
 /// The root module of an sdk 0.2 plugin, exactly as 0.2 declared it (with its law list in the
 /// 0.2 description).
@@ -92,40 +70,110 @@ pub struct PluginModule {
         extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiTangentialLaw, FfiError>,
 }
 
-impl LawInfo {
-    /// The 0.3 description of a 0.2 law.
-    pub fn upgrade(self) -> crate::law::LawInfo {
-        crate::law::LawInfo {
-            name: self.name,
-            kind: match self.kind {
-                LawKind::Contact => crate::law::LawKind::Contact,
-                LawKind::Restitution => crate::law::LawKind::Restitution,
-                LawKind::Tangential => crate::law::LawKind::Tangential,
-            },
-            summary: self.summary,
-            doc: self.doc,
-            params: self.params,
-            end_criterion: self.end_criterion,
-            history: self.history,
-        }
-    }
-
-    /// The 0.2 description of a 0.3 law, `None` for a kind 0.2 did not have.
-    pub fn downgrade(i: crate::law::LawInfo) -> Option<LawInfo> {
-        let kind = match i.kind {
-            crate::law::LawKind::Contact => LawKind::Contact,
-            crate::law::LawKind::Restitution => LawKind::Restitution,
-            crate::law::LawKind::Tangential => LawKind::Tangential,
-            _ => return None,
-        };
-        Some(LawInfo {
-            name: i.name,
-            kind,
-            summary: i.summary,
-            doc: i.doc,
-            params: i.params,
-            end_criterion: i.end_criterion,
-            history: i.history,
-        })
-    }
+/// A batch of contacts for a normal law, as raw arrays (see [`NormalBatch`](crate::NormalBatch)).
+/// All pointers refer to `n` values except `history` (`n × slots`); they may dangle when
+/// `n == 0`.
+#[repr(C)]
+#[derive(StableAbi, Debug, Clone, Copy)]
+pub struct FfiNormalBatch {
+    /// Number of contacts.
+    pub n: usize,
+    /// History slots per contact.
+    pub slots: usize,
+    /// Overlaps δ (m).
+    pub delta: *const f64,
+    /// Overlap rates δ̇ (m/s), > 0 approaching.
+    pub rate: *const f64,
+    /// Effective masses (kg).
+    pub mass: *const f64,
+    /// Effective radii (m).
+    pub radius: *const f64,
+    /// Per-contact history (`n × slots`), updated in place.
+    pub history: *mut f64,
+    /// Output: normal forces (N).
+    pub force: *mut f64,
 }
+
+/// A batch of contacts for a tangential law, as raw arrays (see
+/// [`TangentialBatch`](crate::TangentialBatch)); vectors are `n` `[x, y, z]` triples.
+#[repr(C)]
+#[derive(StableAbi, Debug, Clone, Copy)]
+pub struct FfiTangentialBatch {
+    /// Number of contacts.
+    pub n: usize,
+    /// History slots per contact.
+    pub slots: usize,
+    /// Time step (s).
+    pub dt: f64,
+    /// Unit normals (3n values).
+    pub normal: *const f64,
+    /// Relative contact-point velocities (m/s, 3n values).
+    pub velocity: *const f64,
+    /// Normal forces (N).
+    pub normal_force: *const f64,
+    /// Overlaps (m).
+    pub delta: *const f64,
+    /// Effective masses (kg).
+    pub mass: *const f64,
+    /// Effective radii (m).
+    pub radius: *const f64,
+    /// Per-contact history (`n × slots`), updated in place.
+    pub history: *mut f64,
+    /// Output: tangential forces (N, 3n values).
+    pub force: *mut f64,
+}
+
+ffi_object!(law
+    /// The functions of a configured 0.2 contact law (not yet bound to materials).
+    ContactLawVTable {
+        /// Binds the law at `obj` to a pair of materials.
+        pub bind: unsafe extern "C" fn(
+            obj: *const c_void,
+            materials: &MaterialPair,
+        ) -> RResult<FfiContactModel, FfiError>,
+    }
+    /// A configured 0.2 contact law owned by the plugin that made it.
+    FfiContactLaw
+);
+
+ffi_object!(model_with_coefficients
+    /// The hot-path functions of a contact law bound to a pair of materials.
+    ContactModelVTable {
+        /// Evaluates a batch; checks inputs and outputs in blocks as it goes and stops at the first
+        /// bad one, described in `*fault`.
+        pub force_batch: unsafe extern "C" fn(
+            obj: *const c_void,
+            batch: &FfiNormalBatch,
+            fault: &mut BatchFault,
+        ) -> BatchStatus,
+    }
+    /// A contact law bound to a pair of materials, owned by the plugin that made it.
+    FfiContactModel
+);
+
+ffi_object!(law
+    /// The functions of a configured tangential law.
+    TangentialLawVTable {
+        /// Binds the law at `obj` to a pair of materials.
+        pub bind: unsafe extern "C" fn(
+            obj: *const c_void,
+            materials: &MaterialPair,
+        ) -> RResult<FfiTangentialModel, FfiError>,
+    }
+    /// A configured tangential law owned by the plugin that made it.
+    FfiTangentialLaw
+);
+
+ffi_object!(model
+    /// The hot-path functions of a tangential law bound to a pair of materials.
+    TangentialModelVTable {
+        /// Evaluates a batch, checked like [`ContactModelVTable::force_batch`].
+        pub force_batch: unsafe extern "C" fn(
+            obj: *const c_void,
+            batch: &FfiTangentialBatch,
+            fault: &mut BatchFault,
+        ) -> BatchStatus,
+    }
+    /// A tangential law bound to a pair of materials, owned by the plugin that made it.
+    FfiTangentialModel
+);

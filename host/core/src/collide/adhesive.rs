@@ -14,6 +14,7 @@
 //!   motion can give it back (the law is elastic or dissipative), so it stays attached
 //!   (restitution 0).
 
+use super::outcome::{in_domain, no_return, overrun};
 use super::outcome::{CollideError, Collision, Options};
 use super::rk::{locate, RhsError, System, Tolerance};
 use super::two_body::{locate_speed_zero, TPhase};
@@ -57,14 +58,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
         xscale = xscale.max(reach_formed);
     }
     let inv_m = 1.0 / mass;
-    let no_return = |t: f64, d: f64, v: f64, steps: usize, why: &'static str| CollideError::NoReturn {
-        t,
-        delta: d,
-        rate: v,
-        steps,
-        factor: t / tstar,
-        why,
-    };
+    let no_return = no_return(tstar);
     let mut tp = TPhase { law, inv_m, evals: 0 };
     let tol = Tolerance {
         rtol: opt.rtol,
@@ -95,33 +89,18 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
     let mut n = 0usize;
     let (stuck, t_end, v_end) = loop {
         n += 1;
-        if n > opt.max_steps {
-            return Err(no_return(
-                t,
-                z[0],
-                z[1],
-                steps,
-                "too many steps in an adhesive contact",
-            ));
-        }
-        if t > t_limit {
-            return Err(no_return(
-                t,
-                z[0],
-                z[1],
-                steps,
-                "contact time limit of an adhesive contact",
-            ));
+        let why = [
+            "too many steps in an adhesive contact",
+            "contact time limit of an adhesive contact",
+        ];
+        if let Some(why) = overrun(n, opt.max_steps, t, t_limit, why) {
+            return Err(no_return(t, z[0], z[1], steps, why));
         }
         h = h.min(hmax);
         let reach = law.reach(z[0], z[1])?;
-        let s = match opt.method.step(&mut tp, t, &z, &kz, h) {
-            Ok(s) => s,
-            Err(RhsError::OutOfDomain) => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+        let Some(s) = in_domain(opt.method.step(&mut tp, t, &z, &kz, h))? else {
+            h *= 0.25;
+            continue;
         };
         // the end of contact inside the step: located on fresh steps from (t, z), each of
         // which stays on the acting side but the last bracket

@@ -8,7 +8,7 @@
 use super::two_body::{collide, CollideError, Collision, Options, PairLaw};
 use crate::registry::Registry;
 use dashpot_sdk::{
-    CalibrationTarget, EndCriterion, LawError, LawKind, MaterialPair, Pair, ParamValue, ROption, Range,
+    CalibrationTarget, EndCriterion, LawError, LawKind, MaterialPair, Pair, ParamValue, Range,
 };
 
 /// What to calibrate.
@@ -172,6 +172,16 @@ fn solve(
     };
     // an interior, valid bracket
     let inside = |x: f64| range.contains(x);
+    // no sign change of f − target over [lo, hi]
+    let unreachable = |lo: f64, hi: f64, f_lo: f64, f_hi: f64| CalibrateError::Unreachable {
+        param: name.into(),
+        what,
+        target,
+        lo,
+        hi,
+        f_lo: f_lo + target,
+        f_hi: f_hi + target,
+    };
     let (mut a, mut b);
     if log {
         let s = if start > 0.0 && start.is_finite() {
@@ -221,15 +231,7 @@ fn solve(
             }
         }
         if !found {
-            return Err(CalibrateError::Unreachable {
-                param: name.into(),
-                what,
-                target,
-                lo: a,
-                hi: b,
-                f_lo: fa + target,
-                f_hi: fb + target,
-            });
+            return Err(unreachable(a, b, fa, fb));
         }
         illinois(to(a), fa, to(b), fb, |y| Ok(f(from(y))? - target)).map(from)
     } else {
@@ -253,15 +255,7 @@ fn solve(
             return Ok(b);
         }
         if (fa > 0.0) == (fb > 0.0) {
-            return Err(CalibrateError::Unreachable {
-                param: name.into(),
-                what,
-                target,
-                lo: a,
-                hi: b,
-                f_lo: fa + target,
-                f_hi: fb + target,
-            });
+            return Err(unreachable(a, b, fa, fb));
         }
         illinois(a, fa, b, fb, |y| Ok(f(y)? - target))
     }
@@ -309,8 +303,8 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
     let mut model = Model { reg, spec, runs: 0 };
     let target = CalibrationTarget {
         restitution: eps,
-        contact_time: spec.contact_time.into(),
-        impact_speed: ROption::RSome(spec.v0),
+        contact_time: spec.contact_time,
+        impact_speed: Some(spec.v0),
         end: spec.end,
     };
 
@@ -367,7 +361,7 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
             .iter()
             .find(|p| p.name == fit.as_str())
             .map(|p| p.value)
-            .or(fit_spec.default.into_option())
+            .or(fit_spec.default)
             .unwrap_or(1.0);
         for _round in 0..40 {
             // restitution by the dissipation parameter
@@ -429,7 +423,7 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
     let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
     for s in &schema {
         if !full.iter().any(|(n, _)| n == s.name.as_str()) {
-            if let Some(d) = s.default.into_option() {
+            if let Some(d) = s.default {
                 full.push((s.name.to_string(), d));
             }
         }

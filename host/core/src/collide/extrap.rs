@@ -107,29 +107,12 @@ pub fn step_factor(e: f64, k: usize) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    struct Osc;
-    impl System<2> for Osc {
-        fn rhs(&mut self, _x: f64, y: &[f64; 2]) -> Result<[f64; 2], RhsError> {
-            Ok([y[1], -y[0]])
-        }
-    }
+    use crate::collide::rk::tests::period_error;
 
     #[test]
     fn extrapolation_has_order_2k() {
         for k in [3usize, 5] {
-            let err = |n: usize| {
-                let h = 2.0 * std::f64::consts::PI / n as f64;
-                let (mut x, mut y) = (0.0, [0.0, 1.0]);
-                let mut f = Osc.rhs(x, &y).unwrap();
-                for _ in 0..n {
-                    let s = step(&mut Osc, x, &y, &f, h, k).unwrap();
-                    x += h;
-                    y = s.y;
-                    f = s.f;
-                }
-                (y[0] - x.sin()).abs().max((y[1] - x.cos()).abs())
-            };
+            let err = |n: usize| period_error(n, |o, x, y, f, h| step(o, x, y, f, h, k).unwrap());
             let (e1, e2) = (err(8), err(16));
             let order = (e1 / e2).log2();
             assert!(

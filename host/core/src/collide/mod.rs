@@ -13,4 +13,4 @@ pub mod rolling;
 pub mod two_body;
 
 pub use oblique::{oblique, Body, Impact, ObliqueCollision, ObliqueError, Target};
-pub use two_body::{collide, CollideError, Collision, ContactForce, Options, PairLaw, Sample};
+pub use two_body::{collide, collide_named, CollideError, Collision, ContactForce, Options, PairLaw, Sample};

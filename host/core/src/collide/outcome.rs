@@ -186,3 +186,45 @@ impl From<RhsError> for CollideError {
         }
     }
 }
+
+/// Why a phase of an adaptive integration stops before its end: after `max_steps` steps (`why`
+/// [0]) or past the time `t_limit` (`why` [1]); `None` while it may go on.
+pub(crate) fn overrun(
+    n: usize,
+    max_steps: usize,
+    t: f64,
+    t_limit: f64,
+    why: [&'static str; 2],
+) -> Option<&'static str> {
+    if n > max_steps {
+        Some(why[0])
+    } else if t > t_limit {
+        Some(why[1])
+    } else {
+        None
+    }
+}
+
+/// A trial step's result for the adaptive loops: `Ok(None)` when the step left the
+/// formulation's domain (the caller retries a quarter of it), other errors passed on.
+#[inline]
+pub(crate) fn in_domain(r: Result<Step<2>, RhsError>) -> Result<Option<Step<2>>, RhsError> {
+    match r {
+        Ok(s) => Ok(Some(s)),
+        Err(RhsError::OutOfDomain) => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
+/// The error of a collision that does not end: at time `t` (s), overlap `delta` (m) and rate
+/// `rate` (m/s) after `steps` steps, `t` being `t / tstar` collision time scales, and why.
+pub(crate) fn no_return(tstar: f64) -> impl Fn(f64, f64, f64, usize, &'static str) -> CollideError {
+    move |t, delta, rate, steps, why| CollideError::NoReturn {
+        t,
+        delta,
+        rate,
+        steps,
+        factor: t / tstar,
+        why,
+    }
+}

@@ -35,19 +35,15 @@ use dashpot_sdk::{EndCriterion, LawError};
 /// fitted or tabulated law, a plastic limit) is thus never evaluated far beyond what the
 /// collision reaches. Each growth step goes at most half-way (in log δ) to where the power law
 /// through the last two points would cross, and at least a factor 2, so the largest overlap
-/// probed is below 2 δ*.
+/// probed is below 2 δ*. The crossing is then narrowed to within a factor 1.01 on geometric
+/// grids inside the bracket. Every probe asks for both rates in one call of the law, and each
+/// grid is one call: about fifteen calls in all.
 pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64, CollideError> {
     let target = mass * v0 * v0;
-    // F·δ at δ, as the largest magnitude over the two probed rates
     let work = |d: f64| -> Result<f64, CollideError> {
-        let f = |rate: f64| {
-            law.force(d, rate).map_err(|e| CollideError::Probe {
-                delta: d,
-                v0,
-                source: e,
-            })
-        };
-        Ok(f(0.0)?.abs().max(f(v0)?.abs()) * d)
+        let mut w = [0.0];
+        works(law, v0, &[d], &mut w)?;
+        Ok(w[0])
     };
     let (mut lo, mut w_lo) = (PROBE_START, work(PROBE_START)?);
     if w_lo >= target {
@@ -81,16 +77,57 @@ pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64
         prev = Some((lo, w_lo));
         (lo, w_lo) = (hi, w_hi);
     }
-    // bisection on a log scale (geometric means), to within a factor 1.01
+    // geometric grids inside [lo, hi], each one call of the law, to within a factor 1.01
     while hi > 1.01 * lo {
-        let mid = (lo * hi).sqrt();
-        if work(mid)? >= target {
-            hi = mid;
-        } else {
-            lo = mid;
+        let step = (hi / lo).powf(1.0 / (GRID + 1) as f64);
+        let mut ds = [0.0; GRID];
+        let mut d = lo;
+        for x in ds.iter_mut() {
+            d *= step;
+            *x = d;
+        }
+        let mut w = [0.0; GRID];
+        works(law, v0, &ds, &mut w)?;
+        match w.iter().position(|&w| w >= target) {
+            Some(0) => hi = ds[0],
+            Some(i) => (lo, hi) = (ds[i - 1], ds[i]),
+            None => lo = ds[GRID - 1],
         }
     }
     Ok(hi)
+}
+
+/// Interior overlaps of each grid of the scale search (two states each: one call of the law).
+const GRID: usize = 7;
+
+/// `w[i]` = F·δ at overlap `ds[i]` (the larger magnitude over δ̇ = 0 and `v0`), all in one call
+/// of the law; a failure names the first overlap where the law fails.
+fn works<C: ContactForce>(law: &C, v0: f64, ds: &[f64], w: &mut [f64]) -> Result<(), CollideError> {
+    let n = ds.len();
+    let (mut d, mut r, mut f) = ([0.0; 2 * GRID], [0.0; 2 * GRID], [0.0; 2 * GRID]);
+    for (i, &x) in ds.iter().enumerate() {
+        (d[2 * i], r[2 * i]) = (x, 0.0);
+        (d[2 * i + 1], r[2 * i + 1]) = (x, v0);
+    }
+    if law
+        .force_batch(&d[..2 * n], &r[..2 * n], &mut f[..2 * n])
+        .is_err()
+    {
+        // one overlap at a time, to name the one where the law fails
+        for (i, &x) in ds.iter().enumerate() {
+            for (j, rate) in [0.0, v0].into_iter().enumerate() {
+                f[2 * i + j] = law.force(x, rate).map_err(|e| CollideError::Probe {
+                    delta: x,
+                    v0,
+                    source: e,
+                })?;
+            }
+        }
+    }
+    for (i, (w, &x)) in w.iter_mut().zip(ds).enumerate() {
+        *w = f[2 * i].abs().max(f[2 * i + 1].abs()) * x;
+    }
+    Ok(())
 }
 
 /// The smallest overlap the scale search asks a law about (m): far below any physical overlap
@@ -253,6 +290,22 @@ pub(crate) fn locate_speed_zero<S: System<2>>(
     })
 }
 
+/// The head-on collision of `pair` at normal impact speed `v0` (m/s) under contact law `law` of
+/// `reg` with `params`, both bodies of Poisson's ratio 0.3 (which only a shear modulus depends
+/// on): what the reports and the tests run.
+pub fn collide_named(
+    reg: &crate::registry::Registry,
+    law: &str,
+    params: &[dashpot_sdk::ParamValue],
+    pair: &dashpot_sdk::Pair,
+    v0: f64,
+    end: EndCriterion,
+    opt: &Options,
+) -> Result<Collision, CollideError> {
+    let b = PairLaw::bind(&reg.contact(law, params)?, pair, 0.3)?;
+    collide(&b, pair.mass, v0, end, opt)
+}
+
 /// Integrates one collision. `mass` is the effective mass (kg), `v0` the normal impact speed (m/s).
 pub fn collide<C: ContactForce>(
     law: &C,
@@ -289,14 +342,7 @@ pub fn collide<C: ContactForce>(
         }
         Ok(())
     };
-    let no_return = |t: f64, d: f64, v: f64, steps: usize, why: &'static str| CollideError::NoReturn {
-        t,
-        delta: d,
-        rate: v,
-        steps,
-        factor: t / tstar,
-        why,
-    };
+    let no_return = no_return(tstar);
 
     // ---- phase 1: compression start, u from 0 while v > v0/2 ----
     let mut ph = UPhase {
@@ -330,13 +376,9 @@ pub fn collide<C: ContactForce>(
                 "too many steps in the compression phase",
             ));
         }
-        let s = match opt.method.step(&mut ph, u, &y, &k, h) {
-            Ok(s) => s,
-            Err(RhsError::OutOfDomain) => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+        let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, h))? else {
+            h *= 0.25;
+            continue;
         };
         let e = tol_u.norm(&y, &s.y, &s.err);
         if e <= 1.0 {
@@ -380,17 +422,9 @@ pub fn collide<C: ContactForce>(
             break;
         }
         n += 1;
-        if n > opt.max_steps {
-            return Err(no_return(
-                t,
-                z[0],
-                z[1],
-                steps,
-                "too many steps around maximum compression",
-            ));
-        }
-        if t > t_limit {
-            return Err(no_return(t, z[0], z[1], steps, "contact time limit"));
+        let why = ["too many steps around maximum compression", "contact time limit"];
+        if let Some(why) = overrun(n, opt.max_steps, t, t_limit, why) {
+            return Err(no_return(t, z[0], z[1], steps, why));
         }
         h = h.min(hmax);
         let s = opt.method.step(&mut tp, t, &z, &kz, h)?;
@@ -462,20 +496,22 @@ pub fn collide<C: ContactForce>(
     evals += tp.evals;
     let (max_overlap_time, max_overlap) = max_overlap.unwrap_or((t, z[0]));
 
+    // the collision that ended at time `t_end` (s) with rate `v_end` (m/s)
+    let collision = |v_end: f64, t_end: f64, steps, force_evals, trajectory| Collision {
+        v0,
+        restitution: -v_end / v0,
+        contact_time: t_end,
+        max_overlap,
+        max_overlap_time,
+        end,
+        steps,
+        force_evals,
+        stuck: false,
+        tensile_peak: None,
+        trajectory,
+    };
     if let Some((tf, _df, vf)) = force_end {
-        return Ok(Collision {
-            v0,
-            restitution: -vf / v0,
-            contact_time: tf,
-            max_overlap,
-            max_overlap_time,
-            end,
-            steps,
-            force_evals: evals,
-            stuck: false,
-            tensile_peak: None,
-            trajectory: traj,
-        });
+        return Ok(collision(vf, tf, steps, evals, traj));
     }
 
     // ---- phase 3: rebound end, u from (δ)^{1/4} down to 0 ----
@@ -494,33 +530,18 @@ pub fn collide<C: ContactForce>(
     let mut n = 0;
     while u > 0.0 {
         n += 1;
-        if n > opt.max_steps {
-            return Err(no_return(
-                y[1],
-                u.powi(4),
-                y[0],
-                steps,
-                concat!("too many steps in the rebound phase", overdamped_hint!()),
-            ));
-        }
-        if y[1] > t_limit {
-            return Err(no_return(
-                y[1],
-                u.powi(4),
-                y[0],
-                steps,
-                concat!("contact time limit in the rebound phase", overdamped_hint!()),
-            ));
+        let why = [
+            concat!("too many steps in the rebound phase", overdamped_hint!()),
+            concat!("contact time limit in the rebound phase", overdamped_hint!()),
+        ];
+        if let Some(why) = overrun(n, opt.max_steps, y[1], t_limit, why) {
+            return Err(no_return(y[1], u.powi(4), y[0], steps, why));
         }
         let last = u + h <= 0.0;
         let hh = if last { -u } else { h };
-        let s = match opt.method.step(&mut ph, u, &y, &k, hh) {
-            Ok(s) => s,
-            Err(RhsError::OutOfDomain) => {
-                h *= 0.25;
-                continue;
-            }
-            Err(e) => return Err(e.into()),
+        let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, hh))? else {
+            h *= 0.25;
+            continue;
         };
         let e = tol_u.norm(&y, &s.y, &s.err);
         if e > 1.0 {
@@ -556,17 +577,5 @@ pub fn collide<C: ContactForce>(
         }
     }
     evals += ph.evals;
-    Ok(Collision {
-        v0,
-        restitution: -y[0] / v0,
-        contact_time: y[1],
-        max_overlap,
-        max_overlap_time,
-        end,
-        steps,
-        force_evals: evals,
-        stuck: false,
-        tensile_peak: None,
-        trajectory: traj,
-    })
+    Ok(collision(y[0], y[1], steps, evals, traj))
 }

@@ -64,6 +64,24 @@ impl BedConfig {
     }
 
     /// Checks every value; the message names the value and its valid range.
+    /// Checks the protocol's lengths: `transient` ≥ 0 and `cycles` > 0 periods, finite; the
+    /// error names the value (as `name = value periods`) and its range. The one check of every
+    /// run of either engine and of [`BedSpec`](crate::bed::spec::BedSpec).
+    pub fn check_protocol(transient: f64, cycles: f64) -> Result<(), BedError> {
+        if !(transient >= 0.0 && transient.is_finite()) {
+            return Err(BedError::Invalid(format!(
+                "transient = {transient} periods is out of range: must be >= 0"
+            )));
+        }
+        if !(cycles > 0.0 && cycles.is_finite()) {
+            return Err(BedError::Invalid(format!(
+                "cycles = {cycles} periods is out of range: must be > 0"
+            )));
+        }
+        Ok(())
+    }
+
+    /// Checks every value of the configuration; the error names the value and its range.
     pub fn validate(&self) -> Result<(), BedError> {
         let bad = |s: String| Err(BedError::Invalid(s));
         let fin = |name: &str, v: f64| -> Result<(), BedError> {

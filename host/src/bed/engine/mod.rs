@@ -22,11 +22,7 @@ mod predict;
 mod sampling;
 
 pub use config::BedConfig;
-pub(crate) use sampling::seed_observables;
-pub use sampling::{
-    batch_stderr, mean_over_seeds, stderr_of, Batch, BedReport, Counters, Observable, SeedObservables,
-    TraceRow, Window, SAMPLES_PER_PERIOD,
-};
+pub use sampling::{batch_stderr, Batch, BedReport, Counters, TraceRow, Window, SAMPLES_PER_PERIOD};
 
 use super::cells::{Cells, NONE};
 use super::events::Tournament;

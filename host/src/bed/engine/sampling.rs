@@ -1,6 +1,7 @@
 //! Sampling: the measuring window, the observables and the report.
 
 use super::{Bed, BedConfig};
+use crate::bed::observables::{measured_report, stderr_of, BedObservables};
 use crate::bed::{BedError, Restitution};
 use serde::Serialize;
 
@@ -100,144 +101,13 @@ pub fn batch_stderr(batches: &[Batch], f: &dyn Fn(&Batch) -> Option<f64>) -> Opt
     stderr_of(&vals)
 }
 
-/// The standard error of the mean of independent values: sd / √n (None below 2 values).
-pub fn stderr_of(v: &[f64]) -> Option<f64> {
-    let n = v.len();
-    if n < 2 {
-        return None;
-    }
-    let m = v.iter().sum::<f64>() / n as f64;
-    let var = v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (n - 1) as f64;
-    Some((var / n as f64).sqrt())
-}
-
-/// An observable's field in a report: a number always measured (`f64`), or one that may not
-/// have been (`Option<f64>`: the mean impulse per lid collision, when no disk hit the lid).
-pub trait Observable {
-    /// The value, if measured.
-    fn get(&self) -> Option<f64>;
-    /// Sets the value.
-    fn put(&mut self, v: f64);
-}
-
-impl Observable for f64 {
-    fn get(&self) -> Option<f64> {
-        Some(*self)
-    }
-    fn put(&mut self, v: f64) {
-        *self = v;
-    }
-}
-
-impl Observable for Option<f64> {
-    fn get(&self) -> Option<f64> {
-        *self
-    }
-    fn put(&mut self, v: f64) {
-        *self = Some(v);
-    }
-}
-
-/// A report of the bed's observables (either engine's), for averaging over seeds.
-pub trait SeedObservables: Clone {
-    /// The five observables with their standard errors: lid pressure, lid collision rate, mean
-    /// impulse, temperature, piston pressure.
-    fn observables(&mut self) -> [(&mut dyn Observable, &mut Option<f64>); 5];
-    /// How many seeds the report averages.
-    fn seeds(&mut self) -> &mut usize;
-}
-
-/// Implements [`SeedObservables`] for a report with the fields `pressure`, `lid_collision_rate`,
-/// `mean_impulse`, `temperature`, `piston_pressure`, their `_stderr` companions and `seeds`.
-macro_rules! seed_observables {
-    ($t:ty) => {
-        impl $crate::bed::engine::SeedObservables for $t {
-            fn observables(&mut self) -> [(&mut dyn $crate::bed::engine::Observable, &mut Option<f64>); 5] {
-                [
-                    (&mut self.pressure, &mut self.pressure_stderr),
-                    (
-                        &mut self.lid_collision_rate,
-                        &mut self.lid_collision_rate_stderr,
-                    ),
-                    (&mut self.mean_impulse, &mut self.mean_impulse_stderr),
-                    (&mut self.temperature, &mut self.temperature_stderr),
-                    (&mut self.piston_pressure, &mut self.piston_pressure_stderr),
-                ]
-            }
-            fn seeds(&mut self) -> &mut usize {
-                &mut self.seeds
-            }
-        }
-    };
-}
-pub(crate) use seed_observables;
-
-/// The mean of `runs` (independent seeds): each observable's mean over the seeds that measured
-/// it (a seed in which no disk hit the lid has no mean impulse, and must not pull the mean
-/// towards 0), its standard error from their spread, the rest of the report from the first run
-/// (the caller sums its counters). None for no runs; one run is returned as it is.
-pub fn mean_over_seeds<R: SeedObservables>(runs: &[R]) -> Option<R> {
-    let first = runs.first()?;
-    if runs.len() == 1 {
-        return Some(first.clone());
-    }
-    let values: Vec<[Option<f64>; 5]> = runs
-        .iter()
-        .map(|r| r.clone().observables().map(|(v, _)| v.get()))
-        .collect();
-    let mut out = first.clone();
-    for (k, (v, e)) in out.observables().into_iter().enumerate() {
-        let column: Vec<f64> = values.iter().filter_map(|x| x[k]).collect();
-        if column.is_empty() {
-            // measured by no seed: not measured (the first run's None stays)
-            *e = None;
-            continue;
-        }
-        v.put(column.iter().sum::<f64>() / column.len() as f64);
-        *e = stderr_of(&column);
-    }
-    *out.seeds() = runs.len();
-    Some(out)
-}
-
-/// The results of a run, averaged after the transient.
+/// The results of an event-driven run, averaged after the transient: what the bed measured
+/// ([`BedObservables`], read through `report.pressure`, ...), and the engine's counters.
 #[derive(Debug, Clone, Serialize)]
 pub struct BedReport {
-    /// The configuration.
-    pub config: BedConfig,
-    /// Number of disks N.
-    pub disks: usize,
-    /// Lid height (m).
-    pub lid: f64,
-    /// Piston peak speed V = 4Af (m/s).
-    pub piston_speed: f64,
-    /// Measured time (s) after the transient.
-    pub measured_time: f64,
-    /// Lid pressure P = Nc ΔI / L (N/m).
-    pub pressure: f64,
-    /// Lid collision frequency Nc (1/s).
-    pub lid_collision_rate: f64,
-    /// Mean impulse per lid collision ΔI (N·s); `None` (JSON `null`) when no disk hit the lid:
-    /// not measured, and left out of a mean over seeds.
-    pub mean_impulse: Option<f64>,
-    /// Granular temperature T: time-averaged translational kinetic energy per disk (J).
-    pub temperature: f64,
-    /// Standard error of `pressure` (N/m): batch means over the measured periods, or the
-    /// spread of independent seeds (see `seeds`).
-    pub pressure_stderr: Option<f64>,
-    /// Standard error of `lid_collision_rate` (1/s).
-    pub lid_collision_rate_stderr: Option<f64>,
-    /// Standard error of `mean_impulse` (N·s).
-    pub mean_impulse_stderr: Option<f64>,
-    /// Standard error of `temperature` (J).
-    pub temperature_stderr: Option<f64>,
-    /// Time-averaged pressure on the piston (N/m): impulses of collisions and of disks riding on
-    /// it, over L and the measured time. By momentum balance, `pressure` + N m g / L.
-    pub piston_pressure: f64,
-    /// Standard error of `piston_pressure` (N/m).
-    pub piston_pressure_stderr: Option<f64>,
-    /// Independent seeds averaged (1: one run, standard errors by batch means).
-    pub seeds: usize,
+    /// The observables (their JSON keys at the report's top level).
+    #[serde(flatten)]
+    pub measured: BedObservables,
     /// Events executed over the whole run (collisions and cell crossings).
     pub events: u64,
     /// Collisions over the whole run (disk–disk, lid, piston).
@@ -246,10 +116,6 @@ pub struct BedReport {
     pub events_per_second: f64,
     /// Collisions per second of wall time.
     pub collisions_per_second: f64,
-    /// Wall time (s).
-    pub wall_seconds: f64,
-    /// Wall seconds per simulated second.
-    pub wall_per_simulated_second: f64,
     /// Collisions made elastic by the TC model.
     pub tc_firings: u64,
     /// Share of all collisions made elastic by the TC model.
@@ -259,6 +125,8 @@ pub struct BedReport {
     /// All counters.
     pub counters: Counters,
 }
+
+measured_report!(BedReport);
 
 /// Running sums over the disks for the kinetic-energy samples, at the time `t0` (s): s0 = Σ
 /// (vx² + vy(t0)²), s1 = Σ vy(t0) ay, s2 = Σ ay² (m²/s², m²/s³, m²/s⁴). Between events each
@@ -405,16 +273,7 @@ impl<R: Restitution> Bed<R> {
         cycles: f64,
         progress: &mut dyn FnMut(f64),
     ) -> Result<BedReport, BedError> {
-        if !(transient >= 0.0 && transient.is_finite()) {
-            return Err(BedError::Invalid(format!(
-                "transient = {transient} periods is out of range: must be >= 0"
-            )));
-        }
-        if !(cycles > 0.0 && cycles.is_finite()) {
-            return Err(BedError::Invalid(format!(
-                "cycles = {cycles} periods is out of range: must be > 0"
-            )));
-        }
+        BedConfig::check_protocol(transient, cycles)?;
         let clock = std::time::Instant::now();
         let period = 1.0 / self.cfg.freq;
         self.run_until(self.now + transient * period, progress)?;
@@ -437,41 +296,45 @@ impl<R: Restitution> Bed<R> {
         let c = &self.counters;
         let (b, l) = (&self.window.batches[..], self.width);
         BedReport {
-            config: self.cfg,
-            disks: self.n,
-            lid: self.lid,
-            piston_speed: self.piston.peak_speed(),
-            measured_time: tm,
-            // (0 without lid collisions)
-            pressure: nc * di.unwrap_or(0.0) / self.width,
-            lid_collision_rate: nc,
-            mean_impulse: di,
-            temperature: if self.window.ke_samples > 0 {
-                self.window.ke_sum / self.window.ke_samples as f64
-            } else {
-                0.0
+            measured: BedObservables {
+                config: self.cfg,
+                disks: self.n,
+                lid: self.lid,
+                piston_speed: self.piston.peak_speed(),
+                measured_time: tm,
+                // (0 without lid collisions)
+                pressure: nc * di.unwrap_or(0.0) / self.width,
+                lid_collision_rate: nc,
+                mean_impulse: di,
+                temperature: if self.window.ke_samples > 0 {
+                    self.window.ke_sum / self.window.ke_samples as f64
+                } else {
+                    0.0
+                },
+                pressure_stderr: batch_stderr(b, &|x| Some(x.lid_impulse / (l * (x.t1 - x.t0)))),
+                lid_collision_rate_stderr: batch_stderr(b, &|x| {
+                    Some(x.lid_collisions as f64 / (x.t1 - x.t0))
+                }),
+                mean_impulse_stderr: batch_stderr(b, &|x| {
+                    (x.lid_collisions > 0).then(|| x.lid_impulse / x.lid_collisions as f64)
+                }),
+                temperature_stderr: batch_stderr(b, &|x| {
+                    (x.ke_samples > 0).then(|| x.ke_sum / x.ke_samples as f64)
+                }),
+                piston_pressure: if tm > 0.0 {
+                    self.window.piston_impulse / (l * tm)
+                } else {
+                    0.0
+                },
+                piston_pressure_stderr: batch_stderr(b, &|x| Some(x.piston_impulse / (l * (x.t1 - x.t0)))),
+                seeds: 1,
+                wall_seconds: wall,
+                wall_per_simulated_second: wall / self.now.max(1e-300),
             },
-            pressure_stderr: batch_stderr(b, &|x| Some(x.lid_impulse / (l * (x.t1 - x.t0)))),
-            lid_collision_rate_stderr: batch_stderr(b, &|x| Some(x.lid_collisions as f64 / (x.t1 - x.t0))),
-            mean_impulse_stderr: batch_stderr(b, &|x| {
-                (x.lid_collisions > 0).then(|| x.lid_impulse / x.lid_collisions as f64)
-            }),
-            temperature_stderr: batch_stderr(b, &|x| {
-                (x.ke_samples > 0).then(|| x.ke_sum / x.ke_samples as f64)
-            }),
-            piston_pressure: if tm > 0.0 {
-                self.window.piston_impulse / (l * tm)
-            } else {
-                0.0
-            },
-            piston_pressure_stderr: batch_stderr(b, &|x| Some(x.piston_impulse / (l * (x.t1 - x.t0)))),
-            seeds: 1,
             events: c.events,
             collisions: c.collisions,
             events_per_second: c.events as f64 / wall.max(1e-12),
             collisions_per_second: c.collisions as f64 / wall.max(1e-12),
-            wall_seconds: wall,
-            wall_per_simulated_second: wall / self.now.max(1e-300),
             tc_firings: c.tc_firings,
             tc_share: if c.collisions > 0 {
                 c.tc_firings as f64 / c.collisions as f64
@@ -485,11 +348,12 @@ impl<R: Restitution> Bed<R> {
 }
 
 impl BedReport {
-    /// The mean of runs of independent seeds (same configuration but the seed): each observable
-    /// is the mean over the runs, its standard error the spread of the runs over √K (K ≥ 2);
-    /// counters are summed, the largest overlap is the largest. None for no runs.
+    /// The mean of runs of independent seeds (same configuration but the seed): the observables'
+    /// ([`BedObservables::combine`]); counters summed, the largest overlap the largest. None for
+    /// no runs.
     pub fn combine(runs: &[BedReport]) -> Option<BedReport> {
-        let mut r = mean_over_seeds(runs)?;
+        let mut r = runs.first()?.clone();
+        r.measured = BedObservables::combine(runs.iter().map(|r| &r.measured))?;
         r.events = runs.iter().map(|r| r.events).sum();
         r.collisions = runs.iter().map(|r| r.collisions).sum();
         r.tc_firings = runs.iter().map(|r| r.tc_firings).sum();
@@ -499,60 +363,6 @@ impl BedReport {
             0.0
         };
         r.max_overlap = runs.iter().map(|r| r.max_overlap).fold(0.0, f64::max);
-        r.wall_seconds = runs.iter().map(|r| r.wall_seconds).sum();
         Some(r)
-    }
-}
-
-seed_observables!(BedReport);
-
-#[cfg(test)]
-mod seed_tests {
-    use super::mean_over_seeds;
-
-    #[derive(Clone, Default)]
-    struct Seed {
-        pressure: f64,
-        pressure_stderr: Option<f64>,
-        lid_collision_rate: f64,
-        lid_collision_rate_stderr: Option<f64>,
-        mean_impulse: Option<f64>,
-        mean_impulse_stderr: Option<f64>,
-        temperature: f64,
-        temperature_stderr: Option<f64>,
-        piston_pressure: f64,
-        piston_pressure_stderr: Option<f64>,
-        seeds: usize,
-    }
-    seed_observables!(Seed);
-
-    fn seed(rate: f64, impulse: f64, temperature: f64) -> Seed {
-        Seed {
-            lid_collision_rate: rate,
-            mean_impulse: (rate > 0.0).then_some(impulse),
-            pressure: rate * impulse,
-            temperature,
-            ..Default::default()
-        }
-    }
-
-    /// A seed in which no disk hit the lid has no mean impulse per collision: the mean over
-    /// seeds is over the others, not pulled towards 0.
-    #[test]
-    fn a_seed_without_lid_collisions_does_not_enter_the_mean_impulse() {
-        let runs = [seed(10.0, 2e-6, 1.0), seed(0.0, 0.0, 2.0), seed(30.0, 4e-6, 3.0)];
-        let m = mean_over_seeds(&runs).unwrap();
-        assert_eq!(m.seeds, 3);
-        let mi = m.mean_impulse.expect("two seeds measured it");
-        assert!((mi - 3e-6).abs() < 1e-18, "{mi}");
-        // the spread of the two measured seeds: |a - b| / 2
-        assert!((m.mean_impulse_stderr.unwrap() - 1e-6).abs() < 1e-18);
-        // the rates, pressures and temperatures of all three seeds
-        assert!((m.lid_collision_rate - 40.0 / 3.0).abs() < 1e-12);
-        assert!((m.temperature - 2.0).abs() < 1e-15);
-        // no seed measured it: not measured, with no error bar
-        let none = mean_over_seeds(&[seed(0.0, 0.0, 1.0), seed(0.0, 0.0, 1.0)]).unwrap();
-        assert_eq!(none.mean_impulse, None);
-        assert!(none.mean_impulse_stderr.is_none());
     }
 }

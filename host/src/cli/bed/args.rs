@@ -2,9 +2,8 @@
 //! engine and the output choices.
 
 use crate::bed::engine::BedConfig;
-use crate::bed::{DynRestitution, Laws};
-use crate::registry::Registry;
-use anyhow::{bail, Context, Result};
+use crate::bed::spec::{BedEngine, BedSpec, LawChoice};
+use anyhow::Result;
 use clap::{Args, Subcommand};
 use dashpot_sdk::ParamValue;
 use std::path::PathBuf;
@@ -109,63 +108,40 @@ pub struct SeedArgs {
     pub seeds: usize,
 }
 
+/// `NAME=VALUE` options as parameters.
+pub(crate) fn param_values(sets: &[String]) -> Result<Vec<ParamValue>> {
+    let sets = crate::config::parse_sets(sets).map_err(|e| crate::cli::UsageError(e.to_string()))?;
+    Ok(crate::config::merge_params(&Default::default(), &sets))
+}
+
+/// The DEM engine's tangential law from `--tangential NAME` and `--tset`: a law by name (not a
+/// tangential restitution, which is the event-driven engine's), and `--tset` only with one.
+pub(crate) fn dem_tangential(name: Option<&str>, tset: &[String]) -> Result<Option<LawChoice>> {
+    use crate::cli::UsageError;
+    match name {
+        Some(t) if t.trim().parse::<f64>().is_ok() => Err(UsageError(format!(
+            "--tangential {t}: with --engine dem give a tangential law by name (e.g. mindlin, parameters by --tset mu=0.3), not a tangential restitution"
+        ))
+        .into()),
+        Some(t) => Ok(Some(LawChoice::new(t, param_values(tset)?))),
+        None if !tset.is_empty() => Err(UsageError("--tset needs --tangential NAME".into()).into()),
+        None => Ok(None),
+    }
+}
+
 impl PhysArgs {
-    /// The law's parameters from `--set`.
-    pub fn params(&self) -> Result<Vec<ParamValue>> {
-        let sets = crate::config::parse_sets(&self.set).map_err(|e| crate::cli::UsageError(e.to_string()))?;
-        Ok(crate::config::merge_params(&Default::default(), &sets))
-    }
-
-    /// The tangential law's parameters from `--tset`.
-    pub fn tparams(&self) -> Result<Vec<ParamValue>> {
-        let sets =
-            crate::config::parse_sets(&self.tset).map_err(|e| crate::cli::UsageError(e.to_string()))?;
-        Ok(crate::config::merge_params(&Default::default(), &sets))
-    }
-
-    /// The event-driven engine's rough-disk r_t (checked by [`PhysArgs::check`]).
-    fn rough(&self) -> Option<f64> {
-        match self.engine {
-            EngineKind::Event => self.tangential.as_deref().and_then(|s| s.trim().parse().ok()),
-            EngineKind::Dem => None,
-        }
-    }
-
-    /// The restitution law's name (event engine).
-    pub fn restitution_name(&self) -> Result<&str> {
-        self.restitution.as_deref().ok_or_else(|| {
-            crate::cli::UsageError(
-                "the event-driven bed needs --restitution LAW (e.g. mcnamara-falcon, or from:kuwabara-kono); a contact law over time is --engine dem --law NAME".into(),
-            )
-            .into()
-        })
-    }
-
-    /// The contact law's name (DEM engine).
-    pub fn law_name(&self) -> Result<&str> {
-        self.law.as_deref().ok_or_else(|| {
-            crate::cli::UsageError("--engine dem needs --law NAME (a contact law, e.g. hsd)".into()).into()
-        })
-    }
-
-    /// Checks the arguments against the engine: each engine's options are refused by the
-    /// other, with the value named.
-    pub fn check(&self) -> Result<()> {
+    /// The experiment at `layers` and `freq` (Hz) with `seeds` seeds: each engine's options are
+    /// refused by the other, with the value named; the values themselves are checked by
+    /// [`BedSpec::validate`].
+    pub fn spec(&self, layers: f64, freq: f64, seeds: usize) -> Result<BedSpec> {
         use crate::cli::UsageError;
-        self.check_cycles()?;
-        if let Some(e) = self.young {
-            if !(e.is_finite() && e > 0.0) {
-                bail!("--young = {e} Pa is out of range: Young's modulus must be finite and > 0");
-            }
-        }
-        if let Some(nu) = self.poisson {
-            if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-                bail!("--poisson = {nu} is out of range: Poisson's ratio must lie in (-1, 0.5)");
-            }
-        }
-        match self.engine {
+        let engine = match self.engine {
             EngineKind::Event => {
-                let name = self.restitution_name()?;
+                let name = self.restitution.as_deref().ok_or_else(|| {
+                    UsageError(
+                        "the event-driven bed needs --restitution LAW (e.g. mcnamara-falcon, or from:kuwabara-kono); a contact law over time is --engine dem --law NAME".into(),
+                    )
+                })?;
                 if let Some(l) = &self.law {
                     return Err(UsageError(format!(
                         "--law {l} is the DEM engine's: add --engine dem (or give the event-driven engine a --restitution law)"
@@ -195,169 +171,66 @@ impl PhysArgs {
                 }
                 if let Some(t) = &self.tangential {
                     // its range is the bed configuration's to check (BedConfig::validate)
-                    match t.trim().parse::<f64>() {
-                        Ok(_) => {}
-                        Err(_) => {
-                            return Err(UsageError(format!(
-                                "--tangential '{t}' is not a number: with --engine event it is the tangential restitution r_t in [-1, 1]; a tangential law by name needs --engine dem"
-                            ))
-                            .into())
-                        }
+                    if t.trim().parse::<f64>().is_err() {
+                        return Err(UsageError(format!(
+                            "--tangential '{t}' is not a number: with --engine event it is the tangential restitution r_t in [-1, 1]; a tangential law by name needs --engine dem"
+                        ))
+                        .into());
                     }
+                }
+                BedEngine::Event {
+                    restitution: LawChoice::new(name, param_values(&self.set)?),
                 }
             }
             EngineKind::Dem => {
-                self.law_name()?;
+                let law = self.law.as_deref().ok_or_else(|| {
+                    UsageError("--engine dem needs --law NAME (a contact law, e.g. hsd)".into())
+                })?;
                 if let Some(r) = &self.restitution {
                     return Err(UsageError(format!(
                         "--restitution {r} is the event-driven engine's: --engine dem takes a contact law, --law NAME"
                     ))
                     .into());
                 }
-                if let Some(tc) = self.tc {
-                    return Err(UsageError(format!(
-                        "--tc {tc} is the event-driven engine's TC model: soft contacts need none"
-                    ))
-                    .into());
-                }
-                if let Some(t) = &self.tangential {
-                    if t.trim().parse::<f64>().is_ok() {
-                        return Err(UsageError(format!(
-                            "--tangential {t}: with --engine dem give a tangential law by name (e.g. mindlin, parameters by --tset mu=0.3), not a tangential restitution"
-                        ))
-                        .into());
-                    }
-                } else if !self.tset.is_empty() {
-                    return Err(UsageError("--tset needs --tangential NAME".into()).into());
-                }
-                if let Some(dt) = self.dt {
-                    if !(dt.is_finite() && dt > 0.0) {
-                        bail!("--dt = {dt} s is out of range: the step must be finite and > 0");
-                    }
-                }
-                if let Some(k) = self.steps_per_collision {
-                    crate::dem::integrator::check_steps_per_collision("--steps-per-collision", k)
-                        .map_err(anyhow::Error::msg)?;
-                }
-                self.params()?;
-                self.tparams()?;
-            }
-        }
-        Ok(())
-    }
-
-    /// The DEM bed at `cfg` (the disks' moduli from --young/--poisson, the step from --dt).
-    pub fn dem_bed(&self, cfg: BedConfig) -> crate::bed::on_dem::DemBed {
-        let mut b = crate::bed::on_dem::DemBed::new(
-            BedConfig {
-                tangential: None,
-                tc: None,
-                ..cfg
-            },
-            self.young,
-            self.poisson,
-        );
-        b.dt = self.dt;
-        if let Some(k) = self.steps_per_collision {
-            b.steps_per_collision = k;
-        }
-        b
-    }
-
-    /// The DEM engine's laws (--law with --set, --tangential with --tset), bound to `mat`.
-    pub fn dem_laws(&self, reg: &Registry, mat: &crate::dem::Material) -> Result<crate::dem::Laws> {
-        let (params, tparams) = (self.params()?, self.tparams()?);
-        let law = self.law_name()?;
-        let sets =
-            crate::config::parse_sets(&self.rset).map_err(|e| crate::cli::UsageError(e.to_string()))?;
-        let rparams = crate::config::merge_params(&Default::default(), &sets);
-        crate::dem::Laws::from_registry(
-            reg,
-            (law, params.as_slice()),
-            self.tangential.as_deref().map(|t| (t, tparams.as_slice())),
-            mat,
-        )
-        .and_then(|l| {
-            l.with_rotation(
-                reg,
-                self.rolling.as_deref().map(|r| (r, rparams.as_slice())),
-                None,
-                mat,
-            )
-        })
-        .with_context(|| {
-            format!(
-                "contact law '{law}'{}",
-                self.tangential
-                    .as_deref()
-                    .map(|t| format!(" with tangential law '{t}'"))
-                    .unwrap_or_default()
-                    + &self
+                BedEngine::Dem {
+                    law: LawChoice::new(law, param_values(&self.set)?),
+                    tangential: dem_tangential(self.tangential.as_deref(), &self.tset)?,
+                    rolling: self
                         .rolling
                         .as_deref()
-                        .map(|r| format!(" and rolling law '{r}'"))
-                        .unwrap_or_default()
-            )
+                        .map(|r| Ok::<_, anyhow::Error>(LawChoice::new(r, param_values(&self.rset)?)))
+                        .transpose()?,
+                    dt: self.dt,
+                    steps_per_collision: self.steps_per_collision,
+                }
+            }
+        };
+        let rough = match engine {
+            BedEngine::Event { .. } => self.tangential.as_deref().and_then(|s| s.trim().parse().ok()),
+            BedEngine::Dem { .. } => None,
+        };
+        Ok(BedSpec {
+            config: BedConfig {
+                layers,
+                freq,
+                gravity: self.gravity,
+                amplitude: self.amplitude,
+                width: self.width,
+                diameter: self.diameter,
+                mass: self.mass,
+                headroom: self.headroom,
+                tangential: rough,
+                tc: self.tc,
+                seed: self.seed,
+                ..BedConfig::paper(layers, freq)
+            },
+            young: self.young,
+            poisson: self.poisson,
+            engine,
+            transient: self.transient,
+            cycles: self.cycles,
+            seeds,
         })
-    }
-
-    /// The configuration at `layers` and `freq` (Hz).
-    pub fn config(&self, layers: f64, freq: f64) -> BedConfig {
-        BedConfig {
-            layers,
-            freq,
-            gravity: self.gravity,
-            amplitude: self.amplitude,
-            width: self.width,
-            diameter: self.diameter,
-            mass: self.mass,
-            headroom: self.headroom,
-            tangential: self.rough(),
-            tc: self.tc,
-            seed: self.seed,
-            ..BedConfig::paper(layers, freq)
-        }
-    }
-
-    /// Loads the law and binds it to the bed's pairs (a `from:LAW` table for disks of
-    /// --young and --poisson when given, else steel's).
-    pub fn laws(&self, reg: &Registry) -> Result<Laws<DynRestitution>> {
-        if !(self.diameter.is_finite() && self.diameter > 0.0) {
-            bail!("diameter d = {} m is out of range: d must be > 0", self.diameter);
-        }
-        if !(self.mass.is_finite() && self.mass > 0.0) {
-            bail!("mass m = {} kg is out of range: m must be > 0", self.mass);
-        }
-        let name = self.restitution_name()?;
-        Ok(crate::bed::resolve_for(
-            reg,
-            name,
-            &self.params()?,
-            &self.particle(),
-        )?)
-    }
-
-    /// The bed's disks: diameter and mass, and the material of --young and --poisson (steel's
-    /// where not given).
-    pub fn particle(&self) -> dashpot_sdk::Particle {
-        let mut p = crate::bed::bed_particle(self.diameter, self.mass);
-        p.young = self.young.unwrap_or(p.young);
-        p.poisson = self.poisson.unwrap_or(p.poisson);
-        p
-    }
-
-    /// Checks the protocol's lengths.
-    pub fn check_cycles(&self) -> Result<()> {
-        if !(self.cycles.is_finite() && self.cycles > 0.0) {
-            bail!("--cycles = {} is out of range: must be > 0 periods", self.cycles);
-        }
-        if !(self.transient.is_finite() && self.transient >= 0.0) {
-            bail!(
-                "--transient = {} is out of range: must be >= 0 periods",
-                self.transient
-            );
-        }
-        Ok(())
     }
 }
 

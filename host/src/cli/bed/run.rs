@@ -2,110 +2,145 @@
 
 use super::*;
 use crate::bed::engine::{Bed, BedConfig, BedReport};
+use crate::bed::observables::BedObservables;
 use crate::bed::scaling::InRun;
-use crate::bed::view::{progress_bar, snapshot_figure, SaveAs};
+use crate::bed::spec::{BedEngine, BedSpec, LawChoice};
 use crate::bed::{DynRestitution, Laws};
+use crate::output::progress_bar;
 use crate::output::write_atomic;
 use crate::registry::Registry;
-use anyhow::{bail, Context, Result};
+use crate::report::snapshot::{SaveAs, Scene};
+use anyhow::{Context, Result};
 use dashpot_sdk::ParamValue;
 use serde_json::json;
 use std::path::Path;
 
+/// What a bed run writes besides its printout.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct BedOutput<'a> {
+    /// Machine-readable output instead of the printout.
+    pub json: bool,
+    /// Draw the disks at the end of the run into this file (event-driven engine).
+    pub snapshot: Option<&'a Path>,
+    /// Write the sampled time series here (event-driven engine).
+    pub trace: Option<&'a Path>,
+}
+
 /// `dashpot bed`.
 pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
-    a.phys.check()?;
-    if a.phys.engine == EngineKind::Dem {
-        return bed_dem(reg, a);
+    if let Some(v) = run_bed(reg, a, &|_| {})? {
+        println!("{}", serde_json::to_string_pretty(&v)?);
     }
-    let restitution = a.phys.restitution_name()?;
-    let cfg = a.phys.config(a.layers, a.freq);
-    cfg.validate()?;
-    let laws = a.phys.laws(reg)?;
+    Ok(())
+}
+
+/// `dashpot bed` for a caller other than the CLI (the Python package): with `a.json` it returns
+/// the document `--json` prints, else it prints the report and returns `None`. Every seed's run
+/// calls `progress(t)` now and then with its simulated time (s); `progress` may unwind to
+/// abandon the runs (nothing is written before they end).
+pub fn run_bed(
+    reg: &Registry,
+    a: &BedArgs,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
+    let spec = a.phys.spec(a.layers, a.freq, a.seeds.seeds)?;
+    let out = BedOutput {
+        json: a.json,
+        snapshot: a.snapshot.as_deref(),
+        trace: a.trace.as_deref(),
+    };
+    run(reg, &spec, out, progress)
+}
+
+/// Runs the bed experiment `spec` on its engine (`dashpot bed`, `dashpot dem --bed`, the Python
+/// package): its checks, the runs (one per seed, in parallel, behind one progress bar, each
+/// calling `progress` with its simulated time), then the printout, or with `out.json` the
+/// document, returned.
+pub fn run(
+    reg: &Registry,
+    spec: &BedSpec,
+    out: BedOutput<'_>,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
+    spec.validate()?;
+    match &spec.engine {
+        BedEngine::Event { restitution } => run_event(reg, spec, restitution, out, progress),
+        BedEngine::Dem { law, tangential, .. } => run_dem(reg, spec, law, tangential.as_ref(), out, progress),
+    }
+}
+
+/// The bed on the event-driven engine.
+fn run_event(
+    reg: &Registry,
+    spec: &BedSpec,
+    restitution: &LawChoice,
+    out: BedOutput<'_>,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
+    let cfg = spec.config;
+    let name = restitution.name.as_str();
+    let laws = spec.restitution_laws(reg)?;
     // provenance, and the r(v) actually used when it comes from a contact law (issue 10)
-    let law_name = restitution.strip_prefix(crate::bed::FROM_CONTACT);
-    let prov = crate::output::Provenance::of(reg, law_name.unwrap_or(restitution), &a.phys.params()?)?;
+    let law_name = name.strip_prefix(crate::bed::FROM_CONTACT);
+    let prov = crate::output::Provenance::of(reg, law_name.unwrap_or(name), &restitution.params)?;
     prov.warn_if_shadowed();
     let r_used = match law_name {
         Some(_) => Some(r_samples(&laws)?),
         None => None,
     };
-    let k = a.seeds.seeds;
-    if k == 0 {
-        bail!("--seeds = 0 is out of range: give at least 1 seed");
-    }
-    let mut bed = Bed::new(
-        cfg,
-        Laws {
-            disk: &laws.disk,
-            wall: &laws.wall,
-        },
-    )?;
-    if a.trace.is_some() {
+    let laws = Laws {
+        disk: &laws.disk,
+        wall: &laws.wall,
+    };
+    let mut bed = Bed::new(cfg, laws)?;
+    if out.trace.is_some() {
         bed.enable_trace();
     }
-    let total = (a.phys.transient + a.phys.cycles) / a.freq;
-    let pb = progress_bar((total * 1000.0).ceil() as u64, "bed (ms simulated)");
-    let context = || format!("bed n = {}, f = {} Hz, law {}", a.layers, a.freq, restitution);
+    let pb = protocol_bar(spec, "bed (ms simulated)");
+    let context = || format!("bed n = {}, f = {} Hz, law {}", cfg.layers, cfg.freq, name);
     // the other seeds in parallel with the first (which draws the snapshot and the trace)
     let (first, others) = rayon::join(
         || {
-            bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |t| {
-                pb.set_position((t * 1000.0) as u64)
+            bed.run_protocol(spec.transient, spec.cycles, &mut |t| {
+                pb.set_position((t * 1000.0) as u64);
+                progress(t)
             })
         },
         || {
-            use rayon::prelude::*;
-            (1..k as u64)
-                .into_par_iter()
-                .map(|s| {
-                    let cfg = BedConfig {
-                        seed: cfg.seed.wrapping_add(s),
-                        ..cfg
-                    };
-                    Bed::new(
-                        cfg,
-                        Laws {
-                            disk: &laws.disk,
-                            wall: &laws.wall,
-                        },
-                    )
-                    .and_then(|mut bed| bed.run_protocol(a.phys.transient, a.phys.cycles, &mut |_| {}))
+            other_seeds(spec, |cfg| {
+                Bed::new(cfg, laws)
+                    .and_then(|mut bed| bed.run_protocol(spec.transient, spec.cycles, &mut |t| progress(t)))
                     .map_err(|e| e.in_run(format!("seed {}", cfg.seed)))
-                })
-                .collect::<Result<Vec<BedReport>, _>>()
+            })
         },
     );
     let mut runs = vec![first.with_context(context)?];
     runs.extend(others.with_context(context)?);
     let report = BedReport::combine(&runs).context("no run")?;
     pb.finish_and_clear();
-    if let Some(p) = &a.trace {
+    if let Some(p) = out.trace {
         write_trace(p, &bed)?;
     }
-    if let Some(p) = &a.snapshot {
+    if let Some(p) = out.snapshot {
         let title = format!(
             "{} n = {}, f = {} Hz, g = {} m/s², t = {:.3} s",
-            restitution,
-            a.layers,
-            a.freq,
-            a.phys.gravity,
+            name,
+            cfg.layers,
+            cfg.freq,
+            cfg.gravity,
             bed.now()
         );
-        snapshot_figure(&bed, &title).save_as(p)?;
+        Scene::bed(&bed).figure(&title).save_as(p)?;
     }
-    let params = a.phys.params()?;
-    if a.json {
-        let mut v = report_json(restitution, &params, &report);
+    if out.json {
+        let mut v = report_json(name, &restitution.params, &report);
         if let Some(o) = v.as_object_mut() {
             o.insert("engine".into(), json!("event"));
             if law_name.is_some() {
-                let p = a.phys.particle();
+                let p = spec.particle();
                 o.insert("young".into(), json!(p.young));
                 o.insert("poisson".into(), json!(p.poisson));
             }
-        }
-        if let Some(o) = v.as_object_mut() {
             o.insert("provenance".into(), prov.json());
             if let Some(t) = &r_used {
                 let rows: Vec<_> = t
@@ -115,39 +150,61 @@ pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
                 o.insert("restitution_used".into(), json!(rows));
             }
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        return Ok(Some(v));
     } else {
-        print_report(restitution, &params, &report);
+        print_report(name, &restitution.params, &report);
         prov.lines().iter().for_each(|l| println!("{l}"));
         if let Some(t) = &r_used {
-            print_r_samples(restitution, t);
+            print_r_samples(name, t);
         }
     }
-    Ok(())
+    Ok(None)
 }
 
-/// `dashpot bed --engine dem`: the same bed on soft disks, every contact under the contact law.
-fn bed_dem(reg: &Registry, a: &BedArgs) -> Result<()> {
-    use crate::bed::on_dem::DemBedReport;
+/// The one progress bar of a bed run: simulated milliseconds of the first seed's protocol.
+fn protocol_bar(spec: &BedSpec, what: &str) -> indicatif::ProgressBar {
+    let total = (spec.transient + spec.cycles) / spec.config.freq;
+    progress_bar((total * 1000.0).ceil() as u64, what)
+}
+
+/// `run(cfg)` for the seeds after the first (seed + 1, seed + 2, ...), in parallel.
+fn other_seeds<R: Send, E: Send>(
+    spec: &BedSpec,
+    run: impl Fn(BedConfig) -> Result<R, E> + Sync,
+) -> Result<Vec<R>, E> {
     use rayon::prelude::*;
-    if a.snapshot.is_some() || a.trace.is_some() {
+    (1..spec.seeds as u64)
+        .into_par_iter()
+        .map(|s| {
+            run(BedConfig {
+                seed: spec.config.seed.wrapping_add(s),
+                ..spec.config
+            })
+        })
+        .collect()
+}
+
+/// The bed on the DEM engine: soft disks, every contact under the contact law.
+fn run_dem(
+    reg: &Registry,
+    spec: &BedSpec,
+    law: &LawChoice,
+    tangential: Option<&LawChoice>,
+    out: BedOutput<'_>,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Option<serde_json::Value>> {
+    use crate::bed::on_dem::DemBedReport;
+    if out.snapshot.is_some() || out.trace.is_some() {
         return Err(crate::cli::UsageError(
             "--snapshot and --trace are the event-driven engine's; with --engine dem use dashpot dem --scene ... --out DIR for a trajectory".into(),
         )
         .into());
     }
-    let k = a.seeds.seeds;
-    if k == 0 {
-        bail!("--seeds = 0 is out of range: give at least 1 seed");
-    }
-    let cfg = a.phys.config(a.layers, a.freq);
-    cfg.validate()?;
-    let dem = a.phys.dem_bed(cfg);
-    let law = a.phys.law_name()?;
-    let (params, tparams) = (a.phys.params()?, a.phys.tparams()?);
-    let prov = crate::output::Provenance::of(reg, law, &params)?;
+    let cfg = spec.config;
+    let dem = spec.dem_bed(cfg);
+    let prov = crate::output::Provenance::of(reg, &law.name, &law.params)?;
     prov.warn_if_shadowed();
-    let c = dem.engine(a.phys.dem_laws(reg, &dem.material)?)?.step_choice;
+    let c = dem.engine(spec.dem_laws(reg, &dem.material)?)?.step_choice;
     eprintln!(
         "DEM bed: E = {:.3e} Pa, ν = {}, dt = {:.4e} s{}, contact time {:.4e} s at {:.3} m/s ({:.1} steps per collision)",
         dem.material.young,
@@ -161,67 +218,71 @@ fn bed_dem(reg: &Registry, a: &BedArgs) -> Result<()> {
     if let Some(w) = c.warning() {
         eprintln!("warning: {w}");
     }
-    let laws = (0..k)
-        .map(|_| a.phys.dem_laws(reg, &dem.material))
-        .collect::<Result<Vec<_>>>()?;
-    let total = (a.phys.transient + a.phys.cycles) / a.freq;
-    let pb = progress_bar((total * 1000.0).ceil() as u64, "dem bed (ms simulated)");
-    let runs = laws
-        .into_par_iter()
-        .enumerate()
-        .map(|(s, l)| {
-            let mut d = dem.clone();
-            d.bed.seed = cfg.seed.wrapping_add(s as u64);
-            d.run(l, a.phys.transient, a.phys.cycles, &mut |t| {
-                if s == 0 {
-                    pb.set_position((t * 1000.0) as u64)
-                }
-            })
-            .with_context(|| {
-                format!(
-                    "DEM bed n = {}, f = {} Hz, law {law}, seed {}",
-                    a.layers, a.freq, d.bed.seed
-                )
-            })
+    let pb = protocol_bar(spec, "dem bed (ms simulated)");
+    let run = |cfg: BedConfig, progress: &mut dyn FnMut(f64)| -> Result<DemBedReport> {
+        let d = crate::bed::on_dem::DemBed {
+            bed: cfg,
+            ..dem.clone()
+        };
+        d.run(
+            spec.dem_laws(reg, &dem.material)?,
+            spec.transient,
+            spec.cycles,
+            progress,
+        )
+        .with_context(|| {
+            format!(
+                "DEM bed n = {}, f = {} Hz, law {}, seed {}",
+                cfg.layers, cfg.freq, law.name, cfg.seed
+            )
         })
-        .collect::<Result<Vec<DemBedReport>>>()?;
+    };
+    let (first, others) = rayon::join(
+        || {
+            run(cfg, &mut |t| {
+                pb.set_position((t * 1000.0) as u64);
+                progress(t)
+            })
+        },
+        || other_seeds(spec, |cfg| run(cfg, &mut |t| progress(t))),
+    );
+    let mut runs = vec![first?];
+    runs.extend(others?);
     pb.finish_and_clear();
     let r = DemBedReport::combine(&runs).context("no run")?;
-    let v = dem_report_json(law, &params, a.phys.tangential.as_deref(), &tparams, &r);
-    if a.json {
-        let mut v = v;
+    if out.json {
+        let mut v = dem_report_json(law, tangential, &r);
         if let Some(o) = v.as_object_mut() {
             o.insert("provenance".into(), prov.json());
         }
-        println!("{}", serde_json::to_string_pretty(&v)?);
-    } else {
-        print_dem_report(law, &params, a.phys.tangential.as_deref(), &tparams, &r);
-        prov.lines().iter().for_each(|l| println!("{l}"));
+        return Ok(Some(v));
     }
-    Ok(())
+    print_dem_report(law, tangential, &r);
+    prov.lines().iter().for_each(|l| println!("{l}"));
+    Ok(None)
 }
 
 /// The JSON of a DEM bed report: the event-driven bed's keys, `engine: "dem"`, the laws.
 pub fn dem_report_json(
-    law: &str,
-    params: &[ParamValue],
-    tangential: Option<&str>,
-    tparams: &[ParamValue],
+    law: &LawChoice,
+    tangential: Option<&LawChoice>,
     r: &crate::bed::on_dem::DemBedReport,
 ) -> serde_json::Value {
-    let obj = |ps: &[ParamValue]| -> serde_json::Map<String, serde_json::Value> {
-        ps.iter().map(|p| (p.name.to_string(), json!(p.value))).collect()
+    let obj = |l: &LawChoice| {
+        let ps: serde_json::Map<String, serde_json::Value> = l
+            .params
+            .iter()
+            .map(|p| (p.name.to_string(), json!(p.value)))
+            .collect();
+        json!({ "name": l.name, "params": ps })
     };
     let mut v = serde_json::to_value(r).unwrap_or_else(|_| json!({}));
     if let Some(o) = v.as_object_mut() {
         o.insert("engine".into(), json!("dem"));
-        o.insert("law".into(), json!({ "name": law, "params": obj(params) }));
+        o.insert("law".into(), obj(law));
         o.insert(
             "tangential".into(),
-            match tangential {
-                Some(t) => json!({ "name": t, "params": obj(tparams) }),
-                None => serde_json::Value::Null,
-            },
+            tangential.map_or(serde_json::Value::Null, obj),
         );
     }
     v
@@ -229,28 +290,16 @@ pub fn dem_report_json(
 
 /// Prints a DEM bed report (the event-driven bed's lines, and the step).
 pub fn print_dem_report(
-    law: &str,
-    params: &[ParamValue],
-    tangential: Option<&str>,
-    tparams: &[ParamValue],
+    law: &LawChoice,
+    tangential: Option<&LawChoice>,
     r: &crate::bed::on_dem::DemBedReport,
 ) {
     let c = &r.config;
-    let ps =
-        |ps: &[ParamValue]| -> String { ps.iter().map(|p| format!(" {}={}", p.name, p.value)).collect() };
-    println!(
-        "DEM bed: law {law}{}{}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
-        ps(params),
-        tangential
-            .map(|t| format!(" + {t}{}", ps(tparams)))
-            .unwrap_or_default(),
-        c.layers,
-        r.disks,
-        c.freq,
-        r.piston_speed,
-        c.gravity,
-        r.lid
-    );
+    let laws = law.describe()
+        + &tangential
+            .map(|t| format!(" + {}", t.describe()))
+            .unwrap_or_default();
+    print_header("DEM bed", &laws, &r.measured);
     println!(
         "disks: E = {:.3e} Pa, ν = {}, ρ = {:.1} kg/m³ (m = {:.4e} kg); dt = {:.4e} s{}, contact time {:.4e} s at {:.3} m/s",
         r.young,
@@ -262,19 +311,14 @@ pub fn print_dem_report(
         r.collision_time,
         r.impact_speed
     );
-    print_observables(&Observables {
-        measured_time: r.measured_time,
-        seeds: r.seeds,
-        single_seed: "block means over the measured periods",
-        note: "; lid collisions counted per contact episode",
-        pressure_label: "pressure P                 ",
-        pressure: (r.pressure, r.pressure_stderr),
-        rate: (r.lid_collision_rate, r.lid_collision_rate_stderr),
-        impulse: (r.mean_impulse, r.mean_impulse_stderr),
-        temperature: (r.temperature, r.temperature_stderr),
-        piston: (r.piston_pressure, r.piston_pressure_stderr),
-        piston_expected: r.pressure + r.disks as f64 * c.mass * c.gravity / c.width,
-    });
+    print_observables(
+        &r.measured,
+        Labels {
+            single_seed: "block means over the measured periods",
+            note: "; lid collisions counted per contact episode",
+            pressure: "pressure P                 ",
+        },
+    );
     println!(
         "run: {} steps of {:.4e} s, {:.3} s wall ({:.2} s per simulated s)",
         r.steps, r.dt, r.wall_seconds, r.wall_per_simulated_second
@@ -318,27 +362,26 @@ pub fn report_json(law: &str, params: &[ParamValue], r: &BedReport) -> serde_jso
     v
 }
 
-/// The measured observables of a bed run, as both engines print them: value and standard error.
-struct Observables<'a> {
-    measured_time: f64,
-    seeds: usize,
-    /// Where the standard error of a single-seed run comes from.
+/// How an engine's printout labels the observables: where a single run's standard error comes
+/// from, a note on what ± means, and the pressure's label (padded to the others' width).
+struct Labels<'a> {
     single_seed: &'a str,
-    /// Appended to the line saying what ± means.
     note: &'a str,
-    /// Padded to the width of the other labels.
-    pressure_label: &'a str,
-    pressure: (f64, Option<f64>),
-    rate: (f64, Option<f64>),
-    /// `None` when no disk hit the lid.
-    impulse: (Option<f64>, Option<f64>),
-    temperature: (f64, Option<f64>),
-    piston: (f64, Option<f64>),
-    /// P + N m g / L, what the piston pressure should be.
-    piston_expected: f64,
+    pressure: &'a str,
 }
 
-fn print_observables(o: &Observables<'_>) {
+/// The first line of a bed run's printout, either engine's: `what` with its laws `laws`, the
+/// bed and the piston.
+fn print_header(what: &str, laws: &str, o: &BedObservables) {
+    let c = &o.config;
+    println!(
+        "{what}: law {laws}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
+        c.layers, o.disks, c.freq, o.piston_speed, c.gravity, o.lid
+    );
+}
+
+/// The observables of a bed run, either engine's: value ± standard error.
+fn print_observables(o: &BedObservables, labels: Labels<'_>) {
     println!("measured over {:.3} s after the transient:", o.measured_time);
     let pm = |(v, e): (f64, Option<f64>)| match e {
         Some(e) => format!("{v:.6e} ± {e:.2e}"),
@@ -347,52 +390,51 @@ fn print_observables(o: &Observables<'_>) {
     let source = if o.seeds > 1 {
         format!("spread of {} independent seeds", o.seeds)
     } else {
-        o.single_seed.to_string()
+        labels.single_seed.to_string()
     };
-    println!("  (± one standard error: {source}{})", o.note);
-    println!("  {} {} N/m", o.pressure_label, pm(o.pressure));
-    println!("  lid collision rate Nc       {} 1/s", pm(o.rate));
-    match o.impulse {
-        (Some(v), e) => println!("  mean impulse ΔI             {} N·s", pm((v, e))),
-        (None, _) => println!("  mean impulse ΔI             not measured: no disk hit the lid"),
+    println!("  (± one standard error: {source}{})", labels.note);
+    println!(
+        "  {} {} N/m",
+        labels.pressure,
+        pm((o.pressure, o.pressure_stderr))
+    );
+    println!(
+        "  lid collision rate Nc       {} 1/s",
+        pm((o.lid_collision_rate, o.lid_collision_rate_stderr))
+    );
+    match o.mean_impulse {
+        Some(v) => println!(
+            "  mean impulse ΔI             {} N·s",
+            pm((v, o.mean_impulse_stderr))
+        ),
+        None => println!("  mean impulse ΔI             not measured: no disk hit the lid"),
     }
-    println!("  temperature T               {} J", pm(o.temperature));
+    println!(
+        "  temperature T               {} J",
+        pm((o.temperature, o.temperature_stderr))
+    );
     println!(
         "  piston pressure             {} N/m (P + N m g / L = {:.6e})",
-        pm(o.piston),
-        o.piston_expected
+        pm((o.piston_pressure, o.piston_pressure_stderr)),
+        o.piston_expected()
     );
 }
 
 fn print_report(law: &str, params: &[ParamValue], r: &BedReport) {
     let c = &r.config;
-    let ps: Vec<String> = params
-        .iter()
-        .map(|p| format!(" {}={}", p.name, p.value))
-        .collect();
-    println!(
-        "bed: law {law}{}, n = {} (N = {}), f = {} Hz (V = {:.3} m/s), g = {} m/s², lid at {:.4} m",
-        ps.concat(),
-        c.layers,
-        r.disks,
-        c.freq,
-        r.piston_speed,
-        c.gravity,
-        r.lid
+    print_header(
+        "bed",
+        &LawChoice::new(law, params.to_vec()).describe(),
+        &r.measured,
     );
-    print_observables(&Observables {
-        measured_time: r.measured_time,
-        seeds: r.seeds,
-        single_seed: "batch means over the measured periods",
-        note: "",
-        pressure_label: "pressure P = Nc ΔI / L     ",
-        pressure: (r.pressure, r.pressure_stderr),
-        rate: (r.lid_collision_rate, r.lid_collision_rate_stderr),
-        impulse: (r.mean_impulse, r.mean_impulse_stderr),
-        temperature: (r.temperature, r.temperature_stderr),
-        piston: (r.piston_pressure, r.piston_pressure_stderr),
-        piston_expected: r.pressure + r.disks as f64 * c.mass * c.gravity / c.width,
-    });
+    print_observables(
+        &r.measured,
+        Labels {
+            single_seed: "batch means over the measured periods",
+            note: "",
+            pressure: "pressure P = Nc ΔI / L     ",
+        },
+    );
     println!(
         "run: {} events ({} collisions, {} cell crossings), {:.3e} events/s, {:.3e} collisions/s, {:.3} s wall ({:.4} s per simulated s)",
         r.events,

@@ -1,8 +1,9 @@
 //! `dashpot scaling` and `dashpot figures bed`.
 
 use super::*;
-use crate::bed::view::progress_bar;
+use crate::bed::spec::{BedEngine, BedSpec};
 use crate::bed::{scaling, Laws};
+use crate::output::progress_bar;
 use crate::output::write_atomic;
 use crate::plot::Figure;
 use crate::registry::Registry;
@@ -10,58 +11,59 @@ use anyhow::{bail, Context, Result};
 
 /// `dashpot scaling`.
 pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
-    a.phys.check()?;
     let freqs = parse_range(&a.freqs)?;
     if a.layers.is_empty() {
         bail!("--layers: give at least one number of layers");
     }
-    for &n in &a.layers {
-        a.phys.config(n, 20.0).validate()?;
-    }
-    for &f in &freqs {
-        a.phys.config(1.0, f).validate()?;
+    let spec = a.phys.spec(a.layers[0], freqs[0], 1)?;
+    // every n and every f of the grid checked (at the first f and the first n)
+    let points = a
+        .layers
+        .iter()
+        .map(|&n| (n, freqs[0]))
+        .chain(freqs.iter().map(|&f| (a.layers[0], f)));
+    for (n, f) in points {
+        BedSpec {
+            config: spec.at(n, f),
+            ..spec.clone()
+        }
+        .validate()?;
     }
     let grid = scaling::Grid {
         layers: a.layers.clone(),
         freqs,
-        transient: a.phys.transient,
-        cycles: a.phys.cycles,
+        transient: spec.transient,
+        cycles: spec.cycles,
     };
-    let prov = scaling_provenance(reg, &a.phys)?;
+    let prov = scaling_provenance(reg, &spec)?;
     let pb = progress_bar(grid.len() as u64, "scaling (runs)");
-    let (rows, law) = match a.phys.engine {
-        EngineKind::Event => {
-            let laws = a.phys.laws(reg)?;
+    std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
+    let grid_csv = a.out.join("grid.csv");
+    let (rows, law) = match &spec.engine {
+        BedEngine::Event { restitution } => {
+            let laws = spec.restitution_laws(reg)?;
             let laws = Laws {
                 disk: &laws.disk,
                 wall: &laws.wall,
             };
-            let runs = scaling::run_grid(&laws, &|n, f| a.phys.config(n, f), &grid, &|| pb.inc(1))?;
-            std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
-            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs, &prov)?;
-            (
-                scaling::fit_all(&grid, &runs),
-                a.phys.restitution_name()?.to_string(),
-            )
+            let runs = scaling::run_grid(&laws, &|n, f| spec.at(n, f), &grid, &|| pb.inc(1))?;
+            scaling::write_grid_csv(&grid_csv, &runs, &prov)?;
+            (scaling::fit_all(&grid, &runs), restitution.name.clone())
         }
-        EngineKind::Dem => {
-            let mat = a.phys.dem_bed(a.phys.config(1.0, 20.0)).material;
+        BedEngine::Dem { law, tangential, .. } => {
+            let mat = spec.dem_bed(spec.config).material;
             let laws = (0..grid.len())
-                .map(|_| a.phys.dem_laws(reg, &mat))
+                .map(|_| spec.dem_laws(reg, &mat))
                 .collect::<Result<Vec<_>>>()?;
             let runs =
-                scaling::run_dem_grid(laws, &|n, f| a.phys.dem_bed(a.phys.config(n, f)), &grid, &|| {
-                    pb.inc(1)
-                })?;
-            std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
-            scaling::write_grid_csv(&a.out.join("grid.csv"), &runs, &prov)?;
+                scaling::run_dem_grid(laws, &|n, f| spec.dem_bed(spec.at(n, f)), &grid, &|| pb.inc(1))?;
+            scaling::write_grid_csv(&grid_csv, &runs, &prov)?;
             let law = format!(
                 "DEM {}{}, E = {:.3e} Pa",
-                a.phys.law_name()?,
-                a.phys
-                    .tangential
-                    .as_deref()
-                    .map(|t| format!(" + {t} {}", a.phys.tset.join(" ")))
+                law.name,
+                tangential
+                    .as_ref()
+                    .map(|t| format!(" + {} {}", t.name, a.phys.tset.join(" ")))
                     .unwrap_or_default(),
                 mat.young
             );
@@ -116,17 +118,15 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
 
 /// The provenance of `dashpot scaling`'s laws: the restitution law (a contact law's own for
 /// `from:NAME`), or on the DEM engine the contact law and the tangential law.
-fn scaling_provenance(reg: &Registry, phys: &PhysArgs) -> Result<Vec<crate::output::Provenance>> {
-    let prov = match phys.engine {
-        EngineKind::Event => {
-            let r = phys.restitution_name()?;
-            let name = r.strip_prefix(crate::bed::FROM_CONTACT).unwrap_or(r);
-            scaling::provenance(reg, name, &phys.params()?, None)?
+fn scaling_provenance(reg: &Registry, spec: &BedSpec) -> Result<Vec<crate::output::Provenance>> {
+    let prov = match &spec.engine {
+        BedEngine::Event { restitution: r } => {
+            let name = r.name.strip_prefix(crate::bed::FROM_CONTACT).unwrap_or(&r.name);
+            scaling::provenance(reg, name, &r.params, None)?
         }
-        EngineKind::Dem => {
-            let t = phys.tparams()?;
-            let tangential = phys.tangential.as_deref().map(|n| (n, &t[..]));
-            scaling::provenance(reg, phys.law_name()?, &phys.params()?, tangential)?
+        BedEngine::Dem { law, tangential, .. } => {
+            let tangential = tangential.as_ref().map(|t| (t.name.as_str(), &t.params[..]));
+            scaling::provenance(reg, &law.name, &law.params, tangential)?
         }
     };
     prov.iter().for_each(|p| p.warn_if_shadowed());

@@ -3,10 +3,11 @@
 
 use super::*;
 use crate::bed::engine::{Bed, BedConfig, BedReport};
+use crate::bed::observables::BedObservables;
 use crate::bed::scaling::{
     fit_all, provenance, run_dem_grid, theta_panel, write_fit_csv, write_grid_csv, Grid,
 };
-use crate::bed::view::progress_bar;
+use crate::output::progress_bar;
 use crate::plot::Figure;
 use crate::registry::Registry;
 use anyhow::{Context, Result};
@@ -141,6 +142,16 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
             t: f64,
             note: String,
         }
+        let row = |n: f64, what: &'static str, o: &BedObservables, note: String| Row {
+            n,
+            what,
+            p: o.pressure,
+            pe: o.pressure_stderr,
+            nc: o.lid_collision_rate,
+            di: o.mean_impulse,
+            t: o.temperature,
+            note,
+        };
         let mut rows: Vec<Row> = Vec::new();
         for &n in &ds.cross_layers {
             let cfg = BedConfig {
@@ -169,28 +180,11 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
                 .into_par_iter()
                 .map(|(what, l)| Ok((what, bed(n, f).run(l, tr, cy, &mut |_| {})?)))
                 .collect::<Result<Vec<_>>>()?;
-            let evrow = |what, r: &BedReport| Row {
-                n,
-                what,
-                p: r.pressure,
-                pe: r.pressure_stderr,
-                nc: r.lid_collision_rate,
-                di: r.mean_impulse,
-                t: r.temperature,
-                note: format!("TC share {:.1} %", 100.0 * r.tc_share),
-            };
+            let evrow =
+                |what, r: &BedReport| row(n, what, r, format!("TC share {:.1} %", 100.0 * r.tc_share));
             rows.push(evrow("event constant", &ec));
             for (what, r) in &dem {
-                rows.push(Row {
-                    n,
-                    what,
-                    p: r.pressure,
-                    pe: r.pressure_stderr,
-                    nc: r.lid_collision_rate,
-                    di: r.mean_impulse,
-                    t: r.temperature,
-                    note: format!("dt = {:.3e} s", r.dt),
-                });
+                rows.push(row(n, what, r, format!("dt = {:.3e} s", r.dt)));
             }
             rows.push(evrow("event from:kuwabara-kono", &ek));
         }
@@ -282,12 +276,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
     let eps_lo = [ParamValue::new("eps", 0.7)];
     if want(2) {
         stage("Fig. 2 with contact laws: P(n)");
-        let grid = Grid {
-            layers: ds.fig2_layers.clone(),
-            freqs: ds.fig2_freqs.clone(),
-            transient: ds.fig2_periods.0,
-            cycles: ds.fig2_periods.1,
-        };
+        let grid = Grid::new(&ds.fig2_layers, &ds.fig2_freqs, ds.fig2_periods);
         let kk_runs = dem_grid(&grid, "kuwabara-kono", &kk, "DEM Fig. 2 kuwabara-kono")?;
         let hi = dem_grid(&grid, "hsd", &eps_hi, "DEM Fig. 2 hsd 0.95")?;
         let lo = dem_grid(&grid, "hsd", &eps_lo, "DEM Fig. 2 hsd 0.7")?;
@@ -299,15 +288,14 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
         )?;
         write_grid_csv(&out.join("dem_fig2_hsd095.csv"), &hi, &prov("hsd", &eps_hi)?)?;
         write_grid_csv(&out.join("dem_fig2_hsd070.csv"), &lo, &prov("hsd", &eps_lo)?)?;
-        Figure {
-            panels: vec![
+        Figure::in_columns(
+            vec![
                 pressure_panel(&format!("DEM, Kuwabara–Kono A = {CROSS_KK_A} s"), &grid, &kk_runs),
                 pressure_panel("DEM, HSD ε = 0.95", &grid, &hi),
                 pressure_panel("DEM, HSD ε = 0.7", &grid, &lo),
             ],
-            columns: 3,
-            panel_size: (700, 520),
-        }
+            3,
+        )
         .save(out, "dem_fig2_pressure")?;
         let last = grid.layers[grid.layers.len() - 1];
         writeln!(
@@ -318,24 +306,13 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
              | f (Hz) | KK: n at max | KK: P(n={last})/P_max | HSD 0.95: n at max | HSD 0.95: ratio | HSD 0.7: n at max | HSD 0.7: ratio |\n|---|---|---|---|---|---|---|",
             grid.freqs, grid.layers, grid.cycles, grid.transient
         )?;
-        let (a, b, c) = (peaks(&grid, &kk_runs), peaks(&grid, &hi), peaks(&grid, &lo));
-        for k in 0..a.len() {
-            writeln!(
-                md,
-                "| {:.0} | {} | {:.2} | {} | {:.2} | {} | {:.2} |",
-                a[k].0, a[k].1, a[k].2, b[k].1, b[k].2, c[k].1, c[k].2
-            )?;
-        }
+        let peaks = [&kk_runs, &hi, &lo].map(|r| peaks(&grid, r));
+        peak_rows(&mut md, [&peaks[0], &peaks[1], &peaks[2]])?;
         writeln!(md)?;
     }
     if want(4) {
         stage("Fig. 4 with contact laws: θ(n)");
-        let grid = Grid {
-            layers: ds.fig4_layers.clone(),
-            freqs: ds.fig4_freqs.clone(),
-            transient: ds.fig4_periods.0,
-            cycles: ds.fig4_periods.1,
-        };
+        let grid = Grid::new(&ds.fig4_layers, &ds.fig4_freqs, ds.fig4_periods);
         let mut panels = Vec::new();
         writeln!(
             md,
@@ -379,18 +356,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
             }
             writeln!(md)?;
         }
-        Figure {
-            panels,
-            columns: 2,
-            panel_size: (700, 520),
-        }
-        .save(out, "dem_fig4_theta")?;
+        Figure::in_columns(panels, 2).save(out, "dem_fig4_theta")?;
     }
-    writeln!(
-        md,
-        "\nTotal wall time: {:.0} s on {} threads.",
-        clock.elapsed().as_secs_f64(),
-        rayon::current_num_threads()
-    )?;
-    Ok(md)
+    Ok(with_wall_time(md, clock))
 }

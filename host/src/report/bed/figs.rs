@@ -4,33 +4,27 @@
 use super::*;
 use crate::bed::engine::{Bed, BedConfig};
 use crate::bed::scaling::{fit_all, theta_panel, write_fit_csv, write_grid_csv, Grid, ScalingRow};
-use crate::bed::view::snapshot_panel;
 use crate::plot::{Figure, Panel};
+use crate::report::snapshot::Scene;
 use anyhow::Result;
 use std::path::Path;
 
 pub(super) fn fig2(l: &Three, out: &Path, size: &Size, md: &mut String) -> Result<()> {
-    let grid = Grid {
-        layers: size.fig2_layers.clone(),
-        freqs: size.fig2_freqs.clone(),
-        transient: size.fig2_periods.0,
-        cycles: size.fig2_periods.1,
-    };
+    let grid = Grid::new(&size.fig2_layers, &size.fig2_freqs, size.fig2_periods);
     let rv = grid_runs(&l.rv, false, 9.8, &grid, "Fig. 2b r(v)")?;
     let r95 = grid_runs(&l.r95, true, 9.8, &grid, "Fig. 2c r = 0.95")?;
     let r70 = grid_runs(&l.r70, true, 9.8, &grid, "Fig. 2d r = 0.7")?;
     write_grid_csv(&out.join("fig2b_rv.csv"), &rv, &l.prov[0])?;
     write_grid_csv(&out.join("fig2c_r095.csv"), &r95, &l.prov[1])?;
     write_grid_csv(&out.join("fig2d_r070.csv"), &r70, &l.prov[2])?;
-    let fig = Figure {
-        panels: vec![
+    let fig = Figure::in_columns(
+        vec![
             pressure_panel("(b) r = r(v)", &grid, &rv),
             pressure_panel("(c) r = 0.95", &grid, &r95),
             pressure_panel("(d) r = 0.7", &grid, &r70),
         ],
-        columns: 3,
-        panel_size: (700, 520),
-    };
+        3,
+    );
     fig.save(out, "fig2_pressure")?;
     let last = grid.layers[grid.layers.len() - 1];
     writeln!(
@@ -44,13 +38,7 @@ pub(super) fn fig2(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
         "| f (Hz) | r(v): n at max P | r(v): P(n={last})/P_max | r = 0.95: n at max P | r = 0.95: P(n={last})/P_max | r = 0.7: n at max P | r = 0.7: P(n={last})/P_max |\n|---|---|---|---|---|---|---|"
     )?;
     let (a, b, c) = (peaks(&grid, &rv), peaks(&grid, &r95), peaks(&grid, &r70));
-    for k in 0..a.len() {
-        writeln!(
-            md,
-            "| {:.0} | {} | {:.2} | {} | {:.2} | {} | {:.2} |",
-            a[k].0, a[k].1, a[k].2, b[k].1, b[k].2, c[k].1, c[k].2
-        )?;
-    }
+    peak_rows(md, [&a, &b, &c])?;
     let near1 = a
         .iter()
         .filter(|p| (0.5..=2.0).contains(&p.1) && p.2 < 0.9)
@@ -187,12 +175,10 @@ pub(super) fn fig3(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
                 cv += c / 10.0;
                 ym += bed.positions().iter().map(|p| p.1).sum::<f64>() / bed.len() as f64 / 10.0;
             }
-            let panel = snapshot_panel(
-                &bed,
-                &format!("{title}, n = 3, f = 30 Hz, g = 9.8 m/s², piston lowest"),
-            );
+            let panel =
+                Scene::bed(&bed).panel(&format!("{title}, n = 3, f = 30 Hz, g = 9.8 m/s², piston lowest"));
             let tc = bed.report(1.0).tc_share;
-            let se = crate::bed::engine::stderr_of(&wins).unwrap_or(f64::NAN);
+            let se = crate::bed::observables::stderr_of(&wins).unwrap_or(f64::NAN);
             Ok((panel, (tight, near, cv, ym, tc, win, se)))
         })
         .collect();
@@ -265,12 +251,7 @@ pub(super) fn fig3(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
 }
 
 pub(super) fn fig4(l: &Three, out: &Path, size: &Size, md: &mut String) -> Result<()> {
-    let grid = Grid {
-        layers: size.fig4_layers.clone(),
-        freqs: size.fig4_freqs.clone(),
-        transient: size.fig4_periods.0,
-        cycles: size.fig4_periods.1,
-    };
+    let grid = Grid::new(&size.fig4_layers, &size.fig4_freqs, size.fig4_periods);
     let mut panels = Vec::new();
     let mut all: Vec<(&str, Vec<ScalingRow>)> = Vec::new();
     for (tag, title, law, constant, g, prov) in [
@@ -286,12 +267,7 @@ pub(super) fn fig4(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
         panels.push(theta_panel(&rows, title));
         all.push((title, rows));
     }
-    Figure {
-        panels,
-        columns: 2,
-        panel_size: (700, 520),
-    }
-    .save(out, "fig4_theta")?;
+    Figure::in_columns(panels, 2).save(out, "fig4_theta")?;
     writeln!(
         md,
         "## Fig. 4 a–d: exponents θ(n) of X ∝ V^θ (`fig4_theta.png`)\n\n\

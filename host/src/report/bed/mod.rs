@@ -3,8 +3,8 @@
 
 use crate::bed::engine::{BedConfig, BedReport};
 use crate::bed::scaling::{provenance, run_grid, Grid, Measured};
-use crate::bed::view::progress_bar;
 use crate::bed::{resolve, DynRestitution, Laws};
+use crate::output::progress_bar;
 use crate::output::Provenance;
 use crate::plot::{Mark, Panel, Series, PALETTE};
 use crate::registry::Registry;
@@ -219,13 +219,7 @@ pub fn run_only(reg: &Registry, out: &Path, size: &Size, only: &[u8]) -> Result<
         writeln!(md, "Statements wall time: {:.0} s.\n", t.elapsed().as_secs_f64())?;
     }
     stage("done");
-    writeln!(
-        md,
-        "\nTotal wall time: {:.0} s on {} threads.",
-        clock.elapsed().as_secs_f64(),
-        rayon::current_num_threads()
-    )?;
-    Ok(md)
+    Ok(with_wall_time(md, clock))
 }
 
 fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
@@ -239,7 +233,7 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
                 .layers
                 .iter()
                 .enumerate()
-                .map(|(a, &n)| (n, runs[a * nf + k].pressure().0))
+                .map(|(a, &n)| (n, runs[a * nf + k].pressure))
                 .collect();
             let c = PALETTE.len() + (k * 15) / (nf.max(2) - 1);
             let bars: Vec<(f64, f64, f64)> = grid
@@ -247,8 +241,8 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
                 .iter()
                 .enumerate()
                 .filter_map(|(a, &n)| {
-                    let (p, e) = runs[a * nf + k].pressure();
-                    e.map(|e| (n, p, e))
+                    let r = &runs[a * nf + k];
+                    r.pressure_stderr.map(|e| (n, r.pressure, e))
                 })
                 .collect();
             let mut s = vec![
@@ -268,6 +262,20 @@ fn pressure_panel<R: Measured>(title: &str, grid: &Grid, runs: &[R]) -> Panel {
     }
 }
 
+/// The rows of a table of three sets of [`peaks`]: f, then for each set the n of the largest
+/// pressure and P(last n)/P(max).
+fn peak_rows(md: &mut String, [a, b, c]: [&[(f64, f64, f64)]; 3]) -> std::fmt::Result {
+    use std::fmt::Write as _;
+    for k in 0..a.len() {
+        writeln!(
+            md,
+            "| {:.0} | {} | {:.2} | {} | {:.2} | {} | {:.2} |",
+            a[k].0, a[k].1, a[k].2, b[k].1, b[k].2, c[k].1, c[k].2
+        )?;
+    }
+    Ok(())
+}
+
 /// For each frequency: the n of the largest pressure, and P(last n)/P(max).
 fn peaks<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<(f64, f64, f64)> {
     let nf = grid.freqs.len();
@@ -276,7 +284,7 @@ fn peaks<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<(f64, f64, f64)> {
         .enumerate()
         .map(|(k, &f)| {
             let p: Vec<f64> = (0..grid.layers.len())
-                .map(|a| runs[a * nf + k].pressure().0)
+                .map(|a| runs[a * nf + k].pressure)
                 .collect();
             let (am, pm) = p
                 .iter()
@@ -285,4 +293,14 @@ fn peaks<R: Measured>(grid: &Grid, runs: &[R]) -> Vec<(f64, f64, f64)> {
             (f, grid.layers[am], p[p.len() - 1] / pm)
         })
         .collect()
+}
+
+/// The report `md` ended with its total wall time since `clock` and the threads it ran on.
+fn with_wall_time(mut md: String, clock: std::time::Instant) -> String {
+    md.push_str(&format!(
+        "\nTotal wall time: {:.0} s on {} threads.\n",
+        clock.elapsed().as_secs_f64(),
+        rayon::current_num_threads()
+    ));
+    md
 }

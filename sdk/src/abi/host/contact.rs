@@ -1,6 +1,7 @@
 //! Contact-law handles: a plugin's (0.1, 0.2 or 0.3) and a law compiled into the host.
 
 use super::*;
+use crate::abi::kinds::normal_non_finite;
 
 /// A 0.1 contact law and the pairs it has been bound to (one per distinct effective mass and
 /// radius: sdk 0.1 had no per-contact geometry).
@@ -56,7 +57,7 @@ impl V1Law {
 
 pub(super) enum ContactInner {
     V1(Arc<V1Law>),
-    V2(FfiContactLaw),
+    V2(v2::FfiContactLaw),
     /// A 0.3 law, through the generic shape of its kind.
     V3(LawHandle<Normal>),
 }
@@ -111,136 +112,8 @@ impl Drop for ContactLawHandle {
 
 enum ModelInner {
     V1 { law: Arc<V1Law>, young: f64 },
-    V2(FfiContactModel),
+    V2(v2::FfiContactModel),
     V3(ModelHandle<Normal>),
-}
-
-/// Runs a checked normal batch through `call` (a plugin's vtable entry, or the same trampoline
-/// compiled into the host) and turns its status into a result. Lengths are checked by the
-/// caller.
-fn run_normal_batch(
-    name: &str,
-    b: NormalBatch<'_>,
-    call: impl FnOnce(&FfiNormalBatch, &mut BatchFault) -> Result<BatchStatus, RString>,
-) -> Result<(), LawError> {
-    let n = b.force.len();
-    let ffi = FfiNormalBatch {
-        n,
-        slots: b.slots,
-        delta: b.delta.as_ptr(),
-        rate: b.rate.as_ptr(),
-        mass: b.mass.as_ptr(),
-        radius: b.radius.as_ptr(),
-        history: b.history.as_mut_ptr(),
-        force: b.force.as_mut_ptr(),
-    };
-    let mut fault = BatchFault::default();
-    let st = call(&ffi, &mut fault)
-        .map_err(|msg| LawError::new(ErrorKind::Panic, format!("contact law '{name}' panicked: {msg}")))?;
-    if st == BatchStatus::Ok {
-        return Ok(());
-    }
-    let i = fault.index.min(n - 1);
-    let c = Contact {
-        delta: b.delta[i],
-        rate: b.rate[i],
-        mass: b.mass[i],
-        radius: b.radius[i],
-    };
-    if st == BatchStatus::NonFiniteOutput {
-        return Err(normal_non_finite(name, b.force[i], c));
-    }
-    let v = match fault.field {
-        BatchFault::DELTA => c.delta,
-        BatchFault::RATE => c.rate,
-        BatchFault::MASS => c.mass,
-        _ => c.radius,
-    };
-    Err(bad_input("contact", name, fault.field, i, v))
-}
-
-fn check_normal_lengths(name: &str, slots: usize, b: &NormalBatch<'_>) -> Result<(), LawError> {
-    let n = b.force.len();
-    if b.delta.len() != n || b.rate.len() != n || b.mass.len() != n || b.radius.len() != n {
-        return Err(length_error(
-            "force_batch",
-            format!(
-                "delta {}, rate {}, mass {}, radius {}, force {}",
-                b.delta.len(),
-                b.rate.len(),
-                b.mass.len(),
-                b.radius.len(),
-                n
-            ),
-        ));
-    }
-    if b.slots != slots || b.history.len() != n * slots {
-        return Err(length_error(
-            "force_batch",
-            format!(
-                "history has {} values for {n} contacts of {} slots (law '{name}' keeps {slots})",
-                b.history.len(),
-                b.slots,
-            ),
-        ));
-    }
-    Ok(())
-}
-
-/// A contact law compiled into the host (tests, benchmarks, baselines), bound to a pair of
-/// materials, and called through the very trampoline a plugin exports: the same input and
-/// output checks, statically dispatched.
-pub struct StaticContact<B>(StaticModel<Normal, B>);
-
-impl<B: crate::law::BoundContact> StaticContact<B> {
-    /// Binds law `L` (configured as `law`) to `materials`.
-    pub fn bind<L: crate::law::ContactLaw<Bound = B>>(
-        law: &L,
-        materials: &MaterialPair,
-    ) -> Result<Self, LawError> {
-        Ok(StaticContact(StaticModel::bind(law, materials)?))
-    }
-
-    /// The law's name.
-    pub fn name(&self) -> &str {
-        self.0.name()
-    }
-
-    /// History slots per contact.
-    pub fn history_slots(&self) -> usize {
-        self.0.history_slots()
-    }
-
-    /// The bound law.
-    pub fn law(&self) -> &B {
-        self.0.law()
-    }
-
-    /// As [`ContactModelHandle::force_batch`].
-    #[inline]
-    pub fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
-        check_normal_lengths(self.name(), self.history_slots(), &b)?;
-        self.0
-            .batch(
-                NormalCall {
-                    batch: b,
-                    reach: None,
-                },
-                EnergyOut::none(),
-            )
-            .map(|_| ())
-    }
-
-    /// As [`ContactModelHandle::force_batch_with`].
-    pub fn force_batch_with(
-        &self,
-        b: NormalBatch<'_>,
-        reach: Option<&mut [f64]>,
-        energy: EnergyOut<'_>,
-    ) -> Result<bool, LawError> {
-        check_normal_lengths(self.name(), self.history_slots(), &b)?;
-        self.0.batch(NormalCall { batch: b, reach }, energy)
-    }
 }
 
 /// A contact law bound to a pair of materials: the hot path, per-contact geometry and history,
@@ -273,25 +146,7 @@ impl ContactModelHandle {
     /// updated in place. A non-finite input (or a mass or radius not > 0) is an error naming the
     /// contact, before anything of its block is computed; so is a non-finite output.
     pub fn force_batch(&self, b: NormalBatch<'_>) -> Result<(), LawError> {
-        check_normal_lengths(&self.name, self.slots, &b)?;
-        match &self.inner {
-            ModelInner::V2(m) => run_normal_batch(&self.name, b, |ffi, fault| unsafe {
-                match (m.vtable.force_batch)(m.obj, ffi, fault) {
-                    BatchStatus::Panic => Err((m.vtable.take_panic)()),
-                    st => Ok(st),
-                }
-            }),
-            ModelInner::V1 { law, young } => self.force_batch_v1(law, *young, b),
-            ModelInner::V3(m) => m
-                .batch(
-                    NormalCall {
-                        batch: b,
-                        reach: None,
-                    },
-                    EnergyOut::none(),
-                )
-                .map(|_| ()),
-        }
+        self.force_batch_with(b, None, EnergyOut::none()).map(|_| ())
     }
 
     /// As [`ContactModelHandle::force_batch`], with each contact's reach (m, ≥ 0: the contact
@@ -304,21 +159,30 @@ impl ContactModelHandle {
         reach: Option<&mut [f64]>,
         energy: EnergyOut<'_>,
     ) -> Result<bool, LawError> {
+        let mut call = NormalCall { batch: b, reach };
         match &self.inner {
-            ModelInner::V3(m) => {
-                check_normal_lengths(&self.name, self.slots, &b)?;
-                m.batch(NormalCall { batch: b, reach }, energy)
+            ModelInner::V3(m) => m.batch(call, energy),
+            ModelInner::V2(m) => {
+                run_v2::<Normal>(
+                    &self.name,
+                    self.slots,
+                    &mut call,
+                    energy,
+                    m.vtable.take_panic,
+                    |ffi, fault| unsafe { (m.vtable.force_batch)(m.obj, &ffi.base, fault) },
+                )?;
+                no_reach(call.reach)
             }
-            _ => {
-                let n = b.force.len();
-                if reach.as_ref().is_some_and(|r| r.len() != n) {
-                    return Err(length_error("force_batch", format!("reach must hold {n} values")));
+            ModelInner::V1 { law, young } => {
+                Normal::check_lengths(&self.name, self.slots, &call)?;
+                if !energy.lengths_ok(call.batch.force.len()) {
+                    return Err(length_error(
+                        "force_batch",
+                        "the energy outputs must have one value per contact".into(),
+                    ));
                 }
-                self.force_batch(b)?;
-                if let Some(r) = reach {
-                    r.fill(0.0);
-                }
-                Ok(false)
+                self.force_batch_v1(law, *young, call.batch)?;
+                no_reach(call.reach)
             }
         }
     }
@@ -430,33 +294,17 @@ impl ContactModelHandle {
 
     /// The normal force (N) on one contact, history updated in place.
     pub fn force(&self, c: Contact, history: &mut [f64]) -> Result<f64, LawError> {
-        let mut out = [0.0];
-        self.force_batch(NormalBatch {
-            delta: &[c.delta],
-            rate: &[c.rate],
-            mass: &[c.mass],
-            radius: &[c.radius],
-            slots: self.slots,
-            history,
-            force: &mut out,
-        })?;
-        Ok(out[0])
+        c.force_through(history, |b| self.force_batch(b))
     }
 
     /// The law's derived constants for a contact of effective `mass` (kg) and `radius` (m).
     pub fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
         match &self.inner {
-            ModelInner::V2(m) => match unsafe { (m.vtable.coefficients)(m.obj, mass, radius) } {
-                RResult::ROk(v) => Ok(v.into_vec()),
-                RResult::RErr(e) => Err(e.into()),
-            },
+            ModelInner::V2(m) => coefficients(unsafe { (m.vtable.coefficients)(m.obj, mass, radius) }),
             ModelInner::V3(m) => m.coefficients(mass, radius),
             ModelInner::V1 { law, young } => {
                 let b = law.bound(mass, radius, *young)?;
-                match unsafe { (b.ffi.vtable.coefficients)(b.ffi.obj) } {
-                    RResult::ROk(v) => Ok(v.into_vec()),
-                    RResult::RErr(e) => Err(e.into()),
-                }
+                coefficients(unsafe { (b.ffi.vtable.coefficients)(b.ffi.obj) })
             }
         }
     }
@@ -467,5 +315,30 @@ impl Drop for ContactModelHandle {
         if let ModelInner::V2(m) = &self.inner {
             unsafe { (m.vtable.drop)(m.obj) }
         }
+    }
+}
+
+/// A law older than sdk 0.3 has reach 0 (the contact ends when the overlap does) and no energy
+/// outputs.
+fn no_reach(reach: Option<&mut [f64]>) -> Result<bool, LawError> {
+    if let Some(r) = reach {
+        r.fill(0.0);
+    }
+    Ok(false)
+}
+
+impl BoundModel<Normal> for ContactModelHandle {
+    fn name(&self) -> &str {
+        &self.name
+    }
+    fn history_slots(&self) -> usize {
+        self.slots
+    }
+    #[inline]
+    fn batch(&self, c: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.force_batch_with(c.batch, c.reach, energy)
+    }
+    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
+        ContactModelHandle::coefficients(self, mass, radius)
     }
 }

@@ -1,12 +1,13 @@
 //! Host side: loading plugins, with their checks, and the safe handles a host calls.
 
 use super::checks::all_finite;
-use super::kind::{self, EnergyOut, Kind};
-use super::v1;
+use super::handle::run_v2;
+use super::kind::{EnergyOut, Kind, NewFn};
 use super::*;
-use super::{LawHandle, ModelHandle, Normal, NormalCall, Rolling, StaticModel, Tangential, Twisting};
+use super::{v1, v2, BoundModel, LawHandle, ModelHandle, Normal, NormalCall, Rolling, Tangential, Twisting};
 use crate::error::{ErrorKind, LawError};
-use crate::law::{Contact, LawKind, NormalBatch, TangentialBatch};
+use crate::law::{CalibrationTarget, Coefficient, Contact, LawInfo, LawKind, NormalBatch, TangentialBatch};
+use crate::params::ParamValue;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
@@ -15,10 +16,10 @@ mod restitution;
 mod tangential;
 
 use contact::{ContactInner, V1Law};
-pub use contact::{ContactLawHandle, ContactModelHandle, StaticContact};
+pub use contact::{ContactLawHandle, ContactModelHandle};
 pub use restitution::{BoundRestitutionHandle, RestitutionLawHandle};
 use tangential::TangentialInner;
-pub use tangential::{StaticTangential, TangentialLawHandle, TangentialModelHandle};
+pub use tangential::{TangentialLawHandle, TangentialModelHandle};
 
 /// The sdk series a plugin was built against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -59,15 +60,28 @@ enum Module {
     V3(PluginModuleRef),
 }
 
-/// The entry points 0.2 and 0.3 share (same types in both root modules).
+/// The entry points every series shares (same types in every root module).
 macro_rules! shared {
-    ($module:expr, $field:ident, $v1:expr) => {
+    ($module:expr, $field:ident) => {
         match $module {
-            Module::V1(m) => $v1(m),
+            Module::V1(m) => m.$field(),
             Module::V2(m) => m.$field(),
             Module::V3(m) => m.$field(),
         }
     };
+}
+
+/// Calls a root-module entry with a law name and parameters (converted to their mirrors),
+/// turning its error into a [`LawError`].
+fn call<T>(
+    f: extern "C" fn(RStr<'_>, RSlice<'_, ffi::ParamValue>) -> RResult<T, FfiError>,
+    name: &str,
+    params: &[ParamValue],
+) -> Result<T, LawError> {
+    let params: RVec<ffi::ParamValue> = ffi::to_ffi(params);
+    f(RStr::from_str(name), params.as_rslice())
+        .into_result()
+        .map_err(LawError::from)
 }
 
 impl std::fmt::Debug for LoadedPlugin {
@@ -175,39 +189,30 @@ impl LoadedPlugin {
                     })?,
             ),
         };
-        let read = |r: RResult<RVec<LawInfo>, FfiError>| match r {
-            RResult::ROk(v) => Ok(v.into_vec()),
-            RResult::RErr(e) => Err(load_error(path, LawError::from(e))),
-        };
+        fn read<T>(path: &Path, r: RResult<RVec<T>, FfiError>) -> Result<RVec<T>, LawError> {
+            r.into_result().map_err(|e| load_error(path, LawError::from(e)))
+        }
         let (series, laws, name, version, sdk_version) = match module {
             Module::V1(m) => {
-                let laws = match (m.laws())() {
-                    RResult::ROk(v) => v.into_iter().map(from_v1_info).collect(),
-                    RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
-                };
+                let laws = read(path, (m.laws())())?
+                    .into_iter()
+                    .map(v1::LawInfo::upgrade)
+                    .collect();
                 (SdkSeries::V0_1, laws, m.name(), m.version(), m.sdk_version())
             }
             Module::V2(m) => {
                 let Some(laws2) = m.laws2() else {
                     return Err(load_error(path, "its root module lacks the sdk 0.2 law list"));
                 };
-                let laws = match laws2() {
-                    RResult::ROk(v) => v.into_iter().map(v2::LawInfo::upgrade).collect(),
-                    RResult::RErr(e) => return Err(load_error(path, LawError::from(e))),
-                };
+                let laws = read(path, laws2())?
+                    .into_iter()
+                    .map(v2::LawInfo::upgrade)
+                    .collect();
                 (SdkSeries::V0_2, laws, m.name(), m.version(), m.sdk_version())
             }
             Module::V3(m) => {
-                let Some(laws3) = m.laws3() else {
-                    return Err(load_error(path, "its root module lacks the sdk 0.3 law list"));
-                };
-                (
-                    SdkSeries::V0_3,
-                    read(laws3())?,
-                    m.name(),
-                    m.version(),
-                    m.sdk_version(),
-                )
+                let laws = ffi::to_plain(read(path, (m.laws())())?);
+                (SdkSeries::V0_3, laws, m.name(), m.version(), m.sdk_version())
             }
         };
         Ok(LoadedPlugin {
@@ -228,23 +233,14 @@ impl LoadedPlugin {
     /// Creates contact law `name` from `params` (validated against its schema by the plugin).
     pub fn new_contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
         let info = self.expect(name, LawKind::Contact)?;
-        let (n, p) = (RStr::from_str(name), RSlice::from_slice(params));
         let inner = match self.module {
-            Module::V1(m) => match (m.new_contact())(n, p) {
-                RResult::ROk(ffi) => ContactInner::V1(Arc::new(V1Law::new(ffi))),
-                RResult::RErr(e) => return Err(e.into()),
-            },
+            Module::V1(m) => ContactInner::V1(Arc::new(V1Law::new(call(m.new_contact(), name, params)?))),
             Module::V2(m) => {
                 let f = m.new_contact2().ok_or_else(|| missing(name, "new_contact2"))?;
-                match f(n, p) {
-                    RResult::ROk(ffi) => ContactInner::V2(ffi),
-                    RResult::RErr(e) => return Err(e.into()),
-                }
+                ContactInner::V2(call(f, name, params)?)
             }
-            Module::V3(_) => {
-                ContactInner::V3(
-                    self.new_kind::<Normal>(name, params, LawKind::Contact, |m| m.new_contact3())?,
-                )
+            Module::V3(m) => {
+                ContactInner::V3(LawHandle::new(call(m.new_contact(), name, params)?, info.clone()))
             }
         };
         Ok(ContactLawHandle {
@@ -260,48 +256,47 @@ impl LoadedPlugin {
         &self,
         name: &str,
         params: &[ParamValue],
-        kind: LawKind,
-        entry: impl FnOnce(
-            PluginModuleRef,
-        ) -> Option<
-            extern "C" fn(RStr<'_>, RSlice<'_, ParamValue>) -> RResult<kind::FfiLaw<K::Ffi>, FfiError>,
-        >,
+        entry: fn(PluginModuleRef) -> NewFn<K::Ffi>,
     ) -> Result<LawHandle<K>, LawError> {
-        let info = self.expect(name, kind)?;
+        let info = self.expect(name, K::KIND)?;
         let Module::V3(m) = self.module else {
             return Err(missing(name, "of sdk 0.3 (the plugin is older)"));
         };
-        let f = entry(m).ok_or_else(|| missing(name, K::WHAT))?;
-        match f(RStr::from_str(name), RSlice::from_slice(params)) {
-            RResult::ROk(ffi) => Ok(LawHandle::new(ffi, info)),
-            RResult::RErr(e) => Err(e.into()),
-        }
+        Ok(LawHandle::new(call(entry(m), name, params)?, info))
     }
 
     /// Creates rolling law `name` from `params` (sdk 0.3 plugins).
     pub fn new_rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
-        self.new_kind::<Rolling>(name, params, LawKind::Rolling, |m| m.new_rolling())
+        self.new_kind::<Rolling>(name, params, |m| m.new_rolling())
     }
 
     /// Creates twisting law `name` from `params` (sdk 0.3 plugins).
     pub fn new_twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
-        self.new_kind::<Twisting>(name, params, LawKind::Twisting, |m| m.new_twisting())
+        self.new_kind::<Twisting>(name, params, |m| m.new_twisting())
     }
 
     /// Creates tangential law `name` from `params`.
     pub fn new_tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
-        if let Module::V3(_) = self.module {
-            let law =
-                self.new_kind::<Tangential>(name, params, LawKind::Tangential, |m| m.new_tangential3())?;
-            return Ok(TangentialLawHandle(TangentialInner::V3(law)));
-        }
-        let info = self.expect(name, LawKind::Tangential)?;
-        let f =
-            shared!(self.module, new_tangential, |_| None).ok_or_else(|| missing(name, "new_tangential"))?;
-        match f(RStr::from_str(name), RSlice::from_slice(params)) {
-            RResult::ROk(ffi) => Ok(TangentialLawHandle(TangentialInner::V2 { ffi, info })),
-            RResult::RErr(e) => Err(e.into()),
-        }
+        let inner = match self.module {
+            Module::V3(_) => {
+                TangentialInner::V3(self.new_kind::<Tangential>(name, params, |m| m.new_tangential())?)
+            }
+            Module::V2(m) => {
+                let info = self.expect(name, LawKind::Tangential)?;
+                let f = m
+                    .new_tangential()
+                    .ok_or_else(|| missing(name, "new_tangential"))?;
+                TangentialInner::V2 {
+                    ffi: call(f, name, params)?,
+                    info,
+                }
+            }
+            Module::V1(_) => {
+                self.expect(name, LawKind::Tangential)?;
+                return Err(missing(name, "new_tangential"));
+            }
+        };
+        Ok(TangentialLawHandle(inner))
     }
 
     /// Creates restitution law `name` from `params` (validated against its schema by the plugin).
@@ -311,12 +306,8 @@ impl LoadedPlugin {
         params: &[ParamValue],
     ) -> Result<RestitutionLawHandle, LawError> {
         let info = self.expect(name, LawKind::Restitution)?;
-        let f = shared!(self.module, new_restitution, |m: v1::PluginModuleRef| m
-            .new_restitution());
-        match f(RStr::from_str(name), RSlice::from_slice(params)) {
-            RResult::ROk(ffi) => Ok(RestitutionLawHandle { ffi, info }),
-            RResult::RErr(e) => Err(e.into()),
-        }
+        let ffi = call(shared!(self.module, new_restitution), name, params)?;
+        Ok(RestitutionLawHandle { ffi, info })
     }
 
     /// Closed-form parameters of contact law `name` reproducing `target` for `pair`.
@@ -328,11 +319,10 @@ impl LoadedPlugin {
         fixed: &[ParamValue],
     ) -> Result<Option<Vec<ParamValue>>, LawError> {
         self.expect(name, LawKind::Contact)?;
-        let f = shared!(self.module, calibrate, |m: v1::PluginModuleRef| m.calibrate());
-        match f(RStr::from_str(name), target, pair, RSlice::from_slice(fixed)) {
-            RResult::ROk(v) => Ok(v.into_option().map(RVec::into_vec)),
-            RResult::RErr(e) => Err(e.into()),
-        }
+        let f = shared!(self.module, calibrate);
+        let fixed: RVec<ffi::ParamValue> = ffi::to_ffi(fixed);
+        let found = f(RStr::from_str(name), &target.into(), pair, fixed.as_rslice()).into_result()?;
+        Ok(found.into_option().map(ffi::to_plain))
     }
 
     fn expect(&self, name: &str, kind: LawKind) -> Result<LawInfo, LawError> {
@@ -382,19 +372,11 @@ fn legacy_module<M: abi_stable::prefix_type::PrefixRefTrait + abi_stable::Stable
     unsafe { header.unchecked_layout::<M>() }.map_err(|e| load_error(path, e))
 }
 
-fn from_v1_info(i: v1::LawInfo) -> LawInfo {
-    LawInfo {
-        name: i.name,
-        kind: match i.kind {
-            v1::LawKind::Contact => LawKind::Contact,
-            v1::LawKind::Restitution => LawKind::Restitution,
-        },
-        summary: i.summary,
-        doc: i.doc,
-        params: i.params,
-        end_criterion: i.end_criterion,
-        history: RVec::new(),
-    }
+/// A plugin's coefficients as plain values.
+pub(crate) fn coefficients(
+    r: RResult<RVec<ffi::Coefficient>, FfiError>,
+) -> Result<Vec<Coefficient>, LawError> {
+    Ok(ffi::to_plain(r.into_result()?))
 }
 
 pub(crate) fn length_error(what: &str, detail: String) -> LawError {
@@ -415,16 +397,5 @@ pub(crate) fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: 
     LawError::new(
         ErrorKind::NonFinite,
         format!("{kind} law '{name}': input {what}[{index}] = {value} {rule}; refused before evaluation"),
-    )
-}
-
-pub(crate) fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError {
-    LawError::new(
-        ErrorKind::NonFinite,
-        format!(
-            "contact law '{name}' returned force {value} at delta = {:e} m, rate = {:e} m/s \
-             (effective mass {:e} kg, radius {:e} m)",
-            c.delta, c.rate, c.mass, c.radius
-        ),
     )
 }

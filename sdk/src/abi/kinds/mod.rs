@@ -1,24 +1,16 @@
 //! The law kinds of sdk 0.3 as instances of the one ABI shape of [`kind`](super::kind): normal
-//! (0.2's contact batch plus reach and energy), tangential (0.2's batch plus energy), rolling
-//! and twisting. Each instance is its raw batch, the host's view of it, and the block loop that
-//! checks and evaluates it; everything else (vtables, trampolines, handles) is generic.
+//! (0.2's contact batch plus reach and energy), tangential and rolling (one vector batch: 0.2's
+//! tangential batch plus energy), and twisting. Each instance is its raw batch, the host's view
+//! of it, and the block loop that checks and evaluates it; everything else (vtables,
+//! trampolines, handles) is generic.
 
 use super::checks::*;
-use super::host::{bad_input, length_error, normal_non_finite};
-use super::kind::{blocks, energy_pass, slice, slice_mut, Kind, KindBound, KindLaw};
-use super::plugin::{normal_blocks, tangential_blocks, NormalBlocks, TangentialBlocks};
-use super::{BatchFault, BatchStatus};
+use super::host::{bad_input, length_error};
+use super::kind::{blocks, energy_pass, kind_law, raw_out, slice, slice_mut, Kind, KindBound};
+use super::{v2, BatchFault, BatchStatus};
 use crate::error::{ErrorKind, LawError};
-use crate::law::{
-    BoundContact, BoundTangential, Coefficient, Contact, ContactLaw, LawInfo, LawKind, NormalBatch,
-    TangentialBatch, TangentialContact, TangentialLaw,
-};
+use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, LawKind, NormalBatch};
 use crate::pair::MaterialPair;
-use crate::params::{ParamSpec, Params};
-use crate::rotation::{
-    BoundRolling, BoundTwisting, RollingBatch, RollingContact, RollingLaw, TwistingBatch, TwistingContact,
-    TwistingLaw,
-};
 use abi_stable::StableAbi;
 
 mod twisting;
@@ -31,13 +23,38 @@ pub(super) fn non_finite_output(what: &str, name: &str, field: u8, i: usize, val
     LawError::new(
         ErrorKind::NonFinite,
         format!(
-            "{what} law '{name}' returned {} {value} on contact {i}{}",
+            "{what} law '{name}' returned a non-finite {} on contact {i} {value}{}",
             BatchFault::field_name(field),
             if field == BatchFault::REACH {
                 " (the reach must be finite and ≥ 0, m)"
             } else {
                 ""
             }
+        ),
+    )
+}
+
+/// The first bad input of a block, from `(first bad index, array)` checks in order.
+#[inline(always)]
+pub(super) fn first_bad<const N: usize>(
+    lo: usize,
+    checks: [(Option<usize>, u8); N],
+) -> Result<(), (usize, u8)> {
+    for (i, f) in checks {
+        if let Some(i) = i {
+            return Err((lo + i, f));
+        }
+    }
+    Ok(())
+}
+
+/// The error for the non-finite input `value` of array `field` of contact `i`.
+pub(super) fn bad_vector(what: &str, name: &str, field: u8, i: usize, value: [f64; 3]) -> LawError {
+    LawError::new(
+        ErrorKind::NonFinite,
+        format!(
+            "{what} law '{name}': input {}[{i}] = {value:?} must be finite; refused before evaluation",
+            BatchFault::field_name(field)
         ),
     )
 }
@@ -52,7 +69,7 @@ pub struct Normal;
 #[derive(StableAbi, Debug, Clone, Copy)]
 pub struct FfiNormalBatch3 {
     /// The 0.2 arrays.
-    pub base: super::FfiNormalBatch,
+    pub base: v2::FfiNormalBatch,
     /// Output: dissipated power per contact (W), or null.
     pub power: *mut f64,
     /// Output: elastic energy per contact (J), or null.
@@ -69,6 +86,18 @@ pub struct NormalCall<'a> {
     pub batch: NormalBatch<'a>,
     /// Output: each contact's reach (m).
     pub reach: Option<&'a mut [f64]>,
+}
+
+/// The normal force (N) `value` of contact `c` is not finite.
+pub(crate) fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError {
+    LawError::new(
+        ErrorKind::NonFinite,
+        format!(
+            "contact law '{name}' returned force {value} at delta = {:e} m, rate = {:e} m/s \
+             (effective mass {:e} kg, radius {:e} m)",
+            c.delta, c.rate, c.mass, c.radius
+        ),
+    )
 }
 
 impl Kind for Normal {
@@ -104,7 +133,7 @@ impl Kind for Normal {
     fn raw(c: &mut NormalCall<'_>, power: *mut f64, elastic: *mut f64) -> FfiNormalBatch3 {
         let b = &mut c.batch;
         FfiNormalBatch3 {
-            base: super::FfiNormalBatch {
+            base: v2::FfiNormalBatch {
                 n: b.force.len(),
                 slots: b.slots,
                 delta: b.delta.as_ptr(),
@@ -116,21 +145,13 @@ impl Kind for Normal {
             },
             power,
             elastic,
-            reach: c
-                .reach
-                .as_deref_mut()
-                .map_or(std::ptr::null_mut(), <[f64]>::as_mut_ptr),
+            reach: raw_out(&mut c.reach),
         }
     }
     fn fault_error(name: &str, c: &NormalCall<'_>, st: BatchStatus, fault: BatchFault) -> LawError {
         let b = &c.batch;
         let i = fault.index.min(b.force.len().saturating_sub(1));
-        let contact = Contact {
-            delta: b.delta[i],
-            rate: b.rate[i],
-            mass: b.mass[i],
-            radius: b.radius[i],
-        };
+        let contact = b.contact(i);
         match (st, fault.field) {
             (BatchStatus::NonFiniteOutput, BatchFault::OUTPUT) => {
                 normal_non_finite(name, b.force[i], contact)
@@ -163,6 +184,40 @@ pub(super) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
     }
 }
 
+/// The block loop of a normal batch: check a block's inputs, run the law on it, check its
+/// outputs. Returns the first bad contact and what is wrong with it.
+#[inline(always)]
+fn normal_blocks<B: BoundContact>(law: &B, b: NormalBatch<'_>) -> Result<(), (usize, u8)> {
+    let slots = b.slots;
+    blocks(b.force.len(), |lo, hi| {
+        let (d, r, m, a) = (
+            &b.delta[lo..hi],
+            &b.rate[lo..hi],
+            &b.mass[lo..hi],
+            &b.radius[lo..hi],
+        );
+        if !normal_inputs_ok(d, r, m, a) {
+            if let Some((i, f)) = check_normal_inputs(d, r, m, a) {
+                return Err((lo + i, f));
+            }
+        }
+        let o = &mut b.force[lo..hi];
+        law.force_batch(NormalBatch {
+            delta: d,
+            rate: r,
+            mass: m,
+            radius: a,
+            slots,
+            history: &mut b.history[lo * slots..hi * slots],
+            force: o,
+        });
+        match first_non_finite(o) {
+            Some(i) => Err((lo + i, BatchFault::OUTPUT)),
+            None => Ok(()),
+        }
+    })
+}
+
 impl<B: BoundContact> KindBound<Normal> for B {
     #[inline(always)]
     unsafe fn run(&self, b: &FfiNormalBatch3) -> Result<bool, (usize, u8)> {
@@ -177,27 +232,26 @@ impl<B: BoundContact> KindBound<Normal> for B {
                 slice_mut(b.base.force, n),
             )
         };
+        let batch = NormalBatch {
+            delta,
+            rate,
+            mass,
+            radius,
+            slots,
+            history,
+            force,
+        };
         normal_blocks(
             self,
-            NormalBlocks {
-                delta,
-                rate,
-                mass,
-                radius,
-                slots,
-                history: &mut *history,
-                force: &mut *force,
+            NormalBatch {
+                history: &mut *batch.history,
+                force: &mut *batch.force,
+                ..batch
             },
         )?;
-        let contact = |i: usize| Contact {
-            delta: delta[i],
-            rate: rate[i],
-            mass: mass[i],
-            radius: radius[i],
-        };
         if !b.reach.is_null() {
             for i in 0..n {
-                let r = self.reach(&contact(i), history_of(history, slots, i));
+                let r = self.reach(&batch.contact(i), history_of(batch.history, slots, i));
                 if !(0.0..f64::INFINITY).contains(&r) {
                     return Err((i, BatchFault::REACH));
                 }
@@ -206,7 +260,11 @@ impl<B: BoundContact> KindBound<Normal> for B {
         }
         unsafe {
             energy_pass(n, b.power, b.elastic, |i| {
-                self.energy(&contact(i), history_of(history, slots, i), force[i])
+                self.energy(
+                    &batch.contact(i),
+                    history_of(batch.history, slots, i),
+                    batch.force[i],
+                )
             })
         }
     }
@@ -215,20 +273,60 @@ impl<B: BoundContact> KindBound<Normal> for B {
     }
 }
 
-impl<T: ContactLaw> KindLaw<Normal> for T {
-    type Bound = T::Bound;
-    const NAME: &'static str = T::NAME;
-    const SLOTS: usize = T::HISTORY.len();
-    fn kind_info() -> LawInfo {
-        T::info()
+kind_law!(Normal, ContactLaw);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::abi::{EnergyOut, StaticModel};
+    use crate::Energy;
+
+    /// F = 1 N, with a NaN power.
+    struct NanPower;
+
+    impl BoundContact for NanPower {
+        fn force(&self, _c: Contact, _h: &mut [f64]) -> f64 {
+            1.0
+        }
+        fn energy(&self, _c: &Contact, _h: &[f64], _f: f64) -> Option<Energy> {
+            Some(Energy {
+                power: f64::NAN,
+                elastic: 0.0,
+            })
+        }
     }
-    fn kind_params() -> Vec<ParamSpec> {
-        T::params()
-    }
-    fn kind_new(p: &Params) -> Result<Self, LawError> {
-        T::new(p)
-    }
-    fn kind_bind(&self, m: &MaterialPair) -> Result<T::Bound, LawError> {
-        self.bind(m)
+
+    /// A non-finite energy output is reported as an output of the law, not as a bad input.
+    #[test]
+    fn a_nan_power_is_the_laws_output() {
+        let m = StaticModel::<Normal, NanPower>::of_bound("nan-power", 0, NanPower);
+        let (mut f, mut p) = ([0.0; 2], [0.0; 2]);
+        let call = NormalCall {
+            batch: NormalBatch {
+                delta: &[1e-6; 2],
+                rate: &[0.0; 2],
+                mass: &[1e-3; 2],
+                radius: &[1e-3; 2],
+                slots: 0,
+                history: &mut [],
+                force: &mut f,
+            },
+            reach: None,
+        };
+        let e = m
+            .batch(
+                call,
+                EnergyOut {
+                    power: Some(&mut p),
+                    elastic: None,
+                },
+            )
+            .unwrap_err();
+        assert_eq!(e.kind, ErrorKind::NonFinite);
+        assert!(
+            e.message.contains("returned a non-finite power on contact 0"),
+            "{}",
+            e.message
+        );
     }
 }

