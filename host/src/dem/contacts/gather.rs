@@ -7,7 +7,7 @@
 //! and no calls, which the compiler keeps in registers.
 
 use super::{ContactSet, View, MAX_OVERLAP};
-use crate::dem::cells::{Domain, Neighbours};
+use crate::dem::cells::{Domain, Images, Neighbours};
 use crate::dem::state::{spin, to3, Vec3};
 use crate::dem::walls::WallState;
 use crate::dem::DemError;
@@ -65,6 +65,141 @@ fn carry_slots(hist: &mut [f64], old: &[f64], src: &[u32], slots: usize) {
     }
 }
 
+/// Pass 1 of a pair gathering, over every listed pair of the particles of `range`: the pairs
+/// in contact (or within `reach` (m) of it) written into `cand`, their count returned. Kept
+/// without a branch per pair (one pair in six or so touches: a branch mispredicts too often);
+/// a NaN distance is kept too, for the check of pass 2. The rows with no partner across a
+/// periodic boundary (most) take the plain difference of positions (see
+/// [`Neighbours::cross`]).
+#[inline(never)]
+fn touching<const D: usize>(
+    range: Range<usize>,
+    nb: &Neighbours<D>,
+    images: &Images<D>,
+    view: &View<'_, D>,
+    reach: f64,
+    cand: &mut [(u32, u32)],
+) -> usize {
+    let mut count = 0;
+    for i in range {
+        count = if nb.cross[i] {
+            touching_row::<D, true>(i, nb.of(i), images, view, reach, cand, count)
+        } else {
+            touching_row::<D, false>(i, nb.of(i), images, view, reach, cand, count)
+        };
+    }
+    count
+}
+
+/// [`touching`] for row `i` (partners `js`), the candidates written into `cand` from `count`
+/// on; the count after them returned. `IMAGE`: the minimum image of each difference.
+#[inline(always)]
+fn touching_row<const D: usize, const IMAGE: bool>(
+    i: usize,
+    js: &[u32],
+    images: &Images<D>,
+    view: &View<'_, D>,
+    reach: f64,
+    cand: &mut [(u32, u32)],
+    mut count: usize,
+) -> usize {
+    let (base, pos, radius) = (view.base, view.pos, view.radius);
+    let (xi, ri) = (pos[i - base], radius[i - base] + reach);
+    for &j in js {
+        let jl = j as usize - base;
+        let d = if IMAGE {
+            images.delta(&xi, &pos[jl])
+        } else {
+            xi - pos[jl]
+        };
+        let r2 = d.norm_squared();
+        let sum = ri + radius[jl];
+        cand[count] = (i as u32, j);
+        count += usize::from((r2 < sum * sum) | r2.is_nan());
+    }
+    count
+}
+
+/// The arrays pass 2 of a pair gathering writes, one element per candidate.
+struct PairsOut<'a> {
+    i: &'a mut [u32],
+    j: &'a mut [u32],
+    delta: &'a mut [f64],
+    rate: &'a mut [f64],
+    mass: &'a mut [f64],
+    radius: &'a mut [f64],
+    normal: &'a mut [[f64; 3]],
+    vrel: &'a mut [[f64; 3]],
+}
+
+/// Pass 2 of a pair gathering: each candidate pair's overlap (m), overlap rate (m/s, from the
+/// predicted velocities), effective mass (kg) and radius (m), unit normal from j to i, and the
+/// slip of i's contact point relative to j's (m/s, from the step's velocities and spins); an
+/// overlap beyond [`MAX_OVERLAP`] (or NaN) is refused.
+#[inline(never)]
+fn pair_geometry<const D: usize>(
+    cand: &[(u32, u32)],
+    images: &Images<D>,
+    view: &View<'_, D>,
+    out: PairsOut<'_>,
+) -> Result<(), DemError> {
+    let View {
+        base,
+        pos,
+        vpred,
+        vel,
+        omega,
+        radius,
+        mass,
+    } = *view;
+    let PairsOut {
+        i: oi,
+        j: oj,
+        delta: od,
+        rate: orate,
+        mass: om,
+        radius: or,
+        normal: on,
+        vrel: ov,
+    } = out;
+    let n = cand.len();
+    let (oi, oj, od, orate) = (&mut oi[..n], &mut oj[..n], &mut od[..n], &mut orate[..n]);
+    let (om, or, on, ov) = (&mut om[..n], &mut or[..n], &mut on[..n], &mut ov[..n]);
+    for (k, &(i, j)) in cand.iter().enumerate() {
+        let (ig, jg) = (i as usize, j as usize);
+        // indices into the view
+        let (i, ju) = (ig - base, jg - base);
+        let d = images.delta(&pos[i], &pos[ju]);
+        let sum = radius[i] + radius[ju];
+        let dist = d.norm_squared().sqrt();
+        let delta = sum - dist;
+        let rmin = radius[i].min(radius[ju]);
+        if delta.is_nan() || delta > MAX_OVERLAP * rmin {
+            return Err(DemError::Overlap {
+                i: ig,
+                partner: format!("particle {jg}"),
+                delta,
+                radius: rmin,
+            });
+        }
+        let nv = to3(&(d / dist));
+        let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
+        let dv = to3(&(vel[i] - vel[ju]));
+        let (wi, wj) = (spin::<D>(omega, i), spin::<D>(omega, ju));
+        let v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
+        let (mi, mj) = (mass[i], mass[ju]);
+        oi[k] = ig as u32;
+        oj[k] = jg as u32;
+        od[k] = delta;
+        orate[k] = rate;
+        om[k] = mi * mj / (mi + mj);
+        or[k] = radius[i] * radius[ju] / sum;
+        on[k] = [nv.x, nv.y, nv.z];
+        ov[k] = [v.x, v.y, v.z];
+    }
+    Ok(())
+}
+
 impl ContactSet {
     /// Fills `self` with the pair contacts of the particles of `range` at the current state,
     /// carrying history over from `prev` (the same chunk's previous set). Overlap rates come
@@ -79,87 +214,37 @@ impl ContactSet {
         nb: &Neighbours<D>,
         view: &View<'_, D>,
     ) -> Result<(), DemError> {
-        let View {
-            base,
-            pos,
-            vpred,
-            vel,
-            omega,
-            radius,
-            mass,
-        } = *view;
         self.first = range.start;
-        // pass 1, over every listed pair: the pairs in contact, kept without a branch per pair
-        // (one pair in six or so touches: a branch mispredicts too often); a NaN distance is
-        // kept too, for the check below
         let mut cand = std::mem::take(&mut self.cand);
         let listed = nb.start[range.end] as usize - nb.start[range.start] as usize;
         // room for every listed pair (grown, never cleared: each slot is written before read)
         if cand.len() < listed {
             cand.resize(listed, (0, 0));
         }
-        let mut count = 0;
         let images = dom.images();
-        for i in range {
-            let (xi, ri) = (pos[i - base], radius[i - base] + self.reach_bound);
-            for &j in nb.of(i) {
-                let jl = j as usize - base;
-                let r2 = images.delta(&xi, &pos[jl]).norm_squared();
-                let sum = ri + radius[jl];
-                cand[count] = (i as u32, j);
-                count += usize::from((r2 < sum * sum) | r2.is_nan());
-            }
-        }
+        let count = touching(range, nb, &images, view, self.reach_bound, &mut cand);
         // pass 2, over the candidates: their geometry, one contact each (a candidate apart
         // by less than the reach of an adhesive law, not touching, is dropped by the merge
         // unless its contact still acts; without such a law every candidate touches)
         self.size(count);
-        let rot = self.rotational();
-        let out = self.i[..count]
-            .iter_mut()
-            .zip(&mut self.j[..count])
-            .zip(&mut self.delta[..count])
-            .zip(&mut self.rate[..count])
-            .zip(&mut self.mass[..count])
-            .zip(&mut self.radius[..count])
-            .zip(&mut self.normal[..count])
-            .zip(&mut self.vrel[..count]);
-        for (k, (((((((oi, oj), od), orate), om), or), on), ov)) in out.enumerate() {
-            let (i, j) = cand[k];
-            let (ig, jg) = (i as usize, j as usize);
-            // indices into the view
-            let (i, ju) = (ig - base, jg - base);
-            let d = images.delta(&pos[i], &pos[ju]);
-            let sum = radius[i] + radius[ju];
-            let dist = d.norm_squared().sqrt();
-            let delta = sum - dist;
-            let rmin = radius[i].min(radius[ju]);
-            if delta.is_nan() || delta > MAX_OVERLAP * rmin {
-                self.cand = cand;
-                return Err(DemError::Overlap {
-                    i: ig,
-                    partner: format!("particle {jg}"),
-                    delta,
-                    radius: rmin,
-                });
-            }
-            let nv = to3(&(d / dist));
-            let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
-            let dv = to3(&(vel[i] - vel[ju]));
-            let (wi, wj) = (spin::<D>(omega, i), spin::<D>(omega, ju));
-            let v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
-            let (mi, mj) = (mass[i], mass[ju]);
-            *oi = ig as u32;
-            *oj = j as u32;
-            *od = delta;
-            *orate = rate;
-            *om = mi * mj / (mi + mj);
-            *or = radius[i] * radius[ju] / sum;
-            *on = [nv.x, nv.y, nv.z];
-            *ov = [v.x, v.y, v.z];
+        let out = PairsOut {
+            i: &mut self.i[..count],
+            j: &mut self.j[..count],
+            delta: &mut self.delta[..count],
+            rate: &mut self.rate[..count],
+            mass: &mut self.mass[..count],
+            radius: &mut self.radius[..count],
+            normal: &mut self.normal[..count],
+            vrel: &mut self.vrel[..count],
+        };
+        let done = pair_geometry(&cand[..count], &images, view, out);
+        if let Err(e) = done {
+            self.cand = cand;
+            return Err(e);
         }
-        if rot {
+        if self.rotational() {
             // the relative spin ω_i − ω_j, for the rolling and twisting part of the merge
+            let (base, omega) = (view.base, view.omega);
             for (w, &(i, j)) in self.vroll.iter_mut().zip(&cand[..count]) {
                 let (i, j) = (i as usize - base, j as usize - base);
                 let r = spin::<D>(omega, i) - spin::<D>(omega, j);
