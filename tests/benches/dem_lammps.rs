@@ -304,6 +304,44 @@ fn contest<const D: usize>(
     );
 }
 
+/// What every contest of a run shares.
+struct Run<'a> {
+    reg: &'a dashpot::Registry,
+    venv: &'a Result<PathBuf, String>,
+    dir: &'a Path,
+    threads: &'a [usize],
+    pairs: usize,
+}
+
+impl Run<'_> {
+    /// The contests of one pile (`dim`: "2D" or "3D"), made by `make` from the laws, on each
+    /// thread count: its particles `b` written for LAMMPS in a box of corner `hi` (m).
+    fn contests<const D: usize>(
+        &self,
+        dim: &str,
+        case: &Case,
+        b: &[Body<D>],
+        hi: [f64; 3],
+        make: &(dyn Fn(Laws) -> Engine<D> + Sync),
+    ) {
+        let data = self.dir.join(format!("pile{}.data", dim.to_lowercase()));
+        let mass = write_data(&data, b, hi, &format!("dashpot DEM benchmark pile, {dim}"));
+        let make = || make(laws(self.reg));
+        for &t in self.threads {
+            contest(
+                &format!("{dim} pile, HSD + Mindlin, {t} core(s)"),
+                case,
+                &make,
+                self.venv,
+                &data,
+                mass,
+                t,
+                self.pairs,
+            );
+        }
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     let on = |names: &[&str]| {
@@ -322,6 +360,13 @@ fn main() {
         .filter(|&t| cores_on(if t == 1 { "one" } else { "two" }))
         .collect();
 
+    let run = Run {
+        reg: &reg,
+        venv: &venv,
+        dir: &dir,
+        threads: &threads,
+        pairs,
+    };
     if dim_on("2d") {
         let case = Case {
             n: 2000,
@@ -330,26 +375,8 @@ fn main() {
             deck: "in.pile2d",
         };
         let (b, width, height) = common::pile_bodies(case.n);
-        let data = dir.join("pile2d.data");
-        let mass = write_data(
-            &data,
-            &b,
-            [width, height + 1.0, 0.001],
-            "dashpot DEM benchmark pile, 2D",
-        );
-        let make = || common::pile(case.n, laws(&reg), MAT, true);
-        for &t in &threads {
-            contest(
-                &format!("2D pile, HSD + Mindlin, {t} core(s)"),
-                &case,
-                &make,
-                &venv,
-                &data,
-                mass,
-                t,
-                pairs,
-            );
-        }
+        let make = |l| common::pile(case.n, l, MAT, true);
+        run.contests("2D", &case, &b, [width, height + 1.0, 0.001], &make);
     }
     if dim_on("3d") {
         let case = Case {
@@ -359,25 +386,7 @@ fn main() {
             deck: "in.pile3d",
         };
         let (b, side, top) = common::pile3d_bodies(case.n);
-        let data = dir.join("pile3d.data");
-        let mass = write_data(
-            &data,
-            &b,
-            [side, side, top + 0.01],
-            "dashpot DEM benchmark pile, 3D",
-        );
-        let make = || common::pile3d(case.n, laws(&reg), MAT);
-        for &t in &threads {
-            contest(
-                &format!("3D pile, HSD + Mindlin, {t} core(s)"),
-                &case,
-                &make,
-                &venv,
-                &data,
-                mass,
-                t,
-                pairs,
-            );
-        }
+        let make = |l| common::pile3d(case.n, l, MAT);
+        run.contests("3D", &case, &b, [side, side, top + 0.01], &make);
     }
 }

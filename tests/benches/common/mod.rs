@@ -26,6 +26,17 @@ pub fn process_cpu_seconds() -> f64 {
     cpu_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
 
+/// Uniform numbers in [0, 1) from a 64-bit linear congruential generator seeded with `seed`
+/// (the piles' reproducible initial states).
+pub fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The DEM benchmarks' pile: `n` disks (diameters uniform in [0.95, 1] × 2 mm) on a square
 /// lattice of spacing 2 mm, 50 (or √n) columns wide, random directions at 0.05 m/s. Returns the
 /// disks, the width and the height of the lattice (m).
@@ -33,13 +44,7 @@ pub fn pile_bodies(n: usize) -> (Vec<Body<2>>, f64, f64) {
     let d = 0.002;
     let cols = (n as f64).sqrt().max(50.0).floor() as usize;
     let rows = n.div_ceil(cols);
-    let mut seed = 7u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = uniform(7);
     let bodies = (0..n)
         .map(|k| {
             let (q, r) = ((k % cols) as f64, (k / cols) as f64);
@@ -83,13 +88,7 @@ pub fn pile3d_bodies(n: usize) -> (Vec<Body<3>>, f64, f64) {
     let s = 1.2 * 1.2 * d;
     let cols = ((n as f64 / 10.0).sqrt().ceil() as usize).max(8);
     let layers = n.div_ceil(cols * cols);
-    let mut seed = 11u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = uniform(11);
     let bodies = (0..n)
         .map(|k| {
             let (a, b, c) = (k % cols, (k / cols) % cols, k / (cols * cols));
