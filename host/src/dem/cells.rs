@@ -86,11 +86,34 @@ impl<const D: usize> Images<D> {
         for k in 0..D {
             // only pairs across the boundary need the image (never along an open axis)
             if d[k].abs() > self.half[k] {
-                d[k] -= self.len[k] * (d[k] / self.len[k]).round();
+                let q = d[k] / self.len[k];
+                // |q| ≥ 1/2 here (half is len/2 exactly), so below 3/2 round(q) is ±1: no call
+                // to libm's `round` (baseline x86-64 has no rounding instruction), whose
+                // clobbered registers cost every pair loop spills
+                let r = if q.abs() < 1.5 { q.signum() } else { round_far(q) };
+                d[k] -= self.len[k] * r;
             }
         }
         d
     }
+}
+
+impl<const D: usize> Images<D> {
+    /// Whether `a − b` (m) is longer than half the box along some periodic axis (the minimum
+    /// image is not the plain difference).
+    #[inline(always)]
+    pub fn crosses(&self, a: &VecD<D>, b: &VecD<D>) -> bool {
+        let d = a - b;
+        (0..D).any(|k| d[k].abs() > self.half[k])
+    }
+}
+
+/// `q.round()`, out of line: an image more than one box length away (a particle far outside
+/// the box, never a listed pair).
+#[cold]
+#[inline(never)]
+fn round_far(q: f64) -> f64 {
+    q.round()
 }
 
 /// The neighbour list (see the module doc).
@@ -100,6 +123,13 @@ pub struct Neighbours<const D: usize> {
     pub start: Vec<u32>,
     /// Partners j > i of each row i, sorted.
     pub js: Vec<u32>,
+    /// Whether some partner of each row i lay across a periodic boundary at the build (its
+    /// minimum image is not the plain difference of positions). A row without one keeps
+    /// none for the list's life as far as contacts go: a listed pair is within the largest
+    /// diameter plus the skin at the build and its partners move apart by less than the skin
+    /// while the list is valid, less than half a periodic length (which exceeds twice the
+    /// largest diameter plus the skin), so no image of it can touch.
+    pub cross: Vec<bool>,
     /// Positions at the build (m).
     pub anchor: Vec<VecD<D>>,
     /// The skin (m).
@@ -123,6 +153,7 @@ impl<const D: usize> Neighbours<D> {
         if n == 0 {
             self.start = vec![0];
             self.js.clear();
+            self.cross.clear();
             return;
         }
         let rmax = radius.iter().cloned().fold(0.0, f64::max);
@@ -218,11 +249,13 @@ impl<const D: usize> Neighbours<D> {
             out
         };
         let images = dom.images();
-        let chunks: Vec<(Vec<u32>, Vec<u32>)> = (0..n.div_ceil(CHUNK))
+        type Rows = (Vec<u32>, Vec<u32>, Vec<bool>);
+        let chunks: Vec<Rows> = (0..n.div_ceil(CHUNK))
             .into_par_iter()
             .map(|ch| {
                 let (a, b) = (ch * CHUNK, ((ch + 1) * CHUNK).min(n));
                 let mut counts = Vec::with_capacity(b - a);
+                let mut cross = Vec::with_capacity(b - a);
                 let mut js = Vec::new();
                 let mut last_cell = usize::MAX;
                 let mut nb = Vec::new();
@@ -232,6 +265,7 @@ impl<const D: usize> Neighbours<D> {
                         nb = neighbour_cells(last_cell);
                     }
                     let before = js.len();
+                    let mut crosses = false;
                     for &c in &nb {
                         for &j in &members[cstart[c] as usize..cstart[c + 1] as usize] {
                             if (j as usize) <= i {
@@ -240,26 +274,30 @@ impl<const D: usize> Neighbours<D> {
                             let cut = radius[i] + radius[j as usize] + skin;
                             if images.delta(&pos[i], &pos[j as usize]).norm_squared() < cut * cut {
                                 js.push(j);
+                                crosses |= images.crosses(&pos[i], &pos[j as usize]);
                             }
                         }
                     }
                     js[before..].sort_unstable();
                     counts.push((js.len() - before) as u32);
+                    cross.push(crosses);
                 }
-                (counts, js)
+                (counts, js, cross)
             })
             .collect();
         self.start.clear();
         self.start.reserve(n + 1);
         self.start.push(0);
         self.js.clear();
+        self.cross.clear();
         let mut acc = 0u32;
-        for (counts, js) in chunks {
+        for (counts, js, cross) in chunks {
             for c in counts {
                 acc += c;
                 self.start.push(acc);
             }
             self.js.extend_from_slice(&js);
+            self.cross.extend_from_slice(&cross);
         }
     }
 

@@ -16,15 +16,13 @@
 //! spare set while the previous step's are read, then the two are swapped, so a step allocates
 //! nothing once the arrays have grown to the pile's size.
 
-use super::cells::{Domain, Neighbours};
-use super::state::{spin, to3, Vec3, VecD};
-use super::walls::WallState;
+use super::state::VecD;
 use super::DemError;
 use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
 use dashpot_sdk::{NormalBatch, TangentialBatch};
-use std::ops::Range;
 
 mod edges;
+mod gather;
 mod rotation;
 
 use edges::{step_edge_means, Edges};
@@ -126,6 +124,8 @@ pub struct ContactSet {
     cand: Vec<(u32, u32)>,
     /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
     scratch: Vec<f64>,
+    /// Scratch of the merge: each contact's index in the previous set.
+    src: Vec<u32>,
 }
 
 /// The overlap beyond which a run is refused, as a fraction of the smaller radius.
@@ -206,268 +206,6 @@ impl ContactSet {
             self.froll.resize(count, [0.0; 3]);
             self.mtwist.resize(count, 0.0);
         }
-    }
-
-    /// The history of contact (i, j) in this set, if it exists, found by a merge: `cursor`
-    /// starts at 0 for a gathering and is moved forward here, which works because contacts are
-    /// gathered in key order and were so in this set (a step's lookups cost one pass over it).
-    #[inline]
-    fn find(&self, cursor: &mut usize, i: usize, j: u32) -> Option<usize> {
-        let key = ((i as u64) << 32) | j as u64;
-        let n = self.i.len();
-        while *cursor < n {
-            let m = *cursor;
-            let k = ((self.i[m] as u64) << 32) | self.j[m] as u64;
-            if k >= key {
-                return (k == key).then_some(m);
-            }
-            *cursor += 1;
-        }
-        None
-    }
-
-    /// Whether contact (i, j), found in this (previous) set from `cursor` on, still acts at
-    /// overlap `delta` < 0: an adhesive contact whose last reach covers it.
-    #[cold]
-    fn acts_at(&self, mut cursor: usize, i: usize, j: u32, delta: f64) -> bool {
-        match self.find(&mut cursor, i, j) {
-            Some(m) => self.reach.get(m).is_some_and(|&r| delta >= -r),
-            None => false,
-        }
-    }
-
-    /// Writes contact `k` (the arrays sized by [`ContactSet::size`]), its history carried
-    /// over from `prev` (found with `cursor`, see [`ContactSet::find`]) or zero if it is new.
-    #[allow(clippy::too_many_arguments)]
-    #[inline]
-    fn put(
-        &mut self,
-        k: usize,
-        prev: &ContactSet,
-        cursor: &mut usize,
-        i: usize,
-        j: u32,
-        delta: f64,
-        rate: f64,
-        mass: f64,
-        radius: f64,
-        n: Vec3,
-        v: Vec3,
-        w: Vec3,
-    ) {
-        self.i[k] = i as u32;
-        self.j[k] = j;
-        self.delta[k] = delta;
-        self.rate[k] = rate;
-        self.mass[k] = mass;
-        self.radius[k] = radius;
-        self.normal[k] = [n.x, n.y, n.z];
-        self.vrel[k] = [v.x, v.y, v.z];
-        let (sn, st) = (self.slots_n, self.slots_t);
-        let (hn, ht) = (
-            &mut self.hist_n[k * sn..(k + 1) * sn],
-            &mut self.hist_t[k * st..(k + 1) * st],
-        );
-        let found = prev.find(cursor, i, j);
-        match found {
-            Some(m) => {
-                hn.copy_from_slice(&prev.hist_n[m * sn..(m + 1) * sn]);
-                ht.copy_from_slice(&prev.hist_t[m * st..(m + 1) * st]);
-                self.fresh[k] = false;
-                self.last[k] = prev.last[m];
-            }
-            None => {
-                hn.fill(0.0);
-                ht.fill(0.0);
-                self.fresh[k] = true;
-                self.last[k] = false;
-                self.formed += 1;
-            }
-        }
-        if self.rotational() {
-            self.put_rotation(k, prev, found, radius, n, w);
-        }
-    }
-
-    /// Fills `self` with the pair contacts of the particles of `range` at the current state,
-    /// carrying history over from `prev` (the same chunk's previous set). Overlap rates come
-    /// from the predicted velocities `vpred`, the contact points' slip from the step's
-    /// velocities `vel`, `omega` (over the step: velocity Verlet's half-step ones, so that
-    /// slip × dt is the tangential displacement of the step).
-    pub fn gather_pairs<const D: usize>(
-        &mut self,
-        prev: &ContactSet,
-        range: Range<usize>,
-        dom: &Domain<D>,
-        nb: &Neighbours<D>,
-        view: &View<'_, D>,
-    ) -> Result<(), DemError> {
-        let View {
-            base,
-            pos,
-            vpred,
-            vel,
-            omega,
-            radius,
-            mass,
-        } = *view;
-        self.first = range.start;
-        self.formed = 0;
-        // pass 1, over every listed pair: the pairs in contact, kept without a branch per pair
-        // (one pair in six or so touches: a branch mispredicts too often); a NaN distance is
-        // kept too, for the check below
-        let mut cand = std::mem::take(&mut self.cand);
-        let listed = nb.start[range.end] as usize - nb.start[range.start] as usize;
-        // room for every listed pair (grown, never cleared: each slot is written before read)
-        if cand.len() < listed {
-            cand.resize(listed, (0, 0));
-        }
-        let mut count = 0;
-        let images = dom.images();
-        for i in range {
-            let (xi, ri) = (pos[i - base], radius[i - base] + self.reach_bound);
-            for &j in nb.of(i) {
-                let jl = j as usize - base;
-                let r2 = images.delta(&xi, &pos[jl]).norm_squared();
-                let sum = ri + radius[jl];
-                cand[count] = (i as u32, j);
-                count += usize::from((r2 < sum * sum) | r2.is_nan());
-            }
-        }
-        // pass 2, over the contacts only
-        self.size(count);
-        let mut cursor = 0;
-        let mut k = 0;
-        for &(i, j) in &cand[..count] {
-            let (ig, jg) = (i as usize, j as usize);
-            // indices into the view
-            let (i, ju) = (ig - base, jg - base);
-            let d = images.delta(&pos[i], &pos[ju]);
-            let sum = radius[i] + radius[ju];
-            let dist = d.norm_squared().sqrt();
-            let delta = sum - dist;
-            let rmin = radius[i].min(radius[ju]);
-            if delta.is_nan() || delta > MAX_OVERLAP * rmin {
-                return Err(DemError::Overlap {
-                    i: ig,
-                    partner: format!("particle {jg}"),
-                    delta,
-                    radius: rmin,
-                });
-            }
-            if delta < 0.0 && !prev.acts_at(cursor, ig, j, delta) {
-                continue; // within the reach bound, but not an adhesive contact that still acts
-            }
-            let nv = to3(&(d / dist));
-            let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
-            let dv = to3(&(vel[i] - vel[ju]));
-            let (wi, wj) = (spin::<D>(omega, i), spin::<D>(omega, ju));
-            let v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
-            let (mi, mj) = (mass[i], mass[ju]);
-            self.put(
-                k,
-                prev,
-                &mut cursor,
-                ig,
-                j,
-                delta,
-                rate,
-                mi * mj / (mi + mj),
-                radius[i] * radius[ju] / sum,
-                nv,
-                v,
-                wi - wj,
-            );
-            k += 1;
-        }
-        self.size(k);
-        self.cand = cand;
-        Ok(())
-    }
-
-    /// Fills `self` with the particle–wall contacts of the particles of `range` at the current
-    /// state, carrying history over from `prev` (see [`ContactSet::gather_pairs`]).
-    pub fn gather_walls<const D: usize>(
-        &mut self,
-        prev: &ContactSet,
-        range: Range<usize>,
-        walls: &[WallState<D>],
-        view: &View<'_, D>,
-    ) -> Result<(), DemError> {
-        self.first = range.start;
-        self.formed = 0;
-        let (base, pos, vpred, vel) = (view.base, view.pos, view.vpred, view.vel);
-        let (omega, radius, mass) = (view.omega, view.radius, view.mass);
-        // the chunk's particles, indexed from 0
-        let local = range.start - base..range.end - base;
-        // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall
-        // over the particles, a loop without branches; pass 2 over the particles it picks
-        let mut cand = std::mem::take(&mut self.cand);
-        let mut worst = std::mem::take(&mut self.scratch);
-        let (xs, rs) = (&pos[local.clone()], &radius[local.clone()]);
-        worst.clear();
-        worst.resize(range.len(), f64::NEG_INFINITY);
-        for ws in walls {
-            let (p, n) = (ws.point, ws.normal);
-            for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
-                // the very expression of pass 2, so that both agree on every contact
-                let d = r - (x - p).dot(&n);
-                *m = if d > *m || d.is_nan() { d } else { *m };
-            }
-        }
-        if cand.len() < range.len() {
-            cand.resize(range.len(), (0, 0));
-        }
-        let mut count = 0;
-        for (k, m) in worst.iter().enumerate() {
-            cand[count] = ((range.start + k) as u32, 0);
-            count += usize::from((*m > -self.reach_bound) | m.is_nan());
-        }
-        self.scratch = worst;
-        self.size(count * walls.len());
-        let mut k = 0;
-        let mut cursor = 0;
-        for &(ig, _) in &cand[..count] {
-            let (ig, i) = (ig as usize, ig as usize - base);
-            for (w, ws) in walls.iter().enumerate() {
-                let gap = (pos[i] - ws.point).dot(&ws.normal);
-                let delta = radius[i] - gap;
-                if delta <= 0.0 && !(self.reach_bound > 0.0 && prev.acts_at(cursor, ig, w as u32, delta)) {
-                    continue;
-                }
-                if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
-                    return Err(DemError::Overlap {
-                        i: ig,
-                        partner: format!("wall {w}"),
-                        delta,
-                        radius: radius[i],
-                    });
-                }
-                let nv = to3(&ws.normal);
-                let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
-                let dv = to3(&(vel[i] - ws.velocity));
-                let wi = spin::<D>(omega, i);
-                let v = dv - (wi * radius[i]).cross(&nv);
-                self.put(
-                    k,
-                    prev,
-                    &mut cursor,
-                    ig,
-                    w as u32,
-                    delta,
-                    rate,
-                    mass[i],
-                    radius[i],
-                    nv,
-                    v,
-                    wi,
-                );
-                k += 1;
-            }
-        }
-        self.size(k);
-        self.cand = cand;
-        Ok(())
     }
 
     /// Calls the laws on every contact of the set (in batches of [`LAW_CHUNK`]): normal forces,

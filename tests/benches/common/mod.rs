@@ -26,6 +26,17 @@ pub fn process_cpu_seconds() -> f64 {
     cpu_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
 
+/// Uniform numbers in [0, 1) from a 64-bit linear congruential generator seeded with `seed`
+/// (the piles' reproducible initial states).
+pub fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The DEM benchmarks' pile: `n` disks (diameters uniform in [0.95, 1] × 2 mm) on a square
 /// lattice of spacing 2 mm, 50 (or √n) columns wide, random directions at 0.05 m/s. Returns the
 /// disks, the width and the height of the lattice (m).
@@ -33,13 +44,7 @@ pub fn pile_bodies(n: usize) -> (Vec<Body<2>>, f64, f64) {
     let d = 0.002;
     let cols = (n as f64).sqrt().max(50.0).floor() as usize;
     let rows = n.div_ceil(cols);
-    let mut seed = 7u64;
-    let mut rnd = || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = uniform(7);
     let bodies = (0..n)
         .map(|k| {
             let (q, r) = ((k % cols) as f64, (k / cols) as f64);
@@ -71,4 +76,56 @@ pub fn pile(n: usize, laws: Laws, mat: Material, edge_means: bool) -> Engine<2> 
     };
     let floor = Wall::fixed(VecD::<2>::new(0.0, 0.0), VecD::<2>::new(0.0, 1.0));
     Engine::new(cfg, &bodies, vec![floor], laws).expect("the pile")
+}
+
+/// The 3D benchmarks' pile: `n` spheres (diameters uniform in [0.8, 1.2] × 2 mm) on a simple
+/// cubic lattice of spacing 1.2 × the largest diameter (2.88 mm, so nothing touches), √(n/10)
+/// columns along x and y (at least 8), as many layers as it takes, the lowest layer's centres
+/// one spacing above the floor, random directions at 0.05 m/s. Returns the spheres, the box's
+/// side (x and y, m) and the lattice's top (m).
+pub fn pile3d_bodies(n: usize) -> (Vec<Body<3>>, f64, f64) {
+    let d = 0.002;
+    let s = 1.2 * 1.2 * d;
+    let cols = ((n as f64 / 10.0).sqrt().ceil() as usize).max(8);
+    let layers = n.div_ceil(cols * cols);
+    let mut rnd = uniform(11);
+    let bodies = (0..n)
+        .map(|k| {
+            let (a, b, c) = (k % cols, (k / cols) % cols, k / (cols * cols));
+            // a random direction: z uniform in [-1, 1], azimuth uniform
+            let (z, phi) = (2.0 * rnd() - 1.0, 2.0 * std::f64::consts::PI * rnd());
+            let rho = (1.0 - z * z).sqrt();
+            Body {
+                position: VecD::<3>::new((a as f64 + 0.5) * s, (b as f64 + 0.5) * s, (c as f64 + 1.0) * s),
+                velocity: VecD::<3>::new(rho * phi.cos(), rho * phi.sin(), z) * 0.05,
+                angular_velocity: Vec3::zeros(),
+                diameter: d * (0.8 + 0.4 * rnd()),
+            }
+        })
+        .collect();
+    (bodies, cols as f64 * s, layers as f64 * s)
+}
+
+/// The 3D pile falling and settling under gravity onto a floor at z = 0, periodic in x and y,
+/// with `laws`; the step from the laws at an impact speed of 1 m/s.
+pub fn pile3d(n: usize, laws: Laws, mat: Material) -> Engine<3> {
+    let (bodies, side, top) = pile3d_bodies(n);
+    let mut cfg = EngineConfig::<3>::new(mat);
+    cfg.gravity = VecD::<3>::new(0.0, 0.0, -9.81);
+    cfg.impact_speed = Some(1.0);
+    cfg.domain = Domain {
+        lo: VecD::<3>::new(0.0, 0.0, -0.01),
+        hi: VecD::<3>::new(side, side, top + 0.01),
+        periodic: [true, true, false],
+        bounded: false,
+    };
+    let floor = Wall::fixed(VecD::<3>::zeros(), VecD::<3>::new(0.0, 0.0, 1.0));
+    Engine::new(cfg, &bodies, vec![floor], laws).expect("the 3D pile")
+}
+
+/// The height of the centre of mass along the last axis (m).
+pub fn com_height<const D: usize>(e: &Engine<D>) -> f64 {
+    let p = &e.p;
+    let m: f64 = p.mass.iter().sum();
+    p.pos.iter().zip(&p.mass).map(|(x, m)| x[D - 1] * m).sum::<f64>() / m
 }

@@ -1,11 +1,11 @@
 //! The rolling and twisting part of a contact set (sdk 0.3): each contact's rolling velocity
 //! and twisting rate, their laws' histories carried over, and the laws' calls.
 
-use super::{ContactSet, Range};
-use crate::dem::state::Vec3;
+use super::ContactSet;
 use crate::dem::DemError;
 use crate::laws::{EnergyOut, RollingResistance, TwistingResistance};
 use dashpot_sdk::{RollingBatch, TwistingBatch};
+use std::ops::Range;
 
 /// The rolling and twisting laws of one kind of contacts, if any.
 #[derive(Clone, Copy, Default)]
@@ -17,39 +17,6 @@ pub struct Rotating<'a> {
 }
 
 impl ContactSet {
-    /// The rotational part of [`ContactSet::put`]: the rolling velocity and the twisting rate
-    /// of contact `k` from the relative angular velocity `w` = ω_i − ω_j (rad/s), its rolling
-    /// and twisting history from `prev`'s contact `found` (or zero).
-    #[cold]
-    pub(super) fn put_rotation(
-        &mut self,
-        k: usize,
-        prev: &ContactSet,
-        found: Option<usize>,
-        radius: f64,
-        n: Vec3,
-        w: Vec3,
-    ) {
-        let vr = w.cross(&n) * radius;
-        self.vroll[k] = [vr.x, vr.y, vr.z];
-        self.twist[k] = w.dot(&n);
-        let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
-        let (hr, hw) = (
-            &mut self.hist_r[k * sr..(k + 1) * sr],
-            &mut self.hist_w[k * sw..(k + 1) * sw],
-        );
-        match found {
-            Some(m) => {
-                hr.copy_from_slice(&prev.hist_r[m * sr..(m + 1) * sr]);
-                hw.copy_from_slice(&prev.hist_w[m * sw..(m + 1) * sw]);
-            }
-            None => {
-                hr.fill(0.0);
-                hw.fill(0.0);
-            }
-        }
-    }
-
     /// The rolling and twisting laws on contacts `r` (after the normal forces).
     pub(super) fn evaluate_rotation(
         &mut self,

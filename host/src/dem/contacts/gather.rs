@@ -1,0 +1,461 @@
+//! The gathering of a chunk's contacts: the pairs (and particle–wall contacts) in touch, their
+//! geometry and relative velocities written into the set's arrays, then their history carried
+//! over from the previous set by one merge over both sets' keys.
+//!
+//! Each stage is its own loop over the contacts (the candidates' geometry, then the merge, then
+//! the rolling and twisting part when a scene has those laws): short loops with few live values
+//! and no calls, which the compiler keeps in registers.
+
+use super::{ContactSet, View, MAX_OVERLAP};
+use crate::dem::cells::{Domain, Images, Neighbours};
+use crate::dem::state::{spin, to3, Vec3};
+use crate::dem::walls::WallState;
+use crate::dem::DemError;
+use std::ops::Range;
+
+/// A contact's key: particle `i` in the high half, its partner `j` in the low half (contacts
+/// are kept in key order).
+#[inline(always)]
+fn key(i: u32, j: u32) -> u64 {
+    ((i as u64) << 32) | j as u64
+}
+
+/// A contact new in this set (no index in the previous one).
+const NEW: u32 = u32::MAX;
+
+/// `dst` ← `src` for a contact's history slots (a plain copy of a few values: no call to
+/// `memcpy` for three numbers).
+#[inline(always)]
+fn copy_slots(dst: &mut [f64], src: &[f64]) {
+    for (d, s) in dst.iter_mut().zip(src) {
+        *d = *s;
+    }
+}
+
+/// Each contact's `slots` history values in `hist`: those of its previous contact `src[k]` in
+/// `old`, or zero for a new one ([`NEW`]); the common slot counts with their length known to
+/// the compiler.
+fn carry_slots(hist: &mut [f64], old: &[f64], src: &[u32], slots: usize) {
+    #[inline(always)]
+    fn each<const S: usize>(hist: &mut [f64], old: &[f64], src: &[u32]) {
+        for (h, &m) in hist.chunks_exact_mut(S).zip(src) {
+            let h: &mut [f64; S] = h.try_into().expect("S slots");
+            *h = if m == NEW {
+                [0.0; S]
+            } else {
+                let a = m as usize * S;
+                old[a..a + S].try_into().expect("S slots")
+            };
+        }
+    }
+    match slots {
+        0 => {}
+        1 => each::<1>(hist, old, src),
+        2 => each::<2>(hist, old, src),
+        3 => each::<3>(hist, old, src),
+        _ => {
+            for (h, &m) in hist.chunks_exact_mut(slots).zip(src) {
+                if m == NEW {
+                    h.fill(0.0);
+                } else {
+                    copy_slots(h, &old[m as usize * slots..(m as usize + 1) * slots]);
+                }
+            }
+        }
+    }
+}
+
+/// Pass 1 of a pair gathering, over every listed pair of the particles of `range`: the pairs
+/// in contact (or within `reach` (m) of it) written into `cand`, their count returned. Kept
+/// without a branch per pair (one pair in six or so touches: a branch mispredicts too often);
+/// a NaN distance is kept too, for the check of pass 2. The rows with no partner across a
+/// periodic boundary (most) take the plain difference of positions (see
+/// [`Neighbours::cross`]).
+#[inline(never)]
+fn touching<const D: usize>(
+    range: Range<usize>,
+    nb: &Neighbours<D>,
+    images: &Images<D>,
+    view: &View<'_, D>,
+    reach: f64,
+    cand: &mut [(u32, u32)],
+) -> usize {
+    let mut count = 0;
+    for i in range {
+        count = if nb.cross[i] {
+            touching_row::<D, true>(i, nb.of(i), images, view, reach, cand, count)
+        } else {
+            touching_row::<D, false>(i, nb.of(i), images, view, reach, cand, count)
+        };
+    }
+    count
+}
+
+/// [`touching`] for row `i` (partners `js`), the candidates written into `cand` from `count`
+/// on; the count after them returned. `IMAGE`: the minimum image of each difference.
+#[inline(always)]
+fn touching_row<const D: usize, const IMAGE: bool>(
+    i: usize,
+    js: &[u32],
+    images: &Images<D>,
+    view: &View<'_, D>,
+    reach: f64,
+    cand: &mut [(u32, u32)],
+    mut count: usize,
+) -> usize {
+    let (base, pos, radius) = (view.base, view.pos, view.radius);
+    let (xi, ri) = (pos[i - base], radius[i - base] + reach);
+    for &j in js {
+        let jl = j as usize - base;
+        let d = if IMAGE {
+            images.delta(&xi, &pos[jl])
+        } else {
+            xi - pos[jl]
+        };
+        let r2 = d.norm_squared();
+        let sum = ri + radius[jl];
+        cand[count] = (i as u32, j);
+        count += usize::from((r2 < sum * sum) | r2.is_nan());
+    }
+    count
+}
+
+/// The arrays pass 2 of a pair gathering writes, one element per candidate.
+struct PairsOut<'a> {
+    i: &'a mut [u32],
+    j: &'a mut [u32],
+    delta: &'a mut [f64],
+    rate: &'a mut [f64],
+    mass: &'a mut [f64],
+    radius: &'a mut [f64],
+    normal: &'a mut [[f64; 3]],
+    vrel: &'a mut [[f64; 3]],
+}
+
+/// Pass 2 of a pair gathering: each candidate pair's overlap (m), overlap rate (m/s, from the
+/// predicted velocities), effective mass (kg) and radius (m), unit normal from j to i, and the
+/// slip of i's contact point relative to j's (m/s, from the step's velocities and spins); an
+/// overlap beyond [`MAX_OVERLAP`] (or NaN) is refused.
+#[inline(never)]
+fn pair_geometry<const D: usize>(
+    cand: &[(u32, u32)],
+    images: &Images<D>,
+    view: &View<'_, D>,
+    out: PairsOut<'_>,
+) -> Result<(), DemError> {
+    let View {
+        base,
+        pos,
+        vpred,
+        vel,
+        omega,
+        radius,
+        mass,
+    } = *view;
+    let PairsOut {
+        i: oi,
+        j: oj,
+        delta: od,
+        rate: orate,
+        mass: om,
+        radius: or,
+        normal: on,
+        vrel: ov,
+    } = out;
+    let n = cand.len();
+    let (oi, oj, od, orate) = (&mut oi[..n], &mut oj[..n], &mut od[..n], &mut orate[..n]);
+    let (om, or, on, ov) = (&mut om[..n], &mut or[..n], &mut on[..n], &mut ov[..n]);
+    for (k, &(i, j)) in cand.iter().enumerate() {
+        let (ig, jg) = (i as usize, j as usize);
+        // indices into the view
+        let (i, ju) = (ig - base, jg - base);
+        let d = images.delta(&pos[i], &pos[ju]);
+        let sum = radius[i] + radius[ju];
+        let dist = d.norm_squared().sqrt();
+        let delta = sum - dist;
+        let rmin = radius[i].min(radius[ju]);
+        if delta.is_nan() || delta > MAX_OVERLAP * rmin {
+            return Err(DemError::Overlap {
+                i: ig,
+                partner: format!("particle {jg}"),
+                delta,
+                radius: rmin,
+            });
+        }
+        let nv = to3(&(d / dist));
+        let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
+        let dv = to3(&(vel[i] - vel[ju]));
+        let (wi, wj) = (spin::<D>(omega, i), spin::<D>(omega, ju));
+        let v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
+        let (mi, mj) = (mass[i], mass[ju]);
+        oi[k] = ig as u32;
+        oj[k] = jg as u32;
+        od[k] = delta;
+        orate[k] = rate;
+        om[k] = mi * mj / (mi + mj);
+        or[k] = radius[i] * radius[ju] / sum;
+        on[k] = [nv.x, nv.y, nv.z];
+        ov[k] = [v.x, v.y, v.z];
+    }
+    Ok(())
+}
+
+impl ContactSet {
+    /// Fills `self` with the pair contacts of the particles of `range` at the current state,
+    /// carrying history over from `prev` (the same chunk's previous set). Overlap rates come
+    /// from the predicted velocities `vpred`, the contact points' slip from the step's
+    /// velocities `vel`, `omega` (over the step: velocity Verlet's half-step ones, so that
+    /// slip × dt is the tangential displacement of the step).
+    pub fn gather_pairs<const D: usize>(
+        &mut self,
+        prev: &ContactSet,
+        range: Range<usize>,
+        dom: &Domain<D>,
+        nb: &Neighbours<D>,
+        view: &View<'_, D>,
+    ) -> Result<(), DemError> {
+        self.first = range.start;
+        let mut cand = std::mem::take(&mut self.cand);
+        let listed = nb.start[range.end] as usize - nb.start[range.start] as usize;
+        // room for every listed pair (grown, never cleared: each slot is written before read)
+        if cand.len() < listed {
+            cand.resize(listed, (0, 0));
+        }
+        let images = dom.images();
+        let count = touching(range, nb, &images, view, self.reach_bound, &mut cand);
+        // pass 2, over the candidates: their geometry, one contact each (a candidate apart
+        // by less than the reach of an adhesive law, not touching, is dropped by the merge
+        // unless its contact still acts; without such a law every candidate touches)
+        self.size(count);
+        let out = PairsOut {
+            i: &mut self.i[..count],
+            j: &mut self.j[..count],
+            delta: &mut self.delta[..count],
+            rate: &mut self.rate[..count],
+            mass: &mut self.mass[..count],
+            radius: &mut self.radius[..count],
+            normal: &mut self.normal[..count],
+            vrel: &mut self.vrel[..count],
+        };
+        let done = pair_geometry(&cand[..count], &images, view, out);
+        if let Err(e) = done {
+            self.cand = cand;
+            return Err(e);
+        }
+        if self.rotational() {
+            // the relative spin ω_i − ω_j, for the rolling and twisting part of the merge
+            let (base, omega) = (view.base, view.omega);
+            for (w, &(i, j)) in self.vroll.iter_mut().zip(&cand[..count]) {
+                let (i, j) = (i as usize - base, j as usize - base);
+                let r = spin::<D>(omega, i) - spin::<D>(omega, j);
+                *w = [r.x, r.y, r.z];
+            }
+        }
+        self.cand = cand;
+        self.carry(prev, false);
+        Ok(())
+    }
+
+    /// Fills `self` with the particle–wall contacts of the particles of `range` at the current
+    /// state, carrying history over from `prev` (see [`ContactSet::gather_pairs`]).
+    pub fn gather_walls<const D: usize>(
+        &mut self,
+        prev: &ContactSet,
+        range: Range<usize>,
+        walls: &[WallState<D>],
+        view: &View<'_, D>,
+    ) -> Result<(), DemError> {
+        self.first = range.start;
+        let (base, pos, vpred, vel) = (view.base, view.pos, view.vpred, view.vel);
+        let (omega, radius, mass) = (view.omega, view.radius, view.mass);
+        // the chunk's particles, indexed from 0
+        let local = range.start - base..range.end - base;
+        // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall
+        // over the particles, a loop without branches; pass 2 over the particles it picks
+        let mut cand = std::mem::take(&mut self.cand);
+        let mut worst = std::mem::take(&mut self.scratch);
+        let (xs, rs) = (&pos[local.clone()], &radius[local.clone()]);
+        worst.clear();
+        worst.resize(range.len(), f64::NEG_INFINITY);
+        for ws in walls {
+            let (p, n) = (ws.point, ws.normal);
+            for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
+                // the very expression of pass 2, so that both agree on every contact
+                let d = r - (x - p).dot(&n);
+                *m = if d > *m || d.is_nan() { d } else { *m };
+            }
+        }
+        if cand.len() < range.len() {
+            cand.resize(range.len(), (0, 0));
+        }
+        let mut count = 0;
+        for (k, m) in worst.iter().enumerate() {
+            cand[count] = ((range.start + k) as u32, 0);
+            count += usize::from((*m > -self.reach_bound) | m.is_nan());
+        }
+        self.scratch = worst;
+        // pass 2: each picked particle's contacts, wall by wall (one not touching is kept only
+        // under an adhesive law, for the merge to decide)
+        self.size(count * walls.len());
+        let adhesive = self.reach_bound > 0.0;
+        let mut k = 0;
+        for &(ig, _) in &cand[..count] {
+            let (ig, i) = (ig as usize, ig as usize - base);
+            for (w, ws) in walls.iter().enumerate() {
+                let gap = (pos[i] - ws.point).dot(&ws.normal);
+                let delta = radius[i] - gap;
+                if delta <= 0.0 && !adhesive {
+                    continue;
+                }
+                if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
+                    self.cand = cand;
+                    return Err(DemError::Overlap {
+                        i: ig,
+                        partner: format!("wall {w}"),
+                        delta,
+                        radius: radius[i],
+                    });
+                }
+                let nv = to3(&ws.normal);
+                let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
+                let dv = to3(&(vel[i] - ws.velocity));
+                let wi = spin::<D>(omega, i);
+                let v = dv - (wi * radius[i]).cross(&nv);
+                self.i[k] = ig as u32;
+                self.j[k] = w as u32;
+                self.delta[k] = delta;
+                self.rate[k] = rate;
+                self.mass[k] = mass[i];
+                self.radius[k] = radius[i];
+                self.normal[k] = [nv.x, nv.y, nv.z];
+                self.vrel[k] = [v.x, v.y, v.z];
+                if self.rotational() {
+                    self.vroll[k] = [wi.x, wi.y, wi.z];
+                }
+                k += 1;
+            }
+        }
+        self.size(k);
+        self.cand = cand;
+        self.carry(prev, true);
+        Ok(())
+    }
+
+    /// The merge of a gathering: each contact's history carried over from `prev` (the same
+    /// chunk's previous set, in key order like this one) or zero if it is new, its first-touch
+    /// and last-step flags, the count of first touches. Under an adhesive law, a contact apart
+    /// (δ < 0; δ ≤ 0 against a `wall`) is kept only while its previous contact's reach covers
+    /// it, and the kept contacts are moved up over the dropped ones. With a rolling or
+    /// twisting law, `vroll` holds the relative spin on entry and gets the rolling velocity.
+    fn carry(&mut self, prev: &ContactSet, wall: bool) {
+        let mut owned = std::mem::take(&mut self.src);
+        self.merge(prev, &mut owned);
+        if self.reach_bound > 0.0 {
+            self.drop_apart(prev, &mut owned, wall);
+        }
+        let n = self.len();
+        let src = &owned[..n];
+        carry_slots(&mut self.hist_n, &prev.hist_n, src, self.slots_n);
+        carry_slots(&mut self.hist_t, &prev.hist_t, src, self.slots_t);
+        let mut formed = 0;
+        for ((f, l), &m) in self.fresh[..n].iter_mut().zip(&mut self.last[..n]).zip(src) {
+            let old = prev.last.get(m as usize);
+            *f = old.is_none();
+            *l = old.is_some_and(|&b| b);
+            formed += usize::from(old.is_none());
+        }
+        self.formed = formed;
+        if self.rotational() {
+            for (k, &m) in src.iter().enumerate() {
+                self.carry_rotation(k, prev, (m != NEW).then_some(m as usize));
+            }
+        }
+        self.src = owned;
+    }
+
+    /// The merge proper: `src[k]` ← the index in `prev` of contact `k` ([`NEW`] if none).
+    fn merge(&self, prev: &ContactSet, src: &mut Vec<u32>) {
+        let n = self.len();
+        src.clear();
+        src.resize(n, NEW);
+        let pkeys = prev.i.iter().zip(&prev.j).map(|(&i, &j)| key(i, j));
+        let mut pkeys = pkeys.enumerate().peekable();
+        for ((s, &i), &j) in src.iter_mut().zip(&self.i).zip(&self.j) {
+            let k = key(i, j);
+            while pkeys.next_if(|&(_, p)| p < k).is_some() {}
+            if let Some(&(m, p)) = pkeys.peek() {
+                if p == k {
+                    *s = m as u32;
+                }
+            }
+        }
+    }
+
+    /// Under an adhesive law: the contacts apart (δ < 0; δ ≤ 0 against a `wall`) whose previous
+    /// contact's reach does not cover them are dropped, the others moved up (with `src`).
+    #[cold]
+    fn drop_apart(&mut self, prev: &ContactSet, src: &mut [u32], wall: bool) {
+        let n = self.len();
+        let mut w = 0;
+        for k in 0..n {
+            let d = self.delta[k];
+            let apart = if wall { d <= 0.0 } else { d < 0.0 };
+            let m = src[k];
+            let acts = m != NEW && prev.reach.get(m as usize).is_some_and(|&r| d >= -r);
+            if apart && !acts {
+                continue;
+            }
+            if w != k {
+                self.move_contact(k, w);
+                src[w] = m;
+            }
+            w += 1;
+        }
+        if w != n {
+            self.size(w);
+        }
+    }
+
+    /// Moves contact `k`'s gathered values to slot `w` < `k` (the merge's compaction).
+    #[cold]
+    fn move_contact(&mut self, k: usize, w: usize) {
+        self.i[w] = self.i[k];
+        self.j[w] = self.j[k];
+        self.delta[w] = self.delta[k];
+        self.rate[w] = self.rate[k];
+        self.mass[w] = self.mass[k];
+        self.radius[w] = self.radius[k];
+        self.normal[w] = self.normal[k];
+        self.vrel[w] = self.vrel[k];
+        if self.rotational() {
+            self.vroll[w] = self.vroll[k];
+        }
+    }
+
+    /// The rotational part of the merge for contact `k`: the rolling velocity R_eff (ω_i −
+    /// ω_j) × n̂ and the twisting rate (ω_i − ω_j)·n̂ from the relative spin (rad/s) that
+    /// `vroll[k]` holds, the rolling and twisting history from `prev`'s contact `found` (or
+    /// zero).
+    #[cold]
+    fn carry_rotation(&mut self, k: usize, prev: &ContactSet, found: Option<usize>) {
+        let (w, n) = (Vec3::from(self.vroll[k]), Vec3::from(self.normal[k]));
+        let vr = w.cross(&n) * self.radius[k];
+        self.vroll[k] = [vr.x, vr.y, vr.z];
+        self.twist[k] = w.dot(&n);
+        let (sr, sw) = (self.slots_r.unwrap_or(0), self.slots_w.unwrap_or(0));
+        let (hr, hw) = (
+            &mut self.hist_r[k * sr..(k + 1) * sr],
+            &mut self.hist_w[k * sw..(k + 1) * sw],
+        );
+        match found {
+            Some(m) => {
+                copy_slots(hr, &prev.hist_r[m * sr..(m + 1) * sr]);
+                copy_slots(hw, &prev.hist_w[m * sw..(m + 1) * sw]);
+            }
+            None => {
+                hr.fill(0.0);
+                hw.fill(0.0);
+            }
+        }
+    }
+}
