@@ -170,7 +170,11 @@ fn c_example_realizes_the_hsd_restitution() {
 /// The output of the example `exe` run on the plugins with `args`, which it must refuse (a
 /// non-zero exit).
 fn refused(exe: &Path, args: &[&str]) -> std::process::Output {
-    let out = Command::new(exe).arg(deps_dir()).args(args).output().expect("run");
+    let out = Command::new(exe)
+        .arg(deps_dir())
+        .args(args)
+        .output()
+        .expect("run");
     assert!(!out.status.success(), "{args:?} was accepted");
     out
 }

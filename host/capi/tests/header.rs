@@ -183,7 +183,10 @@ fn with_kind_macros_expanded(text: &str) -> String {
         if let Some(def) = line.strip_prefix("#define ").filter(|d| d.contains("(KIND")) {
             let body = continued(def, &mut lines);
             let params_end = body.find(')').unwrap_or(0);
-            macros.push((def[..def.find('(').unwrap_or(0)].to_string(), body[params_end..].to_string()));
+            macros.push((
+                def[..def.find('(').unwrap_or(0)].to_string(),
+                body[params_end..].to_string(),
+            ));
         }
     }
     // a macro's body may invoke another of them: expand what each round adds, a few rounds deep
@@ -194,7 +197,9 @@ fn with_kind_macros_expanded(text: &str) -> String {
             for (name, body) in &macros {
                 if let Some(args) = call.strip_prefix(&format!("{name}(")) {
                     let kind = args.split(',').next().unwrap_or_default().trim();
-                    let body = body.replace("##KIND##", kind).replace("(KIND,", &format!("({kind},"));
+                    let body = body
+                        .replace("##KIND##", kind)
+                        .replace("(KIND,", &format!("({kind},"));
                     next.push_str(&body.replace('\\', ";"));
                 }
             }

@@ -101,14 +101,10 @@ impl Size {
     pub fn reproduce() -> Size {
         Size {
             name: "reproduce",
-            fig2_layers: vec![0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
             fig2_freqs: steps(10.0, 30.0, 6),
             fig2_periods: (30.0, 60.0),
-            fig3_transient: 1000.0,
-            fig4_layers: vec![0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0],
-            fig4_freqs: steps(10.0, 30.0, 11),
             fig4_periods: (30.0, 100.0),
-            statements: crate::bed::statements::StatementSize::standard(),
+            ..Size::paper()
         }
     }
 }
