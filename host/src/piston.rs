@@ -1,5 +1,5 @@
 //! The bottom piston: McNamara & Falcon's two joined parabolas, with the corrected formula of
-//! `physics-notes.md`.
+//! docs/physics.md (the printed formula lacks the 1/t0² factor).
 //!
 //! z(t) = (A/(2 t0²))(t² − t0²) on [−t0, t0] and the mirror image −(A/(2 t0²))((t − 2t0)² − t0²)
 //! on [t0, 3t0], repeated with period 1/f = 4 t0, t0 = 1/(4f). Peak to peak A (z ∈ [−A/2, A/2]),

@@ -181,7 +181,8 @@ fn young_and_poisson_reach_a_contact_laws_restitution_table() {
         let (a, b) = (f(&c, "restitution"), row[key].as_f64().unwrap());
         assert!((a - b).abs() < 2e-6, "{key}: driver {a}, table {b}");
     }
-    // and steel's table differs (a stiffer disk dissipates less under Kuwabara–Kono at 1 m/s)
+    // and steel's table differs: a stiffer disk dissipates more under Kuwabara–Kono (1 − ε grows
+    // as (E_eff √R / m)^{2/5} v^{1/5}), so steel's ε(1 m/s) is the lower one
     let s = ok_json(&[
         "bed",
         "--restitution",
@@ -208,7 +209,8 @@ fn young_and_poisson_reach_a_contact_laws_restitution_table() {
         .unwrap()["disk_disk"]
         .as_f64()
         .unwrap();
-    assert!((steel - row["disk_disk"].as_f64().unwrap()).abs() > 1e-3);
+    let soft = row["disk_disk"].as_f64().unwrap();
+    assert!(steel < soft - 1e-3, "steel {steel}, E = 1e8 Pa {soft}");
 }
 
 #[test]

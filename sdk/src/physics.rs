@@ -2,9 +2,10 @@
 
 use std::f64::consts::PI;
 
-/// The exact Tsuji damping factor α(ε) = −√5 ln ε / √(ln²ε + π²) of the Hertzian
-/// spring-dashpot that realizes restitution ε when contact ends as δ returns to 0 (Antypov &
-/// Elliott 2011, eq. 17). Dimensionless; α(1) = 0.
+/// The damping factor α(ε) = −√5 ln ε / √(ln²ε + π²) of the Hertzian spring-dashpot in Tsuji's
+/// form F_d = α √(m k) δ^{1/4} δ̇: the exact value (Antypov & Elliott 2011, eq. 17, not Tsuji's
+/// 1992 fit) that realizes restitution ε at every impact speed when contact ends as δ returns to
+/// 0. Dimensionless; α(1) = 0.
 pub fn tsuji_alpha(eps: f64) -> f64 {
     let l = eps.ln();
     -(5.0f64).sqrt() * l / (l * l + PI * PI).sqrt()

@@ -147,34 +147,6 @@ fn run_err(e: anyhow::Error) -> PyErr {
     PyValueError::new_err(msg)
 }
 
-/// A JSON value as Python objects (dicts, lists, floats, ints, strings, bools, None).
-fn json_to_py(py: Python<'_>, v: &serde_json::Value) -> PyResult<PyObject> {
-    use pyo3::IntoPyObjectExt;
-    use serde_json::Value;
-    Ok(match v {
-        Value::Null => py.None(),
-        Value::Bool(b) => b.into_py_any(py)?,
-        Value::Number(n) => match (n.as_i64(), n.as_u64(), n.as_f64()) {
-            (Some(i), _, _) => i.into_py_any(py)?,
-            (_, Some(u), _) => u.into_py_any(py)?,
-            (_, _, x) => x.unwrap_or(f64::NAN).into_py_any(py)?,
-        },
-        Value::String(s) => s.into_py_any(py)?,
-        Value::Array(a) => a
-            .iter()
-            .map(|x| json_to_py(py, x))
-            .collect::<PyResult<Vec<_>>>()?
-            .into_py_any(py)?,
-        Value::Object(m) => {
-            let d = PyDict::new(py);
-            for (k, x) in m {
-                d.set_item(k, json_to_py(py, x)?)?;
-            }
-            d.into_py_any(py)?
-        }
-    })
-}
-
 fn params_of(kwargs: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<ParamValue>> {
     let mut out = Vec::new();
     if let Some(k) = kwargs {

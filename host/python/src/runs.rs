@@ -7,6 +7,8 @@ use dashpot::collide::{collide as collide_one, Options, PairLaw};
 use dashpot::laws::{ContactLawHandle, ContactModelHandle};
 use dashpot_sdk::EndCriterion;
 use numpy::IntoPyArray;
+use pyo3::intern;
+use pyo3::types::PyList;
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -80,10 +82,11 @@ fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<
             Provenance::of(reg, name, p).map_err(law_err)?,
         ))
     })?;
+    let (params, provenance) = provenance_py(py, &prov)?;
     let entry = Arc::new(Cached {
         law: Arc::new(law),
-        params: json_to_py(py, &prov.params_json())?,
-        provenance: json_to_py(py, &prov.json())?,
+        params: params.into_any().unbind(),
+        provenance: provenance.into_any().unbind(),
     });
     let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
     if c.len() >= CACHED_LAWS {
@@ -91,6 +94,37 @@ fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<
     }
     c.insert(key, entry.clone());
     Ok(entry)
+}
+
+/// `(params, provenance)` as the CLI's JSON gives them ([`Provenance::params_json`],
+/// [`Provenance::json`]: the same keys, values and order), built as Python objects directly:
+/// a calibration loop makes one for every new parameter value, and the JSON round trip cost
+/// as much as a short collision.
+fn provenance_py<'py>(py: Python<'py>, p: &Provenance) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+    // the JSON objects are sorted by key
+    let mut by_name: Vec<_> = p.params.iter().collect();
+    by_name.sort_by(|a, b| a.0.cmp(&b.0));
+    let (params, own_params, sources) = (PyDict::new(py), PyDict::new(py), PyDict::new(py));
+    for (n, v, src) in by_name {
+        params.set_item(n, *v)?;
+        own_params.set_item(n, *v)?;
+        sources.set_item(n, src.as_str())?;
+    }
+    let plugin = PyDict::new(py);
+    plugin.set_item(intern!(py, "file"), &p.plugin_file)?;
+    plugin.set_item(intern!(py, "name"), &p.plugin_name)?;
+    plugin.set_item(intern!(py, "sdk_version"), &p.plugin_sdk)?;
+    plugin.set_item(intern!(py, "version"), &p.plugin_version)?;
+    let d = PyDict::new(py);
+    d.set_item(intern!(py, "dashpot_version"), p.dashpot)?;
+    d.set_item(intern!(py, "host_sdk_version"), p.host_sdk)?;
+    d.set_item(intern!(py, "kind"), p.kind)?;
+    d.set_item(intern!(py, "law"), &p.law)?;
+    d.set_item(intern!(py, "param_sources"), sources)?;
+    d.set_item(intern!(py, "params"), own_params)?;
+    d.set_item(intern!(py, "plugin"), plugin)?;
+    d.set_item(intern!(py, "shadows"), PyList::new(py, &p.hidden)?)?;
+    Ok((params, d))
 }
 
 /// The benchmark's floor: the collisions of a calibration loop in Rust alone, as `collide`
@@ -163,25 +197,25 @@ fn collide<'py>(
         .allow_threads(|| collide_one(&bound, pair.mass, v0, end, &opt))
         .map_err(|e| PyValueError::new_err(format!("collision of '{name}' at v0 = {v0} m/s: {e}")))?;
     let out = PyDict::new(py);
-    out.set_item("law", name)?;
-    out.set_item("v0", v0)?;
-    out.set_item("end", end.as_str())?;
-    out.set_item("restitution", c.restitution)?;
-    out.set_item("contact_time", c.contact_time)?;
-    out.set_item("max_overlap", c.max_overlap)?;
-    out.set_item("max_overlap_time", c.max_overlap_time)?;
-    out.set_item("stuck", c.stuck)?;
-    out.set_item("tensile_peak", c.tensile_peak)?;
-    out.set_item("steps", c.steps)?;
-    out.set_item("force_evals", c.force_evals)?;
-    out.set_item("rtol", rtol)?;
+    out.set_item(intern!(py, "law"), name)?;
+    out.set_item(intern!(py, "v0"), v0)?;
+    out.set_item(intern!(py, "end"), end.as_str())?;
+    out.set_item(intern!(py, "restitution"), c.restitution)?;
+    out.set_item(intern!(py, "contact_time"), c.contact_time)?;
+    out.set_item(intern!(py, "max_overlap"), c.max_overlap)?;
+    out.set_item(intern!(py, "max_overlap_time"), c.max_overlap_time)?;
+    out.set_item(intern!(py, "stuck"), c.stuck)?;
+    out.set_item(intern!(py, "tensile_peak"), c.tensile_peak)?;
+    out.set_item(intern!(py, "steps"), c.steps)?;
+    out.set_item(intern!(py, "force_evals"), c.force_evals)?;
+    out.set_item(intern!(py, "rtol"), rtol)?;
     let pd = PyDict::new(py);
-    pd.set_item("mass", pair.mass)?;
-    pd.set_item("radius", pair.radius)?;
-    pd.set_item("young", pair.young)?;
-    out.set_item("pair", pd)?;
-    out.set_item("params", cached.params.bind(py))?;
-    out.set_item("provenance", cached.provenance.bind(py))?;
+    pd.set_item(intern!(py, "mass"), pair.mass)?;
+    pd.set_item(intern!(py, "radius"), pair.radius)?;
+    pd.set_item(intern!(py, "young"), pair.young)?;
+    out.set_item(intern!(py, "pair"), pd)?;
+    out.set_item(intern!(py, "params"), cached.params.bind(py))?;
+    out.set_item(intern!(py, "provenance"), cached.provenance.bind(py))?;
     if record {
         let col =
             |f: fn(&dashpot::collide::Sample) -> f64| -> Vec<f64> { c.trajectory.iter().map(f).collect() };

@@ -49,6 +49,11 @@ pub struct PairLaw<L> {
     law: L,
     mass: f64,
     radius: f64,
+    /// The pair's mass and radius for every contact of a call, built once: the integrator
+    /// calls the law a few hundred times per collision with at most ten states, so the
+    /// per-call work is kept to the call itself.
+    masses: [f64; PAIR_CHUNK],
+    radii: [f64; PAIR_CHUNK],
     slots: usize,
     committed: Mutex<Vec<f64>>,
 }
@@ -61,6 +66,8 @@ impl<L: NormalLaw> PairLaw<L> {
             law,
             mass,
             radius,
+            masses: [mass; PAIR_CHUNK],
+            radii: [radius; PAIR_CHUNK],
             slots,
             committed: Mutex::new(vec![0.0; slots]),
         }
@@ -112,8 +119,6 @@ impl<L: NormalLaw> ContactForce for PairLaw<L> {
 
     #[inline]
     fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
-        let mass = [self.mass; PAIR_CHUNK];
-        let radius = [self.radius; PAIR_CHUNK];
         if self.slots == 0 {
             for ((d, r), o) in delta
                 .chunks(PAIR_CHUNK)
@@ -124,8 +129,8 @@ impl<L: NormalLaw> ContactForce for PairLaw<L> {
                 self.law.force_batch(NormalBatch {
                     delta: d,
                     rate: r,
-                    mass: &mass[..n],
-                    radius: &radius[..n],
+                    mass: &self.masses[..n],
+                    radius: &self.radii[..n],
                     slots: 0,
                     history: &mut [],
                     force: o,
@@ -149,8 +154,8 @@ impl<L: NormalLaw> ContactForce for PairLaw<L> {
             self.law.force_batch(NormalBatch {
                 delta: d,
                 rate: r,
-                mass: &mass[..n],
-                radius: &radius[..n],
+                mass: &self.masses[..n],
+                radius: &self.radii[..n],
                 slots: self.slots,
                 history: &mut scratch,
                 force: o,
