@@ -110,6 +110,34 @@ pub fn sh(line: &str) -> Vec<&str> {
     line.split_whitespace().collect()
 }
 
+/// Each case `(words, needles)` run as [`fails`]: `base` followed by `words`, both split as
+/// [`sh`] splits them.
+pub fn each_fails(base: &str, cases: &[(&str, &[&str])]) {
+    for (words, needles) in cases {
+        fails(&sh(&format!("{base} {words}")), needles);
+    }
+}
+
+/// The observables of a bed run (JSON keys), each reported with its standard error over seeds
+/// (`KEY_stderr`).
+pub const BED_OBSERVABLES: [&str; 5] = [
+    "pressure",
+    "lid_collision_rate",
+    "mean_impulse",
+    "temperature",
+    "piston_pressure",
+];
+
+/// Every one of [`BED_OBSERVABLES`] in the bed's JSON `v` is measured: positive, with a
+/// standard error between 0 and the value.
+pub fn assert_measured_with_stderr(v: &Value) {
+    for k in BED_OBSERVABLES {
+        let key = |k: &str| v[k].as_f64().unwrap_or_else(|| panic!("key {k} missing in {v}"));
+        let (x, e) = (key(k), key(&format!("{k}_stderr")));
+        assert!(x > 0.0 && e > 0.0 && e < x, "{k} = {x} ± {e}");
+    }
+}
+
 /// The laws of the seed plugins and those of sdk 0.2, sorted.
 pub const SEED_AND_02_LAWS: [&str; 9] = [
     "constant",
