@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{assert_measured_with_stderr, dashpot, each_fails, fails, ok_json, sh};
+use common::{assert_measured_with_stderr, dashpot, each_fails, fails, ok_json, sh, succeeds};
 use serde_json::Value;
 
 #[test]
@@ -10,8 +10,7 @@ fn bed_json_reports_the_observables_and_writes_snapshot_and_trace() {
     let dir = std::env::temp_dir().join(format!("dashpot-bed-cli-{}", std::process::id()));
     let snap = dir.join("snap.png");
     let trace = dir.join("trace.csv");
-    let o = dashpot(&sh(&format!("bed --restitution mcnamara-falcon --layers 1 --freq 25 --transient 5 --cycles 10 --json --snapshot {} --trace {}", snap.to_str().unwrap(), trace.to_str().unwrap())));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = succeeds(&sh(&format!("bed --restitution mcnamara-falcon --layers 1 --freq 25 --transient 5 --cycles 10 --json --snapshot {} --trace {}", snap.to_str().unwrap(), trace.to_str().unwrap())));
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_measured_with_stderr(&v);
     fails(
@@ -56,8 +55,7 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
     }
     // in a grid's CSV: an empty cell, not a 0
     let out = std::env::temp_dir().join(format!("dashpot-bed-nolid-{}", std::process::id()));
-    let o = dashpot(&sh(&format!("scaling --layers 0.5 --freqs 10:12:2 --headroom 0.5 --transient 2 --cycles 3 --restitution constant --set r=0.9 --out {}", out.to_str().unwrap())));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = succeeds(&sh(&format!("scaling --layers 0.5 --freqs 10:12:2 --headroom 0.5 --transient 2 --cycles 3 --restitution constant --set r=0.9 --out {}", out.to_str().unwrap())));
     let csv = std::fs::read_to_string(out.join("grid.csv")).unwrap();
     let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();

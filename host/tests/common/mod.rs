@@ -78,14 +78,19 @@ pub fn dashpot(args: &[&str]) -> Output {
         .unwrap()
 }
 
-pub fn ok_json(args: &[&str]) -> Value {
+/// Runs a command that must succeed (its stderr is the message if it does not).
+pub fn succeeds(args: &[&str]) -> Output {
     let o = dashpot(args);
     assert!(
         o.status.success(),
         "{args:?}: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-    serde_json::from_slice(&o.stdout).unwrap()
+    o
+}
+
+pub fn ok_json(args: &[&str]) -> Value {
+    serde_json::from_slice(&succeeds(args).stdout).unwrap()
 }
 
 /// Runs a command that must fail: non-zero exit, an `error:` line containing every `needle`,
@@ -136,6 +141,15 @@ pub fn assert_measured_with_stderr(v: &Value) {
         let (x, e) = (key(k), key(&format!("{k}_stderr")));
         assert!(x > 0.0 && e > 0.0 && e < x, "{k} = {x} ± {e}");
     }
+}
+
+/// A scene file `name` holding `text`, in a directory of this test process.
+pub fn scene(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("dashpot-scenes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
 }
 
 /// The laws of the seed plugins and those of sdk 0.2, sorted.
