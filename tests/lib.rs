@@ -6,6 +6,25 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::{Mutex, OnceLock};
 
+/// A batch of contacts without history (no slots) whose forces go to `force`.
+pub fn memoryless_batch<'a>(
+    delta: &'a [f64],
+    rate: &'a [f64],
+    mass: &'a [f64],
+    radius: &'a [f64],
+    force: &'a mut [f64],
+) -> dashpot_sdk::NormalBatch<'a> {
+    dashpot_sdk::NormalBatch {
+        delta,
+        rate,
+        mass,
+        radius,
+        slots: 0,
+        history: &mut [],
+        force,
+    }
+}
+
 /// The workspace root.
 pub fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
