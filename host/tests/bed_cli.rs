@@ -280,7 +280,7 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
     }
     // in a grid's CSV: an empty cell, not a 0
     let out = std::env::temp_dir().join(format!("dashpot-bed-nolid-{}", std::process::id()));
-    let o = succeeds(&sh(&format!("scaling --layers 0.5 --freqs 10:12:2 --headroom 0.5 --transient 2 --cycles 3 --restitution constant --set r=0.9 --out {}", out.to_str().unwrap())));
+    succeeds(&sh(&format!("scaling --layers 0.5 --freqs 10:12:2 --headroom 0.5 --transient 2 --cycles 3 --restitution constant --set r=0.9 --out {}", out.to_str().unwrap())));
     let csv = std::fs::read_to_string(out.join("grid.csv")).unwrap();
     let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();

@@ -221,7 +221,7 @@ fn plugin_path_environment_variable() {
 #[test]
 fn reproduce_writes_the_report() {
     let out = std::env::temp_dir().join(format!("dashpot-repro-{}", std::process::id()));
-    let o = succeeds(&["reproduce", "--quick", "--out", out.to_str().unwrap()]);
+    succeeds(&["reproduce", "--quick", "--out", out.to_str().unwrap()]);
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("0.7031"), "r(1 m/s) in the report");
     assert!(md.contains("## McNamara & Falcon (2005): the vibrated bed"));
@@ -266,7 +266,7 @@ fn collide_reports_the_observables_in_json() {
 #[test]
 fn collide_writes_a_trajectory() {
     let f = std::env::temp_dir().join(format!("dashpot-traj-{}.csv", std::process::id()));
-    let o = succeeds(&sh(&format!(
+    succeeds(&sh(&format!(
         "collide --law lsd --v0 0.5 --trajectory {}",
         f.to_str().unwrap()
     )));
@@ -319,7 +319,7 @@ fn collide_bad_input() {
 #[test]
 fn sweep_and_calibrate() {
     let f = std::env::temp_dir().join(format!("dashpot-sweep-{}.csv", std::process::id()));
-    let o = succeeds(&sh(&format!(
+    succeeds(&sh(&format!(
         "sweep --law hsd --v0 0.01:1:3 --vary eps=0.2,0.8 --out {}",
         f.to_str().unwrap()
     )));
@@ -369,7 +369,7 @@ fn sweep_and_calibrate() {
 #[test]
 fn figures_collide_reproduces_antypov_elliott() {
     let out = std::env::temp_dir().join(format!("dashpot-figc-{}", std::process::id()));
-    let o = succeeds(&["figures", "collide", "--out", out.to_str().unwrap()]);
+    succeeds(&["figures", "collide", "--out", out.to_str().unwrap()]);
     for f in [
         "fig1_phase_trajectories",
         "fig2_collision_time",

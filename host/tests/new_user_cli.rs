@@ -122,7 +122,7 @@ fn two_spheres_placed_overlapping_are_refused_for_the_placement_not_the_step() {
 #[test]
 fn a_sphere_placed_inside_a_wall_is_refused_naming_the_wall() {
     // a 2 mm sphere with its centre 0.5 mm below the floor: overlap r + 0.5 mm = 1.5 mm
-    let (err, first) = refused_placement(
+    refused_placement(
         "in-wall.toml",
         &spheres(
             "",
@@ -139,7 +139,7 @@ fn a_sphere_placed_inside_a_wall_is_refused_naming_the_wall() {
     );
     // resting on the floor (touching, centre exactly r above it) is no overlap
     let p = scene("on-wall.toml", &spheres("", &particle([0.0, 0.0, 0.001], 0.002)));
-    let o = succeeds(&["dem", "--scene", p.to_str().unwrap(), "--check"]);
+    succeeds(&["dem", "--scene", p.to_str().unwrap(), "--check"]);
 }
 
 /// A pre-compressed pair, allowed by the explicit key: released, it springs apart with the
@@ -202,7 +202,7 @@ fn a_particle_outside_a_bounded_box_is_refused_before_the_run() {
         "[box]\nlo = [-0.01, -0.01, 0.0]\nhi = [0.01, 0.01, 0.05]\nbounded = true",
         &(particle([0.0, 0.0, 0.01], 0.002) + &particle([0.0, 0.02, 0.01], 0.002)),
     );
-    let (err, first) = refused_placement(
+    refused_placement(
         "outside.toml",
         &text,
         &[
@@ -232,7 +232,7 @@ diameter = [0.0018, 0.002]
 lo = [0.0, 0.0]
 hi = [0.01, 0.01]
 "#;
-    let (err, first) = refused_scene(
+    refused_scene(
         "crowded.toml",
         text,
         &[
@@ -540,7 +540,7 @@ fn scaling_results_carry_the_provenance_on_both_engines() {
 #[test]
 fn figures_collide_csvs_carry_the_provenance() {
     let out = out_dir("figc");
-    let o = succeeds(&["figures", "collide", "--out", out.to_str().unwrap()]);
+    succeeds(&["figures", "collide", "--out", out.to_str().unwrap()]);
     assert!(csvs_have_provenance(&out) >= 7);
     let fig1 = std::fs::read_to_string(out.join("fig1_phase_trajectories.csv")).unwrap();
     assert!(
