@@ -25,6 +25,25 @@ pub fn memoryless_batch<'a>(
     }
 }
 
+/// A restitution table's r(v) is within 1e-6 of the restitution the collision driver realizes
+/// for contact law `law` (effective mass `mass`, kg; contact ending when the force returns to 0)
+/// at every speed of `speeds` (m/s).
+pub fn within_1e6_of_the_driver(
+    table: &impl dashpot_sdk::BoundRestitution,
+    law: &impl dashpot::collide::ContactForce,
+    mass: f64,
+    speeds: &[f64],
+    opt: &dashpot::collide::Options,
+) {
+    for &v in speeds {
+        let exact = dashpot::collide::collide(law, mass, v, dashpot_sdk::EndCriterion::Force, opt)
+            .unwrap()
+            .restitution;
+        let r = table.restitution(v);
+        assert!((r - exact).abs() <= 1e-6, "v {v}: {r} vs {exact}");
+    }
+}
+
 /// The workspace root.
 pub fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
