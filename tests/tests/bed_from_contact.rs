@@ -1,8 +1,8 @@
 //! Contact laws as the bed's restitution laws: the table against the collision driver.
 
 use dashpot::bed::{bed_particle, contact_laws, resolve_for, FROM_CONTACT};
-use dashpot::collide::{collide, Options};
-use dashpot_sdk::{BoundRestitution, EndCriterion, ParamValue};
+use dashpot::collide::Options;
+use dashpot_sdk::{BoundRestitution, ParamValue};
 use dashpot_tests::BindPair as _;
 use dashpot_tests::{seed_registry, within_1e6_of_the_driver};
 
