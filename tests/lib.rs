@@ -44,6 +44,12 @@ pub fn within_1e6_of_the_driver(
     }
 }
 
+/// `got` is within the relative tolerance `tol` of `want` (|got/want − 1| < tol); `what` names
+/// the quantity in the failure message.
+pub fn assert_rel(got: f64, want: f64, tol: f64, what: &str) {
+    assert!((got / want - 1.0).abs() < tol, "{what} = {got} vs {want}");
+}
+
 /// The workspace root.
 pub fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -279,6 +285,16 @@ impl BindPair for dashpot_sdk::abi::ContactLawHandle {
     fn bind_pair(&self, pair: &dashpot_sdk::Pair) -> Result<PluginPair, dashpot_sdk::LawError> {
         dashpot::collide::PairLaw::bind(self, pair, 0.3)
     }
+}
+
+/// Contact law `name` of `reg` with `params`, bound to `pair` (Poisson's ratio 0.3).
+pub fn pair_law(
+    reg: &Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    pair: &dashpot_sdk::Pair,
+) -> PluginPair {
+    reg.contact(name, params).unwrap().bind_pair(pair).unwrap()
 }
 
 /// A release of dashpot-sdk as this repository's history holds it: the commit whose tree is

@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{dashpot, fails, lib, ok_json, plugin_dir, sh, succeeds, SEED_AND_02_LAWS};
+use common::{dashpot, fails, lib, ok_json, plugin_dir, sh, succeeds, written_by, SEED_AND_02_LAWS};
 use serde_json::Value;
 use std::process::Command;
 
@@ -265,12 +265,7 @@ fn collide_reports_the_observables_in_json() {
 
 #[test]
 fn collide_writes_a_trajectory() {
-    let f = std::env::temp_dir().join(format!("dashpot-traj-{}.csv", std::process::id()));
-    succeeds(&sh(&format!(
-        "collide --law lsd --v0 0.5 --trajectory {}",
-        f.to_str().unwrap()
-    )));
-    let csv = std::fs::read_to_string(&f).unwrap();
+    let (f, csv) = written_by("collide --law lsd --v0 0.5 --trajectory", "traj.csv");
     let mut lines = csv.lines();
     // provenance first, as comment lines
     assert!(lines.next().unwrap().starts_with("# law: lsd (contact): eps = "));
@@ -318,12 +313,10 @@ fn collide_bad_input() {
 
 #[test]
 fn sweep_and_calibrate() {
-    let f = std::env::temp_dir().join(format!("dashpot-sweep-{}.csv", std::process::id()));
-    succeeds(&sh(&format!(
-        "sweep --law hsd --v0 0.01:1:3 --vary eps=0.2,0.8 --out {}",
-        f.to_str().unwrap()
-    )));
-    let text = std::fs::read_to_string(&f).unwrap();
+    let (f, text) = written_by(
+        "sweep --law hsd --v0 0.01:1:3 --vary eps=0.2,0.8 --out",
+        "sweep.csv",
+    );
     // provenance first, as comment lines: the law with every parameter, the plugin file
     let (comments, rows): (Vec<&str>, Vec<&str>) = text.lines().partition(|l| l.starts_with('#'));
     assert!(

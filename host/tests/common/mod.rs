@@ -143,6 +143,15 @@ pub fn assert_measured_with_stderr(v: &Value) {
     }
 }
 
+/// The file `name` (in the temporary directory, tagged with this process) that the successful
+/// command `cmd`, given that file's path as its last word, wrote: its path and its text.
+pub fn written_by(cmd: &str, name: &str) -> (PathBuf, String) {
+    let f = std::env::temp_dir().join(format!("dashpot-{}-{name}", std::process::id()));
+    succeeds(&sh(&format!("{cmd} {}", f.to_str().unwrap())));
+    let text = std::fs::read_to_string(&f).unwrap();
+    (f, text)
+}
+
 /// A scene file `name` holding `text`, in a directory of this test process.
 pub fn scene(name: &str, text: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("dashpot-scenes-{}", std::process::id()));
