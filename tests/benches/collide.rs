@@ -22,7 +22,7 @@ struct Case {
 }
 
 fn cases(n: usize) -> Vec<Case> {
-    let mut rnd = common::uniform(0x2545_f491_4f6c_dd1d_u64);
+    let mut rnd = common::xorshift_uniform(0x2545_f491_4f6c_dd1d_u64);
     (0..n)
         .map(|_| Case {
             eps: 0.01 + 0.98 * rnd(),

@@ -60,7 +60,7 @@ struct Contacts {
 }
 
 fn contacts() -> Contacts {
-    let mut rnd = common::uniform(0x9e37_79b9_7f4a_7c15_u64);
+    let mut rnd = common::xorshift_uniform(0x9e37_79b9_7f4a_7c15_u64);
     let mut c = Contacts {
         delta: Vec::with_capacity(N),
         rate: Vec::with_capacity(N),

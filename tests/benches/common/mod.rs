@@ -17,7 +17,7 @@ fn cpu_seconds(clock: libc::clockid_t) -> f64 {
 
 /// Uniform numbers in [0, 1) from a xorshift64 generator (Marsaglia 2003) started at `seed`:
 /// the same sequence on every run, so each run times the same inputs.
-pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
+pub fn xorshift_uniform(seed: u64) -> impl FnMut() -> f64 {
     let mut x = seed;
     move || {
         x ^= x << 13;

@@ -41,7 +41,7 @@ macro_rules! motion_run {
                 slice_mut(r.$out as *mut $oty, n),
             )
         };
-        blocks(n, |lo, hi| {
+        blocks!(n, |lo, hi| {
             let (nl, ml) = (&normal[lo..hi], &motion[lo..hi]);
             let (f, d, m, a) = (&fnorm[lo..hi], &delta[lo..hi], &mass[lo..hi], &radius[lo..hi]);
             ($check)(lo, nl, ml, f, d, m, a)?;
@@ -62,7 +62,7 @@ macro_rules! motion_run {
                 Some(i) => Err((lo + i, BatchFault::OUTPUT)),
                 None => Ok(()),
             }
-        })?;
+        });
         let batch = $batch {
             dt: r.dt,
             normal,
@@ -263,7 +263,7 @@ pub(super) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
 #[inline(always)]
 fn normal_blocks<B: BoundContact>(law: &B, b: NormalBatch<'_>) -> Result<(), (usize, u8)> {
     let slots = b.slots;
-    blocks(b.force.len(), |lo, hi| {
+    blocks!(b.force.len(), |lo, hi| {
         let (d, r, m, a) = (
             &b.delta[lo..hi],
             &b.rate[lo..hi],
@@ -289,7 +289,8 @@ fn normal_blocks<B: BoundContact>(law: &B, b: NormalBatch<'_>) -> Result<(), (us
             Some(i) => Err((lo + i, BatchFault::OUTPUT)),
             None => Ok(()),
         }
-    })
+    });
+    Ok(())
 }
 
 impl<B: BoundContact> KindBound<Normal> for B {
