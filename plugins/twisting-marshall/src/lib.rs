@@ -68,7 +68,7 @@ impl BoundTwisting for TwistingMarshall {
         if a == 0.0 {
             return Some(Energy::default());
         }
-        Some(self.spring(c, a).energy(c.rate, h[0], torque))
+        Some(self.spring(c, a).step_energy(c.rate, c.dt, h[0], torque))
     }
 }
 

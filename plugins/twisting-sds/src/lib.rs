@@ -54,7 +54,7 @@ impl BoundTwisting for TwistingSds {
     }
 
     fn energy(&self, c: &TwistingContact, h: &[f64], torque: f64) -> Option<Energy> {
-        Some(self.sds(c).energy(c.rate, h[0], torque))
+        Some(self.sds(c).step_energy(c.rate, c.dt, h[0], torque))
     }
 }
 
