@@ -222,9 +222,12 @@ pub fn spring_friction_energy(
 /// The energy of [`spring_friction`] after a step that returned `force` and left `history`,
 /// for a stiffness `kt` = [before, after] the step (N/m) and a dashpot `eta` = [before, after]
 /// (N·s/m): elastic k_t |ξ|²/2, no more than (μ F_n)²/(2 k_t) (J), and the power of
-/// [`SliderStep::energy`] (W), with v the tangential velocity and the cap μ max(F_n, 0) now and,
-/// one step before, μ F_n (δ_before/δ)^{3/2} (the normal force taken as Hertzian over one step,
-/// δ_before from [`overlap_before`]); 0 out of contact (δ ≤ 0).
+/// [`SliderStep::energy`] (W) with v the tangential velocity, the cap μ max(F_n, 0) now and,
+/// one step before, the cap that leaves the most a sliding spring can hold, cap²/(2 k_t),
+/// unchanged: μ F_n √(k_before/k_t). (The normal force of the previous step is not part of
+/// the contact, so the energy a changing cap puts into or truncates from a sliding spring is
+/// booked only as far as it follows from the stiffness; with a constant k_t it is not booked.)
+/// 0 out of contact (δ ≤ 0).
 pub fn spring_friction_energy_varying(
     kt: [f64; 2],
     eta: [f64; 2],
@@ -237,14 +240,17 @@ pub fn spring_friction_energy_varying(
         return crate::Energy::default();
     }
     let cap = mu * c.normal_force.max(0.0);
-    let ratio = overlap_before(c.delta, c.normal, c.velocity, c.dt) / c.delta;
     let step = SliderStep {
         k: kt[1],
         k_before: kt[0],
         eta: eta[1],
         eta_before: eta[0],
         cap,
-        cap_before: cap * ratio * ratio.sqrt(),
+        cap_before: if kt[1] > 0.0 {
+            cap * (kt[0] / kt[1]).sqrt()
+        } else {
+            cap
+        },
         dt: c.dt,
     };
     step.energy(
@@ -280,14 +286,16 @@ pub fn overlap_before(delta: f64, normal: [f64; 3], velocity: [f64; 3], dt: f64)
 ///   k_t ∝ √δ grows on loading), which no force paid for;
 /// - sliding (|F| at the cap): the reset erased ξ_before; the spring is taken to have held the
 ///   capped force at the previous cap, F cap_before/cap, plus the dashpot share η_before v it
-///   holds under LAMMPS's reset, so W = −F·v dt and the stored energy's change, the truncation
-///   of the spring when the cap falls and its loading when the cap rises, is booked.
+///   holds under LAMMPS's reset, so W = −F·v dt and the stored energy's change between the two
+///   caps, the truncation of the spring when the cap falls and its loading when it rises, is
+///   booked as far as `cap_before` is known.
 ///
 /// The power is therefore the energy the contact takes out of the bodies' motion and out of its
 /// spring per second: ≥ 0 where the law is passive, negative on a step where a growing stiffness
 /// (or a rising spring under a sliding dashpot) stores energy no force paid for. Summed over the
 /// steps with the elastic energy at the end it equals the work the bodies lost, to first order in
-/// dt, as far as `cap_before` and `k_before` are exact.
+/// dt, as far as `cap_before` and `k_before` are exact: a stuck spring's accounting is exact, a
+/// sliding one's misses whatever error `cap_before` carries.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SliderStep {
     /// Stiffness k after the step.
