@@ -99,7 +99,12 @@ impl TwistSpring {
             dt,
         };
         let m = [torque, 0.0, 0.0];
-        step.energy(SliderStep::at_cap(m, self.mcrit), [theta, 0.0, 0.0], [rate, 0.0, 0.0], m)
+        step.energy(
+            torque.abs() >= self.mcrit && rate != 0.0,
+            [theta, 0.0, 0.0],
+            [rate, 0.0, 0.0],
+            m,
+        )
     }
 
     /// Elastic energy k θ²/2 (J) and dissipated power (W): γ ω² while the spring holds, |M ω|
@@ -345,7 +350,9 @@ impl SliderStep {
             return crate::Energy { power: 0.0, elastic };
         }
         let dt = self.dt;
-        let (work, before) = if sliding {
+        // the spring energy beyond what the slider lets it give back
+        let excess = |k: f64, x2: f64, cap: f64| 0.5 * k * x2 - Self::stored(k, x2, cap);
+        let power = if sliding {
             let s = if self.cap > 0.0 {
                 self.cap_before / self.cap
             } else {
@@ -361,18 +368,16 @@ impl SliderStep {
             } else {
                 0.0
             };
-            (-dot(force, v) * dt, Self::stored(self.k_before, xo2, self.cap_before))
+            -dot(force, v) + (Self::stored(self.k_before, xo2, self.cap_before) - elastic) / dt
         } else {
+            // W − E_after + E_before with W = η |v|² dt + k (|ξ|² − |ξ_before|²)/2, arranged so
+            // that a constant stiffness below the cap gives η |v|² to the bit
             let xo = [xi[0] - v[0] * dt, xi[1] - v[1] * dt, xi[2] - v[2] * dt];
             let (x2, xo2) = (dot(xi, xi), dot(xo, xo));
-            (
-                self.eta * dot(v, v) * dt + 0.5 * self.k * (x2 - xo2),
-                Self::stored(self.k_before, xo2, self.cap_before),
-            )
+            let stiffening = 0.5 * (self.k_before - self.k) * xo2;
+            let clipped = excess(self.k, x2, self.cap) - excess(self.k_before, xo2, self.cap_before);
+            self.eta * dot(v, v) + (stiffening + clipped) / dt
         };
-        crate::Energy {
-            power: (work - elastic + before) / dt,
-            elastic,
-        }
+        crate::Energy { power, elastic }
     }
 }

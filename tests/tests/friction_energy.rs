@@ -60,20 +60,17 @@ struct Balance {
 /// `offset` (m) along y, spinning; velocity Verlet with step `dt` (s) until well after they part.
 /// The normal force is Hertz plus HSD's dashpot α √(m K) δ^{1/4} δ̇ (`alpha` = 0: none); the
 /// tangential law's energy is read after each of its calls.
-fn impact(
-    law: &dyn BoundTangential,
-    offset: f64,
-    spin: f64,
-    dt: f64,
-    alpha: f64,
-) -> Balance {
+fn impact(law: &dyn BoundTangential, offset: f64, spin: f64, dt: f64, alpha: f64) -> Balance {
     let r = 0.5 * D;
     let m = RHO * std::f64::consts::PI / 6.0 * D * D * D;
     let inertia = 0.4 * m * r * r;
     let eeff = YOUNG / (2.0 * (1.0 - NU * NU));
     let kh = 4.0 / 3.0 * eeff * (0.5 * r).sqrt();
     let gap = (D * D - offset * offset).sqrt();
-    let mut x = [[-0.5 * gap - 1e-6, -0.5 * offset, 0.0], [0.5 * gap + 1e-6, 0.5 * offset, 0.0]];
+    let mut x = [
+        [-0.5 * gap - 1e-6, -0.5 * offset, 0.0],
+        [0.5 * gap + 1e-6, 0.5 * offset, 0.0],
+    ];
     let mut v = [[0.5, 0.0, 0.0], [-0.5, 0.0, 0.0]];
     let mut w = [[30.0, 0.0, spin], [-10.0, 5.0, 0.0]];
     let ke = |v: &[[f64; 3]; 2], w: &[[f64; 3]; 2]| {
@@ -122,9 +119,13 @@ fn impact(
             b.steps += 1;
             b.capped += (dot(ft, ft).sqrt() >= 0.3 * c.normal_force * (1.0 - 1e-9)) as usize;
             let f = axpy(c.normal_force, n, ft);
-            b.normal_work += alpha * (0.5 * m * kh).sqrt() * delta.powf(0.25) * dot(rel, n) * dot(rel, n) * dt;
+            b.normal_work +=
+                alpha * (0.5 * m * kh).sqrt() * delta.powf(0.25) * dot(rel, n) * dot(rel, n) * dt;
             force = [f, [-f[0], -f[1], -f[2]]];
-            torque = [cross([-r * n[0], -r * n[1], -r * n[2]], ft), cross([-r * n[0], -r * n[1], -r * n[2]], ft)];
+            torque = [
+                cross([-r * n[0], -r * n[1], -r * n[2]], ft),
+                cross([-r * n[0], -r * n[1], -r * n[2]], ft),
+            ];
         } else if b.steps > 0 {
             parted += 1;
             b.elastic = 0.0;
@@ -138,7 +139,6 @@ fn impact(
     b
 }
 
-
 /// `mindlin` with friction coefficient `mu` and damping ratio `zeta`.
 fn mindlin(mu: f64, zeta: f64) -> dashpot_mindlin::MindlinBound {
     let p = [("mu", mu), ("damping", zeta)].map(|(n, v)| ParamValue::new(n, v));
@@ -148,7 +148,10 @@ fn mindlin(mu: f64, zeta: f64) -> dashpot_mindlin::MindlinBound {
 /// `linear-history` with k_t = 2000 N/m, friction coefficient `mu` and damping ratio `zeta`.
 fn linear(mu: f64, zeta: f64) -> dashpot_linear_history::LinearHistoryBound {
     let p = [("kt", 2000.0), ("mu", mu), ("damping", zeta)].map(|(n, v)| ParamValue::new(n, v));
-    LinearHistory::from_values(&p).unwrap().bind(&materials()).unwrap()
+    LinearHistory::from_values(&p)
+        .unwrap()
+        .bind(&materials())
+        .unwrap()
 }
 
 /// (lost − reported)/lost of an impact, every family's dissipation reported (the normal
@@ -176,7 +179,11 @@ fn a_stuck_spring_under_a_changing_stiffness_closes_its_balance_to_first_order_i
             let delta = d0 * (1.0 + 0.5 * (w * t).sin());
             // the overlap's rate over the step, as the normal part of the velocity (v·n = −δ̇)
             let rate = (delta - d0 * (1.0 + 0.5 * (w * (t - dt)).sin())) / dt;
-            let v = [speed * (3.0 * w * tm).cos(), 0.5 * speed * (2.0 * w * tm).sin(), -rate];
+            let v = [
+                speed * (3.0 * w * tm).cos(),
+                0.5 * speed * (2.0 * w * tm).sin(),
+                -rate,
+            ];
             let c = TangentialContact {
                 normal: [0.0, 0.0, 1.0],
                 velocity: v,
@@ -202,7 +209,10 @@ fn a_stuck_spring_under_a_changing_stiffness_closes_its_balance_to_first_order_i
         let (coarse, fine) = (drive(law, 4e-6), drive(law, 1e-6));
         eprintln!("{name}: residual {coarse:+.3e} at dt = 4 µs, {fine:+.3e} at 1 µs");
         assert!(fine.abs() < 1e-3, "{name}: residual {fine:e}");
-        assert!(fine.abs() < 0.4 * coarse.abs() || fine.abs() < 1e-9, "{name}: {coarse:e} → {fine:e}");
+        assert!(
+            fine.abs() < 0.4 * coarse.abs() || fine.abs() < 1e-9,
+            "{name}: {coarse:e} → {fine:e}"
+        );
     }
 }
 
@@ -225,9 +235,15 @@ fn an_oblique_frictional_impact_closes_its_balance() {
                     let b = impact(law, offset, spin, dt, alpha);
                     let r = residual(&b);
                     eprintln!("{name} ζ = {zeta}, offset {offset}, dt {dt:e}: residual {r:+.4} ({b:?})");
-                    assert!(b.capped > 10 && b.capped < b.steps - 10, "{name}: it must slide and stick");
+                    assert!(
+                        b.capped > 10 && b.capped < b.steps - 10,
+                        "{name}: it must slide and stick"
+                    );
                     assert!(b.dissipated > 0.0, "{name}: {b:?}");
-                    assert!(r.abs() < tol, "{name} ζ = {zeta}, offset {offset}, dt {dt:e}: residual {r:+.4}");
+                    assert!(
+                        r.abs() < tol,
+                        "{name} ζ = {zeta}, offset {offset}, dt {dt:e}: residual {r:+.4}"
+                    );
                 }
             }
         }
