@@ -346,7 +346,7 @@ impl SliderStep {
     /// returned `force`; `sliding` says whether the force was capped (see the type's doc).
     pub fn energy(&self, sliding: bool, xi: [f64; 3], v: [f64; 3], force: [f64; 3]) -> crate::Energy {
         let elastic = Self::stored(self.k, dot(xi, xi), self.cap);
-        if !(self.dt > 0.0) {
+        if self.dt.is_nan() || self.dt <= 0.0 {
             return crate::Energy { power: 0.0, elastic };
         }
         let dt = self.dt;

@@ -39,8 +39,9 @@ impl RollingLaw for RollingSds {
         F_r = −k ξ − γ v_roll (N); (4) if |F_r| > μ|F_n|: when ξ ≠ 0, ξ = −(μ|F_n| F_r/|F_r| + γ v_roll)/k and \
         F_r is scaled to length μ|F_n|; when ξ = 0, F_r = 0. The torque on the particle is R_eff n̂ × F_r (N·m), \
         on the partner its opposite; F_r itself is not applied to the centres. Parameters: k (N/m), gamma \
-        (N·s/m), mu (dimensionless). Energy: elastic = k|ξ|²/2 (J); power (W) = γ|v_roll|² while the spring \
-        holds, −F_r·v_roll (≥ 0, clamped) while it slides.";
+        (N·s/m), mu (dimensionless). Energy: elastic = k|ξ|²/2, no more than (μ|F_n|)²/(2k) (J); power (W) = γ|v_roll|² while the \
+        spring holds, −F_r·v_roll plus the change of the stored energy while it slides (the cap before the step \
+        taken as the cap now).";
     const HISTORY: &'static [History] = &[
         History::new("xi_x", "m", "rolling displacement ξ, x component"),
         History::new("xi_y", "m", "rolling displacement ξ, y component"),
