@@ -116,12 +116,14 @@ fn with_friction_and_rolling_every_family_dissipates_a_non_negative_share() {
     let (e0, e, el, d, unreported) = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", extra));
     assert_eq!(unreported, [false; 4]);
     assert!(d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0 && d[3] == 0.0, "{d:?}");
-    // the balance with friction closes to a few per cent (Mindlin's stiffness 8 G a changes with
-    // the overlap, so its spring's energy k ξ²/2 changes without work; see docs/dem.md)
+    // the balance with friction closes to about 1 % (the friction springs book their stuck
+    // steps exactly, Mindlin's changing stiffness included; a sliding spring's energy under a
+    // changing Coulomb cap is estimated, the previous normal force not being part of the
+    // contact: see docs/dem.md)
     let lost = e0 - e;
     let residual = e0 - e - el - d.iter().sum::<f64>();
     assert!(
-        residual.abs() < 0.05 * lost,
+        residual.abs() < 0.02 * lost,
         "residual {residual:e} J of {lost:e} J lost ({d:?})"
     );
 }

@@ -126,8 +126,10 @@ impl BoundTangential for LinearHistoryBound {
         spring_friction(self.kt, eta, self.mu, c, history)
     }
 
-    /// Elastic ½ k_t |ξ|² (J); power: η_t |v_t|² while the spring holds, −F_t·v_t while it
-    /// slides (W); 0 out of contact.
+    /// Elastic k_t |ξ|²/2, no more than (μ F_n)²/(2 k_t) (J); power (W): η_t |v_t|² while the
+    /// spring holds, −F_t·v_t plus the change of the stored energy while it slides (the cap
+    /// before the step taken as the cap now; see [`dashpot_sdk::physics::SliderStep`]); 0 out of
+    /// contact.
     fn energy(&self, c: &TangentialContact, history: &[f64], force: [f64; 3]) -> Option<Energy> {
         let eta = 2.0 * self.damping * (c.mass * self.kt).sqrt();
         Some(spring_friction_energy(self.kt, eta, self.mu, c, history, force))

@@ -52,7 +52,7 @@
 
 #![warn(missing_docs)]
 
-use dashpot_sdk::physics::{dot, spring_friction, spring_friction_energy};
+use dashpot_sdk::physics::{dot, overlap_before, spring_friction, spring_friction_energy_varying};
 use dashpot_sdk::{
     BoundTangential, Energy, History, LawError, MaterialPair, Range, TangentialBatch, TangentialContact,
     TangentialLaw,
@@ -156,12 +156,23 @@ impl BoundTangential for MindlinBound {
         }
     }
 
-    /// Elastic ½ k_t |ξ|² (J); power: η_t |v_t|² while the spring holds, −F_t·v_t while it
-    /// slides (W); 0 out of contact.
+    /// Elastic k_t |ξ|²/2, no more than (μ F_n)²/(2 k_t) (J); power (W): the dashpot's
+    /// η_t |v_t|² while the spring holds, the slip's −F_t·v_t while it slides, plus the spring
+    /// energy the Coulomb cap truncates (or, rising, stores) and less the energy the growing
+    /// stiffness puts into the spring at fixed ξ (see
+    /// [`dashpot_sdk::physics::SliderStep`]); 0 out of contact.
     fn energy(&self, c: &TangentialContact, history: &[f64], force: [f64; 3]) -> Option<Energy> {
+        let eta = |kt: f64| 2.0 * self.damping * (c.mass * kt).sqrt();
         let kt = self.stiffness(c.radius, c.delta);
-        let eta = 2.0 * self.damping * (c.mass * kt).sqrt();
-        Some(spring_friction_energy(kt, eta, self.mu, c, history, force))
+        let before = self.stiffness(c.radius, overlap_before(c.delta, c.normal, c.velocity, c.dt));
+        Some(spring_friction_energy_varying(
+            [before, kt],
+            [eta(before), eta(kt)],
+            self.mu,
+            c,
+            history,
+            force,
+        ))
     }
 }
 

@@ -1,6 +1,6 @@
 //! Elastic–plastic spring–dashpot (EPSD) rolling resistance of Ai et al. (2011).
 
-use dashpot_sdk::physics::spring_slider_energy;
+use dashpot_sdk::physics::SliderStep;
 use dashpot_sdk::{BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingContact, RollingLaw};
 
 dashpot_sdk::law_params! {
@@ -89,18 +89,23 @@ impl BoundRolling for RollingEpsd {
         f
     }
 
+    /// Elastic k_t |ξ|²/2 (J); power (W): γ |v_roll|² while the spring holds, −F_r·v_roll while
+    /// mobilized, plus the spring energy a falling cap truncates (see [`SliderStep`]; the cap
+    /// before the step is taken as the cap now).
     fn energy(&self, c: &RollingContact, h: &[f64], f: [f64; 3]) -> Option<Energy> {
         let xi = [h[0], h[1], h[2]];
         let cap = self.mu_r * c.normal_force.abs();
-        let mobilized = cap > 0.0 && self.kt * dot(xi, xi).sqrt() >= cap * (1.0 - 1e-12);
-        Some(spring_slider_energy(
-            self.kt,
-            self.gamma(c.mass),
-            if mobilized { 0.0 } else { f64::INFINITY },
-            xi,
-            c.velocity,
-            f,
-        ))
+        let mobilized = self.kt * dot(xi, xi).sqrt() >= cap * (1.0 - 1e-12);
+        let step = SliderStep {
+            k: self.kt,
+            k_before: self.kt,
+            eta: self.gamma(c.mass),
+            eta_before: 0.0,
+            cap,
+            cap_before: cap,
+            dt: c.dt,
+        };
+        Some(step.energy(mobilized, xi, c.velocity, f))
     }
 }
 

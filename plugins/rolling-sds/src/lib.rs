@@ -1,5 +1,6 @@
 //! Spring–dashpot–slider rolling resistance with the semantics of LAMMPS `rolling sds`.
 
+use dashpot_sdk::physics::SliderStep;
 use dashpot_sdk::{
     BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingBatch, RollingContact, RollingLaw,
 };
@@ -38,8 +39,9 @@ impl RollingLaw for RollingSds {
         F_r = −k ξ − γ v_roll (N); (4) if |F_r| > μ|F_n|: when ξ ≠ 0, ξ = −(μ|F_n| F_r/|F_r| + γ v_roll)/k and \
         F_r is scaled to length μ|F_n|; when ξ = 0, F_r = 0. The torque on the particle is R_eff n̂ × F_r (N·m), \
         on the partner its opposite; F_r itself is not applied to the centres. Parameters: k (N/m), gamma \
-        (N·s/m), mu (dimensionless). Energy: elastic = k|ξ|²/2 (J); power (W) = γ|v_roll|² while the spring \
-        holds, −F_r·v_roll (≥ 0, clamped) while it slides.";
+        (N·s/m), mu (dimensionless). Energy: elastic = k|ξ|²/2, no more than (μ|F_n|)²/(2k) (J); power (W) = γ|v_roll|² while the \
+        spring holds, −F_r·v_roll plus the change of the stored energy while it slides (the cap before the step \
+        taken as the cap now).";
     const HISTORY: &'static [History] = &[
         History::new("xi_x", "m", "rolling displacement ξ, x component"),
         History::new("xi_y", "m", "rolling displacement ξ, y component"),
@@ -107,15 +109,22 @@ impl BoundRolling for RollingSds {
         lanes(self, b)
     }
 
+    /// Elastic k |ξ|²/2, no more than (μ F_n)²/(2k) (J); power (W): γ |v_roll|² while the
+    /// spring holds, −F_r·v_roll while it slides, plus the spring energy a falling cap truncates
+    /// within the step (see [`SliderStep`]; the cap before the step is taken as the cap now, the
+    /// rolling contact carrying no normal rate).
     fn energy(&self, c: &RollingContact, h: &[f64], f: [f64; 3]) -> Option<Energy> {
-        Some(dashpot_sdk::physics::spring_slider_energy(
-            self.k,
-            self.gamma,
-            self.mu * c.normal_force.abs(),
-            [h[0], h[1], h[2]],
-            c.velocity,
-            f,
-        ))
+        let cap = self.mu * c.normal_force.abs();
+        let step = SliderStep {
+            k: self.k,
+            k_before: self.k,
+            eta: self.gamma,
+            eta_before: self.gamma,
+            cap,
+            cap_before: cap,
+            dt: c.dt,
+        };
+        Some(step.energy(SliderStep::at_cap(f, cap), [h[0], h[1], h[2]], c.velocity, f))
     }
 }
 

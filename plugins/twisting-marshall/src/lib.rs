@@ -34,7 +34,8 @@ impl TwistingLaw for TwistingMarshall {
         coefficient). Each call, with ω = (ω_i − ω_j)·n̂ (rad/s) and the step dt (s): θ += ω dt; \
         M = −k θ − γ ω (N·m, about n̂, on the particle); if |M| > M_c: θ = (M_c sgn ω − γ ω)/k and \
         M = −M_c sgn ω. For δ ≤ 0 (a = 0) the torque is 0 and θ is reset. History: the twist angle θ (rad). \
-        Energy: elastic = k θ²/2 (J); power = γ ω² while the spring holds, |M ω| while it slides (W).";
+        Energy: elastic = k θ²/2, no more than M_c²/(2k) (J); power = γ ω² while the spring holds, |M ω| while \
+        it slides (W; k and M_c taken as unchanged over the step, the twisting contact carrying no normal rate).";
     const HISTORY: &'static [History] = &[History::new("theta", "rad", "twist angle θ of the spring")];
 
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
@@ -68,7 +69,7 @@ impl BoundTwisting for TwistingMarshall {
         if a == 0.0 {
             return Some(Energy::default());
         }
-        Some(self.spring(c, a).energy(c.rate, h[0], torque))
+        Some(self.spring(c, a).step_energy(c.rate, c.dt, h[0], torque))
     }
 }
 
