@@ -6,6 +6,50 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::{Mutex, OnceLock};
 
+/// A batch of contacts without history (no slots) whose forces go to `force`.
+pub fn memoryless_batch<'a>(
+    delta: &'a [f64],
+    rate: &'a [f64],
+    mass: &'a [f64],
+    radius: &'a [f64],
+    force: &'a mut [f64],
+) -> dashpot_sdk::NormalBatch<'a> {
+    dashpot_sdk::NormalBatch {
+        delta,
+        rate,
+        mass,
+        radius,
+        slots: 0,
+        history: &mut [],
+        force,
+    }
+}
+
+/// A restitution table's r(v) is within 1e-6 of the restitution the collision driver realizes
+/// for contact law `law` (effective mass `mass`, kg; contact ending when the force returns to 0)
+/// at every speed of `speeds` (m/s).
+pub fn within_1e6_of_the_driver(
+    table: &impl dashpot_sdk::BoundRestitution,
+    law: &impl dashpot::collide::ContactForce,
+    mass: f64,
+    speeds: &[f64],
+    opt: &dashpot::collide::Options,
+) {
+    for &v in speeds {
+        let exact = dashpot::collide::collide(law, mass, v, dashpot_sdk::EndCriterion::Force, opt)
+            .unwrap()
+            .restitution;
+        let r = table.restitution(v);
+        assert!((r - exact).abs() <= 1e-6, "v {v}: {r} vs {exact}");
+    }
+}
+
+/// `got` is within the relative tolerance `tol` of `want` (|got/want − 1| < tol); `what` names
+/// the quantity in the failure message.
+pub fn assert_rel(got: f64, want: f64, tol: f64, what: &str) {
+    assert!((got / want - 1.0).abs() < tol, "{what} = {got} vs {want}");
+}
+
 /// The workspace root.
 pub fn workspace_root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -241,6 +285,16 @@ impl BindPair for dashpot_sdk::abi::ContactLawHandle {
     fn bind_pair(&self, pair: &dashpot_sdk::Pair) -> Result<PluginPair, dashpot_sdk::LawError> {
         dashpot::collide::PairLaw::bind(self, pair, 0.3)
     }
+}
+
+/// Contact law `name` of `reg` with `params`, bound to `pair` (Poisson's ratio 0.3).
+pub fn pair_law(
+    reg: &Registry,
+    name: &str,
+    params: &[dashpot_sdk::ParamValue],
+    pair: &dashpot_sdk::Pair,
+) -> PluginPair {
+    reg.contact(name, params).unwrap().bind_pair(pair).unwrap()
 }
 
 /// A release of dashpot-sdk as this repository's history holds it: the commit whose tree is

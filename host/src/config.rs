@@ -31,19 +31,9 @@ pub trait Partner: std::fmt::Debug + Send + Sync {
     fn describe(&self, particle: &Particle) -> String;
 }
 
-/// A second sphere; fields left out are those of the first particle.
-#[derive(Debug, Clone, Default, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Sphere {
-    /// Diameter (m).
-    pub diameter: Option<f64>,
-    /// Density (kg/m³).
-    pub density: Option<f64>,
-    /// Young's modulus (Pa).
-    pub young: Option<f64>,
-    /// Poisson's ratio.
-    pub poisson: Option<f64>,
-}
+/// A second sphere: particle properties as a file gives them, those left out the first
+/// particle's.
+pub type Sphere = ParticleConfig;
 
 impl Sphere {
     fn resolve(&self, p: &Particle) -> Particle {
@@ -203,25 +193,25 @@ pub fn from_toml<T: serde::de::DeserializeOwned>(text: &str) -> Result<T, String
         let path = e.path().to_string();
         let inner = e.into_inner();
         let what = explain(&path, inner.message());
-        let at = inner
-            .span()
-            .map(|s| {
-                let (line, col) = line_col(text, s.start);
-                format!(" (line {line}, column {col})")
-            })
+        let at = place(text, inner.span())
+            .map(|p| format!(" ({p})"))
             .unwrap_or_default();
         format!("{what}{at}{}", quote(&inner))
     })
 }
 
+/// "line L, column C" of the start of `span` in `text`, if the parser gave one.
+fn place(text: &str, span: Option<std::ops::Range<usize>>) -> Option<String> {
+    span.map(|s| {
+        let (line, col) = line_col(text, s.start);
+        format!("line {line}, column {col}")
+    })
+}
+
 /// A document that is not TOML at all: where, and the parser's words.
 fn syntax_error(text: &str, e: &toml::de::Error) -> String {
-    let at = e
-        .span()
-        .map(|s| {
-            let (line, col) = line_col(text, s.start);
-            format!(" at line {line}, column {col}")
-        })
+    let at = place(text, e.span())
+        .map(|p| format!(" at {p}"))
         .unwrap_or_default();
     format!("not valid TOML{at}: {}{}", e.message().trim(), quote(e))
 }

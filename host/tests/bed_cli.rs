@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{dashpot, fails, ok_json, sh};
+use common::{assert_measured_with_stderr, dashpot, each_fails, fails, ok_json, sh, succeeds};
 use serde_json::Value;
 
 #[test]
@@ -10,8 +10,7 @@ fn bed_json_reports_the_observables_and_writes_snapshot_and_trace() {
     let dir = std::env::temp_dir().join(format!("dashpot-bed-cli-{}", std::process::id()));
     let snap = dir.join("snap.png");
     let trace = dir.join("trace.csv");
-    let o = dashpot(&sh(&format!("bed --restitution mcnamara-falcon --layers 1 --freq 25 --transient 5 --cycles 10 --json --snapshot {} --trace {}", snap.to_str().unwrap(), trace.to_str().unwrap())));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = succeeds(&sh(&format!("bed --restitution mcnamara-falcon --layers 1 --freq 25 --transient 5 --cycles 10 --json --snapshot {} --trace {}", snap.to_str().unwrap(), trace.to_str().unwrap())));
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     for k in [
         "pressure",
@@ -48,8 +47,7 @@ fn bed_json_reports_the_observables_and_writes_snapshot_and_trace() {
 #[test]
 fn scaling_fits_the_classical_exponents_without_gravity_and_constant_r() {
     let dir = std::env::temp_dir().join(format!("dashpot-scaling-cli-{}", std::process::id()));
-    let o = dashpot(&sh(&format!("scaling --restitution constant --set r=0.95 --tc 1e-5 --gravity 0 --layers 0.5 --freqs 10:30:3 --transient 5 --cycles 10 --json --out {}", dir.to_str().unwrap())));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = succeeds(&sh(&format!("scaling --restitution constant --set r=0.95 --tc 1e-5 --gravity 0 --layers 0.5 --freqs 10:30:3 --transient 5 --cycles 10 --json --out {}", dir.to_str().unwrap())));
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     // with g = 0 and constant r, V is the only time scale: P ∝ V², Nc ∝ V, ΔI ∝ V
     let th = |k: &str| v["exponents"][0][k]["theta"].as_f64().unwrap();
@@ -77,51 +75,45 @@ fn scaling_fits_the_classical_exponents_without_gravity_and_constant_r() {
 
 #[test]
 fn bad_bed_input_is_a_clear_error() {
-    let base = ["bed", "--restitution", "mcnamara-falcon"];
-    let with = |extra: &[&'static str]| -> Vec<&'static str> {
-        base.iter().copied().chain(extra.iter().copied()).collect()
-    };
-    fails(
-        &with(&["--layers", "-1", "--freq", "20"]),
-        &["layers n = -1", "n must be > 0"],
+    each_fails(
+        "bed --restitution mcnamara-falcon",
+        &[
+            ("--layers -1 --freq 20", &["layers n = -1", "n must be > 0"]),
+            ("--layers 1 --freq 0", &["f = 0 Hz", "f must be > 0"]),
+            ("--layers 1 --freq -3", &["f = -3 Hz"]),
+            (
+                "--layers 1 --freq 20 --width 0.004",
+                &["box is too small", "width L = 0.004"],
+            ),
+            ("--layers 40 --freq 20 --headroom -0.07", &["box is too small"]),
+            ("--layers 1 --freq 20 --tangential 2", &["r_t = 2", "[-1, 1]"]),
+            ("--layers 1 --freq 20 --cycles 0", &["--cycles = 0"]),
+        ],
     );
-    fails(
-        &with(&["--layers", "1", "--freq", "0"]),
-        &["f = 0 Hz", "f must be > 0"],
-    );
-    fails(&with(&["--layers", "1", "--freq", "-3"]), &["f = -3 Hz"]);
-    fails(
-        &with(&sh("--layers 1 --freq 20 --width 0.004")),
-        &["box is too small", "width L = 0.004"],
-    );
-    fails(
-        &with(&sh("--layers 40 --freq 20 --headroom -0.07")),
-        &["box is too small"],
-    );
-    fails(
-        &with(&sh("--layers 1 --freq 20 --tangential 2")),
-        &["r_t = 2", "[-1, 1]"],
-    );
-    fails(&with(&sh("--layers 1 --freq 20 --cycles 0")), &["--cycles = 0"]);
-    fails(
-        &sh("bed --restitution nope --layers 1 --freq 20"),
-        &["nope", "mcnamara-falcon"],
-    );
-    fails(
-        &sh("bed --restitution hsd --layers 1 --freq 20"),
-        &["restitution law is needed"],
-    );
-    fails(
-        &sh("bed --restitution constant --set r=1.5 --layers 1 --freq 20"),
-        &["1.5"],
-    );
-    fails(
-        &sh("scaling --restitution constant --layers 1 --freqs 10:30"),
-        &["FROM:TO:COUNT"],
-    );
-    fails(
-        &sh("scaling --restitution constant --layers 1,-2 --freqs 10:30:3"),
-        &["layers n = -2"],
+    each_fails(
+        "",
+        &[
+            (
+                "bed --restitution nope --layers 1 --freq 20",
+                &["nope", "mcnamara-falcon"],
+            ),
+            (
+                "bed --restitution hsd --layers 1 --freq 20",
+                &["restitution law is needed"],
+            ),
+            (
+                "bed --restitution constant --set r=1.5 --layers 1 --freq 20",
+                &["1.5"],
+            ),
+            (
+                "scaling --restitution constant --layers 1 --freqs 10:30",
+                &["FROM:TO:COUNT"],
+            ),
+            (
+                "scaling --restitution constant --layers 1,-2 --freqs 10:30:3",
+                &["layers n = -2"],
+            ),
+        ],
     );
 }
 
@@ -245,16 +237,7 @@ fn seeds_run_in_parallel_and_report_standard_errors() {
         "bed --restitution mcnamara-falcon --layers 0.5 --freq 25 --transient 2 --cycles 10 --seeds 3 --json",
     ));
     assert_eq!(v["seeds"], 3);
-    for k in [
-        "pressure",
-        "lid_collision_rate",
-        "mean_impulse",
-        "temperature",
-        "piston_pressure",
-    ] {
-        let (x, e) = (v[k].as_f64().unwrap(), v[format!("{k}_stderr")].as_f64().unwrap());
-        assert!(x > 0.0 && e > 0.0 && e < x, "{k} = {x} ± {e}");
-    }
+    assert_measured_with_stderr(&v);
     fails(
         &sh("bed --restitution mcnamara-falcon --layers 1 --freq 20 --seeds 0"),
         &["--seeds = 0"],
@@ -297,8 +280,7 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
     }
     // in a grid's CSV: an empty cell, not a 0
     let out = std::env::temp_dir().join(format!("dashpot-bed-nolid-{}", std::process::id()));
-    let o = dashpot(&sh(&format!("scaling --layers 0.5 --freqs 10:12:2 --headroom 0.5 --transient 2 --cycles 3 --restitution constant --set r=0.9 --out {}", out.to_str().unwrap())));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&sh(&format!("scaling --layers 0.5 --freqs 10:12:2 --headroom 0.5 --transient 2 --cycles 3 --restitution constant --set r=0.9 --out {}", out.to_str().unwrap())));
     let csv = std::fs::read_to_string(out.join("grid.csv")).unwrap();
     let mut lines = csv.lines().filter(|l| !l.starts_with('#'));
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();

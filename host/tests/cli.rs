@@ -2,7 +2,7 @@
 
 mod common;
 
-use common::{dashpot, fails, lib, ok_json, plugin_dir, sh, SEED_AND_02_LAWS};
+use common::{dashpot, fails, lib, ok_json, plugin_dir, sh, succeeds, written_by, SEED_AND_02_LAWS};
 use serde_json::Value;
 use std::process::Command;
 
@@ -221,8 +221,7 @@ fn plugin_path_environment_variable() {
 #[test]
 fn reproduce_writes_the_report() {
     let out = std::env::temp_dir().join(format!("dashpot-repro-{}", std::process::id()));
-    let o = dashpot(&["reproduce", "--quick", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["reproduce", "--quick", "--out", out.to_str().unwrap()]);
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("0.7031"), "r(1 m/s) in the report");
     assert!(md.contains("## McNamara & Falcon (2005): the vibrated bed"));
@@ -266,13 +265,7 @@ fn collide_reports_the_observables_in_json() {
 
 #[test]
 fn collide_writes_a_trajectory() {
-    let f = std::env::temp_dir().join(format!("dashpot-traj-{}.csv", std::process::id()));
-    let o = dashpot(&sh(&format!(
-        "collide --law lsd --v0 0.5 --trajectory {}",
-        f.to_str().unwrap()
-    )));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let csv = std::fs::read_to_string(&f).unwrap();
+    let (f, csv) = written_by("collide --law lsd --v0 0.5 --trajectory", "traj.csv");
     let mut lines = csv.lines();
     // provenance first, as comment lines
     assert!(lines.next().unwrap().starts_with("# law: lsd (contact): eps = "));
@@ -320,13 +313,10 @@ fn collide_bad_input() {
 
 #[test]
 fn sweep_and_calibrate() {
-    let f = std::env::temp_dir().join(format!("dashpot-sweep-{}.csv", std::process::id()));
-    let o = dashpot(&sh(&format!(
-        "sweep --law hsd --v0 0.01:1:3 --vary eps=0.2,0.8 --out {}",
-        f.to_str().unwrap()
-    )));
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let text = std::fs::read_to_string(&f).unwrap();
+    let (f, text) = written_by(
+        "sweep --law hsd --v0 0.01:1:3 --vary eps=0.2,0.8 --out",
+        "sweep.csv",
+    );
     // provenance first, as comment lines: the law with every parameter, the plugin file
     let (comments, rows): (Vec<&str>, Vec<&str>) = text.lines().partition(|l| l.starts_with('#'));
     assert!(
@@ -372,8 +362,7 @@ fn sweep_and_calibrate() {
 #[test]
 fn figures_collide_reproduces_antypov_elliott() {
     let out = std::env::temp_dir().join(format!("dashpot-figc-{}", std::process::id()));
-    let o = dashpot(&["figures", "collide", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["figures", "collide", "--out", out.to_str().unwrap()]);
     for f in [
         "fig1_phase_trajectories",
         "fig2_collision_time",

@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{dashpot, fails, ok_json};
+use common::{assert_measured_with_stderr, dashpot, each_fails, fails, ok_json, sh};
 use serde_json::Value;
 
 /// A short DEM bed run (JSON): n = 0.5, f = 25 Hz, 1 + 4 periods unless `extra` says otherwise.
@@ -37,17 +37,7 @@ fn the_dem_bed_reports_the_event_beds_keys_and_obeys_the_momentum_balance() {
     assert_eq!(v["engine"], "dem");
     assert_eq!(v["law"]["name"], "hsd");
     assert_eq!(v["law"]["params"]["eps"], 0.9);
-    for k in [
-        "pressure",
-        "lid_collision_rate",
-        "mean_impulse",
-        "temperature",
-        "piston_pressure",
-    ] {
-        assert!(f(&v, k) > 0.0, "{k}");
-        let e = f(&v, &format!("{k}_stderr"));
-        assert!(e > 0.0 && e < f(&v, k), "{k}_stderr = {e}");
-    }
+    assert_measured_with_stderr(&v);
     // P = Nc ΔI / L: the pressure is the rate of episodes times the impulse per episode
     let (p, nc, di) = (
         f(&v, "pressure"),
@@ -102,16 +92,7 @@ fn young_sets_the_step_by_hertz_scaling() {
     assert!((ratio - 10f64.powf(0.4)).abs() < 1e-5, "ratio {ratio}");
     // steel by default
     let steel = run("2e11");
-    let (d, _) = dem(&[
-        "--law",
-        "hsd",
-        "--set",
-        "eps=0.9",
-        "--transient",
-        "0",
-        "--cycles",
-        "0.02",
-    ]);
+    let (d, _) = dem(&sh("--law hsd --set eps=0.9 --transient 0 --cycles 0.02"));
     assert_eq!(f(&d, "young"), 2e11);
     assert_eq!(f(&d, "dt"), f(&steel, "dt"));
 }
@@ -120,28 +101,8 @@ fn young_sets_the_step_by_hertz_scaling() {
 fn young_and_poisson_reach_a_contact_laws_restitution_table() {
     // the event-driven bed's from:LAW table for E = 1e8 Pa, ν = 0.25 is the collision driver's
     // restitution for those disks (identical spheres, and a sphere on a wall)
-    let v = ok_json(&[
-        "bed",
-        "--restitution",
-        "from:kuwabara-kono",
-        "--set",
-        "A=2e-6",
-        "--young",
-        "1e8",
-        "--poisson",
-        "0.25",
-        "--layers",
-        "0.5",
-        "--freq",
-        "25",
-        "--transient",
-        "1",
-        "--cycles",
-        "2",
-        "--tc",
-        "1e-5",
-        "--json",
-    ]);
+    let kk = "bed --restitution from:kuwabara-kono --set A=2e-6 --layers 0.5 --freq 25 --transient 1 --cycles 2 --tc 1e-5 --json";
+    let v = ok_json(&sh(&format!("{kk} --young 1e8 --poisson 0.25")));
     assert_eq!(v["engine"], "event");
     assert_eq!(f(&v, "young"), 1e8);
     assert_eq!(f(&v, "poisson"), 0.25);
@@ -154,26 +115,8 @@ fn young_and_poisson_reach_a_contact_laws_restitution_table() {
         .clone();
     let density = format!("{}", 3.27e-5 / (std::f64::consts::PI / 6.0 * 8e-9));
     for (wall, key) in [(false, "disk_disk"), (true, "disk_wall")] {
-        let mut args = vec![
-            "collide",
-            "--law",
-            "kuwabara-kono",
-            "--set",
-            "A=2e-6",
-            "--diameter",
-            "0.002",
-            "--density",
-            &density,
-            "--young",
-            "1e8",
-            "--poisson",
-            "0.25",
-            "--v0",
-            "1",
-            "--end",
-            "force",
-            "--json",
-        ];
+        let line = format!("collide --law kuwabara-kono --set A=2e-6 --diameter 0.002 --density {density} --young 1e8 --poisson 0.25 --v0 1 --end force --json");
+        let mut args = sh(&line);
         if wall {
             args.push("--wall");
         }
@@ -183,24 +126,7 @@ fn young_and_poisson_reach_a_contact_laws_restitution_table() {
     }
     // and steel's table differs: a stiffer disk dissipates more under Kuwabara–Kono (1 − ε grows
     // as (E_eff √R / m)^{2/5} v^{1/5}), so steel's ε(1 m/s) is the lower one
-    let s = ok_json(&[
-        "bed",
-        "--restitution",
-        "from:kuwabara-kono",
-        "--set",
-        "A=2e-6",
-        "--layers",
-        "0.5",
-        "--freq",
-        "25",
-        "--transient",
-        "1",
-        "--cycles",
-        "2",
-        "--tc",
-        "1e-5",
-        "--json",
-    ]);
+    let s = ok_json(&sh(kk));
     let steel = s["restitution_used"]
         .as_array()
         .unwrap()
@@ -217,28 +143,9 @@ fn young_and_poisson_reach_a_contact_laws_restitution_table() {
 fn scaling_on_the_dem_engine_runs_the_beds_runs() {
     let out = std::env::temp_dir().join(format!("dashpot-dem-scaling-{}", std::process::id()));
     let out_s = out.to_string_lossy().to_string();
-    let rows = ok_json(&[
-        "scaling",
-        "--engine",
-        "dem",
-        "--law",
-        "hsd",
-        "--set",
-        "eps=0.9",
-        "--young",
-        "1e8",
-        "--layers",
-        "0.5",
-        "--freqs",
-        "20:30:2",
-        "--transient",
-        "1",
-        "--cycles",
-        "2",
-        "--out",
-        &out_s,
-        "--json",
-    ]);
+    let rows = ok_json(&sh(&format!(
+        "scaling --engine dem --law hsd --set eps=0.9 --young 1e8 --layers 0.5 --freqs 20:30:2 --transient 1 --cycles 2 --out {out_s} --json"
+    )));
     assert_eq!(rows["exponents"].as_array().unwrap().len(), 1);
     assert!(rows["exponents"][0]["pressure"]["theta"]
         .as_f64()
@@ -249,98 +156,66 @@ fn scaling_on_the_dem_engine_runs_the_beds_runs() {
     assert_eq!(lines.len(), 3);
     assert!(lines[0].contains("dt_s") && lines[0].contains("pressure_stderr"));
     // the grid's run at f = 30 Hz is the bed's run at f = 30 Hz (same seed, same engine)
-    let (v, _) = dem(&[
-        "--law",
-        "hsd",
-        "--set",
-        "eps=0.9",
-        "--young",
-        "1e8",
-        "--freq",
-        "30",
-        "--transient",
-        "1",
-        "--cycles",
-        "2",
-    ]);
+    let (v, _) = dem(&sh(
+        "--law hsd --set eps=0.9 --young 1e8 --freq 30 --transient 1 --cycles 2",
+    ));
     let p: f64 = lines[2].split(',').nth(3).unwrap().parse().unwrap();
     assert_eq!(p, f(&v, "pressure"));
 }
 
+/// What both `bed --engine dem` and `dem --bed` (after `--law hsd`) refuse, with what the error
+/// must name.
+const DEM_BED_REFUSES: &[(&str, &[&str])] = &[
+    ("--young -5", &["--young = -5", "> 0"]),
+    ("--poisson 0.7", &["--poisson = 0.7", "(-1, 0.5)"]),
+    ("--set eps=1.5", &["eps", "1.5", "(0, 1]"]),
+    ("--set eps=abc", &["abc"]),
+    ("--tset mu=0.3", &["--tset", "--tangential"]),
+    ("--tangential 0.5", &["--tangential 0.5", "mindlin"]),
+    ("--transient -1", &["--transient = -1", ">= 0"]),
+    ("--dt 0", &["--dt = 0"]),
+    (
+        "--dt 1e-3",
+        &["dt = 1e-3 s is out of range", "steps", "dt must be <="],
+    ),
+    ("--tc 1e-5", &["--tc"]),
+];
+
 #[test]
 fn each_engines_options_are_refused_by_the_other() {
-    let base = ["bed", "--layers", "0.5", "--freq", "20", "--cycles", "1"];
-    let with = |extra: &[&'static str]| -> Vec<&'static str> {
-        let mut a: Vec<&'static str> = base.to_vec();
-        a.extend_from_slice(extra);
-        a
-    };
-    fails(&with(&["--engine", "dem"]), &["--law"]);
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--restitution", "constant"]),
-        &["--restitution constant"],
+    each_fails(
+        "bed --layers 0.5 --freq 20 --cycles 1",
+        &[
+            ("--engine dem", &["--law"]),
+            ("--engine dem --law nosuch", &["nosuch"]),
+            (
+                "--engine dem --law hsd --restitution constant",
+                &["--restitution constant"],
+            ),
+            ("--law hsd --restitution constant", &["--law hsd", "--engine dem"]),
+            ("--restitution constant --dt 1e-6", &["--dt"]),
+            ("--restitution constant --young 1e8", &["from:LAW", "constant"]),
+            (
+                "--restitution constant --tangential mindlin",
+                &["'mindlin'", "r_t"],
+            ),
+            // steps that cannot resolve a collision: the explicit step is unstable below 2 per
+            // collision
+            (
+                "--engine dem --law hsd --steps-per-collision 1.5",
+                &["--steps-per-collision = 1.5", ">= 2"],
+            ),
+        ],
     );
-    fails(
-        &with(&["--law", "hsd", "--restitution", "constant"]),
-        &["--law hsd", "--engine dem"],
+    each_fails(
+        "bed --layers 0.5 --freq 20 --cycles 1 --engine dem --law hsd",
+        DEM_BED_REFUSES,
     );
-    fails(&with(&["--restitution", "constant", "--dt", "1e-6"]), &["--dt"]);
-    fails(
-        &with(&["--restitution", "constant", "--young", "1e8"]),
-        &["from:LAW", "constant"],
-    );
-    fails(
-        &with(&["--restitution", "constant", "--tangential", "mindlin"]),
-        &["'mindlin'", "r_t"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--tangential", "0.5"]),
-        &["--tangential 0.5", "mindlin"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--tc", "1e-5"]),
-        &["--tc"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--young", "-5"]),
-        &["--young = -5", "> 0"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--poisson", "0.7"]),
-        &["--poisson = 0.7", "(-1, 0.5)"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--set", "eps=1.5"]),
-        &["eps", "1.5", "(0, 1]"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--tset", "mu=0.3"]),
-        &["--tset", "--tangential"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--dt", "0"]),
-        &["--dt = 0"],
-    );
-    // steps that cannot resolve a collision: the explicit step is unstable below 2 per collision
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--steps-per-collision", "1.5"]),
-        &["--steps-per-collision = 1.5", ">= 2"],
-    );
-    fails(
-        &with(&["--engine", "dem", "--law", "hsd", "--dt", "1e-3"]),
-        &["dt = 1e-3 s is out of range", "steps", "dt must be <="],
-    );
-    fails(&with(&["--engine", "dem", "--law", "nosuch"]), &["nosuch"]);
     // a measuring window shorter than a step would report 0/0 rates
     fails(
-        &[
-            "bed", "--engine", "dem", "--law", "hsd", "--layers", "0.5", "--freq", "20", "--cycles", "1e-7",
-        ],
+        &sh("bed --engine dem --law hsd --layers 0.5 --freq 20 --cycles 1e-7"),
         &["cycles = 0.0000001", "at least one step"],
     );
-    let o = dashpot(&with(&["--engine", "dem", "--law", "hsd", "--set", "eps=abc"]));
-    assert!(!o.status.success());
-    assert!(String::from_utf8_lossy(&o.stderr).contains("abc"));
 }
 
 /// `dem --bed` is `bed --engine dem` under another name: the same checks refuse the same
@@ -348,19 +223,8 @@ fn each_engines_options_are_refused_by_the_other() {
 /// Poisson's ratio through to the engine).
 #[test]
 fn dem_bed_takes_the_checks_of_bed_engine_dem() {
-    let base = [
-        "dem", "--bed", "--layers", "0.5", "--freq", "20", "--cycles", "1", "--law", "hsd",
-    ];
-    let with = |extra: &[&'static str]| -> Vec<&'static str> {
-        let mut a: Vec<&'static str> = base.to_vec();
-        a.extend_from_slice(extra);
-        a
-    };
-    fails(&with(&["--young", "-5"]), &["--young = -5", "> 0"]);
-    fails(&with(&["--poisson", "0.7"]), &["--poisson = 0.7", "(-1, 0.5)"]);
-    fails(&with(&["--dt", "0"]), &["--dt = 0"]);
-    fails(&with(&["--set", "eps=1.5"]), &["eps", "1.5", "(0, 1]"]);
-    fails(&with(&["--tset", "mu=0.3"]), &["--tset", "--tangential"]);
-    fails(&with(&["--transient", "-1"]), &["--transient = -1", ">= 0"]);
-    fails(&with(&["--tangential", "0.5"]), &["--tangential 0.5", "mindlin"]);
+    each_fails(
+        "dem --bed --layers 0.5 --freq 20 --cycles 1 --law hsd",
+        DEM_BED_REFUSES,
+    );
 }

@@ -2,15 +2,20 @@
 
 mod common;
 
-use common::{fails, ok_json};
-use std::path::PathBuf;
+use common::{fails, ok_json, scene};
+use std::path::Path;
 
-fn scene(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("dashpot-dem-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
+/// The arguments of `dashpot dem --scene SCENE --out OUT` followed by `extra`.
+fn scene_to<'a>(scene: &'a Path, out: &'a Path, extra: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        "dem",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    args
 }
 
 const FREE_FALL: &str = r#"
@@ -77,14 +82,7 @@ fn frames_of(k: usize, duration: &str) {
             .replace("duration = 0.01", &format!("duration = {duration}")),
     );
     let out = p.with_extension("out");
-    let v = ok_json(&[
-        "dem",
-        "--scene",
-        p.to_str().unwrap(),
-        "--json",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let v = ok_json(&scene_to(&p, &out, &["--json"]));
     let xyz = std::fs::read_to_string(out.join("trajectory.xyz")).unwrap();
     let frames = xyz.lines().filter(|l| l.starts_with("Lattice=")).count();
     assert_eq!(frames, 5, "duration {duration}");
@@ -111,15 +109,7 @@ fn png_frames_are_drawn_beside_the_trajectory() {
         &FREE_FALL.replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 2"),
     );
     let out = p.with_extension("pngout");
-    ok_json(&[
-        "dem",
-        "--scene",
-        p.to_str().unwrap(),
-        "--json",
-        "--out",
-        out.to_str().unwrap(),
-        "--png",
-    ]);
+    ok_json(&scene_to(&p, &out, &["--json", "--png"]));
     // one picture per trajectory frame (the start and 2 snapshots), each a PNG
     for k in 0..3 {
         let f = out.join(format!("frame_{k:04}.png"));
@@ -196,16 +186,7 @@ fn bad_scenes_name_the_key_and_the_value() {
     // and a run that fails after its first frames leaves no trajectory behind, not half of one
     let out = p.with_extension("out");
     let _ = std::fs::remove_dir_all(&out);
-    fails(
-        &[
-            "dem",
-            "--scene",
-            p.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ],
-        &["overlaps wall 0"],
-    );
+    fails(&scene_to(&p, &out, &[]), &["overlaps wall 0"]);
     let left: Vec<_> = std::fs::read_dir(&out)
         .unwrap()
         .map(|f| f.unwrap().file_name())

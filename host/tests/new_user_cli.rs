@@ -5,16 +5,8 @@
 
 mod common;
 
-use common::{dashpot, fails, ok_json, plugin_dir, sh};
+use common::{dashpot, fails, ok_json, plugin_dir, scene, sh, succeeds};
 use std::path::{Path, PathBuf};
-
-fn scene(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("dashpot-new-user-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
-}
 
 /// A 3D scene of 2 mm steel-like spheres over a floor at z = 0, with `particles` appended.
 fn spheres(top: &str, particles: &str) -> String {
@@ -56,6 +48,24 @@ fn error_of(args: &[&str]) -> (String, String) {
     (err, first)
 }
 
+/// The error of `dem --scene` on the scene `text` (written as `name`): its stderr and its first
+/// line, which names every one of `needles`.
+fn refused_scene(name: &str, text: &str, needles: &[&str]) -> (String, String) {
+    let p = scene(name, text);
+    let (err, first) = error_of(&["dem", "--scene", p.to_str().unwrap()]);
+    for needle in needles {
+        assert!(first.contains(needle), "'{needle}' not on the first line: {err}");
+    }
+    (err, first)
+}
+
+/// [`refused_scene`] for a placement: the message says nothing of the time step.
+fn refused_placement(name: &str, text: &str, needles: &[&str]) -> (String, String) {
+    let (err, first) = refused_scene(name, text, needles);
+    says_nothing_of_the_step(&err);
+    (err, first)
+}
+
 /// No word of the time step in a message about the placement.
 fn says_nothing_of_the_step(err: &str) {
     for w in ["time step", "dt", "step"] {
@@ -70,18 +80,17 @@ fn two_spheres_placed_overlapping_are_refused_for_the_placement_not_the_step() {
         "",
         &(particle([0.0, 0.0, 0.01], 0.002) + &particle([0.0001, 0.0, 0.01], 0.002)),
     );
-    let p = scene("overlap.toml", &text);
-    let (err, first) = error_of(&["dem", "--scene", p.to_str().unwrap()]);
-    for needle in [
-        "1 pair(s) of particles overlap at the start",
-        "1.9000e-3 m",
-        "particle 0 at [0.0, 0.0, 0.01] m",
-        "particle 1 at [0.0001, 0.0, 0.01] m",
-        "allow_initial_overlap = true",
-    ] {
-        assert!(first.contains(needle), "'{needle}' not on the first line: {err}");
-    }
-    says_nothing_of_the_step(&err);
+    let (err, first) = refused_placement(
+        "overlap.toml",
+        &text,
+        &[
+            "1 pair(s) of particles overlap at the start",
+            "1.9000e-3 m",
+            "particle 0 at [0.0, 0.0, 0.01] m",
+            "particle 1 at [0.0001, 0.0, 0.01] m",
+            "allow_initial_overlap = true",
+        ],
+    );
     // shrinking dt, as the old message sent users to do, changes nothing: the same message
     let p = scene(
         "overlap-again.toml",
@@ -113,29 +122,24 @@ fn two_spheres_placed_overlapping_are_refused_for_the_placement_not_the_step() {
 #[test]
 fn a_sphere_placed_inside_a_wall_is_refused_naming_the_wall() {
     // a 2 mm sphere with its centre 0.5 mm below the floor: overlap r + 0.5 mm = 1.5 mm
-    let p = scene(
+    refused_placement(
         "in-wall.toml",
         &spheres(
             "",
             &(particle([0.0, 0.0, 0.01], 0.002) + &particle([0.05, 0.0, -0.0005], 0.002)),
         ),
+        &[
+            "1 particle(s) overlap a wall at the start",
+            "1.5000e-3 m",
+            "particle 1 at [0.05, 0.0, -0.0005] m",
+            "wall 0 (through [0.0, 0.0, 0.0] m, normal [0.0, 0.0, 1.0])",
+            "behind the wall",
+            "allow_initial_overlap = true",
+        ],
     );
-    let (err, first) = error_of(&["dem", "--scene", p.to_str().unwrap()]);
-    for needle in [
-        "1 particle(s) overlap a wall at the start",
-        "1.5000e-3 m",
-        "particle 1 at [0.05, 0.0, -0.0005] m",
-        "wall 0 (through [0.0, 0.0, 0.0] m, normal [0.0, 0.0, 1.0])",
-        "behind the wall",
-        "allow_initial_overlap = true",
-    ] {
-        assert!(first.contains(needle), "'{needle}' not on the first line: {err}");
-    }
-    says_nothing_of_the_step(&err);
     // resting on the floor (touching, centre exactly r above it) is no overlap
     let p = scene("on-wall.toml", &spheres("", &particle([0.0, 0.0, 0.001], 0.002)));
-    let o = dashpot(&["dem", "--scene", p.to_str().unwrap(), "--check"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["dem", "--scene", p.to_str().unwrap(), "--check"]);
 }
 
 /// A pre-compressed pair, allowed by the explicit key: released, it springs apart with the
@@ -181,12 +185,15 @@ diameter = 0.002
         vx(1)
     );
     // beyond half the radius the key does not help: the laws do not hold that deep
-    let p = scene("too-deep.toml", &text.replace("0.0019", "0.0012"));
-    let (err, first) = error_of(&["dem", "--scene", p.to_str().unwrap()]);
-    assert!(first.contains("overlap at the start"), "{err}");
-    assert!(first.contains("even with allow_initial_overlap = true"), "{err}");
-    assert!(first.contains("8.0000e-4 m"), "{err}");
-    says_nothing_of_the_step(&err);
+    refused_placement(
+        "too-deep.toml",
+        &text.replace("0.0019", "0.0012"),
+        &[
+            "overlap at the start",
+            "even with allow_initial_overlap = true",
+            "8.0000e-4 m",
+        ],
+    );
 }
 
 #[test]
@@ -195,17 +202,16 @@ fn a_particle_outside_a_bounded_box_is_refused_before_the_run() {
         "[box]\nlo = [-0.01, -0.01, 0.0]\nhi = [0.01, 0.01, 0.05]\nbounded = true",
         &(particle([0.0, 0.0, 0.01], 0.002) + &particle([0.0, 0.02, 0.01], 0.002)),
     );
-    let p = scene("outside.toml", &text);
-    let (err, first) = error_of(&["dem", "--scene", p.to_str().unwrap()]);
-    for needle in [
-        "1 particle(s) start outside the bounded box",
-        "particle 1 at [0.0, 0.02, 0.01] m",
-        "along axis 1",
-        "[-0.01, 0.01] m",
-    ] {
-        assert!(first.contains(needle), "'{needle}' not on the first line: {err}");
-    }
-    says_nothing_of_the_step(&err);
+    refused_placement(
+        "outside.toml",
+        &text,
+        &[
+            "1 particle(s) start outside the bounded box",
+            "particle 1 at [0.0, 0.02, 0.01] m",
+            "along axis 1",
+            "[-0.01, 0.01] m",
+        ],
+    );
 }
 
 #[test]
@@ -226,17 +232,17 @@ diameter = [0.0018, 0.002]
 lo = [0.0, 0.0]
 hi = [0.01, 0.01]
 "#;
-    let p = scene("crowded.toml", text);
-    let (err, first) = error_of(&["dem", "--scene", p.to_str().unwrap()]);
-    for needle in [
-        "count = 100",
-        "cannot fit",
-        "holds at most 16",
-        "4 x 4",
-        "generate.count",
-    ] {
-        assert!(first.contains(needle), "'{needle}' not on the first line: {err}");
-    }
+    refused_scene(
+        "crowded.toml",
+        text,
+        &[
+            "count = 100",
+            "cannot fit",
+            "holds at most 16",
+            "4 x 4",
+            "generate.count",
+        ],
+    );
     // 16 fit
     let p = scene("sixteen.toml", &text.replace("count = 100", "count = 16"));
     let v = ok_json(&["dem", "--scene", p.to_str().unwrap(), "--check", "--json"]);
@@ -534,8 +540,7 @@ fn scaling_results_carry_the_provenance_on_both_engines() {
 #[test]
 fn figures_collide_csvs_carry_the_provenance() {
     let out = out_dir("figc");
-    let o = dashpot(&["figures", "collide", "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    succeeds(&["figures", "collide", "--out", out.to_str().unwrap()]);
     assert!(csvs_have_provenance(&out) >= 7);
     let fig1 = std::fs::read_to_string(out.join("fig1_phase_trajectories.csv")).unwrap();
     assert!(

@@ -6,6 +6,8 @@
 //! (the venv needs scipy and numpy: see tests/benches/collide_scipy.py). Without
 //! DASHPOT_PYTHON it tries `python3`, and reports if SciPy is missing.
 
+mod common;
+
 use dashpot::collide::{collide, ContactForce, Options, PairLaw};
 use dashpot::laws::compiled;
 use dashpot_sdk::{EndCriterion, MaterialPair, Pair, ParamValue, Particle};
@@ -20,13 +22,7 @@ struct Case {
 }
 
 fn cases(n: usize) -> Vec<Case> {
-    let mut x = 0x2545_f491_4f6c_dd1d_u64;
-    let mut rnd = move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = common::uniform(0x2545_f491_4f6c_dd1d_u64);
     (0..n)
         .map(|_| Case {
             eps: 0.01 + 0.98 * rnd(),

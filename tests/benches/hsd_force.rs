@@ -60,13 +60,7 @@ struct Contacts {
 }
 
 fn contacts() -> Contacts {
-    let mut x = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut rnd = move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = common::uniform(0x9e37_79b9_7f4a_7c15_u64);
     let mut c = Contacts {
         delta: Vec::with_capacity(N),
         rate: Vec::with_capacity(N),

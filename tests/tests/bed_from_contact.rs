@@ -1,10 +1,10 @@
 //! Contact laws as the bed's restitution laws: the table against the collision driver.
 
-use dashpot::bed::{contact_laws, resolve, FROM_CONTACT};
-use dashpot::collide::{collide, Options};
-use dashpot_sdk::{BoundRestitution, EndCriterion, ParamValue};
-use dashpot_tests::seed_registry;
+use dashpot::bed::{bed_particle, contact_laws, resolve_for, FROM_CONTACT};
+use dashpot::collide::Options;
+use dashpot_sdk::{BoundRestitution, ParamValue};
 use dashpot_tests::BindPair as _;
+use dashpot_tests::{seed_registry, within_1e6_of_the_driver};
 
 #[test]
 fn hsd_as_a_restitution_law_is_its_eps_at_every_speed() {
@@ -23,12 +23,11 @@ fn hsd_as_a_restitution_law_is_its_eps_at_every_speed() {
         );
     }
     // and through the name the bed commands use
-    let r = resolve(
+    let r = resolve_for(
         &reg,
         &format!("{FROM_CONTACT}hsd"),
         &[ParamValue::new("eps", 0.7)],
-        0.002,
-        3.27e-5,
+        &bed_particle(0.002, 3.27e-5),
     )
     .unwrap();
     assert!((r.disk.r(2.0).unwrap() - 0.7).abs() < 1e-8);
@@ -43,16 +42,7 @@ fn kuwabara_kono_as_a_restitution_law_matches_the_collision_driver() {
     let law = reg.contact("kuwabara-kono", &p).unwrap();
     for (pair, table) in [(pp, &l.disk), (pw, &l.wall)] {
         let b = law.bind_pair(&pair).unwrap();
-        for v in [3e-4, 0.02, 0.7, 4.0] {
-            let exact = collide(&b, pair.mass, v, EndCriterion::Force, &Options::default())
-                .unwrap()
-                .restitution;
-            assert!(
-                (table.restitution(v) - exact).abs() <= 1e-6,
-                "v {v}: {} vs {exact}",
-                table.restitution(v)
-            );
-        }
+        within_1e6_of_the_driver(table, &b, pair.mass, &[3e-4, 0.02, 0.7, 4.0], &Options::default());
     }
     // a wall is stiffer and heavier-partnered than a disk: it dissipates differently
     assert!((l.disk.restitution(1.0) - l.wall.restitution(1.0)).abs() > 1e-4);

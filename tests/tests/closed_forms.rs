@@ -4,8 +4,8 @@
 use approx::assert_relative_eq;
 use dashpot::collide::ContactForce as _;
 use dashpot_sdk::{Coefficient, Pair, ParamValue, Particle};
-use dashpot_tests::seed_registry;
 use dashpot_tests::BindPair as _;
+use dashpot_tests::{pair_law, seed_registry};
 use std::f64::consts::PI;
 
 fn coeff(c: &[Coefficient], name: &str) -> f64 {
@@ -63,11 +63,7 @@ fn lsd_force_and_damping_follow_eq_8() {
         assert_eq!(b.force(-1e-6, 1.0).unwrap(), 0.0, "no force out of contact");
     }
     // An explicit k replaces the mapped one.
-    let b = reg
-        .contact("lsd", &[ParamValue::new("k", 1e5)])
-        .unwrap()
-        .bind_pair(&pair)
-        .unwrap();
+    let b = pair_law(&reg, "lsd", &[ParamValue::new("k", 1e5)], &pair);
     assert_eq!(coeff(&b.coefficients().unwrap(), "k"), 1e5);
 }
 
@@ -76,7 +72,7 @@ fn lsd_against_a_wall_uses_the_particles_mass_and_radius() {
     let reg = seed_registry();
     let p = Particle::MCC;
     let wall = Pair::wall(&p).unwrap();
-    let b = reg.contact("lsd", &[]).unwrap().bind_pair(&wall).unwrap();
+    let b = pair_law(&reg, "lsd", &[], &wall);
     let c = b.coefficients().unwrap();
     let m = PI / 6.0 * 1500.0 * 1e-6;
     assert_relative_eq!(coeff(&c, "m"), m, max_relative = 1e-14);
@@ -97,11 +93,7 @@ fn hsd_force_and_damping_follow_eqs_9_10_17() {
     for eps in [0.01, 0.1, 0.54, 0.9, 0.999, 1.0] {
         let l: f64 = f64::ln(eps);
         let alpha = -(5.0f64).sqrt() * l / (l * l + PI * PI).sqrt(); // eq. (17)
-        let b = reg
-            .contact("hsd", &[ParamValue::new("eps", eps)])
-            .unwrap()
-            .bind_pair(&pair)
-            .unwrap();
+        let b = pair_law(&reg, "hsd", &[ParamValue::new("eps", eps)], &pair);
         let c = b.coefficients().unwrap();
         assert_relative_eq!(coeff(&c, "K"), big_k, max_relative = 1e-14);
         assert_relative_eq!(coeff(&c, "alpha"), alpha, max_relative = 1e-14, epsilon = 1e-300);
@@ -129,20 +121,8 @@ fn hsd_alpha_is_the_lsd_damping_through_the_mapping() {
     let pair = mcc_pair();
     for eps in [0.05, 0.3, 0.54, 0.8, 0.97] {
         let p = [ParamValue::new("eps", eps)];
-        let l = reg
-            .contact("lsd", &p)
-            .unwrap()
-            .bind_pair(&pair)
-            .unwrap()
-            .coefficients()
-            .unwrap();
-        let h = reg
-            .contact("hsd", &p)
-            .unwrap()
-            .bind_pair(&pair)
-            .unwrap()
-            .coefficients()
-            .unwrap();
+        let l = pair_law(&reg, "lsd", &p, &pair).coefficients().unwrap();
+        let h = pair_law(&reg, "hsd", &p, &pair).coefficients().unwrap();
         assert_relative_eq!(
             2.0 * coeff(&l, "gamma") / coeff(&l, "w0"),
             2.0 / 5f64.sqrt() * coeff(&h, "alpha"),
@@ -157,11 +137,7 @@ fn kuwabara_kono_force_at_chosen_states() {
     let pair = mcc_pair();
     let big_k = 2.0 / 3.0 * (6.0e9 / 1.82) * (0.01f64).sqrt();
     for a in [0.0, 1e-7, 3.3e-6] {
-        let b = reg
-            .contact("kuwabara-kono", &[ParamValue::new("A", a)])
-            .unwrap()
-            .bind_pair(&pair)
-            .unwrap();
+        let b = pair_law(&reg, "kuwabara-kono", &[ParamValue::new("A", a)], &pair);
         for (delta, rate) in STATES {
             let f = b.force(delta, rate).unwrap();
             let expected = big_k * (delta.powf(1.5) + 1.5 * a * delta.sqrt() * rate);
@@ -170,11 +146,7 @@ fn kuwabara_kono_force_at_chosen_states() {
     }
     // A hand-checked value: δ = 1e-5 m, δ̇ = 0.5 m/s, A = 1e-6 s:
     // K = 2.1978022e8 N/m^1.5; δ^1.5 = 3.16227766e-8; (3/2) A √δ δ̇ = 1.5e-6 · 3.16227766e-3 · 0.5
-    let b = reg
-        .contact("kuwabara-kono", &[])
-        .unwrap()
-        .bind_pair(&pair)
-        .unwrap();
+    let b = pair_law(&reg, "kuwabara-kono", &[], &pair);
     let f = b.force(1e-5, 0.5).unwrap();
     assert_relative_eq!(
         f,
@@ -251,7 +223,7 @@ fn batch_equals_per_pair_for_every_contact_law() {
     let delta: Vec<f64> = (0..n).map(|i| 1e-4 * ((i as f64 * 0.37).sin())).collect();
     let rate: Vec<f64> = (0..n).map(|i| 2.0 * ((i as f64 * 0.11).cos())).collect();
     for name in ["lsd", "hsd", "kuwabara-kono"] {
-        let b = reg.contact(name, &[]).unwrap().bind_pair(&pair).unwrap();
+        let b = pair_law(&reg, name, &[], &pair);
         let mut out = vec![f64::NAN; n];
         b.force_batch(&delta, &rate, &mut out).unwrap();
         for i in 0..n {

@@ -1,8 +1,7 @@
 //! The collision integrator against the exact statements of Antypov & Elliott (2011), with the
 //! laws loaded from their plugin `.so` files.
 
-use dashpot::collide::{collide, Collision, Options};
-use dashpot::Registry;
+use dashpot::collide::{collide, collide_named, Options};
 use dashpot_sdk::{EndCriterion, Pair, ParamValue, Particle};
 use dashpot_tests::seed_registry;
 use dashpot_tests::BindPair as _;
@@ -10,18 +9,6 @@ use std::f64::consts::PI;
 
 fn mcc() -> Pair {
     Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap()
-}
-
-fn run(
-    reg: &Registry,
-    law: &str,
-    params: &[ParamValue],
-    pair: &Pair,
-    v0: f64,
-    end: EndCriterion,
-    opt: &Options,
-) -> Collision {
-    dashpot::collide::collide_named(reg, law, params, pair, v0, end, opt).unwrap()
 }
 
 fn eps(e: f64) -> [ParamValue; 1] {
@@ -36,7 +23,7 @@ fn hsd_realizes_eps_to_1e9_over_the_whole_range() {
     let mut worst: (f64, f64, f64) = (0.0, 0.0, 0.0);
     for e in [0.01, 0.03, 0.1, 0.3, 0.54, 0.8, 0.95, 0.99, 0.999] {
         for v0 in [1e-3, 1e-2, 0.1, 1.0, 3.0, 10.0] {
-            let c = run(&reg, "hsd", &eps(e), &pair, v0, EndCriterion::Overlap, &opt);
+            let c = collide_named(&reg, "hsd", &eps(e), &pair, v0, EndCriterion::Overlap, &opt).unwrap();
             let err = (c.restitution - e).abs();
             if err > worst.0 {
                 worst = (err, e, v0);
@@ -108,7 +95,7 @@ fn lsd_matches_its_closed_forms_to_1e10() {
     };
     for e in [0.01, 0.1, 0.54, 0.9, 0.999, 1.0] {
         for v0 in [0.01, 1.0, 7.0] {
-            let c = run(&reg, "lsd", &eps(e), &pair, v0, EndCriterion::Overlap, &opt);
+            let c = collide_named(&reg, "lsd", &eps(e), &pair, v0, EndCriterion::Overlap, &opt).unwrap();
             let x = LsdExact::new(k, pair.mass, e, v0);
             let rel = |a: f64, b: f64| (a / b - 1.0).abs();
             assert!(
@@ -139,7 +126,7 @@ fn lsd_force_criterion_matches_its_closed_form() {
     let pair = mcc();
     let k = 2.0 / 3.0 * pair.young * 0.01;
     for e in [0.05, 0.3, 0.54, 0.9] {
-        let c = run(
+        let c = collide_named(
             &reg,
             "lsd",
             &eps(e),
@@ -147,7 +134,8 @@ fn lsd_force_criterion_matches_its_closed_form() {
             1.0,
             EndCriterion::Force,
             &Options::default(),
-        );
+        )
+        .unwrap();
         let x = LsdExact::new(k, pair.mass, e, 1.0);
         let mut phi = (-2.0 * x.g * x.w1).atan2(x.w0 * x.w0 - 2.0 * x.g * x.g);
         if phi <= 0.0 {
@@ -186,7 +174,7 @@ fn hsd_phase_trajectory_is_the_lsd_one_mapped_by_eq_19() {
         ..Options::default()
     };
     for e in [0.1, 0.54, 0.9] {
-        let c = run(&reg, "hsd", &eps(e), &pair, v0, EndCriterion::Overlap, &opt);
+        let c = collide_named(&reg, "hsd", &eps(e), &pair, v0, EndCriterion::Overlap, &opt).unwrap();
         let x = LsdExact::new(k, pair.mass, e, v0);
         let (tm, tau) = (x.t_max(), PI / x.w1);
         let mut checked = 0;
@@ -226,7 +214,7 @@ fn hsd_contact_time_scales_as_v0_to_the_minus_one_fifth() {
     let pair = mcc();
     for e in [1.0, 0.1, 0.01] {
         let tau = |v0: f64| {
-            run(
+            collide_named(
                 &reg,
                 "hsd",
                 &eps(e),
@@ -235,6 +223,7 @@ fn hsd_contact_time_scales_as_v0_to_the_minus_one_fifth() {
                 EndCriterion::Overlap,
                 &Options::default(),
             )
+            .unwrap()
             .contact_time
         };
         let (t1, t2, t3) = (tau(1e-3), tau(0.1), tau(10.0));
@@ -279,7 +268,7 @@ fn elastic_hertz_contact_time_is_eq_23() {
     let p = Particle::MCC;
     let pair = mcc();
     for v0 in [1e-3, 0.5, 10.0] {
-        let c = run(
+        let c = collide_named(
             &reg,
             "hsd",
             &eps(1.0),
@@ -287,7 +276,8 @@ fn elastic_hertz_contact_time_is_eq_23() {
             v0,
             EndCriterion::Overlap,
             &Options::default(),
-        );
+        )
+        .unwrap();
         let eq23 = c_exact * (p.density / pair.young).powf(0.4) * p.diameter / v0.powf(0.2);
         assert!(
             (c.contact_time / eq23 - 1.0).abs() < 1e-9,
@@ -305,7 +295,7 @@ fn a_wall_collision_uses_the_particles_mass() {
     let wall = Pair::wall(&p).unwrap();
     let m = p.mass();
     let k = 4.0 / 3.0 * wall.young * (p.diameter / 2.0).sqrt() * (2.0 * p.diameter).sqrt();
-    let c = run(
+    let c = collide_named(
         &reg,
         "lsd",
         &eps(0.7),
@@ -313,12 +303,13 @@ fn a_wall_collision_uses_the_particles_mass() {
         1.0,
         EndCriterion::Overlap,
         &Options::default(),
-    );
+    )
+    .unwrap();
     let x = LsdExact::new(k, m, 0.7, 1.0);
     assert!((c.contact_time / (PI / x.w1) - 1.0).abs() < 1e-10);
     assert!((c.restitution - 0.7).abs() < 1e-10);
     // The same sphere on an identical sphere has half the mass: a different contact time.
-    let s = run(
+    let s = collide_named(
         &reg,
         "lsd",
         &eps(0.7),
@@ -326,7 +317,8 @@ fn a_wall_collision_uses_the_particles_mass() {
         1.0,
         EndCriterion::Overlap,
         &Options::default(),
-    );
+    )
+    .unwrap();
     assert!((s.contact_time / c.contact_time - 1.0).abs() > 0.1);
 }
 
@@ -336,7 +328,7 @@ fn force_criterion_restitution_is_above_eps_and_equal_for_lsd_and_hsd() {
     let pair = mcc();
     for e in [0.1, 0.54, 0.9] {
         let force = |law: &str, v0: f64| {
-            run(
+            collide_named(
                 &reg,
                 law,
                 &eps(e),
@@ -345,6 +337,7 @@ fn force_criterion_restitution_is_above_eps_and_equal_for_lsd_and_hsd() {
                 EndCriterion::Force,
                 &Options::default(),
             )
+            .unwrap()
         };
         let (l, h, h2) = (force("lsd", 1.0), force("hsd", 1.0), force("hsd", 0.01));
         assert!(l.restitution > e + 1e-3, "eps {e}: LSD ε_F = {}", l.restitution);
@@ -367,7 +360,7 @@ fn kuwabara_kono_restitution_falls_with_speed_as_v_to_the_one_fifth() {
     let pair = mcc();
     let p = [ParamValue::new("A", 1e-6)];
     let one_minus = |v0: f64| {
-        1.0 - run(
+        1.0 - collide_named(
             &reg,
             "kuwabara-kono",
             &p,
@@ -376,6 +369,7 @@ fn kuwabara_kono_restitution_falls_with_speed_as_v_to_the_one_fifth() {
             EndCriterion::Force,
             &Options::default(),
         )
+        .unwrap()
         .restitution
     };
     let (a, b) = (one_minus(1e-4), one_minus(1e-3));
@@ -420,8 +414,8 @@ fn runge_kutta_and_extrapolation_agree() {
             rtol: 1e-12,
             ..Options::default()
         };
-        let a = run(&reg, law, &p, &pair, 0.3, end, &rk);
-        let b = run(&reg, law, &p, &pair, 0.3, end, &ex);
+        let a = collide_named(&reg, law, &p, &pair, 0.3, end, &rk).unwrap();
+        let b = collide_named(&reg, law, &p, &pair, 0.3, end, &ex).unwrap();
         assert!(
             (a.restitution - b.restitution).abs() < 1e-10,
             "{law}: {} vs {}",

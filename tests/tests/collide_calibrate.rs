@@ -4,8 +4,8 @@ use dashpot::collide::calibrate::{calibrate, CalibrateSpec};
 use dashpot::collide::{collide, Options, TabulatedRestitution};
 use dashpot::{Registry, SearchPath};
 use dashpot_sdk::{BoundRestitution, EndCriterion, Pair, ParamValue, Particle};
-use dashpot_tests::seed_registry;
 use dashpot_tests::BindPair as _;
+use dashpot_tests::{pair_law, seed_registry, within_1e6_of_the_driver};
 
 fn mcc() -> Pair {
     Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap()
@@ -127,11 +127,7 @@ fn unreachable_targets_and_bad_input_are_errors() {
 fn a_contact_law_tabulated_as_a_restitution_law_is_within_1e6() {
     let reg = seed_registry();
     let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap();
-    let b = reg
-        .contact("kuwabara-kono", &[ParamValue::new("A", 2e-6)])
-        .unwrap()
-        .bind_pair(&pair)
-        .unwrap();
+    let b = pair_law(&reg, "kuwabara-kono", &[ParamValue::new("A", 2e-6)], &pair);
     let opt = Options {
         rtol: 1e-10,
         ..Options::default()
@@ -139,22 +135,9 @@ fn a_contact_law_tabulated_as_a_restitution_law_is_within_1e6() {
     let t = TabulatedRestitution::build(&b, pair.mass, EndCriterion::Force, 1e-3, 10.0, 1e-6, &opt).unwrap();
     assert!(t.max_error <= 1e-6, "{}", t.max_error);
     // at speeds that are not nodes, against the integrator
-    for v in [1.3e-3, 0.0071, 0.05, 0.33, 2.2, 9.7] {
-        let exact = collide(&b, pair.mass, v, EndCriterion::Force, &opt)
-            .unwrap()
-            .restitution;
-        assert!(
-            (t.restitution(v) - exact).abs() <= 1e-6,
-            "v {v}: {} vs {exact}",
-            t.restitution(v)
-        );
-    }
+    within_1e6_of_the_driver(&t, &b, pair.mass, &[1.3e-3, 0.0071, 0.05, 0.33, 2.2, 9.7], &opt);
     // HSD is speed-independent: the table is flat at eps
-    let h = reg
-        .contact("hsd", &[ParamValue::new("eps", 0.4)])
-        .unwrap()
-        .bind_pair(&pair)
-        .unwrap();
+    let h = pair_law(&reg, "hsd", &[ParamValue::new("eps", 0.4)], &pair);
     let t =
         TabulatedRestitution::build(&h, pair.mass, EndCriterion::Overlap, 1e-3, 10.0, 1e-6, &opt).unwrap();
     for v in [1e-5, 1e-3, 0.5, 10.0, 50.0] {
@@ -175,11 +158,12 @@ fn the_third_party_plugin_runs_through_collide_and_calibrate_unchanged() {
     })
     .unwrap();
     let pair = mcc();
-    let b = reg
-        .contact("hertz-linear-damping", &[ParamValue::new("eta", 5.0)])
-        .unwrap()
-        .bind_pair(&pair)
-        .unwrap();
+    let b = pair_law(
+        &reg,
+        "hertz-linear-damping",
+        &[ParamValue::new("eta", 5.0)],
+        &pair,
+    );
     let c = collide(&b, pair.mass, 1.0, EndCriterion::Force, &Options::default()).unwrap();
     assert!(c.restitution > 0.0 && c.restitution < 1.0);
     let s = CalibrateSpec {

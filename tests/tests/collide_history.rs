@@ -4,7 +4,7 @@
 use dashpot::collide::oblique::{oblique, Body, Impact, Target};
 use dashpot::collide::{collide, Options, PairLaw};
 use dashpot_sdk::{EndCriterion, MaterialPair, Pair, ParamValue, Particle};
-use dashpot_tests::full_registry;
+use dashpot_tests::{assert_rel, full_registry};
 
 /// A 2 mm steel sphere (the bed's disks) against a rigid wall.
 fn steel() -> Particle {
@@ -48,11 +48,7 @@ fn walton_braun_realizes_sqrt_k1_over_k2_at_every_speed() {
         // the contact ends at the residual overlap δ_p = δ_max (1 − k1/k2), force 0
         assert!(b.history()[0] > 0.0);
         let dmax = v0 * (pair.mass / k1).sqrt();
-        assert!(
-            (c.max_overlap / dmax - 1.0).abs() < 1e-9,
-            "{} vs {dmax}",
-            c.max_overlap
-        );
+        assert_rel(c.max_overlap, dmax, 1e-9, "largest overlap (m)");
     }
 }
 
@@ -168,16 +164,8 @@ fn gross_sliding_obeys_coulombs_closed_form() {
         let m_eff = if wall { 1.0 } else { 0.5 };
         let want_dv = mu * (1.0 + o.e) * o.vn;
         let want_w = m_eff * 2.5 * mu * (1.0 + o.e) * o.vn / r;
-        assert!(
-            (o.dvt / want_dv - 1.0).abs() < 1e-3,
-            "{wall} {angle}: Δv_t = {} vs {want_dv}",
-            o.dvt
-        );
-        assert!(
-            (o.omega / want_w - 1.0).abs() < 1e-3,
-            "{wall} {angle}: ω = {} vs {want_w}",
-            o.omega
-        );
+        assert_rel(o.dvt, want_dv, 1e-3, &format!("{wall} {angle}: Δv_t"));
+        assert_rel(o.omega, want_w, 1e-3, &format!("{wall} {angle}: ω"));
     }
 }
 

@@ -5,7 +5,7 @@
 
 use dashpot::collide::{collide, Options, PairLaw};
 use dashpot_sdk::{Contact, EndCriterion, ErrorKind, Pair, ParamValue, Particle};
-use dashpot_tests::{sdk01_registry, seed_registry};
+use dashpot_tests::{memoryless_batch, sdk01_registry, seed_registry};
 use std::f64::consts::PI;
 
 fn pairs() -> Vec<(Pair, f64)> {
@@ -98,16 +98,8 @@ fn sdk01_plugins_load_and_give_bit_identical_forces() {
             let (mass, radius) = (vec![pair.mass; st.len()], vec![pair.radius; st.len()]);
             let (mut fo, mut fnew) = (vec![0.0; st.len()], vec![0.0; st.len()]);
             for (m, f) in [(&mo, &mut fo), (&mn, &mut fnew)] {
-                m.force_batch(dashpot_sdk::NormalBatch {
-                    delta: &delta,
-                    rate: &rate,
-                    mass: &mass,
-                    radius: &radius,
-                    slots: 0,
-                    history: &mut [],
-                    force: f,
-                })
-                .unwrap();
+                m.force_batch(memoryless_batch(&delta, &rate, &mass, &radius, f))
+                    .unwrap();
             }
             for i in 0..st.len() {
                 let want = reference(pv, &pair, delta[i], rate[i]);

@@ -5,7 +5,7 @@
 //! overlap, Mindlin's spring through stick and slip).
 
 use dashpot_sdk::{LawKind, MaterialPair, NormalBatch, ParamValue, TangentialBatch};
-use dashpot_tests::{full_registry, next_series_plugin, sdk02_registry};
+use dashpot_tests::{full_registry, memoryless_batch, next_series_plugin, sdk02_registry};
 
 fn materials() -> MaterialPair {
     MaterialPair::new(7.0e10, 2.7e10).unwrap()
@@ -170,15 +170,7 @@ fn old_plugins_have_reach_zero_and_no_energy() {
         let (mut f, mut reach, mut p, mut e) = ([0.0; 2], [f64::NAN; 2], [0.0; 2], [0.0; 2]);
         let written = m
             .force_batch_with(
-                NormalBatch {
-                    delta: &delta,
-                    rate: &rate,
-                    mass: &mass,
-                    radius: &radius,
-                    slots: 0,
-                    history: &mut [],
-                    force: &mut f,
-                },
+                memoryless_batch(&delta, &rate, &mass, &radius, &mut f),
                 Some(&mut reach),
                 dashpot_sdk::abi::EnergyOut {
                     power: Some(&mut p),

@@ -4,7 +4,7 @@ use approx::assert_relative_eq;
 use dashpot::collide::ContactForce as _;
 use dashpot::{Registry, SearchPath};
 use dashpot_sdk::{Pair, ParamValue, Particle};
-use dashpot_tests::BindPair as _;
+use dashpot_tests::pair_law;
 
 #[test]
 fn the_example_plugin_builds_out_of_tree_and_loads_by_path() {
@@ -18,11 +18,12 @@ fn the_example_plugin_builds_out_of_tree_and_loads_by_path() {
     assert_eq!(plugin.name, "dashpot-example-law");
     assert_eq!(plugin.path, path);
     let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap();
-    let b = reg
-        .contact("hertz-linear-damping", &[ParamValue::new("eta", 2.0)])
-        .unwrap()
-        .bind_pair(&pair)
-        .unwrap();
+    let b = pair_law(
+        &reg,
+        "hertz-linear-damping",
+        &[ParamValue::new("eta", 2.0)],
+        &pair,
+    );
     let k = 4.0 / 3.0 * pair.young * pair.radius.sqrt();
     assert_relative_eq!(
         b.force(1e-5, 0.5).unwrap(),

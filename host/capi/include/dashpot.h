@@ -443,66 +443,6 @@ enum DashpotStatus dashpot_contact_coefficient(const struct DashpotBoundContact 
                                                double *out_value);
 
 /*
- The normal force on `n` contacts, each with its own geometry and history:
- `out_force[i] = F(delta[i], rate[i]; mass[i], radius[i], history[i*slots .. (i+1)*slots])`.
-
- `delta` (m), `rate` (m/s), `mass` (effective mass m1 m2/(m1 + m2), kg; the particle's mass
- against a wall), `radius` (effective radius r1 r2/(r1 + r2), m; the particle's radius against
- a flat wall) and `out_force` (N) hold `n` values each; `history` holds `n_history = n × slots`
- values (see `dashpot_contact_model_history_slots`; null with 0 for a memoryless law), read
- and updated in place.
-
- Every input is checked inside the plugin, fused with the computation: a NaN or infinite
- overlap or rate, or a mass or radius not finite and > 0, is refused with
- `DASHPOT_ERR_NON_FINITE` naming the array, the index and the value; so is a non-finite force.
-
- Errors: `DASHPOT_ERR_NULL_POINTER` (the handle, or an array when `n` > 0),
- `DASHPOT_ERR_BAD_LENGTH` (`n_history` ≠ `n × slots`), `DASHPOT_ERR_NON_FINITE` (`out_force`
- and `history` are then partly written), `DASHPOT_ERR_PANIC` (the handle stays usable).
- Ownership: the arrays stay the caller's. Thread-safe (distinct output and history arrays
- per thread).
-
- # Safety
- Non-null arrays must hold the lengths stated; `out_force` and `history` must not overlap
- each other or the inputs.
- */
-enum DashpotStatus dashpot_contact_model_force_batch(const struct DashpotContactModel *model,
-                                                     size_t n,
-                                                     const double *delta,
-                                                     const double *rate,
-                                                     const double *mass,
-                                                     const double *radius,
-                                                     double *history,
-                                                     size_t n_history,
-                                                     double *out_force);
-
-/*
- `dashpot_contact_model_force_batch` with sdk 0.3's outputs, each null or `n` values:
- `out_reach[i]` how far beyond touching the contact still acts (m: it ends once δ < −reach;
- 0 for a non-adhesive law), `out_power[i]` the dissipated power (W), `out_elastic[i]` the
- stored elastic energy (J); `*out_energy_written` (may be null) whether the law reported the
- energy.
-
- Errors: as `dashpot_contact_model_force_batch`. Thread-safe (distinct outputs).
-
- # Safety
- Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
- */
-enum DashpotStatus dashpot_contact_model_force_batch_energy(const struct DashpotContactModel *model,
-                                                            size_t n,
-                                                            const double *delta,
-                                                            const double *rate,
-                                                            const double *mass,
-                                                            const double *radius,
-                                                            double *history,
-                                                            size_t n_history,
-                                                            double *out_force,
-                                                            double *out_reach,
-                                                            double *out_power,
-                                                            double *out_elastic,
-                                                            int *out_energy_written);
-
-/*
  The message of the last failed call on the calling thread (NUL-terminated UTF-8, empty if
  no call has failed on this thread yet). A successful call does not clear it.
 
@@ -715,36 +655,6 @@ enum DashpotStatus dashpot_restitution_batch(const struct DashpotBoundRestitutio
                                              size_t n_out);
 
 /*
- The tangential force on `n` contacts, history advanced by the time step `dt` (s).
-
- Per contact i: `normal[3i..3i+3]` the unit normal (from partner to particle),
- `velocity[3i..3i+3]` the relative contact-point velocity (m/s), `normal_force[i]` the normal
- force this step (N, > 0 repulsive; from the normal law), `delta[i]` the overlap (m),
- `mass[i]`, `radius[i]` the effective mass (kg) and radius (m), `history[i*slots ..]` its
- history (`n_history = n × slots` values, read and updated in place) and
- `out_force[3i..3i+3]` the tangential force on the particle (N).
-
- Every input is checked inside the plugin, as for `dashpot_contact_model_force_batch` (a
- non-finite vector, normal force or `dt` too), and so are its errors, ownership and thread
- safety.
-
- # Safety
- As `dashpot_contact_model_force_batch`'s, with `3n` values in each vector array.
- */
-enum DashpotStatus dashpot_tangential_model_force_batch(const struct DashpotTangentialModel *model,
-                                                        size_t n,
-                                                        double dt,
-                                                        const double *normal,
-                                                        const double *velocity,
-                                                        const double *normal_force,
-                                                        const double *delta,
-                                                        const double *mass,
-                                                        const double *radius,
-                                                        double *history,
-                                                        size_t n_history,
-                                                        double *out_force);
-
-/*
  The ABI version of the library actually loaded. Cannot fail; thread-safe.
  */
 uint32_t dashpot_abi_version(void);
@@ -796,27 +706,52 @@ const char *dashpot_version(void);
  *
  * All are thread-safe except that a *_free must not race with any other use of its handle.
  *
- * DASHPOT_ENERGY_BATCH(NAME, Model, INPUT, OUT): the sdk 0.3 batch call with energy outputs of
- * the tangential (dashpot_tangential_model_force_batch_energy: the force of
- * dashpot_tangential_model_force_batch), rolling and twisting kinds, on n contacts, the history
- * advanced by the step dt (s). Per contact i: normal[3i..3i+3] the unit normal (from the
- * partner to the particle); INPUT: tangential, velocity[3i..3i+3] the velocity of the
- * particle's contact point relative to the partner's (m/s, omega x r included); rolling,
- * velocity[3i..3i+3] the rolling velocity R_eff (w_i - w_j) x n (m/s); twisting, rate[i] the
- * twisting rate (w_i - w_j).n (rad/s); normal_force[i] (N, > 0 repulsive), delta[i] (m),
- * mass[i] (kg) and radius[i] (m) the effective mass and radius; history, n_history = n x slots
- * values read and updated in place; OUT: tangential, out_force[3i..3i+3] the force on the
- * particle (N); rolling, out_force[3i..3i+3] the rolling force F_r (N: the torque on the
- * particle is R_eff n x F_r, on the partner its opposite; F_r is not applied to the centres);
- * twisting, out_torque[i] the torque about n on the particle (N m; on the partner its
- * opposite); out_power[i] the power the contact dissipates (W, >= 0) and out_elastic[i] the
- * elastic energy it stores (J), each null when not wanted; *out_energy_written (may be null)
- * 1 when the law reported them (a law of an older sdk does not). Every input is checked inside
- * the plugin. Errors: DASHPOT_ERR_NULL_POINTER (the handle, or an array when n > 0),
- * DASHPOT_ERR_BAD_LENGTH (n_history != n x slots), DASHPOT_ERR_NON_FINITE (naming the array,
- * the index and the value; the outputs are then partly written), DASHPOT_ERR_PANIC (the handle
- * stays usable). Thread-safe with distinct output and history arrays; outputs must not overlap
- * each other or the inputs.
+ * DASHPOT_CONTACT_BATCH(NAME, OUTPUTS): the batch call of a contact law bound to materials
+ * (sdk 0.2, 0.3), the normal force on n contacts, each with its own geometry and history:
+ * out_force[i] = F(delta[i], rate[i]; mass[i], radius[i], history[i*slots .. (i+1)*slots]).
+ * delta (m), rate (m/s, > 0 approaching), mass (effective mass m1 m2/(m1 + m2), kg; the
+ * particle's mass against a wall), radius (effective radius r1 r2/(r1 + r2), m; the particle's
+ * radius against a flat wall) and out_force (N, > 0 repulsive; 0 for delta < 0 unless the law
+ * is adhesive) hold n values each; history holds n_history = n x slots values (see
+ * dashpot_contact_model_history_slots; null with 0 for a memoryless law), read and updated in
+ * place. The caller stores the history: zero at a contact's first touch, passed to every batch
+ * call, kept when the step is accepted, dropped when the contact ends; for a trial evaluation
+ * (an integrator stage) pass a scratch copy.
+ *   dashpot_contact_model_force_batch: OUTPUTS empty.
+ *   dashpot_contact_model_force_batch_energy: OUTPUTS DASHPOT_REACH_ENERGY_OUTPUTS, sdk 0.3's
+ *     outputs, each null or n values: out_reach[i] how far beyond touching the contact still
+ *     acts (m: it ends once delta < -reach; 0 for a non-adhesive law), out_power[i] the
+ *     dissipated power (W), out_elastic[i] the stored elastic energy (J); *out_energy_written
+ *     (may be null) whether the law reported the energy.
+ * Every input is checked inside the plugin, fused with the computation: a NaN or infinite
+ * overlap or rate, or a mass or radius not finite and > 0, is refused with
+ * DASHPOT_ERR_NON_FINITE naming the array, the index and the value; so is a non-finite force.
+ * Errors: DASHPOT_ERR_NULL_POINTER (the handle, or an array when n > 0), DASHPOT_ERR_BAD_LENGTH
+ * (n_history != n x slots), DASHPOT_ERR_NON_FINITE (the outputs and history are then partly
+ * written), DASHPOT_ERR_PANIC (the handle stays usable). The arrays stay the caller's.
+ * Thread-safe with distinct output and history arrays; outputs must not overlap each other or
+ * the inputs.
+ *
+ * DASHPOT_MOTION_BATCH(NAME, Model, INPUT, OUT, OUTPUTS): the batch call of the tangential
+ * (dashpot_tangential_model_force_batch, sdk 0.2; dashpot_tangential_model_force_batch_energy,
+ * the same force with the energy outputs), rolling and twisting kinds, on n contacts, the
+ * history advanced by the step dt (s). Vectors are x y z triples one after the other (3n values;
+ * a 2D code sets z = 0). Per contact i: normal[3i..3i+3] the unit normal (from the partner to
+ * the particle); INPUT: tangential, velocity[3i..3i+3] the velocity of the particle's contact
+ * point relative to the partner's (m/s, omega x r included; the law uses its part in the
+ * tangent plane); rolling, velocity[3i..3i+3] the rolling velocity R_eff (w_i - w_j) x n (m/s);
+ * twisting, rate[i] the twisting rate (w_i - w_j).n (rad/s); normal_force[i] (N, > 0 repulsive,
+ * from the normal law), delta[i] (m), mass[i] (kg) and radius[i] (m) the effective mass and
+ * radius; history, n_history = n x slots values stored by the caller as for a contact batch;
+ * OUT: tangential, out_force[3i..3i+3] the force on the particle (N, capped by Coulomb's
+ * mu F_n); rolling, out_force[3i..3i+3] the rolling force F_r (N: the torque on the particle is
+ * R_eff n x F_r, on the partner its opposite; F_r is not applied to the centres); twisting,
+ * out_torque[i] the torque about n on the particle (N m; on the partner its opposite). OUTPUTS
+ * empty, or DASHPOT_ENERGY_OUTPUTS (sdk 0.3): out_power[i] the power the contact dissipates
+ * (W, >= 0) and out_elastic[i] the elastic energy it stores (J), each null when not wanted;
+ * *out_energy_written (may be null) 1 when the law reported them (a law of an older sdk does
+ * not). Every input is checked inside the plugin (a non-finite vector, normal force or dt too);
+ * errors, ownership and thread safety as for a contact batch.
  */
 #define DASHPOT_LAW_FUNCTIONS(KIND, Law)                                                             \
     enum DashpotStatus dashpot_##KIND##_new(const struct DashpotRegistry *registry, const char *name, \
@@ -832,12 +767,19 @@ const char *dashpot_version(void);
     void dashpot_##KIND##_model_free(struct Model *model);                                           \
     enum DashpotStatus dashpot_##KIND##_model_history_slots(const struct Model *model, size_t *out_slots);
 
-#define DASHPOT_ENERGY_BATCH(NAME, Model, INPUT, OUT)                                               \
+#define DASHPOT_ENERGY_OUTPUTS , double *out_power, double *out_elastic, int *out_energy_written
+#define DASHPOT_REACH_ENERGY_OUTPUTS , double *out_reach DASHPOT_ENERGY_OUTPUTS
+
+#define DASHPOT_CONTACT_BATCH(NAME, OUTPUTS)                                                         \
+    enum DashpotStatus NAME(const struct DashpotContactModel *model, size_t n, const double *delta,   \
+                            const double *rate, const double *mass, const double *radius,             \
+                            double *history, size_t n_history, double *out_force OUTPUTS);
+
+#define DASHPOT_MOTION_BATCH(NAME, Model, INPUT, OUT, OUTPUTS)                                      \
     enum DashpotStatus NAME(const struct Model *model, size_t n, double dt, const double *normal,     \
                             const double *INPUT, const double *normal_force, const double *delta,   \
                             const double *mass, const double *radius, double *history,              \
-                            size_t n_history, double *OUT, double *out_power, double *out_elastic,  \
-                            int *out_energy_written);
+                            size_t n_history, double *OUT OUTPUTS);
 
 #define DASHPOT_PAIR_FUNCTIONS(KIND, Law, Bound)                                                     \
     enum DashpotStatus dashpot_##KIND##_bind(const struct Law *law, const struct DashpotPair *pair,  \
@@ -862,9 +804,14 @@ DASHPOT_MODEL_FUNCTIONS(twisting, DashpotTwistingLaw, DashpotTwistingModel)
 DASHPOT_PAIR_FUNCTIONS(contact, DashpotContactLaw, DashpotBoundContact)
 DASHPOT_PAIR_FUNCTIONS(restitution, DashpotRestitutionLaw, DashpotBoundRestitution)
 
-DASHPOT_ENERGY_BATCH(dashpot_tangential_model_force_batch_energy, DashpotTangentialModel, velocity, out_force)
-DASHPOT_ENERGY_BATCH(dashpot_rolling_model_force_batch, DashpotRollingModel, velocity, out_force)
-DASHPOT_ENERGY_BATCH(dashpot_twisting_model_torque_batch, DashpotTwistingModel, rate, out_torque)
+DASHPOT_CONTACT_BATCH(dashpot_contact_model_force_batch, )
+DASHPOT_CONTACT_BATCH(dashpot_contact_model_force_batch_energy, DASHPOT_REACH_ENERGY_OUTPUTS)
+
+DASHPOT_MOTION_BATCH(dashpot_tangential_model_force_batch, DashpotTangentialModel, velocity, out_force, )
+DASHPOT_MOTION_BATCH(dashpot_tangential_model_force_batch_energy, DashpotTangentialModel, velocity, out_force,
+                     DASHPOT_ENERGY_OUTPUTS)
+DASHPOT_MOTION_BATCH(dashpot_rolling_model_force_batch, DashpotRollingModel, velocity, out_force, DASHPOT_ENERGY_OUTPUTS)
+DASHPOT_MOTION_BATCH(dashpot_twisting_model_torque_batch, DashpotTwistingModel, rate, out_torque, DASHPOT_ENERGY_OUTPUTS)
 
 #ifdef __cplusplus
 }  /* extern "C" */

@@ -4,7 +4,9 @@
 //! Sign convention: δ ≥ 0 is the overlap (m), δ̇ its rate (m/s, > 0 while the bodies approach),
 //! and the force (N) is positive when repulsive. For δ < 0 a law returns 0.
 
-use crate::error::{arg, guard, out, slice, slice_mut, string, CError, DashpotStatus, DashpotStatus::*};
+use crate::error::{
+    arg, guard, output, same_lengths, slice, slice_mut, CError, DashpotStatus, DashpotStatus::*,
+};
 use crate::kinds::DashpotBoundContact;
 use dashpot_sdk::{Contact, NormalBatch};
 use std::ffi::c_char;
@@ -13,6 +15,22 @@ use std::ffi::c_char;
 const CHUNK: usize = 64;
 
 impl DashpotBoundContact {
+    /// The bound law's coefficient `name`.
+    fn coefficient(&self, name: &str) -> Result<f64, CError> {
+        let all = self.model.coefficients(self.mass, self.radius)?;
+        match all.iter().find(|c| c.name == name) {
+            Some(c) => Ok(c.value),
+            None => Err(CError::new(
+                DASHPOT_ERR_INVALID_ARGUMENT,
+                format!(
+                    "contact law '{}' has no coefficient '{name}'; it has: {}",
+                    self.model.name(),
+                    all.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(", ")
+                ),
+            )),
+        }
+    }
+
     fn force(&self, delta: f64, rate: f64) -> Result<f64, dashpot_sdk::LawError> {
         let c = Contact {
             delta,
@@ -88,12 +106,7 @@ pub unsafe extern "C" fn dashpot_contact_force(
     rate: f64,
     out_force: *mut f64,
 ) -> DashpotStatus {
-    guard(|| {
-        let b = unsafe { arg(bound, "bound") }?;
-        let o = unsafe { out(out_force, "out_force") }?;
-        *o = b.force(delta, rate)?;
-        Ok(())
-    })
+    output!(arg bound => out_force = bound.force(delta, rate)?)
 }
 
 /// `out_force[i] = F(delta[i], rate[i])` (N) for every i: the call a DEM code makes once per
@@ -122,15 +135,8 @@ pub unsafe extern "C" fn dashpot_contact_force_batch(
 ) -> DashpotStatus {
     guard(|| {
         let b = unsafe { arg(bound, "bound") }?;
-        if n_delta != n_out || n_rate != n_out {
-            return Err(CError::new(
-                DASHPOT_ERR_BAD_LENGTH,
-                format!(
-                    "dashpot_contact_force_batch: delta, rate and out_force must have the same length, \
-                     got {n_delta}, {n_rate} and {n_out}"
-                ),
-            ));
-        }
+        let lengths = [("delta", n_delta), ("rate", n_rate), ("out_force", n_out)];
+        same_lengths("dashpot_contact_force_batch", &lengths)?;
         let d = unsafe { slice(delta, n_delta, "delta") }?;
         let r = unsafe { slice(rate, n_rate, "rate") }?;
         let o = unsafe { slice_mut(out_force, n_out, "out_force") }?;
@@ -152,24 +158,5 @@ pub unsafe extern "C" fn dashpot_contact_coefficient(
     name: *const c_char,
     out_value: *mut f64,
 ) -> DashpotStatus {
-    guard(|| {
-        let b = unsafe { arg(bound, "bound") }?;
-        let name = unsafe { string(name, "name") }?;
-        let o = unsafe { out(out_value, "out_value") }?;
-        let all = b.model.coefficients(b.mass, b.radius)?;
-        match all.iter().find(|c| c.name == name) {
-            Some(c) => {
-                *o = c.value;
-                Ok(())
-            }
-            None => Err(CError::new(
-                DASHPOT_ERR_INVALID_ARGUMENT,
-                format!(
-                    "contact law '{}' has no coefficient '{name}'; it has: {}",
-                    b.model.name(),
-                    all.iter().map(|c| c.name.as_str()).collect::<Vec<_>>().join(", ")
-                ),
-            )),
-        }
-    })
+    output!(arg bound, string name => out_value = bound.coefficient(name)?)
 }

@@ -54,98 +54,48 @@ unsafe fn batch(
     })
 }
 
-/// The normal force on `n` contacts, each with its own geometry and history:
-/// `out_force[i] = F(delta[i], rate[i]; mass[i], radius[i], history[i*slots .. (i+1)*slots])`.
-///
-/// `delta` (m), `rate` (m/s), `mass` (effective mass m1 m2/(m1 + m2), kg; the particle's mass
-/// against a wall), `radius` (effective radius r1 r2/(r1 + r2), m; the particle's radius against
-/// a flat wall) and `out_force` (N) hold `n` values each; `history` holds `n_history = n × slots`
-/// values (see `dashpot_contact_model_history_slots`; null with 0 for a memoryless law), read
-/// and updated in place.
-///
-/// Every input is checked inside the plugin, fused with the computation: a NaN or infinite
-/// overlap or rate, or a mass or radius not finite and > 0, is refused with
-/// `DASHPOT_ERR_NON_FINITE` naming the array, the index and the value; so is a non-finite force.
-///
-/// Errors: `DASHPOT_ERR_NULL_POINTER` (the handle, or an array when `n` > 0),
-/// `DASHPOT_ERR_BAD_LENGTH` (`n_history` ≠ `n × slots`), `DASHPOT_ERR_NON_FINITE` (`out_force`
-/// and `history` are then partly written), `DASHPOT_ERR_PANIC` (the handle stays usable).
-/// Ownership: the arrays stay the caller's. Thread-safe (distinct output and history arrays
-/// per thread).
-///
-/// # Safety
-/// Non-null arrays must hold the lengths stated; `out_force` and `history` must not overlap
-/// each other or the inputs.
-#[allow(clippy::too_many_arguments)]
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_model_force_batch(
-    model: *const DashpotContactModel,
-    n: usize,
-    delta: *const f64,
-    rate: *const f64,
-    mass: *const f64,
-    radius: *const f64,
-    history: *mut f64,
-    n_history: usize,
-    out_force: *mut f64,
-) -> DashpotStatus {
-    let what = "dashpot_contact_model_force_batch";
-    let null = std::ptr::null_mut();
-    unsafe {
-        batch(
-            what,
-            model,
-            n,
-            [delta, rate, mass, radius],
-            history,
-            n_history,
-            out_force,
-            [null; 3],
-            null.cast(),
-        )
-    }
+/// The reach and energy outputs of a contact batch: those given, or none (null).
+macro_rules! contact_outputs {
+    () => {
+        ([std::ptr::null_mut(); 3], std::ptr::null_mut())
+    };
+    ($reach:ident, $power:ident, $elastic:ident, $written:ident) => {
+        ([$reach, $power, $elastic], $written)
+    };
 }
 
-/// `dashpot_contact_model_force_batch` with sdk 0.3's outputs, each null or `n` values:
-/// `out_reach[i]` how far beyond touching the contact still acts (m: it ends once δ < −reach;
-/// 0 for a non-adhesive law), `out_power[i]` the dissipated power (W), `out_elastic[i]` the
-/// stored elastic energy (J); `*out_energy_written` (may be null) whether the law reported the
-/// energy.
-///
-/// Errors: as `dashpot_contact_model_force_batch`. Thread-safe (distinct outputs).
-///
-/// # Safety
-/// Non-null arrays must hold the lengths stated; outputs must not overlap each other or inputs.
-#[allow(clippy::too_many_arguments)]
-#[no_mangle]
-pub unsafe extern "C" fn dashpot_contact_model_force_batch_energy(
-    model: *const DashpotContactModel,
-    n: usize,
-    delta: *const f64,
-    rate: *const f64,
-    mass: *const f64,
-    radius: *const f64,
-    history: *mut f64,
-    n_history: usize,
-    out_force: *mut f64,
-    out_reach: *mut f64,
-    out_power: *mut f64,
-    out_elastic: *mut f64,
-    out_energy_written: *mut c_int,
-) -> DashpotStatus {
-    let what = "dashpot_contact_model_force_batch_energy";
-    let outs = [out_reach, out_power, out_elastic];
-    unsafe {
-        batch(
-            what,
-            model,
-            n,
-            [delta, rate, mass, radius],
-            history,
-            n_history,
-            out_force,
-            outs,
-            out_energy_written,
-        )
-    }
+/// `dashpot_contact_model_force_batch` and its sdk 0.3 form with the reach and energy outputs,
+/// from one parameter list: the header's `DASHPOT_CONTACT_BATCH`, whose comment is their
+/// contract.
+macro_rules! contact_batch_functions {
+    ($($name:ident($($reach:ident, $power:ident, $elastic:ident, $written:ident)?);)*) => {$(
+        /// A contact batch: `DASHPOT_CONTACT_BATCH` in dashpot.h.
+        ///
+        /// # Safety
+        /// Non-null arrays must hold the lengths the header states; outputs must not overlap
+        /// each other or the inputs.
+        #[allow(clippy::too_many_arguments)]
+        #[no_mangle]
+        pub unsafe extern "C" fn $name(
+            model: *const DashpotContactModel,
+            n: usize,
+            delta: *const f64,
+            rate: *const f64,
+            mass: *const f64,
+            radius: *const f64,
+            history: *mut f64,
+            n_history: usize,
+            out_force: *mut f64,
+            $($reach: *mut f64, $power: *mut f64, $elastic: *mut f64, $written: *mut c_int,)?
+        ) -> DashpotStatus {
+            let (outs, written) = contact_outputs!($($reach, $power, $elastic, $written)?);
+            let inputs = [delta, rate, mass, radius];
+            unsafe { batch(stringify!($name), model, n, inputs, history, n_history, out_force, outs, written) }
+        }
+    )*};
+}
+
+contact_batch_functions! {
+    dashpot_contact_model_force_batch();
+    dashpot_contact_model_force_batch_energy(out_reach, out_power, out_elastic, out_energy_written);
 }

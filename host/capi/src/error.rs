@@ -118,6 +118,43 @@ pub(crate) fn guard(f: impl FnOnce() -> Result<(), CError>) -> DashpotStatus {
     }
 }
 
+/// The body of an entry point that writes one value: each pointer argument checked in the
+/// order given (`arg`: a handle or struct, `string`: a C string; a null one is named by its
+/// parameter's name) and bound under that name, then the output pointer, then
+/// `*$out = $value` (a `?` in `$value` returns its error).
+macro_rules! output {
+    ($($check:ident $p:ident),* => $out:ident = $value:expr) => {
+        $crate::error::guard(|| {
+            $(let $p = unsafe { $crate::error::$check($p, stringify!($p)) }?;)*
+            let o = unsafe { $crate::error::out($out, stringify!($out)) }?;
+            *o = $value;
+            Ok(())
+        })
+    };
+}
+pub(crate) use output;
+
+/// `what`'s arrays (`(name, length)`, the output last) have one length, or
+/// `DASHPOT_ERR_BAD_LENGTH` giving them all.
+pub(crate) fn same_lengths(what: &str, arrays: &[(&str, usize)]) -> Result<(), CError> {
+    if arrays.windows(2).all(|w| w[0].1 == w[1].1) {
+        return Ok(());
+    }
+    let and = |items: Vec<String>| match items.split_last() {
+        Some((last, [])) => last.clone(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => String::new(),
+    };
+    Err(CError::new(
+        DASHPOT_ERR_BAD_LENGTH,
+        format!(
+            "{what}: {} must have the same length, got {}",
+            and(arrays.iter().map(|a| a.0.to_string()).collect()),
+            and(arrays.iter().map(|a| a.1.to_string()).collect())
+        ),
+    ))
+}
+
 /// `p` as a reference, or `DASHPOT_ERR_NULL_POINTER` naming `what`.
 ///
 /// # Safety

@@ -123,11 +123,7 @@ pub(crate) unsafe fn bind_materials<L: BindMaterials>(
 /// # Safety
 /// Non-null pointers must be valid.
 pub(crate) unsafe fn history_slots<M: Model>(model: *const M, out_slots: *mut usize) -> DashpotStatus {
-    guard(|| {
-        let m = unsafe { arg(model, "model") }?;
-        *unsafe { out(out_slots, "out_slots") }? = m.slots();
-        Ok(())
-    })
+    crate::error::output!(arg model => out_slots = model.slots())
 }
 
 /// The body of every `*_bind` (to a pair).
@@ -459,11 +455,21 @@ pub(crate) unsafe fn energy_batch<M: EnergyBatch>(
     })
 }
 
-/// The sdk 0.3 batches with energy outputs, one per model type (the header's
-/// `DASHPOT_ENERGY_BATCH`).
-macro_rules! energy_batch_functions {
-    ($($model:ty: $name:ident($input:ident, $out:ident);)*) => {$(
-        /// The batch call with energy outputs: `DASHPOT_ENERGY_BATCH` in dashpot.h.
+/// The energy outputs of a batch: those given, or none (null).
+macro_rules! energy_outputs {
+    () => {
+        ([std::ptr::null_mut(); 2], std::ptr::null_mut())
+    };
+    ($power:ident, $elastic:ident, $written:ident) => {
+        ([$power, $elastic], $written)
+    };
+}
+
+/// The batches of the tangential, rolling and twisting kinds, one line per function, with the
+/// sdk 0.3 energy outputs where the line names them (the header's `DASHPOT_MOTION_BATCH`).
+macro_rules! motion_batch_functions {
+    ($($model:ty: $name:ident($input:ident, $out:ident $(, $power:ident, $elastic:ident, $written:ident)?);)*) => {$(
+        /// A batch call: `DASHPOT_MOTION_BATCH` in dashpot.h.
         ///
         /// # Safety
         /// Non-null arrays must hold the lengths the header states; outputs must not overlap
@@ -483,21 +489,19 @@ macro_rules! energy_batch_functions {
             history: *mut f64,
             n_history: usize,
             $out: *mut f64,
-            out_power: *mut f64,
-            out_elastic: *mut f64,
-            out_energy_written: *mut std::ffi::c_int,
+            $($power: *mut f64, $elastic: *mut f64, $written: *mut std::ffi::c_int,)?
         ) -> $crate::error::DashpotStatus {
             let names = [stringify!($input), stringify!($out)];
             let scalars = [normal_force, delta, mass, radius];
-            let energy = [out_power, out_elastic];
+            let (energy, written) = $crate::handle::energy_outputs!($($power, $elastic, $written)?);
             unsafe {
                 $crate::handle::energy_batch(
                     stringify!($name), names, model, n, dt, normal, $input, scalars, history, n_history, $out,
-                    energy, out_energy_written,
+                    energy, written,
                 )
             }
         }
     )*};
 }
 
-pub(crate) use energy_batch_functions;
+pub(crate) use {energy_outputs, motion_batch_functions};

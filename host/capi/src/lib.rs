@@ -20,8 +20,10 @@
 //! - Every kind of law (contact, tangential, restitution, rolling, twisting) has the same
 //!   `new`/`free`/binding functions, generated from one shape per step (`handle.rs`, listed per
 //!   kind in `kinds.rs`) and declared in the header by the `DASHPOT_LAW_FUNCTIONS`,
-//!   `DASHPOT_MODEL_FUNCTIONS` and `DASHPOT_PAIR_FUNCTIONS` macros; each kind's batch call is
-//!   its own function.
+//!   `DASHPOT_MODEL_FUNCTIONS` and `DASHPOT_PAIR_FUNCTIONS` macros. The batch calls of the
+//!   models, with and without sdk 0.3's energy outputs, come from one parameter list per shape
+//!   (`contact_model.rs`, `energy.rs`), declared by `DASHPOT_CONTACT_BATCH` and
+//!   `DASHPOT_MOTION_BATCH`.
 //! - Thread safety: every handle may be used from several threads at once (all calls on them
 //!   are read-only), except that a `*_free` must not race with any other use of that handle.
 //!
@@ -44,7 +46,6 @@ pub mod materials;
 pub mod pair;
 pub mod registry;
 pub mod restitution;
-pub mod tangential;
 pub mod version;
 
 pub use calibrate::*;
@@ -57,7 +58,6 @@ pub use materials::*;
 pub use pair::*;
 pub use registry::*;
 pub use restitution::*;
-pub use tangential::*;
 pub use version::*;
 
 // The thread-safety promises of the header, checked by the compiler: every handle may be shared

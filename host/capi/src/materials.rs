@@ -6,7 +6,7 @@
 //! 1/G_eff = (2 − ν1)/G1 + (2 − ν2)/G2 with G = E/(2(1 + ν)). A flat wall is rigid:
 //! E_eff = E1/(1 − ν1²), G_eff = G1/(2 − ν1).
 
-use crate::error::{guard, out, DashpotStatus};
+use crate::error::{output, DashpotStatus};
 use dashpot_sdk::{LawError, MaterialPair};
 
 /// The effective moduli of a pair of materials (SI).
@@ -51,11 +51,7 @@ pub unsafe extern "C" fn dashpot_materials_spheres(
     poisson2: f64,
     out_materials: *mut DashpotMaterials,
 ) -> DashpotStatus {
-    guard(|| {
-        let o = unsafe { out(out_materials, "out_materials") }?;
-        *o = MaterialPair::of_moduli(young1, poisson1, Some((young2, poisson2)))?.into();
-        Ok(())
-    })
+    output!(=> out_materials = MaterialPair::of_moduli(young1, poisson1, Some((young2, poisson2)))?.into())
 }
 
 /// The materials of a sphere (Young's modulus `young` in Pa, Poisson's ratio `poisson`) against a
@@ -71,9 +67,5 @@ pub unsafe extern "C" fn dashpot_materials_wall(
     poisson: f64,
     out_materials: *mut DashpotMaterials,
 ) -> DashpotStatus {
-    guard(|| {
-        let o = unsafe { out(out_materials, "out_materials") }?;
-        *o = MaterialPair::of_moduli(young, poisson, None)?.into();
-        Ok(())
-    })
+    output!(=> out_materials = MaterialPair::of_moduli(young, poisson, None)?.into())
 }

@@ -4,7 +4,7 @@
 //! r = r1 r2/(r1 + r2), 1/E = (1 − ν1²)/E1 + (1 − ν2²)/E2. A flat wall is a rigid partner of
 //! infinite mass and radius: m = m1, r = r1, E = E1/(1 − ν1²).
 
-use crate::error::{arg, guard, out, CError, DashpotStatus};
+use crate::error::{output, CError, DashpotStatus};
 use dashpot_sdk::{LawError, Pair, Particle};
 
 /// One sphere, in SI units.
@@ -61,25 +61,32 @@ impl From<&DashpotParticle> for Particle {
     }
 }
 
-fn check_material(young: f64, poisson: f64, which: &str) -> Result<f64, CError> {
+/// A body given by its diameter (m), mass (kg), Young's modulus (Pa) and Poisson's ratio, each
+/// checked (named with `which`: "1", "2" or "" for the one body of a wall pair): its radius,
+/// mass and plane-strain modulus E/(1 − ν²).
+fn body_of_mass(diameter: f64, mass: f64, young: f64, poisson: f64, which: &str) -> Result<[f64; 3], CError> {
+    let positive = |v: f64, what: &str, unit: &str| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(LawError::invalid_pair(format!(
+                "{what}{which} ({unit}) = {v} is out of range: it must be finite and > 0"
+            )))
+        }
+    };
+    positive(diameter, "diameter", "m")?;
+    positive(mass, "mass", "kg")?;
     // The same checks as dashpot_sdk::Particle::validate, for a particle given by its mass.
     let p = Particle {
-        diameter: 1.0,
+        diameter,
         density: 1.0,
         young,
         poisson,
     };
+    let particle = format!("particle {which}");
     p.validate()
-        .map_err(|e| CError::from(LawError::invalid_pair(format!("{which}: {}", e.message))))?;
-    Ok(p.plane_strain_modulus())
-}
-
-fn check_positive(v: f64, what: &str) -> Result<(), CError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(LawError::invalid_pair(format!("{what} = {v} is out of range: it must be finite and > 0")).into())
-    }
+        .map_err(|e| LawError::invalid_pair(format!("{}: {}", particle.trim_end(), e.message)))?;
+    Ok([0.5 * diameter, mass, p.plane_strain_modulus()])
 }
 
 /// The pair of two spheres `a` and `b`, each given by diameter, density, E and ν.
@@ -96,13 +103,7 @@ pub unsafe extern "C" fn dashpot_pair_spheres(
     b: *const DashpotParticle,
     out_pair: *mut DashpotPair,
 ) -> DashpotStatus {
-    guard(|| {
-        let a = unsafe { arg(a, "a") }?;
-        let b = unsafe { arg(b, "b") }?;
-        let o = unsafe { out(out_pair, "out_pair") }?;
-        *o = Pair::spheres(&a.into(), &b.into())?.into();
-        Ok(())
-    })
+    output!(arg a, arg b => out_pair = Pair::spheres(&a.into(), &b.into())?.into())
 }
 
 /// The pair of sphere `a` and a flat rigid wall of infinite mass.
@@ -116,12 +117,7 @@ pub unsafe extern "C" fn dashpot_pair_wall(
     a: *const DashpotParticle,
     out_pair: *mut DashpotPair,
 ) -> DashpotStatus {
-    guard(|| {
-        let a = unsafe { arg(a, "a") }?;
-        let o = unsafe { out(out_pair, "out_pair") }?;
-        *o = Pair::wall(&a.into())?.into();
-        Ok(())
-    })
+    output!(arg a => out_pair = Pair::wall(&a.into())?.into())
 }
 
 /// The pair of two spheres given by diameter (m), mass (kg), E (Pa) and ν each, as DEM codes
@@ -144,22 +140,10 @@ pub unsafe extern "C" fn dashpot_pair_from_masses(
     poisson2: f64,
     out_pair: *mut DashpotPair,
 ) -> DashpotStatus {
-    guard(|| {
-        let o = unsafe { out(out_pair, "out_pair") }?;
-        check_positive(diameter1, "diameter1 (m)")?;
-        check_positive(mass1, "mass1 (kg)")?;
-        check_positive(diameter2, "diameter2 (m)")?;
-        check_positive(mass2, "mass2 (kg)")?;
-        let e1 = check_material(young1, poisson1, "particle 1")?;
-        let e2 = check_material(young2, poisson2, "particle 2")?;
-        let (r1, r2) = (0.5 * diameter1, 0.5 * diameter2);
-        *o = Pair::new(
-            mass1 * mass2 / (mass1 + mass2),
-            r1 * r2 / (r1 + r2),
-            1.0 / (1.0 / e1 + 1.0 / e2),
-        )?
-        .into();
-        Ok(())
+    output!(=> out_pair = {
+        let [r1, m1, e1] = body_of_mass(diameter1, mass1, young1, poisson1, "1")?;
+        let [r2, m2, e2] = body_of_mass(diameter2, mass2, young2, poisson2, "2")?;
+        Pair::new(m1 * m2 / (m1 + m2), r1 * r2 / (r1 + r2), 1.0 / (1.0 / e1 + 1.0 / e2))?.into()
     })
 }
 
@@ -177,12 +161,8 @@ pub unsafe extern "C" fn dashpot_pair_wall_from_mass(
     poisson: f64,
     out_pair: *mut DashpotPair,
 ) -> DashpotStatus {
-    guard(|| {
-        let o = unsafe { out(out_pair, "out_pair") }?;
-        check_positive(diameter, "diameter (m)")?;
-        check_positive(mass, "mass (kg)")?;
-        let e = check_material(young, poisson, "particle")?;
-        *o = Pair::new(mass, 0.5 * diameter, e)?.into();
-        Ok(())
+    output!(=> out_pair = {
+        let [r, m, e] = body_of_mass(diameter, mass, young, poisson, "")?;
+        Pair::new(m, r, e)?.into()
     })
 }

@@ -1,6 +1,6 @@
 //! The registry: plugin directories in, laws and their parameter schemas out.
 
-use crate::error::{arg, guard, out, slice, string, CError, DashpotStatus, DashpotStatus::*};
+use crate::error::{guard, out, output, slice, string, CError, DashpotStatus, DashpotStatus::*};
 use dashpot_core::{Registry, SearchPath};
 use dashpot_sdk::{EndCriterion, LawInfo, LawKind, ParamValue};
 use std::ffi::{c_char, c_int, CString};
@@ -139,6 +139,65 @@ impl DashpotRegistry {
         DashpotRegistry { reg, strings }
     }
 
+    /// The index of the law called `name`.
+    fn index_of(&self, name: &str) -> Result<usize, CError> {
+        self.reg.find(name)?;
+        Ok(self
+            .reg
+            .laws
+            .iter()
+            .position(|l| l.info.name == name)
+            .unwrap_or_default())
+    }
+
+    /// The C description of law number `index`.
+    fn law_info(&self, index: usize) -> Result<DashpotLawInfo, CError> {
+        let info = self.law(index)?;
+        let s = &self.strings[index];
+        Ok(DashpotLawInfo {
+            name: s.name.as_ptr(),
+            kind: match info.kind {
+                LawKind::Contact => DashpotLawKind::DASHPOT_CONTACT,
+                LawKind::Restitution => DashpotLawKind::DASHPOT_RESTITUTION,
+                LawKind::Tangential => DashpotLawKind::DASHPOT_TANGENTIAL,
+                LawKind::Rolling => DashpotLawKind::DASHPOT_ROLLING,
+                LawKind::Twisting => DashpotLawKind::DASHPOT_TWISTING,
+            },
+            summary: s.summary.as_ptr(),
+            doc: s.doc.as_ptr(),
+            n_params: info.params.len(),
+            end_criterion: info.end_criterion.into(),
+        })
+    }
+
+    /// The C description of parameter number `param` of law number `law`.
+    fn param_info(&self, law: usize, param: usize) -> Result<DashpotParamInfo, CError> {
+        let info = self.law(law)?;
+        let p = info.params.get(param).ok_or_else(|| {
+            CError::new(
+                DASHPOT_ERR_INVALID_ARGUMENT,
+                format!(
+                    "parameter index {param} is out of range: law '{}' has {} parameters",
+                    info.name,
+                    info.params.len()
+                ),
+            )
+        })?;
+        let s = &self.strings[law].params[param];
+        let default = p.default;
+        Ok(DashpotParamInfo {
+            name: s.name.as_ptr(),
+            unit: s.unit.as_ptr(),
+            doc: s.doc.as_ptr(),
+            has_default: c_int::from(default.is_some()),
+            default_value: default.unwrap_or(f64::NAN),
+            min: p.range.min,
+            max: p.range.max,
+            min_inclusive: c_int::from(p.range.min_inclusive),
+            max_inclusive: c_int::from(p.range.max_inclusive),
+        })
+    }
+
     fn law(&self, index: usize) -> Result<&LawInfo, CError> {
         self.reg.laws.get(index).map(|l| &l.info).ok_or_else(|| {
             CError::new(
@@ -239,11 +298,7 @@ pub unsafe extern "C" fn dashpot_registry_law_count(
     registry: *const DashpotRegistry,
     out_count: *mut usize,
 ) -> DashpotStatus {
-    guard(|| {
-        let r = unsafe { arg(registry, "registry") }?;
-        *unsafe { out(out_count, "out_count") }? = r.reg.laws.len();
-        Ok(())
-    })
+    output!(arg registry => out_count = registry.reg.laws.len())
 }
 
 /// The index of the law called `name`.
@@ -259,19 +314,7 @@ pub unsafe extern "C" fn dashpot_registry_find(
     name: *const c_char,
     out_index: *mut usize,
 ) -> DashpotStatus {
-    guard(|| {
-        let r = unsafe { arg(registry, "registry") }?;
-        let name = unsafe { string(name, "name") }?;
-        let o = unsafe { out(out_index, "out_index") }?;
-        r.reg.find(name)?;
-        *o = r
-            .reg
-            .laws
-            .iter()
-            .position(|l| l.info.name == name)
-            .unwrap_or_default();
-        Ok(())
-    })
+    output!(arg registry, string name => out_index = registry.index_of(name)?)
 }
 
 /// The description of law number `index` (0 ≤ index < count).
@@ -288,27 +331,7 @@ pub unsafe extern "C" fn dashpot_registry_law_info(
     index: usize,
     out_info: *mut DashpotLawInfo,
 ) -> DashpotStatus {
-    guard(|| {
-        let r = unsafe { arg(registry, "registry") }?;
-        let o = unsafe { out(out_info, "out_info") }?;
-        let info = r.law(index)?;
-        let s = &r.strings[index];
-        *o = DashpotLawInfo {
-            name: s.name.as_ptr(),
-            kind: match info.kind {
-                LawKind::Contact => DashpotLawKind::DASHPOT_CONTACT,
-                LawKind::Restitution => DashpotLawKind::DASHPOT_RESTITUTION,
-                LawKind::Tangential => DashpotLawKind::DASHPOT_TANGENTIAL,
-                LawKind::Rolling => DashpotLawKind::DASHPOT_ROLLING,
-                LawKind::Twisting => DashpotLawKind::DASHPOT_TWISTING,
-            },
-            summary: s.summary.as_ptr(),
-            doc: s.doc.as_ptr(),
-            n_params: info.params.len(),
-            end_criterion: info.end_criterion.into(),
-        };
-        Ok(())
-    })
+    output!(arg registry => out_info = registry.law_info(index)?)
 }
 
 /// Parameter number `param` (0 ≤ param < n_params) of law number `law`.
@@ -325,33 +348,5 @@ pub unsafe extern "C" fn dashpot_registry_param_info(
     param: usize,
     out_param: *mut DashpotParamInfo,
 ) -> DashpotStatus {
-    guard(|| {
-        let r = unsafe { arg(registry, "registry") }?;
-        let o = unsafe { out(out_param, "out_param") }?;
-        let info = r.law(law)?;
-        let p = info.params.get(param).ok_or_else(|| {
-            CError::new(
-                DASHPOT_ERR_INVALID_ARGUMENT,
-                format!(
-                    "parameter index {param} is out of range: law '{}' has {} parameters",
-                    info.name,
-                    info.params.len()
-                ),
-            )
-        })?;
-        let s = &r.strings[law].params[param];
-        let default = p.default;
-        *o = DashpotParamInfo {
-            name: s.name.as_ptr(),
-            unit: s.unit.as_ptr(),
-            doc: s.doc.as_ptr(),
-            has_default: c_int::from(default.is_some()),
-            default_value: default.unwrap_or(f64::NAN),
-            min: p.range.min,
-            max: p.range.max,
-            min_inclusive: c_int::from(p.range.min_inclusive),
-            max_inclusive: c_int::from(p.range.max_inclusive),
-        };
-        Ok(())
-    })
+    output!(arg registry => out_param = registry.param_info(law, param)?)
 }

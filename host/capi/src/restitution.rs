@@ -1,6 +1,6 @@
 //! Restitution laws r(v) bound to a pair: evaluate. (Creating, binding and freeing: `kinds.rs`.)
 
-use crate::error::{arg, guard, out, slice, slice_mut, CError, DashpotStatus, DashpotStatus::*};
+use crate::error::{arg, guard, output, same_lengths, slice, slice_mut, DashpotStatus};
 use crate::kinds::DashpotBoundRestitution;
 
 /// r(v): the coefficient of restitution at normal impact speed `speed` (m/s).
@@ -16,12 +16,7 @@ pub unsafe extern "C" fn dashpot_restitution_eval(
     speed: f64,
     out_restitution: *mut f64,
 ) -> DashpotStatus {
-    guard(|| {
-        let b = unsafe { arg(bound, "bound") }?;
-        let o = unsafe { out(out_restitution, "out_restitution") }?;
-        *o = b.bound.restitution(speed)?;
-        Ok(())
-    })
+    output!(arg bound => out_restitution = bound.bound.restitution(speed)?)
 }
 
 /// `out_restitution[i] = r(speed[i])`; the two lengths must be equal.
@@ -40,15 +35,8 @@ pub unsafe extern "C" fn dashpot_restitution_batch(
 ) -> DashpotStatus {
     guard(|| {
         let b = unsafe { arg(bound, "bound") }?;
-        if n_speed != n_out {
-            return Err(CError::new(
-                DASHPOT_ERR_BAD_LENGTH,
-                format!(
-                    "dashpot_restitution_batch: speed and out_restitution must have the same length, \
-                     got {n_speed} and {n_out}"
-                ),
-            ));
-        }
+        let lengths = [("speed", n_speed), ("out_restitution", n_out)];
+        same_lengths("dashpot_restitution_batch", &lengths)?;
         let s = unsafe { slice(speed, n_speed, "speed") }?;
         let o = unsafe { slice_mut(out_restitution, n_out, "out_restitution") }?;
         b.bound.restitution_batch(s, o)?;

@@ -159,17 +159,24 @@ fn c_example_realizes_the_hsd_restitution() {
     };
     check_hsd_collisions(&exe);
     // An unknown law is reported with the library's message and a non-zero exit.
-    let out = Command::new(&exe)
-        .arg(deps_dir())
-        .arg("hsdx")
-        .output()
-        .expect("run");
-    assert!(!out.status.success());
+    let out = refused(&exe, &["hsdx"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         err.contains("DASHPOT_ERR_UNKNOWN_LAW") && err.contains("unknown law 'hsdx'"),
         "{err}"
     );
+}
+
+/// The output of the example `exe` run on the plugins with `args`, which it must refuse (a
+/// non-zero exit).
+fn refused(exe: &Path, args: &[&str]) -> std::process::Output {
+    let out = Command::new(exe)
+        .arg(deps_dir())
+        .args(args)
+        .output()
+        .expect("run");
+    assert!(!out.status.success(), "{args:?} was accepted");
+    out
 }
 
 #[test]
@@ -178,13 +185,7 @@ fn fortran_example_realizes_the_hsd_restitution() {
         return;
     };
     check_hsd_collisions(&exe);
-    let out = Command::new(&exe)
-        .arg(deps_dir())
-        .arg("hsd")
-        .arg("1.5")
-        .output()
-        .expect("run");
-    assert!(!out.status.success());
+    let out = refused(&exe, &["hsd", "1.5"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         stdout.contains("DASHPOT_ERR_INVALID_PARAMETER") && stdout.contains("= 1.5 is out of range"),

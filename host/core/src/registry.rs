@@ -318,39 +318,43 @@ impl Registry {
         Ok(p)
     }
 
+    /// Creates law `name` of `kind` from `params` (checked against its schema here, with a
+    /// suggestion for a misspelled name) by the plugin's constructor `new`.
+    fn create<H>(
+        &self,
+        name: &str,
+        params: &[ParamValue],
+        kind: LawKind,
+        new: fn(&LoadedPlugin, &str, &[ParamValue]) -> Result<H, LawError>,
+    ) -> Result<H, LawError> {
+        let p = self.find_kind(name, kind)?;
+        self.check_names(name, params)?;
+        new(p, name, params)
+    }
+
     /// Creates contact law `name` from `params`.
     pub fn contact(&self, name: &str, params: &[ParamValue]) -> Result<ContactLawHandle, LawError> {
-        let p = self.find_kind(name, LawKind::Contact)?;
-        self.check_names(name, params)?;
-        p.new_contact(name, params)
+        self.create(name, params, LawKind::Contact, LoadedPlugin::new_contact)
     }
 
     /// Creates tangential law `name` from `params`.
     pub fn tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
-        let p = self.find_kind(name, LawKind::Tangential)?;
-        self.check_names(name, params)?;
-        p.new_tangential(name, params)
+        self.create(name, params, LawKind::Tangential, LoadedPlugin::new_tangential)
     }
 
     /// Creates rolling law `name` from `params`.
     pub fn rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
-        let p = self.find_kind(name, LawKind::Rolling)?;
-        self.check_names(name, params)?;
-        p.new_rolling(name, params)
+        self.create(name, params, LawKind::Rolling, LoadedPlugin::new_rolling)
     }
 
     /// Creates twisting law `name` from `params`.
     pub fn twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
-        let p = self.find_kind(name, LawKind::Twisting)?;
-        self.check_names(name, params)?;
-        p.new_twisting(name, params)
+        self.create(name, params, LawKind::Twisting, LoadedPlugin::new_twisting)
     }
 
     /// Creates restitution law `name` from `params`.
     pub fn restitution(&self, name: &str, params: &[ParamValue]) -> Result<RestitutionLawHandle, LawError> {
-        let p = self.find_kind(name, LawKind::Restitution)?;
-        self.check_names(name, params)?;
-        p.new_restitution(name, params)
+        self.create(name, params, LawKind::Restitution, LoadedPlugin::new_restitution)
     }
 
     /// Refuses a parameter name outside law `name`'s schema, with the closest name of the

@@ -78,44 +78,30 @@ pub fn plugin_laws(
     d: f64,
     m: f64,
 ) -> Result<Laws<PluginRestitution>, LawError> {
-    plugin_laws_for(reg, name, params, &bed_particle(d, m))
+    let law = reg.restitution(name, params)?;
+    bound_to_pairs_of(&bed_particle(d, m), |pair| law.bind(pair))
 }
 
-/// [`plugin_laws`] bound to the pairs of particle `p`.
-fn plugin_laws_for(
-    reg: &crate::Registry,
-    name: &str,
-    params: &[dashpot_sdk::ParamValue],
+/// A law bound by `bind` to the pairs of particle `p` (two disks, a disk and a wall).
+fn bound_to_pairs_of<R>(
     p: &Particle,
-) -> Result<Laws<PluginRestitution>, LawError> {
-    let law = reg.restitution(name, params)?;
+    bind: impl Fn(&Pair) -> Result<R, LawError>,
+) -> Result<Laws<R>, LawError> {
     let (pp, pw) = particle_pairs(p)?;
     Ok(Laws {
-        disk: law.bind(&pp)?,
-        wall: law.bind(&pw)?,
+        disk: bind(&pp)?,
+        wall: bind(&pw)?,
     })
 }
 
 /// A restitution of any kind, chosen by name at run time.
 pub type DynRestitution = Box<dyn Restitution + Send>;
 
-/// The restitution named `name` with `params`, bound to the bed's pairs (disks of diameter `d`
-/// (m) and mass `m` (kg)): what `dashpot bed`, `scaling` and `figures bed` use. Today every name
-/// is a restitution-law plugin; another source of restitution (a contact law integrated over a
-/// collision, say) is one more [`Restitution`] implementation returned from here.
-pub fn resolve(
-    reg: &crate::Registry,
-    name: &str,
-    params: &[dashpot_sdk::ParamValue],
-    d: f64,
-    m: f64,
-) -> Result<Laws<DynRestitution>, LawError> {
-    resolve_for(reg, name, params, &bed_particle(d, m))
-}
-
-/// [`resolve`] for the disks `p` (the bed's diameter and mass, and a material: steel's in
-/// [`resolve`], else what `--young` and `--poisson` give, which a `from:LAW` table is
-/// computed for).
+/// The restitution named `name` with `params`, bound to the pairs of the disks `p` (the bed's
+/// diameter and mass, and a material: steel's by default ([`bed_particle`]), else what `--young`
+/// and `--poisson` give, which a `from:LAW` table is computed for): what `dashpot bed`,
+/// `scaling` and `figures bed` use. A name is a restitution-law plugin, or `from:` a contact
+/// law integrated over a collision.
 pub fn resolve_for(
     reg: &crate::Registry,
     name: &str,
@@ -129,7 +115,8 @@ pub fn resolve_for(
             wall: Box::new(Compiled(wall)),
         });
     }
-    let l = plugin_laws_for(reg, name, params, p)?;
+    let law = reg.restitution(name, params)?;
+    let l = bound_to_pairs_of(p, |pair| law.bind(pair))?;
     Ok(Laws {
         disk: Box::new(l.disk),
         wall: Box::new(l.wall),

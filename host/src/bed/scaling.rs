@@ -149,6 +149,21 @@ pub struct ScalingRow {
     pub tc_share: f64,
 }
 
+/// The symbols of the four observables, in the order of [`ScalingRow::fits`].
+pub const FIT_SYMBOLS: [&str; 4] = ["P", "T", "Nc", "ΔI"];
+
+impl ScalingRow {
+    /// θ of P, T, Nc and ΔI, in that order ([`FIT_SYMBOLS`]).
+    pub fn fits(&self) -> [&Option<PowerFit>; 4] {
+        [
+            &self.pressure,
+            &self.temperature,
+            &self.lid_collision_rate,
+            &self.mean_impulse,
+        ]
+    }
+}
+
 /// A run of either engine, for the exponent fits and the grid CSV: its observables, and the
 /// engine's own columns.
 pub trait Measured: std::ops::Deref<Target = BedObservables> {
@@ -295,15 +310,8 @@ pub fn write_fit_csv(path: &Path, rows: &[ScalingRow], prov: &[Provenance]) -> R
         None => ",,".to_string(),
     };
     for r in rows {
-        s.push_str(&format!(
-            "{},{},{},{},{},{}\n",
-            r.layers,
-            c(&r.pressure),
-            c(&r.temperature),
-            c(&r.lid_collision_rate),
-            c(&r.mean_impulse),
-            r.tc_share
-        ));
+        let fits = r.fits().map(c).join(",");
+        s.push_str(&format!("{},{fits},{}\n", r.layers, r.tc_share));
     }
     write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
 }

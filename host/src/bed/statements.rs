@@ -123,17 +123,19 @@ pub fn run(
     )?;
     let paper = |n: f64| BedConfig::paper(n, F);
     let stage = |s: &str| eprintln!("  statements: {s}");
+    // the paper's bed at each n with one change
+    let varied = |what: &str, change: &(dyn Fn(&mut BedConfig) + Sync)| {
+        sweep(rv, size, what, &|n| {
+            let mut c = paper(n);
+            change(&mut c);
+            c
+        })
+    };
 
     stage("r(v) at g = 9.8, 0 and 20 m/s²");
     let g98 = sweep(rv, size, "r(v), g = 9.8", &|n| paper(n))?;
-    let g0 = sweep(rv, size, "r(v), g = 0", &|n| BedConfig {
-        gravity: 0.0,
-        ..paper(n)
-    })?;
-    let g20 = sweep(rv, size, "r(v), g = 20", &|n| BedConfig {
-        gravity: 20.0,
-        ..paper(n)
-    })?;
+    let g0 = varied("r(v), g = 0", &|c| c.gravity = 0.0)?;
+    let g20 = varied("r(v), g = 20", &|c| c.gravity = 20.0)?;
     writeln!(md, "{head}")?;
     for (name, runs) in [
         ("r(v), g = 9.8", &g98),
@@ -173,18 +175,11 @@ pub fn run(
     stage("headroom h − h0 = 5, 15, 50 mm and both readings of h0");
     let mut hs = Vec::new();
     for h in [0.005, 0.05] {
-        hs.push((
-            h,
-            sweep(rv, size, &format!("r(v), h - h0 = {h}"), &|n| BedConfig {
-                headroom: h,
-                ..paper(n)
-            })?,
-        ));
+        hs.push((h, varied(&format!("r(v), h - h0 = {h}"), &|c| c.headroom = h)?));
     }
-    let h09 = sweep(rv, size, "r(v), h0 = 0.9 n d", &|n| BedConfig {
-        // the lid stays h − h0 = 15 mm above a bed at rest 0.9 n d high
-        headroom: 0.015 - 0.1 * n * 0.002,
-        ..paper(n)
+    // the lid stays h − h0 = 15 mm above a bed at rest 0.9 n d high
+    let h09 = varied("r(v), h0 = 0.9 n d", &|c| {
+        c.headroom = 0.015 - 0.1 * c.layers * 0.002
     })?;
     writeln!(md, "\n{head}")?;
     writeln!(md, "| h − h0 = 5 mm | {} |", row(&hs[0].1))?;
@@ -216,14 +211,8 @@ pub fn run(
     let _ = d50;
 
     stage("box width L = 10 and 40 cm");
-    let l10 = sweep(rv, size, "r(v), L = 10 cm", &|n| BedConfig {
-        width: 0.1,
-        ..paper(n)
-    })?;
-    let l40 = sweep(rv, size, "r(v), L = 40 cm", &|n| BedConfig {
-        width: 0.4,
-        ..paper(n)
-    })?;
+    let l10 = varied("r(v), L = 10 cm", &|c| c.width = 0.1)?;
+    let l40 = varied("r(v), L = 40 cm", &|c| c.width = 0.4)?;
     writeln!(md, "\n{head}")?;
     writeln!(md, "| L = 10 cm | {} |", row(&l10))?;
     writeln!(md, "| L = 20 cm | {} |", row(&g98))?;

@@ -59,15 +59,9 @@ pub struct DemBedArgs {
     /// A tangential-law parameter NAME=VALUE (repeatable), e.g. mu=0.3.
     #[arg(long = "tset", value_name = "NAME=VALUE", requires = "bed")]
     pub tset: Vec<String>,
-    /// Young's modulus of the disks (Pa); default steel, 2e11.
-    #[arg(long, allow_hyphen_values = true)]
-    pub young: Option<f64>,
-    /// Poisson's ratio; default 0.3.
-    #[arg(long, allow_hyphen_values = true)]
-    pub poisson: Option<f64>,
-    /// The step (s); default: the law's contact time at the largest impact speed / 50.
-    #[arg(long, allow_hyphen_values = true)]
-    pub dt: Option<f64>,
+    /// The disks' material and the step.
+    #[command(flatten)]
+    pub disks: crate::cli::bed::DiskArgs,
     /// Gravity (m/s²).
     #[arg(long, default_value_t = 9.8, allow_hyphen_values = true)]
     pub gravity: f64,
@@ -120,13 +114,13 @@ fn run_bed(reg: &Registry, b: &DemBedArgs, json: bool) -> Result<()> {
             seed: b.seed,
             ..crate::bed::BedConfig::paper(layers, freq)
         },
-        young: b.young,
-        poisson: b.poisson,
+        young: b.disks.young,
+        poisson: b.disks.poisson,
         engine: BedEngine::Dem {
             law: LawChoice::new(law, param_values(&b.set)?),
             tangential: dem_tangential(b.tangential.as_deref(), &b.tset)?,
             rolling: None,
-            dt: b.dt,
+            dt: b.disks.dt,
             steps_per_collision: None,
         },
         transient: b.transient,

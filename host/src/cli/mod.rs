@@ -205,10 +205,7 @@ fn laws(reg: &Registry, json_out: bool) -> Result<()> {
             p.version
         );
         for s in l.info.params.iter() {
-            let def = match s.default {
-                Some(v) => format!("default {v}"),
-                None => "derived if unset".to_string(),
-            };
+            let def = default_text(s);
             println!(
                 "    {:<6} [{}] {}, range {}: {}",
                 s.name, s.unit, def, s.range, s.doc
@@ -243,16 +240,21 @@ fn law(reg: &Registry, name: &str, json_out: bool) -> Result<()> {
     println!("{}\n", textwrap(i.doc.as_str(), 96));
     println!("parameters:");
     for s in i.params.iter() {
-        let def = match s.default {
-            Some(v) => format!("default {v}"),
-            None => "derived if unset".to_string(),
-        };
+        let def = default_text(s);
         println!(
             "  {} [{}]  {}; valid {}\n      {}",
             s.name, s.unit, def, s.range, s.doc
         );
     }
     Ok(())
+}
+
+/// A parameter's default as `dashpot laws` and `dashpot law` print it.
+fn default_text(s: &dashpot_sdk::ParamSpec) -> String {
+    match s.default {
+        Some(v) => format!("default {v}"),
+        None => "derived if unset".to_string(),
+    }
 }
 
 fn textwrap(s: &str, width: usize) -> String {

@@ -453,22 +453,21 @@ fn plastic_and_oblique(reg: &Registry, out: &Path) -> Result<String> {
         .bind(&mat)?;
     let body = Body::solid_sphere(alumina.mass(), alumina.radius());
     let r = alumina.radius();
+    // the sphere on the wall at `speed` (m/s), incidence `angle` (rad) and initial `spin` (rad/s)
+    let on_wall = |speed: f64, angle: f64, spin: f64| {
+        let impact = Impact {
+            speed,
+            angle,
+            spin,
+            end: EndCriterion::Overlap,
+            steps: 20_000,
+        };
+        oblique(&normal, Some(&tang), &body, &Target::Wall, &impact)
+    };
     let (mut reb, mut spin, mut slide_line, mut rows) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for k in 1..=17 {
         let angle = 5.0 * k as f64;
-        let c = oblique(
-            &normal,
-            Some(&tang),
-            &body,
-            &Target::Wall,
-            &Impact {
-                speed: 3.9,
-                angle: angle.to_radians(),
-                spin: 0.0,
-                end: EndCriterion::Overlap,
-                steps: 20_000,
-            },
-        )?;
+        let c = on_wall(3.9, angle.to_radians(), 0.0)?;
         reb.push((angle, c.rebound_angle));
         spin.push((angle, c.angular_velocity_out));
         let w_slide = 2.5 * mu * (1.0 + c.restitution) * c.normal_velocity_in / r;
@@ -540,19 +539,7 @@ fn plastic_and_oblique(reg: &Registry, out: &Path) -> Result<String> {
     let vn = 3.9 / 2f64.sqrt();
     for k in 0..=12 {
         let w0 = -600.0 + 100.0 * k as f64;
-        let c = oblique(
-            &normal,
-            Some(&tang),
-            &body,
-            &Target::Wall,
-            &Impact {
-                speed: vn,
-                angle: 0.0,
-                spin: w0,
-                end: EndCriterion::Overlap,
-                steps: 20_000,
-            },
-        )?;
+        let c = on_wall(vn, 0.0, w0)?;
         vt5.push((w0, c.tangential_velocity_out));
         w5.push((w0, c.angular_velocity_out));
         rows5.push(vec![w0, c.tangential_velocity_out, c.angular_velocity_out]);

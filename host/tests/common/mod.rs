@@ -78,14 +78,19 @@ pub fn dashpot(args: &[&str]) -> Output {
         .unwrap()
 }
 
-pub fn ok_json(args: &[&str]) -> Value {
+/// Runs a command that must succeed (its stderr is the message if it does not).
+pub fn succeeds(args: &[&str]) -> Output {
     let o = dashpot(args);
     assert!(
         o.status.success(),
         "{args:?}: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-    serde_json::from_slice(&o.stdout).unwrap()
+    o
+}
+
+pub fn ok_json(args: &[&str]) -> Value {
+    serde_json::from_slice(&succeeds(args).stdout).unwrap()
 }
 
 /// Runs a command that must fail: non-zero exit, an `error:` line containing every `needle`,
@@ -108,6 +113,52 @@ pub fn fails(args: &[&str], needles: &[&str]) {
 /// `dashpot(&sh("bed --restitution constant --layers 1 --freq 20"))`.
 pub fn sh(line: &str) -> Vec<&str> {
     line.split_whitespace().collect()
+}
+
+/// Each case `(words, needles)` run as [`fails`]: `base` followed by `words`, both split as
+/// [`sh`] splits them.
+pub fn each_fails(base: &str, cases: &[(&str, &[&str])]) {
+    for (words, needles) in cases {
+        fails(&sh(&format!("{base} {words}")), needles);
+    }
+}
+
+/// The observables of a bed run (JSON keys), each reported with its standard error over seeds
+/// (`KEY_stderr`).
+pub const BED_OBSERVABLES: [&str; 5] = [
+    "pressure",
+    "lid_collision_rate",
+    "mean_impulse",
+    "temperature",
+    "piston_pressure",
+];
+
+/// Every one of [`BED_OBSERVABLES`] in the bed's JSON `v` is measured: positive, with a
+/// standard error between 0 and the value.
+pub fn assert_measured_with_stderr(v: &Value) {
+    for k in BED_OBSERVABLES {
+        let key = |k: &str| v[k].as_f64().unwrap_or_else(|| panic!("key {k} missing in {v}"));
+        let (x, e) = (key(k), key(&format!("{k}_stderr")));
+        assert!(x > 0.0 && e > 0.0 && e < x, "{k} = {x} ± {e}");
+    }
+}
+
+/// The file `name` (in the temporary directory, tagged with this process) that the successful
+/// command `cmd`, given that file's path as its last word, wrote: its path and its text.
+pub fn written_by(cmd: &str, name: &str) -> (PathBuf, String) {
+    let f = std::env::temp_dir().join(format!("dashpot-{}-{name}", std::process::id()));
+    succeeds(&sh(&format!("{cmd} {}", f.to_str().unwrap())));
+    let text = std::fs::read_to_string(&f).unwrap();
+    (f, text)
+}
+
+/// A scene file `name` holding `text`, in a directory of this test process.
+pub fn scene(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("dashpot-scenes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
 }
 
 /// The laws of the seed plugins and those of sdk 0.2, sorted.

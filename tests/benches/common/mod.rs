@@ -15,6 +15,18 @@ fn cpu_seconds(clock: libc::clockid_t) -> f64 {
     ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
 }
 
+/// Uniform numbers in [0, 1) from a xorshift64 generator (Marsaglia 2003) started at `seed`:
+/// the same sequence on every run, so each run times the same inputs.
+pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut x = seed;
+    move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// This thread's CPU time (s), for benchmarks on a shared machine: time spent descheduled is
 /// not the code's.
 pub fn thread_cpu_seconds() -> f64 {

@@ -41,6 +41,86 @@ static void expect_true(int line, const char *what, int cond) {
 #define CHECK(cond) expect_true(__LINE__, #cond, (cond))
 #define CLOSE(a, b, tol) expect_true(__LINE__, #a " close to " #b, fabs((a) - (b)) <= (tol) * fabs(b))
 
+/*
+ * The error paths every kind of law shares, one macro per function macro of the header. They
+ * use main's registry `reg`, materials `mat` and `badmat`, pairs `pair` and `zero`, and the
+ * unknown parameter `bogus_name` = `eps_val`.
+ */
+
+/* dashpot_KIND_new (DASHPOT_LAW_FUNCTIONS): law `name` of KIND with its `n` parameters `names`
+ * at `good` (at `bad`: out of range, the message naming `bad_needle`); `other` is a law of
+ * another kind, `other_kind`. `*out` stays NULL. */
+#define EXPECT_NEW_ERRORS(KIND, out, name, names, good, bad, n, bad_needle, other, other_kind)                  \
+    do {                                                                                                    \
+        EXPECT(dashpot_##KIND##_new(NULL, name, names, good, n, out), DASHPOT_ERR_NULL_POINTER, "registry"); \
+        EXPECT(dashpot_##KIND##_new(reg, NULL, names, good, n, out), DASHPOT_ERR_NULL_POINTER, "name");      \
+        EXPECT(dashpot_##KIND##_new(reg, name, names, good, n, NULL), DASHPOT_ERR_NULL_POINTER, "out_law");  \
+        EXPECT(dashpot_##KIND##_new(reg, name, NULL, good, n, out), DASHPOT_ERR_NULL_POINTER, "param_names"); \
+        EXPECT(dashpot_##KIND##_new(reg, other, NULL, NULL, 0, out), DASHPOT_ERR_UNKNOWN_LAW,                \
+               "law '" other "' is a " other_kind " law");                                                   \
+        EXPECT(dashpot_##KIND##_new(reg, "no-such-law", NULL, NULL, 0, out), DASHPOT_ERR_UNKNOWN_LAW,         \
+               "unknown law 'no-such-law'");                                                                  \
+        CHECK(strstr(dashpot_last_error(), "available laws") != NULL);                                      \
+        EXPECT(dashpot_##KIND##_new(reg, name, bogus_name, eps_val, 1, out), DASHPOT_ERR_UNKNOWN_PARAMETER,   \
+               "epsilon");                                                                                    \
+        EXPECT(dashpot_##KIND##_new(reg, name, names, bad, n, out), DASHPOT_ERR_INVALID_PARAMETER, bad_needle); \
+        CHECK(*(out) == NULL);                                                                               \
+    } while (0)
+
+/* A binding `bind` of `law` to `with` (named `with_name`; `bad` is refused as `bad_needle`) into
+ * `out` (named `out_name`), which stays NULL. */
+#define EXPECT_BIND_ERRORS(bind, law, with, with_name, bad, bad_needle, out, out_name)                        \
+    do {                                                                                                    \
+        EXPECT(bind(NULL, with, out), DASHPOT_ERR_NULL_POINTER, "law");                                      \
+        EXPECT(bind(law, NULL, out), DASHPOT_ERR_NULL_POINTER, with_name);                                   \
+        EXPECT(bind(law, with, NULL), DASHPOT_ERR_NULL_POINTER, out_name);                                   \
+        EXPECT(bind(law, bad, out), DASHPOT_ERR_INVALID_PAIR, bad_needle);                                   \
+        CHECK(*(out) == NULL);                                                                               \
+    } while (0)
+
+/* dashpot_KIND_bind_materials (DASHPOT_MODEL_FUNCTIONS) and dashpot_KIND_bind
+ * (DASHPOT_PAIR_FUNCTIONS) of `law` into `out`. */
+#define EXPECT_BIND_MATERIALS_ERRORS(KIND, law, out)                                                         \
+    EXPECT_BIND_ERRORS(dashpot_##KIND##_bind_materials, law, &mat, "materials", &badmat,                     \
+                       "effective Young's modulus = 0", out, "out_model")
+#define EXPECT_BIND_PAIR_ERRORS(KIND, law, out)                                                              \
+    EXPECT_BIND_ERRORS(dashpot_##KIND##_bind, law, &pair, "pair", &zero, "effective mass", out, "out_bound")
+
+/* dashpot_KIND_model_history_slots (DASHPOT_MODEL_FUNCTIONS): `model` keeps `want` slots, which
+ * are written to `slots`. */
+#define EXPECT_SLOTS(KIND, model, slots, want)                                                               \
+    do {                                                                                                    \
+        EXPECT(dashpot_##KIND##_model_history_slots(model, &(slots)), DASHPOT_OK, NULL);                    \
+        CHECK((slots) == (want));                                                                            \
+        EXPECT(dashpot_##KIND##_model_history_slots(NULL, &(slots)), DASHPOT_ERR_NULL_POINTER, "model");    \
+        EXPECT(dashpot_##KIND##_model_history_slots(model, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");   \
+    } while (0)
+
+/* The functions of DASHPOT_LAW_FUNCTIONS and DASHPOT_MODEL_FUNCTIONS for law `name` of KIND
+ * (parameters as for EXPECT_NEW_ERRORS): the error paths of each, then `model` bound to `mat`,
+ * keeping `want` history slots (written to `slots`); `law` is freed, as a model outlives its law. */
+#define EXPECT_MODEL(KIND, law, model, name, names, good, bad, n, bad_needle, other, other_kind, slots, want)    \
+    do {                                                                                                    \
+        EXPECT_NEW_ERRORS(KIND, &law, name, names, good, bad, n, bad_needle, other, other_kind);            \
+        EXPECT(dashpot_##KIND##_new(reg, name, names, good, n, &law), DASHPOT_OK, NULL);                    \
+        EXPECT_BIND_MATERIALS_ERRORS(KIND, law, &model);                                                     \
+        EXPECT(dashpot_##KIND##_bind_materials(law, &mat, &model), DASHPOT_OK, NULL);                       \
+        dashpot_##KIND##_free(law);                                                                          \
+        law = NULL;                                                                                          \
+        EXPECT_SLOTS(KIND, model, slots, want);                                                              \
+    } while (0)
+
+/* `*out` bound by `bind` to `with` from law `name` of KIND (its `n` parameters `names` at
+ * `values`), the binding returning `want` (a failure's message naming `needle`); `law` is freed
+ * (a binding outlives its law). */
+#define BIND(KIND, law, name, names, values, n, bind, with, out, want, needle)                                \
+    do {                                                                                                    \
+        EXPECT(dashpot_##KIND##_new(reg, name, names, values, n, &law), DASHPOT_OK, NULL);                  \
+        EXPECT(bind(law, with, out), want, needle);                                                          \
+        dashpot_##KIND##_free(law);                                                                          \
+        law = NULL;                                                                                          \
+    } while (0)
+
 int main(int argc, char **argv) {
     if (argc < 2) {
         fprintf(stderr, "usage: %s PLUGIN_DIR\n", argv[0]);
@@ -148,26 +228,15 @@ int main(int argc, char **argv) {
     const char *bogus_name[1] = {"epsilon"};
     const char *null_name[1] = {NULL};
     double eps_val[1] = {0.54}, eps_bad[1] = {1.5};
-    EXPECT(dashpot_contact_new(NULL, "hsd", eps_name, eps_val, 1, &law), DASHPOT_ERR_NULL_POINTER, "registry");
-    EXPECT(dashpot_contact_new(reg, NULL, eps_name, eps_val, 1, &law), DASHPOT_ERR_NULL_POINTER, "name");
-    EXPECT(dashpot_contact_new(reg, "hsd", eps_name, eps_val, 1, NULL), DASHPOT_ERR_NULL_POINTER, "out_law");
-    EXPECT(dashpot_contact_new(reg, "hsd", NULL, eps_val, 1, &law), DASHPOT_ERR_NULL_POINTER, "param_names");
+    EXPECT_NEW_ERRORS(contact, &law, "hsd", eps_name, eps_val, eps_bad, 1, "1.5", "mcnamara-falcon", "restitution");
     EXPECT(dashpot_contact_new(reg, "hsd", eps_name, NULL, 1, &law), DASHPOT_ERR_NULL_POINTER, "param_values");
     EXPECT(dashpot_contact_new(reg, "hsd", null_name, eps_val, 1, &law), DASHPOT_ERR_NULL_POINTER, "param_names[0]");
-    EXPECT(dashpot_contact_new(reg, "no-such-law", NULL, NULL, 0, &law), DASHPOT_ERR_UNKNOWN_LAW, "available laws");
-    EXPECT(dashpot_contact_new(reg, "mcnamara-falcon", NULL, NULL, 0, &law), DASHPOT_ERR_UNKNOWN_LAW, "restitution law");
-    EXPECT(dashpot_contact_new(reg, "hsd", bogus_name, eps_val, 1, &law), DASHPOT_ERR_UNKNOWN_PARAMETER, "epsilon");
-    EXPECT(dashpot_contact_new(reg, "hsd", eps_name, eps_bad, 1, &law), DASHPOT_ERR_INVALID_PARAMETER, "1.5");
-    CHECK(law == NULL);
     EXPECT(dashpot_contact_new(reg, "hsd", eps_name, eps_val, 1, &law), DASHPOT_OK, NULL);
     CHECK(law != NULL);
 
     DashpotBoundContact *bound = NULL;
     DashpotPair zero = {0.0, 0.0025, 1e9};
-    EXPECT(dashpot_contact_bind(NULL, &pair, &bound), DASHPOT_ERR_NULL_POINTER, "law");
-    EXPECT(dashpot_contact_bind(law, NULL, &bound), DASHPOT_ERR_NULL_POINTER, "pair");
-    EXPECT(dashpot_contact_bind(law, &pair, NULL), DASHPOT_ERR_NULL_POINTER, "out_bound");
-    EXPECT(dashpot_contact_bind(law, &zero, &bound), DASHPOT_ERR_INVALID_PAIR, "effective mass");
+    EXPECT_BIND_PAIR_ERRORS(contact, law, &bound);
     EXPECT(dashpot_contact_bind(law, &pair, &bound), DASHPOT_OK, NULL);
     /* the bound law outlives the law it came from */
     dashpot_contact_free(law);
@@ -202,33 +271,28 @@ int main(int argc, char **argv) {
     /* ---- a panicking plugin: the error comes back, the handle stays usable ---- */
     const char *at_name[1] = {"at"};
     double at_val[1] = {1e-6};
+    const char *bp_name[1] = {"bind_panics"};
+    double bp_val[1] = {1.0};
     DashpotContactLaw *panicky = NULL;
     DashpotBoundContact *pb = NULL;
-    EXPECT(dashpot_contact_new(reg, "panicky", at_name, at_val, 1, &panicky), DASHPOT_OK, NULL);
-    EXPECT(dashpot_contact_bind(panicky, &pair, &pb), DASHPOT_OK, NULL);
+    BIND(contact, panicky, "panicky", at_name, at_val, 1, dashpot_contact_bind, &pair, &pb, DASHPOT_OK, NULL);
     EXPECT(dashpot_contact_force(pb, 1e-5, 1.0, &f), DASHPOT_ERR_PANIC, "deliberate panic at delta = 0.00001");
     EXPECT(dashpot_contact_force_batch(pb, d3, 3, r3, 3, o3, 3), DASHPOT_ERR_PANIC, "contact law 'panicky' panicked");
     EXPECT(dashpot_contact_force(pb, 5e-7, 1.0, &f), DASHPOT_OK, NULL);
     CHECK(f == 5e-7);
     dashpot_bound_contact_free(pb);
-    dashpot_contact_free(panicky);
-    const char *bp_name[1] = {"bind_panics"};
-    double bp_val[1] = {1.0};
-    EXPECT(dashpot_contact_new(reg, "panicky", bp_name, bp_val, 1, &panicky), DASHPOT_OK, NULL);
     pb = NULL;
-    EXPECT(dashpot_contact_bind(panicky, &pair, &pb), DASHPOT_ERR_PANIC, "deliberate panic in bind");
+    BIND(contact, panicky, "panicky", bp_name, bp_val, 1, dashpot_contact_bind, &pair, &pb, DASHPOT_ERR_PANIC,
+         "deliberate panic in bind");
     CHECK(pb == NULL);
-    dashpot_contact_free(panicky);
 
     /* ---- a law that returns NaN ---- */
     DashpotContactLaw *nanlaw = NULL;
     DashpotBoundContact *nb = NULL;
-    EXPECT(dashpot_contact_new(reg, "nan-force", at_name, at_val, 1, &nanlaw), DASHPOT_OK, NULL);
-    EXPECT(dashpot_contact_bind(nanlaw, &pair, &nb), DASHPOT_OK, NULL);
+    BIND(contact, nanlaw, "nan-force", at_name, at_val, 1, dashpot_contact_bind, &pair, &nb, DASHPOT_OK, NULL);
     EXPECT(dashpot_contact_force(nb, 1e-5, 0.0, &f), DASHPOT_ERR_NON_FINITE, "NaN");
     EXPECT(dashpot_contact_force_batch(nb, d3, 3, r3, 3, o3, 3), DASHPOT_ERR_NON_FINITE, "delta = 1e-5");
     dashpot_bound_contact_free(nb);
-    dashpot_contact_free(nanlaw);
 
     /* ---- the 0.1 batch refuses a NaN overlap (it used to return F = 0 and OK) ---- */
     double dn[3] = {1e-6, NAN, 1e-5}, rn[3] = {0.0, 0.0, INFINITY};
@@ -260,19 +324,12 @@ int main(int argc, char **argv) {
     /* ---- contact laws bound to materials: per-contact geometry and history ---- */
     DashpotContactModel *cm = NULL;
     EXPECT(dashpot_contact_new(reg, "hsd", eps_name, eps_val, 1, &law), DASHPOT_OK, NULL);
-    EXPECT(dashpot_contact_bind_materials(NULL, &mat, &cm), DASHPOT_ERR_NULL_POINTER, "law");
-    EXPECT(dashpot_contact_bind_materials(law, NULL, &cm), DASHPOT_ERR_NULL_POINTER, "materials");
-    EXPECT(dashpot_contact_bind_materials(law, &mat, NULL), DASHPOT_ERR_NULL_POINTER, "out_model");
-    EXPECT(dashpot_contact_bind_materials(law, &badmat, &cm), DASHPOT_ERR_INVALID_PAIR, "effective Young's modulus = 0");
-    CHECK(cm == NULL);
+    EXPECT_BIND_MATERIALS_ERRORS(contact, law, &cm);
     EXPECT(dashpot_contact_bind_materials(law, &mat, &cm), DASHPOT_OK, NULL);
     dashpot_contact_free(law); /* the model outlives its law */
     law = NULL;
     size_t slots = 99;
-    EXPECT(dashpot_contact_model_history_slots(cm, &slots), DASHPOT_OK, NULL);
-    CHECK(slots == 0);
-    EXPECT(dashpot_contact_model_history_slots(NULL, &slots), DASHPOT_ERR_NULL_POINTER, "model");
-    EXPECT(dashpot_contact_model_history_slots(cm, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");
+    EXPECT_SLOTS(contact, cm, slots, 0);
     /* three sizes in one call: F = (4/3) E sqrt(r_i) delta^(3/2) at rest, whatever the mass */
     double md[3] = {1e-5, 2e-5, 1e-5}, mr[3] = {0.0, 0.0, 0.0};
     double mm[3] = {1e-3, 2e-3, 5e-4}, mrad[3] = {0.0025, 0.001, 0.004}, mo[3] = {7, 7, 7};
@@ -308,8 +365,7 @@ int main(int argc, char **argv) {
 
     /* history is read and written back in place: remember-max keeps the largest overlap */
     EXPECT(dashpot_contact_bind_materials(hist, &mat, &cm), DASHPOT_OK, NULL);
-    EXPECT(dashpot_contact_model_history_slots(cm, &slots), DASHPOT_OK, NULL);
-    CHECK(slots == 1);
+    EXPECT_SLOTS(contact, cm, slots, 1);
     double hh[3] = {0.0, 3e-5, 0.0};
     EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, hh, 3, mo), DASHPOT_OK, NULL);
     CHECK(hh[0] == 1e-5 && hh[1] == 3e-5 && hh[2] == 1e-5);
@@ -321,51 +377,26 @@ int main(int argc, char **argv) {
     cm = NULL;
 
     /* panics and NaN through the material binding */
-    EXPECT(dashpot_contact_new(reg, "panicky", at_name, at_val, 1, &panicky), DASHPOT_OK, NULL);
-    EXPECT(dashpot_contact_bind_materials(panicky, &mat, &cm), DASHPOT_OK, NULL);
+    BIND(contact, panicky, "panicky", at_name, at_val, 1, dashpot_contact_bind_materials, &mat, &cm, DASHPOT_OK, NULL);
     EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_PANIC, "deliberate panic");
     double small[1] = {5e-7};
     EXPECT(dashpot_contact_model_force_batch(cm, 1, small, mr, mm, mrad, NULL, 0, mo), DASHPOT_OK, NULL);
     CHECK(mo[0] == 5e-7);
     dashpot_contact_model_free(cm);
-    dashpot_contact_free(panicky);
     cm = NULL;
-    EXPECT(dashpot_contact_new(reg, "panicky", bp_name, bp_val, 1, &panicky), DASHPOT_OK, NULL);
-    EXPECT(dashpot_contact_bind_materials(panicky, &mat, &cm), DASHPOT_ERR_PANIC, "deliberate panic in bind");
+    BIND(contact, panicky, "panicky", bp_name, bp_val, 1, dashpot_contact_bind_materials, &mat, &cm,
+         DASHPOT_ERR_PANIC, "deliberate panic in bind");
     CHECK(cm == NULL);
-    dashpot_contact_free(panicky);
-    EXPECT(dashpot_contact_new(reg, "nan-force", at_name, at_val, 1, &nanlaw), DASHPOT_OK, NULL);
-    EXPECT(dashpot_contact_bind_materials(nanlaw, &mat, &cm), DASHPOT_OK, NULL);
+    BIND(contact, nanlaw, "nan-force", at_name, at_val, 1, dashpot_contact_bind_materials, &mat, &cm, DASHPOT_OK, NULL);
     EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NON_FINITE, "returned force NaN");
     dashpot_contact_model_free(cm);
-    dashpot_contact_free(nanlaw);
     cm = NULL;
 
     /* ---- tangential laws ---- */
     DashpotTangentialLaw *tl = NULL;
     DashpotTangentialModel *tm = NULL;
-    EXPECT(dashpot_tangential_new(NULL, "panicky-tangential", at_name, at_val, 1, &tl), DASHPOT_ERR_NULL_POINTER, "registry");
-    EXPECT(dashpot_tangential_new(reg, NULL, at_name, at_val, 1, &tl), DASHPOT_ERR_NULL_POINTER, "name");
-    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", at_name, at_val, 1, NULL), DASHPOT_ERR_NULL_POINTER, "out_law");
-    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", NULL, at_val, 1, &tl), DASHPOT_ERR_NULL_POINTER, "param_names");
-    EXPECT(dashpot_tangential_new(reg, "hsd", NULL, NULL, 0, &tl), DASHPOT_ERR_UNKNOWN_LAW, "contact law");
-    EXPECT(dashpot_tangential_new(reg, "no-such-friction", NULL, NULL, 0, &tl), DASHPOT_ERR_UNKNOWN_LAW, "no-such-friction");
-    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", bogus_name, eps_val, 1, &tl), DASHPOT_ERR_UNKNOWN_PARAMETER, "epsilon");
     double at_bad[1] = {-1.0};
-    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", at_name, at_bad, 1, &tl), DASHPOT_ERR_INVALID_PARAMETER, "-1");
-    CHECK(tl == NULL);
-    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", at_name, at_val, 1, &tl), DASHPOT_OK, NULL);
-    EXPECT(dashpot_tangential_bind_materials(NULL, &mat, &tm), DASHPOT_ERR_NULL_POINTER, "law");
-    EXPECT(dashpot_tangential_bind_materials(tl, NULL, &tm), DASHPOT_ERR_NULL_POINTER, "materials");
-    EXPECT(dashpot_tangential_bind_materials(tl, &mat, NULL), DASHPOT_ERR_NULL_POINTER, "out_model");
-    EXPECT(dashpot_tangential_bind_materials(tl, &badmat, &tm), DASHPOT_ERR_INVALID_PAIR, "effective Young's modulus = 0");
-    EXPECT(dashpot_tangential_bind_materials(tl, &mat, &tm), DASHPOT_OK, NULL);
-    dashpot_tangential_free(tl); /* the model outlives its law */
-    tl = NULL;
-    EXPECT(dashpot_tangential_model_history_slots(tm, &slots), DASHPOT_OK, NULL);
-    CHECK(slots == 3);
-    EXPECT(dashpot_tangential_model_history_slots(NULL, &slots), DASHPOT_ERR_NULL_POINTER, "model");
-    EXPECT(dashpot_tangential_model_history_slots(tm, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");
+    EXPECT_MODEL(tangential, tl, tm, "panicky-tangential", at_name, at_val, at_bad, 1, "-1", "hsd", "contact", slots, 3);
     /* the fixture's unit spring: xi += v dt, F = -xi; two contacts, two steps */
     double tn[6] = {0, 0, 1, 0, 0, 1}, tv[6] = {1, 2, 0, -3, 0, 0}, tfn[2] = {1, 1}, tdl[2] = {5e-7, 1e-7};
     double tms[2] = {1e-3, 1e-3}, trd[2] = {1e-3, 1e-3}, th[6] = {0}, tf[6] = {7, 7, 7, 7, 7, 7};
@@ -400,37 +431,24 @@ int main(int argc, char **argv) {
     EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, th, 6, tf), DASHPOT_OK, NULL);
     dashpot_tangential_model_free(tm);
     tm = NULL;
-    EXPECT(dashpot_tangential_new(reg, "panicky-tangential", bp_name, bp_val, 1, &tl), DASHPOT_OK, NULL);
-    EXPECT(dashpot_tangential_bind_materials(tl, &wmat, &tm), DASHPOT_ERR_PANIC, "deliberate panic in tangential bind");
+    BIND(tangential, tl, "panicky-tangential", bp_name, bp_val, 1, dashpot_tangential_bind_materials, &wmat, &tm,
+         DASHPOT_ERR_PANIC, "deliberate panic in tangential bind");
     CHECK(tm == NULL);
-    dashpot_tangential_free(tl);
-    EXPECT(dashpot_tangential_new(reg, "nan-tangential", at_name, at_val, 1, &tl), DASHPOT_OK, NULL);
-    EXPECT(dashpot_tangential_bind_materials(tl, &wmat, &tm), DASHPOT_OK, NULL);
-    EXPECT(dashpot_tangential_model_history_slots(tm, &slots), DASHPOT_OK, NULL);
-    CHECK(slots == 0);
+    BIND(tangential, tl, "nan-tangential", at_name, at_val, 1, dashpot_tangential_bind_materials, &wmat, &tm, DASHPOT_OK,
+         NULL);
+    EXPECT_SLOTS(tangential, tm, slots, 0);
     tdl[0] = 1e-5;
     EXPECT(dashpot_tangential_model_force_batch(tm, 2, 1e-3, tn, tv, tfn, tdl, tms, trd, NULL, 0, tf), DASHPOT_ERR_NON_FINITE, "on contact 0");
     dashpot_tangential_model_free(tm);
-    dashpot_tangential_free(tl);
 
     /* ---- restitution laws ---- */
     DashpotRestitutionLaw *rl = NULL;
     DashpotBoundRestitution *rb = NULL;
     const char *r0_name[1] = {"r0"};
-    double r0_bad[1] = {-0.5};
-    EXPECT(dashpot_restitution_new(NULL, "mcnamara-falcon", NULL, NULL, 0, &rl), DASHPOT_ERR_NULL_POINTER, "registry");
-    EXPECT(dashpot_restitution_new(reg, NULL, NULL, NULL, 0, &rl), DASHPOT_ERR_NULL_POINTER, "name");
-    EXPECT(dashpot_restitution_new(reg, "mcnamara-falcon", NULL, NULL, 0, NULL), DASHPOT_ERR_NULL_POINTER, "out_law");
-    EXPECT(dashpot_restitution_new(reg, "mcnamara-falcon", NULL, r0_bad, 1, &rl), DASHPOT_ERR_NULL_POINTER, "param_names");
-    EXPECT(dashpot_restitution_new(reg, "hsd", NULL, NULL, 0, &rl), DASHPOT_ERR_UNKNOWN_LAW, "contact law");
-    EXPECT(dashpot_restitution_new(reg, "nope", NULL, NULL, 0, &rl), DASHPOT_ERR_UNKNOWN_LAW, "unknown law 'nope'");
-    EXPECT(dashpot_restitution_new(reg, "mcnamara-falcon", bogus_name, eps_val, 1, &rl), DASHPOT_ERR_UNKNOWN_PARAMETER, "epsilon");
-    EXPECT(dashpot_restitution_new(reg, "mcnamara-falcon", r0_name, r0_bad, 1, &rl), DASHPOT_ERR_INVALID_PARAMETER, "-0.5");
+    double r0_val[1] = {0.95}, r0_bad[1] = {-0.5};
+    EXPECT_NEW_ERRORS(restitution, &rl, "mcnamara-falcon", r0_name, r0_val, r0_bad, 1, "-0.5", "hsd", "contact");
     EXPECT(dashpot_restitution_new(reg, "mcnamara-falcon", NULL, NULL, 0, &rl), DASHPOT_OK, NULL);
-    EXPECT(dashpot_restitution_bind(NULL, &pair, &rb), DASHPOT_ERR_NULL_POINTER, "law");
-    EXPECT(dashpot_restitution_bind(rl, NULL, &rb), DASHPOT_ERR_NULL_POINTER, "pair");
-    EXPECT(dashpot_restitution_bind(rl, &pair, NULL), DASHPOT_ERR_NULL_POINTER, "out_bound");
-    EXPECT(dashpot_restitution_bind(rl, &zero, &rb), DASHPOT_ERR_INVALID_PAIR, "effective mass");
+    EXPECT_BIND_PAIR_ERRORS(restitution, rl, &rb);
     EXPECT(dashpot_restitution_bind(rl, &pair, &rb), DASHPOT_OK, NULL);
     double r = 0;
     EXPECT(dashpot_restitution_eval(rb, 0.3, &r), DASHPOT_OK, NULL);
@@ -491,21 +509,8 @@ int main(int argc, char **argv) {
         const char *sds_names[3] = {"k", "gamma", "mu"};
         const double sds_vals[3] = {1000.0, 0.0, 10.0};
         const double sds_bad[3] = {-5.0, 0.0, 10.0};
-        EXPECT(dashpot_rolling_new(NULL, "rolling-sds", sds_names, sds_vals, 3, &rl3), DASHPOT_ERR_NULL_POINTER, "registry");
-        EXPECT(dashpot_rolling_new(reg, NULL, sds_names, sds_vals, 3, &rl3), DASHPOT_ERR_NULL_POINTER, "name");
-        EXPECT(dashpot_rolling_new(reg, "rolling-sds", sds_names, sds_vals, 3, NULL), DASHPOT_ERR_NULL_POINTER, "out_law");
-        EXPECT(dashpot_rolling_new(reg, "hsd", NULL, NULL, 0, &rl3), DASHPOT_ERR_UNKNOWN_LAW, "hsd");
-        EXPECT(dashpot_rolling_new(reg, "rolling-sds", bogus_name, eps_val, 1, &rl3), DASHPOT_ERR_UNKNOWN_PARAMETER, "epsilon");
-        EXPECT(dashpot_rolling_new(reg, "rolling-sds", sds_names, sds_bad, 3, &rl3), DASHPOT_ERR_INVALID_PARAMETER, "-5");
-        EXPECT(dashpot_rolling_new(reg, "rolling-sds", sds_names, sds_vals, 3, &rl3), DASHPOT_OK, NULL);
-        EXPECT(dashpot_rolling_bind_materials(NULL, &mat, &rm3), DASHPOT_ERR_NULL_POINTER, "law");
-        EXPECT(dashpot_rolling_bind_materials(rl3, &badmat, &rm3), DASHPOT_ERR_INVALID_PAIR, "Young");
-        EXPECT(dashpot_rolling_bind_materials(rl3, &mat, &rm3), DASHPOT_OK, NULL);
-        dashpot_rolling_free(rl3);
         size_t rslots = 0;
-        EXPECT(dashpot_rolling_model_history_slots(rm3, &rslots), DASHPOT_OK, NULL);
-        EXPECT(dashpot_rolling_model_history_slots(NULL, &rslots), DASHPOT_ERR_NULL_POINTER, "model");
-        CHECK(rslots == 3);
+        EXPECT_MODEL(rolling, rl3, rm3, "rolling-sds", sds_names, sds_vals, sds_bad, 3, "-5", "hsd", "contact", rslots, 3);
         /* one step of a rolling velocity v along x from zero history: ξ = v dt, F_r = −k ξ
            (far below the cap μ F_n), elastic energy k ξ²/2, no dissipation (γ = 0) */
         double rn[3] = {0, 0, 1}, rv[3] = {0.2, 0, 0}, rfn[1] = {1.0}, rdl[1] = {1e-6}, rms[1] = {1e-3}, rrd[1] = {1e-3};
@@ -524,15 +529,9 @@ int main(int argc, char **argv) {
         DashpotTwistingLaw *wl3 = NULL;
         DashpotTwistingModel *wm3 = NULL;
         const double tw_vals[3] = {1e-3, 0.0, 1.0};
-        EXPECT(dashpot_twisting_new(NULL, "twisting-sds", sds_names, tw_vals, 3, &wl3), DASHPOT_ERR_NULL_POINTER, "registry");
-        EXPECT(dashpot_twisting_new(reg, "rolling-sds", NULL, NULL, 0, &wl3), DASHPOT_ERR_UNKNOWN_LAW, "rolling-sds");
-        EXPECT(dashpot_twisting_new(reg, "twisting-sds", sds_names, tw_vals, 3, &wl3), DASHPOT_OK, NULL);
-        EXPECT(dashpot_twisting_bind_materials(wl3, NULL, &wm3), DASHPOT_ERR_NULL_POINTER, "materials");
-        EXPECT(dashpot_twisting_bind_materials(wl3, &mat, &wm3), DASHPOT_OK, NULL);
-        dashpot_twisting_free(wl3);
         size_t wslots = 0;
-        EXPECT(dashpot_twisting_model_history_slots(wm3, &wslots), DASHPOT_OK, NULL);
-        EXPECT(dashpot_twisting_model_history_slots(wm3, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");
+        EXPECT_MODEL(twisting, wl3, wm3, "twisting-sds", sds_names, tw_vals, sds_bad, 3, "-5", "rolling-sds", "rolling",
+                     wslots, 1);
         /* one step of spin rate w: θ = w dt, M = −k θ below the cap μ F_n */
         double wrate[1] = {3.0}, wh[4] = {0, 0, 0, 0}, wt[1];
         EXPECT(dashpot_twisting_model_torque_batch(wm3, 1, 1e-4, rn, wrate, rfn, rdl, rms, rrd, wh, wslots, wt, NULL, NULL, NULL), DASHPOT_OK, NULL);

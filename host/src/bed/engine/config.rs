@@ -104,41 +104,22 @@ impl BedConfig {
         ] {
             fin(n, v)?;
         }
-        if self.layers <= 0.0 {
-            return bad(format!(
-                "layers n = {} is out of range: n must be > 0",
-                self.layers
-            ));
-        }
-        if self.freq <= 0.0 {
-            return bad(format!(
-                "frequency f = {} Hz is out of range: f must be > 0",
-                self.freq
-            ));
-        }
-        if self.gravity < 0.0 {
-            return bad(format!(
-                "gravity g = {} m/s² is out of range: g must be >= 0",
-                self.gravity
-            ));
-        }
-        if self.amplitude < 0.0 {
-            return bad(format!(
-                "amplitude A = {} m is out of range: A must be >= 0",
-                self.amplitude
-            ));
-        }
-        if self.diameter <= 0.0 {
-            return bad(format!(
-                "diameter d = {} m is out of range: d must be > 0",
-                self.diameter
-            ));
-        }
-        if self.mass <= 0.0 {
-            return bad(format!(
-                "mass m = {} kg is out of range: m must be > 0",
-                self.mass
-            ));
+        // (the value as a message names it, its unit, the symbol its range is stated for,
+        // whether 0 is in the range)
+        for (what, v, unit, sym, zero_ok) in [
+            ("layers n", self.layers, "", "n", false),
+            ("frequency f", self.freq, " Hz", "f", false),
+            ("gravity g", self.gravity, " m/s²", "g", true),
+            ("amplitude A", self.amplitude, " m", "A", true),
+            ("diameter d", self.diameter, " m", "d", false),
+            ("mass m", self.mass, " kg", "m", false),
+        ] {
+            if v < 0.0 || (v == 0.0 && !zero_ok) {
+                let range = if zero_ok { ">= 0" } else { "> 0" };
+                return bad(format!(
+                    "{what} = {v}{unit} is out of range: {sym} must be {range}"
+                ));
+            }
         }
         if self.width < 3.0 * self.diameter {
             return bad(format!(

@@ -49,17 +49,9 @@ pub struct PhysArgs {
     /// Set a parameter of the rolling law (--engine dem), NAME=VALUE (repeatable).
     #[arg(long = "rset", value_name = "NAME=VALUE", value_parser = crate::config::set_arg)]
     pub rset: Vec<String>,
-    /// Young's modulus of the disks (Pa; default steel, 2e11): the DEM engine's disks, and the
-    /// particle a `--restitution from:LAW` table is computed for, so both engines can be
-    /// compared on one material. Real steel makes the DEM step ~0.1 µs; 1e8 makes it ~1.6 µs.
-    #[arg(long, allow_hyphen_values = true)]
-    pub young: Option<f64>,
-    /// Poisson's ratio of the disks (default 0.3), like --young.
-    #[arg(long, allow_hyphen_values = true)]
-    pub poisson: Option<f64>,
-    /// The DEM step (s); default: the law's contact time at the largest impact speed / 50.
-    #[arg(long, allow_hyphen_values = true)]
-    pub dt: Option<f64>,
+    /// The disks' material and the DEM step.
+    #[command(flatten)]
+    pub disks: DiskArgs,
     /// Steps per collision when the DEM step is chosen (default 50).
     #[arg(long, allow_hyphen_values = true)]
     pub steps_per_collision: Option<f64>,
@@ -97,6 +89,23 @@ pub struct PhysArgs {
     /// Seed of the initial state.
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
+}
+
+/// The disks' material and the DEM step, shared by `dashpot bed` (and `scaling`) and
+/// `dashpot dem --bed`.
+#[derive(Args, Debug, Clone)]
+pub struct DiskArgs {
+    /// Young's modulus of the disks (Pa; default steel, 2e11): the DEM engine's disks, and the
+    /// particle a `--restitution from:LAW` table is computed for, so both engines can be
+    /// compared on one material. Real steel makes the DEM step ~0.1 µs; 1e8 makes it ~1.6 µs.
+    #[arg(long, allow_hyphen_values = true)]
+    pub young: Option<f64>,
+    /// Poisson's ratio of the disks (default 0.3), like --young.
+    #[arg(long, allow_hyphen_values = true)]
+    pub poisson: Option<f64>,
+    /// The DEM step (s); default: the law's contact time at the largest impact speed / 50.
+    #[arg(long, allow_hyphen_values = true)]
+    pub dt: Option<f64>,
 }
 
 /// Independent seeds for `dashpot bed`.
@@ -149,7 +158,7 @@ impl PhysArgs {
                     .into());
                 }
                 for (flag, given) in [
-                    ("--dt", self.dt.is_some()),
+                    ("--dt", self.disks.dt.is_some()),
                     ("--steps-per-collision", self.steps_per_collision.is_some()),
                     ("--tset", !self.tset.is_empty()),
                     ("--rolling", self.rolling.is_some()),
@@ -161,7 +170,7 @@ impl PhysArgs {
                         );
                     }
                 }
-                if (self.young.is_some() || self.poisson.is_some())
+                if (self.disks.young.is_some() || self.disks.poisson.is_some())
                     && !name.starts_with(crate::bed::FROM_CONTACT)
                 {
                     return Err(UsageError(format!(
@@ -200,7 +209,7 @@ impl PhysArgs {
                         .as_deref()
                         .map(|r| Ok::<_, anyhow::Error>(LawChoice::new(r, param_values(&self.rset)?)))
                         .transpose()?,
-                    dt: self.dt,
+                    dt: self.disks.dt,
                     steps_per_collision: self.steps_per_collision,
                 }
             }
@@ -224,8 +233,8 @@ impl PhysArgs {
                 seed: self.seed,
                 ..BedConfig::paper(layers, freq)
             },
-            young: self.young,
-            poisson: self.poisson,
+            young: self.disks.young,
+            poisson: self.disks.poisson,
             engine,
             transient: self.transient,
             cycles: self.cycles,

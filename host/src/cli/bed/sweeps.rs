@@ -97,14 +97,8 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
                 Some(f) => format!("{:7.3} ({:.3})", f.theta, f.max_residual),
                 None => "-".to_string(),
             };
-            println!(
-                "{:>6} {:>16} {:>16} {:>16} {:>16}",
-                r.layers,
-                c(&r.pressure),
-                c(&r.temperature),
-                c(&r.lid_collision_rate),
-                c(&r.mean_impulse)
-            );
+            let fits = r.fits().map(|f| format!("{:>16}", c(f))).join(" ");
+            println!("{:>6} {fits}", r.layers);
         }
         prov.iter().flat_map(|p| p.lines()).for_each(|l| println!("{l}"));
         println!(

@@ -344,15 +344,7 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
                 None => "–".into(),
             };
             for r in &rows {
-                writeln!(
-                    md,
-                    "| {} | {} | {} | {} | {} |",
-                    r.layers,
-                    th(&r.pressure),
-                    th(&r.temperature),
-                    th(&r.lid_collision_rate),
-                    th(&r.mean_impulse)
-                )?;
+                writeln!(md, "| {} | {} |", r.layers, r.fits().map(th).join(" | "))?;
             }
             writeln!(md)?;
         }

@@ -293,16 +293,8 @@ pub(super) fn fig4(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
             "{title}\n\n| n | θ_P | θ_T | θ_Nc | θ_ΔI | TC share |\n|---|---|---|---|---|---|"
         )?;
         for r in rows {
-            writeln!(
-                md,
-                "| {} | {} | {} | {} | {} | {:.1} % |",
-                r.layers,
-                th(&r.pressure),
-                th(&r.temperature),
-                th(&r.lid_collision_rate),
-                th(&r.mean_impulse),
-                100.0 * r.tc_share
-            )?;
+            let fits = r.fits().map(th).join(" | ");
+            writeln!(md, "| {} | {fits} | {:.1} % |", r.layers, 100.0 * r.tc_share)?;
         }
         writeln!(md)?;
     }
@@ -351,46 +343,30 @@ pub(super) fn fig4(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
         .iter()
         .filter(|r| r.layers >= 3.0)
         .map(|r| {
-            let m = [
-                &r.pressure,
-                &r.temperature,
-                &r.lid_collision_rate,
-                &r.mean_impulse,
-            ]
-            .iter()
-            .filter_map(|f| f.as_ref().map(|f| f.max_residual))
-            .fold(0.0, f64::max);
+            let m = r
+                .fits()
+                .iter()
+                .filter_map(|f| f.as_ref().map(|f| f.max_residual))
+                .fold(0.0, f64::max);
             format!("n = {}: {:.2}", r.layers, m)
         })
         .collect();
     let d_broken = all[3].1.iter().filter(|r| r.layers >= 3.0).any(|r| {
-        [
-            &r.pressure,
-            &r.temperature,
-            &r.lid_collision_rate,
-            &r.mean_impulse,
-        ]
-        .iter()
-        .any(|f| f.as_ref().is_some_and(|f| !f.is_power_law()))
+        r.fits()
+            .iter()
+            .any(|f| f.as_ref().is_some_and(|f| !f.is_power_law()))
     });
     // "all exponents decrease continuously with n" (abstract): rises larger than 2σ
     let mut rises = Vec::new();
     for (title, rows) in all.iter().skip(1) {
-        type Pick = fn(&ScalingRow) -> Option<crate::bed::observables::PowerFit>;
-        let which: [(&str, Pick); 4] = [
-            ("θ_P", |r| r.pressure),
-            ("θ_T", |r| r.temperature),
-            ("θ_Nc", |r| r.lid_collision_rate),
-            ("θ_ΔI", |r| r.mean_impulse),
-        ];
-        for (name, pick) in which {
+        for (k, name) in crate::bed::scaling::FIT_SYMBOLS.iter().enumerate() {
             for w in rows.windows(2) {
-                if let (Some(a), Some(b)) = (pick(&w[0]), pick(&w[1])) {
+                if let (Some(a), Some(b)) = (w[0].fits()[k], w[1].fits()[k]) {
                     let s = (a.theta_stderr.unwrap_or(0.0).powi(2) + b.theta_stderr.unwrap_or(0.0).powi(2))
                         .sqrt();
                     if b.theta - a.theta > 2.0 * s.max(1e-3) {
                         rises.push(format!(
-                            "{title}: {name} rises from {:.2} (n = {}) to {:.2} (n = {}), {:.1} σ",
+                            "{title}: θ_{name} rises from {:.2} (n = {}) to {:.2} (n = {}), {:.1} σ",
                             a.theta,
                             w[0].layers,
                             b.theta,
@@ -416,14 +392,7 @@ pub(super) fn fig4(l: &Three, out: &Path, size: &Size, md: &mut String) -> Resul
     let kept = |cut: f64| {
         all.iter()
             .flat_map(|(_, rows)| rows.iter())
-            .flat_map(|r| {
-                [
-                    &r.pressure,
-                    &r.temperature,
-                    &r.lid_collision_rate,
-                    &r.mean_impulse,
-                ]
-            })
+            .flat_map(|r| r.fits())
             .filter(|f| f.as_ref().is_some_and(|f| f.max_residual < cut))
             .count()
     };

@@ -3,7 +3,7 @@
 
 use crate::bed::engine::{BedConfig, BedReport};
 use crate::bed::scaling::{provenance, run_grid, Grid, Measured};
-use crate::bed::{resolve, DynRestitution, Laws};
+use crate::bed::{bed_particle, resolve_for, DynRestitution, Laws};
 use crate::output::progress_bar;
 use crate::output::Provenance;
 use crate::plot::{Mark, Panel, Series, PALETTE};
@@ -101,14 +101,10 @@ impl Size {
     pub fn reproduce() -> Size {
         Size {
             name: "reproduce",
-            fig2_layers: vec![0.25, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
             fig2_freqs: steps(10.0, 30.0, 6),
             fig2_periods: (30.0, 60.0),
-            fig3_transient: 1000.0,
-            fig4_layers: vec![0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 5.0],
-            fig4_freqs: steps(10.0, 30.0, 11),
             fig4_periods: (30.0, 100.0),
-            statements: crate::bed::statements::StatementSize::standard(),
+            ..Size::paper()
         }
     }
 }
@@ -117,7 +113,7 @@ type Plug = Laws<DynRestitution>;
 
 fn law(reg: &Registry, name: &str, params: &[ParamValue]) -> Result<Plug> {
     let c = BedConfig::paper(1.0, 20.0);
-    Ok(resolve(reg, name, params, c.diameter, c.mass)?)
+    Ok(resolve_for(reg, name, params, &bed_particle(c.diameter, c.mass))?)
 }
 
 /// The three laws of the paper: r(v) (eq. 1), r = 0.95, r = 0.7, and their provenance (for

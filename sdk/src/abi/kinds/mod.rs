@@ -13,6 +13,80 @@ use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, LawKind, Normal
 use crate::pair::MaterialPair;
 use abi_stable::StableAbi;
 
+/// The checked block loop of a raw motion batch `$r` (twisting, or a vector kind: its sdk batch
+/// `$batch`, whose motion input `$motion` and output `$out` are arrays of `$mty` and `$oty`),
+/// then its energy pass into `$power` and `$elastic`. `$check(lo, normal, motion, normal_force,
+/// delta, mass, radius)` refuses a block's bad input, `$eval(block)` runs the law on it,
+/// `$bad_out(outputs)` finds a non-finite output, and `$energy(contact, history, output)` is
+/// the law's energy of one contact. Expands to the body of a `KindBound::run` (it returns the
+/// first fault).
+macro_rules! motion_run {
+    ($r:expr, $power:expr, $elastic:expr,
+     $batch:ident { $motion:ident: $mty:ty => $out:ident: $oty:ty },
+     $check:expr, $eval:expr, $bad_out:expr, $energy:expr $(,)?) => {{
+        let r = $r;
+        if !(r.dt >= 0.0 && r.dt < f64::INFINITY) {
+            return Err((0, BatchFault::DT));
+        }
+        let (n, slots) = (r.n, r.slots);
+        let (normal, motion, fnorm, delta, mass, radius, history, out) = unsafe {
+            (
+                slice(r.normal as *const [f64; 3], n),
+                slice(r.$motion as *const $mty, n),
+                slice(r.normal_force, n),
+                slice(r.delta, n),
+                slice(r.mass, n),
+                slice(r.radius, n),
+                slice_mut(r.history, n * slots),
+                slice_mut(r.$out as *mut $oty, n),
+            )
+        };
+        blocks(n, |lo, hi| {
+            let (nl, ml) = (&normal[lo..hi], &motion[lo..hi]);
+            let (f, d, m, a) = (&fnorm[lo..hi], &delta[lo..hi], &mass[lo..hi], &radius[lo..hi]);
+            ($check)(lo, nl, ml, f, d, m, a)?;
+            let o = &mut out[lo..hi];
+            ($eval)($batch {
+                dt: r.dt,
+                normal: nl,
+                $motion: ml,
+                normal_force: f,
+                delta: d,
+                mass: m,
+                radius: a,
+                slots,
+                history: &mut history[lo * slots..hi * slots],
+                $out: &mut *o,
+            });
+            match ($bad_out)(&*o) {
+                Some(i) => Err((lo + i, BatchFault::OUTPUT)),
+                None => Ok(()),
+            }
+        })?;
+        let batch = $batch {
+            dt: r.dt,
+            normal,
+            $motion: motion,
+            normal_force: fnorm,
+            delta,
+            mass,
+            radius,
+            slots,
+            history,
+            $out: out,
+        };
+        unsafe {
+            energy_pass(n, $power, $elastic, |i| {
+                ($energy)(
+                    &batch.contact(i),
+                    history_of(batch.history, slots, i),
+                    batch.$out[i],
+                )
+            })
+        }
+    }};
+}
+
 mod twisting;
 mod vector;
 

@@ -123,75 +123,28 @@ impl Kind for Twisting {
 impl<B: BoundTwisting> KindBound<Twisting> for B {
     #[inline(always)]
     unsafe fn run(&self, b: &FfiTwistingBatch) -> Result<bool, (usize, u8)> {
-        if !(b.dt >= 0.0 && b.dt < f64::INFINITY) {
-            return Err((0, BatchFault::DT));
-        }
-        let (n, slots) = (b.n, b.slots);
-        let (history, torque) = unsafe { (slice_mut(b.history, n * slots), slice_mut(b.torque, n)) };
-        let (normal, rate, fnorm, delta, mass, radius) = unsafe {
-            (
-                slice(b.normal as *const [f64; 3], n),
-                slice(b.rate, n),
-                slice(b.normal_force, n),
-                slice(b.delta, n),
-                slice(b.mass, n),
-                slice(b.radius, n),
-            )
-        };
-        blocks(n, |lo, hi| {
-            first_bad(
-                lo,
-                [
-                    (
-                        first_non_finite(normal[lo..hi].as_flattened()).map(|i| i / 3),
-                        BatchFault::NORMAL,
-                    ),
-                    (first_non_finite(&rate[lo..hi]), BatchFault::RATE),
-                    (first_non_finite(&fnorm[lo..hi]), BatchFault::NORMAL_FORCE),
-                    (first_non_finite(&delta[lo..hi]), BatchFault::DELTA),
-                    (first_non_positive(&mass[lo..hi]), BatchFault::MASS),
-                    (first_non_positive(&radius[lo..hi]), BatchFault::RADIUS),
-                ],
-            )?;
-            let out = &mut torque[lo..hi];
-            self.torque_batch(TwistingBatch {
-                dt: b.dt,
-                normal: &normal[lo..hi],
-                rate: &rate[lo..hi],
-                normal_force: &fnorm[lo..hi],
-                delta: &delta[lo..hi],
-                mass: &mass[lo..hi],
-                radius: &radius[lo..hi],
-                slots,
-                history: &mut history[lo * slots..hi * slots],
-                torque: &mut *out,
-            });
-            match first_non_finite(out) {
-                Some(i) => Err((lo + i, BatchFault::OUTPUT)),
-                None => Ok(()),
-            }
-        })?;
-        let batch = TwistingBatch {
-            dt: b.dt,
-            normal,
-            rate,
-            normal_force: fnorm,
-            delta,
-            mass,
-            radius,
-            slots,
-            history,
-            torque,
-        };
-        unsafe {
-            energy_pass(n, b.power, b.elastic, |i| {
-                self.energy(
-                    &batch.contact(i),
-                    history_of(batch.history, slots, i),
-                    batch.torque[i],
+        motion_run!(
+            b,
+            b.power,
+            b.elastic,
+            TwistingBatch { rate: f64 => torque: f64 },
+            |lo, nl: &[[f64; 3]], ml: &[f64], f: &[f64], d: &[f64], m: &[f64], a: &[f64]| {
+                first_bad(
+                    lo,
+                    [
+                        (first_non_finite(nl.as_flattened()).map(|i| i / 3), BatchFault::NORMAL),
+                        (first_non_finite(ml), BatchFault::RATE),
+                        (first_non_finite(f), BatchFault::NORMAL_FORCE),
+                        (first_non_finite(d), BatchFault::DELTA),
+                        (first_non_positive(m), BatchFault::MASS),
+                        (first_non_positive(a), BatchFault::RADIUS),
+                    ],
                 )
-            })
-        }
+            },
+            |batch| self.torque_batch(batch),
+            first_non_finite,
+            |c, h, torque| self.energy(c, h, torque),
+        )
     }
     fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
         self.coefficients(mass, radius)

@@ -183,27 +183,16 @@ fn fault_error(what: &str, name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: 
 /// The batch's pointers are valid for its lengths.
 #[inline(always)]
 unsafe fn run<L: VectorLaw>(law: &L, b: &FfiVectorBatch) -> Result<bool, (usize, u8)> {
-    let r = &b.base;
-    if !(r.dt >= 0.0 && r.dt < f64::INFINITY) {
-        return Err((0, BatchFault::DT));
-    }
-    let (n, slots) = (r.n, r.slots);
-    let (normal, velocity, fnorm, delta, mass, radius, history, force) = unsafe {
-        (
-            slice(r.normal as *const [f64; 3], n),
-            slice(r.velocity as *const [f64; 3], n),
-            slice(r.normal_force, n),
-            slice(r.delta, n),
-            slice(r.mass, n),
-            slice(r.radius, n),
-            slice_mut(r.history, n * slots),
-            slice_mut(r.force as *mut [f64; 3], n),
-        )
-    };
-    blocks(n, |lo, hi| {
-        let (nl, vl) = (normal[lo..hi].as_flattened(), velocity[lo..hi].as_flattened());
-        let (f, d, m, a) = (&fnorm[lo..hi], &delta[lo..hi], &mass[lo..hi], &radius[lo..hi]);
-        if !tangential_inputs_ok(nl, vl, f, d, m, a) {
+    motion_run!(
+        &b.base,
+        b.power,
+        b.elastic,
+        VectorBatch { velocity: [f64; 3] => force: [f64; 3] },
+        |lo, nl: &[[f64; 3]], vl: &[[f64; 3]], f: &[f64], d: &[f64], m: &[f64], a: &[f64]| {
+            let (nl, vl) = (nl.as_flattened(), vl.as_flattened());
+            if tangential_inputs_ok(nl, vl, f, d, m, a) {
+                return Ok(());
+            }
             first_bad(
                 lo,
                 [
@@ -214,45 +203,10 @@ unsafe fn run<L: VectorLaw>(law: &L, b: &FfiVectorBatch) -> Result<bool, (usize,
                     (first_non_positive(m), BatchFault::MASS),
                     (first_non_positive(a), BatchFault::RADIUS),
                 ],
-            )?;
-        }
-        let out = &mut force[lo..hi];
-        law.batch(VectorBatch {
-            dt: r.dt,
-            normal: &normal[lo..hi],
-            velocity: &velocity[lo..hi],
-            normal_force: f,
-            delta: d,
-            mass: m,
-            radius: a,
-            slots,
-            history: &mut history[lo * slots..hi * slots],
-            force: &mut *out,
-        });
-        match first_non_finite(out.as_flattened()) {
-            Some(i) => Err((lo + i / 3, BatchFault::OUTPUT)),
-            None => Ok(()),
-        }
-    })?;
-    let batch = VectorBatch {
-        dt: r.dt,
-        normal,
-        velocity,
-        normal_force: fnorm,
-        delta,
-        mass,
-        radius,
-        slots,
-        history,
-        force,
-    };
-    unsafe {
-        energy_pass(n, b.power, b.elastic, |i| {
-            law.energy_of(
-                &batch.contact(i),
-                history_of(batch.history, slots, i),
-                batch.force[i],
             )
-        })
-    }
+        },
+        |batch| law.batch(batch),
+        |o: &[[f64; 3]]| first_non_finite(o.as_flattened()).map(|i| i / 3),
+        |c, h, force| law.energy_of(c, h, force),
+    )
 }
