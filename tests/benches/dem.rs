@@ -32,7 +32,7 @@ use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_rolling_sds::RollingSds;
 use dashpot_sdk::{LawParams, MaterialPair, ParamValue, Params};
-use dashpot_tests::full_registry;
+use dashpot_tests::registry_03;
 use std::time::Instant;
 
 const MAT: Material = Material {
@@ -274,7 +274,8 @@ fn main() {
     // the named sections only
     let only: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     let run = |name: &str| only.is_empty() || only.iter().any(|a| a == name);
-    let reg = full_registry();
+    // every plugin of the workspace (`rolling-sds` among them)
+    let reg = registry_03();
     let one = pool(1);
 
     // 1. plugins vs compiled in, 2,000 settling disks, one core, interleaved blocks
