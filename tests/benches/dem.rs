@@ -26,6 +26,8 @@
 
 mod common;
 
+use common::TileOrder;
+
 use dashpot::dem::{Engine, Laws, Material, Rotation};
 use dashpot::laws::{compiled, compiled_rolling, compiled_tangential};
 use dashpot_hsd::Hsd;
@@ -263,9 +265,10 @@ fn base3d(one: &rayon::ThreadPool, laws: Laws) -> Engine<3> {
     })
 }
 
-/// `tiles` copies of `base` as one pile with `laws` (energy accounting on with `energy`).
-fn tiled3d(base: &Engine<3>, tiles: [usize; 2], laws: Laws, energy: bool) -> Engine<3> {
-    let (bodies, side, top) = common::tile3d(base, BASE3D, tiles);
+/// `tiles` copies of `base` as one pile numbered in `order`, with `laws` (energy accounting on
+/// with `energy`).
+fn tiled3d(base: &Engine<3>, tiles: [usize; 2], order: TileOrder, laws: Laws, energy: bool) -> Engine<3> {
+    let (bodies, side, top) = common::tile3d(base, BASE3D, tiles, order);
     common::pile3d_engine(&bodies, side, top, laws, MAT, energy)
 }
 
@@ -420,33 +423,47 @@ fn main() {
     // 4. scaling in 3D, one core: 10³, 10⁴, 10⁵, 10⁶ spheres, each size copies of one base pile
     // (1 × 1, 5 × 2, 10 × 10, 40 × 25 of them), so every size steps the same stage; the smaller
     // sizes as several piles; the first 20 steps (the contacts' history forming afresh) untimed,
-    // then 4 rounds of 10 steps
+    // then 4 rounds of 10 steps. The spheres numbered first as a pile generated at the full
+    // size would be (the figure), then copy by copy (what the memory order costs)
     if run("scaling3d") {
         let base = base3d(&one, plugin_laws(&reg, false));
         let tiles = [[1, 1], [5, 2], [10, 10], [40, 25]];
         let sizes: Vec<usize> = tiles.iter().map(|[x, y]| BASE3D * x * y).collect();
-        let mut piles: Vec<Vec<Engine<3>>> = one.install(|| {
-            tiles
-                .iter()
-                .zip(&sizes)
-                .map(|(&t, &n)| {
-                    (0..(100_000 / n).clamp(1, 15))
-                        .map(|_| {
-                            let mut e = tiled3d(&base, t, plugin_laws(&reg, false), false);
-                            cpu_steps(&mut e, 20);
-                            e
-                        })
-                        .collect()
-                })
-                .collect()
-        });
-        let window = format!(
-            "steps {0}..{1} of the base pile (+20..60 after the copy)",
-            SETTLE3D + 20,
-            SETTLE3D + 60
-        );
-        scaling(&one, &sizes, &mut piles, 4, 10, &window);
-        print_vm_hwm("every 3D pile above held at once (the 10^6-sphere one among them)   target <= 4 GiB");
+        for order in [TileOrder::Lattice, TileOrder::Copies] {
+            let mut piles: Vec<Vec<Engine<3>>> = one.install(|| {
+                tiles
+                    .iter()
+                    .zip(&sizes)
+                    .map(|(&t, &n)| {
+                        (0..(100_000 / n).clamp(1, 15))
+                            .map(|_| {
+                                let mut e = tiled3d(&base, t, order, plugin_laws(&reg, false), false);
+                                cpu_steps(&mut e, 20);
+                                e
+                            })
+                            .collect()
+                    })
+                    .collect()
+            });
+            println!(
+                "spheres numbered {}:",
+                match order {
+                    TileOrder::Lattice => "as the lattice of the whole pile",
+                    TileOrder::Copies => "copy by copy",
+                }
+            );
+            let window = format!(
+                "steps {}..{} of the base pile (20..60 after the copy)",
+                SETTLE3D + 20,
+                SETTLE3D + 60
+            );
+            scaling(&one, &sizes, &mut piles, 4, 10, &window);
+            if order == TileOrder::Lattice {
+                print_vm_hwm(
+                    "every 3D pile above held at once (the 10^6-sphere one among them)   target <= 4 GiB",
+                );
+            }
+        }
     }
 
     // 5. plugins vs compiled in, 3D, HSD + Mindlin + rolling sds: 4,000 spheres (2 × 2 copies of
@@ -467,8 +484,8 @@ fn main() {
             })
         };
         if run("plugins3d") {
-            let mut a = tiled3d(&base, [2, 2], plugin_laws(&reg, true), false);
-            let mut b = tiled3d(&base, [2, 2], compiled_laws(true), false);
+            let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
+            let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, compiled_laws(true), false);
             let ab = contest(&mut a, &mut b);
             println!(
                 "{n} spheres, HSD + Mindlin + rolling sds, 1 core: plugins {:.3e} particle-steps/s, compiled in {:.3e}; ratio plugins/compiled = {} ({BLOCKS} interleaved blocks of {K} steps; {} contacts, dt = {:.3e} s)   target >= 0.95",
@@ -484,8 +501,8 @@ fn main() {
             );
         }
         if run("energy") {
-            let mut a = tiled3d(&base, [2, 2], plugin_laws(&reg, true), true);
-            let mut b = tiled3d(&base, [2, 2], plugin_laws(&reg, true), false);
+            let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), true);
+            let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
             let ab = contest(&mut a, &mut b);
             let r = ab.ratios();
             println!(

@@ -156,30 +156,44 @@ pub fn pile3d_engine(
     Engine::new(cfg, bodies, vec![floor], laws).expect("the 3D pile")
 }
 
+/// How [`tile3d`] numbers the spheres of its copies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TileOrder {
+    /// As [`pile3d_bodies`] numbers the whole lattice of tx·cols × ty·cols columns (each copy's
+    /// sphere at the lattice site its base sphere started from): memory laid out as in a pile
+    /// generated at the full size, neighbours along z a layer (tx·ty·cols² spheres) apart.
+    Lattice,
+    /// Copy after copy, each in its base's order: every copy's spheres close in memory.
+    Copies,
+}
+
 /// A larger 3D pile made of `tiles` = [tx, ty] copies of `base`, a [`pile3d`] of `n` spheres
 /// stepped as far as wanted (positions wrapped into its periodic box, velocities and spins
 /// kept; the contacts' history starts afresh), side by side in x and y: every copy at the same
-/// stage of the same pile. The spheres are numbered as [`pile3d_bodies`] numbers the whole
-/// lattice of tx·cols × ty·cols columns (each copy's sphere at the lattice site its base sphere
-/// started from), so memory is laid out as in a pile generated at the full size. Returns the
-/// spheres, the box's sides (m) and the lattice's top (m).
-pub fn tile3d(base: &Engine<3>, n: usize, tiles: [usize; 2]) -> (Vec<Body<3>>, [f64; 2], f64) {
+/// stage of the same pile, the spheres numbered in `order`. Returns the spheres, the box's
+/// sides (m) and the lattice's top (m).
+pub fn tile3d(
+    base: &Engine<3>,
+    n: usize,
+    tiles: [usize; 2],
+    order: TileOrder,
+) -> (Vec<Body<3>>, [f64; 2], f64) {
     let (cols, layers, s) = pile3d_lattice(n);
     let side = cols as f64 * s;
     let [tx, ty] = tiles;
     let mut keyed = Vec::with_capacity(n * tx * ty);
-    for i in 0..n {
-        let mut b = base.p.body(i);
-        for k in 0..2 {
-            b.position[k] = b.position[k].rem_euclid(side);
-        }
-        let (a, r, c) = (i % cols, (i / cols) % cols, i / (cols * cols));
-        for (x, y) in (0..ty).flat_map(|y| (0..tx).map(move |x| (x, y))) {
-            let mut t = b;
-            t.position[0] += x as f64 * side;
-            t.position[1] += y as f64 * side;
-            let key = (a + x * cols) + tx * cols * ((r + y * cols) + ty * cols * c);
-            keyed.push((key, t));
+    for (y, x) in (0..ty).flat_map(|y| (0..tx).map(move |x| (y, x))) {
+        for i in 0..n {
+            let mut b = base.p.body(i);
+            for (k, t) in [x, y].into_iter().enumerate() {
+                b.position[k] = b.position[k].rem_euclid(side) + t as f64 * side;
+            }
+            let (a, r, c) = (i % cols, (i / cols) % cols, i / (cols * cols));
+            let key = match order {
+                TileOrder::Lattice => (a + x * cols) + tx * cols * ((r + y * cols) + ty * cols * c),
+                TileOrder::Copies => keyed.len(),
+            };
+            keyed.push((key, b));
         }
     }
     keyed.sort_unstable_by_key(|(k, _)| *k);
