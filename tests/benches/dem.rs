@@ -26,7 +26,7 @@
 
 mod common;
 
-use common::TileOrder;
+use common::{median, TileOrder};
 
 use dashpot::dem::{Engine, Laws, Material, Rotation};
 use dashpot::laws::{compiled, compiled_rolling, compiled_tangential};
@@ -116,17 +116,6 @@ fn cpu_steps<const D: usize>(e: &mut Engine<D>, k: usize) -> f64 {
     common::thread_cpu_seconds() - s
 }
 
-fn median(v: &[f64]) -> f64 {
-    let mut v = v.to_vec();
-    v.sort_by(f64::total_cmp);
-    let m = v.len() / 2;
-    if v.len() % 2 == 1 {
-        v[m]
-    } else {
-        0.5 * (v[m - 1] + v[m])
-    }
-}
-
 /// Two contenders timed in interleaved blocks.
 struct Pairs {
     /// CPU seconds of each block of `a` and of `b`, in the order run.
@@ -151,6 +140,32 @@ impl Pairs {
         let mut r: Vec<f64> = self.ta.iter().zip(&self.tb).map(|(a, b)| b / a).collect();
         r.sort_by(f64::total_cmp);
         r
+    }
+
+    /// Prints the plugins' speed (`a`) against the laws compiled in (`b`), `work` particle-steps
+    /// a block, and checks that both followed the same trajectory.
+    fn plugins_against_compiled<const D: usize>(
+        &self,
+        what: &str,
+        work: usize,
+        a: &Engine<D>,
+        b: &Engine<D>,
+    ) {
+        let ps = |t: &[f64]| work as f64 / median(t);
+        println!(
+            "{what}, 1 core: plugins {:.3e} particle-steps/s, compiled in {:.3e}; ratio plugins/compiled = {} ({} interleaved blocks of {} steps; {} contacts, dt = {:.3e} s)",
+            ps(&self.ta),
+            ps(&self.tb),
+            self.summary(),
+            self.ta.len(),
+            work / a.p.len(),
+            a.contacts(),
+            a.dt()
+        );
+        assert!(
+            (a.p.pos[0] - b.p.pos[0]).norm() < 1e-9,
+            "both runs follow the same trajectory"
+        );
     }
 
     /// The speed ratio of `a` over `b`: "R median of the blocks' ratios (lo-hi), R of the
@@ -290,16 +305,8 @@ fn main() {
             steps(&mut a, 5000);
             steps(&mut b, 5000);
             let ab = Pairs::run(&mut a, &mut b, 7, 500);
+            ab.plugins_against_compiled("2000 disks, HSD + Mindlin", 2000 * 500, &a, &b);
             let ps = |t: f64| 2000.0 * 500.0 / t;
-            println!(
-                "2000 disks, HSD + Mindlin, 1 core: plugins {:.3e} particle-steps/s, compiled in {:.3e}; ratio plugins/compiled = {} (7 interleaved blocks of 500 steps; {} contacts, dt = {:.3e} s)",
-                ps(median(&ab.ta)),
-                ps(median(&ab.tb)),
-                ab.summary(),
-                a.contacts(),
-                a.dt()
-            );
-            assert!((a.p.pos[0] - b.p.pos[0]).norm() < 1e-9, "both runs follow the same trajectory");
 
             // what the first/last-step means cost: the same pile with the plain step-end rule,
             // both from the start and settled as long (a pile gains contacts as it settles)
@@ -487,18 +494,8 @@ fn main() {
             let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
             let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, compiled_laws(true), false);
             let ab = contest(&mut a, &mut b);
-            println!(
-                "{n} spheres, HSD + Mindlin + rolling sds, 1 core: plugins {:.3e} particle-steps/s, compiled in {:.3e}; ratio plugins/compiled = {} ({BLOCKS} interleaved blocks of {K} steps; {} contacts, dt = {:.3e} s)   target >= 0.95",
-                ps(median(&ab.ta)),
-                ps(median(&ab.tb)),
-                ab.summary(),
-                a.contacts(),
-                a.dt()
-            );
-            assert!(
-                (a.p.pos[0] - b.p.pos[0]).norm() < 1e-9,
-                "both runs follow the same trajectory"
-            );
+            ab.plugins_against_compiled("4000 spheres, HSD + Mindlin + rolling sds", n * K, &a, &b);
+            println!("  target >= 0.95");
         }
         if run("energy") {
             let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), true);

@@ -49,6 +49,18 @@ fn pile_uniform(mut seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
+/// The median of `v` (the mean of the middle two of an even count).
+pub fn median(v: &[f64]) -> f64 {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
+    }
+}
+
 /// The DEM benchmarks' pile: `n` disks (diameters uniform in [0.95, 1] × 2 mm) on a square
 /// lattice of spacing 2 mm, 50 (or √n) columns wide, random directions at 0.05 m/s. Returns the
 /// disks, the width and the height of the lattice (m).
