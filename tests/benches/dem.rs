@@ -1,27 +1,40 @@
 //! Soft-sphere DEM throughput, every contender measured in the same run:
 //!
-//! 1. 2,000 polydisperse disks (1.9–2 mm, E = 10⁸ Pa) settling under gravity on a floor,
-//!    periodic sideways, HSD (ε = 0.5) + Mindlin (μ = 0.3) on one core: the plugins' batch calls
-//!    against the same laws compiled into this benchmark (same checked trampoline), interleaved;
-//! 2. cost per particle-step from 10³ to 10⁶ disks (one core), plugins, every size over the same
-//!    stage of the same pile, the sizes timed in turn round by round;
-//! 3. speed-up on two cores (10⁵ disks, one settled pile stepped alternately by one thread and
-//!    by two, wall time): the ratio of the medians, and the median of the ratios block by block
-//!    (each two-thread block against the one-thread block before it);
-//! 4. peak resident memory of the process while the piles of 2. (10⁶ disks among them) are
-//!    held (VmHWM).
+//! 1. `plugins`: 2,000 polydisperse disks (1.9–2 mm, E = 10⁸ Pa) settling under gravity on a
+//!    floor, periodic sideways, HSD (ε = 0.5) + Mindlin (μ = 0.3) on one core: the plugins'
+//!    batch calls against the same laws compiled into this benchmark (same checked trampoline),
+//!    interleaved;
+//! 2. `scaling`: cost per particle-step from 10³ to 10⁶ disks (one core), plugins, every size
+//!    over the same stage of the same pile, the sizes timed in turn round by round, and the peak
+//!    resident memory of the process while the piles (10⁶ disks among them) are held (VmHWM);
+//! 3. `cores`: speed-up on two cores (10⁵ disks, one settled pile stepped alternately by one
+//!    thread and by two, wall time): the ratio of the medians, and the median of the ratios
+//!    block by block (each two-thread block against the one-thread block before it);
+//! 4. `scaling3d`: the same as 2. for a 3D pile of polydisperse spheres (1.6–2.4 mm), periodic
+//!    in x and y, on a floor, HSD + Mindlin through the plugins: 10³, 10⁴, 10⁵ and 10⁶ spheres,
+//!    each made of copies of one 10³-sphere pile fallen and settling ([`common::tile3d`]), so
+//!    every size steps the same stage; VmHWM with the 10⁶-sphere pile held;
+//! 5. `plugins3d`: HSD + Mindlin + rolling `sds` (k = 10³ N/m, γ = 0.01 N·s/m, μ_r = 0.1)
+//!    through the plugins against the same three laws compiled in, 4,000 spheres of that pile,
+//!    one core, interleaved blocks, the median of the blocks' ratios;
+//! 6. `energy`: the same 4,000 spheres and laws (plugins) with energy accounting on against
+//!    off (`EngineConfig::energy`), interleaved blocks: the overhead as a fraction of a step.
 //!
 //! One-core figures are thread CPU time (the machine is shared). Run: `cargo bench -p
-//! dashpot-tests --bench dem [-- plugins | scaling | cores]` (sections by name; all by default).
+//! dashpot-tests --bench dem [-- plugins | scaling | cores | scaling3d | plugins3d | energy]`
+//! (sections by name; all by default).
 
 mod common;
 
-use dashpot::dem::{Engine, Laws, Material};
-use dashpot::laws::{compiled, compiled_tangential};
+use common::{median, TileOrder};
+
+use dashpot::dem::{Engine, Laws, Material, Rotation};
+use dashpot::laws::{compiled, compiled_rolling, compiled_tangential};
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
-use dashpot_sdk::{MaterialPair, ParamValue};
-use dashpot_tests::full_registry;
+use dashpot_rolling_sds::RollingSds;
+use dashpot_sdk::{LawParams, MaterialPair, ParamValue, Params};
+use dashpot_tests::registry_03;
 use std::time::Instant;
 
 const MAT: Material = Material {
@@ -31,17 +44,36 @@ const MAT: Material = Material {
     disk_mass: dashpot::dem::DiskMass::Sphere,
 };
 
-fn plugin_laws(reg: &dashpot::Registry) -> Laws {
-    Laws::from_registry(
+/// The rolling law of the 3D sections: `rolling-sds` with k (N/m), γ (N·s/m) and μ_r.
+const ROLLING: [(&str, f64); 3] = [("k", 1.0e3), ("gamma", 0.01), ("mu", 0.1)];
+
+/// The base of the 3D piles: 10³ spheres stepped this far from their lattice (0.088 s: fallen
+/// onto the floor and still settling) before they are copied.
+const BASE3D: usize = 1000;
+const SETTLE3D: u64 = 40_000;
+
+fn rolling_params() -> Vec<ParamValue> {
+    ROLLING.iter().map(|&(k, v)| ParamValue::new(k, v)).collect()
+}
+
+/// HSD + Mindlin (+ rolling sds with `rolling`) from the plugins.
+fn plugin_laws(reg: &dashpot::Registry, rolling: bool) -> Laws {
+    let laws = Laws::from_registry(
         reg,
         ("hsd", &[ParamValue::new("eps", 0.5)]),
         Some(("mindlin", &[ParamValue::new("mu", 0.3)])),
         &MAT,
     )
-    .unwrap()
+    .unwrap();
+    if !rolling {
+        return laws;
+    }
+    laws.with_rotation(reg, Some(("rolling-sds", &rolling_params())), None, &MAT)
+        .unwrap()
 }
 
-fn compiled_laws() -> Laws {
+/// The same laws as [`plugin_laws`] compiled into this benchmark.
+fn compiled_laws(rolling: bool) -> Laws {
     let p = MAT.particle(1.0);
     let (pp, pw) = (
         MaterialPair::spheres(&p, &p).unwrap(),
@@ -49,12 +81,20 @@ fn compiled_laws() -> Laws {
     );
     let hsd = Hsd::with(0.5);
     let m = Mindlin::with(0.3, 0.0);
+    let mut rotation = Rotation::default();
+    if rolling {
+        let sds: RollingSds = Params::resolve("rolling-sds", &RollingSds::schema(), &rolling_params())
+            .and_then(|p| p.parse())
+            .unwrap();
+        rotation.pair_rolling = Some(Box::new(compiled_rolling(&sds, &pp).unwrap()));
+        rotation.wall_rolling = Some(Box::new(compiled_rolling(&sds, &pw).unwrap()));
+    }
     Laws {
         pair: Box::new(compiled(&hsd, &pp).unwrap()),
         wall: Box::new(compiled(&hsd, &pw).unwrap()),
         pair_tangential: Some(Box::new(compiled_tangential(&m, &pp).unwrap())),
         wall_tangential: Some(Box::new(compiled_tangential(&m, &pw).unwrap())),
-        rotation: Default::default(),
+        rotation,
     }
 }
 
@@ -63,36 +103,83 @@ fn pile(n: usize, laws: Laws) -> Engine<2> {
     common::pile(n, laws, MAT, true)
 }
 
-fn steps(e: &mut Engine<2>, k: usize) -> f64 {
+fn steps<const D: usize>(e: &mut Engine<D>, k: usize) -> f64 {
     let s = Instant::now();
     e.advance(k as u64).unwrap();
     s.elapsed().as_secs_f64()
 }
 
 /// Thread CPU seconds of `k` steps (one-thread pools: the work runs on this thread).
-fn cpu_steps(e: &mut Engine<2>, k: usize) -> f64 {
+fn cpu_steps<const D: usize>(e: &mut Engine<D>, k: usize) -> f64 {
     let s = common::thread_cpu_seconds();
     e.advance(k as u64).unwrap();
     common::thread_cpu_seconds() - s
 }
 
-/// The CPU times (s) of `blocks` blocks of `k` steps of `a` and of `b`, interleaved (a, b, a, b,
-/// ...) so that drift of the machine falls on both alike; each list sorted.
-fn interleaved(a: &mut Engine<2>, b: &mut Engine<2>, blocks: usize, k: usize) -> (Vec<f64>, Vec<f64>) {
-    let (mut ta, mut tb) = (Vec::new(), Vec::new());
-    for _ in 0..blocks {
-        ta.push(cpu_steps(a, k));
-        tb.push(cpu_steps(b, k));
-    }
-    ta.sort_by(f64::total_cmp);
-    tb.sort_by(f64::total_cmp);
-    (ta, tb)
+/// Two contenders timed in interleaved blocks.
+struct Pairs {
+    /// CPU seconds of each block of `a` and of `b`, in the order run.
+    ta: Vec<f64>,
+    tb: Vec<f64>,
 }
 
-/// The speed ratio of `a` over `b` from their sorted [`interleaved`] times: "R median, R best".
-fn ratios(ta: &[f64], tb: &[f64]) -> String {
-    let m = ta.len() / 2;
-    format!("{:.3} median, {:.3} best", tb[m] / ta[m], tb[0] / ta[0])
+impl Pairs {
+    /// `blocks` blocks of `k` steps of `a` and of `b`, interleaved (a, b, a, b, ...) so that
+    /// the machine's drift falls on both alike.
+    fn run<const D: usize>(a: &mut Engine<D>, b: &mut Engine<D>, blocks: usize, k: usize) -> Pairs {
+        let (mut ta, mut tb) = (Vec::new(), Vec::new());
+        for _ in 0..blocks {
+            ta.push(cpu_steps(a, k));
+            tb.push(cpu_steps(b, k));
+        }
+        Pairs { ta, tb }
+    }
+
+    /// Each pair's time of `b` over its time of `a`, sorted.
+    fn ratios(&self) -> Vec<f64> {
+        let mut r: Vec<f64> = self.ta.iter().zip(&self.tb).map(|(a, b)| b / a).collect();
+        r.sort_by(f64::total_cmp);
+        r
+    }
+
+    /// Prints the plugins' speed (`a`) against the laws compiled in (`b`), `work` particle-steps
+    /// a block, and checks that both followed the same trajectory.
+    fn plugins_against_compiled<const D: usize>(
+        &self,
+        what: &str,
+        work: usize,
+        a: &Engine<D>,
+        b: &Engine<D>,
+    ) {
+        let ps = |t: &[f64]| work as f64 / median(t);
+        println!(
+            "{what}, 1 core: plugins {:.3e} particle-steps/s, compiled in {:.3e}; ratio plugins/compiled = {} ({} interleaved blocks of {} steps; {} contacts, dt = {:.3e} s)",
+            ps(&self.ta),
+            ps(&self.tb),
+            self.summary(),
+            self.ta.len(),
+            work / a.p.len(),
+            a.contacts(),
+            a.dt()
+        );
+        assert!(
+            (a.p.pos[0] - b.p.pos[0]).norm() < 1e-9,
+            "both runs follow the same trajectory"
+        );
+    }
+
+    /// The speed ratio of `a` over `b`: "R median of the blocks' ratios (lo-hi), R of the
+    /// medians".
+    fn summary(&self) -> String {
+        let r = self.ratios();
+        format!(
+            "{:.3} median of the blocks' ratios ({:.3}-{:.3}), {:.3} of the medians",
+            median(&r),
+            r[0],
+            r[r.len() - 1],
+            median(&self.tb) / median(&self.ta)
+        )
+    }
 }
 
 fn pool(threads: usize) -> rayon::ThreadPool {
@@ -108,79 +195,160 @@ fn vm_hwm_kib() -> Option<u64> {
     l.split_whitespace().nth(1)?.parse().ok()
 }
 
+fn print_vm_hwm(what: &str) {
+    if let Some(kib) = vm_hwm_kib() {
+        println!(
+            "peak resident memory of the process, {what}: {:.2} GiB",
+            kib as f64 / 1048576.0
+        );
+    }
+}
+
+/// Scaling, one core: the piles of each size (`piles[s]`: several of `sizes[s]` particles where
+/// one is too small to time) stepped in turn, `rounds` rounds of `k` steps, so that every
+/// size's window spans the same stretch of the machine's time (its speed drifts by ±20 % over
+/// tens of seconds, which timing one size after another turned into ratios). Thread CPU time;
+/// per size the best round, the median round and the whole window (the cost a run pays, list
+/// builds included), and the spread of each over the sizes. `window` names the stage stepped.
+fn scaling<const D: usize>(
+    one: &rayon::ThreadPool,
+    sizes: &[usize],
+    piles: &mut [Vec<Engine<D>>],
+    rounds: usize,
+    k: usize,
+    window: &str,
+) {
+    let (mut costs, mut medians, mut wholes) = (Vec::new(), Vec::new(), Vec::new());
+    let builds0: Vec<u64> = piles
+        .iter()
+        .map(|ps| ps.iter().map(|e| e.rebuilds()).sum())
+        .collect();
+    let mut times = vec![Vec::new(); sizes.len()];
+    for _ in 0..rounds {
+        for (s, ps) in piles.iter_mut().enumerate() {
+            let t: f64 = one.install(|| ps.iter_mut().map(|e| cpu_steps(e, k)).sum());
+            times[s].push(t / (ps.len() as f64 * sizes[s] as f64 * k as f64));
+        }
+    }
+    let kind = if D == 2 { "disk" } else { "sphere" };
+    for (s, ps) in piles.iter().enumerate() {
+        let n = sizes[s];
+        let whole = times[s].iter().sum::<f64>() / rounds as f64;
+        let best = times[s].iter().cloned().fold(f64::INFINITY, f64::min);
+        let med = median(&times[s]);
+        let builds: u64 = ps.iter().map(|e| e.rebuilds()).sum::<u64>() - builds0[s];
+        let per = ps.iter().map(|e| e.contacts()).sum::<usize>() as f64 / (ps.len() * n) as f64;
+        println!(
+            "n = {n:>8}: {:.1} ns per particle-step over {window} ({} pile(s); {builds} list builds in the window); rounds of {k} steps: best {:.1}, median {:.1}; {per:.3} contacts per {kind}",
+            whole * 1e9,
+            ps.len(),
+            best * 1e9,
+            med * 1e9,
+        );
+        costs.push(best);
+        medians.push(med);
+        wholes.push(whole);
+    }
+    let spread = |v: &[f64]| {
+        let (lo, hi) = v
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), &c| (a.min(c), b.max(c)));
+        hi / lo
+    };
+    println!(
+        "cost per particle-step, max/min over the sizes: {:.2} (whole windows), {:.2} (median rounds), {:.2} (best rounds)   target <= 1.5",
+        spread(&wholes),
+        spread(&medians),
+        spread(&costs)
+    );
+}
+
+/// The base of the 3D piles ([`BASE3D`] spheres, [`SETTLE3D`] steps from the lattice) with
+/// `laws`, stepped on `one`.
+fn base3d(one: &rayon::ThreadPool, laws: Laws) -> Engine<3> {
+    one.install(|| {
+        let mut e = common::pile3d(BASE3D, laws, MAT);
+        let t = cpu_steps(&mut e, SETTLE3D as usize);
+        println!(
+            "3D base pile: {BASE3D} spheres stepped {SETTLE3D} steps ({:.3} s simulated, dt = {:.3e} s) in {t:.1} CPU s; {} contacts, centre of mass {:.3} mm high",
+            e.time(),
+            e.dt(),
+            e.contacts(),
+            common::com_height(&e) * 1e3
+        );
+        e
+    })
+}
+
+/// `tiles` copies of `base` as one pile numbered in `order`, with `laws` (energy accounting on
+/// with `energy`).
+fn tiled3d(base: &Engine<3>, tiles: [usize; 2], order: TileOrder, laws: Laws, energy: bool) -> Engine<3> {
+    let (bodies, side, top) = common::tile3d(base, BASE3D, tiles, order);
+    common::pile3d_engine(&bodies, side, top, laws, MAT, energy)
+}
+
 fn main() {
-    // `cargo bench --bench dem -- [plugins] [scaling] [cores]`: the named sections only
+    // `cargo bench --bench dem -- [plugins] [scaling] [cores] [scaling3d] [plugins3d] [energy]`:
+    // the named sections only
     let only: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
     let run = |name: &str| only.is_empty() || only.iter().any(|a| a == name);
-    let reg = full_registry();
+    // every plugin of the workspace (`rolling-sds` among them)
+    let reg = registry_03();
     let one = pool(1);
 
     // 1. plugins vs compiled in, 2,000 settling disks, one core, interleaved blocks
     if run("plugins") {
         one.install(|| {
-        let mut a = pile(2000, plugin_laws(&reg));
-        let mut b = pile(2000, compiled_laws());
-        // settle first: contacts everywhere
-        steps(&mut a, 5000);
-        steps(&mut b, 5000);
-        let (ta, tb) = interleaved(&mut a, &mut b, 7, 500);
-        let ps = |t: f64| 2000.0 * 500.0 / t;
-        println!(
-            "2000 disks, HSD + Mindlin, 1 core: plugins {:.3e} particle-steps/s, compiled in {:.3e}; ratio plugins/compiled = {} (7 interleaved blocks of 500 steps; {} contacts, dt = {:.3e} s)",
-            ps(ta[3]),
-            ps(tb[3]),
-            ratios(&ta, &tb),
-            a.contacts(),
-            a.dt()
-        );
-        assert!((a.p.pos[0] - b.p.pos[0]).norm() < 1e-9, "both runs follow the same trajectory");
+            let mut a = pile(2000, plugin_laws(&reg, false));
+            let mut b = pile(2000, compiled_laws(false));
+            // settle first: contacts everywhere
+            steps(&mut a, 5000);
+            steps(&mut b, 5000);
+            let ab = Pairs::run(&mut a, &mut b, 7, 500);
+            ab.plugins_against_compiled("2000 disks, HSD + Mindlin", 2000 * 500, &a, &b);
+            let ps = |t: f64| 2000.0 * 500.0 / t;
 
-        // what the first/last-step means cost: the same pile with the plain step-end rule, both
-        // from the start and settled as long (a pile gains contacts as it settles)
-        let mut a = pile(2000, plugin_laws(&reg));
-        let mut c = common::pile(2000, plugin_laws(&reg), MAT, false);
-        steps(&mut a, 5000);
-        steps(&mut c, 5000);
-        let (ta, tc) = interleaved(&mut a, &mut c, 7, 500);
-        let (mut formed, mut last, mut total) = (0usize, 0usize, 0usize);
-        for _ in 0..200 {
-            a.step().unwrap();
-            formed += a.pairs.formed();
-            last += a.pairs.predicted_last();
-            total += a.pairs.len();
-        }
-        println!(
-            "  per step: {:.1} pair contacts, {:.1} first touches, {:.1} predicted last steps; {} listed pairs, {} neighbour builds in {} steps",
-            total as f64 / 200.0,
-            formed as f64 / 200.0,
-            last as f64 / 200.0,
-            a.listed_pairs(),
-            a.rebuilds(),
-            a.steps()
-        );
-        println!(
-            "2000 disks, plugins: with the first/last-step means {:.3e} particle-steps/s, without {:.3e}; ratio with/without = {} ({} and {} contacts, {} and {} neighbour rebuilds)",
-            ps(ta[3]),
-            ps(tc[3]),
-            ratios(&ta, &tc),
-            a.contacts(),
-            c.contacts(),
-            a.rebuilds(),
-            c.rebuilds()
-        );
-    });
+            // what the first/last-step means cost: the same pile with the plain step-end rule,
+            // both from the start and settled as long (a pile gains contacts as it settles)
+            let mut a = pile(2000, plugin_laws(&reg, false));
+            let mut c = common::pile(2000, plugin_laws(&reg, false), MAT, false);
+            steps(&mut a, 5000);
+            steps(&mut c, 5000);
+            let ac = Pairs::run(&mut a, &mut c, 7, 500);
+            let (mut formed, mut last, mut total) = (0usize, 0usize, 0usize);
+            for _ in 0..200 {
+                a.step().unwrap();
+                formed += a.pairs.formed();
+                last += a.pairs.predicted_last();
+                total += a.pairs.len();
+            }
+            println!(
+                "  per step: {:.1} pair contacts, {:.1} first touches, {:.1} predicted last steps; {} listed pairs, {} neighbour builds in {} steps",
+                total as f64 / 200.0,
+                formed as f64 / 200.0,
+                last as f64 / 200.0,
+                a.listed_pairs(),
+                a.rebuilds(),
+                a.steps()
+            );
+            println!(
+                "2000 disks, plugins: with the first/last-step means {:.3e} particle-steps/s, without {:.3e}; ratio with/without = {} ({} and {} contacts, {} and {} neighbour rebuilds)",
+                ps(median(&ac.ta)),
+                ps(median(&ac.tb)),
+                ac.summary(),
+                a.contacts(),
+                c.contacts(),
+                a.rebuilds(),
+                c.rebuilds()
+            );
+        });
     }
 
     // 2. scaling, one core: every size steps through the same stage of the same pile (steps
     // 300..400 from the lattice, so the same contacts per disk), the smaller sizes as several
-    // piles (15 of 10³, 10 of 10⁴) so that each size's block is long enough to time. The sizes
-    // are timed in turn, round by round (4 rounds of 25 steps), so that every size's window
-    // spans the same stretch of the machine's time: this machine's speed drifts by ±20 % over
-    // tens of seconds, which timing one size after another turned into ratios. Thread CPU
-    // time; per size the best round, the median round and the whole window (the cost a run
-    // pays, list builds included).
+    // piles (15 of 10³, 10 of 10⁴) so that each size's block is long enough to time; 4 rounds
+    // of 25 steps
     if run("scaling") {
-        let (mut costs, mut medians, mut wholes) = (Vec::new(), Vec::new(), Vec::new());
         // DASHPOT_BENCH_SIZES="100000 1000000": other sizes (for profiling one of them)
         let sizes: Vec<usize> = std::env::var("DASHPOT_BENCH_SIZES")
             .ok()
@@ -192,7 +360,7 @@ fn main() {
                 .map(|&n| {
                     (0..(100_000 / n).clamp(1, 15))
                         .map(|_| {
-                            let mut e = pile(n, plugin_laws(&reg));
+                            let mut e = pile(n, plugin_laws(&reg, false));
                             cpu_steps(&mut e, 300);
                             e
                         })
@@ -200,56 +368,8 @@ fn main() {
                 })
                 .collect()
         });
-        let builds0: Vec<u64> = piles
-            .iter()
-            .map(|ps| ps.iter().map(|e| e.rebuilds()).sum())
-            .collect();
-        let mut rounds = vec![Vec::new(); sizes.len()];
-        for _ in 0..4 {
-            for (s, ps) in piles.iter_mut().enumerate() {
-                let n = sizes[s];
-                let t: f64 = one.install(|| ps.iter_mut().map(|e| cpu_steps(e, 25)).sum());
-                rounds[s].push(t / (ps.len() as f64 * n as f64 * 25.0));
-            }
-        }
-        for (s, ps) in piles.iter().enumerate() {
-            let n = sizes[s];
-            let whole = rounds[s].iter().sum::<f64>() / 4.0;
-            let mut rs = rounds[s].clone();
-            rs.sort_by(f64::total_cmp);
-            let (best, median) = (rs[0], 0.5 * (rs[1] + rs[2]));
-            let builds: u64 = ps.iter().map(|e| e.rebuilds()).sum::<u64>() - builds0[s];
-            let per = ps.iter().map(|e| e.contacts()).sum::<usize>() as f64 / (ps.len() * n) as f64;
-            println!(
-                "n = {n:>8}: {:.1} ns per particle-step over steps 300..400 ({} pile(s); {builds} list builds in the window); rounds of 25 steps: best {:.1}, median {:.1}; {per:.3} contacts per disk",
-                whole * 1e9,
-                ps.len(),
-                best * 1e9,
-                median * 1e9,
-            );
-            costs.push(best);
-            medians.push(median);
-            wholes.push(whole);
-        }
-        let spread = |v: &[f64]| {
-            let (lo, hi) = v
-                .iter()
-                .fold((f64::INFINITY, 0.0f64), |(a, b), &c| (a.min(c), b.max(c)));
-            hi / lo
-        };
-        println!(
-            "cost per particle-step, max/min over the sizes: {:.2} (whole windows), {:.2} (median rounds), {:.2} (best rounds)",
-            spread(&wholes),
-            spread(&medians),
-            spread(&costs)
-        );
-        drop(piles);
-        if let Some(kib) = vm_hwm_kib() {
-            println!(
-                "peak resident memory of the process, every pile above held at once (the 10^6 one among them): {:.2} GiB",
-                kib as f64 / 1048576.0
-            );
-        }
+        scaling(&one, &sizes, &mut piles, 4, 25, "steps 300..400");
+        print_vm_hwm("every pile above held at once (the 10^6 one among them)");
     }
 
     // 3. two cores: one pile of 10⁵ disks, settled until its contacts are the work of a step,
@@ -266,7 +386,7 @@ fn main() {
             .ok()
             .and_then(|s| s.parse().ok())
             .unwrap_or(2000);
-        let mut e = two.install(|| pile(n, plugin_laws(&reg)));
+        let mut e = two.install(|| pile(n, plugin_laws(&reg, false)));
         two.install(|| steps(&mut e, settle));
         // 15 blocks of each: the machine's noise over a block (~0.1-0.2 s) is the error here
         const BLOCKS: usize = 15;
@@ -305,5 +425,101 @@ fn main() {
             e.rebuilds() - b0,
             BLOCKS * 80
         );
+    }
+
+    // 4. scaling in 3D, one core: 10³, 10⁴, 10⁵, 10⁶ spheres, each size copies of one base pile
+    // (1 × 1, 5 × 2, 10 × 10, 40 × 25 of them), so every size steps the same stage; the smaller
+    // sizes as several piles; the first 20 steps (the contacts' history forming afresh) untimed,
+    // then 4 rounds of 10 steps. The spheres numbered first as a pile generated at the full
+    // size would be (the figure), then copy by copy (what the memory order costs)
+    if run("scaling3d") {
+        let base = base3d(&one, plugin_laws(&reg, false));
+        let tiles = [[1, 1], [5, 2], [10, 10], [40, 25]];
+        let sizes: Vec<usize> = tiles.iter().map(|[x, y]| BASE3D * x * y).collect();
+        for order in [TileOrder::Lattice, TileOrder::Copies] {
+            let mut piles: Vec<Vec<Engine<3>>> = one.install(|| {
+                tiles
+                    .iter()
+                    .zip(&sizes)
+                    .map(|(&t, &n)| {
+                        (0..(100_000 / n).clamp(1, 15))
+                            .map(|_| {
+                                let mut e = tiled3d(&base, t, order, plugin_laws(&reg, false), false);
+                                cpu_steps(&mut e, 20);
+                                e
+                            })
+                            .collect()
+                    })
+                    .collect()
+            });
+            println!(
+                "spheres numbered {}:",
+                match order {
+                    TileOrder::Lattice => "as the lattice of the whole pile",
+                    TileOrder::Copies => "copy by copy",
+                }
+            );
+            let window = format!(
+                "steps {}..{} of the base pile (20..60 after the copy)",
+                SETTLE3D + 20,
+                SETTLE3D + 60
+            );
+            scaling(&one, &sizes, &mut piles, 4, 10, &window);
+            if order == TileOrder::Lattice {
+                print_vm_hwm(
+                    "every 3D pile above held at once (the 10^6-sphere one among them)   target <= 4 GiB",
+                );
+            }
+        }
+    }
+
+    // 5. plugins vs compiled in, 3D, HSD + Mindlin + rolling sds: 4,000 spheres (2 × 2 copies of
+    // the base pile), one core, interleaved blocks
+    // 6. energy accounting on vs off: the same pile and laws (plugins)
+    if run("plugins3d") || run("energy") {
+        let base = base3d(&one, plugin_laws(&reg, true));
+        let n = 4 * BASE3D;
+        const BLOCKS: usize = 9;
+        const K: usize = 400;
+        let ps = |t: f64| (n * K) as f64 / t;
+        let contest = |a: &mut Engine<3>, b: &mut Engine<3>| {
+            one.install(|| {
+                // the contacts' history formed again after the copy
+                steps(a, 500);
+                steps(b, 500);
+                Pairs::run(a, b, BLOCKS, K)
+            })
+        };
+        if run("plugins3d") {
+            let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
+            let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, compiled_laws(true), false);
+            let ab = contest(&mut a, &mut b);
+            ab.plugins_against_compiled("4000 spheres, HSD + Mindlin + rolling sds", n * K, &a, &b);
+            println!("  target >= 0.95");
+        }
+        if run("energy") {
+            let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), true);
+            let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
+            let ab = contest(&mut a, &mut b);
+            let r = ab.ratios();
+            println!(
+                "{n} spheres, HSD + Mindlin + rolling sds (plugins), 1 core: energy accounting on {:.3e} particle-steps/s, off {:.3e}; overhead of a step {:+.1} % median of the blocks' ratios ({:+.1} to {:+.1} %), {:+.1} % of the medians ({BLOCKS} interleaved blocks of {K} steps; {} contacts)   target <= 10 %",
+                ps(median(&ab.ta)),
+                ps(median(&ab.tb)),
+                100.0 * (1.0 / median(&r) - 1.0),
+                100.0 * (1.0 / r[r.len() - 1] - 1.0),
+                100.0 * (1.0 / r[0] - 1.0),
+                100.0 * (median(&ab.ta) / median(&ab.tb) - 1.0),
+                a.contacts()
+            );
+            println!(
+                "  dissipated since the copy (J): normal {:.3e}, tangential {:.3e}, rolling {:.3e}, twisting {:.3e}",
+                a.dissipated[0], a.dissipated[1], a.dissipated[2], a.dissipated[3]
+            );
+            assert_eq!(
+                a.p.pos[0], b.p.pos[0],
+                "the accounting does not change the trajectory"
+            );
+        }
     }
 }

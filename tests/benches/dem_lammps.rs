@@ -32,7 +32,7 @@
 
 mod common;
 
-use common::thread_cpu_seconds;
+use common::{median, thread_cpu_seconds};
 use dashpot::dem::{Body, Engine, Laws, Material};
 use dashpot_sdk::ParamValue;
 use dashpot_tests::full_registry;
@@ -217,16 +217,6 @@ fn dashpot_run<const D: usize>(
     })
 }
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let m = v.len() / 2;
-    if v.len() % 2 == 1 {
-        v[m]
-    } else {
-        0.5 * (v[m - 1] + v[m])
-    }
-}
-
 /// One contest: `pairs` alternating pairs of dashpot on `threads` threads and LAMMPS on as many
 /// ranks, the ratios printed.
 #[allow(clippy::too_many_arguments)]
@@ -288,19 +278,19 @@ fn contest<const D: usize>(
         );
     }
     let ps = |t: f64| (case.n * case.steps) as f64 / t;
-    let tdm = median(&mut td);
+    let tdm = median(&td);
     print!("  dashpot {:.3e} particle-steps/s (median)", ps(tdm));
     if let Err(why) = venv {
         println!("; LAMMPS skipped: {why}");
         return;
     }
-    let tlm = median(&mut tl);
+    let tlm = median(&tl);
     let lo = ratios.iter().cloned().fold(f64::INFINITY, f64::min);
     let hi = ratios.iter().cloned().fold(0.0, f64::max);
     println!(
         ", LAMMPS {:.3e}\n  speed ratio dashpot / LAMMPS: {:.2}x (median of the pairs' ratios; {lo:.2}-{hi:.2})   target >= 2x",
         ps(tlm),
-        median(&mut ratios)
+        median(&ratios)
     );
 }
 

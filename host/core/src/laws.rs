@@ -15,7 +15,7 @@ use dashpot_sdk::abi::StaticModel;
 /// call.
 pub use dashpot_sdk::abi::{EnergyOut, Normal, NormalCall, Rolling, Tangential, Twisting};
 use dashpot_sdk::{
-    BoundRestitution, Contact, ContactLaw, LawError, MaterialPair, NormalBatch, RollingBatch,
+    BoundRestitution, Contact, ContactLaw, LawError, MaterialPair, NormalBatch, RollingBatch, RollingLaw,
     TangentialBatch, TangentialLaw, TwistingBatch,
 };
 
@@ -120,6 +120,14 @@ pub fn compiled_tangential<L: TangentialLaw>(
     law: &L,
     materials: &MaterialPair,
 ) -> Result<StaticModel<Tangential, L::Bound>, LawError> {
+    StaticModel::bind(law, materials)
+}
+
+/// A rolling-resistance law compiled into the program, bound to `materials`.
+pub fn compiled_rolling<L: RollingLaw>(
+    law: &L,
+    materials: &MaterialPair,
+) -> Result<StaticModel<Rolling, L::Bound>, LawError> {
     StaticModel::bind(law, materials)
 }
 

@@ -39,13 +39,25 @@ pub fn process_cpu_seconds() -> f64 {
 }
 
 /// Uniform numbers in [0, 1) from a 64-bit linear congruential generator seeded with `seed`
-/// (the piles' reproducible initial states).
-pub fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+/// (the piles' reproducible initial states, the same since the piles' first figures).
+fn pile_uniform(mut seed: u64) -> impl FnMut() -> f64 {
     move || {
         seed = seed
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
         (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The median of `v` (the mean of the middle two of an even count).
+pub fn median(v: &[f64]) -> f64 {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    let m = v.len() / 2;
+    if v.len() % 2 == 1 {
+        v[m]
+    } else {
+        0.5 * (v[m - 1] + v[m])
     }
 }
 
@@ -56,7 +68,7 @@ pub fn pile_bodies(n: usize) -> (Vec<Body<2>>, f64, f64) {
     let d = 0.002;
     let cols = (n as f64).sqrt().max(50.0).floor() as usize;
     let rows = n.div_ceil(cols);
-    let mut rnd = uniform(7);
+    let mut rnd = pile_uniform(7);
     let bodies = (0..n)
         .map(|k| {
             let (q, r) = ((k % cols) as f64, (k / cols) as f64);
@@ -90,17 +102,22 @@ pub fn pile(n: usize, laws: Laws, mat: Material, edge_means: bool) -> Engine<2> 
     Engine::new(cfg, &bodies, vec![floor], laws).expect("the pile")
 }
 
-/// The 3D benchmarks' pile: `n` spheres (diameters uniform in [0.8, 1.2] × 2 mm) on a simple
-/// cubic lattice of spacing 1.2 × the largest diameter (2.88 mm, so nothing touches), √(n/10)
-/// columns along x and y (at least 8), as many layers as it takes, the lowest layer's centres
-/// one spacing above the floor, random directions at 0.05 m/s. Returns the spheres, the box's
-/// side (x and y, m) and the lattice's top (m).
+/// The 3D pile's lattice for `n` spheres: its columns along x and along y (√(n/10), at least
+/// 8), its layers, and its spacing (m: 1.2 × the largest diameter, so nothing touches).
+pub fn pile3d_lattice(n: usize) -> (usize, usize, f64) {
+    let cols = ((n as f64 / 10.0).sqrt().ceil() as usize).max(8);
+    (cols, n.div_ceil(cols * cols), 1.2 * 1.2 * 0.002)
+}
+
+/// The 3D benchmarks' pile: `n` spheres (diameters uniform in [0.8, 1.2] × 2 mm) on the simple
+/// cubic lattice of [`pile3d_lattice`] (spacing 2.88 mm), sphere k at column k mod cols, row
+/// (k / cols) mod cols, layer k / cols², the lowest layer's centres one spacing above the floor,
+/// random directions at 0.05 m/s. Returns the spheres, the box's side (x and y, m) and the
+/// lattice's top (m).
 pub fn pile3d_bodies(n: usize) -> (Vec<Body<3>>, f64, f64) {
     let d = 0.002;
-    let s = 1.2 * 1.2 * d;
-    let cols = ((n as f64 / 10.0).sqrt().ceil() as usize).max(8);
-    let layers = n.div_ceil(cols * cols);
-    let mut rnd = uniform(11);
+    let (cols, layers, s) = pile3d_lattice(n);
+    let mut rnd = pile_uniform(11);
     let bodies = (0..n)
         .map(|k| {
             let (a, b, c) = (k % cols, (k / cols) % cols, k / (cols * cols));
@@ -122,17 +139,78 @@ pub fn pile3d_bodies(n: usize) -> (Vec<Body<3>>, f64, f64) {
 /// with `laws`; the step from the laws at an impact speed of 1 m/s.
 pub fn pile3d(n: usize, laws: Laws, mat: Material) -> Engine<3> {
     let (bodies, side, top) = pile3d_bodies(n);
+    pile3d_engine(&bodies, [side, side], top, laws, mat, false)
+}
+
+/// The engine of a 3D pile: `bodies` in a box of sides `side` (x, y; m, both periodic) over a
+/// floor at z = 0, gravity along −z, the step from the laws at an impact speed of 1 m/s, energy
+/// accounting on or off (`energy`, [`EngineConfig::energy`]); `top` (m): the particles' highest
+/// start.
+pub fn pile3d_engine(
+    bodies: &[Body<3>],
+    side: [f64; 2],
+    top: f64,
+    laws: Laws,
+    mat: Material,
+    energy: bool,
+) -> Engine<3> {
     let mut cfg = EngineConfig::<3>::new(mat);
     cfg.gravity = VecD::<3>::new(0.0, 0.0, -9.81);
     cfg.impact_speed = Some(1.0);
+    cfg.energy = energy;
     cfg.domain = Domain {
         lo: VecD::<3>::new(0.0, 0.0, -0.01),
-        hi: VecD::<3>::new(side, side, top + 0.01),
+        hi: VecD::<3>::new(side[0], side[1], top + 0.01),
         periodic: [true, true, false],
         bounded: false,
     };
     let floor = Wall::fixed(VecD::<3>::zeros(), VecD::<3>::new(0.0, 0.0, 1.0));
-    Engine::new(cfg, &bodies, vec![floor], laws).expect("the 3D pile")
+    Engine::new(cfg, bodies, vec![floor], laws).expect("the 3D pile")
+}
+
+/// How [`tile3d`] numbers the spheres of its copies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TileOrder {
+    /// As [`pile3d_bodies`] numbers the whole lattice of tx·cols × ty·cols columns (each copy's
+    /// sphere at the lattice site its base sphere started from): memory laid out as in a pile
+    /// generated at the full size, neighbours along z a layer (tx·ty·cols² spheres) apart.
+    Lattice,
+    /// Copy after copy, each in its base's order: every copy's spheres close in memory.
+    Copies,
+}
+
+/// A larger 3D pile made of `tiles` = [tx, ty] copies of `base`, a [`pile3d`] of `n` spheres
+/// stepped as far as wanted (positions wrapped into its periodic box, velocities and spins
+/// kept; the contacts' history starts afresh), side by side in x and y: every copy at the same
+/// stage of the same pile, the spheres numbered in `order`. Returns the spheres, the box's
+/// sides (m) and the lattice's top (m).
+pub fn tile3d(
+    base: &Engine<3>,
+    n: usize,
+    tiles: [usize; 2],
+    order: TileOrder,
+) -> (Vec<Body<3>>, [f64; 2], f64) {
+    let (cols, layers, s) = pile3d_lattice(n);
+    let side = cols as f64 * s;
+    let [tx, ty] = tiles;
+    let mut keyed = Vec::with_capacity(n * tx * ty);
+    for (y, x) in (0..ty).flat_map(|y| (0..tx).map(move |x| (y, x))) {
+        for i in 0..n {
+            let mut b = base.p.body(i);
+            for (k, t) in [x, y].into_iter().enumerate() {
+                b.position[k] = b.position[k].rem_euclid(side) + t as f64 * side;
+            }
+            let (a, r, c) = (i % cols, (i / cols) % cols, i / (cols * cols));
+            let key = match order {
+                TileOrder::Lattice => (a + x * cols) + tx * cols * ((r + y * cols) + ty * cols * c),
+                TileOrder::Copies => keyed.len(),
+            };
+            keyed.push((key, b));
+        }
+    }
+    keyed.sort_unstable_by_key(|(k, _)| *k);
+    let bodies = keyed.into_iter().map(|(_, b)| b).collect();
+    (bodies, [tx as f64 * side, ty as f64 * side], layers as f64 * s)
 }
 
 /// The height of the centre of mass along the last axis (m).
