@@ -87,7 +87,7 @@ fn frames_of(k: usize, duration: &str) {
     let frames = xyz.lines().filter(|l| l.starts_with("Lattice=")).count();
     assert_eq!(frames, 5, "duration {duration}");
     assert_eq!(v["steps"], 1000, "duration {duration}");
-    assert!(xyz.contains("Properties=species:S:1:pos:R:3:velo:R:3:omega:R:3:radius:R:1"));
+    assert!(xyz.contains("Properties=species:S:1:pos:R:3:velo:R:3:omega:R:3:radius:R:1:power:R:1 "));
     let last: Vec<f64> = xyz
         .lines()
         .last()
@@ -100,6 +100,27 @@ fn frames_of(k: usize, duration: &str) {
     let fin: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("final.json")).unwrap()).unwrap();
     assert_eq!(fin["steps"], v["steps"]);
+}
+
+#[test]
+fn energy_false_skips_the_accounting_and_reports_null_not_zeros() {
+    let p = scene(
+        "no_energy.toml",
+        &FREE_FALL.replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 1\nenergy = false"),
+    );
+    let out = p.with_extension("out");
+    let v = ok_json(&scene_to(&p, &out, &["--json"]));
+    for key in ["energy_initial", "elastic", "dissipated"] {
+        assert!(v[key].is_null(), "{key} = {}", v[key]);
+    }
+    // the mechanical energy is the engine's own, still reported
+    assert!(v["energy"].as_f64().unwrap() > 0.0);
+    let xyz = std::fs::read_to_string(out.join("trajectory.xyz")).unwrap();
+    assert!(xyz.contains(":radius:R:1 Time=") && !xyz.contains("power"));
+    // and the same scene with the accounting on reports them
+    let q = scene("energy.toml", FREE_FALL);
+    let w = ok_json(&scene_to(&q, &q.with_extension("out"), &["--json"]));
+    assert!(w["dissipated"]["total"].as_f64().is_some() && w["energy_initial"].as_f64().is_some());
 }
 
 #[test]

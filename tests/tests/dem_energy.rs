@@ -44,8 +44,19 @@ seed = 5
     )
 }
 
-/// (energy at the start, at the end, elastic at the end, dissipated by family) of a scene.
-fn run(text: &str) -> (f64, f64, f64, [f64; 4], [bool; 4]) {
+/// A scene's run: energy at the start, at the end, elastic at the end (J), dissipated by family
+/// (J), the families left unreported, and the particles' dissipated power (the trajectory's
+/// `power` column) summed over the particles and integrated over the steps (J).
+struct Run {
+    e0: f64,
+    e: f64,
+    el: f64,
+    d: [f64; 4],
+    unreported: [bool; 4],
+    by_particle: f64,
+}
+
+fn run(text: &str) -> Run {
     let file = SceneFile::parse(text).unwrap();
     let scene = file.scene::<3>().unwrap();
     let reg = registry_03();
@@ -75,21 +86,31 @@ fn run(text: &str) -> (f64, f64, f64, [f64; 4], [bool; 4]) {
     cfg.energy = true;
     let mut e = Engine::new(cfg, &scene.bodies, scene.walls.clone(), laws).unwrap();
     let e0 = e.energy().total() + e.elastic().iter().sum::<f64>();
+    let mut by_particle = 0.0;
     while e.time() + 0.5 * e.dt() < scene.duration {
         e.step().unwrap();
+        by_particle += e.particle_power().unwrap().iter().sum::<f64>() * e.dt();
     }
-    (
+    Run {
         e0,
-        e.energy().total(),
-        e.elastic().iter().sum(),
-        e.dissipated,
-        e.unreported,
-    )
+        e: e.energy().total(),
+        el: e.elastic().iter().sum(),
+        d: e.dissipated,
+        unreported: e.unreported,
+        by_particle,
+    }
 }
 
 #[test]
 fn a_settling_pile_under_hsd_closes_its_energy_balance() {
-    let (e0, e, el, d, unreported) = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", ""));
+    let Run {
+        e0,
+        e,
+        el,
+        d,
+        unreported,
+        ..
+    } = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", ""));
     assert_eq!(unreported, [false; 4]);
     let lost = e0 - e;
     assert!(lost > 0.3 * e0, "the pile must settle: lost {lost} J of {e0} J");
@@ -104,7 +125,7 @@ fn a_settling_pile_under_hsd_closes_its_energy_balance() {
 
 #[test]
 fn an_elastic_frictionless_pile_dissipates_nothing() {
-    let (e0, _, _, d, _) = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 1.0 }", ""));
+    let Run { e0, d, .. } = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 1.0 }", ""));
     let total: f64 = d.iter().sum();
     assert!(total.abs() <= 1e-9 * e0, "dissipated {total:e} J of {e0:e} J");
 }
@@ -113,9 +134,23 @@ fn an_elastic_frictionless_pile_dissipates_nothing() {
 fn with_friction_and_rolling_every_family_dissipates_a_non_negative_share() {
     let extra = "[tangential]\nname = \"mindlin\"\nparams = { mu = 0.5 }\n\
                  [rolling]\nname = \"rolling-sds\"\nparams = { k = 100.0, gamma = 0.0, mu = 0.1 }";
-    let (e0, e, el, d, unreported) = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", extra));
+    let Run {
+        e0,
+        e,
+        el,
+        d,
+        unreported,
+        by_particle,
+    } = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", extra));
     assert_eq!(unreported, [false; 4]);
     assert!(d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0 && d[3] == 0.0, "{d:?}");
+    // the particles' shares (half a pair contact's power each, a wall contact's whole) add up
+    // to every contact's power at every step: the same sum in another order
+    let total = d.iter().sum::<f64>();
+    assert!(
+        (by_particle - total).abs() <= 1e-9 * total,
+        "the particles' power integrates to {by_particle:e} J, the contacts' to {total:e} J"
+    );
     // the balance with friction closes to about 1 % (the friction springs book their stuck
     // steps exactly, Mindlin's changing stiffness included; a sliding spring's energy under a
     // changing Coulomb cap is estimated, the previous normal force not being part of the

@@ -290,7 +290,8 @@ fn run_dim<const D: usize>(
 }
 
 /// The engine of a scene as `dashpot dem` runs it: the laws of `file` (`[law]`, `[tangential]`,
-/// `[rolling]`, `[twisting]`) from `reg`, bound to the scene's material, energy accounting on;
+/// `[rolling]`, `[twisting]`) from `reg`, bound to the scene's material, energy accounting as
+/// the scene says (on unless `energy = false`);
 /// and the energy at the start (J: kinetic, gravity and elastic), which `dem --json` reports.
 pub fn scene_engine<const D: usize>(
     reg: &Registry,
@@ -320,9 +321,7 @@ pub fn scene_engine<const D: usize>(
             &scene.config.material,
         )
         .context("[rolling] / [twisting]")?;
-    let mut cfg = scene.config.clone();
-    cfg.energy = true;
-    let e = Engine::new(cfg, &scene.bodies, scene.walls.clone(), laws)?;
+    let e = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)?;
     let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
     Ok((e, energy_initial))
 }
@@ -354,9 +353,15 @@ pub fn final_json<const D: usize>(
         .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
         .collect::<Result<Vec<_>, _>>()?;
     state["provenance"] = serde_json::json!(provenance);
-    state["energy_initial"] = serde_json::json!(energy_initial);
-    state["elastic"] = serde_json::json!(e.elastic().iter().sum::<f64>());
-    state["dissipated"] = dissipated_json(e);
+    // without the accounting (`energy = false`) the laws were not asked: null, not zeros
+    let on = e.config().energy;
+    state["energy_initial"] = serde_json::json!(on.then_some(energy_initial));
+    state["elastic"] = serde_json::json!(on.then(|| e.elastic().iter().sum::<f64>()));
+    state["dissipated"] = if on {
+        dissipated_json(e)
+    } else {
+        serde_json::Value::Null
+    };
     state["wall_seconds"] = serde_json::json!(wall);
     state["particle_steps_per_second"] =
         serde_json::json!(e.p.len() as f64 * e.steps() as f64 / wall.max(1e-9));

@@ -447,6 +447,30 @@ impl<const D: usize> Engine<D> {
         }
     }
 
+    /// Each particle's share of the power its contacts dissipated at the last step (W, every
+    /// family): half of each pair contact's, the whole of a wall contact's. `None` without
+    /// [`EngineConfig::energy`], or when a family's law does not report its energy.
+    pub fn particle_power(&self) -> Option<Vec<f64>> {
+        let mut out = vec![0.0; self.p.len()];
+        for (sets, pair) in [(&self.pairs.chunks, true), (&self.wall_contacts.chunks, false)] {
+            for set in sets {
+                if !self.cfg.energy || set.unreported.iter().any(|&u| u) {
+                    return None;
+                }
+                for m in 0..set.len() {
+                    let w: f64 = set.power.iter().map(|f| f[m]).sum();
+                    if pair {
+                        out[set.i[m] as usize] += 0.5 * w;
+                        out[set.j[m] as usize] += 0.5 * w;
+                    } else {
+                        out[set.i[m] as usize] += w;
+                    }
+                }
+            }
+        }
+        self.cfg.energy.then_some(out)
+    }
+
     /// The elastic energy stored in the contacts now (J), by family (with
     /// [`EngineConfig::energy`]; zeros without).
     pub fn elastic(&self) -> [f64; 4] {

@@ -198,6 +198,12 @@ pub struct SceneFile {
     /// packing), up to 0.5 of the smaller radius; else any overlap at the start is refused.
     #[serde(default)]
     allow_initial_overlap: bool,
+    /// Energy accounting by family (the laws' energy outputs: `dem --json`'s `energy_initial`,
+    /// `elastic` and `dissipated`, the trajectory's per-particle dissipated power). On by
+    /// default; `energy = false` skips the laws' energy functions, which with friction and
+    /// rolling cost about as much as the rest of a step.
+    #[serde(default = "accounting_on")]
+    energy: bool,
     /// The normal law.
     pub law: LawTable,
     /// The tangential law, if any.
@@ -233,6 +239,10 @@ pub struct Scene<const D: usize> {
     pub bodies: Vec<Body<D>>,
     /// The walls.
     pub walls: Vec<Wall<D>>,
+}
+
+fn accounting_on() -> bool {
+    true
 }
 
 impl SceneFile {
@@ -271,6 +281,7 @@ impl SceneFile {
             .validate()
             .map_err(|e| bad(format!("[material]: {}", e.message)))?;
         let mut config = EngineConfig::<D>::new(material);
+        config.energy = self.energy;
         if let Some(g) = &self.gravity {
             config.gravity = vector::<D>("gravity", g)?;
         }

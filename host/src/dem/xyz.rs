@@ -1,5 +1,7 @@
 //! Extended XYZ trajectories (one frame per snapshot), readable by OVITO and ASE: species,
-//! position, velocity, angular velocity and radius per particle; 2D runs have z = 0.
+//! position, velocity, angular velocity and radius per particle, and with energy accounting
+//! on, the power its contacts dissipated at the last step (`power`, W: half of each pair
+//! contact's, the whole of a wall contact's); 2D runs have z = 0.
 
 use super::state::to3;
 use super::Engine;
@@ -33,16 +35,18 @@ pub fn write_frame<const D: usize, W: Write>(e: &Engine<D>, w: &mut W) -> std::i
     let pbc: Vec<&str> = (0..3)
         .map(|k| if k < D && dom.periodic[k] { "T" } else { "F" })
         .collect();
+    let power = e.particle_power();
     writeln!(w, "{}", p.len())?;
     writeln!(
         w,
-        "Lattice=\"{} 0 0 0 {} 0 0 0 {}\" Origin=\"{} {} {}\" Properties=species:S:1:pos:R:3:velo:R:3:omega:R:3:radius:R:1 Time={} pbc=\"{}\"",
+        "Lattice=\"{} 0 0 0 {} 0 0 0 {}\" Origin=\"{} {} {}\" Properties=species:S:1:pos:R:3:velo:R:3:omega:R:3:radius:R:1{} Time={} pbc=\"{}\"",
         hi[0] - lo[0],
         hi[1] - lo[1],
         hi[2] - lo[2],
         lo[0],
         lo[1],
         lo[2],
+        if power.is_some() { ":power:R:1" } else { "" },
         e.time(),
         pbc.join(" ")
     )?;
@@ -50,11 +54,15 @@ pub fn write_frame<const D: usize, W: Write>(e: &Engine<D>, w: &mut W) -> std::i
         let x = to3(&p.pos[i]);
         let v = to3(&p.vel[i]);
         let o = p.angular_velocity(i);
-        writeln!(
+        write!(
             w,
             "P {:.9e} {:.9e} {:.9e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e}",
             x.x, x.y, x.z, v.x, v.y, v.z, o.x, o.y, o.z, p.radius[i]
         )?;
+        match &power {
+            Some(pw) => writeln!(w, " {:.6e}", pw[i])?,
+            None => writeln!(w)?,
+        }
     }
     Ok(())
 }
