@@ -270,25 +270,31 @@ impl Scene {
     /// since the start (`normal`, `tangential`, `rolling`, `twisting`, `total`; `None` for a
     /// law that does not report it), and `initial`, the total with the elastic at the start.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (en, elastic, dissipated, unreported) =
-            on!(&self.e, e => (e.energy(), e.elastic(), e.dissipated, e.unreported));
+        let (en, elastic, dissipated, unreported, on) = on!(&self.e, e => (
+            e.energy(), e.elastic(), e.dissipated, e.unreported, e.config().energy
+        ));
         let d = PyDict::new(py);
         d.set_item("translational", en.translational)?;
         d.set_item("rotational", en.rotational)?;
         d.set_item("gravity", en.gravity)?;
         d.set_item("total", en.total())?;
-        d.set_item("elastic", elastic.iter().sum::<f64>())?;
-        let dis = PyDict::new(py);
-        let fam = |k: usize| (!unreported[k]).then_some(dissipated[k]);
-        for (k, name) in ["normal", "tangential", "rolling", "twisting"]
-            .into_iter()
-            .enumerate()
-        {
-            dis.set_item(name, fam(k))?;
+        // without the accounting (`energy=False`) the laws were not asked: None, not zeros
+        d.set_item("elastic", on.then(|| elastic.iter().sum::<f64>()))?;
+        if on {
+            let dis = PyDict::new(py);
+            let fam = |k: usize| (!unreported[k]).then_some(dissipated[k]);
+            for (k, name) in ["normal", "tangential", "rolling", "twisting"]
+                .into_iter()
+                .enumerate()
+            {
+                dis.set_item(name, fam(k))?;
+            }
+            dis.set_item("total", (0..4).map(fam).sum::<Option<f64>>())?;
+            d.set_item("dissipated", dis)?;
+        } else {
+            d.set_item("dissipated", py.None())?;
         }
-        dis.set_item("total", (0..4).map(fam).sum::<Option<f64>>())?;
-        d.set_item("dissipated", dis)?;
-        d.set_item("initial", self.energy_initial)?;
+        d.set_item("initial", on.then_some(self.energy_initial))?;
         Ok(d)
     }
 

@@ -104,6 +104,18 @@ def test_energy_balances_on_a_frictional_run():
     assert e["total"] + e["elastic"] + lost == pytest.approx(e["initial"], rel=2e-3)
 
 
+def test_energy_false_skips_the_accounting_and_gives_none_not_zeros():
+    sim = keyword_scene(energy=False)
+    sim.run()
+    e = sim.energy()
+    assert e["elastic"] is None and e["dissipated"] is None and e["initial"] is None
+    assert e["total"] > 0.0
+    # the trajectory is the accounted run's, bit for bit: the accounting only reads the contacts
+    ref = keyword_scene()
+    ref.run()
+    assert np.array_equal(sim.positions, ref.positions)
+
+
 def test_a_2d_scene_with_a_periodic_box_and_a_generated_packing():
     sim = dashpot.Scene(dimension=2, law="hsd", young=1e7, poisson=0.3, density=2500.0,
                         gravity=[0.0, -9.81], box={"lo": [0.0, 0.0], "hi": [0.02, 0.02], "periodic": [True, False]},

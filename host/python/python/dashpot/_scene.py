@@ -65,8 +65,10 @@ class Scene:
     (s), ``steps_per_collision``, ``impact_speed`` (m/s), ``skin`` (m) for the step and the
     neighbour list; ``box`` ``{"lo", "hi", "periodic", "bounded"}``; ``walls``, a list of
     ``{"point", "normal", "motion"}``; ``generate``, a random packing ``{"count", "diameter",
-    "lo", "hi", "speed", "seed"}``; ``allow_initial_overlap``. Every value is checked as the
-    scene file's is; a refusal is a ``ValueError`` naming the key and the value.
+    "lo", "hi", "speed", "seed"}``; ``allow_initial_overlap``; ``energy`` (default ``True``:
+    the energy accounting by family; ``False`` skips the laws' energy functions, and
+    ``energy()`` then gives ``None`` for ``elastic``, ``dissipated`` and ``initial``). Every value
+    is checked as the scene file's is; a refusal is a ``ValueError`` naming the key and the value.
 
     The state is read through read-only numpy views that follow the run without copies:
     ``positions``, ``velocities``, ``forces`` (contact forces of the last step, N, gravity
@@ -84,7 +86,7 @@ class Scene:
                  skin: Optional[float] = None, box: Optional[Mapping[str, Any]] = None,
                  walls: Optional[Sequence[Mapping[str, Any]]] = None,
                  generate: Optional[Mapping[str, Any]] = None,
-                 allow_initial_overlap: bool = False) -> None:
+                 allow_initial_overlap: bool = False, energy: bool = True) -> None:
         spec: Dict[str, Any] = {"dimension": int(dimension), "law": _law_table("law", law),
                                 "material": {"young": young, "poisson": poisson, "density": density}}
         if disk_mass is not None:
@@ -103,6 +105,8 @@ class Scene:
             spec["wall"] = list(walls)
         if allow_initial_overlap:
             spec["allow_initial_overlap"] = True
+        if not energy:
+            spec["energy"] = False
         spec["particle"] = self._particles(int(dimension), positions, diameters, velocities, angular_velocities)
         self._bind(_dashpot.Scene.from_spec(spec), duration if given_duration else None)
 
