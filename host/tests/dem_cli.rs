@@ -74,16 +74,23 @@ fn the_trajectory_has_one_frame_per_snapshot_plus_the_start() {
     }
 }
 
+/// Runs the scene `text` (written as `name`) with `--out` and `--json`: its JSON, its output
+/// directory and the trajectory's text.
+fn run_with_trajectory(name: &str, text: &str) -> (serde_json::Value, std::path::PathBuf, String) {
+    let p = scene(name, text);
+    let out = p.with_extension("out");
+    let v = ok_json(&scene_to(&p, &out, &["--json"]));
+    let xyz = std::fs::read_to_string(out.join("trajectory.xyz")).unwrap();
+    (v, out, xyz)
+}
+
 fn frames_of(k: usize, duration: &str) {
-    let p = scene(
+    let (v, out, xyz) = run_with_trajectory(
         &format!("traj{k}.toml"),
         &FREE_FALL
             .replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 4")
             .replace("duration = 0.01", &format!("duration = {duration}")),
     );
-    let out = p.with_extension("out");
-    let v = ok_json(&scene_to(&p, &out, &["--json"]));
-    let xyz = std::fs::read_to_string(out.join("trajectory.xyz")).unwrap();
     let frames = xyz.lines().filter(|l| l.starts_with("Lattice=")).count();
     assert_eq!(frames, 5, "duration {duration}");
     assert_eq!(v["steps"], 1000, "duration {duration}");
@@ -104,18 +111,15 @@ fn frames_of(k: usize, duration: &str) {
 
 #[test]
 fn energy_false_skips_the_accounting_and_reports_null_not_zeros() {
-    let p = scene(
+    let (v, _, xyz) = run_with_trajectory(
         "no_energy.toml",
         &FREE_FALL.replace("dt = 1e-5", "dt = 1e-5\nsnapshots = 1\nenergy = false"),
     );
-    let out = p.with_extension("out");
-    let v = ok_json(&scene_to(&p, &out, &["--json"]));
     for key in ["energy_initial", "elastic", "dissipated"] {
         assert!(v[key].is_null(), "{key} = {}", v[key]);
     }
     // the mechanical energy is the engine's own, still reported
     assert!(v["energy"].as_f64().unwrap() > 0.0);
-    let xyz = std::fs::read_to_string(out.join("trajectory.xyz")).unwrap();
     assert!(xyz.contains(":radius:R:1 Time=") && !xyz.contains("power"));
     // and the same scene with the accounting on reports them
     let q = scene("energy.toml", FREE_FALL);
