@@ -451,12 +451,12 @@ impl<const D: usize> Engine<D> {
     /// family): half of each pair contact's, the whole of a wall contact's. `None` without
     /// [`EngineConfig::energy`], or when a family's law does not report its energy.
     pub fn particle_power(&self) -> Option<Vec<f64>> {
+        if !self.cfg.energy || self.unreported.iter().any(|&u| u) {
+            return None;
+        }
         let mut out = vec![0.0; self.p.len()];
         for (sets, pair) in [(&self.pairs.chunks, true), (&self.wall_contacts.chunks, false)] {
             for set in sets {
-                if !self.cfg.energy || set.unreported.iter().any(|&u| u) {
-                    return None;
-                }
                 for m in 0..set.len() {
                     let w: f64 = set.power.iter().map(|f| f[m]).sum();
                     if pair {
@@ -468,7 +468,7 @@ impl<const D: usize> Engine<D> {
                 }
             }
         }
-        self.cfg.energy.then_some(out)
+        Some(out)
     }
 
     /// The elastic energy stored in the contacts now (J), by family (with
