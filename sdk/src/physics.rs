@@ -97,13 +97,14 @@ impl TwistSpring {
     /// before (`k_before`, N·m/rad, for one that changes with the contact).
     #[inline]
     pub fn torque_energy(&self, k_before: f64, rate: f64, dt: f64, h: &mut [f64]) -> (f64, crate::Energy) {
-        let before = h[0] * h[0];
+        let before = h[0];
         let (m, sliding) = self.step(rate, dt, h);
         let step = SliderStep {
             k: self.k,
             k_before,
             eta: self.gamma,
-            xi2_before: before,
+            eta_held: self.gamma,
+            xi_before: [before, 0.0, 0.0],
             dt,
         };
         (m, step.energy(sliding, [h[0], 0.0, 0.0], [rate, 0.0, 0.0], [m, 0.0, 0.0]))
@@ -136,7 +137,8 @@ pub fn spring_friction(kt: f64, eta: f64, mu: f64, c: &crate::TangentialContact,
     spring_friction_step(kt, eta, mu, c, h).0
 }
 
-/// [`spring_friction`], and whether the spring slid or was dropped (δ ≤ 0).
+/// [`spring_friction`], whether the spring slid or was dropped (δ ≤ 0), and the spring the step
+/// started from, turned into the tangent plane.
 #[inline(always)]
 fn spring_friction_step(
     kt: f64,
@@ -144,10 +146,11 @@ fn spring_friction_step(
     mu: f64,
     c: &crate::TangentialContact,
     h: &mut [f64],
-) -> ([f64; 3], bool) {
+) -> ([f64; 3], bool, [f64; 3]) {
     if c.delta <= 0.0 {
+        let before = [h[0], h[1], h[2]];
         h[..3].fill(0.0);
-        return ([0.0; 3], true);
+        return ([0.0; 3], true, before);
     }
     let n = c.normal;
     let mut xi = [h[0], h[1], h[2]];
@@ -162,6 +165,7 @@ fn spring_friction_step(
     }
     // Tangential relative velocity, advance, trial force.
     let vt = tangential_part(c.velocity, n);
+    let turned = xi;
     let mut f = [0.0; 3];
     for i in 0..3 {
         xi[i] += vt[i] * c.dt;
@@ -179,7 +183,7 @@ fn spring_friction_step(
         }
     }
     h[..3].copy_from_slice(&xi);
-    (f, slid)
+    (f, slid, turned)
 }
 
 /// [`spring_friction`] with the step's energy ([`SliderStep::energy`], v the tangential
@@ -194,13 +198,13 @@ pub fn spring_friction_energy(
     c: &crate::TangentialContact,
     h: &mut [f64],
 ) -> ([f64; 3], crate::Energy) {
-    let before = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-    let (f, slid) = spring_friction_step(kt[1], eta, mu, c, h);
+    let (f, slid, before) = spring_friction_step(kt[1], eta, mu, c, h);
     let step = SliderStep {
         k: kt[1],
         k_before: kt[0],
         eta,
-        xi2_before: before,
+        eta_held: eta,
+        xi_before: before,
         dt: c.dt,
     };
     let e = step.energy(slid, [h[0], h[1], h[2]], tangential_part(c.velocity, c.normal), f);
@@ -209,9 +213,9 @@ pub fn spring_friction_energy(
 
 /// One step of a spring–dashpot–slider (a tangential, rolling or twisting spring capped by
 /// Coulomb, its spring reset to the capped force) as its energy accounting sees it, from both
-/// ends: the stiffness after the step and one step before, the dashpot, and the squared length
-/// of the spring the step started from. Units: N/m, N·s/m and m² for a displacement spring;
-/// N·m/rad, N·m·s/rad and rad² for a twist.
+/// ends: the stiffness after the step and one step before, the dashpot, and the spring the step
+/// started from. Units: N/m, N·s/m and m for a displacement spring; N·m/rad, N·m·s/rad and rad
+/// for a twist.
 ///
 /// [`SliderStep::energy`] closes the balance step by step: power × dt = W − (E_after −
 /// E_before), with E = k |ξ|²/2 the spring's energy (E_before from the stiffness and the spring
@@ -222,15 +226,20 @@ pub fn spring_friction_energy(
 ///   power = η |v|² − (E(k, ξ_before) − E(k_before, ξ_before))/dt: the dashpot, less the energy a
 ///   changing stiffness puts into the spring at fixed ξ (Mindlin's k_t ∝ √δ grows on loading),
 ///   which no force paid for;
-/// - sliding, or dropped (the force capped, the spring reset): W = −F·v dt, and the change of
-///   the stored energy, whether the cap truncated the spring or let it load, is booked whole.
+/// - sliding, or dropped (the force capped, the spring reset): W = −(F_before + F)·v dt/2, the
+///   force averaged over the step as velocity Verlet applies it, with F_before = −k_before
+///   ξ_before − η_held v, or 0 from a spring at zero extension, a contact formed on the step
+///   (the reset leaves a capped force −k ξ − η_held v: η_held = η under
+///   LAMMPS's reset ξ = −(F + η v)/k, 0 for a spring reset to the capped force alone); and the
+///   change of the stored energy, whether the cap truncated the spring or let it load, is booked
+///   whole.
 ///   (Under LAMMPS's reset ξ = −(F + η v)/k a sliding spring also holds the dashpot's share:
 ///   that energy is stored until the spring gives it back or a later reset truncates it.)
 ///
 /// The power is therefore the energy the contact takes out of the bodies' motion and out of its
 /// spring per second: ≥ 0 where the law is passive, negative on a step where a growing stiffness
 /// stores energy no force paid for. Summed over the steps with the elastic energy at the end it
-/// equals the work the bodies lost, to first order in dt, exactly as far as `k_before` is the
+/// equals the work the bodies lost, to the integrator's order in dt, as far as `k_before` is the
 /// stiffness the previous step had (a constant one; Mindlin's, which its history keeps).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SliderStep {
@@ -240,8 +249,12 @@ pub struct SliderStep {
     pub k_before: f64,
     /// Dashpot η acting over the step.
     pub eta: f64,
-    /// |ξ|² of the spring the step started from (the history before the call).
-    pub xi2_before: f64,
+    /// The dashpot share a reset spring holds (`eta` under LAMMPS's reset ξ = −(F + η v)/k; 0 for
+    /// a spring reset to the capped force alone).
+    pub eta_held: f64,
+    /// The spring the step started from (the history before the call, turned into the current
+    /// tangent plane at its length; a twist as `[θ, 0, 0]`).
+    pub xi_before: [f64; 3],
     /// Time step (s).
     pub dt: f64,
 }
@@ -257,12 +270,20 @@ impl SliderStep {
         if self.dt.is_nan() || self.dt <= 0.0 {
             return crate::Energy { power: 0.0, elastic };
         }
-        let before = 0.5 * self.k_before * self.xi2_before;
+        let (xo, x0) = (self.xi_before, dot(self.xi_before, self.xi_before));
+        let before = 0.5 * self.k_before * x0;
         let power = if sliding {
-            -dot(force, v) + (before - elastic) / self.dt
+            // a spring at zero extension held no force: the contact formed on this step
+            let (kb, held) = if x0 > 0.0 { (self.k_before, self.eta_held) } else { (0.0, 0.0) };
+            let mean = [
+                0.5 * (force[0] - kb * xo[0] - held * v[0]),
+                0.5 * (force[1] - kb * xo[1] - held * v[1]),
+                0.5 * (force[2] - kb * xo[2] - held * v[2]),
+            ];
+            -dot(mean, v) + (before - elastic) / self.dt
         } else {
             // arranged so that a constant stiffness below the cap gives η |v|² to the bit
-            self.eta * dot(v, v) + (before - 0.5 * self.k * self.xi2_before) / self.dt
+            self.eta * dot(v, v) + (before - 0.5 * self.k * x0) / self.dt
         };
         crate::Energy { power, elastic }
     }

@@ -250,6 +250,7 @@ fn lanes<const DAMPED: bool, const ENERGY: bool>(
             for k in 0..3 {
                 xi[k] = if rot { p[k] * s } else { x0[k] };
             }
+            let turned = xi;
             // 2.–4. tangential velocity, advance, trial force
             let v3 = [v[0][l], v[1][l], v[2][l]];
             let vn = dot(v3, n3);
@@ -275,12 +276,13 @@ fn lanes<const DAMPED: bool, const ENERGY: bool>(
                 h[k][l] = if touching { xk } else { 0.0 };
             }
             if ENERGY {
-                // spring_friction_energy's SliderStep, with |ξ|² before the step
+                // spring_friction_energy's SliderStep, from the spring the step started from
                 let step = SliderStep {
                     k: kt,
                     k_before: kprev[l],
                     eta,
-                    xi2_before: len2,
+                    eta_held: eta,
+                    xi_before: if touching { turned } else { x0 },
                     dt,
                 };
                 let (f3, x3) = ([f[0][l], f[1][l], f[2][l]], [h[0][l], h[1][l], h[2][l]]);

@@ -57,8 +57,9 @@ impl RollingLaw for RollingEpsd {
 }
 
 impl RollingEpsd {
-    /// [`BoundRolling::force`], and whether the spring was mobilized (capped).
-    fn step(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], bool) {
+    /// [`BoundRolling::force`], whether the spring was mobilized (capped), and the spring the
+    /// step started from, turned into the tangent plane.
+    fn step(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], bool, [f64; 3]) {
         let n = c.normal;
         let mut xi = [h[0], h[1], h[2]];
         let xn = dot(xi, n);
@@ -69,6 +70,7 @@ impl RollingEpsd {
             let s = if plen > 0.0 { len / plen } else { 0.0 };
             xi = [p[0] * s, p[1] * s, p[2] * s];
         }
+        let turned = xi;
         for (x, v) in xi.iter_mut().zip(c.velocity) {
             *x += v * c.dt;
         }
@@ -89,7 +91,7 @@ impl RollingEpsd {
             ]
         };
         h[..3].copy_from_slice(&xi);
-        (f, mobilized)
+        (f, mobilized, turned)
     }
 }
 
@@ -102,13 +104,14 @@ impl BoundRolling for RollingEpsd {
     /// the spring holds, −F_r·v_roll plus the change of the stored energy while mobilized (see
     /// [`SliderStep`]).
     fn force_energy(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let before = dot([h[0], h[1], h[2]], [h[0], h[1], h[2]]);
-        let (f, mobilized) = self.step(c, h);
+        let (f, mobilized, before) = self.step(c, h);
+        // a mobilized spring holds the capped force alone: F = −k_t ξ
         let step = SliderStep {
             k: self.kt,
             k_before: self.kt,
             eta: self.gamma(c.mass),
-            xi2_before: before,
+            eta_held: 0.0,
+            xi_before: before,
             dt: c.dt,
         };
         (f, Some(step.energy(mobilized, [h[0], h[1], h[2]], c.velocity, f)))

@@ -53,9 +53,10 @@ impl RollingLaw for RollingSds {
 }
 
 impl RollingSds {
-    /// [`BoundRolling::force`], and whether the force was capped (the spring slid).
+    /// [`BoundRolling::force`], whether the force was capped (the spring slid), and the spring
+    /// the step started from, turned into the tangent plane.
     #[inline]
-    fn step(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], bool) {
+    fn step(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], bool, [f64; 3]) {
         let n = c.normal;
         let fcrit = self.mu * c.normal_force.abs();
         let mut xi = [h[0], h[1], h[2]];
@@ -71,6 +72,7 @@ impl RollingSds {
                 *x *= s;
             }
         }
+        let turned = xi;
         for (x, v) in xi.iter_mut().zip(c.velocity) {
             *x += v * c.dt;
         }
@@ -91,18 +93,19 @@ impl RollingSds {
             }
         }
         h[..3].copy_from_slice(&xi);
-        (f, capped)
+        (f, capped, turned)
     }
 
-    /// The step's energy ([`SliderStep::energy`]) from |ξ|² before it, the spring `xi` it left,
-    /// the rolling velocity `v` and the force `f`.
+    /// The step's energy ([`SliderStep::energy`]) from the spring it started from (turned into
+    /// the tangent plane), the spring `xi` it left, the rolling velocity `v` and the force `f`.
     #[inline(always)]
-    fn energy_of(&self, xi2_before: f64, capped: bool, xi: [f64; 3], v: [f64; 3], f: [f64; 3], dt: f64) -> Energy {
+    fn energy_of(&self, before: [f64; 3], capped: bool, xi: [f64; 3], v: [f64; 3], f: [f64; 3], dt: f64) -> Energy {
         let step = SliderStep {
             k: self.k,
             k_before: self.k,
             eta: self.gamma,
-            xi2_before,
+            eta_held: self.gamma,
+            xi_before: before,
             dt,
         };
         step.energy(capped, xi, v, f)
@@ -136,8 +139,7 @@ impl BoundRolling for RollingSds {
     /// [`SliderStep`]).
     #[inline]
     fn force_energy(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let before = dot([h[0], h[1], h[2]], [h[0], h[1], h[2]]);
-        let (f, capped) = self.step(c, h);
+        let (f, capped, before) = self.step(c, h);
         let e = self.energy_of(before, capped, [h[0], h[1], h[2]], c.velocity, f, c.dt);
         (f, Some(e))
     }
@@ -218,6 +220,9 @@ fn lanes<const ENERGY: bool>(law: &RollingSds, b: RollingBatch<'_>, mut out: Opt
             let mut ft = [0.0; 3];
             for q in 0..3 {
                 xi[q] = if rot { p[q] * s } else { x0[q] };
+            }
+            let turned = xi;
+            for q in 0..3 {
                 xi[q] += v3[q] * dt;
                 ft[q] = -k * xi[q] - gamma * v3[q];
             }
@@ -238,7 +243,7 @@ fn lanes<const ENERGY: bool>(law: &RollingSds, b: RollingBatch<'_>, mut out: Opt
             }
             if ENERGY {
                 let (f3, x3) = ([f[0][l], f[1][l], f[2][l]], [h[0][l], h[1][l], h[2][l]]);
-                let e = law.energy_of(dot(x0, x0), capped, x3, v3, f3, dt);
+                let e = law.energy_of(turned, capped, x3, v3, f3, dt);
                 (power[l], elastic[l]) = (e.power, e.elastic);
             }
         }
