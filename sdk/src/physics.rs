@@ -107,7 +107,10 @@ impl TwistSpring {
             xi_before: [before, 0.0, 0.0],
             dt,
         };
-        (m, step.energy(sliding, [h[0], 0.0, 0.0], [rate, 0.0, 0.0], [m, 0.0, 0.0]))
+        (
+            m,
+            step.energy(sliding, [h[0], 0.0, 0.0], [rate, 0.0, 0.0], [m, 0.0, 0.0]),
+        )
     }
 }
 
@@ -272,19 +275,25 @@ impl SliderStep {
         }
         let (xo, x0) = (self.xi_before, dot(self.xi_before, self.xi_before));
         let before = 0.5 * self.k_before * x0;
-        let power = if sliding {
+        // the work rate and the change of the stored energy of either case, one division
+        let (work, stored) = if sliding {
             // a spring at zero extension held no force: the contact formed on this step
-            let (kb, held) = if x0 > 0.0 { (self.k_before, self.eta_held) } else { (0.0, 0.0) };
+            let (kb, held) = if x0 > 0.0 {
+                (self.k_before, self.eta_held)
+            } else {
+                (0.0, 0.0)
+            };
             let mean = [
                 0.5 * (force[0] - kb * xo[0] - held * v[0]),
                 0.5 * (force[1] - kb * xo[1] - held * v[1]),
                 0.5 * (force[2] - kb * xo[2] - held * v[2]),
             ];
-            -dot(mean, v) + (before - elastic) / self.dt
+            (-dot(mean, v), before - elastic)
         } else {
             // arranged so that a constant stiffness below the cap gives η |v|² to the bit
-            self.eta * dot(v, v) + (before - 0.5 * self.k * x0) / self.dt
+            (self.eta * dot(v, v), before - 0.5 * self.k * x0)
         };
+        let power = work + stored / self.dt;
         crate::Energy { power, elastic }
     }
 }

@@ -17,7 +17,8 @@
 
 use crate::error::LawError;
 use crate::law::{
-    history_law, history_mut, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo, LawKind,
+    history_law, history_mut, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo,
+    LawKind,
 };
 use crate::law::{motion_kind, VectorBatch, VectorContact};
 use crate::pair::MaterialPair;

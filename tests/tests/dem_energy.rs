@@ -232,4 +232,3 @@ fn a_jkr_pair_sticks_below_the_critical_speed_and_rebounds_as_the_two_body_drive
         "restitution at 2 v_c: DEM {e_dem}, two-body driver {e_2b}"
     );
 }
-

@@ -439,7 +439,10 @@ fn twisting_laws_follow_their_formulas() {
             assert!((t + mu * fnorm).abs() <= 1e-15 && (h[0] - (mu * fnorm - gamma * w) / k).abs() < 1e-12);
             // the slip's M_c ω, less what the spring stored on the step it reached the cap
             let expect = mu * fnorm * w - (e - e_prev) / dt;
-            assert!((p - expect).abs() <= 1e-9 * mu * fnorm * w, "step {i}: {p} vs {expect}");
+            assert!(
+                (p - expect).abs() <= 1e-9 * mu * fnorm * w,
+                "step {i}: {p} vs {expect}"
+            );
         }
         assert!((e - 0.5 * k * h[0] * h[0]).abs() <= 1e-12 * e.max(1e-300));
         e_prev = e;

@@ -54,8 +54,8 @@
 
 use dashpot_sdk::physics::{dot, spring_friction, spring_friction_energy, SliderStep};
 use dashpot_sdk::{
-    BoundTangential, Energy, EnergyBatch, History, LawError, MaterialPair, Range, TangentialBatch, TangentialContact,
-    TangentialLaw,
+    BoundTangential, Energy, EnergyBatch, History, LawError, MaterialPair, Range, TangentialBatch,
+    TangentialContact, TangentialLaw,
 };
 
 dashpot_sdk::law_params! {
@@ -121,7 +121,11 @@ impl TangentialLaw for Mindlin {
         History::new("xi_x", "m", "tangential spring displacement ξ, x component"),
         History::new("xi_y", "m", "tangential spring displacement ξ, y component"),
         History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
-        History::new("kt", "N/m", "the spring's stiffness k_t at the last call (its energy's)"),
+        History::new(
+            "kt",
+            "N/m",
+            "the spring's stiffness k_t at the last call (its energy's)",
+        ),
     ];
 
     fn bind(&self, materials: &MaterialPair) -> Result<MindlinBound, LawError> {

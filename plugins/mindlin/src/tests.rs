@@ -72,7 +72,11 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
                 let mut h = [h1[4 * i], h1[4 * i + 1], h1[4 * i + 2], h1[4 * i + 3]];
                 let f = l.force(&c, &mut h);
                 let (fe, e) = l.force_energy(&c, &mut h1[4 * i..4 * i + 4]);
-                assert_eq!(f.map(f64::to_bits), fe.map(f64::to_bits), "force_energy's force {i}");
+                assert_eq!(
+                    f.map(f64::to_bits),
+                    fe.map(f64::to_bits),
+                    "force_energy's force {i}"
+                );
                 assert_eq!(h[..], h1[4 * i..4 * i + 4], "force_energy's spring {i}");
                 (f, e.unwrap())
             })
@@ -114,7 +118,11 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
         assert!(written);
         assert_eq!((&f2, &h2), (&f3, &h3), "force_batch_energy's forces and springs");
         for i in 0..n {
-            assert_eq!(e1[i].power.to_bits(), power[i].to_bits(), "power {i}, damping {damping}");
+            assert_eq!(
+                e1[i].power.to_bits(),
+                power[i].to_bits(),
+                "power {i}, damping {damping}"
+            );
             assert_eq!(e1[i].elastic.to_bits(), elastic[i].to_bits(), "elastic {i}");
         }
         let slid = f1
@@ -137,7 +145,11 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
                 );
             }
             for k in 0..4 {
-                assert_eq!(h1[4 * i + k].to_bits(), h2[4 * i + k].to_bits(), "history {i}.{k}");
+                assert_eq!(
+                    h1[4 * i + k].to_bits(),
+                    h2[4 * i + k].to_bits(),
+                    "history {i}.{k}"
+                );
             }
         }
     }

@@ -2,7 +2,8 @@
 
 use dashpot_sdk::physics::SliderStep;
 use dashpot_sdk::{
-    BoundRolling, Energy, EnergyBatch, History, LawError, MaterialPair, Range, RollingBatch, RollingContact, RollingLaw,
+    BoundRolling, Energy, EnergyBatch, History, LawError, MaterialPair, Range, RollingBatch, RollingContact,
+    RollingLaw,
 };
 
 dashpot_sdk::law_params! {
@@ -99,7 +100,15 @@ impl RollingSds {
     /// The step's energy ([`SliderStep::energy`]) from the spring it started from (turned into
     /// the tangent plane), the spring `xi` it left, the rolling velocity `v` and the force `f`.
     #[inline(always)]
-    fn energy_of(&self, before: [f64; 3], capped: bool, xi: [f64; 3], v: [f64; 3], f: [f64; 3], dt: f64) -> Energy {
+    fn energy_of(
+        &self,
+        before: [f64; 3],
+        capped: bool,
+        xi: [f64; 3],
+        v: [f64; 3],
+        f: [f64; 3],
+        dt: f64,
+    ) -> Energy {
         let step = SliderStep {
             k: self.k,
             k_before: self.k,
@@ -170,7 +179,11 @@ const LANES: usize = 8;
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn lanes_avx2<const ENERGY: bool>(law: &RollingSds, b: RollingBatch<'_>, out: Option<EnergyBatch<'_>>) {
+unsafe fn lanes_avx2<const ENERGY: bool>(
+    law: &RollingSds,
+    b: RollingBatch<'_>,
+    out: Option<EnergyBatch<'_>>,
+) {
     lanes::<ENERGY>(law, b, out)
 }
 
@@ -322,7 +335,11 @@ mod tests {
             .enumerate()
             .map(|(i, c)| {
                 let (f, e) = law.force_energy(c, &mut h4[3 * i..3 * i + 3]);
-                assert_eq!(f.map(f64::to_bits), f1[i].map(f64::to_bits), "force_energy's force {i}");
+                assert_eq!(
+                    f.map(f64::to_bits),
+                    f1[i].map(f64::to_bits),
+                    "force_energy's force {i}"
+                );
                 e.unwrap()
             })
             .collect();

@@ -343,12 +343,12 @@ pub(crate) use blocks;
 /// # Safety
 /// Non-null pointers are valid for `n` values and not aliased.
 #[inline(always)]
-pub(crate) unsafe fn energy_out<'a>(
+pub(crate) unsafe fn energy_out(
     n: usize,
     power: *mut f64,
     elastic: *mut f64,
-    scratch: &'a mut Vec<f64>,
-) -> Option<(&'a mut [f64], &'a mut [f64])> {
+    scratch: &mut Vec<f64>,
+) -> Option<(&mut [f64], &mut [f64])> {
     match (power.is_null(), elastic.is_null()) {
         (true, true) => None,
         (false, false) => Some(unsafe { (slice_mut(power, n), slice_mut(elastic, n)) }),

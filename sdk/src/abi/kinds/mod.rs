@@ -64,7 +64,13 @@ macro_rules! motion_run {
             match energy.as_mut() {
                 Some((p, e)) => {
                     let (p, e) = (&mut p[lo..hi], &mut e[lo..hi]);
-                    if ($eval_energy)(block, EnergyBatch { power: &mut *p, elastic: &mut *e }) {
+                    if ($eval_energy)(
+                        block,
+                        EnergyBatch {
+                            power: &mut *p,
+                            elastic: &mut *e,
+                        },
+                    ) {
                         check_energy(lo, p, e)?;
                     } else {
                         written = false;
@@ -288,7 +294,13 @@ fn normal_blocks<B: BoundContact>(
         match energy.as_mut() {
             Some((p, e)) => {
                 let (p, e) = (&mut p[lo..hi], &mut e[lo..hi]);
-                if law.force_batch_energy(block, EnergyBatch { power: &mut *p, elastic: &mut *e }) {
+                if law.force_batch_energy(
+                    block,
+                    EnergyBatch {
+                        power: &mut *p,
+                        elastic: &mut *e,
+                    },
+                ) {
                     check_energy(lo, p, e)?;
                 } else {
                     written = false;
