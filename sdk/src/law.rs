@@ -205,6 +205,24 @@ impl Contact {
 }
 
 impl NormalBatch<'_> {
+    /// `force[i]` and contact i's energy from `f(contact i, its history)` for every contact:
+    /// the loop of a batch call with energy outputs; whether every contact reported one.
+    #[inline(always)]
+    pub fn each_energy(
+        self,
+        mut out: EnergyBatch<'_>,
+        mut f: impl FnMut(Contact, &mut [f64]) -> (f64, Option<Energy>),
+    ) -> bool {
+        let slots = self.slots;
+        let mut all = true;
+        for i in 0..self.force.len() {
+            let (o, e) = f(self.contact(i), history_mut(self.history, slots, i));
+            self.force[i] = o;
+            all &= out.set(i, e);
+        }
+        all
+    }
+
     /// Contact `i` of the batch.
     #[inline(always)]
     pub fn contact(&self, i: usize) -> Contact {
@@ -226,6 +244,31 @@ pub struct Energy {
     /// Elastic energy stored in the contact (J): the work the law's conservative part would
     /// give back on unloading from this state.
     pub elastic: f64,
+}
+
+/// The per-contact energy outputs of a batch call (sdk 0.3), each as long as the batch.
+#[derive(Debug)]
+pub struct EnergyBatch<'a> {
+    /// Output: the power each contact dissipated over the step (W).
+    pub power: &'a mut [f64],
+    /// Output: the elastic energy each contact stores at the end of the step (J).
+    pub elastic: &'a mut [f64],
+}
+
+impl EnergyBatch<'_> {
+    /// Writes contact `i`'s energy `e`; false when there is none (the law does not account for
+    /// energy), leaving the outputs as they were.
+    #[inline(always)]
+    pub fn set(&mut self, i: usize, e: Option<Energy>) -> bool {
+        match e {
+            Some(e) => {
+                self.power[i] = e.power;
+                self.elastic[i] = e.elastic;
+                true
+            }
+            None => false,
+        }
+    }
 }
 
 /// A contact law bound to a material pair: the normal force on the hot path.
@@ -288,6 +331,25 @@ pub trait BoundContact: Send + Sync + 'static {
     /// `history` (sdk 0.3); `None` (the default) when the law does not account for it.
     fn energy(&self, _c: &Contact, _history: &[f64], _force: f64) -> Option<Energy> {
         None
+    }
+
+    /// The normal force (N) on contact `c`, `history` updated as by [`BoundContact::force`],
+    /// with the contact's energy over the step (sdk 0.3): what a law that sees its history both
+    /// before and after the step can account exactly. The default is [`BoundContact::force`]
+    /// then [`BoundContact::energy`].
+    #[inline(always)]
+    fn force_energy(&self, c: Contact, history: &mut [f64]) -> (f64, Option<Energy>) {
+        let f = self.force(c, history);
+        (f, self.energy(&c, history, f))
+    }
+
+    /// [`BoundContact::force_batch`] with each contact's energy written to `out` (sdk 0.3);
+    /// returns whether every contact reported one. The default loops over
+    /// [`BoundContact::force_energy`]: a law that overrides `force_batch` for speed overrides
+    /// this too.
+    #[inline(always)]
+    fn force_batch_energy(&self, b: NormalBatch<'_>, out: EnergyBatch<'_>) -> bool {
+        b.each_energy(out, |c, h| self.force_energy(c, h))
     }
 }
 
@@ -369,6 +431,24 @@ macro_rules! motion_kind {
                     self.$out[i] = f(&c, history_mut(self.history, slots, i));
                 }
             }
+
+            #[doc = concat!("`", stringify!($out), "[i]` and contact i's energy from `f(contact i, its history)` for every contact: the loop of a batch call with energy outputs; whether every contact reported one.")]
+            #[inline(always)]
+            pub fn each_energy(
+                self,
+                mut out: $crate::law::EnergyBatch<'_>,
+                mut f: impl FnMut(&$contact, &mut [f64]) -> ($oty, Option<$crate::law::Energy>),
+            ) -> bool {
+                let slots = self.slots;
+                let mut all = true;
+                for i in 0..self.$out.len() {
+                    let c = self.contact(i);
+                    let (o, e) = f(&c, history_mut(self.history, slots, i));
+                    self.$out[i] = o;
+                    all &= out.set(i, e);
+                }
+                all
+            }
         }
     };
 }
@@ -425,6 +505,25 @@ pub trait BoundTangential: Send + Sync + 'static {
     /// and by sliding; `None` (the default) when the law does not account for it.
     fn energy(&self, _c: &TangentialContact, _history: &[f64], _force: [f64; 3]) -> Option<Energy> {
         None
+    }
+
+    /// The force (N) on contact `c`, `history` updated as by [`BoundTangential::force`], with
+    /// the contact's energy over the step (sdk 0.3), the history before the step in view (what
+    /// exact accounting of a sliding spring needs). The default is [`BoundTangential::force`]
+    /// then [`BoundTangential::energy`].
+    #[inline(always)]
+    fn force_energy(&self, c: &TangentialContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
+        let f = self.force(c, history);
+        (f, self.energy(c, history, f))
+    }
+
+    /// [`BoundTangential::force_batch`] with each contact's energy written to `out` (sdk 0.3);
+    /// whether every contact reported one. The default loops over
+    /// [`BoundTangential::force_energy`]: a law that overrides `force_batch` for speed
+    /// overrides this too.
+    #[inline(always)]
+    fn force_batch_energy(&self, b: TangentialBatch<'_>, out: EnergyBatch<'_>) -> bool {
+        b.each_energy(out, |c, h| self.force_energy(c, h))
     }
 }
 

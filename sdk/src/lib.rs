@@ -79,7 +79,7 @@ mod rotation;
 pub use error::{ErrorKind, LawError};
 pub use law::{
     BoundContact, BoundRestitution, BoundTangential, CalibrationTarget, Coefficient, Contact, ContactLaw,
-    EndCriterion, Energy, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
+    EndCriterion, Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
     TangentialBatch, TangentialContact, TangentialLaw, VectorBatch, VectorContact,
 };
 pub use pair::{MaterialPair, Pair, Particle};

@@ -68,7 +68,14 @@ pub struct TwistSpring {
 impl TwistSpring {
     /// Advances the twist angle θ = `h[0]` (rad) by ω dt and returns the torque (N·m):
     /// M = −k θ − γ ω; if |M| > M_c then θ = (M_c sgn ω − γ ω)/k and M = −M_c sgn ω.
+    #[inline]
     pub fn torque(&self, rate: f64, dt: f64, h: &mut [f64]) -> f64 {
+        self.step(rate, dt, h).0
+    }
+
+    /// [`TwistSpring::torque`] and whether the torque was capped (the twist slid).
+    #[inline]
+    fn step(&self, rate: f64, dt: f64, h: &mut [f64]) -> (f64, bool) {
         h[0] += rate * dt;
         let m = -self.k * h[0] - self.gamma * rate;
         if m.abs() > self.mcrit {
@@ -80,75 +87,30 @@ impl TwistSpring {
                 0.0
             };
             h[0] = (self.mcrit * sign - self.gamma * rate) / self.k;
-            return -self.mcrit * sign;
+            return (-self.mcrit * sign, true);
         }
-        m
+        (m, false)
     }
 
-    /// The energy of a step of `dt` (s) at twisting rate `rate` (rad/s) that left the angle
-    /// `theta` (rad) and returned `torque` (N·m), the spring's stiffness, damping and critical
-    /// torque taken as the same one step before: [`SliderStep::energy`] with θ, ω and M as
-    /// vectors along n̂ (elastic k θ²/2, no more than M_c²/(2k), J; power W).
-    pub fn step_energy(&self, rate: f64, dt: f64, theta: f64, torque: f64) -> crate::Energy {
+    /// [`TwistSpring::torque`] with the step's energy ([`SliderStep::energy`] with θ, ω and M as
+    /// vectors along n̂: elastic k θ²/2, J; power, W), the stiffness taken as the same one step
+    /// before (`k_before`, N·m/rad, for one that changes with the contact).
+    #[inline]
+    pub fn torque_energy(&self, k_before: f64, rate: f64, dt: f64, h: &mut [f64]) -> (f64, crate::Energy) {
+        let before = h[0];
+        let (m, sliding) = self.step(rate, dt, h);
         let step = SliderStep {
             k: self.k,
-            k_before: self.k,
+            k_before,
             eta: self.gamma,
-            eta_before: self.gamma,
-            cap: self.mcrit,
-            cap_before: self.mcrit,
+            eta_held: self.gamma,
+            xi_before: [before, 0.0, 0.0],
             dt,
         };
-        let m = [torque, 0.0, 0.0];
-        step.energy(
-            torque.abs() >= self.mcrit && rate != 0.0,
-            [theta, 0.0, 0.0],
-            [rate, 0.0, 0.0],
+        (
             m,
+            step.energy(sliding, [h[0], 0.0, 0.0], [rate, 0.0, 0.0], [m, 0.0, 0.0]),
         )
-    }
-
-    /// Elastic energy k θ²/2 (J) and dissipated power (W): γ ω² while the spring holds, |M ω|
-    /// while it slides (the steady form; [`TwistSpring::step_energy`] books the energy the
-    /// spring stores or loses under a changing critical torque).
-    pub fn energy(&self, rate: f64, theta: f64, torque: f64) -> crate::Energy {
-        let sliding = torque.abs() >= self.mcrit && rate != 0.0;
-        crate::Energy {
-            power: if sliding {
-                (-torque * rate).max(0.0)
-            } else {
-                self.gamma * rate * rate
-            },
-            elastic: 0.5 * self.k * theta * theta,
-        }
-    }
-}
-
-/// The energy of a tangential (or rolling) spring–dashpot–slider after a step: elastic
-/// ½ k |ξ|² (J) with ξ the stored displacement `xi` (m) and k the stiffness `k` (N/m), and the
-/// dissipated power (W): the dashpot's η |v|² while the spring holds (|F| below the cap
-/// `cap`, N), the friction work rate −F·v (≥ 0, clamped) while it slides. `v` is the velocity
-/// the spring advanced with (m/s), `force` the returned force (N), `eta` the dashpot (N·s/m).
-/// This steady form misses the energy the spring stores or loses while it slides under a
-/// changing cap; [`SliderStep::energy`] books it.
-pub fn spring_slider_energy(
-    k: f64,
-    eta: f64,
-    cap: f64,
-    xi: [f64; 3],
-    v: [f64; 3],
-    force: [f64; 3],
-) -> crate::Energy {
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let f2 = dot(force, force);
-    let sliding = f2 > 0.0 && f2 >= cap * cap * (1.0 - 1e-12);
-    crate::Energy {
-        power: if sliding {
-            (-dot(force, v)).max(0.0)
-        } else {
-            eta * dot(v, v)
-        },
-        elastic: 0.5 * k * dot(xi, xi),
     }
 }
 
@@ -175,9 +137,23 @@ pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
 /// `linear-history` (constant k_t) and `mindlin` (k_t = 8 G a) laws.
 #[inline(always)]
 pub fn spring_friction(kt: f64, eta: f64, mu: f64, c: &crate::TangentialContact, h: &mut [f64]) -> [f64; 3] {
+    spring_friction_step(kt, eta, mu, c, h).0
+}
+
+/// [`spring_friction`], whether the spring slid or was dropped (δ ≤ 0), and the spring the step
+/// started from, turned into the tangent plane.
+#[inline(always)]
+fn spring_friction_step(
+    kt: f64,
+    eta: f64,
+    mu: f64,
+    c: &crate::TangentialContact,
+    h: &mut [f64],
+) -> ([f64; 3], bool, [f64; 3]) {
     if c.delta <= 0.0 {
+        let before = [h[0], h[1], h[2]];
         h[..3].fill(0.0);
-        return [0.0; 3];
+        return ([0.0; 3], true, before);
     }
     let n = c.normal;
     let mut xi = [h[0], h[1], h[2]];
@@ -192,6 +168,7 @@ pub fn spring_friction(kt: f64, eta: f64, mu: f64, c: &crate::TangentialContact,
     }
     // Tangential relative velocity, advance, trial force.
     let vt = tangential_part(c.velocity, n);
+    let turned = xi;
     let mut f = [0.0; 3];
     for i in 0..3 {
         xi[i] += vt[i] * c.dt;
@@ -200,7 +177,8 @@ pub fn spring_friction(kt: f64, eta: f64, mu: f64, c: &crate::TangentialContact,
     // Coulomb cap, with the spring reset to the capped force.
     let cap = mu * c.normal_force.max(0.0);
     let f2 = dot(f, f);
-    if f2 > cap * cap {
+    let slid = f2 > cap * cap;
+    if slid {
         let s = cap / f2.sqrt();
         for i in 0..3 {
             f[i] *= s;
@@ -208,100 +186,64 @@ pub fn spring_friction(kt: f64, eta: f64, mu: f64, c: &crate::TangentialContact,
         }
     }
     h[..3].copy_from_slice(&xi);
-    f
+    (f, slid, turned)
 }
 
-/// The energy of [`spring_friction`] with a constant stiffness `kt` (N/m) and dashpot `eta`
-/// (N·s/m) after a step that returned `force` and left `history`: see
-/// [`spring_friction_energy_varying`].
+/// [`spring_friction`] with the step's energy ([`SliderStep::energy`], v the tangential
+/// velocity): for a stiffness `kt` = [at the previous call, now] (N/m; the same twice for a
+/// constant one) and a dashpot `eta` (N·s/m). Elastic k_t |ξ|²/2 (J); a spring dropped out of contact
+/// (δ ≤ 0) gives back nothing: its energy is dissipated at that step.
+#[inline(always)]
 pub fn spring_friction_energy(
-    kt: f64,
+    kt: [f64; 2],
     eta: f64,
     mu: f64,
     c: &crate::TangentialContact,
-    history: &[f64],
-    force: [f64; 3],
-) -> crate::Energy {
-    spring_friction_energy_varying([kt, kt], [eta, eta], mu, c, history, force)
-}
-
-/// The energy of [`spring_friction`] after a step that returned `force` and left `history`,
-/// for a stiffness `kt` = [before, after] the step (N/m) and a dashpot `eta` = [before, after]
-/// (N·s/m): elastic k_t |ξ|²/2, no more than (μ F_n)²/(2 k_t) (J), and the power of
-/// [`SliderStep::energy`] (W) with v the tangential velocity, the cap μ max(F_n, 0) now and,
-/// one step before, the cap that leaves the most a sliding spring can hold, cap²/(2 k_t),
-/// unchanged: μ F_n √(k_before/k_t). (The normal force of the previous step is not part of
-/// the contact, so the energy a changing cap puts into or truncates from a sliding spring is
-/// booked only as far as it follows from the stiffness; with a constant k_t it is not booked.)
-/// 0 out of contact (δ ≤ 0).
-pub fn spring_friction_energy_varying(
-    kt: [f64; 2],
-    eta: [f64; 2],
-    mu: f64,
-    c: &crate::TangentialContact,
-    history: &[f64],
-    force: [f64; 3],
-) -> crate::Energy {
-    if c.delta <= 0.0 {
-        return crate::Energy::default();
-    }
-    let cap = mu * c.normal_force.max(0.0);
+    h: &mut [f64],
+) -> ([f64; 3], crate::Energy) {
+    let (f, slid, before) = spring_friction_step(kt[1], eta, mu, c, h);
     let step = SliderStep {
         k: kt[1],
         k_before: kt[0],
-        eta: eta[1],
-        eta_before: eta[0],
-        cap,
-        cap_before: if kt[1] > 0.0 {
-            cap * (kt[0] / kt[1]).sqrt()
-        } else {
-            cap
-        },
+        eta,
+        eta_held: eta,
+        xi_before: before,
         dt: c.dt,
     };
-    step.energy(
-        SliderStep::at_cap(force, cap),
-        [history[0], history[1], history[2]],
-        tangential_part(c.velocity, c.normal),
-        force,
-    )
-}
-
-/// The overlap one step before (m), δ − δ̇ dt with δ̇ = −v·n̂ the approach rate, for a contact
-/// of overlap `delta` (m), unit normal `normal` (from partner to particle) and relative
-/// velocity `velocity` (m/s, of the particle's contact point w.r.t. the partner's) over a step
-/// `dt` (s); 0 when the contact had not formed.
-#[inline]
-pub fn overlap_before(delta: f64, normal: [f64; 3], velocity: [f64; 3], dt: f64) -> f64 {
-    (delta + dot(velocity, normal) * dt).max(0.0)
+    let e = step.energy(slid, [h[0], h[1], h[2]], tangential_part(c.velocity, c.normal), f);
+    (f, e)
 }
 
 /// One step of a spring–dashpot–slider (a tangential, rolling or twisting spring capped by
-/// Coulomb, its spring reset to the capped force) as its energy accounting sees it: the
-/// stiffness, dashpot and cap after the step and one step before. Units: N/m, N·s/m and N for
-/// a displacement spring; N·m/rad, N·m·s/rad and N·m for a twist.
+/// Coulomb, its spring reset to the capped force) as its energy accounting sees it, from both
+/// ends: the stiffness after the step and one step before, the dashpot, and the spring the step
+/// started from. Units: N/m, N·s/m and m for a displacement spring; N·m/rad, N·m·s/rad and rad
+/// for a twist.
 ///
-/// [`SliderStep::energy`] recovers what the step did from its end state only (the law's
-/// energy call sees the history after the step) and closes the balance step by step:
-/// power × dt = W − (E_after − E_before), with W the work the bodies did on the contact over
-/// the step and E the stored energy [`SliderStep::stored`]:
-/// - stuck (|F| below the cap): the spring advanced by v dt, so ξ_before = ξ − v dt exactly;
-///   W = η |v|² dt + k (|ξ|² − |ξ_before|²)/2 (the dashpot at the end of the step, the spring
-///   force averaged over it), and power = η |v|² − (E(k, ξ_before) − E(k_before, ξ_before))/dt:
-///   the dashpot, less the energy a changing stiffness puts into the spring at fixed ξ (Mindlin's
-///   k_t ∝ √δ grows on loading), which no force paid for;
-/// - sliding (|F| at the cap): the reset erased ξ_before; the spring is taken to have held the
-///   capped force at the previous cap, F cap_before/cap, plus the dashpot share η_before v it
-///   holds under LAMMPS's reset, so W = −F·v dt and the stored energy's change between the two
-///   caps, the truncation of the spring when the cap falls and its loading when it rises, is
-///   booked as far as `cap_before` is known.
+/// [`SliderStep::energy`] closes the balance step by step: power × dt = W − (E_after −
+/// E_before), with E = k |ξ|²/2 the spring's energy (E_before from the stiffness and the spring
+/// the step started from: what the previous step reported) and W the work the bodies did on
+/// the contact over the step:
+/// - stuck (the force below the cap): the spring advanced by v dt, W = η |v|² dt + k (|ξ|² −
+///   |ξ_before|²)/2 (the dashpot at the end of the step, the spring force averaged over it), so
+///   power = η |v|² − (E(k, ξ_before) − E(k_before, ξ_before))/dt: the dashpot, less the energy a
+///   changing stiffness puts into the spring at fixed ξ (Mindlin's k_t ∝ √δ grows on loading),
+///   which no force paid for;
+/// - sliding, or dropped (the force capped, the spring reset): W = −(F_before + F)·v dt/2, the
+///   force averaged over the step as velocity Verlet applies it, with F_before = −k_before
+///   ξ_before − η_held v, or 0 from a spring at zero extension, a contact formed on the step
+///   (the reset leaves a capped force −k ξ − η_held v: η_held = η under
+///   LAMMPS's reset ξ = −(F + η v)/k, 0 for a spring reset to the capped force alone); and the
+///   change of the stored energy, whether the cap truncated the spring or let it load, is booked
+///   whole.
+///   (Under LAMMPS's reset ξ = −(F + η v)/k a sliding spring also holds the dashpot's share:
+///   that energy is stored until the spring gives it back or a later reset truncates it.)
 ///
 /// The power is therefore the energy the contact takes out of the bodies' motion and out of its
 /// spring per second: ≥ 0 where the law is passive, negative on a step where a growing stiffness
-/// (or a rising spring under a sliding dashpot) stores energy no force paid for. Summed over the
-/// steps with the elastic energy at the end it equals the work the bodies lost, to first order in
-/// dt, as far as `cap_before` and `k_before` are exact: a stuck spring's accounting is exact, a
-/// sliding one's misses whatever error `cap_before` carries.
+/// stores energy no force paid for. Summed over the steps with the elastic energy at the end it
+/// equals the work the bodies lost, to the integrator's order in dt, as far as `k_before` is the
+/// stiffness the previous step had (a constant one; Mindlin's, which its history keeps).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SliderStep {
     /// Stiffness k after the step.
@@ -310,75 +252,48 @@ pub struct SliderStep {
     pub k_before: f64,
     /// Dashpot η acting over the step.
     pub eta: f64,
-    /// The dashpot whose share η v the spring held before the step while sliding (the dashpot
-    /// one step before for LAMMPS's reset ξ = −(F + η v)/k; 0 for a spring reset to the capped
-    /// force alone).
-    pub eta_before: f64,
-    /// The Coulomb cap after the step.
-    pub cap: f64,
-    /// The cap one step before (`cap` when it is not known).
-    pub cap_before: f64,
+    /// The dashpot share a reset spring holds (`eta` under LAMMPS's reset ξ = −(F + η v)/k; 0 for
+    /// a spring reset to the capped force alone).
+    pub eta_held: f64,
+    /// The spring the step started from (the history before the call, turned into the current
+    /// tangent plane at its length; a twist as `[θ, 0, 0]`).
+    pub xi_before: [f64; 3],
     /// Time step (s).
     pub dt: f64,
 }
 
 impl SliderStep {
-    /// The energy stored in a spring of stiffness `k` holding a displacement of squared length
-    /// `xi2` under a cap `cap`: k ξ²/2, but no more than cap²/(2k), what the spring can give
-    /// back through the slider (the rest of a spring that holds a dashpot's share beyond the cap
-    /// is truncated as soon as the slip stops); 0 for k = 0 (J).
-    #[inline]
-    pub fn stored(k: f64, xi2: f64, cap: f64) -> f64 {
-        if k > 0.0 {
-            (0.5 * k * xi2).min(0.5 * cap * cap / k)
-        } else {
-            0.0
-        }
-    }
-
-    /// Whether a force `force` sits at the cap `cap` (to rounding): the step slid.
-    #[inline]
-    pub fn at_cap(force: [f64; 3], cap: f64) -> bool {
-        dot(force, force) >= cap * cap * (1.0 - 1e-12)
-    }
-
     /// The energy of a step that left the spring at `xi`, advanced it with velocity `v` (the
     /// tangential, rolling or twisting velocity; a twist as `[θ, 0, 0]`, `[ω, 0, 0]`) and
-    /// returned `force`; `sliding` says whether the force was capped (see the type's doc).
+    /// returned `force`; `sliding` says whether the force was capped or the spring dropped (see
+    /// the type's doc). Elastic k |ξ|²/2 (J), power (W); a step of no length dissipates nothing.
+    #[inline(always)]
     pub fn energy(&self, sliding: bool, xi: [f64; 3], v: [f64; 3], force: [f64; 3]) -> crate::Energy {
-        let elastic = Self::stored(self.k, dot(xi, xi), self.cap);
+        let elastic = 0.5 * self.k * dot(xi, xi);
         if self.dt.is_nan() || self.dt <= 0.0 {
             return crate::Energy { power: 0.0, elastic };
         }
-        let dt = self.dt;
-        // the spring energy beyond what the slider lets it give back
-        let excess = |k: f64, x2: f64, cap: f64| 0.5 * k * x2 - Self::stored(k, x2, cap);
-        let power = if sliding {
-            let s = if self.cap > 0.0 {
-                self.cap_before / self.cap
+        let (xo, x0) = (self.xi_before, dot(self.xi_before, self.xi_before));
+        let before = 0.5 * self.k_before * x0;
+        // the work rate and the change of the stored energy of either case, one division
+        let (work, stored) = if sliding {
+            // a spring at zero extension held no force: the contact formed on this step
+            let (kb, held) = if x0 > 0.0 {
+                (self.k_before, self.eta_held)
             } else {
-                1.0
+                (0.0, 0.0)
             };
-            let held = [
-                s * force[0] + self.eta_before * v[0],
-                s * force[1] + self.eta_before * v[1],
-                s * force[2] + self.eta_before * v[2],
+            let mean = [
+                0.5 * (force[0] - kb * xo[0] - held * v[0]),
+                0.5 * (force[1] - kb * xo[1] - held * v[1]),
+                0.5 * (force[2] - kb * xo[2] - held * v[2]),
             ];
-            let xo2 = if self.k_before > 0.0 {
-                dot(held, held) / (self.k_before * self.k_before)
-            } else {
-                0.0
-            };
-            -dot(force, v) + (Self::stored(self.k_before, xo2, self.cap_before) - elastic) / dt
+            (-dot(mean, v), before - elastic)
         } else {
-            // W − E_after + E_before with W = η |v|² dt + k (|ξ|² − |ξ_before|²)/2, arranged so
-            // that a constant stiffness below the cap gives η |v|² to the bit
-            let xo = [xi[0] - v[0] * dt, xi[1] - v[1] * dt, xi[2] - v[2] * dt];
-            let (x2, xo2) = (dot(xi, xi), dot(xo, xo));
-            let stiffening = 0.5 * (self.k_before - self.k) * xo2;
-            let clipped = excess(self.k, x2, self.cap) - excess(self.k_before, xo2, self.cap_before);
-            self.eta * dot(v, v) + (stiffening + clipped) / dt
+            // arranged so that a constant stiffness below the cap gives η |v|² to the bit
+            (self.eta * dot(v, v), before - 0.5 * self.k * x0)
         };
+        let power = work + stored / self.dt;
         crate::Energy { power, elastic }
     }
 }

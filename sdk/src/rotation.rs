@@ -17,7 +17,8 @@
 
 use crate::error::LawError;
 use crate::law::{
-    history_law, history_mut, law_info, law_trait, Coefficient, Energy, History, LawInfo, LawKind,
+    history_law, history_mut, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo,
+    LawKind,
 };
 use crate::law::{motion_kind, VectorBatch, VectorContact};
 use crate::pair::MaterialPair;
@@ -47,6 +48,23 @@ pub trait BoundRolling: Send + Sync + 'static {
     /// `None` (the default) when the law does not account for it.
     fn energy(&self, _c: &RollingContact, _history: &[f64], _force: [f64; 3]) -> Option<Energy> {
         None
+    }
+
+    /// The force (N) on contact `c`, `history` updated as by [`BoundRolling::force`], with the
+    /// contact's energy over the step (sdk 0.3), the history before the step in view. The
+    /// default is [`BoundRolling::force`] then [`BoundRolling::energy`].
+    #[inline(always)]
+    fn force_energy(&self, c: &RollingContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
+        let f = self.force(c, history);
+        (f, self.energy(c, history, f))
+    }
+
+    /// [`BoundRolling::force_batch`] with each contact's energy written to `out`; whether every
+    /// contact reported one. The default loops over [`BoundRolling::force_energy`]: a law that
+    /// overrides `force_batch` for speed overrides this too.
+    #[inline(always)]
+    fn force_batch_energy(&self, b: RollingBatch<'_>, out: EnergyBatch<'_>) -> bool {
+        b.each_energy(out, |c, h| self.force_energy(c, h))
     }
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
@@ -82,6 +100,22 @@ pub trait BoundTwisting: Send + Sync + 'static {
     /// `None` (the default) when the law does not account for it.
     fn energy(&self, _c: &TwistingContact, _history: &[f64], _torque: f64) -> Option<Energy> {
         None
+    }
+
+    /// The torque (N·m) on contact `c`, `history` updated as by [`BoundTwisting::torque`], with
+    /// the contact's energy over the step (sdk 0.3), the history before the step in view. The
+    /// default is [`BoundTwisting::torque`] then [`BoundTwisting::energy`].
+    #[inline(always)]
+    fn torque_energy(&self, c: &TwistingContact, history: &mut [f64]) -> (f64, Option<Energy>) {
+        let m = self.torque(c, history);
+        (m, self.energy(c, history, m))
+    }
+
+    /// [`BoundTwisting::torque_batch`] with each contact's energy written to `out`; whether
+    /// every contact reported one. The default loops over [`BoundTwisting::torque_energy`].
+    #[inline(always)]
+    fn torque_batch_energy(&self, b: TwistingBatch<'_>, out: EnergyBatch<'_>) -> bool {
+        b.each_energy(out, |c, h| self.torque_energy(c, h))
     }
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).

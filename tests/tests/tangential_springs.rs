@@ -103,7 +103,8 @@ fn run(
     let n = [0.0, 0.0, 1.0];
     let arm = [0.0, 0.0, -s.r]; // centre → contact point, −R n̂
     let inertia = 0.4 * s.m * s.r * s.r;
-    let mut h = [0.0; 3];
+    // room for either law's history: ξ, and Mindlin's stiffness of the last call
+    let mut h = [0.0; 4];
     let mut a = [0.0, 0.0, normal(s.r - s.x[2]) / s.m - g];
     let mut alpha = [0.0; 3];
     for i in 1.. {
@@ -395,9 +396,10 @@ fn spring_rotation_preserves_its_length() {
         let xi0 = [2e-6, -1e-6, 0.0];
         for theta in [0.01f64, 0.3, 1.2] {
             let n = [theta.sin() * 0.6, theta.sin() * 0.8, theta.cos()];
-            let mut h = xi0;
+            let mut hist = [xi0[0], xi0[1], xi0[2], 0.0];
             // dt = 0 and no velocity: the call only rotates the spring.
-            let f = b.force(&contact(n, [0.3, 0.1, 0.2], 1e-6, 0.0), &mut h);
+            let f = b.force(&contact(n, [0.3, 0.1, 0.2], 1e-6, 0.0), &mut hist);
+            let h = [hist[0], hist[1], hist[2]];
             assert!(
                 (norm(h) / norm(xi0) - 1.0).abs() < 1e-14,
                 "|ξ| changed: {}",
@@ -427,24 +429,24 @@ fn spring_and_dashpot_oppose_the_slip_and_no_friction_in_tension() {
         let kt = b0.kt(0.01, delta);
         // The normal part of the velocity is ignored; the first step stretches ξ by v_t dt.
         let v = [0.2, 0.0, -5.0];
-        let mut h = [0.0; 3];
+        let mut h = [0.0; 4];
         let f = b0.force(&contact(n, v, delta, dt), &mut h);
-        assert_eq!(h, [0.2 * dt, 0.0, 0.0]);
+        assert_eq!(h[..3], [0.2 * dt, 0.0, 0.0]);
         assert!((f[0] + kt * 0.2 * dt).abs() < 1e-15 && f[1] == 0.0 && f[2] == 0.0);
-        let mut h = [0.0; 3];
+        let mut h = [0.0; 4];
         let f = b1.force(&contact(n, v, delta, dt), &mut h);
         let eta = 2.0 * 0.7 * (0.01 * kt).sqrt();
         assert!((f[0] + kt * 0.2 * dt + eta * 0.2).abs() < 1e-12 * f[0].abs());
         // Tension: no friction, the spring keeps only the dashpot's share (zero without one).
         let mut c = contact(n, v, delta, dt);
         c.normal_force = -1.0;
-        let mut h = [1e-6, 0.0, 0.0];
+        let mut h = [1e-6, 0.0, 0.0, 0.0];
         assert_eq!(b0.force(&c, &mut h), [0.0; 3]);
-        assert_eq!(h, [0.0; 3]);
+        assert_eq!(h[..3], [0.0; 3]);
         // Sliding: the spring is reset so that −k_t ξ − η v_t is the capped force.
         let mut c = contact(n, [1.0, 0.0, 0.0], delta, 1e-3);
         c.normal_force = 1e-3;
-        let mut h = [0.0; 3];
+        let mut h = [0.0; 4];
         let f = b1.force(&c, &mut h);
         assert!((norm(f) - 0.5e-3).abs() < 1e-15 && f[0] < 0.0);
         assert!((-kt * h[0] - eta * 1.0 - f[0]).abs() < 1e-12 * eta);
@@ -455,12 +457,12 @@ fn spring_and_dashpot_oppose_the_slip_and_no_friction_in_tension() {
 fn history_resets_out_of_contact() {
     for b in both(0.5, 0.2) {
         for delta in [0.0, -1e-9] {
-            let mut h = [1e-6, 2e-6, -3e-7];
+            let mut h = [1e-6, 2e-6, -3e-7, 0.0];
             assert_eq!(
                 b.force(&contact([0.0, 0.0, 1.0], [1.0, 2.0, 0.0], delta, 1e-6), &mut h),
                 [0.0; 3]
             );
-            assert_eq!(h, [0.0; 3]);
+            assert_eq!(h[..3], [0.0; 3]);
         }
     }
 }

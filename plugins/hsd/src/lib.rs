@@ -89,6 +89,7 @@ impl BoundContact for HsdBound {
     }
 
     /// Elastic (2/5) K δ^{5/2} (J); power: the damping force α√(mK) δ^{1/4} δ̇ times δ̇ (W).
+    #[inline(always)]
     fn energy(&self, c: &Contact, _history: &[f64], _force: f64) -> Option<Energy> {
         let d = c.delta.max(0.0);
         let s1 = (c.radius * d).sqrt();

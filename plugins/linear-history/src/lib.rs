@@ -126,13 +126,14 @@ impl BoundTangential for LinearHistoryBound {
         spring_friction(self.kt, eta, self.mu, c, history)
     }
 
-    /// Elastic k_t |ξ|²/2, no more than (μ F_n)²/(2 k_t) (J); power (W): η_t |v_t|² while the
-    /// spring holds, −F_t·v_t plus the change of the stored energy while it slides (the cap
-    /// before the step taken as the cap now; see [`dashpot_sdk::physics::SliderStep`]); 0 out of
-    /// contact.
-    fn energy(&self, c: &TangentialContact, history: &[f64], force: [f64; 3]) -> Option<Energy> {
+    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): η_t |v_t|² while
+    /// the spring holds, −F_t·v_t plus the change of the stored energy while it slides or is
+    /// dropped out of contact (see [`dashpot_sdk::physics::SliderStep`]).
+    #[inline]
+    fn force_energy(&self, c: &TangentialContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
         let eta = 2.0 * self.damping * (c.mass * self.kt).sqrt();
-        Some(spring_friction_energy(self.kt, eta, self.mu, c, history, force))
+        let (f, e) = spring_friction_energy([self.kt, self.kt], eta, self.mu, c, history);
+        (f, Some(e))
     }
 }
 

@@ -52,10 +52,10 @@
 
 #![warn(missing_docs)]
 
-use dashpot_sdk::physics::{dot, overlap_before, spring_friction, spring_friction_energy_varying};
+use dashpot_sdk::physics::{dot, spring_friction, spring_friction_energy, SliderStep};
 use dashpot_sdk::{
-    BoundTangential, Energy, History, LawError, MaterialPair, Range, TangentialBatch, TangentialContact,
-    TangentialLaw,
+    BoundTangential, Energy, EnergyBatch, History, LawError, MaterialPair, Range, TangentialBatch,
+    TangentialContact, TangentialLaw,
 };
 
 dashpot_sdk::law_params! {
@@ -105,7 +105,7 @@ impl TangentialLaw for Mindlin {
         (Mindlin 1949; Luding 2008; LAMMPS pair granular 'tangential mindlin'). k_t = 8 G_eff a, \
         a = √(r_eff δ), 1/G_eff = (2 − ν1)/G1 + (2 − ν2)/G2; dashpot η_t = 2 ζ_t √(m k_t), m the \
         effective mass. History: the spring displacement ξ (m; slots xi_x, xi_y, xi_z), 0 at first \
-        touch. Conventions: normal n from the partner to the particle; velocity = relative velocity \
+        touch, and the stiffness k_t of the last call (N/m; slot kt, which the energy accounting reads). Conventions: normal n from the partner to the particle; velocity = relative velocity \
         of the particle's contact point w.r.t. the partner's (ω × r included; pass the velocity over \
         the step, e.g. the half-step velocity of velocity Verlet); the result is the tangential \
         force on the particle. Each call: if δ ≤ 0 the force is 0 and ξ = 0; otherwise (1) rotate \
@@ -121,6 +121,11 @@ impl TangentialLaw for Mindlin {
         History::new("xi_x", "m", "tangential spring displacement ξ, x component"),
         History::new("xi_y", "m", "tangential spring displacement ξ, y component"),
         History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
+        History::new(
+            "kt",
+            "N/m",
+            "the spring's stiffness k_t at the last call (its energy's)",
+        ),
     ];
 
     fn bind(&self, materials: &MaterialPair) -> Result<MindlinBound, LawError> {
@@ -137,7 +142,9 @@ impl BoundTangential for MindlinBound {
     fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3] {
         let kt = self.stiffness(c.radius, c.delta);
         let eta = 2.0 * self.damping * (c.mass * kt).sqrt();
-        spring_friction(kt, eta, self.mu, c, history)
+        let f = spring_friction(kt, eta, self.mu, c, history);
+        history[3] = kt;
+        f
     }
 
     /// The same arithmetic as [`BoundTangential::force`], contact for contact, rearranged for
@@ -146,43 +153,59 @@ impl BoundTangential for MindlinBound {
     /// results are transposed back. A test checks the bits against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
-        // the host checks every batch against the law's declared slots (three: ξ); a caller
+        // the host checks every batch against the law's declared slots (four: ξ, k_t); a caller
         // that does not is told so through the trampoline's panic catch
-        assert_eq!(b.slots, 3, "mindlin keeps 3 history slots per contact");
+        assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
         if self.damping == 0.0 {
-            lanes::<false>(self, b)
+            lanes::<false, false>(self, b, None)
         } else {
-            lanes::<true>(self, b)
+            lanes::<true, false>(self, b, None)
         }
     }
 
-    /// Elastic k_t |ξ|²/2, no more than (μ F_n)²/(2 k_t) (J); power (W): the dashpot's
-    /// η_t |v_t|² while the spring holds, the slip's −F_t·v_t while it slides, plus the spring
-    /// energy the Coulomb cap truncates (or, rising, stores) and less the energy the growing
-    /// stiffness puts into the spring at fixed ξ (see
-    /// [`dashpot_sdk::physics::SliderStep`]); 0 out of contact.
-    fn energy(&self, c: &TangentialContact, history: &[f64], force: [f64; 3]) -> Option<Energy> {
-        let eta = |kt: f64| 2.0 * self.damping * (c.mass * kt).sqrt();
+    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): the dashpot's
+    /// η_t |v_t|² while the spring holds, the slip's −F_t·v_t plus the change of the stored
+    /// energy while it slides or is dropped out of contact, less the energy the growing
+    /// stiffness puts into the spring at fixed ξ (k_t of the last call from the history; see
+    /// [`dashpot_sdk::physics::SliderStep`]).
+    #[inline]
+    fn force_energy(&self, c: &TangentialContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
         let kt = self.stiffness(c.radius, c.delta);
-        let before = self.stiffness(c.radius, overlap_before(c.delta, c.normal, c.velocity, c.dt));
-        Some(spring_friction_energy_varying(
-            [before, kt],
-            [eta(before), eta(kt)],
-            self.mu,
-            c,
-            history,
-            force,
-        ))
+        let eta = 2.0 * self.damping * (c.mass * kt).sqrt();
+        let (f, e) = spring_friction_energy([history[3], kt], eta, self.mu, c, history);
+        history[3] = kt;
+        (f, Some(e))
+    }
+
+    /// [`BoundTangential::force_energy`] over the batch in the SIMD lanes of
+    /// [`BoundTangential::force_batch`], the same bits contact for contact (a test checks).
+    #[inline(always)]
+    fn force_batch_energy(&self, b: TangentialBatch<'_>, out: EnergyBatch<'_>) -> bool {
+        assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
+        if self.damping == 0.0 {
+            lanes::<false, true>(self, b, Some(out))
+        } else {
+            lanes::<true, true>(self, b, Some(out))
+        }
+        true
     }
 }
 
 /// Contacts per SIMD lane group.
 const LANES: usize = 8;
 
+/// History slots per contact: ξ (3), k_t.
+const SLOTS: usize = 4;
+
 /// [`spring_friction`] over a batch, `LANES` contacts at a time, branch-free (`DAMPED`: whether
-/// η_t ≠ 0 needs computing).
+/// η_t ≠ 0 needs computing; `ENERGY`: whether to write each contact's energy to `out`, as
+/// [`spring_friction_energy`] computes it).
 #[inline(always)]
-fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
+fn lanes<const DAMPED: bool, const ENERGY: bool>(
+    law: &MindlinBound,
+    b: TangentialBatch<'_>,
+    mut out: Option<EnergyBatch<'_>>,
+) {
     let n = b.force.len();
     let (mu, two_zeta, dt) = (law.mu, 2.0 * law.damping, b.dt);
     let mut lo = 0;
@@ -190,6 +213,8 @@ fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
         let m = LANES.min(n - lo);
         // transpose in (idle lanes: a harmless contact out of touch)
         let mut nv = [[0.0f64; LANES]; 3];
+        let mut kprev = [0.0f64; LANES];
+        let mut know = [0.0f64; LANES];
         let mut v = [[0.0f64; LANES]; 3];
         let mut h = [[0.0f64; LANES]; 3];
         let (mut d, mut r, mut ms, mut fnorm) = ([0.0; LANES], [1.0; LANES], [1.0; LANES], [0.0; LANES]);
@@ -198,16 +223,19 @@ fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
             for k in 0..3 {
                 nv[k][l] = b.normal[i][k];
                 v[k][l] = b.velocity[i][k];
-                h[k][l] = b.history[3 * i + k];
+                h[k][l] = b.history[SLOTS * i + k];
             }
+            kprev[l] = b.history[SLOTS * i + 3];
             d[l] = b.delta[i];
             r[l] = b.radius[i];
             ms[l] = b.mass[i];
             fnorm[l] = b.normal_force[i];
         }
         let mut f = [[0.0f64; LANES]; 3];
+        let (mut power, mut elastic) = ([0.0f64; LANES], [0.0f64; LANES]);
         for l in 0..LANES {
             let kt = law.stiffness(r[l], d[l]);
+            know[l] = kt;
             let eta = if DAMPED {
                 two_zeta * (ms[l] * kt).sqrt()
             } else {
@@ -226,6 +254,7 @@ fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
             for k in 0..3 {
                 xi[k] = if rot { p[k] * s } else { x0[k] };
             }
+            let turned = xi;
             // 2.–4. tangential velocity, advance, trial force
             let v3 = [v[0][l], v[1][l], v[2][l]];
             let vn = dot(v3, n3);
@@ -250,14 +279,33 @@ fn lanes<const DAMPED: bool>(law: &MindlinBound, b: TangentialBatch<'_>) {
                 f[k][l] = if touching { fk } else { 0.0 };
                 h[k][l] = if touching { xk } else { 0.0 };
             }
+            if ENERGY {
+                // spring_friction_energy's SliderStep, from the spring the step started from
+                let step = SliderStep {
+                    k: kt,
+                    k_before: kprev[l],
+                    eta,
+                    eta_held: eta,
+                    xi_before: if touching { turned } else { x0 },
+                    dt,
+                };
+                let (f3, x3) = ([f[0][l], f[1][l], f[2][l]], [h[0][l], h[1][l], h[2][l]]);
+                let e = step.energy(slide || !touching, x3, vt, f3);
+                (power[l], elastic[l]) = (e.power, e.elastic);
+            }
         }
         // transpose out
         for l in 0..m {
             let i = lo + l;
             for k in 0..3 {
                 b.force[i][k] = f[k][l];
-                b.history[3 * i + k] = h[k][l];
+                b.history[SLOTS * i + k] = h[k][l];
             }
+            b.history[SLOTS * i + 3] = know[l];
+        }
+        if let (true, Some(o)) = (ENERGY, out.as_mut()) {
+            o.power[lo..lo + m].copy_from_slice(&power[..m]);
+            o.elastic[lo..lo + m].copy_from_slice(&elastic[..m]);
         }
         lo += m;
     }

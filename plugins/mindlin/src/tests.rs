@@ -16,14 +16,16 @@ fn law(e: f64, mu: f64, damping: f64) -> MindlinBound {
 #[test]
 fn schema_and_history_slots() {
     let info = Mindlin::info();
-    assert_eq!(info.history.len(), 3);
-    assert!(info.history.iter().all(|h| h.unit == "m"));
+    assert_eq!(info.history.len(), 4);
+    assert!(info.history[..3].iter().all(|h| h.unit == "m"));
+    assert_eq!(info.history[3].unit, "N/m");
     let l = Mindlin::from_values(&[]).unwrap();
     assert_eq!((l.mu, l.damping), (0.5, 0.0));
     assert!(Mindlin::from_values(&[ParamValue::new("mu", -0.1)]).is_err());
 }
 /// The SIMD batch gives the per-contact form's bits on every path: out of touch, fresh and
-/// rotated springs, sticking and sliding, in tension, damped or not, and a ragged last lane.
+/// rotated springs, sticking and sliding, in tension, damped or not, and a ragged last lane;
+/// with its energy outputs too.
 #[test]
 fn batch_is_the_per_contact_form_bit_for_bit() {
     let mut x = 0x2545_f491_4f6c_dd1d_u64;
@@ -51,10 +53,12 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
             for _ in 0..3 {
                 hist.push(if i % 5 == 0 { 0.0 } else { 1e-6 * (rnd() - 0.5) });
             }
+            // the stiffness of the last call: none at a first touch
+            hist.push(if i % 5 == 0 { 0.0 } else { 1e5 * rnd() });
         }
         let dt = 1e-6;
         let mut h1 = hist.clone();
-        let f1: Vec<[f64; 3]> = (0..n)
+        let (f1, e1): (Vec<[f64; 3]>, Vec<Energy>) = (0..n)
             .map(|i| {
                 let c = TangentialContact {
                     normal: normal[i],
@@ -65,9 +69,18 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
                     radius: radius[i],
                     dt,
                 };
-                l.force(&c, &mut h1[3 * i..3 * i + 3])
+                let mut h = [h1[4 * i], h1[4 * i + 1], h1[4 * i + 2], h1[4 * i + 3]];
+                let f = l.force(&c, &mut h);
+                let (fe, e) = l.force_energy(&c, &mut h1[4 * i..4 * i + 4]);
+                assert_eq!(
+                    f.map(f64::to_bits),
+                    fe.map(f64::to_bits),
+                    "force_energy's force {i}"
+                );
+                assert_eq!(h[..], h1[4 * i..4 * i + 4], "force_energy's spring {i}");
+                (f, e.unwrap())
             })
-            .collect();
+            .unzip();
         let mut h2 = hist.clone();
         let mut f2 = vec![[0.0; 3]; n];
         l.force_batch(TangentialBatch {
@@ -78,10 +91,40 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
             delta: &delta,
             mass: &mass,
             radius: &radius,
-            slots: 3,
+            slots: 4,
             history: &mut h2,
             force: &mut f2,
         });
+        let (mut h3, mut f3) = (hist.clone(), vec![[0.0; 3]; n]);
+        let (mut power, mut elastic) = (vec![0.0; n], vec![0.0; n]);
+        let written = l.force_batch_energy(
+            TangentialBatch {
+                dt,
+                normal: &normal,
+                velocity: &velocity,
+                normal_force: &fnorm,
+                delta: &delta,
+                mass: &mass,
+                radius: &radius,
+                slots: 4,
+                history: &mut h3,
+                force: &mut f3,
+            },
+            EnergyBatch {
+                power: &mut power,
+                elastic: &mut elastic,
+            },
+        );
+        assert!(written);
+        assert_eq!((&f2, &h2), (&f3, &h3), "force_batch_energy's forces and springs");
+        for i in 0..n {
+            assert_eq!(
+                e1[i].power.to_bits(),
+                power[i].to_bits(),
+                "power {i}, damping {damping}"
+            );
+            assert_eq!(e1[i].elastic.to_bits(), elastic[i].to_bits(), "elastic {i}");
+        }
         let slid = f1
             .iter()
             .zip(&fnorm)
@@ -100,7 +143,13 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
                     f2[i][k].to_bits(),
                     "force {i}.{k}, damping {damping}"
                 );
-                assert_eq!(h1[3 * i + k].to_bits(), h2[3 * i + k].to_bits(), "spring {i}.{k}");
+            }
+            for k in 0..4 {
+                assert_eq!(
+                    h1[4 * i + k].to_bits(),
+                    h2[4 * i + k].to_bits(),
+                    "history {i}.{k}"
+                );
             }
         }
     }

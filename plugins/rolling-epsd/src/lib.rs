@@ -43,7 +43,8 @@ impl RollingLaw for RollingEpsd {
         γ = C_r/R² = 2 η √((7/5) m k_t) (N·s/m); (4) if |k_t ξ| > μ_r |F_n|: F_r = −μ_r |F_n| ξ/|ξ| and \
         ξ = −F_r/k_t (no damping while mobilized). Parameters: kt (N/m), mu_r (the rolling friction \
         coefficient: the limit torque is μ_r R |F_n|), eta (damping ratio, Ai et al. use 0.3). Energy: elastic \
-        k_t |ξ|²/2 (J); power γ |v_roll|² while the spring holds, −F_r·v_roll while mobilized (W).";
+        k_t |ξ|²/2 (J); power γ |v_roll|² while the spring holds, −F_r·v_roll plus the change of the stored \
+        energy while mobilized (W).";
     const HISTORY: &'static [History] = &[
         History::new("xi_x", "m", "rolling displacement ξ = R θ_r, x component"),
         History::new("xi_y", "m", "rolling displacement ξ = R θ_r, y component"),
@@ -55,8 +56,10 @@ impl RollingLaw for RollingEpsd {
     }
 }
 
-impl BoundRolling for RollingEpsd {
-    fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
+impl RollingEpsd {
+    /// [`BoundRolling::force`], whether the spring was mobilized (capped), and the spring the
+    /// step started from, turned into the tangent plane.
+    fn step(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], bool, [f64; 3]) {
         let n = c.normal;
         let mut xi = [h[0], h[1], h[2]];
         let xn = dot(xi, n);
@@ -67,12 +70,14 @@ impl BoundRolling for RollingEpsd {
             let s = if plen > 0.0 { len / plen } else { 0.0 };
             xi = [p[0] * s, p[1] * s, p[2] * s];
         }
+        let turned = xi;
         for (x, v) in xi.iter_mut().zip(c.velocity) {
             *x += v * c.dt;
         }
         let cap = self.mu_r * c.normal_force.abs();
         let spring = self.kt * dot(xi, xi).sqrt();
-        let f = if spring > cap {
+        let mobilized = spring > cap;
+        let f = if mobilized {
             let s = cap / spring;
             let f = [-self.kt * xi[0] * s, -self.kt * xi[1] * s, -self.kt * xi[2] * s];
             xi = [-f[0] / self.kt, -f[1] / self.kt, -f[2] / self.kt];
@@ -86,26 +91,30 @@ impl BoundRolling for RollingEpsd {
             ]
         };
         h[..3].copy_from_slice(&xi);
-        f
+        (f, mobilized, turned)
+    }
+}
+
+impl BoundRolling for RollingEpsd {
+    fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
+        self.step(c, h).0
     }
 
-    /// Elastic k_t |ξ|²/2 (J); power (W): γ |v_roll|² while the spring holds, −F_r·v_roll while
-    /// mobilized, plus the spring energy a falling cap truncates (see [`SliderStep`]; the cap
-    /// before the step is taken as the cap now).
-    fn energy(&self, c: &RollingContact, h: &[f64], f: [f64; 3]) -> Option<Energy> {
-        let xi = [h[0], h[1], h[2]];
-        let cap = self.mu_r * c.normal_force.abs();
-        let mobilized = self.kt * dot(xi, xi).sqrt() >= cap * (1.0 - 1e-12);
+    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): γ |v_roll|² while
+    /// the spring holds, −F_r·v_roll plus the change of the stored energy while mobilized (see
+    /// [`SliderStep`]).
+    fn force_energy(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
+        let (f, mobilized, before) = self.step(c, h);
+        // a mobilized spring holds the capped force alone: F = −k_t ξ
         let step = SliderStep {
             k: self.kt,
             k_before: self.kt,
             eta: self.gamma(c.mass),
-            eta_before: 0.0,
-            cap,
-            cap_before: cap,
+            eta_held: 0.0,
+            xi_before: before,
             dt: c.dt,
         };
-        Some(step.energy(mobilized, xi, c.velocity, f))
+        (f, Some(step.energy(mobilized, [h[0], h[1], h[2]], c.velocity, f)))
     }
 }
 

@@ -2,7 +2,8 @@
 
 use dashpot_sdk::physics::SliderStep;
 use dashpot_sdk::{
-    BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingBatch, RollingContact, RollingLaw,
+    BoundRolling, Energy, EnergyBatch, History, LawError, MaterialPair, Range, RollingBatch, RollingContact,
+    RollingLaw,
 };
 
 dashpot_sdk::law_params! {
@@ -39,9 +40,8 @@ impl RollingLaw for RollingSds {
         F_r = −k ξ − γ v_roll (N); (4) if |F_r| > μ|F_n|: when ξ ≠ 0, ξ = −(μ|F_n| F_r/|F_r| + γ v_roll)/k and \
         F_r is scaled to length μ|F_n|; when ξ = 0, F_r = 0. The torque on the particle is R_eff n̂ × F_r (N·m), \
         on the partner its opposite; F_r itself is not applied to the centres. Parameters: k (N/m), gamma \
-        (N·s/m), mu (dimensionless). Energy: elastic = k|ξ|²/2, no more than (μ|F_n|)²/(2k) (J); power (W) = γ|v_roll|² while the \
-        spring holds, −F_r·v_roll plus the change of the stored energy while it slides (the cap before the step \
-        taken as the cap now).";
+        (N·s/m), mu (dimensionless). Energy: elastic = k|ξ|²/2 (J); power (W) = γ|v_roll|² while the spring holds, −F_r·v_roll plus the \
+        change of the stored energy while it slides.";
     const HISTORY: &'static [History] = &[
         History::new("xi_x", "m", "rolling displacement ξ, x component"),
         History::new("xi_y", "m", "rolling displacement ξ, y component"),
@@ -53,9 +53,11 @@ impl RollingLaw for RollingSds {
     }
 }
 
-impl BoundRolling for RollingSds {
+impl RollingSds {
+    /// [`BoundRolling::force`], whether the force was capped (the spring slid), and the spring
+    /// the step started from, turned into the tangent plane.
     #[inline]
-    fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
+    fn step(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], bool, [f64; 3]) {
         let n = c.normal;
         let fcrit = self.mu * c.normal_force.abs();
         let mut xi = [h[0], h[1], h[2]];
@@ -71,6 +73,7 @@ impl BoundRolling for RollingSds {
                 *x *= s;
             }
         }
+        let turned = xi;
         for (x, v) in xi.iter_mut().zip(c.velocity) {
             *x += v * c.dt;
         }
@@ -79,7 +82,8 @@ impl BoundRolling for RollingSds {
             f[k] = -self.k * xi[k] - self.gamma * c.velocity[k];
         }
         let mag = dot(f, f).sqrt();
-        if mag > fcrit {
+        let capped = mag > fcrit;
+        if capped {
             if dot(xi, xi) != 0.0 {
                 for k in 0..3 {
                     xi[k] = -(fcrit * f[k] / mag + self.gamma * c.velocity[k]) / self.k;
@@ -90,7 +94,37 @@ impl BoundRolling for RollingSds {
             }
         }
         h[..3].copy_from_slice(&xi);
-        f
+        (f, capped, turned)
+    }
+
+    /// The step's energy ([`SliderStep::energy`]) from the spring it started from (turned into
+    /// the tangent plane), the spring `xi` it left, the rolling velocity `v` and the force `f`.
+    #[inline(always)]
+    fn energy_of(
+        &self,
+        before: [f64; 3],
+        capped: bool,
+        xi: [f64; 3],
+        v: [f64; 3],
+        f: [f64; 3],
+        dt: f64,
+    ) -> Energy {
+        let step = SliderStep {
+            k: self.k,
+            k_before: self.k,
+            eta: self.gamma,
+            eta_held: self.gamma,
+            xi_before: before,
+            dt,
+        };
+        step.energy(capped, xi, v, f)
+    }
+}
+
+impl BoundRolling for RollingSds {
+    #[inline]
+    fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
+        self.step(c, h).0
     }
 
     /// The same arithmetic as [`BoundRolling::force`], contact for contact, rearranged for SIMD:
@@ -104,27 +138,34 @@ impl BoundRolling for RollingSds {
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { lanes_avx2(self, b) };
+            return unsafe { lanes_avx2::<false>(self, b, None) };
         }
-        lanes(self, b)
+        lanes::<false>(self, b, None)
     }
 
-    /// Elastic k |ξ|²/2, no more than (μ F_n)²/(2k) (J); power (W): γ |v_roll|² while the
-    /// spring holds, −F_r·v_roll while it slides, plus the spring energy a falling cap truncates
-    /// within the step (see [`SliderStep`]; the cap before the step is taken as the cap now, the
-    /// rolling contact carrying no normal rate).
-    fn energy(&self, c: &RollingContact, h: &[f64], f: [f64; 3]) -> Option<Energy> {
-        let cap = self.mu * c.normal_force.abs();
-        let step = SliderStep {
-            k: self.k,
-            k_before: self.k,
-            eta: self.gamma,
-            eta_before: self.gamma,
-            cap,
-            cap_before: cap,
-            dt: c.dt,
-        };
-        Some(step.energy(SliderStep::at_cap(f, cap), [h[0], h[1], h[2]], c.velocity, f))
+    /// The force with the step's energy: elastic k |ξ|²/2 (J); power (W): γ |v_roll|² while the
+    /// spring holds, −F_r·v_roll plus the change of the stored energy while it slides (see
+    /// [`SliderStep`]).
+    #[inline]
+    fn force_energy(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
+        let (f, capped, before) = self.step(c, h);
+        let e = self.energy_of(before, capped, [h[0], h[1], h[2]], c.velocity, f, c.dt);
+        (f, Some(e))
+    }
+
+    /// [`BoundRolling::force_energy`] over the batch in the SIMD lanes of
+    /// [`BoundRolling::force_batch`], the same bits contact for contact (a test checks).
+    #[inline(always)]
+    fn force_batch_energy(&self, b: RollingBatch<'_>, out: EnergyBatch<'_>) -> bool {
+        assert_eq!(b.slots, 3, "rolling-sds keeps 3 history slots per contact");
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above).
+            unsafe { lanes_avx2::<true>(self, b, Some(out)) };
+            return true;
+        }
+        lanes::<true>(self, b, Some(out));
+        true
     }
 }
 
@@ -138,8 +179,12 @@ const LANES: usize = 8;
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn lanes_avx2(law: &RollingSds, b: RollingBatch<'_>) {
-    lanes(law, b)
+unsafe fn lanes_avx2<const ENERGY: bool>(
+    law: &RollingSds,
+    b: RollingBatch<'_>,
+    out: Option<EnergyBatch<'_>>,
+) {
+    lanes::<ENERGY>(law, b, out)
 }
 
 /// Up to `LANES` vectors as three component arrays (idle lanes 0).
@@ -154,9 +199,10 @@ fn columns<'a>(v: impl Iterator<Item = &'a [f64]>) -> [[f64; LANES]; 3] {
     c
 }
 
-/// [`BoundRolling::force`] over a batch, `LANES` contacts at a time, branch-free.
+/// [`BoundRolling::force`] over a batch, `LANES` contacts at a time, branch-free; with
+/// `ENERGY`, each contact's energy to `out` as [`BoundRolling::force_energy`] computes it.
 #[inline(always)]
-fn lanes(law: &RollingSds, b: RollingBatch<'_>) {
+fn lanes<const ENERGY: bool>(law: &RollingSds, b: RollingBatch<'_>, mut out: Option<EnergyBatch<'_>>) {
     let n = b.force.len();
     let (k, gamma, mu, dt) = (law.k, law.gamma, law.mu, b.dt);
     let mut lo = 0;
@@ -169,6 +215,7 @@ fn lanes(law: &RollingSds, b: RollingBatch<'_>) {
         let mut fnorm = [0.0f64; LANES];
         fnorm[..m].copy_from_slice(&b.normal_force[lo..lo + m]);
         let mut f = [[0.0f64; LANES]; 3];
+        let (mut power, mut elastic) = ([0.0f64; LANES], [0.0f64; LANES]);
         for l in 0..LANES {
             let n3 = [nv[0][l], nv[1][l], nv[2][l]];
             let v3 = [v[0][l], v[1][l], v[2][l]];
@@ -186,6 +233,9 @@ fn lanes(law: &RollingSds, b: RollingBatch<'_>) {
             let mut ft = [0.0; 3];
             for q in 0..3 {
                 xi[q] = if rot { p[q] * s } else { x0[q] };
+            }
+            let turned = xi;
+            for q in 0..3 {
                 xi[q] += v3[q] * dt;
                 ft[q] = -k * xi[q] - gamma * v3[q];
             }
@@ -204,12 +254,21 @@ fn lanes(law: &RollingSds, b: RollingBatch<'_>) {
                 f[q][l] = fo;
                 h[q][l] = xo;
             }
+            if ENERGY {
+                let (f3, x3) = ([f[0][l], f[1][l], f[2][l]], [h[0][l], h[1][l], h[2][l]]);
+                let e = law.energy_of(turned, capped, x3, v3, f3, dt);
+                (power[l], elastic[l]) = (e.power, e.elastic);
+            }
         }
         // transpose out
         for l in 0..m {
             let i = lo + l;
             b.force[i] = [f[0][l], f[1][l], f[2][l]];
             b.history[3 * i..3 * i + 3].copy_from_slice(&[h[0][l], h[1][l], h[2][l]]);
+        }
+        if let (true, Some(o)) = (ENERGY, out.as_mut()) {
+            o.power[lo..lo + m].copy_from_slice(&power[..m]);
+            o.elastic[lo..lo + m].copy_from_slice(&elastic[..m]);
         }
         lo += m;
     }
@@ -223,7 +282,7 @@ mod tests {
 
     /// The SIMD batch gives the per-contact form's bits on every path: a fresh spring, one to
     /// rotate into the tangent plane, one held, one capped (with and without a spring), idle
-    /// lanes of a last partial group.
+    /// lanes of a last partial group; with its energy outputs too.
     #[test]
     fn the_batch_gives_the_per_contact_bits() {
         let law = RollingSds {
@@ -270,6 +329,21 @@ mod tests {
             .enumerate()
             .map(|(i, c)| law.force(c, &mut h1[3 * i..3 * i + 3]))
             .collect();
+        let mut h4 = hist.clone();
+        let e1: Vec<Energy> = contacts
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let (f, e) = law.force_energy(c, &mut h4[3 * i..3 * i + 3]);
+                assert_eq!(
+                    f.map(f64::to_bits),
+                    f1[i].map(f64::to_bits),
+                    "force_energy's force {i}"
+                );
+                e.unwrap()
+            })
+            .collect();
+        assert_eq!(h1, h4, "force_energy's springs");
         // the same contacts as one batch
         let column = |get: fn(&RollingContact) -> f64| contacts.iter().map(get).collect::<Vec<_>>();
         let (delta, mass, radius) = (column(|c| c.delta), column(|c| c.mass), column(|c| c.radius));
@@ -286,6 +360,31 @@ mod tests {
             history: &mut h2,
             force: &mut f2,
         });
+        let (mut h3, mut f3) = (hist.clone(), vec![[0.0; 3]; n]);
+        let (mut power, mut elastic) = (vec![0.0; n], vec![0.0; n]);
+        assert!(law.force_batch_energy(
+            RollingBatch {
+                dt: contacts[0].dt,
+                normal: &normal,
+                velocity: &velocity,
+                normal_force: &fnorm,
+                delta: &delta,
+                mass: &mass,
+                radius: &radius,
+                slots: 3,
+                history: &mut h3,
+                force: &mut f3,
+            },
+            EnergyBatch {
+                power: &mut power,
+                elastic: &mut elastic,
+            },
+        ));
+        assert_eq!((&f2, &h2), (&f3, &h3), "force_batch_energy's forces and springs");
+        for i in 0..n {
+            assert_eq!(e1[i].power.to_bits(), power[i].to_bits(), "power {i}");
+            assert_eq!(e1[i].elastic.to_bits(), elastic[i].to_bits(), "elastic {i}");
+        }
         let capped = (0..n)
             .filter(|&i| {
                 (f1[i].iter().map(|x| x * x).sum::<f64>().sqrt() - law.mu * fnorm[i].abs()).abs() < 1e-12

@@ -29,8 +29,8 @@ impl TwistingLaw for TwistingSds {
         the step dt (s). History: the twist angle θ (rad), 0 at first touch. Each call: θ += ω dt; \
         M = −k θ − γ ω (N·m, about n̂, on the particle; its opposite on the partner); if |M| > μ|F_n|: \
         θ = (μ|F_n| sgn ω − γ ω)/k and M = −μ|F_n| sgn ω. Parameters: k (N·m/rad, > 0), gamma (N·m·s/rad), \
-        mu (m: the critical torque is μ|F_n|). Energy: elastic = k θ²/2, no more than (μ|F_n|)²/(2k) (J); power = γ ω² while the spring \
-        holds, |M ω| while it slides (W).";
+        mu (m: the critical torque is μ|F_n|). Energy: elastic = k θ²/2 (J); power = γ ω² while the spring holds, −M ω \
+        plus the change of the stored energy while it slides (W).";
     const HISTORY: &'static [History] = &[History::new("theta", "rad", "twist angle θ of the spring")];
 
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
@@ -53,8 +53,11 @@ impl BoundTwisting for TwistingSds {
         self.sds(c).torque(c.rate, c.dt, h)
     }
 
-    fn energy(&self, c: &TwistingContact, h: &[f64], torque: f64) -> Option<Energy> {
-        Some(self.sds(c).step_energy(c.rate, c.dt, h[0], torque))
+    /// The torque with the step's energy: elastic k θ²/2 (J); power (W) γ ω² while the spring
+    /// holds, −M ω plus the change of the stored energy while it slides.
+    fn torque_energy(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, Option<Energy>) {
+        let (m, e) = self.sds(c).torque_energy(self.k, c.rate, c.dt, h);
+        (m, Some(e))
     }
 }
 

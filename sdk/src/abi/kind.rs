@@ -12,7 +12,7 @@ use super::ffi::{self, Coefficient};
 use super::guard::{drop_box, finish, guard, hot, take_panic};
 use super::{ffi_object, BatchFault, BatchStatus};
 use crate::error::{ErrorKind, FfiError, LawError};
-use crate::law::{Energy, LawKind};
+use crate::law::LawKind;
 use crate::pair::MaterialPair;
 use crate::params::{LawParams, ParamValue, Params};
 use abi_stable::{
@@ -336,39 +336,45 @@ macro_rules! blocks {
 }
 pub(crate) use blocks;
 
-/// The energy pass after a batch: `each(i)` is contact `i`'s energy; written to `power` and
-/// `elastic` (either may be null). `Ok(false)` if a contact has none (the law does not account
-/// for energy), the first non-finite value as a fault.
+/// The energy outputs of a raw batch of `n` contacts: `None` when neither is wanted; else both
+/// as slices, a scratch array standing in for a null one (a host may want only one of them;
+/// the law computes both).
 ///
 /// # Safety
-/// Non-null pointers are valid for `n` values.
+/// Non-null pointers are valid for `n` values and not aliased.
 #[inline(always)]
-pub(crate) unsafe fn energy_pass(
+pub(crate) unsafe fn energy_out(
     n: usize,
     power: *mut f64,
     elastic: *mut f64,
-    mut each: impl FnMut(usize) -> Option<Energy>,
-) -> Result<bool, (usize, u8)> {
-    if power.is_null() && elastic.is_null() {
-        return Ok(false);
-    }
-    for i in 0..n {
-        let Some(e) = each(i) else {
-            return Ok(false);
-        };
-        for (out, v, field) in [
-            (power, e.power, BatchFault::POWER),
-            (elastic, e.elastic, BatchFault::ELASTIC),
-        ] {
-            if !out.is_null() {
-                if !v.is_finite() {
-                    return Err((i, field));
-                }
-                unsafe { *out.add(i) = v };
-            }
+    scratch: &mut Vec<f64>,
+) -> Option<(&mut [f64], &mut [f64])> {
+    match (power.is_null(), elastic.is_null()) {
+        (true, true) => None,
+        (false, false) => Some(unsafe { (slice_mut(power, n), slice_mut(elastic, n)) }),
+        (true, false) => {
+            scratch.resize(n, 0.0);
+            Some((scratch.as_mut_slice(), unsafe { slice_mut(elastic, n) }))
+        }
+        (false, true) => {
+            scratch.resize(n, 0.0);
+            Some((unsafe { slice_mut(power, n) }, scratch.as_mut_slice()))
         }
     }
-    Ok(true)
+}
+
+/// Checks a block's energy outputs (`lo` its first contact): the first non-finite power or
+/// elastic energy as a fault.
+#[inline(always)]
+pub(crate) fn check_energy(lo: usize, power: &[f64], elastic: &[f64]) -> Result<(), (usize, u8)> {
+    use super::checks::first_non_finite;
+    if let Some(i) = first_non_finite(power) {
+        return Err((lo + i, BatchFault::POWER));
+    }
+    if let Some(i) = first_non_finite(elastic) {
+        return Err((lo + i, BatchFault::ELASTIC));
+    }
+    Ok(())
 }
 
 /// A slice from a raw pointer, empty when `n == 0` (the pointer may then dangle or be null).

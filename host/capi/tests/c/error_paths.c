@@ -542,22 +542,22 @@ int main(int argc, char **argv) {
 
         /* Mindlin through the energy batch: one step of slip v below the cap stores
            elastic = k (v dt)^2 / 2 = |F| v dt / 2 and dissipates nothing (no damping); a fast
-           slip beyond the cap mu F_n dissipates (power > 0) */
+           slip beyond the cap mu F_n dissipates (power > 0); its history: xi and k_t, 4 slots */
         DashpotTangentialLaw *ml = NULL;
         DashpotTangentialModel *mm = NULL;
         EXPECT(dashpot_tangential_new(reg, "mindlin", (const char *[]){"mu"}, (double[]){0.5}, 1, &ml), DASHPOT_OK, NULL);
         EXPECT(dashpot_tangential_bind_materials(ml, &mat, &mm), DASHPOT_OK, NULL);
-        double mv[3] = {1e-3, 0, 0}, mh[3] = {0, 0, 0}, mf[3], mp[1] = {-1}, me[1] = {-1};
+        double mv[3] = {1e-3, 0, 0}, mh[4] = {0, 0, 0, 0}, mf[3], mp[1] = {-1}, me[1] = {-1};
         written = -1;
-        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 3, mf, mp, me, &written), DASHPOT_OK, NULL);
+        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 4, mf, mp, me, &written), DASHPOT_OK, NULL);
         CHECK(written == 1 && mf[0] < 0.0 && mp[0] == 0.0);
         CLOSE(me[0], 0.5 * -mf[0] * 1e-3 * 1e-4, 1e-12);
         mv[0] = 1e3;
-        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 3, mf, mp, NULL, NULL), DASHPOT_OK, NULL);
+        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 4, mf, mp, NULL, NULL), DASHPOT_OK, NULL);
         CLOSE(-mf[0], 0.5 * rfn[0], 1e-12);
         CHECK(mp[0] > 0.0);
-        EXPECT(dashpot_tangential_model_force_batch_energy(NULL, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 3, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "model");
-        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, NULL, rfn, rdl, rms, rrd, mh, 3, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "velocity");
+        EXPECT(dashpot_tangential_model_force_batch_energy(NULL, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 4, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, NULL, rfn, rdl, rms, rrd, mh, 4, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "velocity");
         EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 1, mf, mp, me, &written), DASHPOT_ERR_BAD_LENGTH, "n_history = 1");
         dashpot_tangential_model_free(mm);
         dashpot_tangential_free(ml);

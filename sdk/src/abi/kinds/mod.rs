@@ -6,24 +6,24 @@
 
 use super::checks::*;
 use super::host::{bad_input, length_error};
-use super::kind::{blocks, energy_pass, kind_law, raw_out, slice, slice_mut, Kind, KindBound};
+use super::kind::{blocks, check_energy, energy_out, kind_law, raw_out, slice, slice_mut, Kind, KindBound};
 use super::{v2, BatchFault, BatchStatus};
 use crate::error::{ErrorKind, LawError};
-use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, LawKind, NormalBatch};
+use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, LawKind, NormalBatch};
 use crate::pair::MaterialPair;
 use abi_stable::StableAbi;
 
 /// The checked block loop of a raw motion batch `$r` (twisting, or a vector kind: its sdk batch
 /// `$batch`, whose motion input `$motion` and output `$out` are arrays of `$mty` and `$oty`),
-/// then its energy pass into `$power` and `$elastic`. `$check(lo, normal, motion, normal_force,
-/// delta, mass, radius)` refuses a block's bad input, `$eval(block)` runs the law on it,
-/// `$bad_out(outputs)` finds a non-finite output, and `$energy(contact, history, output)` is
-/// the law's energy of one contact. Expands to the body of a `KindBound::run` (it returns the
-/// first fault).
+/// with the energy outputs `$power` and `$elastic` when either is wanted. `$check(lo, normal,
+/// motion, normal_force, delta, mass, radius)` refuses a block's bad input, `$eval(block)` runs
+/// the law on it, `$eval_energy(block, energy)` runs it with its energy outputs (whether every
+/// contact reported one), and `$bad_out(outputs)` finds a non-finite output. Expands to the
+/// body of a `KindBound::run` (it returns the first fault).
 macro_rules! motion_run {
     ($r:expr, $power:expr, $elastic:expr,
      $batch:ident { $motion:ident: $mty:ty => $out:ident: $oty:ty },
-     $check:expr, $eval:expr, $bad_out:expr, $energy:expr $(,)?) => {{
+     $check:expr, $eval:expr, $eval_energy:expr, $bad_out:expr $(,)?) => {{
         let r = $r;
         if !(r.dt >= 0.0 && r.dt < f64::INFINITY) {
             return Err((0, BatchFault::DT));
@@ -41,12 +41,15 @@ macro_rules! motion_run {
                 slice_mut(r.$out as *mut $oty, n),
             )
         };
+        let mut scratch = Vec::new();
+        let mut energy = unsafe { energy_out(n, $power, $elastic, &mut scratch) };
+        let mut written = energy.is_some();
         blocks!(n, |lo, hi| {
             let (nl, ml) = (&normal[lo..hi], &motion[lo..hi]);
             let (f, d, m, a) = (&fnorm[lo..hi], &delta[lo..hi], &mass[lo..hi], &radius[lo..hi]);
             ($check)(lo, nl, ml, f, d, m, a)?;
             let o = &mut out[lo..hi];
-            ($eval)($batch {
+            let block = $batch {
                 dt: r.dt,
                 normal: nl,
                 $motion: ml,
@@ -57,33 +60,30 @@ macro_rules! motion_run {
                 slots,
                 history: &mut history[lo * slots..hi * slots],
                 $out: &mut *o,
-            });
+            };
+            match energy.as_mut() {
+                Some((p, e)) => {
+                    let (p, e) = (&mut p[lo..hi], &mut e[lo..hi]);
+                    if ($eval_energy)(
+                        block,
+                        EnergyBatch {
+                            power: &mut *p,
+                            elastic: &mut *e,
+                        },
+                    ) {
+                        check_energy(lo, p, e)?;
+                    } else {
+                        written = false;
+                    }
+                }
+                None => ($eval)(block),
+            }
             match ($bad_out)(&*o) {
                 Some(i) => Err((lo + i, BatchFault::OUTPUT)),
                 None => Ok(()),
             }
         });
-        let batch = $batch {
-            dt: r.dt,
-            normal,
-            $motion: motion,
-            normal_force: fnorm,
-            delta,
-            mass,
-            radius,
-            slots,
-            history,
-            $out: out,
-        };
-        unsafe {
-            energy_pass(n, $power, $elastic, |i| {
-                ($energy)(
-                    &batch.contact(i),
-                    history_of(batch.history, slots, i),
-                    batch.$out[i],
-                )
-            })
-        }
+        Ok(written)
     }};
 }
 
@@ -258,11 +258,17 @@ pub(super) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
     }
 }
 
-/// The block loop of a normal batch: check a block's inputs, run the law on it, check its
-/// outputs. Returns the first bad contact and what is wrong with it.
+/// The block loop of a normal batch: check a block's inputs, run the law on it (with its
+/// energy outputs when `energy` is given), check its outputs. Returns whether every contact
+/// reported its energy, or the first bad contact and what is wrong with it.
 #[inline(always)]
-fn normal_blocks<B: BoundContact>(law: &B, b: NormalBatch<'_>) -> Result<(), (usize, u8)> {
+fn normal_blocks<B: BoundContact>(
+    law: &B,
+    b: NormalBatch<'_>,
+    mut energy: Option<(&mut [f64], &mut [f64])>,
+) -> Result<bool, (usize, u8)> {
     let slots = b.slots;
+    let mut written = energy.is_some();
     blocks!(b.force.len(), |lo, hi| {
         let (d, r, m, a) = (
             &b.delta[lo..hi],
@@ -276,21 +282,38 @@ fn normal_blocks<B: BoundContact>(law: &B, b: NormalBatch<'_>) -> Result<(), (us
             }
         }
         let o = &mut b.force[lo..hi];
-        law.force_batch(NormalBatch {
+        let block = NormalBatch {
             delta: d,
             rate: r,
             mass: m,
             radius: a,
             slots,
             history: &mut b.history[lo * slots..hi * slots],
-            force: o,
-        });
+            force: &mut *o,
+        };
+        match energy.as_mut() {
+            Some((p, e)) => {
+                let (p, e) = (&mut p[lo..hi], &mut e[lo..hi]);
+                if law.force_batch_energy(
+                    block,
+                    EnergyBatch {
+                        power: &mut *p,
+                        elastic: &mut *e,
+                    },
+                ) {
+                    check_energy(lo, p, e)?;
+                } else {
+                    written = false;
+                }
+            }
+            None => law.force_batch(block),
+        }
         match first_non_finite(o) {
             Some(i) => Err((lo + i, BatchFault::OUTPUT)),
             None => Ok(()),
         }
     });
-    Ok(())
+    Ok(written)
 }
 
 impl<B: BoundContact> KindBound<Normal> for B {
@@ -316,13 +339,15 @@ impl<B: BoundContact> KindBound<Normal> for B {
             history,
             force,
         };
-        normal_blocks(
+        let mut scratch = Vec::new();
+        let written = normal_blocks(
             self,
             NormalBatch {
                 history: &mut *batch.history,
                 force: &mut *batch.force,
                 ..batch
             },
+            unsafe { energy_out(n, b.power, b.elastic, &mut scratch) },
         )?;
         if !b.reach.is_null() {
             for i in 0..n {
@@ -333,15 +358,7 @@ impl<B: BoundContact> KindBound<Normal> for B {
                 unsafe { *b.reach.add(i) = r };
             }
         }
-        unsafe {
-            energy_pass(n, b.power, b.elastic, |i| {
-                self.energy(
-                    &batch.contact(i),
-                    history_of(batch.history, slots, i),
-                    batch.force[i],
-                )
-            })
-        }
+        Ok(written)
     }
     fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
         self.coefficients(mass, radius)

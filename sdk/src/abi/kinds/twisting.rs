@@ -142,8 +142,8 @@ impl<B: BoundTwisting> KindBound<Twisting> for B {
                 )
             },
             |batch| self.torque_batch(batch),
+            |batch, out| self.torque_batch_energy(batch, out),
             first_non_finite,
-            |c, h, torque| self.energy(c, h, torque),
         )
     }
     fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {

@@ -2,7 +2,7 @@
 //! batch and one checked block loop; they differ only in their law traits.
 
 use super::*;
-use crate::law::{BoundTangential, TangentialLaw, VectorBatch, VectorContact};
+use crate::law::{BoundTangential, EnergyBatch, TangentialLaw, VectorBatch};
 use crate::rotation::{BoundRolling, RollingLaw};
 
 /// A raw batch of a vector kind (tangential, rolling): 0.2's tangential arrays (vectors are `n`
@@ -22,7 +22,7 @@ pub struct FfiVectorBatch {
 /// A bound law of a vector kind: its batch call and its energy.
 trait VectorLaw {
     fn batch(&self, b: VectorBatch<'_>);
-    fn energy_of(&self, c: &VectorContact, history: &[f64], force: [f64; 3]) -> Option<crate::Energy>;
+    fn batch_energy(&self, b: VectorBatch<'_>, out: EnergyBatch<'_>) -> bool;
 }
 
 /// Declares vector kind `$kind` ("$what") of bound-law trait `$bound` and law trait `$law`.
@@ -59,8 +59,9 @@ macro_rules! vector_kind {
             fn batch(&self, b: VectorBatch<'_>) {
                 self.0.force_batch(b)
             }
-            fn energy_of(&self, c: &VectorContact, history: &[f64], force: [f64; 3]) -> Option<crate::Energy> {
-                self.0.energy(c, history, force)
+            #[inline(always)]
+            fn batch_energy(&self, b: VectorBatch<'_>, out: EnergyBatch<'_>) -> bool {
+                self.0.force_batch_energy(b, out)
             }
         }
 
@@ -177,7 +178,7 @@ fn fault_error(what: &str, name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: 
     }
 }
 
-/// The checked block loop of a vector batch, then its energy pass.
+/// The checked block loop of a vector batch, with its energy outputs when wanted.
 ///
 /// # Safety
 /// The batch's pointers are valid for its lengths.
@@ -206,7 +207,7 @@ unsafe fn run<L: VectorLaw>(law: &L, b: &FfiVectorBatch) -> Result<bool, (usize,
             )
         },
         |batch| law.batch(batch),
+        |batch, out| law.batch_energy(batch, out),
         |o: &[[f64; 3]]| first_non_finite(o.as_flattened()).map(|i| i / 3),
-        |c, h, force| law.energy_of(c, h, force),
     )
 }
