@@ -47,17 +47,17 @@ fn options(rtol: f64) -> PyResult<Options> {
     })
 }
 
-/// A law `collide` created, with its provenance as the CLI's JSON gives it (`params`,
-/// `provenance`), as Python objects shared by the results of the same law and parameters.
+/// A law `collide` created, and the template of its provenance. No Python object is kept: a
+/// calibration loop that gives a new value at every call would otherwise fill the cache with
+/// dicts that outlive the garbage collector's young generation.
 struct Cached {
     law: Arc<ContactLawHandle>,
-    params: PyObject,
-    provenance: PyObject,
+    template: Arc<Template>,
 }
 
 /// What a law's provenance holds besides the parameter values, for one law and one set of
 /// given parameter names: built once, so that a calibration loop, which gives a new value at
-/// every call, builds only the two small `params` dicts for it.
+/// every call, builds only the two small `params` dicts and a shallow copy of the rest.
 struct Template {
     /// Every parameter sorted by name (the JSON objects are): its name, its key, its value
     /// when not given (the default, or `None` when the law derives it), and whether it is given.
@@ -108,12 +108,9 @@ fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<
         return Ok(l.clone());
     }
     let law = with_registry(py, |reg| reg.contact(name, p).map_err(law_err))?;
-    let template = template(py, name, p)?;
-    let (params, provenance) = provenance_of(py, &template, p)?;
     let entry = Arc::new(Cached {
         law: Arc::new(law),
-        params: params.into_any().unbind(),
-        provenance: provenance.into_any().unbind(),
+        template: template(py, name, p)?,
     });
     let mut c = caches();
     if c.laws.len() >= CACHED_LAWS {
@@ -239,9 +236,9 @@ fn _time_collisions(
 
 /// One head-on collision, as `dashpot collide --json` computes it: law `name` with `params`,
 /// the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) against an
-/// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON as a dict (its
-/// `params` and `provenance` dicts shared by the results of the same law and parameters) and,
-/// with `record`, the trajectory as four arrays (t, δ, δ̇, F).
+/// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON as a dict (the
+/// `plugin`, `param_sources` and `shadows` of its `provenance` shared by the results of the
+/// same law) and, with `record`, the trajectory as four arrays (t, δ, δ̇, F).
 #[pyfunction]
 #[pyo3(signature = (name, params, v0, body, end, rtol, record))]
 #[allow(clippy::too_many_arguments)]
@@ -287,8 +284,9 @@ fn collide<'py>(
     pd.set_item(intern!(py, "radius"), pair.radius)?;
     pd.set_item(intern!(py, "young"), pair.young)?;
     out.set_item(intern!(py, "pair"), pd)?;
-    out.set_item(intern!(py, "params"), cached.params.bind(py))?;
-    out.set_item(intern!(py, "provenance"), cached.provenance.bind(py))?;
+    let (params, provenance) = provenance_of(py, &cached.template, &p)?;
+    out.set_item(intern!(py, "params"), params)?;
+    out.set_item(intern!(py, "provenance"), provenance)?;
     if record {
         let col =
             |f: fn(&dashpot::collide::Sample) -> f64| -> Vec<f64> { c.trajectory.iter().map(f).collect() };
