@@ -5,10 +5,11 @@ use super::*;
 use dashpot::cli::collide::{sweep as sweep_rows, SweepSpec};
 use dashpot::collide::{collide as collide_one, Options, PairLaw};
 use dashpot::laws::{ContactLawHandle, ContactModelHandle};
+use dashpot::output::ParamSource;
 use dashpot_sdk::EndCriterion;
 use numpy::IntoPyArray;
 use pyo3::intern;
-use pyo3::types::PyList;
+use pyo3::types::{PyList, PyString};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 
@@ -46,69 +47,114 @@ fn options(rtol: f64) -> PyResult<Options> {
     })
 }
 
-/// A law `collide` created, with its provenance as the CLI's JSON gives it (`params`,
-/// `provenance`), as Python objects shared by the results of the same law and parameters.
+/// A law `collide` created, and the template of its provenance. No Python object is kept: a
+/// calibration loop that gives a new value at every call would otherwise fill the cache with
+/// dicts that outlive the garbage collector's young generation.
 struct Cached {
     law: Arc<ContactLawHandle>,
-    params: PyObject,
-    provenance: PyObject,
+    template: Arc<Template>,
 }
 
-/// Contact laws created by `collide`, by name and parameters: a calibration loop calls the same
-/// law thousands of times, and creating it (a call into the plugin that checks every parameter)
-/// and its provenance costs about as much as a short collision. Emptied when a plugin is loaded.
-static CONTACT_LAWS: OnceLock<Mutex<HashMap<String, Arc<Cached>>>> = OnceLock::new();
+/// What a law's provenance holds besides the parameter values, for one law and one set of
+/// given parameter names: built once, so that a calibration loop, which gives a new value at
+/// every call, builds only the two small `params` dicts and a shallow copy of the rest.
+struct Template {
+    /// Every parameter sorted by name (the JSON objects are): its name, its key, its value
+    /// when not given (the default, or `None` when the law derives it), and whether it is given.
+    params: Vec<(String, Py<PyString>, Option<f64>, bool)>,
+    /// The provenance dict, its `params` to be set (in its place: the keys are in JSON order).
+    base: Py<PyDict>,
+}
 
-/// Forgets the laws `collide` created (a plugin loaded since may shadow them).
+/// Laws `collide` created (by name and parameters: a calibration loop calls the same law
+/// thousands of times, and creating it is a call into the plugin that checks every parameter)
+/// and provenance templates (by name and given parameter names). Emptied when a plugin is
+/// loaded.
+#[derive(Default)]
+struct Caches {
+    laws: HashMap<String, Arc<Cached>>,
+    templates: HashMap<String, Arc<Template>>,
+}
+
+static CACHES: OnceLock<Mutex<Caches>> = OnceLock::new();
+
+fn caches() -> std::sync::MutexGuard<'static, Caches> {
+    CACHES
+        .get_or_init(Default::default)
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+}
+
+/// Forgets the laws `collide` created and their templates (a plugin loaded since may shadow
+/// them).
 pub(crate) fn forget_laws() {
-    if let Some(c) = CONTACT_LAWS.get() {
-        c.lock().unwrap_or_else(|e| e.into_inner()).clear();
-    }
+    let mut c = caches();
+    c.laws.clear();
+    c.templates.clear();
 }
 
 /// At most this many laws are kept (a fit that tries a new parameter value at every call would
-/// otherwise grow the cache without bound).
+/// otherwise grow the cache without bound); as many templates.
 const CACHED_LAWS: usize = 256;
 
 fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<Cached>> {
-    let key = format!("{name}|{p:?}");
-    let cache = CONTACT_LAWS.get_or_init(Default::default);
-    if let Some(l) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+    let mut key = name.to_string();
+    for v in p {
+        key.push('|');
+        key.push_str(&v.name);
+        key.push_str(&v.value.to_bits().to_string());
+    }
+    if let Some(l) = caches().laws.get(&key) {
         return Ok(l.clone());
     }
-    let (law, prov) = with_registry(py, |reg| {
-        Ok((
-            reg.contact(name, p).map_err(law_err)?,
-            Provenance::of(reg, name, p).map_err(law_err)?,
-        ))
-    })?;
-    let (params, provenance) = provenance_py(py, &prov)?;
+    let law = with_registry(py, |reg| reg.contact(name, p).map_err(law_err))?;
     let entry = Arc::new(Cached {
         law: Arc::new(law),
-        params: params.into_any().unbind(),
-        provenance: provenance.into_any().unbind(),
+        template: template(py, name, p)?,
     });
-    let mut c = cache.lock().unwrap_or_else(|e| e.into_inner());
-    if c.len() >= CACHED_LAWS {
-        c.clear();
+    let mut c = caches();
+    if c.laws.len() >= CACHED_LAWS {
+        c.laws.clear();
     }
-    c.insert(key, entry.clone());
+    c.laws.insert(key, entry.clone());
     Ok(entry)
 }
 
-/// `(params, provenance)` as the CLI's JSON gives them ([`Provenance::params_json`],
-/// [`Provenance::json`]: the same keys, values and order), built as Python objects directly:
-/// a calibration loop makes one for every new parameter value, and the JSON round trip cost
-/// as much as a short collision.
-fn provenance_py<'py>(py: Python<'py>, p: &Provenance) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
-    // the JSON objects are sorted by key
+/// The provenance template of law `name` given the parameters named in `p`.
+fn template(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<Template>> {
+    let mut key = name.to_string();
+    for v in p {
+        key.push('|');
+        key.push_str(&v.name);
+    }
+    if let Some(t) = caches().templates.get(&key) {
+        return Ok(t.clone());
+    }
+    let prov = with_registry(py, |reg| Provenance::of(reg, name, p).map_err(law_err))?;
+    let t = Arc::new(template_of(py, &prov)?);
+    let mut c = caches();
+    if c.templates.len() >= CACHED_LAWS {
+        c.templates.clear();
+    }
+    c.templates.insert(key, t.clone());
+    Ok(t)
+}
+
+/// The template of provenance `p`: the keys, values and order of [`Provenance::json`].
+fn template_of(py: Python<'_>, p: &Provenance) -> PyResult<Template> {
     let mut by_name: Vec<_> = p.params.iter().collect();
     by_name.sort_by(|a, b| a.0.cmp(&b.0));
-    let (params, own_params, sources) = (PyDict::new(py), PyDict::new(py), PyDict::new(py));
+    let sources = PyDict::new(py);
+    let mut params = Vec::with_capacity(by_name.len());
     for (n, v, src) in by_name {
-        params.set_item(n, *v)?;
-        own_params.set_item(n, *v)?;
         sources.set_item(n, src.as_str())?;
+        let given = *src == ParamSource::Given;
+        params.push((
+            n.clone(),
+            PyString::new(py, n).unbind(),
+            v.filter(|_| !given),
+            given,
+        ));
     }
     let plugin = PyDict::new(py);
     plugin.set_item(intern!(py, "file"), &p.plugin_file)?;
@@ -121,9 +167,33 @@ fn provenance_py<'py>(py: Python<'py>, p: &Provenance) -> PyResult<(Bound<'py, P
     d.set_item(intern!(py, "kind"), p.kind)?;
     d.set_item(intern!(py, "law"), &p.law)?;
     d.set_item(intern!(py, "param_sources"), sources)?;
-    d.set_item(intern!(py, "params"), own_params)?;
+    d.set_item(intern!(py, "params"), py.None())?;
     d.set_item(intern!(py, "plugin"), plugin)?;
     d.set_item(intern!(py, "shadows"), PyList::new(py, &p.hidden)?)?;
+    Ok(Template {
+        params,
+        base: d.unbind(),
+    })
+}
+
+/// `(params, provenance)` of the law of template `t` with the parameters `given`, as the CLI's
+/// JSON gives them ([`Provenance::params_json`], [`Provenance::json`]: the same keys, values
+/// and order), built as Python objects directly.
+fn provenance_of<'py>(
+    py: Python<'py>,
+    t: &Template,
+    given: &[ParamValue],
+) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
+    let params = PyDict::new(py);
+    for (n, key, value, is_given) in &t.params {
+        let v = match is_given {
+            true => given.iter().find(|g| g.name == *n).map(|g| g.value),
+            false => *value,
+        };
+        params.set_item(key.bind(py), v)?;
+    }
+    let d = t.base.bind(py).copy()?;
+    d.set_item(intern!(py, "params"), params.copy()?)?;
     Ok((params, d))
 }
 
@@ -166,9 +236,9 @@ fn _time_collisions(
 
 /// One head-on collision, as `dashpot collide --json` computes it: law `name` with `params`,
 /// the particle (diameter m, density kg/m³, Young's modulus Pa, Poisson's ratio) against an
-/// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON as a dict (its
-/// `params` and `provenance` dicts shared by the results of the same law and parameters) and,
-/// with `record`, the trajectory as four arrays (t, δ, δ̇, F).
+/// identical sphere or a wall, impact speed `v0` (m/s). Returns the CLI's JSON as a dict (the
+/// `plugin`, `param_sources` and `shadows` of its `provenance` shared by the results of the
+/// same law) and, with `record`, the trajectory as four arrays (t, δ, δ̇, F).
 #[pyfunction]
 #[pyo3(signature = (name, params, v0, body, end, rtol, record))]
 #[allow(clippy::too_many_arguments)]
@@ -214,8 +284,9 @@ fn collide<'py>(
     pd.set_item(intern!(py, "radius"), pair.radius)?;
     pd.set_item(intern!(py, "young"), pair.young)?;
     out.set_item(intern!(py, "pair"), pd)?;
-    out.set_item(intern!(py, "params"), cached.params.bind(py))?;
-    out.set_item(intern!(py, "provenance"), cached.provenance.bind(py))?;
+    let (params, provenance) = provenance_of(py, &cached.template, &p)?;
+    out.set_item(intern!(py, "params"), params)?;
+    out.set_item(intern!(py, "provenance"), provenance)?;
     if record {
         let col =
             |f: fn(&dashpot::collide::Sample) -> f64| -> Vec<f64> { c.trajectory.iter().map(f).collect() };

@@ -124,3 +124,17 @@ def test_collide_is_the_clis_json_to_the_bit(law, params, v0):
     ref["pair"].pop("partner")
     c = {k: v for k, v in c.items()}
     same_json(ref, c)
+
+
+def test_collide_gives_each_new_parameter_value_its_own_provenance():
+    # a calibration loop: the same law with a new value at each call (the provenance's other
+    # parts are built once per law and given names), defaults and derived parameters beside
+    # it, a value met again (its law is reused); a result's params are its own
+    for law, name, values in [("hsd", "eps", (0.3, 0.31, 0.3)), ("thornton", "py", (1e7, 2e7))]:
+        for x in values:
+            ref = cli("collide", "--law", law, "--set", f"{name}={x!r}", "--v0", "1.0", "--json")
+            c = dashpot.collide(law, v0=1.0, **{name: x})
+            ref["pair"].pop("partner")
+            same_json(ref, dict(c))
+            assert c["params"][name] == x and c["provenance"]["params"][name] == x
+            c["params"][name] = c["provenance"]["params"][name] = -1.0  # each result's own

@@ -37,8 +37,9 @@ def collide(law: str, v0: float = 1.0, *, diameter: float = 0.01, density: float
     [1e-14, 1e-3].
 
     Returns a dict: restitution, contact_time (s), max_overlap (m), max_overlap_time (s),
-    stuck (adhesive laws), tensile_peak (N), steps, force_evals, pair, params, provenance (the
-    last two shared by the results of the same law and parameters: copy before changing them);
+    stuck (adhesive laws), tensile_peak (N), steps, force_evals, pair, params, provenance (its
+    plugin, param_sources and shadows shared by the results of the same law: copy before
+    changing them);
     with ``record=True`` also the trajectory as arrays ``t`` (s), ``delta`` (m), ``rate``
     (m/s), ``force`` (N). The GIL is released while it runs."""
     return _dashpot.collide(law, params, float(v0), (diameter, density, young, poisson, wall), end, rtol, record)
