@@ -117,11 +117,7 @@ impl TangentialLaw for Mindlin {
         damping ζ_t (≥ 0, default 0). A sphere launched sliding on a plane ends rolling at 5/7 of \
         its launch speed; an oblique impact in gross sliding changes the tangential velocity by \
         μ (1 + e) v_n.";
-    const HISTORY: &'static [History] = &[
-        History::new("xi_x", "m", "tangential spring displacement ξ, x component"),
-        History::new("xi_y", "m", "tangential spring displacement ξ, y component"),
-        History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
-    ];
+    const HISTORY: &'static [History] = &History::TANGENTIAL_SPRING;
 
     fn bind(&self, materials: &MaterialPair) -> Result<MindlinBound, LawError> {
         Ok(MindlinBound {
