@@ -143,9 +143,7 @@ mod tests {
 
     #[test]
     fn schema_and_history_slots() {
-        let info = LinearHistory::info();
-        assert_eq!(info.history.len(), 3);
-        assert!(info.history.iter().all(|h| h.unit == "m"));
+        dashpot_testkit::assert_spring_history(&LinearHistory::info());
         let l = LinearHistory::from_values(&[]).unwrap();
         assert_eq!((l.kt, l.mu, l.damping), (1e5, 0.5, 0.0));
         for bad in [("kt", 0.0), ("mu", -0.1), ("damping", -1.0)] {

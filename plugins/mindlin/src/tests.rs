@@ -15,9 +15,7 @@ fn law(e: f64, mu: f64, damping: f64) -> MindlinBound {
 
 #[test]
 fn schema_and_history_slots() {
-    let info = Mindlin::info();
-    assert_eq!(info.history.len(), 3);
-    assert!(info.history.iter().all(|h| h.unit == "m"));
+    dashpot_testkit::assert_spring_history(&Mindlin::info());
     let l = Mindlin::from_values(&[]).unwrap();
     assert_eq!((l.mu, l.damping), (0.5, 0.0));
     assert!(Mindlin::from_values(&[ParamValue::new("mu", -0.1)]).is_err());
@@ -36,72 +34,41 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
     for damping in [0.0, 0.4] {
         let l = law(2.0e11, 0.3, damping);
         let n = 203;
-        let mut normal = Vec::new();
-        let mut velocity = Vec::new();
-        let (mut fnorm, mut delta, mut mass, mut radius) = (vec![], vec![], vec![], vec![]);
-        let mut hist = Vec::new();
+        let (mut contacts, mut hist) = (Vec::new(), Vec::new());
         for i in 0..n {
             let (th, ph) = (PI * rnd(), 2.0 * PI * rnd());
-            normal.push([th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()]);
-            velocity.push([rnd() - 0.5, rnd() - 0.5, rnd() - 0.5]);
-            fnorm.push(if i % 7 == 0 { -1.0 } else { 20.0 * rnd() });
-            delta.push(if i % 11 == 0 { -1e-6 } else { 1e-5 * rnd() });
-            mass.push(1e-4 * (0.5 + rnd()));
-            radius.push(1e-3 * (0.5 + rnd()));
+            contacts.push(TangentialContact {
+                normal: [th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()],
+                velocity: [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5],
+                normal_force: if i % 7 == 0 { -1.0 } else { 20.0 * rnd() },
+                delta: if i % 11 == 0 { -1e-6 } else { 1e-5 * rnd() },
+                mass: 1e-4 * (0.5 + rnd()),
+                radius: 1e-3 * (0.5 + rnd()),
+                dt: 1e-6,
+            });
             for _ in 0..3 {
                 hist.push(if i % 5 == 0 { 0.0 } else { 1e-6 * (rnd() - 0.5) });
             }
         }
-        let dt = 1e-6;
-        let mut h1 = hist.clone();
-        let f1: Vec<[f64; 3]> = (0..n)
-            .map(|i| {
-                let c = TangentialContact {
-                    normal: normal[i],
-                    velocity: velocity[i],
-                    normal_force: fnorm[i],
-                    delta: delta[i],
-                    mass: mass[i],
-                    radius: radius[i],
-                    dt,
-                };
-                l.force(&c, &mut h1[3 * i..3 * i + 3])
-            })
-            .collect();
-        let mut h2 = hist.clone();
-        let mut f2 = vec![[0.0; 3]; n];
-        l.force_batch(TangentialBatch {
-            dt,
-            normal: &normal,
-            velocity: &velocity,
-            normal_force: &fnorm,
-            delta: &delta,
-            mass: &mass,
-            radius: &radius,
-            slots: 3,
-            history: &mut h2,
-            force: &mut f2,
-        });
+        let f1 = dashpot_testkit::batch_is_per_contact(
+            &contacts,
+            &hist,
+            3,
+            |c, h| l.force(c, h),
+            |b| l.force_batch(b),
+            &format!("damping {damping}"),
+        );
         let slid = f1
             .iter()
-            .zip(&fnorm)
-            .filter(|(f, &fn_)| {
-                (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() >= 0.3 * fn_.max(0.0) * (1.0 - 1e-12)
+            .zip(&contacts)
+            .filter(|(f, c)| {
+                (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt()
+                    >= 0.3 * c.normal_force.max(0.0) * (1.0 - 1e-12)
             })
             .count();
         assert!(
             slid > 10 && slid < n - 10,
             "both regimes covered: {slid} of {n} at the cap"
         );
-        for i in 0..n {
-            for k in 0..3 {
-                assert_eq!(
-                    f1[i][k].to_bits(),
-                    f2[i][k].to_bits(),
-                    "force {i}.{k}, damping {damping}"
-                );
-                assert_eq!(h1[3 * i + k].to_bits(), h2[3 * i + k].to_bits(), "spring {i}.{k}");
-            }
-        }
     }
 }

@@ -264,39 +264,19 @@ mod tests {
                 dt: 1e-4,
             })
             .collect();
-        let mut h1 = hist.clone();
-        let f1: Vec<[f64; 3]> = contacts
-            .iter()
-            .enumerate()
-            .map(|(i, c)| law.force(c, &mut h1[3 * i..3 * i + 3]))
-            .collect();
-        // the same contacts as one batch
-        let column = |get: fn(&RollingContact) -> f64| contacts.iter().map(get).collect::<Vec<_>>();
-        let (delta, mass, radius) = (column(|c| c.delta), column(|c| c.mass), column(|c| c.radius));
-        let (mut h2, mut f2) = (hist.clone(), vec![[0.0; 3]; n]);
-        law.force_batch(RollingBatch {
-            dt: contacts[0].dt,
-            normal: &normal,
-            velocity: &velocity,
-            normal_force: &fnorm,
-            delta: &delta,
-            mass: &mass,
-            radius: &radius,
-            slots: 3,
-            history: &mut h2,
-            force: &mut f2,
-        });
+        let f1 = dashpot_testkit::batch_is_per_contact(
+            &contacts,
+            &hist,
+            3,
+            |c, h| law.force(c, h),
+            |b| law.force_batch(b),
+            "rolling-sds",
+        );
         let capped = (0..n)
             .filter(|&i| {
                 (f1[i].iter().map(|x| x * x).sum::<f64>().sqrt() - law.mu * fnorm[i].abs()).abs() < 1e-12
             })
             .count();
         assert!(capped >= 2, "the cases must include capped contacts ({capped})");
-        for i in 0..n {
-            for q in 0..3 {
-                assert_eq!(f1[i][q].to_bits(), f2[i][q].to_bits(), "force {i}.{q}");
-                assert_eq!(h1[3 * i + q].to_bits(), h2[3 * i + q].to_bits(), "spring {i}.{q}");
-            }
-        }
     }
 }
