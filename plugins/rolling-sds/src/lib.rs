@@ -1,5 +1,6 @@
 //! Spring–dashpot–slider rolling resistance with the semantics of LAMMPS `rolling sds`.
 
+use dashpot_sdk::physics::dot;
 use dashpot_sdk::physics::SliderStep;
 use dashpot_sdk::{
     BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingBatch, RollingContact, RollingLaw,
@@ -16,10 +17,6 @@ dashpot_sdk::law_params! {
         /// rolling friction coefficient μ_roll
         mu: f64 { unit: "1", default: 0.1, range: Range::non_negative() },
     }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Relative threshold below which ξ is not rotated into the tangent plane (LAMMPS's EPSILON).
