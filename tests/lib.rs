@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests: where the real plugin libraries are, and how to
 //! build the out-of-workspace plugins (a deliberately incompatible one, the third-party example).
 
+pub mod lammps;
+
 use dashpot::{Registry, SearchPath};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -48,6 +50,39 @@ pub fn within_1e6_of_the_driver(
 /// the quantity in the failure message.
 pub fn assert_rel(got: f64, want: f64, tol: f64, what: &str) {
     assert!((got / want - 1.0).abs() < tol, "{what} = {got} vs {want}");
+}
+
+/// Uniform numbers in [0, 1) from a 64-bit linear congruential generator (Knuth's MMIX
+/// constants) seeded with `seed`: reproducible initial states without a dependency (the DEM
+/// tests' and the piles' of the benchmarks, the same sequence since their first figures).
+pub fn lcg_uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The directory named by the environment variable `var`, else `default()`, if it holds the file
+/// `probe`; else why not: "no `missing` DIR (`hint`)", e.g. for a peer code a benchmark compares
+/// against and skips without.
+pub fn dir_holding(
+    var: &str,
+    default: impl FnOnce() -> Result<PathBuf, String>,
+    probe: &str,
+    missing: &str,
+    hint: &str,
+) -> Result<PathBuf, String> {
+    let dir = match std::env::var_os(var) {
+        Some(d) => PathBuf::from(d),
+        None => default()?,
+    };
+    if dir.join(probe).is_file() {
+        Ok(dir)
+    } else {
+        Err(format!("no {missing} {} ({hint})", dir.display()))
+    }
 }
 
 /// The workspace root.

@@ -4,6 +4,10 @@
 //! The friction law is a Cundall–Strack spring compiled into this file (the `mindlin` plugin is
 //! written elsewhere); HSD is linked as an rlib and called through the checked trampoline.
 
+#[allow(dead_code)]
+#[path = "../../tests/lib.rs"]
+mod ext;
+
 use dashpot::collide::{collide, Options, PairLaw};
 use dashpot::dem::{Body, DiskMass, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall};
 use dashpot::laws::{compiled, compiled_tangential, NormalLaw};
@@ -109,17 +113,6 @@ fn state_bits(e: &Engine<2>) -> Vec<u64> {
         .chain(p.omega.iter().copied())
         .map(f64::to_bits)
         .collect()
-}
-
-/// Uniform numbers in [0, 1) from a 64-bit linear congruential generator seeded with `seed`
-/// (reproducible initial states without a dependency).
-fn lcg(mut seed: u64) -> impl FnMut() -> f64 {
-    move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// Runs until the contact count of `kind` has gone up and back to zero; returns steps in contact.
@@ -241,7 +234,7 @@ fn elastic_energy_is_conserved_over_1e5_steps() {
     cfg.steps_per_collision = 200.0;
     let side = 6.0 * D2;
     let mut bodies = Vec::new();
-    let mut uniform = lcg(12345);
+    let mut uniform = ext::lcg_uniform(12345);
     let mut rnd = || uniform() - 0.5;
     for a in 0..3 {
         for b in 0..3 {
@@ -450,7 +443,7 @@ fn history_survives_the_periodic_boundary_and_rebuilds() {
 fn dense_lattice(cols: usize, rows: usize, closed: bool) -> (EngineConfig<2>, Vec<Body<2>>) {
     let mat = soft(DiskMass::Disk);
     let a = 0.99 * D2;
-    let mut rnd = lcg(99);
+    let mut rnd = ext::lcg_uniform(99);
     let bodies = (0..cols * rows)
         .map(|k| {
             let (q, r) = ((k % cols) as f64, (k / cols) as f64);

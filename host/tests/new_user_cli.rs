@@ -8,24 +8,27 @@ mod common;
 use common::{dashpot, fails, ok_json, plugin_dir, scene, sh, succeeds};
 use std::path::{Path, PathBuf};
 
-/// A 3D scene of 2 mm steel-like spheres over a floor at z = 0, with `particles` appended.
-fn spheres(top: &str, particles: &str) -> String {
-    format!(
-        r#"
-dimension = 3
-duration = 0.001
-{top}
-[law]
-name = "hsd"
-params = {{ eps = 0.5 }}
-[material]
+/// The `[material]` table of this file's scenes: steel's density (kg/m³) and Poisson's ratio with
+/// a soft Young's modulus (Pa), so that a DEM step is microseconds.
+const SOFT_STEEL: &str = "[material]
 young = 1.0e8
 poisson = 0.3
-density = 7800.0
-[[wall]]
-point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
-{particles}"#
+density = 7800.0";
+
+/// A 3D scene of 1 ms on [`SOFT_STEEL`]: `top`, more top-level keys; `law`, the `[law]` table's
+/// lines; `body`, the walls and particles.
+fn scene_3d(top: &str, law: &str, body: &str) -> String {
+    format!("\ndimension = 3\nduration = 0.001\n{top}\n[law]\n{law}\n{SOFT_STEEL}\n{body}")
+}
+
+/// A 3D scene of 2 mm steel-like spheres (HSD, ε = 0.5) over a floor at z = 0, with `particles`
+/// appended.
+fn spheres(top: &str, particles: &str) -> String {
+    let floor = "[[wall]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]";
+    scene_3d(
+        top,
+        "name = \"hsd\"\nparams = { eps = 0.5 }",
+        &format!("{floor}\n{particles}"),
     )
 }
 
@@ -146,25 +149,13 @@ fn a_sphere_placed_inside_a_wall_is_refused_naming_the_wall() {
 /// Hertz energy of the initial overlap, (2/5) K δ0^{5/2}, K = (4/3) E* √R*, and no momentum.
 #[test]
 fn allow_initial_overlap_admits_a_precompressed_pair_and_it_springs_apart_with_the_hertz_energy() {
-    let text = r#"
-dimension = 3
-duration = 0.001
-allow_initial_overlap = true
-[law]
-name = "kuwabara-kono"
-params = { A = 0.0 }
-[material]
-young = 1.0e8
-poisson = 0.3
-density = 7800.0
-[[particle]]
-position = [0.0, 0.0, 0.0]
-diameter = 0.002
-[[particle]]
-position = [0.0019, 0.0, 0.0]
-diameter = 0.002
-"#;
-    let p = scene("precompressed.toml", text);
+    let pair = particle([0.0, 0.0, 0.0], 0.002) + &particle([0.0019, 0.0, 0.0], 0.002);
+    let text = scene_3d(
+        "allow_initial_overlap = true",
+        "name = \"kuwabara-kono\"\nparams = { A = 0.0 }",
+        &pair,
+    );
+    let p = scene("precompressed.toml", &text);
     let v = ok_json(&["dem", "--scene", p.to_str().unwrap(), "--json"]);
     let (e, nu, r, d0) = (1.0e8_f64, 0.3_f64, 1e-3_f64, 1e-4_f64);
     let e_star = e / (2.0 * (1.0 - nu * nu));
@@ -217,24 +208,23 @@ fn a_particle_outside_a_bounded_box_is_refused_before_the_run() {
 #[test]
 fn a_packing_that_cannot_fit_its_count_says_how_many_fit() {
     // 1 cm × 1 cm, diameters up to 2 mm: sites of 2.1 mm, 4 × 4 = 16
-    let text = r#"
+    let text = format!(
+        r#"
 dimension = 2
 duration = 0.001
 [law]
 name = "hsd"
-[material]
-young = 1.0e8
-poisson = 0.3
-density = 7800.0
+{SOFT_STEEL}
 [generate]
 count = 100
 diameter = [0.0018, 0.002]
 lo = [0.0, 0.0]
 hi = [0.01, 0.01]
-"#;
+"#
+    );
     refused_scene(
         "crowded.toml",
-        text,
+        &text,
         &[
             "count = 100",
             "cannot fit",

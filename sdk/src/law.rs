@@ -98,6 +98,15 @@ impl History {
     pub const fn new(name: &'static str, unit: &'static str, doc: &'static str) -> History {
         History { name, unit, doc }
     }
+
+    /// The three slots of a tangential spring's displacement ξ (m): `xi_x`, `xi_y`, `xi_z`, the
+    /// history of a Cundall–Strack friction law (`const HISTORY: &[History] =
+    /// &History::TANGENTIAL_SPRING;`; Mindlin's adds its stiffness of the last call).
+    pub const TANGENTIAL_SPRING: [History; 3] = [
+        History::new("xi_x", "m", "tangential spring displacement ξ, x component"),
+        History::new("xi_y", "m", "tangential spring displacement ξ, y component"),
+        History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
+    ];
 }
 
 /// A derived constant of a bound law (for example a damping coefficient), for display and tests.

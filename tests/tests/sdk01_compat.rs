@@ -4,9 +4,21 @@
 //! refused before any of its code runs.
 
 use dashpot::collide::{collide, Options, PairLaw};
+use dashpot::Registry;
 use dashpot_sdk::{Contact, EndCriterion, ErrorKind, Pair, ParamValue, Particle};
 use dashpot_tests::{memoryless_batch, sdk01_registry, seed_registry};
 use std::f64::consts::PI;
+
+/// The sdk 0.1 plugins' registry and the seed plugins' of this build, or `None` (the test
+/// skips) where the 0.1 plugins cannot be built.
+fn old_and_new() -> Option<(Registry, Registry)> {
+    Some((sdk01_registry("debug")?, seed_registry()))
+}
+
+/// Two MCC granules (Antypov & Elliott's particle).
+fn mcc_pair() -> Pair {
+    Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap()
+}
 
 fn pairs() -> Vec<(Pair, f64)> {
     let mcc = Particle::MCC;
@@ -71,10 +83,9 @@ fn kk_01(a: f64, pair: &Pair, d: f64, r: f64) -> f64 {
 
 #[test]
 fn sdk01_plugins_load_and_give_bit_identical_forces() {
-    let Some(old) = sdk01_registry("debug") else {
+    let Some((old, new)) = old_and_new() else {
         return;
     };
-    let new = seed_registry();
     type Ref = fn(f64, &Pair, f64, f64) -> f64;
     let cases: [(&str, &str, f64, Ref); 3] = [
         ("hsd", "eps", 0.54, hsd_01),
@@ -130,11 +141,10 @@ fn sdk01_plugins_load_and_give_bit_identical_forces() {
 
 #[test]
 fn sdk01_restitutions_are_bit_identical() {
-    let Some(old) = sdk01_registry("debug") else {
+    let Some((old, new)) = old_and_new() else {
         return;
     };
-    let new = seed_registry();
-    let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap();
+    let pair = mcc_pair();
     for (name, params) in [
         ("mcnamara-falcon", vec![]),
         ("constant", vec![ParamValue::new("r", 0.7)]),
@@ -154,11 +164,10 @@ fn sdk01_restitutions_are_bit_identical() {
 
 #[test]
 fn sdk01_collisions_match_the_02_plugins() {
-    let Some(old) = sdk01_registry("debug") else {
+    let Some((old, new)) = old_and_new() else {
         return;
     };
-    let new = seed_registry();
-    let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap();
+    let pair = mcc_pair();
     for (name, params, end) in [
         ("hsd", vec![ParamValue::new("eps", 0.54)], EndCriterion::Overlap),
         ("lsd", vec![ParamValue::new("eps", 0.8)], EndCriterion::Overlap),
@@ -183,7 +192,7 @@ fn a_nan_overlap_is_refused_through_the_01_path_too() {
     let Some(old) = sdk01_registry("debug") else {
         return;
     };
-    let pair = Pair::spheres(&Particle::MCC, &Particle::MCC).unwrap();
+    let pair = mcc_pair();
     let m = old
         .contact("hsd", &[])
         .unwrap()

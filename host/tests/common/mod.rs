@@ -28,15 +28,30 @@ pub fn lib(name: &str) -> PathBuf {
     ))
 }
 
+/// A fresh directory of this test process under cargo's scratch directory for tests
+/// (`target/tmp`, which `cargo clean` empties), not the system's temporary directory.
+fn scratch_dir(what: &str) -> PathBuf {
+    let d = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{what}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `dst` as a hard link to `src` (no copy of a plugin's megabytes), or a copy where links fail.
+fn link_or_copy(src: &std::path::Path, dst: &std::path::Path) {
+    if std::fs::hard_link(src, dst).is_err() {
+        std::fs::copy(src, dst).unwrap();
+    }
+}
+
 /// A plugin directory holding exactly the plugins of the workspace.
 pub fn plugin_dir() -> PathBuf {
     static D: OnceLock<PathBuf> = OnceLock::new();
     D.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dashpot-cli-plugins-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
+        let d = scratch_dir("cli-plugins");
         for n in SEED {
             let src = lib(n);
-            std::fs::copy(&src, d.join(src.file_name().unwrap())).unwrap();
+            link_or_copy(&src, &d.join(src.file_name().unwrap()));
         }
         d
     })
@@ -49,14 +64,13 @@ pub fn all_plugins_dir() -> PathBuf {
     static D: OnceLock<PathBuf> = OnceLock::new();
     D.get_or_init(|| {
         let deps = std::env::current_exe().unwrap().parent().unwrap().to_path_buf();
-        let d = std::env::temp_dir().join(format!("dashpot-all-plugins-{}", std::process::id()));
-        std::fs::create_dir_all(&d).unwrap();
+        let d = scratch_dir("all-plugins");
         let (pre, suf) = (std::env::consts::DLL_PREFIX, std::env::consts::DLL_SUFFIX);
         for e in std::fs::read_dir(&deps).unwrap() {
             let p = e.unwrap().path();
             let name = p.file_name().unwrap().to_string_lossy().to_string();
             if name.starts_with(&format!("{pre}dashpot_")) && name.ends_with(suf) && !name.contains("capi") {
-                std::fs::copy(&p, d.join(&name)).unwrap();
+                link_or_copy(&p, &d.join(&name));
             }
         }
         d

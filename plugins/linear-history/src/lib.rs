@@ -104,11 +104,7 @@ impl TangentialLaw for LinearHistory {
         default 0.5), damping ζ_t (≥ 0, default 0). A sphere launched sliding on a plane ends \
         rolling at 5/7 of its launch speed; an oblique impact in gross sliding changes the \
         tangential velocity by μ (1 + e) v_n.";
-    const HISTORY: &'static [History] = &[
-        History::new("xi_x", "m", "tangential spring displacement ξ, x component"),
-        History::new("xi_y", "m", "tangential spring displacement ξ, y component"),
-        History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
-    ];
+    const HISTORY: &'static [History] = &History::TANGENTIAL_SPRING;
 
     fn bind(&self, _materials: &MaterialPair) -> Result<LinearHistoryBound, LawError> {
         Ok(LinearHistoryBound {
@@ -148,9 +144,7 @@ mod tests {
 
     #[test]
     fn schema_and_history_slots() {
-        let info = LinearHistory::info();
-        assert_eq!(info.history.len(), 3);
-        assert!(info.history.iter().all(|h| h.unit == "m"));
+        dashpot_testkit::assert_spring_history(&LinearHistory::info());
         let l = LinearHistory::from_values(&[]).unwrap();
         assert_eq!((l.kt, l.mu, l.damping), (1e5, 0.5, 0.0));
         for bad in [("kt", 0.0), ("mu", -0.1), ("damping", -1.0)] {

@@ -117,16 +117,19 @@ impl TangentialLaw for Mindlin {
         damping ζ_t (≥ 0, default 0). A sphere launched sliding on a plane ends rolling at 5/7 of \
         its launch speed; an oblique impact in gross sliding changes the tangential velocity by \
         μ (1 + e) v_n.";
-    const HISTORY: &'static [History] = &[
-        History::new("xi_x", "m", "tangential spring displacement ξ, x component"),
-        History::new("xi_y", "m", "tangential spring displacement ξ, y component"),
-        History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
-        History::new(
-            "kt",
-            "N/m",
-            "the spring's stiffness k_t at the last call (its energy's)",
-        ),
-    ];
+    const HISTORY: &'static [History] = &{
+        let [x, y, z] = History::TANGENTIAL_SPRING;
+        [
+            x,
+            y,
+            z,
+            History::new(
+                "kt",
+                "N/m",
+                "the spring's stiffness k_t at the last call (its energy's)",
+            ),
+        ]
+    };
 
     fn bind(&self, materials: &MaterialPair) -> Result<MindlinBound, LawError> {
         Ok(MindlinBound {

@@ -1,5 +1,6 @@
 //! Elastic–plastic spring–dashpot (EPSD) rolling resistance of Ai et al. (2011).
 
+use dashpot_sdk::physics::dot;
 use dashpot_sdk::physics::SliderStep;
 use dashpot_sdk::{BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingContact, RollingLaw};
 
@@ -14,10 +15,6 @@ dashpot_sdk::law_params! {
         /// rolling damping ratio η_r
         eta: f64 { unit: "1", default: 0.3, range: Range::non_negative() },
     }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 impl RollingEpsd {

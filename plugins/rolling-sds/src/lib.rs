@@ -1,6 +1,6 @@
 //! Spring–dashpot–slider rolling resistance with the semantics of LAMMPS `rolling sds`.
 
-use dashpot_sdk::physics::SliderStep;
+use dashpot_sdk::physics::{dot, SliderStep};
 use dashpot_sdk::{
     BoundRolling, Energy, EnergyBatch, History, LawError, MaterialPair, Range, RollingBatch, RollingContact,
     RollingLaw,
@@ -17,10 +17,6 @@ dashpot_sdk::law_params! {
         /// rolling friction coefficient μ_roll
         mu: f64 { unit: "1", default: 0.1, range: Range::non_negative() },
     }
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// Relative threshold below which ξ is not rotated into the tangent plane (LAMMPS's EPSILON).
@@ -323,79 +319,27 @@ mod tests {
                 dt: 1e-4,
             })
             .collect();
-        let mut h1 = hist.clone();
-        let f1: Vec<[f64; 3]> = contacts
-            .iter()
-            .enumerate()
-            .map(|(i, c)| law.force(c, &mut h1[3 * i..3 * i + 3]))
-            .collect();
-        let mut h4 = hist.clone();
-        let e1: Vec<Energy> = contacts
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                let (f, e) = law.force_energy(c, &mut h4[3 * i..3 * i + 3]);
-                assert_eq!(
-                    f.map(f64::to_bits),
-                    f1[i].map(f64::to_bits),
-                    "force_energy's force {i}"
-                );
-                e.unwrap()
-            })
-            .collect();
-        assert_eq!(h1, h4, "force_energy's springs");
-        // the same contacts as one batch
-        let column = |get: fn(&RollingContact) -> f64| contacts.iter().map(get).collect::<Vec<_>>();
-        let (delta, mass, radius) = (column(|c| c.delta), column(|c| c.mass), column(|c| c.radius));
-        let (mut h2, mut f2) = (hist.clone(), vec![[0.0; 3]; n]);
-        law.force_batch(RollingBatch {
-            dt: contacts[0].dt,
-            normal: &normal,
-            velocity: &velocity,
-            normal_force: &fnorm,
-            delta: &delta,
-            mass: &mass,
-            radius: &radius,
-            slots: 3,
-            history: &mut h2,
-            force: &mut f2,
-        });
-        let (mut h3, mut f3) = (hist.clone(), vec![[0.0; 3]; n]);
-        let (mut power, mut elastic) = (vec![0.0; n], vec![0.0; n]);
-        assert!(law.force_batch_energy(
-            RollingBatch {
-                dt: contacts[0].dt,
-                normal: &normal,
-                velocity: &velocity,
-                normal_force: &fnorm,
-                delta: &delta,
-                mass: &mass,
-                radius: &radius,
-                slots: 3,
-                history: &mut h3,
-                force: &mut f3,
-            },
-            EnergyBatch {
-                power: &mut power,
-                elastic: &mut elastic,
-            },
-        ));
-        assert_eq!((&f2, &h2), (&f3, &h3), "force_batch_energy's forces and springs");
-        for i in 0..n {
-            assert_eq!(e1[i].power.to_bits(), power[i].to_bits(), "power {i}");
-            assert_eq!(e1[i].elastic.to_bits(), elastic[i].to_bits(), "elastic {i}");
-        }
+        let f1 = dashpot_testkit::batch_is_per_contact(
+            &contacts,
+            &hist,
+            3,
+            |c, h| law.force(c, h),
+            |b| law.force_batch(b),
+            "rolling-sds",
+        );
+        dashpot_testkit::batch_energy_is_per_contact(
+            &contacts,
+            &hist,
+            3,
+            |c, h| law.force_energy(c, h),
+            |b, e| law.force_batch_energy(b, e),
+            "rolling-sds with energy",
+        );
         let capped = (0..n)
             .filter(|&i| {
                 (f1[i].iter().map(|x| x * x).sum::<f64>().sqrt() - law.mu * fnorm[i].abs()).abs() < 1e-12
             })
             .count();
         assert!(capped >= 2, "the cases must include capped contacts ({capped})");
-        for i in 0..n {
-            for q in 0..3 {
-                assert_eq!(f1[i][q].to_bits(), f2[i][q].to_bits(), "force {i}.{q}");
-                assert_eq!(h1[3 * i + q].to_bits(), h2[3 * i + q].to_bits(), "spring {i}.{q}");
-            }
-        }
     }
 }

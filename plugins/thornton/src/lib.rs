@@ -287,28 +287,8 @@ mod tests {
         let k_max = 2.0 * E * (R * d_hertz.max(d_plastic)).sqrt();
         let dt = 2.0 * PI * (M / k_max).sqrt() / 20_000.0;
         let mut h = [0.0];
-        let (mut d, mut u, mut f) = (0.0, v0, 0.0);
-        let mut touched = false;
-        for _ in 0..10_000_000 {
-            d += u * dt - 0.5 * f / M * dt * dt;
-            let u_half = u - 0.5 * f / M * dt;
-            let f_new = b.force(
-                Contact {
-                    delta: d,
-                    rate: u_half,
-                    mass: M,
-                    radius: R,
-                },
-                &mut h,
-            );
-            u = u_half - 0.5 * f_new / M * dt;
-            f = f_new;
-            touched |= f > 0.0;
-            if touched && f == 0.0 && u < 0.0 {
-                return (-u / v0, h[0]);
-            }
-        }
-        panic!("the contact did not end");
+        let e = dashpot_testkit::verlet_rebound(b, M, R, v0, dt, &mut h);
+        (e, h[0])
     }
 
     #[test]

@@ -185,29 +185,7 @@ mod tests {
     /// Velocity Verlet on the overlap, history kept at every (accepted) step; the contact ends
     /// when the force returns to 0 on rebound. Returns the rebound speed over the impact speed.
     fn restitution(b: &WaltonBraun, m: f64, v0: f64, dt: f64) -> f64 {
-        let mut h = [0.0];
-        let (mut d, mut u, mut f) = (0.0, v0, 0.0);
-        let mut touched = false;
-        for _ in 0..10_000_000 {
-            d += u * dt - 0.5 * f / m * dt * dt;
-            let u_half = u - 0.5 * f / m * dt;
-            let f_new = b.force(
-                Contact {
-                    delta: d,
-                    rate: u_half,
-                    mass: m,
-                    radius: 1.0,
-                },
-                &mut h,
-            );
-            u = u_half - 0.5 * f_new / m * dt;
-            f = f_new;
-            touched |= f > 0.0;
-            if touched && f == 0.0 && u < 0.0 {
-                return -u / v0;
-            }
-        }
-        panic!("the contact did not end");
+        dashpot_testkit::verlet_rebound(b, m, 1.0, v0, dt, &mut [0.0])
     }
 
     #[test]

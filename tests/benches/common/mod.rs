@@ -38,17 +38,6 @@ pub fn process_cpu_seconds() -> f64 {
     cpu_seconds(libc::CLOCK_PROCESS_CPUTIME_ID)
 }
 
-/// Uniform numbers in [0, 1) from a 64-bit linear congruential generator seeded with `seed`
-/// (the piles' reproducible initial states, the same since the piles' first figures).
-fn pile_uniform(mut seed: u64) -> impl FnMut() -> f64 {
-    move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// The median of `v` (the mean of the middle two of an even count).
 pub fn median(v: &[f64]) -> f64 {
     let mut v = v.to_vec();
@@ -68,7 +57,7 @@ pub fn pile_bodies(n: usize) -> (Vec<Body<2>>, f64, f64) {
     let d = 0.002;
     let cols = (n as f64).sqrt().max(50.0).floor() as usize;
     let rows = n.div_ceil(cols);
-    let mut rnd = pile_uniform(7);
+    let mut rnd = dashpot_tests::lcg_uniform(7);
     let bodies = (0..n)
         .map(|k| {
             let (q, r) = ((k % cols) as f64, (k / cols) as f64);
@@ -117,7 +106,7 @@ pub fn pile3d_lattice(n: usize) -> (usize, usize, f64) {
 pub fn pile3d_bodies(n: usize) -> (Vec<Body<3>>, f64, f64) {
     let d = 0.002;
     let (cols, layers, s) = pile3d_lattice(n);
-    let mut rnd = pile_uniform(11);
+    let mut rnd = dashpot_tests::lcg_uniform(11);
     let bodies = (0..n)
         .map(|k| {
             let (a, b, c) = (k % cols, (k / cols) % cols, k / (cols * cols));

