@@ -265,6 +265,14 @@ pub struct EnergyBatch<'a> {
 }
 
 impl EnergyBatch<'_> {
+    /// Writes the powers `power` (W) and elastic energies `elastic` (J, as many) of the contacts
+    /// from `lo` on.
+    #[inline(always)]
+    pub fn put(&mut self, lo: usize, power: &[f64], elastic: &[f64]) {
+        self.power[lo..lo + power.len()].copy_from_slice(power);
+        self.elastic[lo..lo + elastic.len()].copy_from_slice(elastic);
+    }
+
     /// Writes contact `i`'s energy `e`; false when there is none (the law does not account for
     /// energy), leaving the outputs as they were.
     #[inline(always)]
@@ -463,6 +471,43 @@ macro_rules! motion_kind {
 }
 pub(crate) use motion_kind;
 
+/// The methods of a bound law of a motion kind (tangential, rolling, twisting), in its trait's
+/// body: `$call` returns the `$what` of one contact (`$out`) and advances its history,
+/// `$batch_call` does so for a batch (`$batch`), `energy` reports a contact's energy after a
+/// call, `$energy_call` and `$batch_energy_call` return the output with the step's energy.
+macro_rules! motion_law_methods {
+    ($what:literal, $contact:ty, $batch:ty, $out:ty,
+     $call:ident, $batch_call:ident, $energy_call:ident, $batch_energy_call:ident) => {
+        #[doc = concat!("The ", $what, " on contact `c`, updating `history` in place.")]
+        fn $call(&self, c: &$contact, history: &mut [f64]) -> $out;
+
+        #[doc = concat!("[`Self::", stringify!($call), "`] for every contact of the batch. Override only if a hand-vectorised form is faster than this loop.")]
+        #[inline(always)]
+        fn $batch_call(&self, b: $batch) {
+            b.each(|c, h| self.$call(c, h));
+        }
+
+        #[doc = concat!("The energy of contact `c` after a call that returned `output` (the ", $what, ") and left `history` (sdk 0.3): the elastic energy stored (J) and the power dissipated (W); `None` (the default) when the law does not account for it. A spring law that needs its history before the step overrides [`Self::", stringify!($energy_call), "`] instead.")]
+        fn energy(&self, _c: &$contact, _history: &[f64], _output: $out) -> Option<Energy> {
+            None
+        }
+
+        #[doc = concat!("The ", $what, " on contact `c`, `history` updated as by [`Self::", stringify!($call), "`], with the contact's energy over the step (sdk 0.3), the history before the step in view (what exact accounting of a sliding spring needs). The default is [`Self::", stringify!($call), "`] then [`Self::energy`].")]
+        #[inline(always)]
+        fn $energy_call(&self, c: &$contact, history: &mut [f64]) -> ($out, Option<Energy>) {
+            let o = self.$call(c, history);
+            (o, self.energy(c, history, o))
+        }
+
+        #[doc = concat!("[`Self::", stringify!($batch_call), "`] with each contact's energy written to `out` (sdk 0.3); whether every contact reported one. The default loops over [`Self::", stringify!($energy_call), "`]: a law that overrides `", stringify!($batch_call), "` for speed overrides this too.")]
+        #[inline(always)]
+        fn $batch_energy_call(&self, b: $batch, out: EnergyBatch<'_>) -> bool {
+            b.each_energy(out, |c, h| self.$energy_call(c, h))
+        }
+    };
+}
+pub(crate) use motion_law_methods;
+
 motion_kind!(
     /// The state of one contact as a tangential or rolling law sees it. Vectors are 3D (a 2D
     /// caller sets the third components to 0).
@@ -500,40 +545,16 @@ pub type TangentialBatch<'a> = VectorBatch<'a>;
 /// It returns the tangential force on particle i, capped by Coulomb's μ|F_n|, and advances the
 /// history (for a spring: its displacement, rotated into the current tangent plane) by `dt`.
 pub trait BoundTangential: Send + Sync + 'static {
-    /// The tangential force (N) on contact `c`, updating `history` in place.
-    fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3];
-
-    /// `b.force[i]` for every contact of the batch.
-    #[inline(always)]
-    fn force_batch(&self, b: TangentialBatch<'_>) {
-        b.each(|c, h| self.force(c, h));
-    }
-
-    /// The energy of contact `c` after a call that returned `force` (N) and left `history`
-    /// (sdk 0.3): the spring's elastic energy (J) and the power (W) dissipated by its dashpot
-    /// and by sliding; `None` (the default) when the law does not account for it.
-    fn energy(&self, _c: &TangentialContact, _history: &[f64], _force: [f64; 3]) -> Option<Energy> {
-        None
-    }
-
-    /// The force (N) on contact `c`, `history` updated as by [`BoundTangential::force`], with
-    /// the contact's energy over the step (sdk 0.3), the history before the step in view (what
-    /// exact accounting of a sliding spring needs). The default is [`BoundTangential::force`]
-    /// then [`BoundTangential::energy`].
-    #[inline(always)]
-    fn force_energy(&self, c: &TangentialContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let f = self.force(c, history);
-        (f, self.energy(c, history, f))
-    }
-
-    /// [`BoundTangential::force_batch`] with each contact's energy written to `out` (sdk 0.3);
-    /// whether every contact reported one. The default loops over
-    /// [`BoundTangential::force_energy`]: a law that overrides `force_batch` for speed
-    /// overrides this too.
-    #[inline(always)]
-    fn force_batch_energy(&self, b: TangentialBatch<'_>, out: EnergyBatch<'_>) -> bool {
-        b.each_energy(out, |c, h| self.force_energy(c, h))
-    }
+    motion_law_methods!(
+        "tangential force (N)",
+        TangentialContact,
+        TangentialBatch<'_>,
+        [f64; 3],
+        force,
+        force_batch,
+        force_energy,
+        force_batch_energy
+    );
 }
 
 /// A restitution law bound to a pair.

@@ -20,7 +20,7 @@ use crate::law::{
     history_law, history_mut, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo,
     LawKind,
 };
-use crate::law::{motion_kind, VectorBatch, VectorContact};
+use crate::law::{motion_kind, motion_law_methods, VectorBatch, VectorContact};
 use crate::pair::MaterialPair;
 use crate::params::{LawParams, ParamValue};
 
@@ -35,37 +35,16 @@ pub type RollingBatch<'a> = VectorBatch<'a>;
 
 /// A rolling-resistance law bound to a material pair.
 pub trait BoundRolling: Send + Sync + 'static {
-    /// The rolling-resistance force (N) on contact `c`, updating `history` in place.
-    fn force(&self, c: &RollingContact, history: &mut [f64]) -> [f64; 3];
-
-    /// `b.force[i]` for every contact of the batch.
-    #[inline(always)]
-    fn force_batch(&self, b: RollingBatch<'_>) {
-        b.each(|c, h| self.force(c, h));
-    }
-
-    /// The energy of contact `c` after a call that returned `force` and left `history`;
-    /// `None` (the default) when the law does not account for it.
-    fn energy(&self, _c: &RollingContact, _history: &[f64], _force: [f64; 3]) -> Option<Energy> {
-        None
-    }
-
-    /// The force (N) on contact `c`, `history` updated as by [`BoundRolling::force`], with the
-    /// contact's energy over the step (sdk 0.3), the history before the step in view. The
-    /// default is [`BoundRolling::force`] then [`BoundRolling::energy`].
-    #[inline(always)]
-    fn force_energy(&self, c: &RollingContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let f = self.force(c, history);
-        (f, self.energy(c, history, f))
-    }
-
-    /// [`BoundRolling::force_batch`] with each contact's energy written to `out`; whether every
-    /// contact reported one. The default loops over [`BoundRolling::force_energy`]: a law that
-    /// overrides `force_batch` for speed overrides this too.
-    #[inline(always)]
-    fn force_batch_energy(&self, b: RollingBatch<'_>, out: EnergyBatch<'_>) -> bool {
-        b.each_energy(out, |c, h| self.force_energy(c, h))
-    }
+    motion_law_methods!(
+        "rolling-resistance force (N)",
+        RollingContact,
+        RollingBatch<'_>,
+        [f64; 3],
+        force,
+        force_batch,
+        force_energy,
+        force_batch_energy
+    );
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
     fn coefficients(&self, _mass: f64, _radius: f64) -> Vec<Coefficient> {
@@ -87,36 +66,16 @@ motion_kind!(
 
 /// A twisting-resistance law bound to a material pair.
 pub trait BoundTwisting: Send + Sync + 'static {
-    /// The twisting torque (N·m) about n̂ on contact `c`, updating `history` in place.
-    fn torque(&self, c: &TwistingContact, history: &mut [f64]) -> f64;
-
-    /// `b.torque[i]` for every contact of the batch.
-    #[inline(always)]
-    fn torque_batch(&self, b: TwistingBatch<'_>) {
-        b.each(|c, h| self.torque(c, h));
-    }
-
-    /// The energy of contact `c` after a call that returned `torque` and left `history`;
-    /// `None` (the default) when the law does not account for it.
-    fn energy(&self, _c: &TwistingContact, _history: &[f64], _torque: f64) -> Option<Energy> {
-        None
-    }
-
-    /// The torque (N·m) on contact `c`, `history` updated as by [`BoundTwisting::torque`], with
-    /// the contact's energy over the step (sdk 0.3), the history before the step in view. The
-    /// default is [`BoundTwisting::torque`] then [`BoundTwisting::energy`].
-    #[inline(always)]
-    fn torque_energy(&self, c: &TwistingContact, history: &mut [f64]) -> (f64, Option<Energy>) {
-        let m = self.torque(c, history);
-        (m, self.energy(c, history, m))
-    }
-
-    /// [`BoundTwisting::torque_batch`] with each contact's energy written to `out`; whether
-    /// every contact reported one. The default loops over [`BoundTwisting::torque_energy`].
-    #[inline(always)]
-    fn torque_batch_energy(&self, b: TwistingBatch<'_>, out: EnergyBatch<'_>) -> bool {
-        b.each_energy(out, |c, h| self.torque_energy(c, h))
-    }
+    motion_law_methods!(
+        "twisting torque (N·m) about n̂",
+        TwistingContact,
+        TwistingBatch<'_>,
+        f64,
+        torque,
+        torque_batch,
+        torque_energy,
+        torque_batch_energy
+    );
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
     fn coefficients(&self, _mass: f64, _radius: f64) -> Vec<Coefficient> {

@@ -307,8 +307,7 @@ fn lanes<const DAMPED: bool, const ENERGY: bool>(
             b.history[SLOTS * i + 3] = know[l];
         }
         if let (true, Some(o)) = (ENERGY, out.as_mut()) {
-            o.power[lo..lo + m].copy_from_slice(&power[..m]);
-            o.elastic[lo..lo + m].copy_from_slice(&elastic[..m]);
+            o.put(lo, &power[..m], &elastic[..m]);
         }
         lo += m;
     }

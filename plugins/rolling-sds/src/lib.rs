@@ -263,8 +263,7 @@ fn lanes<const ENERGY: bool>(law: &RollingSds, b: RollingBatch<'_>, mut out: Opt
             b.history[3 * i..3 * i + 3].copy_from_slice(&[h[0][l], h[1][l], h[2][l]]);
         }
         if let (true, Some(o)) = (ENERGY, out.as_mut()) {
-            o.power[lo..lo + m].copy_from_slice(&power[..m]);
-            o.elastic[lo..lo + m].copy_from_slice(&elastic[..m]);
+            o.put(lo, &power[..m], &elastic[..m]);
         }
         lo += m;
     }

@@ -13,6 +13,37 @@ use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, La
 use crate::pair::MaterialPair;
 use abi_stable::StableAbi;
 
+/// Runs the law on one block `range` of a batch: `eval(block)` without energy outputs, else
+/// `eval_energy(block, its part of the outputs)`, whose outputs are then checked. Returns whether
+/// the block's energy was written (false without outputs, or when the law reports none), or the
+/// first non-finite output.
+#[inline(always)]
+fn eval_block<B>(
+    energy: &mut Option<(&mut [f64], &mut [f64])>,
+    range: std::ops::Range<usize>,
+    block: B,
+    eval: impl FnOnce(B),
+    eval_energy: impl FnOnce(B, EnergyBatch<'_>) -> bool,
+) -> Result<bool, (usize, u8)> {
+    let Some((p, e)) = energy.as_mut() else {
+        eval(block);
+        return Ok(false);
+    };
+    let lo = range.start;
+    let (p, e) = (&mut p[range.clone()], &mut e[range]);
+    let written = eval_energy(
+        block,
+        EnergyBatch {
+            power: &mut *p,
+            elastic: &mut *e,
+        },
+    );
+    if written {
+        check_energy(lo, p, e)?;
+    }
+    Ok(written)
+}
+
 /// The checked block loop of a raw motion batch `$r` (twisting, or a vector kind: its sdk batch
 /// `$batch`, whose motion input `$motion` and output `$out` are arrays of `$mty` and `$oty`),
 /// with the energy outputs `$power` and `$elastic` when either is wanted. `$check(lo, normal,
@@ -61,23 +92,7 @@ macro_rules! motion_run {
                 history: &mut history[lo * slots..hi * slots],
                 $out: &mut *o,
             };
-            match energy.as_mut() {
-                Some((p, e)) => {
-                    let (p, e) = (&mut p[lo..hi], &mut e[lo..hi]);
-                    if ($eval_energy)(
-                        block,
-                        EnergyBatch {
-                            power: &mut *p,
-                            elastic: &mut *e,
-                        },
-                    ) {
-                        check_energy(lo, p, e)?;
-                    } else {
-                        written = false;
-                    }
-                }
-                None => ($eval)(block),
-            }
+            written &= eval_block(&mut energy, lo..hi, block, $eval, $eval_energy)?;
             match ($bad_out)(&*o) {
                 Some(i) => Err((lo + i, BatchFault::OUTPUT)),
                 None => Ok(()),
@@ -291,23 +306,13 @@ fn normal_blocks<B: BoundContact>(
             history: &mut b.history[lo * slots..hi * slots],
             force: &mut *o,
         };
-        match energy.as_mut() {
-            Some((p, e)) => {
-                let (p, e) = (&mut p[lo..hi], &mut e[lo..hi]);
-                if law.force_batch_energy(
-                    block,
-                    EnergyBatch {
-                        power: &mut *p,
-                        elastic: &mut *e,
-                    },
-                ) {
-                    check_energy(lo, p, e)?;
-                } else {
-                    written = false;
-                }
-            }
-            None => law.force_batch(block),
-        }
+        written &= eval_block(
+            &mut energy,
+            lo..hi,
+            block,
+            |b| law.force_batch(b),
+            |b, e| law.force_batch_energy(b, e),
+        )?;
         match first_non_finite(o) {
             Some(i) => Err((lo + i, BatchFault::OUTPUT)),
             None => Ok(()),
