@@ -35,11 +35,13 @@ use rayon::prelude::*;
 mod awake;
 mod config;
 mod kernels;
+mod order;
 mod pipeline;
 
 pub use config::*;
 use config::{collision_time, impact_speed, reach_bound};
 use kernels::*;
+pub use order::SORT_PERIOD;
 
 /// A soft-sphere DEM run.
 pub struct Engine<const D: usize> {
@@ -96,6 +98,8 @@ pub struct Engine<const D: usize> {
     /// The families whose law did not report its energy at some step (their share in
     /// [`Engine::dissipated`] is then incomplete).
     pub unreported: [bool; 4],
+    /// The engine's memory order (see [`Engine::user_index`]).
+    order: order::Order,
 }
 
 impl<const D: usize> Engine<D> {
@@ -261,7 +265,9 @@ impl<const D: usize> Engine<D> {
             wall_impulse: vec![VecD::<D>::zeros(); nw],
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
+            order: order::Order::default(),
         };
+        e.order.due = e.sorts();
         e.check(false)?;
         e.rebuild();
         // the initial forces: a trial evaluation, its history discarded (nothing has happened yet)
@@ -275,6 +281,7 @@ impl<const D: usize> Engine<D> {
         for i in 0..e.p.len() {
             e.aold[i] = e.p.force[i] / e.p.mass[i] + g;
         }
+        e.leave_order();
         Ok(e)
     }
 
@@ -356,6 +363,7 @@ impl<const D: usize> Engine<D> {
             omega: &p.omega,
             radius: &p.radius,
             mass: &p.mass,
+            uid: (!self.order.uid.is_empty()).then_some(&self.order.uid[..]),
         };
         let ctx = ChunkContext {
             dom: &self.cfg.domain,
@@ -459,11 +467,13 @@ impl<const D: usize> Engine<D> {
             for set in sets {
                 for m in 0..set.len() {
                     let w: f64 = set.power.iter().map(|f| f[m]).sum();
+                    // (the contacts number particles in the engine's order)
+                    let (i, j) = (self.user_index(set.i[m] as usize), set.j[m] as usize);
                     if pair {
-                        out[set.i[m] as usize] += 0.5 * w;
-                        out[set.j[m] as usize] += 0.5 * w;
+                        out[i] += 0.5 * w;
+                        out[self.user_index(j)] += 0.5 * w;
                     } else {
-                        out[set.i[m] as usize] += w;
+                        out[i] += w;
                     }
                 }
             }
@@ -486,6 +496,9 @@ impl<const D: usize> Engine<D> {
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach
     /// and displacement bounds.
     fn rebuild(&mut self) {
+        let dom = &self.cfg.domain;
+        self.p.pos.iter_mut().for_each(|x| dom.wrap(x));
+        self.maybe_renumber();
         self.nb.build(
             &self.cfg.domain,
             &mut self.p.pos,
@@ -507,7 +520,10 @@ impl<const D: usize> Engine<D> {
     /// is finite unless some coordinate is not (or the sum overflows: then the exact check
     /// tells), so neither the staleness test nor the state check costs a pass of its own.
     pub fn step(&mut self) -> Result<(), DemError> {
-        self.step_with(false)
+        self.enter_order();
+        let done = self.step_with(false);
+        self.leave_order();
+        done
     }
 
     /// `k` steps of `dt`, the state at the end the same bit for bit as after `k` calls of
@@ -520,6 +536,14 @@ impl<const D: usize> Engine<D> {
     /// phase without sleeping through the block (see `awake.rs`): the same steps, without a
     /// wake-up per step.
     pub fn advance(&mut self, k: u64) -> Result<(), DemError> {
+        self.enter_order();
+        let done = self.advance_inside(k);
+        self.leave_order();
+        done
+    }
+
+    /// [`Engine::advance`] in the engine's order.
+    fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
         let parallel = k > 1 && self.p.len() >= SERIAL_BELOW;
         let mut block = || {
@@ -538,6 +562,7 @@ impl<const D: usize> Engine<D> {
     /// One step; with `defer`, the step ends before its second half-kick, which the next step
     /// does first ([`Engine::advance`]).
     fn step_with(&mut self, defer: bool) -> Result<(), DemError> {
+        self.renumber_if_due();
         let pending = std::mem::take(&mut self.pending_kick);
         let dt = self.dt;
         let h = 0.5 * dt;

@@ -61,7 +61,17 @@ pub struct EngineConfig<const D: usize> {
     /// (sdk 0.3), summed by family into [`super::Engine::dissipated`] (default false: the
     /// laws are called without those outputs).
     pub energy: bool,
+    /// From how many particles on the engine keeps them in an order of its own, by neighbour
+    /// cell (see [`super::Engine`]'s memory order): default [`SORT_FROM`]; `usize::MAX`: never,
+    /// 0: always. What a user sees is numbered as given either way.
+    pub sort_from: usize,
+    /// Steps between two reorderings (default [`super::SORT_PERIOD`], at least 1).
+    pub sort_period: u64,
 }
+
+/// The default of [`EngineConfig::sort_from`]: below this many particles a pile's arrays sit in
+/// the caches whatever their order, and the reordering would cost without paying.
+pub const SORT_FROM: usize = 16_384;
 
 impl<const D: usize> EngineConfig<D> {
     /// Defaults: no gravity, step chosen at 50 steps per collision, open unbounded box.
@@ -81,6 +91,8 @@ impl<const D: usize> EngineConfig<D> {
             material,
             edge_means: true,
             energy: false,
+            sort_from: SORT_FROM,
+            sort_period: super::SORT_PERIOD,
         }
     }
 }
@@ -248,7 +260,7 @@ impl<const D: usize> super::Engine<D> {
                 || !p.angular_velocity(i).iter().all(|x| x.is_finite())
             {
                 return Err(DemError::NonFinite {
-                    i,
+                    i: self.user_index(i),
                     t: self.t,
                     pos: fmt(&p.pos[i]),
                     vel: fmt(&p.vel[i]),
@@ -259,7 +271,7 @@ impl<const D: usize> super::Engine<D> {
                 .find(|&k| p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k])
                 .unwrap_or(0);
             return Err(DemError::Lost {
-                i,
+                i: self.user_index(i),
                 t: self.t,
                 pos: fmt(&p.pos[i]),
                 axis,
