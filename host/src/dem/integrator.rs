@@ -99,7 +99,7 @@ pub struct Engine<const D: usize> {
     /// [`Engine::dissipated`] is then incomplete).
     pub unreported: [bool; 4],
     /// The engine's memory order (see [`Engine::user_index`]).
-    order: order::Order,
+    order: order::Order<D>,
 }
 
 impl<const D: usize> Engine<D> {
@@ -543,7 +543,7 @@ impl<const D: usize> Engine<D> {
     }
 
     /// [`Engine::advance`] in the engine's order.
-    fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
+    pub(super) fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
         let parallel = k > 1 && self.p.len() >= SERIAL_BELOW;
         let mut block = || {
