@@ -77,7 +77,8 @@ const MAT: Material = Material {
     disk_mass: DiskMass::Disk,
 };
 
-fn laws() -> Laws {
+/// HSD (ε = 0.8), with the spring when `friction`.
+fn laws(friction: bool) -> Laws {
     let p = MAT.particle(1.0);
     let (pp, pw) = (
         MaterialPair::spheres(&p, &p).unwrap(),
@@ -87,8 +88,8 @@ fn laws() -> Laws {
     Laws {
         pair: Box::new(compiled(&hsd, &pp).unwrap()),
         wall: Box::new(compiled(&hsd, &pw).unwrap()),
-        pair_tangential: Some(Box::new(compiled_tangential(&f, &pp).unwrap())),
-        wall_tangential: Some(Box::new(compiled_tangential(&f, &pw).unwrap())),
+        pair_tangential: friction.then(|| Box::new(compiled_tangential(&f, &pp).unwrap()) as _),
+        wall_tangential: friction.then(|| Box::new(compiled_tangential(&f, &pw).unwrap()) as _),
         rotation: Default::default(),
     }
 }
@@ -107,8 +108,18 @@ fn lcg(mut seed: u64) -> impl FnMut() -> f64 {
 /// particles numbered in an order scrambled from the lattice's (so that the engine's order
 /// differs from the user's everywhere), spacing 0.99 of the largest diameter, random
 /// directions at 0.2 m/s, diameters in [0.97, 1] × `DIAM`; periodic sideways, a floor below,
-/// gravity, reordered from 0 particles on every `period` steps (`None`: never).
+/// gravity, reordered from 0 particles on every `period` steps (`None`: never); frictional.
 fn lattice<const D: usize>(cols: usize, layers: usize, period: Option<u64>) -> Engine<D> {
+    lattice_with::<D>(cols, layers, period, true)
+}
+
+/// [`lattice`], with the spring when `friction`.
+fn lattice_with<const D: usize>(
+    cols: usize,
+    layers: usize,
+    period: Option<u64>,
+    friction: bool,
+) -> Engine<D> {
     let a = 0.99 * DIAM;
     let mut rnd = lcg(7);
     let n = cols.pow(D as u32 - 1) * layers;
@@ -154,7 +165,7 @@ fn lattice<const D: usize>(cols: usize, layers: usize, period: Option<u64>) -> E
     let mut up = VecD::<D>::zeros();
     up[D - 1] = 1.0;
     let floor = Wall::fixed(VecD::<D>::zeros(), up);
-    Engine::new(cfg, &bodies, vec![floor], laws()).unwrap()
+    Engine::new(cfg, &bodies, vec![floor], laws(friction)).unwrap()
 }
 
 /// Every coordinate of the state (positions, velocities, spins), as bits.
@@ -278,4 +289,24 @@ fn an_error_names_the_users_particle() {
         Err(DemError::NonFinite { i, .. }) if i == u => {}
         other => panic!("expected a non-finite state of {u}, got {other:?}"),
     }
+}
+
+/// Each particle's share of the dissipated power (W) is reported under the user's number
+/// (frictionless: HSD reports its power, so every family is accounted).
+#[test]
+fn power_shares_are_reported_under_the_users_numbers() {
+    let run = |period: Option<u64>| {
+        let mut e = lattice_with::<3>(16, 20, period, false);
+        e.advance(40).unwrap();
+        e
+    };
+    let (a, b) = (run(Some(7)), run(None));
+    let (pa, pb) = (a.particle_power().unwrap(), b.particle_power().unwrap());
+    let scale = pb.iter().map(|w| w.abs()).fold(0.0, f64::max);
+    let dp = pa.iter().zip(&pb).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    println!("power shares differ by {dp:.2e} W at most, of {scale:.2e} W");
+    assert!(
+        scale > 0.0 && dp <= 1e-7 * scale,
+        "power shares differ by {dp:e} W of {scale:e} W"
+    );
 }

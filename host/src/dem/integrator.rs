@@ -45,9 +45,11 @@ pub use order::SORT_PERIOD;
 
 /// A soft-sphere DEM run.
 pub struct Engine<const D: usize> {
-    /// The particles. Between steps, velocities and spins may be edited freely; positions only
-    /// followed by [`Engine::invalidate_neighbours`] (the neighbour list's staleness is tracked
-    /// from the particles' speeds, so a particle moved by hand is not seen to have moved).
+    /// The particles, in the user's numbering between calls (see [`Engine::user_index`] and
+    /// [`Engine::advance_held`]). Between steps, velocities and spins may be edited freely;
+    /// positions only followed by [`Engine::invalidate_neighbours`] (the neighbour list's
+    /// staleness is tracked from the particles' speeds, so a particle moved by hand is not
+    /// seen to have moved); radii, masses and moments of inertia are fixed at construction.
     pub p: Particles<D>,
     /// The walls.
     pub walls: Vec<Wall<D>>,
@@ -453,44 +455,6 @@ impl<const D: usize> Engine<D> {
                 self.unreported[k] |= set.unreported[k];
             }
         }
-    }
-
-    /// Each particle's share of the power its contacts dissipated at the last step (W, every
-    /// family): half of each pair contact's, the whole of a wall contact's. `None` without
-    /// [`EngineConfig::energy`], or when a family's law does not report its energy.
-    pub fn particle_power(&self) -> Option<Vec<f64>> {
-        if !self.cfg.energy || self.unreported.iter().any(|&u| u) {
-            return None;
-        }
-        let mut out = vec![0.0; self.p.len()];
-        for (sets, pair) in [(&self.pairs.chunks, true), (&self.wall_contacts.chunks, false)] {
-            for set in sets {
-                for m in 0..set.len() {
-                    let w: f64 = set.power.iter().map(|f| f[m]).sum();
-                    // (the contacts number particles in the engine's order)
-                    let (i, j) = (self.user_index(set.i[m] as usize), set.j[m] as usize);
-                    if pair {
-                        out[i] += 0.5 * w;
-                        out[self.user_index(j)] += 0.5 * w;
-                    } else {
-                        out[i] += w;
-                    }
-                }
-            }
-        }
-        Some(out)
-    }
-
-    /// The elastic energy stored in the contacts now (J), by family (with
-    /// [`EngineConfig::energy`]; zeros without).
-    pub fn elastic(&self) -> [f64; 4] {
-        let mut e = [0.0; 4];
-        for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
-            for (k, v) in set.elastic.iter().enumerate() {
-                e[k] += v[..set.len()].iter().sum::<f64>();
-            }
-        }
-        e
     }
 
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach

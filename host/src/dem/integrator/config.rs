@@ -62,15 +62,17 @@ pub struct EngineConfig<const D: usize> {
     /// laws are called without those outputs).
     pub energy: bool,
     /// From how many particles on the engine keeps them in an order of its own, by neighbour
-    /// cell (see [`super::Engine`]'s memory order): default [`SORT_FROM`]; `usize::MAX`: never,
-    /// 0: always. What a user sees is numbered as given either way.
+    /// cell (see [`super::Engine::user_index`]): in 3D [`SORT_FROM`] by default, in 2D never
+    /// (`usize::MAX`: a 2D pile numbered row by row has its neighbours within a row's length
+    /// in memory, in cache already, and the reordering cost more than it gained on the
+    /// benchmarks' 10⁶-disk pile); 0: always. What a user sees is numbered as given either way.
     pub sort_from: usize,
     /// Steps between two reorderings (default [`super::SORT_PERIOD`], at least 1).
     pub sort_period: u64,
 }
 
-/// The default of [`EngineConfig::sort_from`]: below this many particles a pile's arrays sit in
-/// the caches whatever their order, and the reordering would cost without paying.
+/// The default of [`EngineConfig::sort_from`] in 3D: below this many particles a pile's arrays
+/// sit in the caches whatever their order, and the reordering would cost without paying.
 pub const SORT_FROM: usize = 16_384;
 
 impl<const D: usize> EngineConfig<D> {
@@ -91,7 +93,7 @@ impl<const D: usize> EngineConfig<D> {
             material,
             edge_means: true,
             energy: false,
-            sort_from: SORT_FROM,
+            sort_from: if D == 3 { SORT_FROM } else { usize::MAX },
             sort_period: super::SORT_PERIOD,
         }
     }

@@ -1,22 +1,24 @@
 //! The engine's memory order: from [`EngineConfig::sort_from`] particles on, the particles are
 //! renumbered along a Morton (Z-order) curve through the cells of the neighbour grid, at the
-//! first neighbour-list build and then every [`EngineConfig::sort_period`] steps (at a build forced then), so
-//! that particles close in space are close in memory: a contact's partners, and the chunks'
-//! neighbours, are then mostly in cache, whatever order the user gave (a large pile generated
-//! layer by layer has a particle's neighbours above and below a whole layer away in memory).
+//! first neighbour-list build and then every [`EngineConfig::sort_period`] steps (at a build
+//! forced then), so that particles close in space are close in memory: a contact's partners,
+//! and the chunks' neighbours, are then mostly in cache, whatever order the user gave (a large
+//! pile generated layer by layer has a particle's neighbours above and below a whole layer
+//! away in memory).
 //!
 //! The renumbering is invisible from outside: between the engine's calls the particle arrays
-//! ([`Engine::p`]) are in the user's order, permuted in place (their buffers never move, so
-//! views of them stay valid) into the engine's order at the start of [`Engine::step`] and
-//! [`Engine::advance`] and back at the end. Inside, every per-particle array and the contacts
-//! (their keys and histories, [`crate::dem::contacts::Contacts::renumber`]) follow each
-//! renumbering. A pair contact is presented to the laws from the partner the user numbered
-//! first ([`crate::dem::contacts::View::uid`]), so the laws get the same numbers in either
-//! order; only the order in which a particle's contact forces are summed differs (rounding).
-//! The order is a function of the positions at the steps it is made (multiples of
-//! the period) and of the previous order, never of the threads, of the other builds of
-//! the list, or of how the steps are split into calls: a run stays the same bit for bit on
-//! any number of threads, with the list rebuilt at any steps, stepped one by one or in blocks.
+//! ([`Engine::p`]) are in the user's order, in the same buffers after every call (so views of
+//! them stay valid). Each [`Engine::step`] and [`Engine::advance`] permutes them into the
+//! engine's order at its start and back at its end ([`Engine::advance_held`] leaves them in
+//! the engine's order for the next such call). Inside, every per-particle array and the
+//! contacts (their keys and histories, [`crate::dem::contacts::Contacts::renumber`]) follow
+//! each renumbering. A pair contact is presented to the laws from the partner the user
+//! numbered first ([`crate::dem::contacts::View::uid`]), so the laws get the same numbers in
+//! either order; only the order in which a particle's contact forces are summed differs
+//! (rounding). The order is a function of the positions at the steps it is made (multiples of
+//! the period) and of the previous order, never of the threads, of the other builds of the
+//! list, or of how the steps are split into calls: a run stays the same bit for bit on any
+//! number of threads, with the list rebuilt at any steps, stepped one by one or in blocks.
 //!
 //! [`EngineConfig::sort_from`]: super::EngineConfig::sort_from
 //! [`EngineConfig::sort_period`]: super::EngineConfig::sort_period
@@ -28,9 +30,9 @@ use crate::dem::DemError;
 use rayon::prelude::*;
 
 /// The default of [`super::EngineConfig::sort_period`]: the particles are renumbered every
-/// this many steps (and at the start): the order decays only
-/// as particles travel cells, while a renumbering costs about two builds of the list (LAMMPS's
-/// `atom_modify sort` renumbers every 1000 steps by default too).
+/// this many steps (and at the start): the order decays only as particles travel cells, while
+/// a renumbering costs about two builds of the list (LAMMPS's `atom_modify sort` renumbers
+/// every 1000 steps by default too).
 pub const SORT_PERIOD: u64 = 1000;
 
 /// Where the particles are, as far as the engine's order goes.
