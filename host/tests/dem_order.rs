@@ -5,17 +5,19 @@
 //! which a particle's contact forces are summed; the same bit for bit on one thread and two;
 //! errors name the user's particle.
 //!
-//! The piles are dense and frictional (a Cundall–Strack spring whose history is a vector: a
-//! pair seen from the wrong partner would get its spring reversed) and span several chunks of
-//! contacts, so that pairs cross chunks in both orders.
+//! The piles are dense and frictional (a Cundall–Strack spring and a rolling resistance whose
+//! histories are vectors: a pair seen from the wrong partner would get its springs reversed)
+//! and span several chunks of contacts, so that pairs cross chunks in both orders.
 
 use dashpot::dem::{
-    Body, DemError, DiskMass, Domain, Engine, EngineConfig, Laws, Material, Vec3, VecD, Wall,
+    Body, DemError, DiskMass, Domain, Engine, EngineConfig, Laws, Material, Rotation, Vec3, VecD, Wall,
 };
-use dashpot::laws::{compiled, compiled_tangential};
+use dashpot::laws::{compiled, compiled_rolling, compiled_tangential};
 use dashpot_hsd::Hsd;
+use dashpot_rolling_sds::RollingSds;
 use dashpot_sdk::{
-    BoundTangential, History, LawError, MaterialPair, Range, TangentialContact, TangentialLaw,
+    BoundTangential, History, LawError, LawParams, MaterialPair, ParamValue, Params, Range,
+    TangentialContact, TangentialLaw,
 };
 
 dashpot_sdk::law_params! {
@@ -77,7 +79,8 @@ const MAT: Material = Material {
     disk_mass: DiskMass::Disk,
 };
 
-/// HSD (ε = 0.8), with the spring when `friction`.
+/// HSD (ε = 0.8), with the spring and a rolling resistance (`rolling-sds`: k = 10³ N/m,
+/// γ = 0.01 N·s/m, μ_r = 0.1; its history a vector too) when `friction`.
 fn laws(friction: bool) -> Laws {
     let p = MAT.particle(1.0);
     let (pp, pw) = (
@@ -90,7 +93,27 @@ fn laws(friction: bool) -> Laws {
         wall: Box::new(compiled(&hsd, &pw).unwrap()),
         pair_tangential: friction.then(|| Box::new(compiled_tangential(&f, &pp).unwrap()) as _),
         wall_tangential: friction.then(|| Box::new(compiled_tangential(&f, &pw).unwrap()) as _),
-        rotation: Default::default(),
+        rotation: if friction {
+            rolling(&pp, &pw)
+        } else {
+            Rotation::default()
+        },
+    }
+}
+
+/// `rolling-sds` between particles (`pp`) and against walls (`pw`).
+fn rolling(pp: &MaterialPair, pw: &MaterialPair) -> Rotation {
+    let params: Vec<ParamValue> = [("k", 1.0e3), ("gamma", 0.01), ("mu", 0.1)]
+        .iter()
+        .map(|&(k, v)| ParamValue::new(k, v))
+        .collect();
+    let sds: RollingSds = Params::resolve("rolling-sds", &RollingSds::schema(), &params)
+        .and_then(|p| p.parse())
+        .unwrap();
+    Rotation {
+        pair_rolling: Some(Box::new(compiled_rolling(&sds, pp).unwrap())),
+        wall_rolling: Some(Box::new(compiled_rolling(&sds, pw).unwrap())),
+        ..Rotation::default()
     }
 }
 
