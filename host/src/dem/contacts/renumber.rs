@@ -56,9 +56,10 @@ impl Contacts {
             dst.sign.clear();
             dst.size(hi - lo);
             for row in a..b {
-                for q in start[row] as usize..start[row + 1] as usize {
-                    let (j, sc, m) = recs[q];
-                    move_history(dst, q - lo, row as u32, j, &self.chunks[sc as usize], m as usize);
+                let (r0, r1) = (start[row] as usize, start[row + 1] as usize);
+                for (q, &(j, sc, m)) in recs[r0..r1].iter().enumerate() {
+                    let src = &self.chunks[sc as usize];
+                    move_history(dst, r0 + q - lo, row as u32, j, src, m as usize);
                 }
             }
         }
