@@ -116,6 +116,13 @@ fn cpu_steps<const D: usize>(e: &mut Engine<D>, k: usize) -> f64 {
     common::thread_cpu_seconds() - s
 }
 
+/// Thread CPU seconds of `k` steps held in the engine's memory order (`Engine::advance_held`).
+fn held_steps<const D: usize>(e: &mut Engine<D>, k: usize) -> f64 {
+    let s = common::thread_cpu_seconds();
+    e.advance_held(k as u64).unwrap();
+    common::thread_cpu_seconds() - s
+}
+
 /// Two contenders timed in interleaved blocks.
 struct Pairs {
     /// CPU seconds of each block of `a` and of `b`, in the order run.
@@ -224,12 +231,39 @@ fn scaling<const D: usize>(
         .map(|ps| ps.iter().map(|e| e.rebuilds()).sum())
         .collect();
     let mut times = vec![Vec::new(); sizes.len()];
+    // the rounds keep each pile in the engine's memory order (`advance_held`, as a long run
+    // or the Python scene's blocks do); the permutations into it and out, which every
+    // `advance` call pays, timed apart
+    let cross = |e: &mut Engine<D>, into: bool| {
+        let c = common::thread_cpu_seconds();
+        if into {
+            e.advance_held(0).unwrap();
+        } else {
+            e.to_user_order();
+        }
+        common::thread_cpu_seconds() - c
+    };
+    let reordered: Vec<bool> = piles
+        .iter()
+        .map(|ps| ps.iter().any(|e| (0..e.p.len()).any(|k| e.user_index(k) != k)))
+        .collect();
+    let mut crossing: Vec<f64> = one.install(|| {
+        piles
+            .iter_mut()
+            .map(|ps| ps.iter_mut().map(|e| cross(e, true)).sum())
+            .collect()
+    });
     for _ in 0..rounds {
         for (s, ps) in piles.iter_mut().enumerate() {
-            let t: f64 = one.install(|| ps.iter_mut().map(|e| cpu_steps(e, k)).sum());
+            let t: f64 = one.install(|| ps.iter_mut().map(|e| held_steps(e, k)).sum());
             times[s].push(t / (ps.len() as f64 * sizes[s] as f64 * k as f64));
         }
     }
+    one.install(|| {
+        for (c, ps) in crossing.iter_mut().zip(piles.iter_mut()) {
+            *c += ps.iter_mut().map(|e| cross(e, false)).sum::<f64>();
+        }
+    });
     let kind = if D == 2 { "disk" } else { "sphere" };
     for (s, ps) in piles.iter().enumerate() {
         let n = sizes[s];
@@ -245,6 +279,12 @@ fn scaling<const D: usize>(
             best * 1e9,
             med * 1e9,
         );
+        if reordered[s] {
+            println!(
+                "  reordered by the engine; its memory order crossed into and out of (once per `advance` call): {:.1} ns per particle",
+                crossing[s] / (ps.len() * n) as f64 * 1e9
+            );
+        }
         costs.push(best);
         medians.push(med);
         wholes.push(whole);

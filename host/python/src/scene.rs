@@ -214,22 +214,11 @@ impl Scene {
     /// in blocks of about 50 ms, Ctrl-C checked between them (the blocks do not change the
     /// result: the engine's state after k steps is the same however they are split).
     fn _advance(&mut self, py: Python<'_>, t_end: f64, stop: u64) -> PyResult<()> {
-        let mut block = 1u64;
-        loop {
-            // (steps_to counts step by step: ask for one block at most)
-            let k = on!(&self.e, e => e.steps_to(t_end, stop.saturating_sub(e.steps()).min(block)));
-            if k == 0 {
-                return Ok(());
-            }
-            let t0 = Instant::now();
-            let e = &mut self.e;
-            py.allow_threads(|| on!(e, e => e.advance(k))).map_err(dem_err)?;
-            let took = t0.elapsed();
-            self.wall += took.as_secs_f64();
-            py.check_signals()?;
-            let scale = BLOCK.as_secs_f64() / took.as_secs_f64().max(1e-9);
-            block = ((k as f64 * scale.min(4.0)) as u64).clamp(1, 1 << 24);
-        }
+        // the blocks keep a large pile in the engine's memory order (no permutation of its
+        // arrays per block); the views see the user's order again before Python does
+        let done = self.advance_blocks(py, t_end, stop);
+        on!(&mut self.e, e => e.to_user_order());
+        done
     }
 
     /// A read-only numpy view of one of the engine's arrays (no copy: it shows the state as the
@@ -305,5 +294,28 @@ impl Scene {
         let v = on!(&self.e, e => final_json(&reg, &self.file, e, self.energy_initial, self.wall))
             .map_err(run_err)?;
         Ok(v.to_string())
+    }
+}
+
+impl Scene {
+    /// [`Scene::_advance`]'s blocks, the arrays left in the engine's order.
+    fn advance_blocks(&mut self, py: Python<'_>, t_end: f64, stop: u64) -> PyResult<()> {
+        let mut block = 1u64;
+        loop {
+            // (steps_to counts step by step: ask for one block at most)
+            let k = on!(&self.e, e => e.steps_to(t_end, stop.saturating_sub(e.steps()).min(block)));
+            if k == 0 {
+                return Ok(());
+            }
+            let t0 = Instant::now();
+            let e = &mut self.e;
+            py.allow_threads(|| on!(e, e => e.advance_held(k)))
+                .map_err(dem_err)?;
+            let took = t0.elapsed();
+            self.wall += took.as_secs_f64();
+            py.check_signals()?;
+            let scale = BLOCK.as_secs_f64() / took.as_secs_f64().max(1e-9);
+            block = ((k as f64 * scale.min(4.0)) as u64).clamp(1, 1 << 24);
+        }
     }
 }

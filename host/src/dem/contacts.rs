@@ -23,6 +23,7 @@ use dashpot_sdk::{NormalBatch, TangentialBatch};
 
 mod edges;
 mod gather;
+mod renumber;
 mod rotation;
 
 use edges::{step_edge_means, Edges};
@@ -47,6 +48,11 @@ pub struct View<'a, const D: usize> {
     pub radius: &'a [f64],
     /// Masses (kg).
     pub mass: &'a [f64],
+    /// The user's number of each particle when the engine keeps its own order (see
+    /// [`super::integrator::Engine::user_index`]), `None` when the two are the same. A pair
+    /// contact is presented to the laws from the partner the user numbered first, so that
+    /// the laws see the same contact (and keep the same history) whatever the order.
+    pub uid: Option<&'a [u32]>,
 }
 
 /// One chunk of one kind of contacts (particle pairs, or particles against walls), structure
@@ -69,6 +75,10 @@ pub struct ContactSet {
     pub normal: Vec<[f64; 3]>,
     /// Velocities of i's contact point relative to j's (m/s).
     pub vrel: Vec<[f64; 3]>,
+    /// Pairs in the engine's own order (see [`View::uid`]): −1 where the laws see the contact
+    /// from j (the partner the user numbered first: `normal`, `vrel`, the forces and the
+    /// history are then j's), +1 where from i; empty when the engine keeps the user's order.
+    pub sign: Vec<f64>,
     /// Normal-law history, `slots_n` per contact.
     pub hist_n: Vec<f64>,
     /// Tangential-law history, `slots_t` per contact.
@@ -183,6 +193,9 @@ impl ContactSet {
         self.radius.resize(count, 0.0);
         self.normal.resize(count, [0.0; 3]);
         self.vrel.resize(count, [0.0; 3]);
+        if !self.sign.is_empty() {
+            self.sign.resize(count, 1.0);
+        }
         self.hist_n.resize(count * self.slots_n, 0.0);
         self.hist_t.resize(count * self.slots_t, 0.0);
         self.fnorm.resize(count, 0.0);

@@ -35,17 +35,21 @@ use rayon::prelude::*;
 mod awake;
 mod config;
 mod kernels;
+mod order;
 mod pipeline;
 
 pub use config::*;
 use config::{collision_time, impact_speed, reach_bound};
 use kernels::*;
+pub use order::SORT_PERIOD;
 
 /// A soft-sphere DEM run.
 pub struct Engine<const D: usize> {
-    /// The particles. Between steps, velocities and spins may be edited freely; positions only
-    /// followed by [`Engine::invalidate_neighbours`] (the neighbour list's staleness is tracked
-    /// from the particles' speeds, so a particle moved by hand is not seen to have moved).
+    /// The particles, in the user's numbering between calls (see [`Engine::user_index`] and
+    /// [`Engine::advance_held`]). Between steps, velocities and spins may be edited freely;
+    /// positions only followed by [`Engine::invalidate_neighbours`] (the neighbour list's
+    /// staleness is tracked from the particles' speeds, so a particle moved by hand is not
+    /// seen to have moved); radii, masses and moments of inertia are fixed at construction.
     pub p: Particles<D>,
     /// The walls.
     pub walls: Vec<Wall<D>>,
@@ -96,6 +100,8 @@ pub struct Engine<const D: usize> {
     /// The families whose law did not report its energy at some step (their share in
     /// [`Engine::dissipated`] is then incomplete).
     pub unreported: [bool; 4],
+    /// The engine's memory order (see [`Engine::user_index`]).
+    order: order::Order<D>,
 }
 
 impl<const D: usize> Engine<D> {
@@ -261,7 +267,9 @@ impl<const D: usize> Engine<D> {
             wall_impulse: vec![VecD::<D>::zeros(); nw],
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
+            order: order::Order::default(),
         };
+        e.order.due = e.sorts();
         e.check(false)?;
         e.rebuild();
         // the initial forces: a trial evaluation, its history discarded (nothing has happened yet)
@@ -275,6 +283,7 @@ impl<const D: usize> Engine<D> {
         for i in 0..e.p.len() {
             e.aold[i] = e.p.force[i] / e.p.mass[i] + g;
         }
+        e.leave_order();
         Ok(e)
     }
 
@@ -356,6 +365,7 @@ impl<const D: usize> Engine<D> {
             omega: &p.omega,
             radius: &p.radius,
             mass: &p.mass,
+            uid: (!self.order.uid.is_empty()).then_some(&self.order.uid[..]),
         };
         let ctx = ChunkContext {
             dom: &self.cfg.domain,
@@ -447,45 +457,12 @@ impl<const D: usize> Engine<D> {
         }
     }
 
-    /// Each particle's share of the power its contacts dissipated at the last step (W, every
-    /// family): half of each pair contact's, the whole of a wall contact's. `None` without
-    /// [`EngineConfig::energy`], or when a family's law does not report its energy.
-    pub fn particle_power(&self) -> Option<Vec<f64>> {
-        if !self.cfg.energy || self.unreported.iter().any(|&u| u) {
-            return None;
-        }
-        let mut out = vec![0.0; self.p.len()];
-        for (sets, pair) in [(&self.pairs.chunks, true), (&self.wall_contacts.chunks, false)] {
-            for set in sets {
-                for m in 0..set.len() {
-                    let w: f64 = set.power.iter().map(|f| f[m]).sum();
-                    if pair {
-                        out[set.i[m] as usize] += 0.5 * w;
-                        out[set.j[m] as usize] += 0.5 * w;
-                    } else {
-                        out[set.i[m] as usize] += w;
-                    }
-                }
-            }
-        }
-        Some(out)
-    }
-
-    /// The elastic energy stored in the contacts now (J), by family (with
-    /// [`EngineConfig::energy`]; zeros without).
-    pub fn elastic(&self) -> [f64; 4] {
-        let mut e = [0.0; 4];
-        for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
-            for (k, v) in set.elastic.iter().enumerate() {
-                e[k] += v[..set.len()].iter().sum::<f64>();
-            }
-        }
-        e
-    }
-
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach
     /// and displacement bounds.
     fn rebuild(&mut self) {
+        let dom = &self.cfg.domain;
+        self.p.pos.iter_mut().for_each(|x| dom.wrap(x));
+        self.maybe_renumber();
         self.nb.build(
             &self.cfg.domain,
             &mut self.p.pos,
@@ -507,7 +484,10 @@ impl<const D: usize> Engine<D> {
     /// is finite unless some coordinate is not (or the sum overflows: then the exact check
     /// tells), so neither the staleness test nor the state check costs a pass of its own.
     pub fn step(&mut self) -> Result<(), DemError> {
-        self.step_with(false)
+        self.enter_order();
+        let done = self.step_with(false);
+        self.leave_order();
+        done
     }
 
     /// `k` steps of `dt`, the state at the end the same bit for bit as after `k` calls of
@@ -520,6 +500,14 @@ impl<const D: usize> Engine<D> {
     /// phase without sleeping through the block (see `awake.rs`): the same steps, without a
     /// wake-up per step.
     pub fn advance(&mut self, k: u64) -> Result<(), DemError> {
+        self.enter_order();
+        let done = self.advance_inside(k);
+        self.leave_order();
+        done
+    }
+
+    /// [`Engine::advance`] in the engine's order.
+    pub(super) fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
         let parallel = k > 1 && self.p.len() >= SERIAL_BELOW;
         let mut block = || {
@@ -538,6 +526,7 @@ impl<const D: usize> Engine<D> {
     /// One step; with `defer`, the step ends before its second half-kick, which the next step
     /// does first ([`Engine::advance`]).
     fn step_with(&mut self, defer: bool) -> Result<(), DemError> {
+        self.renumber_if_due();
         let pending = std::mem::take(&mut self.pending_kick);
         let dt = self.dt;
         let h = 0.5 * dt;

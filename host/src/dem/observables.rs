@@ -45,6 +45,44 @@ impl<const D: usize> Engine<D> {
         self.energy().translational / self.p.len().max(1) as f64
     }
 
+    /// Each particle's share of the power its contacts dissipated at the last step (W, every
+    /// family): half of each pair contact's, the whole of a wall contact's. `None` without
+    /// [`EngineConfig::energy`], or when a family's law does not report its energy.
+    pub fn particle_power(&self) -> Option<Vec<f64>> {
+        if !self.config().energy || self.unreported.iter().any(|&u| u) {
+            return None;
+        }
+        let mut out = vec![0.0; self.p.len()];
+        for (sets, pair) in [(&self.pairs.chunks, true), (&self.wall_contacts.chunks, false)] {
+            for set in sets {
+                for m in 0..set.len() {
+                    let w: f64 = set.power.iter().map(|f| f[m]).sum();
+                    // (the contacts number particles in the engine's order)
+                    let (i, j) = (self.user_index(set.i[m] as usize), set.j[m] as usize);
+                    if pair {
+                        out[i] += 0.5 * w;
+                        out[self.user_index(j)] += 0.5 * w;
+                    } else {
+                        out[i] += w;
+                    }
+                }
+            }
+        }
+        Some(out)
+    }
+
+    /// The elastic energy stored in the contacts now (J), by family (with
+    /// [`EngineConfig::energy`]; zeros without).
+    pub fn elastic(&self) -> [f64; 4] {
+        let mut e = [0.0; 4];
+        for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
+            for (k, v) in set.elastic.iter().enumerate() {
+                e[k] += v[..set.len()].iter().sum::<f64>();
+            }
+        }
+        e
+    }
+
     /// Contacts now (particle pairs + particle–wall).
     pub fn contacts(&self) -> usize {
         self.pairs.len() + self.wall_contacts.len()

@@ -73,6 +73,17 @@ pub fn pile_bodies(n: usize) -> (Vec<Body<2>>, f64, f64) {
     (bodies, cols as f64 * d, rows as f64 * d)
 }
 
+/// [`EngineConfig::sort_from`] for the benchmarks' engines: `default` (the engine's), or from
+/// `DASHPOT_BENCH_SORT` (`off`: never reorder; a number: from that many particles on), for
+/// same-binary A/B runs of the engine's memory order.
+pub fn sort_from(default: usize) -> usize {
+    match std::env::var("DASHPOT_BENCH_SORT").ok().as_deref() {
+        Some("off") => usize::MAX,
+        Some(s) => s.parse().expect("DASHPOT_BENCH_SORT: off or a particle count"),
+        None => default,
+    }
+}
+
 /// The pile settling under gravity on a floor at y = 0, periodic sideways, with `laws`; the
 /// step from the laws at an impact speed of 1 m/s.
 pub fn pile(n: usize, laws: Laws, mat: Material, edge_means: bool) -> Engine<2> {
@@ -81,6 +92,7 @@ pub fn pile(n: usize, laws: Laws, mat: Material, edge_means: bool) -> Engine<2> 
     cfg.gravity = VecD::<2>::new(0.0, -9.81);
     cfg.impact_speed = Some(1.0);
     cfg.edge_means = edge_means;
+    cfg.sort_from = sort_from(cfg.sort_from);
     cfg.domain = Domain {
         lo: VecD::<2>::new(0.0, -0.01),
         hi: VecD::<2>::new(width, height + 1.0),
@@ -147,6 +159,7 @@ pub fn pile3d_engine(
     cfg.gravity = VecD::<3>::new(0.0, 0.0, -9.81);
     cfg.impact_speed = Some(1.0);
     cfg.energy = energy;
+    cfg.sort_from = sort_from(cfg.sort_from);
     cfg.domain = Domain {
         lo: VecD::<3>::new(0.0, 0.0, -0.01),
         hi: VecD::<3>::new(side[0], side[1], top + 0.01),

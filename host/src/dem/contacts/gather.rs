@@ -130,14 +130,24 @@ struct PairsOut<'a> {
     radius: &'a mut [f64],
     normal: &'a mut [[f64; 3]],
     vrel: &'a mut [[f64; 3]],
+    /// Each contact's side (see [`ContactSet::sign`]), written when `SORTED`.
+    sign: &'a mut [f64],
+}
+
+/// Particle `k` of the view as the user numbers it.
+#[inline]
+pub(super) fn user(view_uid: Option<&[u32]>, base: usize, k: usize) -> usize {
+    view_uid.map_or(k, |u| u[k - base] as usize)
 }
 
 /// Pass 2 of a pair gathering: each candidate pair's overlap (m), overlap rate (m/s, from the
 /// predicted velocities), effective mass (kg) and radius (m), unit normal from j to i, and the
 /// slip of i's contact point relative to j's (m/s, from the step's velocities and spins); an
-/// overlap beyond [`MAX_OVERLAP`] (or NaN) is refused.
+/// overlap beyond [`MAX_OVERLAP`] (or NaN) is refused. `SORTED` (the engine's own order): a
+/// pair whose j the user numbered first is seen from j, normal and slip negated (exactly:
+/// the very numbers the laws get in the user's order).
 #[inline(never)]
-fn pair_geometry<const D: usize>(
+fn pair_geometry<const D: usize, const SORTED: bool>(
     cand: &[(u32, u32)],
     images: &Images<D>,
     view: &View<'_, D>,
@@ -151,6 +161,7 @@ fn pair_geometry<const D: usize>(
         omega,
         radius,
         mass,
+        uid,
     } = *view;
     let PairsOut {
         i: oi,
@@ -161,10 +172,16 @@ fn pair_geometry<const D: usize>(
         radius: or,
         normal: on,
         vrel: ov,
+        sign: os,
     } = out;
     let n = cand.len();
     let (oi, oj, od, orate) = (&mut oi[..n], &mut oj[..n], &mut od[..n], &mut orate[..n]);
     let (om, or, on, ov) = (&mut om[..n], &mut or[..n], &mut on[..n], &mut ov[..n]);
+    let (os, us) = if SORTED {
+        (&mut os[..n], uid.unwrap_or(&[]))
+    } else {
+        (&mut os[..0], &[][..])
+    };
     for (k, &(i, j)) in cand.iter().enumerate() {
         let (ig, jg) = (i as usize, j as usize);
         // indices into the view
@@ -176,17 +193,23 @@ fn pair_geometry<const D: usize>(
         let rmin = radius[i].min(radius[ju]);
         if delta.is_nan() || delta > MAX_OVERLAP * rmin {
             return Err(DemError::Overlap {
-                i: ig,
-                partner: format!("particle {jg}"),
+                i: user(uid, base, ig),
+                partner: format!("particle {}", user(uid, base, jg)),
                 delta,
                 radius: rmin,
             });
         }
-        let nv = to3(&(d / dist));
+        let mut nv = to3(&(d / dist));
         let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
         let dv = to3(&(vel[i] - vel[ju]));
         let (wi, wj) = (spin::<D>(omega, i), spin::<D>(omega, ju));
-        let v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
+        let mut v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
+        if SORTED {
+            let s = if us[i] > us[ju] { -1.0 } else { 1.0 };
+            nv *= s;
+            v *= s;
+            os[k] = s;
+        }
         let (mi, mj) = (mass[i], mass[ju]);
         oi[k] = ig as u32;
         oj[k] = jg as u32;
@@ -226,6 +249,11 @@ impl ContactSet {
         // pass 2, over the candidates: their geometry, one contact each (a candidate apart
         // by less than the reach of an adhesive law, not touching, is dropped by the merge
         // unless its contact still acts; without such a law every candidate touches)
+        let sorted = view.uid.is_some();
+        self.sign.clear();
+        if sorted {
+            self.sign.resize(count, 1.0);
+        }
         self.size(count);
         let out = PairsOut {
             i: &mut self.i[..count],
@@ -236,8 +264,13 @@ impl ContactSet {
             radius: &mut self.radius[..count],
             normal: &mut self.normal[..count],
             vrel: &mut self.vrel[..count],
+            sign: &mut self.sign,
         };
-        let done = pair_geometry(&cand[..count], &images, view, out);
+        let done = if sorted {
+            pair_geometry::<D, true>(&cand[..count], &images, view, out)
+        } else {
+            pair_geometry::<D, false>(&cand[..count], &images, view, out)
+        };
         if let Err(e) = done {
             self.cand = cand;
             return Err(e);
@@ -245,9 +278,13 @@ impl ContactSet {
         if self.rotational() {
             // the relative spin ω_i − ω_j, for the rolling and twisting part of the merge
             let (base, omega) = (view.base, view.omega);
-            for (w, &(i, j)) in self.vroll.iter_mut().zip(&cand[..count]) {
+            // (seen from j where the contact is: negated, as the normal)
+            for (k, (w, &(i, j))) in self.vroll.iter_mut().zip(&cand[..count]).enumerate() {
                 let (i, j) = (i as usize - base, j as usize - base);
-                let r = spin::<D>(omega, i) - spin::<D>(omega, j);
+                let mut r = spin::<D>(omega, i) - spin::<D>(omega, j);
+                if let Some(&s) = self.sign.get(k) {
+                    r *= s;
+                }
                 *w = [r.x, r.y, r.z];
             }
         }
@@ -310,7 +347,7 @@ impl ContactSet {
                 if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
                     self.cand = cand;
                     return Err(DemError::Overlap {
-                        i: ig,
+                        i: user(view.uid, base, ig),
                         partner: format!("wall {w}"),
                         delta,
                         radius: radius[i],
@@ -427,6 +464,9 @@ impl ContactSet {
         self.radius[w] = self.radius[k];
         self.normal[w] = self.normal[k];
         self.vrel[w] = self.vrel[k];
+        if !self.sign.is_empty() {
+            self.sign[w] = self.sign[k];
+        }
         if self.rotational() {
             self.vroll[w] = self.vroll[k];
         }

@@ -61,7 +61,19 @@ pub struct EngineConfig<const D: usize> {
     /// (sdk 0.3), summed by family into [`super::Engine::dissipated`] (default false: the
     /// laws are called without those outputs).
     pub energy: bool,
+    /// From how many particles on the engine keeps them in an order of its own, by neighbour
+    /// cell (see [`super::Engine::user_index`]): in 3D [`SORT_FROM`] by default, in 2D never
+    /// (`usize::MAX`: a 2D pile numbered row by row has its neighbours within a row's length
+    /// in memory, in cache already, and the reordering cost more than it gained on the
+    /// benchmarks' 10⁶-disk pile); 0: always. What a user sees is numbered as given either way.
+    pub sort_from: usize,
+    /// Steps between two reorderings (default [`super::SORT_PERIOD`], at least 1).
+    pub sort_period: u64,
 }
+
+/// The default of [`EngineConfig::sort_from`] in 3D: below this many particles a pile's arrays
+/// sit in the caches whatever their order, and the reordering would cost without paying.
+pub const SORT_FROM: usize = 16_384;
 
 impl<const D: usize> EngineConfig<D> {
     /// Defaults: no gravity, step chosen at 50 steps per collision, open unbounded box.
@@ -81,6 +93,8 @@ impl<const D: usize> EngineConfig<D> {
             material,
             edge_means: true,
             energy: false,
+            sort_from: if D == 3 { SORT_FROM } else { usize::MAX },
+            sort_period: super::SORT_PERIOD,
         }
     }
 }
@@ -248,7 +262,7 @@ impl<const D: usize> super::Engine<D> {
                 || !p.angular_velocity(i).iter().all(|x| x.is_finite())
             {
                 return Err(DemError::NonFinite {
-                    i,
+                    i: self.user_index(i),
                     t: self.t,
                     pos: fmt(&p.pos[i]),
                     vel: fmt(&p.vel[i]),
@@ -259,7 +273,7 @@ impl<const D: usize> super::Engine<D> {
                 .find(|&k| p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k])
                 .unwrap_or(0);
             return Err(DemError::Lost {
-                i,
+                i: self.user_index(i),
                 t: self.t,
                 pos: fmt(&p.pos[i]),
                 axis,

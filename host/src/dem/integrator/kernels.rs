@@ -84,11 +84,17 @@ pub(super) fn scatter_chunk<const D: usize>(
     tq.iter_mut().for_each(|v| *v = 0.0);
     overflow.clear();
     let (first, len) = (pairs.first, f.len());
+    let signed = !pairs.sign.is_empty();
     for m in 0..pairs.len() {
         let (i, j) = (pairs.i[m] as usize - first, pairs.j[m] as usize);
         let nv = Vec3::from(pairs.normal[m]);
         let ft = Vec3::from(pairs.ftan[m]);
-        let fi = from3::<D>(&(nv * pairs.fnorm[m] + ft));
+        // (a contact seen from j: the force is j's, i takes its opposite; the torques of the
+        // tangential force have the same form on either side)
+        let mut fi = from3::<D>(&(nv * pairs.fnorm[m] + ft));
+        if signed {
+            fi *= pairs.sign[m];
+        }
         let nxf = nv.cross(&ft);
         f[i] += fi;
         add_spin::<D>(tq, i, &-(nxf * radius[i]));
@@ -138,7 +144,7 @@ fn scatter_rotation<const D: usize>(
     };
     if pairs.rotational() {
         for m in 0..pairs.len() {
-            let t = torque(pairs, m);
+            let t = torque(pairs, m) * pairs.sign.get(m).copied().unwrap_or(1.0);
             let (i, j) = (pairs.i[m] as usize - first, pairs.j[m] as usize);
             add_spin::<D>(tq, i, &t);
             let jl = j - first;

@@ -256,6 +256,7 @@ impl<const D: usize> Engine<D> {
             edges: self.cfg.edge_means,
         };
         let reach = &self.reach;
+        let uid = (!self.order.uid.is_empty()).then_some(&self.order.uid[..]);
         // the forces of chunk k, whose particles and partners have drifted
         let forces = |k: usize,
                       np: &mut ContactSet,
@@ -274,7 +275,8 @@ impl<const D: usize> Engine<D> {
                     vel: vel.get(w.clone()),
                     omega: omega.get(spins(&w)),
                     radius: &radius[w.clone()],
-                    mass: &mass[w],
+                    mass: &mass[w.clone()],
+                    uid: uid.map(|u| &u[w]),
                 };
                 chunk_forces(
                     &ctx,

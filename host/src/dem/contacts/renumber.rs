@@ -1,0 +1,88 @@
+//! The contacts carried through a renumbering of the particles (the engine's memory order,
+//! see [`crate::dem::integrator::Engine::user_index`]): each contact's key moved to the new
+//! numbers, the sets rebuilt in the new chunks in key order, with their history.
+
+use super::{ContactSet, Contacts, GATHER_CHUNK};
+
+impl Contacts {
+    /// Renumbers the particles of the current contacts: particle `k` becomes `new_of[k]`. Pair
+    /// contacts (`pairs`) keep i < j (the history needs no change: the laws see a pair from the
+    /// partner the user numbered first, whatever the engine's numbers); wall contacts keep
+    /// their wall. Only what the next gathering reads of the previous sets is carried: keys,
+    /// histories, the last-step flags and the reaches. The work is a counting sort by the new
+    /// i, then each particle's few partners sorted: linear in the contacts.
+    pub fn renumber(&mut self, new_of: &[u32], pairs: bool) {
+        let n = new_of.len();
+        let chunks = self.chunks.len();
+        if chunks == 0 {
+            return;
+        }
+        let new_key = |i: u32, j: u32| -> (u32, u32) {
+            let a = new_of[i as usize];
+            if !pairs {
+                return (a, j);
+            }
+            let b = new_of[j as usize];
+            (a.min(b), a.max(b))
+        };
+        // each contact's (new j, set, index in the set), bucketed by its new i
+        let mut start = vec![0u32; n + 1];
+        for set in &self.chunks {
+            for m in 0..set.len() {
+                start[new_key(set.i[m], set.j[m]).0 as usize + 1] += 1;
+            }
+        }
+        for k in 0..n {
+            start[k + 1] += start[k];
+        }
+        let mut fill = start.clone();
+        let mut recs = vec![(0u32, 0u32, 0u32); start[n] as usize];
+        for (c, set) in self.chunks.iter().enumerate() {
+            for m in 0..set.len() {
+                let (a, b) = new_key(set.i[m], set.j[m]);
+                recs[fill[a as usize] as usize] = (b, c as u32, m as u32);
+                fill[a as usize] += 1;
+            }
+        }
+        for k in 0..n {
+            recs[start[k] as usize..start[k + 1] as usize].sort_unstable_by_key(|r| r.0);
+        }
+        let _ = self.buffers(chunks);
+        for c in 0..chunks {
+            let (a, b) = (c * GATHER_CHUNK, ((c + 1) * GATHER_CHUNK).min(n));
+            let (lo, hi) = (start[a] as usize, start[b] as usize);
+            let dst = &mut self.spare[c];
+            dst.first = a;
+            dst.sign.clear();
+            dst.size(hi - lo);
+            for row in a..b {
+                let (r0, r1) = (start[row] as usize, start[row + 1] as usize);
+                for (q, &(j, sc, m)) in recs[r0..r1].iter().enumerate() {
+                    let src = &self.chunks[sc as usize];
+                    move_history(dst, r0 + q - lo, row as u32, j, src, m as usize);
+                }
+            }
+        }
+        self.swap();
+    }
+}
+
+/// Contact `m` of `src` as contact `k` of `dst`, keyed (`i`, `j`): what the merge of the next
+/// gathering reads (histories, last-step flag, reach).
+fn move_history(dst: &mut ContactSet, k: usize, i: u32, j: u32, src: &ContactSet, m: usize) {
+    dst.i[k] = i;
+    dst.j[k] = j;
+    dst.last[k] = src.last[m];
+    if dst.reach_bound > 0.0 {
+        dst.reach[k] = src.reach[m];
+    }
+    let copy = |d: &mut [f64], s: &[f64], slots: usize| {
+        d[k * slots..(k + 1) * slots].copy_from_slice(&s[m * slots..(m + 1) * slots]);
+    };
+    copy(&mut dst.hist_n, &src.hist_n, dst.slots_n);
+    copy(&mut dst.hist_t, &src.hist_t, dst.slots_t);
+    if dst.rotational() {
+        copy(&mut dst.hist_r, &src.hist_r, dst.slots_r.unwrap_or(0));
+        copy(&mut dst.hist_w, &src.hist_w, dst.slots_w.unwrap_or(0));
+    }
+}

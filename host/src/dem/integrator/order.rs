@@ -1,0 +1,270 @@
+//! The engine's memory order: from [`EngineConfig::sort_from`] particles on, the particles are
+//! renumbered along a Morton (Z-order) curve through the cells of the neighbour grid, at the
+//! first neighbour-list build and then every [`EngineConfig::sort_period`] steps (at a build
+//! forced then), so that particles close in space are close in memory: a contact's partners,
+//! and the chunks' neighbours, are then mostly in cache, whatever order the user gave (a large
+//! pile generated layer by layer has a particle's neighbours above and below a whole layer
+//! away in memory).
+//!
+//! The renumbering is invisible from outside: between the engine's calls the particle arrays
+//! ([`Engine::p`]) are in the user's order, in the same buffers after every call (so views of
+//! them stay valid). Each [`Engine::step`] and [`Engine::advance`] permutes them into the
+//! engine's order at its start and back at its end ([`Engine::advance_held`] leaves them in
+//! the engine's order for the next such call). Inside, every per-particle array and the
+//! contacts (their keys and histories, [`crate::dem::contacts::Contacts::renumber`]) follow
+//! each renumbering. A pair contact is presented to the laws from the partner the user
+//! numbered first ([`crate::dem::contacts::View::uid`]), so the laws get the same numbers in
+//! either order; only the order in which a particle's contact forces are summed differs
+//! (rounding). The order is a function of the positions at the steps it is made (multiples of
+//! the period) and of the previous order, never of the threads, of the other builds of the
+//! list, or of how the steps are split into calls: a run stays the same bit for bit on any
+//! number of threads, with the list rebuilt at any steps, stepped one by one or in blocks.
+//!
+//! [`EngineConfig::sort_from`]: super::EngineConfig::sort_from
+//! [`EngineConfig::sort_period`]: super::EngineConfig::sort_period
+
+use super::Engine;
+use crate::dem::cells::Domain;
+use crate::dem::state::{spin_len, VecD};
+use crate::dem::DemError;
+use rayon::prelude::*;
+
+/// The default of [`super::EngineConfig::sort_period`]: the particles are renumbered every
+/// this many steps (and at the start): the order decays only as particles travel cells, while
+/// a renumbering costs about two builds of the list (LAMMPS's `atom_modify sort` renumbers
+/// every 1000 steps by default too).
+pub const SORT_PERIOD: u64 = 1000;
+
+/// Where the particles are, as far as the engine's order goes.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Order<const D: usize> {
+    /// The user's number of each particle of the engine (empty: the same numbers).
+    pub(super) uid: Vec<u32>,
+    /// Whether [`Engine::p`] is in the engine's order now (inside a step), else the user's.
+    pub(super) inside: bool,
+    /// The next neighbour-list build renumbers the particles.
+    pub(super) due: bool,
+    /// The other order's buffers of the particle arrays (the user's inside a step, the
+    /// engine's outside), swapped with [`Engine::p`]'s at each crossing: so the arrays a user
+    /// sees are the same buffers after every call, and a crossing is one pass over them.
+    /// Positions, velocities, forces.
+    vecs: [Vec<VecD<D>>; 3],
+    /// Spins and torques.
+    spins: [Vec<f64>; 2],
+    /// Radii, masses, moments of inertia: fixed, so only swapped, never permuted at a
+    /// crossing.
+    fixed: [Vec<f64>; 3],
+}
+
+impl<const D: usize> Engine<D> {
+    /// The user's number of the engine's particle `k`: the contacts ([`Engine::pairs`],
+    /// [`Engine::wall_contacts`]) number particles in the engine's own order (see
+    /// `integrator/order.rs`); everything else is in the user's.
+    pub fn user_index(&self, k: usize) -> usize {
+        self.order.uid.get(k).map_or(k, |&u| u as usize)
+    }
+
+    /// `k` steps as [`Engine::advance`], the particle arrays left in the engine's order at the
+    /// end (see [`Engine::user_index`]) for the next call of this one: a reordered pile steps
+    /// on without permuting its arrays into the user's order and back at every call, which
+    /// costs over half a step (70-90 ns per sphere there and back in 3D, against some 120 ns
+    /// per sphere-step at 10⁶ spheres). Until
+    /// [`Engine::to_user_order`] (which every other stepping call also ends with), [`Engine::p`]
+    /// is in the engine's order: read nothing of it meanwhile.
+    pub fn advance_held(&mut self, k: u64) -> Result<(), DemError> {
+        self.enter_order();
+        self.advance_inside(k)
+    }
+
+    /// The particle arrays back in the user's order after [`Engine::advance_held`] (nothing to
+    /// do otherwise).
+    pub fn to_user_order(&mut self) {
+        self.leave_order();
+    }
+
+    /// The particle arrays into the engine's order (at the start of a step).
+    pub(super) fn enter_order(&mut self) {
+        if self.order.uid.is_empty() || self.order.inside {
+            return;
+        }
+        self.cross(true);
+    }
+
+    /// The particle arrays back into the user's order (at the end of a step).
+    pub(super) fn leave_order(&mut self) {
+        if self.order.inside {
+            self.cross(false);
+        }
+    }
+
+    /// Into the engine's order (`into`) or out of it: each moving array permuted into the
+    /// other buffer, which then becomes [`Engine::p`]'s; the fixed ones swapped.
+    fn cross(&mut self, into: bool) {
+        let (o, p) = (&mut self.order, &mut self.p);
+        o.inside = into;
+        let s = spin_len(D);
+        for (v, spare) in [&mut p.pos, &mut p.vel, &mut p.force]
+            .into_iter()
+            .zip(&mut o.vecs)
+        {
+            permute_into(v, spare, &o.uid, 1, into);
+            std::mem::swap(v, spare);
+        }
+        for (v, spare) in [&mut p.omega, &mut p.torque].into_iter().zip(&mut o.spins) {
+            permute_into(v, spare, &o.uid, s, into);
+            std::mem::swap(v, spare);
+        }
+        for (v, other) in [&mut p.radius, &mut p.mass, &mut p.inertia]
+            .into_iter()
+            .zip(&mut o.fixed)
+        {
+            std::mem::swap(v, other);
+        }
+    }
+
+    /// Whether this run keeps its own order.
+    pub(super) fn sorts(&self) -> bool {
+        self.p.len() >= self.cfg.sort_from.max(2)
+    }
+
+    /// At the start of a step: if it is a renumbering's (see the module doc), the list is
+    /// dropped, and its build renumbers the particles.
+    pub(super) fn renumber_if_due(&mut self) {
+        if self.steps > 0 && self.steps % self.cfg.sort_period.max(1) == 0 && self.sorts() {
+            self.order.due = true;
+            self.nb.anchor.clear();
+        }
+    }
+
+    /// At a neighbour-list build (positions wrapped): renumbers the particles if it is due,
+    /// every per-particle array and the contacts with them.
+    pub(super) fn maybe_renumber(&mut self) {
+        let n = self.p.len();
+        if !std::mem::take(&mut self.order.due) || !self.sorts() {
+            return;
+        }
+        let rmax = self.p.radius.iter().cloned().fold(0.0, f64::max);
+        let perm = morton_order(
+            &self.cfg.domain,
+            &self.p.pos,
+            2.0 * rmax + self.skin + self.law_reach,
+        );
+        if self.order.uid.is_empty() {
+            // the first renumbering: the user's fixed arrays kept aside as they are
+            self.order.uid = (0..n as u32).collect();
+            let p = &self.p;
+            self.order.fixed = [p.radius.clone(), p.mass.clone(), p.inertia.clone()];
+            self.order.inside = true;
+        }
+        // the new particle k is the old perm[k]
+        let p = &mut self.p;
+        gather(&mut p.pos, &perm, 1);
+        gather(&mut p.vel, &perm, 1);
+        gather(&mut p.omega, &perm, spin_len(D));
+        gather(&mut p.radius, &perm, 1);
+        gather(&mut p.mass, &perm, 1);
+        gather(&mut p.inertia, &perm, 1);
+        gather(&mut p.force, &perm, 1);
+        gather(&mut p.torque, &perm, spin_len(D));
+        gather(&mut self.vpred, &perm, 1);
+        gather(&mut self.aold, &perm, 1);
+        gather(&mut self.inv_mass, &perm, 1);
+        gather(&mut self.inv_inertia, &perm, 1);
+        gather(&mut self.order.uid, &perm, 1);
+        let mut new_of = vec![0u32; n];
+        for (k, &o) in perm.iter().enumerate() {
+            new_of[o as usize] = k as u32;
+        }
+        self.pairs.renumber(&new_of, true);
+        self.wall_contacts.renumber(&new_of, false);
+    }
+}
+
+/// `v` ← `v[perm[k]]` for each element `k` (of `stride` values), in place.
+fn gather<T: Copy>(v: &mut [T], perm: &[u32], stride: usize) {
+    let old = v.to_vec();
+    for (k, &o) in perm.iter().enumerate() {
+        let o = o as usize;
+        v[k * stride..(k + 1) * stride].copy_from_slice(&old[o * stride..(o + 1) * stride]);
+    }
+}
+
+/// `dst` ← `src` permuted: into the engine's order (`into`: `dst[k]` ← `src[uid[k]]`) or out
+/// of it (`dst[uid[k]]` ← `src[k]`), elements of `stride` values.
+fn permute_into<T: Copy>(src: &[T], dst: &mut Vec<T>, uid: &[u32], stride: usize, into: bool) {
+    if dst.len() != src.len() {
+        // (the first crossing: the buffer made; every element is written below)
+        *dst = src.to_vec();
+    }
+    for (k, &u) in uid.iter().enumerate() {
+        let (u, k) = (u as usize * stride, k * stride);
+        if into {
+            dst[k..k + stride].copy_from_slice(&src[u..u + stride]);
+        } else {
+            dst[u..u + stride].copy_from_slice(&src[k..k + stride]);
+        }
+    }
+}
+
+/// The particles at `pos` in the Morton order of their cells of side `size` (m) (a grid over
+/// the box along periodic axes, over the particles' extent along the others), ties in the
+/// current order: the new particle `k` is `perm[k]`.
+pub(super) fn morton_order<const D: usize>(dom: &Domain<D>, pos: &[VecD<D>], size: f64) -> Vec<u32> {
+    let bits = if D == 2 { 31 } else { 63 / D as u32 };
+    let mut lo = [0.0; D];
+    let mut cell = [size; D];
+    for k in 0..D {
+        let (a, b) = if dom.periodic[k] {
+            (dom.lo[k], dom.hi[k])
+        } else {
+            pos.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+                (a.min(x[k]), b.max(x[k]))
+            })
+        };
+        lo[k] = a;
+        // no more cells along an axis than the key holds
+        let most = (1u64 << bits) as f64;
+        if (b - a) / size > most {
+            cell[k] = (b - a) / most;
+        }
+    }
+    let top = (1u64 << bits) - 1;
+    let key = |x: &VecD<D>| -> u64 {
+        let mut code = 0u64;
+        for k in 0..D {
+            let q = ((x[k] - lo[k]) / cell[k]).floor();
+            // (NaN: cell 0)
+            let q = if q >= 0.0 { (q as u64).min(top) } else { 0 };
+            code |= spread::<D>(q) << k;
+        }
+        code
+    };
+    let mut keyed: Vec<(u64, u32)> = pos
+        .par_iter()
+        .enumerate()
+        .map(|(i, x)| (key(x), i as u32))
+        .collect();
+    // the keys are distinct (the index breaks ties): the result is one, on any threads
+    keyed.par_sort_unstable();
+    keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The bits of `q` spread `D` apart (bit b to bit D·b): one coordinate of a Morton code (21
+/// bits in 3D, 31 in 2D).
+fn spread<const D: usize>(q: u64) -> u64 {
+    if D == 2 {
+        let mut x = q & 0xffff_ffff;
+        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+        (x | (x << 1)) & 0x5555_5555_5555_5555
+    } else {
+        let mut x = q & 0x1f_ffff;
+        x = (x | (x << 32)) & 0x1f_0000_0000_ffff;
+        x = (x | (x << 16)) & 0x1f_0000_ff00_00ff;
+        x = (x | (x << 8)) & 0x100f_00f0_0f00_f00f;
+        x = (x | (x << 4)) & 0x10c3_0c30_c30c_30c3;
+        (x | (x << 2)) & 0x1249_2492_4924_9249
+    }
+}
