@@ -309,6 +309,7 @@ fn tangential_energy_is_the_springs_and_the_slip_power() {
     let kt = 8.0 * mat.shear * (R * d).sqrt();
     let mut e_prev = 0.0;
     for i in 0..400 {
+        let x_prev = h[0];
         let (f, p, e, written) = vector_step(
             |b, e| m.force_batch_with(b, e),
             &mut h,
@@ -320,10 +321,13 @@ fn tangential_energy_is_the_springs_and_the_slip_power() {
         if f[0].abs() < 0.3 * fnorm * (1.0 - 1e-9) {
             assert_eq!(p, 0.0, "undamped spring holding, step {i}");
         } else {
-            // the slip's μ F_n v, less what the spring stored over the step (only on the step
-            // it reaches the cap: then it slides at a constant extension)
-            let expect = 0.3 * fnorm * v - (e - e_prev) / 1e-7;
+            // the work of the force averaged over the step (the spring's −k_t ξ before it, the
+            // capped force after), less what the spring stored: μ F_n v once it slides steadily
+            let expect = -0.5 * (f[0] - kt * x_prev) * v - (e - e_prev) / 1e-7;
             assert!((p - expect).abs() < 1e-12, "sliding power, step {i}");
+            if i > 200 {
+                assert!((p - 0.3 * fnorm * v).abs() < 1e-12, "steady sliding power μ F_n v, step {i}");
+            }
         }
         e_prev = e;
     }
