@@ -269,31 +269,28 @@ impl SliderStep {
     /// the type's doc). Elastic k |ξ|²/2 (J), power (W); a step of no length dissipates nothing.
     #[inline(always)]
     pub fn energy(&self, sliding: bool, xi: [f64; 3], v: [f64; 3], force: [f64; 3]) -> crate::Energy {
+        // branch-free (both cases computed, one selected), so that a SIMD law's lanes keep
+        // their vector form
         let elastic = 0.5 * self.k * dot(xi, xi);
-        if self.dt.is_nan() || self.dt <= 0.0 {
-            return crate::Energy { power: 0.0, elastic };
-        }
         let (xo, x0) = (self.xi_before, dot(self.xi_before, self.xi_before));
         let before = 0.5 * self.k_before * x0;
-        // the work rate and the change of the stored energy of either case, one division
-        let (work, stored) = if sliding {
-            // a spring at zero extension held no force: the contact formed on this step
-            let (kb, held) = if x0 > 0.0 {
-                (self.k_before, self.eta_held)
-            } else {
-                (0.0, 0.0)
-            };
-            let mean = [
-                0.5 * (force[0] - kb * xo[0] - held * v[0]),
-                0.5 * (force[1] - kb * xo[1] - held * v[1]),
-                0.5 * (force[2] - kb * xo[2] - held * v[2]),
-            ];
-            (-dot(mean, v), before - elastic)
-        } else {
-            // arranged so that a constant stiffness below the cap gives η |v|² to the bit
-            (self.eta * dot(v, v), before - 0.5 * self.k * x0)
-        };
-        let power = work + stored / self.dt;
+        // sliding: a spring at zero extension held no force, the contact formed on this step
+        let formed = x0 > 0.0;
+        let kb = if formed { self.k_before } else { 0.0 };
+        let held = if formed { self.eta_held } else { 0.0 };
+        let mean = [
+            0.5 * (force[0] - kb * xo[0] - held * v[0]),
+            0.5 * (force[1] - kb * xo[1] - held * v[1]),
+            0.5 * (force[2] - kb * xo[2] - held * v[2]),
+        ];
+        let slid = (-dot(mean, v), before - elastic);
+        // stuck: arranged so that a constant stiffness below the cap gives η |v|² to the bit
+        let stuck = (self.eta * dot(v, v), before - 0.5 * self.k * x0);
+        let (work, stored) = if sliding { slid } else { stuck };
+        // a step of no length (or a NaN one) dissipates nothing; 1/dt, the same for every
+        // contact of a batch, is computed once outside a batch's loop
+        let rate = 1.0 / self.dt;
+        let power = if self.dt > 0.0 { work + stored * rate } else { 0.0 };
         crate::Energy { power, elastic }
     }
 }

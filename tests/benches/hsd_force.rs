@@ -14,7 +14,7 @@
 mod common;
 
 use common::thread_cpu_seconds;
-use dashpot::laws::{compiled, compiled_tangential, NormalLaw, TangentialForce};
+use dashpot::laws::{compiled, compiled_tangential, EnergyOut, NormalLaw, TangentialForce};
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
@@ -117,6 +117,33 @@ fn normal_step(law: &dyn NormalLaw, c: &Contacts, slots: usize, hist: &mut [f64]
     .expect("normal batch");
 }
 
+/// The tangential batch of the contacts `range` of `c` (their normal forces `fnorm`, history
+/// `hist`, forces `out`), with the energy outputs `energy` asks for.
+fn tangential_range(
+    law: &dyn TangentialForce,
+    c: &Contacts,
+    range: std::ops::Range<usize>,
+    (fnorm, hist, out): (&[f64], &mut [f64], &mut [[f64; 3]]),
+    energy: EnergyOut<'_>,
+) {
+    law.force_batch_with(
+        TangentialBatch {
+            dt: 1e-7,
+            normal: &c.normal[range.clone()],
+            velocity: black_box(&c.velocity[range.clone()]),
+            normal_force: fnorm,
+            delta: &c.delta[range.clone()],
+            mass: &c.mass[range.clone()],
+            radius: &c.radius[range],
+            slots: hist.len() / out.len(),
+            history: hist,
+            force: out,
+        },
+        energy,
+    )
+    .expect("tangential batch");
+}
+
 fn tangential_step(
     law: &dyn TangentialForce,
     c: &Contacts,
@@ -124,19 +151,7 @@ fn tangential_step(
     hist: &mut [f64],
     out: &mut [[f64; 3]],
 ) {
-    law.force_batch(TangentialBatch {
-        dt: 1e-7,
-        normal: &c.normal,
-        velocity: black_box(&c.velocity),
-        normal_force: fnorm,
-        delta: &c.delta,
-        mass: &c.mass,
-        radius: &c.radius,
-        slots: 3,
-        history: hist,
-        force: out,
-    })
-    .expect("tangential batch");
+    tangential_range(law, c, 0..out.len(), (fnorm, hist, out), EnergyOut::none());
 }
 
 fn main() {
@@ -188,7 +203,8 @@ fn main() {
     );
 
     // 2. HSD + Mindlin with history
-    let (mut hs, mut hp) = (vec![0.0; 3 * N], vec![0.0; 3 * N]);
+    let slots = mind_p.history_slots();
+    let (mut hs, mut hp) = (vec![0.0; slots * N], vec![0.0; slots * N]);
     let (mut ts, mut tp) = (vec![[0.0; 3]; N], vec![[0.0; 3]; N]);
     let (mut ns_, mut np_) = (vec![0.0; N], vec![0.0; N]);
     let r = race(&mut [
@@ -211,6 +227,65 @@ fn main() {
         "plugin / compiled",
         "   target >= 0.95",
     );
+
+    // 2b. the same plugins with the energy outputs on and off, in chunks of CHUNK contacts in
+    // cache as the DEM loop calls them: what the accounting costs the laws
+    {
+        const CHUNK: usize = 1024;
+        let reps = N / CHUNK;
+        let mut h = [vec![0.0; slots * CHUNK], vec![0.0; slots * CHUNK]];
+        let (mut fa, mut fb) = (vec![[0.0; 3]; CHUNK], vec![[0.0; 3]; CHUNK]);
+        let (mut p, mut e) = (vec![0.0; CHUNK], vec![0.0; CHUNK]);
+        let (mut pt, mut et) = (vec![0.0; CHUNK], vec![0.0; CHUNK]);
+        let (mut na, mut nb) = (vec![0.0; CHUNK], vec![0.0; CHUNK]);
+        let [ha, hb] = &mut h;
+        let r = race(&mut [
+            &mut || {
+                for k in 0..reps {
+                    let range = k * CHUNK..(k + 1) * CHUNK;
+                    let nbatch = NormalBatch {
+                        delta: black_box(&c.delta[range.clone()]),
+                        rate: black_box(&c.rate[range.clone()]),
+                        mass: &c.mass[range.clone()],
+                        radius: &c.radius[range.clone()],
+                        slots: 0,
+                        history: &mut [],
+                        force: &mut na,
+                    };
+                    hsd_p.force_batch(nbatch).expect("normal batch");
+                    tangential_range(&mind_p, &c, range, (&na, &mut *ha, &mut fa), EnergyOut::none());
+                }
+            },
+            &mut || {
+                for k in 0..reps {
+                    let range = k * CHUNK..(k + 1) * CHUNK;
+                    let nbatch = NormalBatch {
+                        delta: black_box(&c.delta[range.clone()]),
+                        rate: black_box(&c.rate[range.clone()]),
+                        mass: &c.mass[range.clone()],
+                        radius: &c.radius[range.clone()],
+                        slots: 0,
+                        history: &mut [],
+                        force: &mut nb,
+                    };
+                    let out = EnergyOut {
+                        power: Some(&mut p),
+                        elastic: Some(&mut e),
+                    };
+                    hsd_p.force_batch_with(nbatch, None, out).expect("normal batch");
+                    let out = EnergyOut {
+                        power: Some(&mut pt),
+                        elastic: Some(&mut et),
+                    };
+                    tangential_range(&mind_p, &c, range, (&nb, &mut *hb, &mut fb), out);
+                }
+            },
+        ]);
+        assert_eq!(fa, fb, "the energy outputs change no force");
+        let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
+        println!("2b. HSD + Mindlin plugins in chunks of {CHUNK} in cache: energy outputs off against on");
+        report(&r, per, ["energy off", "energy on"], "off / on", "");
+    }
 
     // 3. sdk 0.2 per-contact geometry against sdk 0.1's bound-pair batch
     match sdk01_registry("release") {

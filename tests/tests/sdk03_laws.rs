@@ -326,7 +326,10 @@ fn tangential_energy_is_the_springs_and_the_slip_power() {
             let expect = -0.5 * (f[0] - kt * x_prev) * v - (e - e_prev) / 1e-7;
             assert!((p - expect).abs() < 1e-12, "sliding power, step {i}");
             if i > 200 {
-                assert!((p - 0.3 * fnorm * v).abs() < 1e-12, "steady sliding power μ F_n v, step {i}");
+                assert!(
+                    (p - 0.3 * fnorm * v).abs() < 1e-12,
+                    "steady sliding power μ F_n v, step {i}"
+                );
             }
         }
         e_prev = e;

@@ -13,35 +13,34 @@ use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, La
 use crate::pair::MaterialPair;
 use abi_stable::StableAbi;
 
-/// Runs the law on one block `range` of a batch: `eval(block)` without energy outputs, else
-/// `eval_energy(block, its part of the outputs)`, whose outputs are then checked. Returns whether
-/// the block's energy was written (false without outputs, or when the law reports none), or the
-/// first non-finite output.
-#[inline(always)]
-fn eval_block<B>(
-    energy: &mut Option<(&mut [f64], &mut [f64])>,
-    range: std::ops::Range<usize>,
-    block: B,
-    eval: impl FnOnce(B),
-    eval_energy: impl FnOnce(B, EnergyBatch<'_>) -> bool,
-) -> Result<bool, (usize, u8)> {
-    let Some((p, e)) = energy.as_mut() else {
-        eval(block);
-        return Ok(false);
-    };
-    let lo = range.start;
-    let (p, e) = (&mut p[range.clone()], &mut e[range]);
-    let written = eval_energy(
-        block,
-        EnergyBatch {
-            power: &mut *p,
-            elastic: &mut *e,
-        },
-    );
-    if written {
-        check_energy(lo, p, e)?;
-    }
-    Ok(written)
+/// Runs the law on the block `$lo..$hi` of a batch: `$eval(block)` without energy outputs
+/// (`$energy` is `None`), else `$eval_energy(block, its part of the outputs)`, whose outputs are
+/// then checked (a non-finite one returns its fault from the enclosing function). Evaluates to
+/// whether the block's energy was written. A macro, as `blocks!`: the law's code must be compiled
+/// inline into the AVX2 copy of the batch loop.
+macro_rules! eval_block {
+    ($energy:expr, $lo:expr, $hi:expr, $block:expr, $eval:expr, $eval_energy:expr) => {{
+        match $energy.as_mut() {
+            None => {
+                ($eval)($block);
+                false
+            }
+            Some((p, e)) => {
+                let (p, e) = (&mut p[$lo..$hi], &mut e[$lo..$hi]);
+                let written = ($eval_energy)(
+                    $block,
+                    EnergyBatch {
+                        power: &mut *p,
+                        elastic: &mut *e,
+                    },
+                );
+                if written {
+                    check_energy($lo, p, e)?;
+                }
+                written
+            }
+        }
+    }};
 }
 
 /// The checked block loop of a raw motion batch `$r` (twisting, or a vector kind: its sdk batch
@@ -92,7 +91,7 @@ macro_rules! motion_run {
                 history: &mut history[lo * slots..hi * slots],
                 $out: &mut *o,
             };
-            written &= eval_block(&mut energy, lo..hi, block, $eval, $eval_energy)?;
+            written &= eval_block!(energy, lo, hi, block, $eval, $eval_energy);
             match ($bad_out)(&*o) {
                 Some(i) => Err((lo + i, BatchFault::OUTPUT)),
                 None => Ok(()),
@@ -306,13 +305,8 @@ fn normal_blocks<B: BoundContact>(
             history: &mut b.history[lo * slots..hi * slots],
             force: &mut *o,
         };
-        written &= eval_block(
-            &mut energy,
-            lo..hi,
-            block,
-            |b| law.force_batch(b),
-            |b, e| law.force_batch_energy(b, e),
-        )?;
+        written &= eval_block!(energy, lo, hi, block, |b| law.force_batch(b), |b, e| law
+            .force_batch_energy(b, e));
         match first_non_finite(o) {
             Some(i) => Err((lo + i, BatchFault::OUTPUT)),
             None => Ok(()),
