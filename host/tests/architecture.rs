@@ -135,7 +135,8 @@ fn only_the_law_traits_name_abi_handle_types() {
 /// The check itself can fail: a file that imports the CLI from an engine is caught.
 #[test]
 fn the_checks_catch_an_offending_line() {
-    let dir = std::env::temp_dir().join(format!("dashpot-arch-{}", std::process::id()));
+    let dir =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("arch-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
     let f = dir.join("x.rs");
     std::fs::write(

@@ -7,7 +7,8 @@ use serde_json::Value;
 
 #[test]
 fn bed_json_reports_the_observables_and_writes_snapshot_and_trace() {
-    let dir = std::env::temp_dir().join(format!("dashpot-bed-cli-{}", std::process::id()));
+    let dir =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("bed-cli-{}", std::process::id()));
     let snap = dir.join("snap.png");
     let trace = dir.join("trace.csv");
     let o = succeeds(&sh(&format!("bed --restitution mcnamara-falcon --layers 1 --freq 25 --transient 5 --cycles 10 --json --snapshot {} --trace {}", snap.to_str().unwrap(), trace.to_str().unwrap())));
@@ -46,7 +47,8 @@ fn bed_json_reports_the_observables_and_writes_snapshot_and_trace() {
 
 #[test]
 fn scaling_fits_the_classical_exponents_without_gravity_and_constant_r() {
-    let dir = std::env::temp_dir().join(format!("dashpot-scaling-cli-{}", std::process::id()));
+    let dir = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("scaling-cli-{}", std::process::id()));
     let o = succeeds(&sh(&format!("scaling --restitution constant --set r=0.95 --tc 1e-5 --gravity 0 --layers 0.5 --freqs 10:30:3 --transient 5 --cycles 10 --json --out {}", dir.to_str().unwrap())));
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     // with g = 0 and constant r, V is the only time scale: P ∝ V², Nc ∝ V, ΔI ∝ V
@@ -279,7 +281,8 @@ fn a_lid_nobody_reaches_has_no_mean_impulse() {
         assert!(v["piston_pressure"].as_f64().unwrap() > 0.0, "{e:?}");
     }
     // in a grid's CSV: an empty cell, not a 0
-    let out = std::env::temp_dir().join(format!("dashpot-bed-nolid-{}", std::process::id()));
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("bed-nolid-{}", std::process::id()));
     succeeds(&sh(&format!("scaling --layers 0.5 --freqs 10:12:2 --headroom 0.5 --transient 2 --cycles 3 --restitution constant --set r=0.9 --out {}", out.to_str().unwrap())));
     let csv = std::fs::read_to_string(out.join("grid.csv")).unwrap();
     let mut lines = csv.lines().filter(|l| !l.starts_with('#'));

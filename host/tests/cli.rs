@@ -97,7 +97,8 @@ fn eval_restitution_law_and_wall() {
 
 #[test]
 fn toml_config_with_set_override() {
-    let f = std::env::temp_dir().join(format!("dashpot-cfg-{}.toml", std::process::id()));
+    let f = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("cfg-{}.toml", std::process::id()));
     std::fs::write(
         &f,
         "[law]\nname = \"constant\"\nparams = { r = 0.4 }\n[particle]\ndiameter = 0.002\n",
@@ -205,7 +206,8 @@ fn plugin_path_environment_variable() {
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(v["restitution"], 0.95);
     // an empty plugin directory: a clear error naming where it looked
-    let empty = std::env::temp_dir().join(format!("dashpot-empty-{}", std::process::id()));
+    let empty =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("empty-{}", std::process::id()));
     std::fs::create_dir_all(&empty).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_dashpot"))
         .arg("--no-default-plugins")
@@ -220,7 +222,8 @@ fn plugin_path_environment_variable() {
 
 #[test]
 fn reproduce_writes_the_report() {
-    let out = std::env::temp_dir().join(format!("dashpot-repro-{}", std::process::id()));
+    let out =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("repro-{}", std::process::id()));
     succeeds(&["reproduce", "--quick", "--out", out.to_str().unwrap()]);
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("0.7031"), "r(1 m/s) in the report");
@@ -361,7 +364,8 @@ fn sweep_and_calibrate() {
 
 #[test]
 fn figures_collide_reproduces_antypov_elliott() {
-    let out = std::env::temp_dir().join(format!("dashpot-figc-{}", std::process::id()));
+    let out =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("figc-{}", std::process::id()));
     succeeds(&["figures", "collide", "--out", out.to_str().unwrap()]);
     for f in [
         "fig1_phase_trajectories",

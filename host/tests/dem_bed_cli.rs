@@ -141,7 +141,8 @@ fn young_and_poisson_reach_a_contact_laws_restitution_table() {
 
 #[test]
 fn scaling_on_the_dem_engine_runs_the_beds_runs() {
-    let out = std::env::temp_dir().join(format!("dashpot-dem-scaling-{}", std::process::id()));
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("dem-scaling-{}", std::process::id()));
     let out_s = out.to_string_lossy().to_string();
     let rows = ok_json(&sh(&format!(
         "scaling --engine dem --law hsd --set eps=0.9 --young 1e8 --layers 0.5 --freqs 20:30:2 --transient 1 --cycles 2 --out {out_s} --json"

@@ -53,7 +53,8 @@ fn every_command_of_the_readme_and_the_guide_runs() {
         .collect();
     docs.sort();
     files.extend(docs);
-    let work = std::env::temp_dir().join(format!("dashpot-docs-{}", std::process::id()));
+    let work =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("docs-{}", std::process::id()));
     std::fs::create_dir_all(&work).expect("scratch directory");
     let examples = root.join("examples").canonicalize().expect("examples/");
     let (mut ran, mut failures) = (0, Vec::new());

@@ -76,7 +76,8 @@ fn refused(o: &Output, code: i32, needles: &[&str]) -> String {
 fn installed() -> PathBuf {
     static P: OnceLock<PathBuf> = OnceLock::new();
     P.get_or_init(|| {
-        let d = std::env::temp_dir().join(format!("dashpot-installed-{}", std::process::id()));
+        let d = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+            .join(format!("installed-{}", std::process::id()));
         std::fs::create_dir_all(&d).unwrap();
         std::fs::copy(env!("CARGO_BIN_EXE_dashpot"), d.join("dashpot")).unwrap();
         for n in SEED {
@@ -175,7 +176,8 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     all.push("hooke-limited".into());
     all.sort();
     // a directory holding only this plugin (target/external holds other test plugins too)
-    let dir = &std::env::temp_dir().join(format!("dashpot-limited-{}", std::process::id()));
+    let dir = &std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("limited-{}", std::process::id()));
     std::fs::create_dir_all(dir).unwrap();
     std::fs::copy(&lp, dir.join(lp.file_name().unwrap())).unwrap();
     for args in [
@@ -204,7 +206,8 @@ fn plugins_given_by_the_user_add_to_the_built_in_laws() {
     );
 
     // reproduce cannot do its job without the built-in laws: it fails and says why
-    let out = std::env::temp_dir().join(format!("dashpot-repro-none-{}", std::process::id()));
+    let out = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("repro-none-{}", std::process::id()));
     refused(
         &run_installed(
             &sh(&format!(
@@ -342,7 +345,8 @@ fn a_plugin_exporting_a_name_twice_is_refused() {
             "Rename one of them",
         ],
     );
-    let d = std::env::temp_dir().join(format!("dashpot-twice-{}", std::process::id()));
+    let d =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("twice-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     std::fs::copy(&tw, d.join(tw.file_name().unwrap())).unwrap();
     let o = dashpot(&["--plugin-dir", s(&d), "laws"]);
@@ -357,7 +361,7 @@ fn a_plugin_exporting_a_name_twice_is_refused() {
 #[test]
 fn a_bare_file_name_is_the_file_in_the_current_directory() {
     let lp = limited();
-    let d = std::env::temp_dir().join(format!("dashpot-cwd-{}", std::process::id()));
+    let d = std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("cwd-{}", std::process::id()));
     std::fs::create_dir_all(&d).unwrap();
     let name = lp.file_name().unwrap().to_str().unwrap();
     std::fs::copy(&lp, d.join(name)).unwrap();

@@ -191,7 +191,8 @@ fn a_directory_scan_skips_libraries_that_are_not_plugins() {
 
 #[test]
 fn a_refused_plugin_in_a_directory_does_not_stop_the_others() {
-    let dir = std::env::temp_dir().join(format!("dashpot-mixed-{}", std::process::id()));
+    let dir =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("mixed-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::copy(wrong_abi_plugin(), dir.join("libdashpot_constant.so")).unwrap();
     std::fs::copy(plugin_file("dashpot_hsd"), dir.join("libdashpot_hsd.so")).unwrap();

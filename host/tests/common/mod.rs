@@ -160,7 +160,8 @@ pub fn assert_measured_with_stderr(v: &Value) {
 /// The file `name` (in the temporary directory, tagged with this process) that the successful
 /// command `cmd`, given that file's path as its last word, wrote: its path and its text.
 pub fn written_by(cmd: &str, name: &str) -> (PathBuf, String) {
-    let f = std::env::temp_dir().join(format!("dashpot-{}-{name}", std::process::id()));
+    let f =
+        std::path::PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("{}-{name}", std::process::id()));
     succeeds(&sh(&format!("{cmd} {}", f.to_str().unwrap())));
     let text = std::fs::read_to_string(&f).unwrap();
     (f, text)
@@ -168,7 +169,7 @@ pub fn written_by(cmd: &str, name: &str) -> (PathBuf, String) {
 
 /// A scene file `name` holding `text`, in a directory of this test process.
 pub fn scene(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("dashpot-scenes-{}", std::process::id()));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("scenes-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
