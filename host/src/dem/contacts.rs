@@ -20,6 +20,7 @@ use super::state::VecD;
 use super::DemError;
 use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
 use dashpot_sdk::{NormalBatch, TangentialBatch};
+use std::ops::Range;
 
 mod edges;
 mod gather;
@@ -147,6 +148,27 @@ pub const LAW_CHUNK: usize = 1024;
 /// Particles per chunk of contacts (the unit of parallel work).
 pub const GATHER_CHUNK: usize = 2048;
 
+/// The energy outputs of contacts `r` of family `k` (0 normal, 1 tangential, 2 rolling, 3
+/// twisting: the index into [`ContactSet::power`] and [`ContactSet::elastic`]); none unless
+/// `energy` (the arrays are then sized for every contact).
+#[inline(always)]
+fn family_out<'v>(
+    energy: bool,
+    power: &'v mut [Vec<f64>; 4],
+    elastic: &'v mut [Vec<f64>; 4],
+    k: usize,
+    r: Range<usize>,
+) -> EnergyOut<'v> {
+    if energy {
+        EnergyOut {
+            power: Some(&mut power[k][r.clone()]),
+            elastic: Some(&mut elastic[k][r]),
+        }
+    } else {
+        EnergyOut::none()
+    }
+}
+
 impl ContactSet {
     /// An empty set for laws keeping `slots_n` and `slots_t` history values.
     pub fn new(slots_n: usize, slots_t: usize) -> ContactSet {
@@ -263,16 +285,7 @@ impl ContactSet {
                 force: &mut *f,
             };
             if self.energy || self.reach_bound > 0.0 {
-                let [p, ..] = &mut self.power;
-                let [e, ..] = &mut self.elastic;
-                let out = if self.energy {
-                    EnergyOut {
-                        power: Some(&mut p[a..b]),
-                        elastic: Some(&mut e[a..b]),
-                    }
-                } else {
-                    EnergyOut::none()
-                };
+                let out = family_out(self.energy, &mut self.power, &mut self.elastic, 0, a..b);
                 let reach = (self.reach_bound > 0.0).then(|| &mut self.reach[a..b]);
                 let written = normal.force_batch_with(nb, reach, out)?;
                 self.unreported[0] |= self.energy && !written;
@@ -308,12 +321,7 @@ impl ContactSet {
                     force: &mut self.ftan[a..b],
                 };
                 if self.energy {
-                    let [_, p, ..] = &mut self.power;
-                    let [_, e, ..] = &mut self.elastic;
-                    let out = EnergyOut {
-                        power: Some(&mut p[a..b]),
-                        elastic: Some(&mut e[a..b]),
-                    };
+                    let out = family_out(true, &mut self.power, &mut self.elastic, 1, a..b);
                     self.unreported[1] |= !t.force_batch_with(tb, out)?;
                 } else {
                     t.force_batch(tb)?;
