@@ -148,6 +148,36 @@ pub const LAW_CHUNK: usize = 1024;
 /// Particles per chunk of contacts (the unit of parallel work).
 pub const GATHER_CHUNK: usize = 2048;
 
+/// The batch of a law of the contact's motion, `motion_batch!(Batch { set[a..b], dt,
+/// normal_force: SLICE, input: ARRAY, history / slots => output: ARRAY })`, on contacts
+/// `a..b` of contact set `set`: the step `dt` (s), the geometry every such law reads (unit
+/// normals, the normal forces (N) given, overlaps, masses, radii), the law's own input array,
+/// its history of `slots` values a contact and its output array. For the tangential and
+/// rolling laws (`velocity: ARRAY => force: ARRAY`, [`dashpot_sdk::VectorBatch`]) and the
+/// twisting law (`rate: ARRAY => torque: ARRAY`, [`dashpot_sdk::TwistingBatch`]). A macro
+/// rather than a method: the batch borrows the set's arrays one by one, some shared and some
+/// mutably, where a method would borrow the whole set.
+macro_rules! motion_batch {
+    ($ty:ident {
+        $set:ident[$a:ident..$b:ident], $dt:ident, normal_force: $fnorm:expr,
+        $input:ident: $inputs:ident, $history:ident / $slots:ident => $output:ident: $outputs:ident
+    }) => {
+        $ty {
+            dt: $dt,
+            normal: &$set.normal[$a..$b],
+            $input: &$set.$inputs[$a..$b],
+            normal_force: $fnorm,
+            delta: &$set.delta[$a..$b],
+            mass: &$set.mass[$a..$b],
+            radius: &$set.radius[$a..$b],
+            slots: $slots,
+            history: &mut $set.$history[$a * $slots..$b * $slots],
+            $output: &mut $set.$outputs[$a..$b],
+        }
+    };
+}
+use motion_batch;
+
 /// The energy outputs of contacts `r` of family `k` (0 normal, 1 tangential, 2 rolling, 3
 /// twisting: the index into [`ContactSet::power`] and [`ContactSet::elastic`]); none unless
 /// `energy` (the arrays are then sized for every contact).
@@ -308,18 +338,10 @@ impl ContactSet {
                 )?;
             }
             if let Some(t) = tangential {
-                let tb = TangentialBatch {
-                    dt,
-                    normal: &self.normal[a..b],
-                    velocity: &self.vrel[a..b],
-                    normal_force: &*f,
-                    delta: &self.delta[a..b],
-                    mass: &self.mass[a..b],
-                    radius: &self.radius[a..b],
-                    slots: st,
-                    history: &mut self.hist_t[a * st..b * st],
-                    force: &mut self.ftan[a..b],
-                };
+                let tb = motion_batch!(TangentialBatch {
+                    self[a..b], dt, normal_force: &*f,
+                    velocity: vrel, hist_t / st => force: ftan
+                });
                 if self.energy {
                     let out = family_out(true, &mut self.power, &mut self.elastic, 1, a..b);
                     self.unreported[1] |= !t.force_batch_with(tb, out)?;
