@@ -20,6 +20,7 @@ use super::state::VecD;
 use super::DemError;
 use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
 use dashpot_sdk::{NormalBatch, TangentialBatch};
+use std::ops::Range;
 
 mod edges;
 mod gather;
@@ -147,6 +148,57 @@ pub const LAW_CHUNK: usize = 1024;
 /// Particles per chunk of contacts (the unit of parallel work).
 pub const GATHER_CHUNK: usize = 2048;
 
+/// The batch of a law of the contact's motion, `motion_batch!(Batch { set[a..b], dt,
+/// normal_force: SLICE, input: ARRAY, history / slots => output: ARRAY })`, on contacts
+/// `a..b` of contact set `set`: the step `dt` (s), the geometry every such law reads (unit
+/// normals, the normal forces (N) given, overlaps, masses, radii), the law's own input array,
+/// its history of `slots` values a contact and its output array. For the tangential and
+/// rolling laws (`velocity: ARRAY => force: ARRAY`, [`dashpot_sdk::VectorBatch`]) and the
+/// twisting law (`rate: ARRAY => torque: ARRAY`, [`dashpot_sdk::TwistingBatch`]). A macro
+/// rather than a method: the batch borrows the set's arrays one by one, some shared and some
+/// mutably, where a method would borrow the whole set.
+macro_rules! motion_batch {
+    ($ty:ident {
+        $set:ident[$a:ident..$b:ident], $dt:ident, normal_force: $fnorm:expr,
+        $input:ident: $inputs:ident, $history:ident / $slots:ident => $output:ident: $outputs:ident
+    }) => {
+        $ty {
+            dt: $dt,
+            normal: &$set.normal[$a..$b],
+            $input: &$set.$inputs[$a..$b],
+            normal_force: $fnorm,
+            delta: &$set.delta[$a..$b],
+            mass: &$set.mass[$a..$b],
+            radius: &$set.radius[$a..$b],
+            slots: $slots,
+            history: &mut $set.$history[$a * $slots..$b * $slots],
+            $output: &mut $set.$outputs[$a..$b],
+        }
+    };
+}
+use motion_batch;
+
+/// The energy outputs of contacts `r` of family `k` (0 normal, 1 tangential, 2 rolling, 3
+/// twisting: the index into [`ContactSet::power`] and [`ContactSet::elastic`]); none unless
+/// `energy` (the arrays are then sized for every contact).
+#[inline(always)]
+fn family_out<'v>(
+    energy: bool,
+    power: &'v mut [Vec<f64>; 4],
+    elastic: &'v mut [Vec<f64>; 4],
+    k: usize,
+    r: Range<usize>,
+) -> EnergyOut<'v> {
+    if energy {
+        EnergyOut {
+            power: Some(&mut power[k][r.clone()]),
+            elastic: Some(&mut elastic[k][r]),
+        }
+    } else {
+        EnergyOut::none()
+    }
+}
+
 impl ContactSet {
     /// An empty set for laws keeping `slots_n` and `slots_t` history values.
     pub fn new(slots_n: usize, slots_t: usize) -> ContactSet {
@@ -263,16 +315,7 @@ impl ContactSet {
                 force: &mut *f,
             };
             if self.energy || self.reach_bound > 0.0 {
-                let [p, ..] = &mut self.power;
-                let [e, ..] = &mut self.elastic;
-                let out = if self.energy {
-                    EnergyOut {
-                        power: Some(&mut p[a..b]),
-                        elastic: Some(&mut e[a..b]),
-                    }
-                } else {
-                    EnergyOut::none()
-                };
+                let out = family_out(self.energy, &mut self.power, &mut self.elastic, 0, a..b);
                 let reach = (self.reach_bound > 0.0).then(|| &mut self.reach[a..b]);
                 let written = normal.force_batch_with(nb, reach, out)?;
                 self.unreported[0] |= self.energy && !written;
@@ -295,25 +338,12 @@ impl ContactSet {
                 )?;
             }
             if let Some(t) = tangential {
-                let tb = TangentialBatch {
-                    dt,
-                    normal: &self.normal[a..b],
-                    velocity: &self.vrel[a..b],
-                    normal_force: &*f,
-                    delta: &self.delta[a..b],
-                    mass: &self.mass[a..b],
-                    radius: &self.radius[a..b],
-                    slots: st,
-                    history: &mut self.hist_t[a * st..b * st],
-                    force: &mut self.ftan[a..b],
-                };
+                let tb = motion_batch!(TangentialBatch {
+                    self[a..b], dt, normal_force: &*f,
+                    velocity: vrel, hist_t / st => force: ftan
+                });
                 if self.energy {
-                    let [_, p, ..] = &mut self.power;
-                    let [_, e, ..] = &mut self.elastic;
-                    let out = EnergyOut {
-                        power: Some(&mut p[a..b]),
-                        elastic: Some(&mut e[a..b]),
-                    };
+                    let out = family_out(true, &mut self.power, &mut self.elastic, 1, a..b);
                     self.unreported[1] |= !t.force_batch_with(tb, out)?;
                 } else {
                     t.force_batch(tb)?;

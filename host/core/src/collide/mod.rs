@@ -14,3 +14,15 @@ pub mod two_body;
 
 pub use oblique::{oblique, Body, Impact, ObliqueCollision, ObliqueError, Target};
 pub use two_body::{collide, collide_named, CollideError, Collision, ContactForce, Options, PairLaw, Sample};
+
+/// Checks an input of the driver that must be finite and > 0: the message naming `name`, its
+/// value `v` and its `unit` when it is not.
+fn finite_positive(name: &str, unit: &str, v: f64) -> Result<(), String> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(format!(
+            "{name} = {v} {unit} is out of range: it must be finite and > 0"
+        ))
+    }
+}

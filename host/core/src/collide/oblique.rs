@@ -133,13 +133,7 @@ pub enum ObliqueError {
 }
 
 fn finite_positive(what: &str, unit: &str, v: f64) -> Result<(), ObliqueError> {
-    if v.is_finite() && v > 0.0 {
-        Ok(())
-    } else {
-        Err(ObliqueError::Input(format!(
-            "{what} = {v} {unit} is out of range: it must be finite and > 0"
-        )))
-    }
+    super::finite_positive(what, unit, v).map_err(ObliqueError::Input)
 }
 
 /// Integrates the oblique impact of `particle` on `target` under `normal` and, if given,

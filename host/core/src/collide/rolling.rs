@@ -123,15 +123,8 @@ where
         gravity: g,
         steps,
     } = *spec;
-    let positive = |name: &str, x: f64, unit: &str| {
-        if x.is_finite() && x > 0.0 {
-            Ok(())
-        } else {
-            Err(RollingError::Bad(format!(
-                "{name} = {x} {unit} is out of range: it must be finite and > 0"
-            )))
-        }
-    };
+    let positive =
+        |name: &str, x: f64, unit: &str| super::finite_positive(name, unit, x).map_err(RollingError::Bad);
     positive("mass", m, "kg")?;
     positive("radius", r, "m")?;
     positive("inertia", inertia, "kg m^2")?;
@@ -208,7 +201,7 @@ where
         let slip = vh + wh.cross(&c);
         max_slip = max_slip.max(slip.norm());
         let mut ft = [[0.0; 3]];
-        tangential.force_batch(TangentialBatch {
+        let tb = TangentialBatch {
             dt,
             normal: &[[n.x, n.y, n.z]],
             velocity: &[[slip.x, slip.y, slip.z]],
@@ -219,24 +212,19 @@ where
             slots: st,
             history: &mut ht,
             force: &mut ft,
-        })?;
+        };
         let vroll = r * wh.cross(&n);
         let mut fr = [[0.0; 3]];
-        rolling.force_batch(
-            RollingBatch {
-                dt,
-                normal: &[[n.x, n.y, n.z]],
-                velocity: &[[vroll.x, vroll.y, vroll.z]],
-                normal_force: &[fnv[0]],
-                delta: &[delta],
-                mass: &[m],
-                radius: &[r],
-                slots: sr,
-                history: &mut hr,
-                force: &mut fr,
-            },
-            EnergyOut::none(),
-        )?;
+        // the rolling law sees the contact the tangential law sees, at the rolling velocity
+        let rb = RollingBatch {
+            velocity: &[[vroll.x, vroll.y, vroll.z]],
+            slots: sr,
+            history: &mut hr,
+            force: &mut fr,
+            ..tb
+        };
+        tangential.force_batch(tb)?;
+        rolling.force_batch(rb, EnergyOut::none())?;
         let ftv = Vector3::new(ft[0][0], ft[0][1], ft[0][2]);
         let frv = Vector3::new(fr[0][0], fr[0][1], fr[0][2]);
         f = fnv[0] * n + ftv;

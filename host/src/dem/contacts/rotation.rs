@@ -1,9 +1,9 @@
 //! The rolling and twisting part of a contact set (sdk 0.3): each contact's rolling velocity
 //! and twisting rate, their laws' histories carried over, and the laws' calls.
 
-use super::ContactSet;
+use super::{family_out, motion_batch, ContactSet};
 use crate::dem::DemError;
-use crate::laws::{EnergyOut, RollingResistance, TwistingResistance};
+use crate::laws::{RollingResistance, TwistingResistance};
 use dashpot_sdk::{RollingBatch, TwistingBatch};
 use std::ops::Range;
 
@@ -26,55 +26,23 @@ impl ContactSet {
     ) -> Result<(), DemError> {
         let (a, b) = (r.start, r.end);
         let energy = self.energy;
-        let [_, _, pr, pw] = &mut self.power;
-        let [_, _, er, ew] = &mut self.elastic;
-        fn out<'v>(energy: bool, p: &'v mut [f64], e: &'v mut [f64]) -> EnergyOut<'v> {
-            if energy {
-                EnergyOut {
-                    power: Some(p),
-                    elastic: Some(e),
-                }
-            } else {
-                EnergyOut::none()
-            }
-        }
-        let slice = |v: &mut Vec<f64>| if energy { b } else { 0 }.min(v.len());
-        let (nr, nw) = (slice(pr), slice(pw));
-        let (pr, er) = (&mut pr[a.min(nr)..nr], &mut er[a.min(nr)..nr]);
-        let (pw, ew) = (&mut pw[a.min(nw)..nw], &mut ew[a.min(nw)..nw]);
         if let (Some(law), Some(sr)) = (rot.rolling, self.slots_r) {
             let written = law.force_batch(
-                RollingBatch {
-                    dt,
-                    normal: &self.normal[a..b],
-                    velocity: &self.vroll[a..b],
-                    normal_force: &self.fnorm[a..b],
-                    delta: &self.delta[a..b],
-                    mass: &self.mass[a..b],
-                    radius: &self.radius[a..b],
-                    slots: sr,
-                    history: &mut self.hist_r[a * sr..b * sr],
-                    force: &mut self.froll[a..b],
-                },
-                out(energy, pr, er),
+                motion_batch!(RollingBatch {
+                    self[a..b], dt, normal_force: &self.fnorm[a..b],
+                    velocity: vroll, hist_r / sr => force: froll
+                }),
+                family_out(energy, &mut self.power, &mut self.elastic, 2, a..b),
             )?;
             self.unreported[2] |= energy && !written;
         }
         if let (Some(law), Some(sw)) = (rot.twisting, self.slots_w) {
             let written = law.torque_batch(
-                TwistingBatch {
-                    dt,
-                    normal: &self.normal[a..b],
-                    rate: &self.twist[a..b],
-                    normal_force: &self.fnorm[a..b],
-                    delta: &self.delta[a..b],
-                    mass: &self.mass[a..b],
-                    radius: &self.radius[a..b],
-                    slots: sw,
-                    history: &mut self.hist_w[a * sw..b * sw],
-                    torque: &mut self.mtwist[a..b],
-                },
-                out(energy, pw, ew),
+                motion_batch!(TwistingBatch {
+                    self[a..b], dt, normal_force: &self.fnorm[a..b],
+                    rate: twist, hist_w / sw => torque: mtwist
+                }),
+                family_out(energy, &mut self.power, &mut self.elastic, 3, a..b),
             )?;
             self.unreported[3] |= energy && !written;
         }

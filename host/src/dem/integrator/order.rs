@@ -249,22 +249,34 @@ pub(super) fn morton_order<const D: usize>(dom: &Domain<D>, pos: &[VecD<D>], siz
     keyed.into_iter().map(|(_, i)| i).collect()
 }
 
+/// The bits [`spread`] keeps of a coordinate, then its steps (shift, mask), widest first: in 2D
+/// bit b goes to bit 2b, in 3D to bit 3b.
+const SPREAD_2D: (u64, [(u32, u64); 5]) = (
+    0xffff_ffff,
+    [
+        (16, 0x0000_ffff_0000_ffff),
+        (8, 0x00ff_00ff_00ff_00ff),
+        (4, 0x0f0f_0f0f_0f0f_0f0f),
+        (2, 0x3333_3333_3333_3333),
+        (1, 0x5555_5555_5555_5555),
+    ],
+);
+const SPREAD_3D: (u64, [(u32, u64); 5]) = (
+    0x1f_ffff,
+    [
+        (32, 0x1f_0000_0000_ffff),
+        (16, 0x1f_0000_ff00_00ff),
+        (8, 0x100f_00f0_0f00_f00f),
+        (4, 0x10c3_0c30_c30c_30c3),
+        (2, 0x1249_2492_4924_9249),
+    ],
+);
+
 /// The bits of `q` spread `D` apart (bit b to bit D·b): one coordinate of a Morton code (21
 /// bits in 3D, 31 in 2D).
 fn spread<const D: usize>(q: u64) -> u64 {
-    if D == 2 {
-        let mut x = q & 0xffff_ffff;
-        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
-        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
-        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
-        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
-        (x | (x << 1)) & 0x5555_5555_5555_5555
-    } else {
-        let mut x = q & 0x1f_ffff;
-        x = (x | (x << 32)) & 0x1f_0000_0000_ffff;
-        x = (x | (x << 16)) & 0x1f_0000_ff00_00ff;
-        x = (x | (x << 8)) & 0x100f_00f0_0f00_f00f;
-        x = (x | (x << 4)) & 0x10c3_0c30_c30c_30c3;
-        (x | (x << 2)) & 0x1249_2492_4924_9249
-    }
+    let (keep, steps) = if D == 2 { SPREAD_2D } else { SPREAD_3D };
+    steps
+        .iter()
+        .fold(q & keep, |x, &(shift, mask)| (x | (x << shift)) & mask)
 }

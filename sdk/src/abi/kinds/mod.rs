@@ -136,6 +136,33 @@ pub(super) fn first_bad<const N: usize>(
     Ok(())
 }
 
+/// The first bad input of a block of a motion kind (tangential, rolling, twisting), from
+/// contact `lo`: the unit normals (`normal`, flattened `[x, y, z]` triples), then the kind's
+/// own input (`input`: its first non-finite contact and its array), the normal forces (N), the
+/// overlaps (m), the masses (kg) and the radii (m).
+#[inline(always)]
+pub(super) fn first_bad_motion(
+    lo: usize,
+    normal: &[f64],
+    input: (Option<usize>, u8),
+    fnorm: &[f64],
+    delta: &[f64],
+    m: &[f64],
+    a: &[f64],
+) -> Result<(), (usize, u8)> {
+    first_bad(
+        lo,
+        [
+            (first_non_finite(normal).map(|i| i / 3), BatchFault::NORMAL),
+            input,
+            (first_non_finite(fnorm), BatchFault::NORMAL_FORCE),
+            (first_non_finite(delta), BatchFault::DELTA),
+            (first_non_positive(m), BatchFault::MASS),
+            (first_non_positive(a), BatchFault::RADIUS),
+        ],
+    )
+}
+
 /// The error for the non-finite input `value` of array `field` of contact `i`.
 pub(super) fn bad_vector(what: &str, name: &str, field: u8, i: usize, value: [f64; 3]) -> LawError {
     LawError::new(

@@ -129,17 +129,7 @@ impl<B: BoundTwisting> KindBound<Twisting> for B {
             b.elastic,
             TwistingBatch { rate: f64 => torque: f64 },
             |lo, nl: &[[f64; 3]], ml: &[f64], f: &[f64], d: &[f64], m: &[f64], a: &[f64]| {
-                first_bad(
-                    lo,
-                    [
-                        (first_non_finite(nl.as_flattened()).map(|i| i / 3), BatchFault::NORMAL),
-                        (first_non_finite(ml), BatchFault::RATE),
-                        (first_non_finite(f), BatchFault::NORMAL_FORCE),
-                        (first_non_finite(d), BatchFault::DELTA),
-                        (first_non_positive(m), BatchFault::MASS),
-                        (first_non_positive(a), BatchFault::RADIUS),
-                    ],
-                )
+                first_bad_motion(lo, nl.as_flattened(), (first_non_finite(ml), BatchFault::RATE), f, d, m, a)
             },
             |batch| self.torque_batch(batch),
             |batch, out| self.torque_batch_energy(batch, out),

@@ -194,17 +194,8 @@ unsafe fn run<L: VectorLaw>(law: &L, b: &FfiVectorBatch) -> Result<bool, (usize,
             if tangential_inputs_ok(nl, vl, f, d, m, a) {
                 return Ok(());
             }
-            first_bad(
-                lo,
-                [
-                    (first_non_finite(nl).map(|i| i / 3), BatchFault::NORMAL),
-                    (first_non_finite(vl).map(|i| i / 3), BatchFault::VELOCITY),
-                    (first_non_finite(f), BatchFault::NORMAL_FORCE),
-                    (first_non_finite(d), BatchFault::DELTA),
-                    (first_non_positive(m), BatchFault::MASS),
-                    (first_non_positive(a), BatchFault::RADIUS),
-                ],
-            )
+            let velocity = (first_non_finite(vl).map(|i| i / 3), BatchFault::VELOCITY);
+            first_bad_motion(lo, nl, velocity, f, d, m, a)
         },
         |batch| law.batch(batch),
         |batch, out| law.batch_energy(batch, out),
