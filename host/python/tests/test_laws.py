@@ -150,10 +150,15 @@ def test_rolling_sds_is_a_spring_below_its_cap_and_slides_at_it():
     assert h[0, 0] == pytest.approx(1e-9, rel=1e-12) and f.shape == (1, 3)
     assert f[0, 0] == pytest.approx(-1e-6, rel=1e-12) and f[0, 1] == 0.0 and f[0, 2] == 0.0
     assert elastic[0] == pytest.approx(0.5 * 1000.0 * 1e-18, rel=1e-9) and power[0] == 0.0
-    # a large roll: |F| capped at μ F_n = 1 N, the spring reset to the cap, power −F·v
+    # a large roll: |F| capped at μ F_n = 1 N, the spring reset to the cap; the power is the work
+    # of the force averaged over the step (−k ξ before it, the cap after) less what the spring
+    # stored, then, sliding steadily, −F·v
     f, power, elastic = law.force(1.0, n, [[1.0, 0.0, 0.0]], *args, history=h, energy=True)
     assert f[0, 0] == pytest.approx(-1.0, rel=1e-12)
     assert h[0, 0] == pytest.approx(1e-3, rel=1e-12)
+    assert elastic[0] == pytest.approx(5e-4, rel=1e-9)
+    assert power[0] == pytest.approx(0.5 * (1.0 + 1e-6) - (5e-4 - 5e-16), rel=1e-9)
+    f, power, elastic = law.force(1.0, n, [[1.0, 0.0, 0.0]], *args, history=h, energy=True)
     assert power[0] == pytest.approx(1.0, rel=1e-12) and elastic[0] == pytest.approx(5e-4, rel=1e-9)
 
 
@@ -165,9 +170,13 @@ def test_twisting_sds_is_a_torsion_spring_below_its_cap_and_slides_at_it():
     t = law.torque(1e-6, n, [1.0], *args, history=h)
     assert t.shape == (1,) and t[0] == pytest.approx(-1e-9, rel=1e-12) and h[0, 0] == pytest.approx(1e-6)
     t, power, elastic = law.torque(10.0, n, [1.0], *args, history=h, energy=True)
-    # capped at μ |F_n| = 1e-3 N·m, sliding: power |M ω|
-    assert t[0] == pytest.approx(-1e-3, rel=1e-12) and power[0] == pytest.approx(1e-3, rel=1e-12)
+    # capped at μ |F_n| = 1e-3 N·m: the torque averaged over the step's work less what the spring
+    # stored (θ from 1e-6 to 1 rad), then, sliding steadily, |M ω|
+    assert t[0] == pytest.approx(-1e-3, rel=1e-12)
     assert elastic[0] == pytest.approx(0.5 * 1e-3 * h[0, 0] ** 2, rel=1e-12)
+    assert power[0] == pytest.approx(0.5 * (1e-3 + 1e-9) - (5e-4 - 5e-16) / 10.0, rel=1e-9)
+    t, power, elastic = law.torque(10.0, n, [1.0], *args, history=h, energy=True)
+    assert power[0] == pytest.approx(1e-3, rel=1e-12)
 
 
 def test_every_kind_refuses_what_its_arrays_cannot_be():
