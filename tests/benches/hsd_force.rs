@@ -117,6 +117,19 @@ fn normal_step(law: &dyn NormalLaw, c: &Contacts, slots: usize, hist: &mut [f64]
     .expect("normal batch");
 }
 
+/// The normal batch (no history) of the contacts `range` of `c`, forces into `out`.
+fn normal_chunk<'a>(c: &'a Contacts, range: std::ops::Range<usize>, out: &'a mut [f64]) -> NormalBatch<'a> {
+    NormalBatch {
+        delta: black_box(&c.delta[range.clone()]),
+        rate: black_box(&c.rate[range.clone()]),
+        mass: &c.mass[range.clone()],
+        radius: &c.radius[range],
+        slots: 0,
+        history: &mut [],
+        force: out,
+    }
+}
+
 /// The tangential batch of the contacts `range` of `c` (their normal forces `fnorm`, history
 /// `hist`, forces `out`), with the energy outputs `energy` asks for.
 fn tangential_range(
@@ -243,15 +256,7 @@ fn main() {
             &mut || {
                 for k in 0..reps {
                     let range = k * CHUNK..(k + 1) * CHUNK;
-                    let nbatch = NormalBatch {
-                        delta: black_box(&c.delta[range.clone()]),
-                        rate: black_box(&c.rate[range.clone()]),
-                        mass: &c.mass[range.clone()],
-                        radius: &c.radius[range.clone()],
-                        slots: 0,
-                        history: &mut [],
-                        force: &mut na,
-                    };
+                    let nbatch = normal_chunk(&c, range.clone(), &mut na);
                     hsd_p.force_batch(nbatch).expect("normal batch");
                     tangential_range(&mind_p, &c, range, (&na, &mut *ha, &mut fa), EnergyOut::none());
                 }
@@ -259,15 +264,7 @@ fn main() {
             &mut || {
                 for k in 0..reps {
                     let range = k * CHUNK..(k + 1) * CHUNK;
-                    let nbatch = NormalBatch {
-                        delta: black_box(&c.delta[range.clone()]),
-                        rate: black_box(&c.rate[range.clone()]),
-                        mass: &c.mass[range.clone()],
-                        radius: &c.radius[range.clone()],
-                        slots: 0,
-                        history: &mut [],
-                        force: &mut nb,
-                    };
+                    let nbatch = normal_chunk(&c, range.clone(), &mut nb);
                     let out = EnergyOut {
                         power: Some(&mut p),
                         elastic: Some(&mut e),
