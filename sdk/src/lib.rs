@@ -69,6 +69,7 @@
 #![warn(missing_docs)]
 
 pub mod abi;
+mod energy;
 mod error;
 mod law;
 mod pair;
