@@ -475,8 +475,6 @@ impl<const D: usize> Engine<D> {
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach
     /// and displacement bounds.
     fn rebuild(&mut self) {
-        let dom = &self.cfg.domain;
-        self.p.pos.iter_mut().for_each(|x| dom.wrap(x));
         self.maybe_renumber();
         self.nb.build(
             &self.cfg.domain,

@@ -228,7 +228,9 @@ fn lanes<const DAMPED: bool, const ENERGY: bool>(
                 v[k][l] = b.velocity[i][k];
                 h[k][l] = b.history[SLOTS * i + k];
             }
-            kprev[l] = b.history[SLOTS * i + 3];
+            if ENERGY {
+                kprev[l] = b.history[SLOTS * i + 3];
+            }
             d[l] = b.delta[i];
             r[l] = b.radius[i];
             ms[l] = b.mass[i];

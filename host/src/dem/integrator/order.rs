@@ -143,6 +143,9 @@ impl<const D: usize> Engine<D> {
         if !std::mem::take(&mut self.order.due) || !self.sorts() {
             return;
         }
+        // the cells of wrapped positions (the list's build wraps them too, on every rebuild)
+        let dom = &self.cfg.domain;
+        self.p.pos.iter_mut().for_each(|x| dom.wrap(x));
         let rmax = self.p.radius.iter().cloned().fold(0.0, f64::max);
         let perm = morton_order(
             &self.cfg.domain,
