@@ -101,8 +101,11 @@ macro_rules! motion_run {
     }};
 }
 
+mod pipelined;
 mod twisting;
 mod vector;
+
+use pipelined::pipelined_blocks;
 
 pub use twisting::{FfiTwistingBatch, Twisting};
 pub use vector::{FfiVectorBatch, Rolling, Tangential};
@@ -301,16 +304,33 @@ pub(super) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
 
 /// The block loop of a normal batch: check a block's inputs, run the law on it (with its
 /// energy outputs when `energy` is given), check its outputs. Returns whether every contact
-/// reported its energy, or the first bad contact and what is wrong with it.
+/// reported its energy, or the first bad contact and what is wrong with it. The full blocks of
+/// a law without history go through [`pipelined_blocks`].
 #[inline(always)]
 fn normal_blocks<B: BoundContact>(
     law: &B,
     b: NormalBatch<'_>,
     mut energy: Option<(&mut [f64], &mut [f64])>,
 ) -> Result<bool, (usize, u8)> {
-    let slots = b.slots;
+    let (slots, n) = (b.slots, b.force.len());
     let mut written = energy.is_some();
-    blocks!(b.force.len(), |lo, hi| {
+    let full = if slots == 0 { n - n % CHECK_BLOCK } else { 0 };
+    if full > 0 {
+        let (d, r, m, a) = (
+            &b.delta[..full],
+            &b.rate[..full],
+            &b.mass[..full],
+            &b.radius[..full],
+        );
+        let f = &mut b.force[..full];
+        // one copy of the loop without energy outputs, one with them (a branch inside the loop
+        // let the compiler hoist the first contact out of a step and split its vectors)
+        written &= match energy.as_mut() {
+            None => pipelined_blocks(law, (d, r, m, a), f, None)?,
+            Some((p, e)) => pipelined_blocks(law, (d, r, m, a), f, Some((&mut p[..full], &mut e[..full])))?,
+        };
+    }
+    blocks!(full => n, |lo, hi| {
         let (d, r, m, a) = (
             &b.delta[lo..hi],
             &b.rate[lo..hi],
