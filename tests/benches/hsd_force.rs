@@ -11,9 +11,10 @@
 //!
 //! Run: `cargo bench -p dashpot-tests --bench hsd_force`
 //!
-//! With `DASHPOT_HSD_BASELINE=DIR` (a directory holding another build of the HSD plugin, e.g.
-//! from an earlier commit), section 1b races that build against this one, on the 10⁶ contacts and
-//! in chunks of 1,024 in cache: a same-run A/B of a change to the plugin or the sdk's batch loop.
+//! With `DASHPOT_BASELINE_PLUGINS=DIR` (a directory holding another build of the plugins of the
+//! normal laws without history, HSD, LSD, Kuwabara–Kono, DMT, e.g. from an earlier commit),
+//! section 1b races each build there against this one, on the 10⁶ contacts and in chunks of
+//! 1,024 in cache: a same-run A/B of a change to a plugin or to the sdk's batch loop.
 //! `DASHPOT_BENCH_SECTIONS=1,1b` runs only the sections listed.
 
 mod common;
@@ -23,7 +24,7 @@ use dashpot::laws::{compiled, compiled_tangential, EnergyOut, NormalLaw, Tangent
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
-use dashpot_tests::{full_registry, lib_in, registry_of, sdk01_registry};
+use dashpot_tests::{full_registry, lib_in, plugin_file, registry_of, sdk01_registry};
 use std::hint::black_box;
 
 const N: usize = 1_000_000;
@@ -107,6 +108,55 @@ fn report(r: &[(f64, f64)], per: impl Fn(f64) -> f64, names: [&str; 2], ratio: &
         r[0].0 / r[1].0,
         r[0].1 / r[1].1
     );
+}
+
+/// The normal laws without history that section 1b races against another build: (library,
+/// law).
+const BASELINE_LAWS: [(&str, &str); 4] = [
+    ("dashpot_hsd", "hsd"),
+    ("dashpot_lsd", "lsd"),
+    ("dashpot_kuwabara_kono", "kuwabara-kono"),
+    ("dashpot_dmt", "dmt"),
+];
+
+/// Races two builds of a normal law (`laws`: baseline, this build) on the contacts `c`, whole
+/// and in chunks of 1,024 already in cache, after checking that they give the same bits.
+fn versus(
+    c: &Contacts,
+    laws: [&dyn NormalLaw; 2],
+    (o1, o2): (&mut [f64], &mut [f64]),
+    ns: impl Fn(f64) -> f64,
+) {
+    let [base, this] = laws;
+    normal_step(base, c, 0, &mut [], o1);
+    normal_step(this, c, 0, &mut [], o2);
+    assert!(
+        o1.iter().zip(&*o2).all(|(a, b)| a.to_bits() == b.to_bits()),
+        "the same bits"
+    );
+    let r = race(&mut [&mut || normal_step(base, c, 0, &mut [], o1), &mut || {
+        normal_step(this, c, 0, &mut [], o2)
+    }]);
+    report(&r, ns, ["baseline build", "this build"], "this / baseline", "");
+    const CHUNK: usize = 1024;
+    let reps = N / CHUNK;
+    let r = race(&mut [
+        &mut || {
+            for _ in 0..reps {
+                base.force_batch(normal_chunk(c, 0..CHUNK, &mut o1[..CHUNK]))
+                    .expect("normal batch");
+            }
+        },
+        &mut || {
+            for _ in 0..reps {
+                this.force_batch(normal_chunk(c, 0..CHUNK, &mut o2[..CHUNK]))
+                    .expect("normal batch");
+            }
+        },
+    ]);
+    println!("   the same, in chunks of {CHUNK} contacts already in cache");
+    let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
+    report(&r, per, ["baseline build", "this build"], "this / baseline", "");
 }
 
 /// Whether to run section `name`: every section unless `DASHPOT_BENCH_SECTIONS` lists some
@@ -228,47 +278,27 @@ fn main() {
         );
     }
 
-    // 1b. this build of the HSD plugin against another one (a same-run A/B)
-    if let Some(dir) = std::env::var_os("DASHPOT_HSD_BASELINE").filter(|_| section("1b")) {
-        let file = lib_in(std::path::Path::new(&dir), "dashpot_hsd");
-        let base = registry_of(vec![file.clone()])
-            .contact("hsd", &[ParamValue::new("eps", 0.54)])
-            .expect("baseline hsd")
-            .bind(&mat)
-            .expect("bind");
-        normal_step(&base, &c, 0, &mut [], &mut o1);
-        normal_step(&hsd_p, &c, 0, &mut [], &mut o2);
-        assert!(o1.iter().zip(&o2).all(|(a, b)| a.to_bits() == b.to_bits()));
-        let r = race(
-            &mut [&mut || normal_step(&base, &c, 0, &mut [], &mut o1), &mut || {
-                normal_step(&hsd_p, &c, 0, &mut [], &mut o2)
-            }],
-        );
-        println!(
-            "1b. HSD normal force: this plugin against the build in {}",
-            file.display()
-        );
-        report(&r, ns, ["baseline build", "this build"], "this / baseline", "");
-        const CHUNK: usize = 1024;
-        let reps = N / CHUNK;
-        let r = race(&mut [
-            &mut || {
-                for _ in 0..reps {
-                    base.force_batch(normal_chunk(&c, 0..CHUNK, &mut o1[..CHUNK]))
-                        .expect("normal batch");
-                }
-            },
-            &mut || {
-                for _ in 0..reps {
-                    hsd_p
-                        .force_batch(normal_chunk(&c, 0..CHUNK, &mut o2[..CHUNK]))
-                        .expect("normal batch");
-                }
-            },
-        ]);
-        println!("   the same, in chunks of {CHUNK} contacts already in cache");
-        let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
-        report(&r, per, ["baseline build", "this build"], "this / baseline", "");
+    // 1b. this build of the normal laws without history against another one (a same-run A/B)
+    if let Some(dir) = std::env::var_os("DASHPOT_BASELINE_PLUGINS").filter(|_| section("1b")) {
+        for (lib, name) in BASELINE_LAWS {
+            let file = lib_in(std::path::Path::new(&dir), lib);
+            if !file.exists() {
+                continue;
+            }
+            let bind = |file| {
+                registry_of(vec![file])
+                    .contact(name, &[])
+                    .expect("the law")
+                    .bind(&mat)
+                    .expect("bind")
+            };
+            let (base, this) = (bind(file.clone()), bind(plugin_file(lib)));
+            println!(
+                "1b. {name} normal force: this build against the one in {}",
+                file.display()
+            );
+            versus(&c, [&base, &this], (&mut o1, &mut o2), ns);
+        }
     }
 
     // 2. HSD + Mindlin with history
