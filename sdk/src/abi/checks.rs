@@ -329,6 +329,53 @@ mod tests {
         }
     }
 
+    /// The lanes of the pipelined loop catch every kind of bad value at every position of a
+    /// block, and their verdict names it as the exact check does.
+    #[test]
+    fn the_lanes_find_every_bad_value() {
+        let bad_any = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY];
+        let bad_positive = [f64::NAN, f64::INFINITY, 0.0, -0.0, -1e-30, f64::NEG_INFINITY];
+        let n = 2 * CHECK_BLOCK;
+        let good = || [vec![1e-6; n], vec![-0.5; n], vec![2.0e-4; n], vec![1.5e-3; n]];
+        let lanes = |c: &[Vec<f64>; 4], lo: usize| {
+            let mut l = NormalLanes::new();
+            for j in (lo..lo + CHECK_BLOCK).step_by(LANES) {
+                l.add(&c[0], &c[1], &c[2], &c[3], j);
+            }
+            (l.ok(), l.verdict(lo, &c[0], &c[1], &c[2], &c[3]))
+        };
+        assert_eq!(lanes(&good(), CHECK_BLOCK), (true, Ok(())));
+        let fields = [
+            BatchFault::DELTA,
+            BatchFault::RATE,
+            BatchFault::MASS,
+            BatchFault::RADIUS,
+        ];
+        for i in CHECK_BLOCK..n {
+            for (k, field) in fields.into_iter().enumerate() {
+                for &v in if k < 2 { &bad_any[..] } else { &bad_positive[..] } {
+                    let mut c = good();
+                    c[k][i] = v;
+                    assert_eq!(lanes(&c, CHECK_BLOCK), (false, Err((i, field))), "{i} {k} {v}");
+                    // the block before does not see it
+                    assert_eq!(lanes(&c, 0), (true, Ok(())));
+                }
+            }
+        }
+        let mut out = FiniteLanes::new();
+        out.add(&[1.0; LANES], 0);
+        assert!(out.ok());
+        for v in bad_any {
+            let mut x = [1.0; 2 * LANES];
+            x[LANES + 3] = v;
+            let mut out = FiniteLanes::new();
+            out.add(&x, 0);
+            assert!(out.ok());
+            out.add(&x, LANES);
+            assert!(!out.ok());
+        }
+    }
+
     /// Huge but finite values may overflow the fused sum: that only sends the block to the exact
     /// check, which lets it through.
     #[test]
@@ -336,6 +383,13 @@ mod tests {
         let big = vec![1e308; 8];
         assert!(!normal_inputs_ok(&big, &big, &big, &big));
         assert_eq!(check_normal_inputs(&big, &big, &big, &big), None);
+        let big = vec![1e308; CHECK_BLOCK];
+        let mut l = NormalLanes::new();
+        for j in (0..CHECK_BLOCK).step_by(LANES) {
+            l.add(&big, &big, &big, &big, j);
+        }
+        assert!(!l.ok());
+        assert_eq!(l.verdict(0, &big, &big, &big, &big), Ok(()));
     }
     /// The fused tangential check catches a bad value in every field and every component.
     #[test]

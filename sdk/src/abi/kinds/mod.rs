@@ -305,7 +305,7 @@ pub(super) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
 /// The block loop of a normal batch: check a block's inputs, run the law on it (with its
 /// energy outputs when `energy` is given), check its outputs. Returns whether every contact
 /// reported its energy, or the first bad contact and what is wrong with it. The full blocks of
-/// a law without history go through [`pipelined_blocks`].
+/// a straight-line law without history go through [`pipelined_blocks`].
 #[inline(always)]
 fn normal_blocks<B: BoundContact>(
     law: &B,
@@ -314,7 +314,11 @@ fn normal_blocks<B: BoundContact>(
 ) -> Result<bool, (usize, u8)> {
     let (slots, n) = (b.slots, b.force.len());
     let mut written = energy.is_some();
-    let full = if slots == 0 { n - n % CHECK_BLOCK } else { 0 };
+    let full = if B::STRAIGHT_LINE && slots == 0 {
+        n - n % CHECK_BLOCK
+    } else {
+        0
+    };
     if full > 0 {
         let (d, r, m, a) = (
             &b.delta[..full],

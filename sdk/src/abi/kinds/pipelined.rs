@@ -1,5 +1,6 @@
-//! The block loop of the normal kind's laws without history, pipelined: each block's input
-//! check runs while the law evaluates the block before it.
+//! The block loop of the normal kind's straight-line laws without history
+//! ([`BoundContact::STRAIGHT_LINE`]), pipelined: each block's input check runs while the law
+//! evaluates the block before it.
 
 use super::super::checks::first_non_finite;
 use super::super::checks::{FiniteLanes, NormalLanes, CHECK_BLOCK, LANES};
@@ -7,18 +8,22 @@ use super::super::kind::check_energy;
 use super::super::BatchFault;
 use crate::law::{BoundContact, EnergyBatch, NormalBatch};
 
-/// The blocks of a law without history, a whole number of them, pipelined: the law evaluates a
-/// block [`LANES`] contacts at a time, and each step also adds the same contacts of the next
-/// block to its fused input check ([`NormalLanes`]) and its own outputs to the fused output
-/// check, so that the checks run in the shadow of the law's arithmetic instead of in passes of
-/// their own (two passes per block left HSD's square roots idle for a third of its time). The
-/// law still sees only checked blocks, and the faults are the ones the plain block loop finds, in
-/// its order: a block's inputs, its energy, its forces. `energy` holds the energy outputs of
-/// the whole batch when they are wanted; returns whether every contact reported its energy.
+/// The blocks of a straight-line law without history, a whole number of them, pipelined: the
+/// law evaluates a block [`LANES`] contacts at a time, and each step also adds the same contacts
+/// of the next block to its fused input check ([`NormalLanes`]) and its own outputs to the fused
+/// output check, so that the checks run in the shadow of the law's arithmetic instead of in
+/// passes of their own (a pass before each block left HSD's square roots idle for a third of
+/// its time: its instructions sat between two blocks of square roots, beyond what the CPU
+/// reorders). The law still sees only checked blocks, and the faults are the ones the plain
+/// block loop finds, in its order: a block's inputs, its energy, its forces. `energy` holds the
+/// energy outputs of the whole batch when they are wanted; returns whether every contact
+/// reported its energy.
 ///
-/// The law runs with no history slots as a constant: with the slot count a variable, the
-/// default batch loop's two branches kept the compiler from vectorising a step (scalar square
-/// roots, HSD 2.5× slower).
+/// The compiler vectorises a step of [`LANES`] contacts only if the law's code is straight-line
+/// (a branch per contact kept LSD scalar, 1.8× slower than in blocks of 64, where the loop is
+/// if-converted), if the law runs with no history slots as a constant (with the slot count a
+/// variable, the default batch loop's two branches kept HSD scalar, 2.5× slower), and if its
+/// outputs are local arrays (see below).
 #[inline(always)]
 pub(super) fn pipelined_blocks<B: BoundContact>(
     law: &B,
@@ -102,7 +107,7 @@ pub(super) fn pipelined_blocks<B: BoundContact>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Normal, NormalCall};
+    use super::super::{FfiNormalBatch3, Normal, NormalCall};
     use super::*;
     use crate::abi::guard::take_panic;
     use crate::abi::kind::{model_batch, Kind, KindBound};
@@ -110,10 +115,13 @@ mod tests {
     use crate::law::{Contact, Energy};
 
     /// F = 2δ + δ̇, NaN at δ̇ = 7; power ∞ at δ̇ = 9, elastic energy NaN at δ̇ = 11; panics
-    /// when it sees an input the sdk must refuse.
-    struct Probe;
+    /// when it sees an input the sdk must refuse. Declared straight-line (evaluated by the
+    /// pipelined loop) when `S`.
+    struct Probe<const S: bool>;
 
-    impl BoundContact for Probe {
+    impl<const S: bool> BoundContact for Probe<S> {
+        const STRAIGHT_LINE: bool = S;
+
         fn force(&self, c: Contact, _h: &mut [f64]) -> f64 {
             let ok = |x: f64| x > 0.0 && x < f64::INFINITY;
             assert!(
@@ -173,8 +181,38 @@ mod tests {
         None
     }
 
-    /// The pipelined loop (full blocks of a law without history) and the plain one (the last
-    /// block) find the same first fault as the definition, for every kind of bad input and
+    /// The first fault of the batch `raw` through the law `Probe<S>`: through the trampoline
+    /// (the AVX2 build when the CPU has it) when `dispatched`, else through the baseline build.
+    fn probe<const S: bool>(
+        raw: &FfiNormalBatch3,
+        dispatched: bool,
+        energy: bool,
+        trial: usize,
+    ) -> Option<(usize, u8)> {
+        if !dispatched {
+            return unsafe { KindBound::<Normal>::run(&Probe::<S>, raw) }.err();
+        }
+        let (mut fault, mut written) = (BatchFault { index: 0, field: 0 }, false);
+        let st = unsafe {
+            model_batch::<Normal, Probe<S>>(
+                &Probe::<S> as *const Probe<S> as *const std::ffi::c_void,
+                raw,
+                &mut fault,
+                &mut written,
+            )
+        };
+        assert!(
+            !matches!(st, BatchStatus::Panic),
+            "trial {trial}: {}",
+            take_panic()
+        );
+        assert_eq!(written, energy && matches!(st, BatchStatus::Ok), "trial {trial}");
+        (st != BatchStatus::Ok).then_some((fault.index, fault.field))
+    }
+
+    /// The pipelined loop (full blocks of a straight-line law without history) and the plain one
+    /// (every block of another law, the last block of a straight-line one) find the same first
+    /// fault as the definition, for every kind of bad input and
     /// output planted anywhere in batches of every length, energy outputs on and off, in the
     /// baseline and the dispatched (AVX2) builds; the law never sees a refused input; a good
     /// batch gives the law's values.
@@ -209,7 +247,7 @@ mod tests {
             }
             let energy = trial % 2 == 1;
             let want = first_fault([&c[0], &c[1], &c[2], &c[3]], energy);
-            for dispatched in [false, true] {
+            for (straight, dispatched) in [(false, false), (false, true), (true, false), (true, true)] {
                 let (mut f, mut p, mut e) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
                 let mut call = NormalCall {
                     batch: NormalBatch {
@@ -229,29 +267,14 @@ mod tests {
                     (std::ptr::null_mut(), std::ptr::null_mut())
                 };
                 let raw = Normal::raw(&mut call, pp, ep);
-                let got = if dispatched {
-                    let (mut fault, mut written) = (BatchFault { index: 0, field: 0 }, false);
-                    let st = unsafe {
-                        model_batch::<Normal, Probe>(
-                            &Probe as *const Probe as *const std::ffi::c_void,
-                            &raw,
-                            &mut fault,
-                            &mut written,
-                        )
-                    };
-                    assert!(
-                        !matches!(st, BatchStatus::Panic),
-                        "trial {trial}: {}",
-                        take_panic()
-                    );
-                    assert_eq!(written, energy && matches!(st, BatchStatus::Ok), "trial {trial}");
-                    (st != BatchStatus::Ok).then_some((fault.index, fault.field))
+                let got = if straight {
+                    probe::<true>(&raw, dispatched, energy, trial)
                 } else {
-                    unsafe { KindBound::<Normal>::run(&Probe, &raw) }.err()
+                    probe::<false>(&raw, dispatched, energy, trial)
                 };
                 assert_eq!(
                     got, want,
-                    "trial {trial}, n {n}, energy {energy}, dispatched {dispatched}"
+                    "trial {trial}, n {n}, energy {energy}, straight {straight}, dispatched {dispatched}"
                 );
                 if want.is_none() {
                     for i in 0..n {
