@@ -157,6 +157,44 @@ fn versus(
     println!("   the same, in chunks of {CHUNK} contacts already in cache");
     let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
     report(&r, per, ["baseline build", "this build"], "this / baseline", "");
+    let (mut p, mut e) = (
+        [vec![0.0; CHUNK], vec![0.0; CHUNK]],
+        [vec![0.0; CHUNK], vec![0.0; CHUNK]],
+    );
+    let [p1, p2] = &mut p;
+    let [e1, e2] = &mut e;
+    let r = race(&mut [
+        &mut || {
+            for _ in 0..reps {
+                let out = EnergyOut {
+                    power: Some(&mut *p1),
+                    elastic: Some(&mut *e1),
+                };
+                base.force_batch_with(normal_chunk(c, 0..CHUNK, &mut o1[..CHUNK]), None, out)
+                    .expect("normal batch");
+            }
+        },
+        &mut || {
+            for _ in 0..reps {
+                let out = EnergyOut {
+                    power: Some(&mut *p2),
+                    elastic: Some(&mut *e2),
+                };
+                this.force_batch_with(normal_chunk(c, 0..CHUNK, &mut o2[..CHUNK]), None, out)
+                    .expect("normal batch");
+            }
+        },
+    ]);
+    assert!(
+        p1.iter().zip(&*p2).all(|(a, b)| a.to_bits() == b.to_bits()),
+        "the same power"
+    );
+    assert!(
+        e1.iter().zip(&*e2).all(|(a, b)| a.to_bits() == b.to_bits()),
+        "the same energy"
+    );
+    println!("   the same with the energy outputs");
+    report(&r, per, ["baseline build", "this build"], "this / baseline", "");
 }
 
 /// Whether to run section `name`: every section unless `DASHPOT_BENCH_SECTIONS` lists some
