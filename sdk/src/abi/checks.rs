@@ -142,6 +142,21 @@ impl FiniteLanes {
     }
 }
 
+/// Whether `x` is finite (x − x is NaN exactly when it is not).
+#[inline(always)]
+#[allow(clippy::eq_op)]
+pub(crate) fn is_finite(x: f64) -> bool {
+    x - x == 0.0
+}
+
+/// Whether one contact's inputs are surely good, by the fused test of [`NormalLanes`]:
+/// δ + δ̇ + m + r finite and min(m, r) > 0 (an overflowing sum of finite values is a false
+/// alarm, which the exact check clears).
+#[inline(always)]
+pub(crate) fn contact_ok(d: f64, r: f64, m: f64, a: f64) -> bool {
+    is_finite((d + r) + (m + a)) & (min(m, a) > 0.0)
+}
+
 /// The smaller of `x` and `y` (`y` when either is NaN: one `minpd`).
 #[inline(always)]
 fn min(x: f64, y: f64) -> f64 {
