@@ -10,6 +10,12 @@
 //!    called it.
 //!
 //! Run: `cargo bench -p dashpot-tests --bench hsd_force`
+//!
+//! With `DASHPOT_BASELINE_PLUGINS=DIR` (a directory holding another build of the plugins of the
+//! normal laws without history, HSD, LSD, Kuwabara–Kono, DMT, e.g. from an earlier commit),
+//! section 1b races each build there against this one, on the 10⁶ contacts and in chunks of
+//! 1,024 in cache: a same-run A/B of a change to a plugin or to the sdk's batch loop.
+//! `DASHPOT_BENCH_SECTIONS=1,1b` runs only the sections listed.
 
 mod common;
 
@@ -18,7 +24,7 @@ use dashpot::laws::{compiled, compiled_tangential, EnergyOut, NormalLaw, Tangent
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
-use dashpot_tests::{full_registry, sdk01_registry};
+use dashpot_tests::{full_registry, lib_in, plugin_file, registry_of, sdk01_registry};
 use std::hint::black_box;
 
 const N: usize = 1_000_000;
@@ -102,6 +108,99 @@ fn report(r: &[(f64, f64)], per: impl Fn(f64) -> f64, names: [&str; 2], ratio: &
         r[0].0 / r[1].0,
         r[0].1 / r[1].1
     );
+}
+
+/// The normal laws without history that section 1b races against another build: (library,
+/// law).
+const BASELINE_LAWS: [(&str, &str); 4] = [
+    ("dashpot_hsd", "hsd"),
+    ("dashpot_lsd", "lsd"),
+    ("dashpot_kuwabara_kono", "kuwabara-kono"),
+    ("dashpot_dmt", "dmt"),
+];
+
+/// Races two builds of a normal law (`laws`: baseline, this build) on the contacts `c`, whole
+/// and in chunks of 1,024 already in cache, after checking that they give the same bits.
+fn versus(
+    c: &Contacts,
+    laws: [&dyn NormalLaw; 2],
+    (o1, o2): (&mut [f64], &mut [f64]),
+    ns: impl Fn(f64) -> f64,
+) {
+    let [base, this] = laws;
+    normal_step(base, c, 0, &mut [], o1);
+    normal_step(this, c, 0, &mut [], o2);
+    assert!(
+        o1.iter().zip(&*o2).all(|(a, b)| a.to_bits() == b.to_bits()),
+        "the same bits"
+    );
+    let r = race(&mut [&mut || normal_step(base, c, 0, &mut [], o1), &mut || {
+        normal_step(this, c, 0, &mut [], o2)
+    }]);
+    report(&r, ns, ["baseline build", "this build"], "this / baseline", "");
+    const CHUNK: usize = 1024;
+    let reps = N / CHUNK;
+    let r = race(&mut [
+        &mut || {
+            for _ in 0..reps {
+                base.force_batch(normal_chunk(c, 0..CHUNK, &mut o1[..CHUNK]))
+                    .expect("normal batch");
+            }
+        },
+        &mut || {
+            for _ in 0..reps {
+                this.force_batch(normal_chunk(c, 0..CHUNK, &mut o2[..CHUNK]))
+                    .expect("normal batch");
+            }
+        },
+    ]);
+    println!("   the same, in chunks of {CHUNK} contacts already in cache");
+    let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
+    report(&r, per, ["baseline build", "this build"], "this / baseline", "");
+    let (mut p, mut e) = (
+        [vec![0.0; CHUNK], vec![0.0; CHUNK]],
+        [vec![0.0; CHUNK], vec![0.0; CHUNK]],
+    );
+    let [p1, p2] = &mut p;
+    let [e1, e2] = &mut e;
+    let r = race(&mut [
+        &mut || {
+            for _ in 0..reps {
+                let out = EnergyOut {
+                    power: Some(&mut *p1),
+                    elastic: Some(&mut *e1),
+                };
+                base.force_batch_with(normal_chunk(c, 0..CHUNK, &mut o1[..CHUNK]), None, out)
+                    .expect("normal batch");
+            }
+        },
+        &mut || {
+            for _ in 0..reps {
+                let out = EnergyOut {
+                    power: Some(&mut *p2),
+                    elastic: Some(&mut *e2),
+                };
+                this.force_batch_with(normal_chunk(c, 0..CHUNK, &mut o2[..CHUNK]), None, out)
+                    .expect("normal batch");
+            }
+        },
+    ]);
+    assert!(
+        p1.iter().zip(&*p2).all(|(a, b)| a.to_bits() == b.to_bits()),
+        "the same power"
+    );
+    assert!(
+        e1.iter().zip(&*e2).all(|(a, b)| a.to_bits() == b.to_bits()),
+        "the same energy"
+    );
+    println!("   the same with the energy outputs");
+    report(&r, per, ["baseline build", "this build"], "this / baseline", "");
+}
+
+/// Whether to run section `name`: every section unless `DASHPOT_BENCH_SECTIONS` lists some
+/// (comma-separated, e.g. `1,1b`).
+fn section(name: &str) -> bool {
+    std::env::var("DASHPOT_BENCH_SECTIONS").map_or(true, |v| v.split(',').any(|s| s.trim() == name))
 }
 
 fn normal_step(law: &dyn NormalLaw, c: &Contacts, slots: usize, hist: &mut [f64], out: &mut [f64]) {
@@ -201,49 +300,76 @@ fn main() {
 
     // 1. HSD normal, per-contact geometry
     let (mut o1, mut o2) = (vec![0.0; N], vec![0.0; N]);
-    let r = race(
-        &mut [&mut || normal_step(&hsd_s, &c, 0, &mut [], &mut o1), &mut || {
-            normal_step(&hsd_p, &c, 0, &mut [], &mut o2)
-        }],
-    );
-    println!("1. HSD normal force, per-contact geometry");
-    report(
-        &r,
-        ns,
-        ["compiled in", "plugin batch call"],
-        "plugin / compiled",
-        "",
-    );
+    if section("1") {
+        let r = race(
+            &mut [&mut || normal_step(&hsd_s, &c, 0, &mut [], &mut o1), &mut || {
+                normal_step(&hsd_p, &c, 0, &mut [], &mut o2)
+            }],
+        );
+        println!("1. HSD normal force, per-contact geometry");
+        report(
+            &r,
+            ns,
+            ["compiled in", "plugin batch call"],
+            "plugin / compiled",
+            "",
+        );
+    }
+
+    // 1b. this build of the normal laws without history against another one (a same-run A/B)
+    if let Some(dir) = std::env::var_os("DASHPOT_BASELINE_PLUGINS").filter(|_| section("1b")) {
+        for (lib, name) in BASELINE_LAWS {
+            let file = lib_in(std::path::Path::new(&dir), lib);
+            if !file.exists() {
+                continue;
+            }
+            let bind = |file| {
+                registry_of(vec![file])
+                    .contact(name, &[])
+                    .expect("the law")
+                    .bind(&mat)
+                    .expect("bind")
+            };
+            let (base, this) = (bind(file.clone()), bind(plugin_file(lib)));
+            println!(
+                "1b. {name} normal force: this build against the one in {}",
+                file.display()
+            );
+            versus(&c, [&base, &this], (&mut o1, &mut o2), ns);
+        }
+    }
 
     // 2. HSD + Mindlin with history
     let slots = mind_p.history_slots();
-    let (mut hs, mut hp) = (vec![0.0; slots * N], vec![0.0; slots * N]);
-    let (mut ts, mut tp) = (vec![[0.0; 3]; N], vec![[0.0; 3]; N]);
-    let (mut ns_, mut np_) = (vec![0.0; N], vec![0.0; N]);
-    let r = race(&mut [
-        &mut || {
-            normal_step(&hsd_s, &c, 0, &mut [], &mut ns_);
-            tangential_step(&mind_s, &c, &ns_, &mut hs, &mut ts);
-        },
-        &mut || {
-            normal_step(&hsd_p, &c, 0, &mut [], &mut np_);
-            tangential_step(&mind_p, &c, &np_, &mut hp, &mut tp);
-        },
-    ]);
-    // after the same calls in the same order, the springs are the same bits
-    assert!(hs.iter().zip(&hp).all(|(a, b)| a.to_bits() == b.to_bits()));
-    println!("2. HSD + Mindlin (μ = 0.3) with history: normal batch, then tangential batch");
-    report(
-        &r,
-        ns,
-        ["compiled in", "plugin batch calls"],
-        "plugin / compiled",
-        "   target >= 0.95",
-    );
+    if section("2") {
+        let (mut hs, mut hp) = (vec![0.0; slots * N], vec![0.0; slots * N]);
+        let (mut ts, mut tp) = (vec![[0.0; 3]; N], vec![[0.0; 3]; N]);
+        let (mut ns_, mut np_) = (vec![0.0; N], vec![0.0; N]);
+        let r = race(&mut [
+            &mut || {
+                normal_step(&hsd_s, &c, 0, &mut [], &mut ns_);
+                tangential_step(&mind_s, &c, &ns_, &mut hs, &mut ts);
+            },
+            &mut || {
+                normal_step(&hsd_p, &c, 0, &mut [], &mut np_);
+                tangential_step(&mind_p, &c, &np_, &mut hp, &mut tp);
+            },
+        ]);
+        // after the same calls in the same order, the springs are the same bits
+        assert!(hs.iter().zip(&hp).all(|(a, b)| a.to_bits() == b.to_bits()));
+        println!("2. HSD + Mindlin (μ = 0.3) with history: normal batch, then tangential batch");
+        report(
+            &r,
+            ns,
+            ["compiled in", "plugin batch calls"],
+            "plugin / compiled",
+            "   target >= 0.95",
+        );
+    }
 
     // 2b. the same plugins with the energy outputs on and off, in chunks of CHUNK contacts in
     // cache as the DEM loop calls them: what the accounting costs the laws
-    {
+    if section("2b") {
         const CHUNK: usize = 1024;
         let reps = N / CHUNK;
         let mut h = [vec![0.0; slots * CHUNK], vec![0.0; slots * CHUNK]];
@@ -285,6 +411,9 @@ fn main() {
     }
 
     // 3. sdk 0.2 per-contact geometry against sdk 0.1's bound-pair batch
+    if !section("3") && !section("4") {
+        return;
+    }
     match sdk01_registry("release") {
         None => println!("3. skipped: the sdk 0.1 sources are not in this checkout's history"),
         Some(old) => {

@@ -319,13 +319,17 @@ pub fn new_law<F>(
 /// The block loop every kind shares: `blocks!(n, |lo, hi| body)` checks, evaluates and checks
 /// the contacts `[lo, hi)` in blocks of [`CHECK_BLOCK`](super::checks::CHECK_BLOCK); `body` is a
 /// `Result<(), (usize, u8)>` and its error (or a `?` inside it) returns from the enclosing
-/// function. A macro, not a function taking a closure: the body must be compiled inline into the
-/// AVX2 copy of the batch loop (`run_avx2`), and a closure LLVM declines to inline is compiled
-/// for the baseline target (SSE2) alone, which made every batch ~1.6× slower.
+/// function. `blocks!(start => n, ...)` starts at contact `start`. A macro, not a function
+/// taking a closure: the body must be compiled inline into the AVX2 copy of the batch loop
+/// (`run_avx2`), and a closure LLVM declines to inline is compiled for the baseline target
+/// (SSE2) alone, which made every batch ~1.6× slower.
 macro_rules! blocks {
-    ($n:expr, |$lo:ident, $hi:ident| $body:expr) => {{
+    ($n:expr, |$lo:ident, $hi:ident| $body:expr) => {
+        $crate::abi::kind::blocks!(0 => $n, |$lo, $hi| $body)
+    };
+    ($start:expr => $n:expr, |$lo:ident, $hi:ident| $body:expr) => {{
         let n: usize = $n;
-        let mut $lo = 0usize;
+        let mut $lo: usize = $start;
         while $lo < n {
             let $hi = ($lo + $crate::abi::checks::CHECK_BLOCK).min(n);
             let r: Result<(), (usize, u8)> = $body;

@@ -101,8 +101,11 @@ macro_rules! motion_run {
     }};
 }
 
+mod pipelined;
 mod twisting;
 mod vector;
+
+use pipelined::pipelined_blocks;
 
 pub use twisting::{FfiTwistingBatch, Twisting};
 pub use vector::{FfiVectorBatch, Rolling, Tangential};
@@ -299,18 +302,106 @@ pub(super) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
     }
 }
 
+/// Batches of at most this many contacts (a collision's integrator evaluates two to five states
+/// at a time) skip the block loop's setup for vector code.
+const FEW: usize = 8;
+
+/// A batch of at most [`FEW`] contacts, as one block of the block loop (its inputs, then the
+/// law, then its energy, then its forces), the law called contact by contact: the vector loop
+/// of a law over a few contacts costs more to set up (alias checks, remainders) than it saves.
+#[inline(always)]
+fn few_contacts<B: BoundContact>(
+    law: &B,
+    b: NormalBatch<'_>,
+    mut energy: Option<(&mut [f64], &mut [f64])>,
+) -> Result<bool, (usize, u8)> {
+    let (slots, n) = (b.slots, b.force.len());
+    let (d, r, m, a) = (&b.delta[..n], &b.rate[..n], &b.mass[..n], &b.radius[..n]);
+    let mut ok = true;
+    for i in 0..n {
+        ok &= contact_ok(d[i], r[i], m[i], a[i]);
+    }
+    if !ok {
+        if let Some(fault) = check_normal_inputs(d, r, m, a) {
+            return Err(fault);
+        }
+    }
+    let (mut written, mut finite) = (energy.is_some(), true);
+    for i in 0..n {
+        let k = i + 1;
+        let one = NormalBatch {
+            delta: &d[i..k],
+            rate: &r[i..k],
+            mass: &m[i..k],
+            radius: &a[i..k],
+            slots,
+            history: &mut b.history[i * slots..k * slots],
+            force: &mut b.force[i..k],
+        };
+        written &= match energy.as_mut() {
+            None => {
+                law.force_batch(one);
+                false
+            }
+            Some((p, e)) => law.force_batch_energy(
+                one,
+                EnergyBatch {
+                    power: &mut p[i..k],
+                    elastic: &mut e[i..k],
+                },
+            ),
+        };
+        finite &= is_finite(b.force[i]);
+    }
+    if let Some((p, e)) = energy.as_ref() {
+        if written {
+            check_energy(0, &p[..n], &e[..n])?;
+        }
+    }
+    if !finite {
+        if let Some(i) = first_non_finite(b.force) {
+            return Err((i, BatchFault::OUTPUT));
+        }
+    }
+    Ok(written)
+}
+
 /// The block loop of a normal batch: check a block's inputs, run the law on it (with its
 /// energy outputs when `energy` is given), check its outputs. Returns whether every contact
-/// reported its energy, or the first bad contact and what is wrong with it.
+/// reported its energy, or the first bad contact and what is wrong with it. The full blocks of
+/// a straight-line law without history go through [`pipelined_blocks`].
 #[inline(always)]
 fn normal_blocks<B: BoundContact>(
     law: &B,
     b: NormalBatch<'_>,
     mut energy: Option<(&mut [f64], &mut [f64])>,
 ) -> Result<bool, (usize, u8)> {
-    let slots = b.slots;
+    let (slots, n) = (b.slots, b.force.len());
+    if n <= FEW {
+        return few_contacts(law, b, energy);
+    }
     let mut written = energy.is_some();
-    blocks!(b.force.len(), |lo, hi| {
+    let full = if B::STRAIGHT_LINE && slots == 0 {
+        n - n % CHECK_BLOCK
+    } else {
+        0
+    };
+    if full > 0 {
+        let (d, r, m, a) = (
+            &b.delta[..full],
+            &b.rate[..full],
+            &b.mass[..full],
+            &b.radius[..full],
+        );
+        let f = &mut b.force[..full];
+        // one copy of the loop without energy outputs, one with them (a branch inside the loop
+        // let the compiler hoist the first contact out of a step and split its vectors)
+        written &= match energy.as_mut() {
+            None => pipelined_blocks(law, (d, r, m, a), f, None)?,
+            Some((p, e)) => pipelined_blocks(law, (d, r, m, a), f, Some((&mut p[..full], &mut e[..full])))?,
+        };
+    }
+    blocks!(full => n, |lo, hi| {
         let (d, r, m, a) = (
             &b.delta[lo..hi],
             &b.rate[lo..hi],
