@@ -234,6 +234,37 @@ fn a_reordered_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
     assert!(same_state(&a, &run(2, 8)), "single steps and blocks part");
 }
 
+/// A 3D pile of small chunks (2,880 spheres: 15 chunks of 192, each particle's shares summed
+/// nearest chunk first) is the same bit for bit on one, two and three threads, stepped one by
+/// one or in blocks, reordered every few steps or never (then numbered in a scrambled order:
+/// a chunk's partners lie in every other chunk, and whole ranges are heads).
+#[test]
+fn a_3d_pile_of_small_chunks_is_the_same_bit_for_bit_on_any_threads() {
+    for period in [Some(5), None] {
+        let run = |threads: usize, block: u64| -> Engine<3> {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut e = lattice::<3>(12, 20, period);
+                for _ in 0..(40 / block) {
+                    e.advance(block).unwrap();
+                }
+                e
+            })
+        };
+        let a = run(1, 1);
+        assert!(a.pairs.len() > 2000, "{} pair contacts", a.pairs.len());
+        for (threads, block) in [(2, 1), (2, 8), (3, 8)] {
+            assert!(
+                same_state(&a, &run(threads, block)),
+                "period {period:?}: one thread and {threads} (blocks of {block}) part"
+            );
+        }
+    }
+}
+
 /// An error names the user's particle, not the engine's.
 #[test]
 fn an_error_names_the_users_particle() {

@@ -3,8 +3,8 @@
 //!
 //! A contact is keyed by `(i, j)`: two particles with `i < j`, or particle `i` and wall `j`.
 //! The contacts are kept in chunks by their particle `i`: chunk `c` holds those of particles
-//! `c·GATHER_CHUNK .. (c+1)·GATHER_CHUNK`, in key order (particle by particle, partners
-//! sorted). Particle indices never change, so a contact stays in its chunk for life: its
+//! `c·C .. (c+1)·C` for the pile's chunk size `C` ([`gather_chunk`]), in key order (particle
+//! by particle, partners sorted). Particle indices never change, so a contact stays in its chunk for life: its
 //! history is found in the same chunk of the previous step, also in key order, by a merge
 //! (one cursor moving forward through the previous set), and each chunk is gathered, evaluated and
 //! scattered as one parallel task that touches no other chunk's contacts (see
@@ -145,8 +145,37 @@ pub const MAX_OVERLAP: f64 = 0.5;
 /// Contacts per law call.
 pub const LAW_CHUNK: usize = 1024;
 
-/// Particles per chunk of contacts (the unit of parallel work).
+/// Particles per chunk of contacts (the unit of parallel work) from [`FULL_CHUNK_FROM`]
+/// particles on; smaller piles take [`gather_chunk`]'s.
 pub const GATHER_CHUNK: usize = 2048;
+
+/// Particles per chunk of contacts in a pile of `n` particles: [`GATHER_CHUNK`] from
+/// [`FULL_CHUNK_FROM`] particles on and below [`SERIAL_BELOW`] (one chunk), else the pile cut
+/// into [`SMALL_CHUNKS`] chunks (a multiple of 64 particles, at least [`MIN_CHUNK`]). A function
+/// of the particle count alone, never of the threads: the chunks fix the order in which forces
+/// are summed, and so a run's bits.
+pub fn gather_chunk(n: usize) -> usize {
+    if !(SERIAL_BELOW..FULL_CHUNK_FROM).contains(&n) {
+        GATHER_CHUNK
+    } else {
+        n.div_ceil(SMALL_CHUNKS).next_multiple_of(64).max(MIN_CHUNK)
+    }
+}
+
+/// Whether each particle's force in a pile of `n` particles sums the shares of the earlier
+/// chunks' contacts nearest chunk first (the piles of small chunks, [`gather_chunk`]: a chunk's
+/// contacts then add their partners' shares at once when those are the same thread's), or
+/// farthest first (the piles of [`GATHER_CHUNK`]s: the order the engine has always summed
+/// them in, so that a run of a large pile keeps its bits).
+pub fn nearest_first(n: usize) -> bool {
+    gather_chunk(n) < GATHER_CHUNK
+}
+
+/// Chunks of a pile below [`FULL_CHUNK_FROM`] particles (see [`gather_chunk`]).
+pub const SMALL_CHUNKS: usize = 16;
+
+/// The smallest chunk (particles) (see [`gather_chunk`]).
+pub const MIN_CHUNK: usize = 128;
 
 /// The batch of a law of the contact's motion, `motion_batch!(Batch { set[a..b], dt,
 /// normal_force: SLICE, input: ARRAY, history / slots => output: ARRAY })`, on contacts
@@ -358,7 +387,7 @@ impl ContactSet {
     }
 }
 
-/// One kind of contacts of a run, in chunks of [`GATHER_CHUNK`] particles (see the module doc),
+/// One kind of contacts of a run, in chunks of particles ([`gather_chunk`], see the module doc),
 /// each double-buffered.
 #[derive(Debug, Clone, Default)]
 pub struct Contacts {
@@ -464,6 +493,10 @@ impl Contacts {
     }
 }
 
+/// From this many particles on, chunks of contacts are [`GATHER_CHUNK`] particles (see
+/// [`gather_chunk`]).
+pub const FULL_CHUNK_FROM: usize = 4096;
+
 /// Below this many particles the engine runs serially: rayon's dispatch per parallel loop costs
-/// more than a few thousand particles' work (a 50-disk bed ran at 175 µs per step).
-pub const SERIAL_BELOW: usize = 4096;
+/// more than a small pile's work (a 50-disk bed ran at 175 µs per step).
+pub const SERIAL_BELOW: usize = 1024;
