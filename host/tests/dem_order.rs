@@ -298,3 +298,41 @@ fn power_shares_are_reported_under_the_users_numbers() {
         "power shares differ by {dp:e} W of {scale:e} W"
     );
 }
+
+/// A 3D pile of small chunks (2,880 spheres) steps as one pass over the particles, its list
+/// going stale mid-pass now and then: the same bits as the plain two passes (a fresh list and
+/// every force at each step, forced by invalidating the list) on one, two and three threads.
+#[test]
+fn a_3d_pile_of_small_chunks_steps_as_two_passes_would() {
+    let run = |threads: usize, two_passes: bool| -> Engine<3> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut e = lattice::<3>(12, 20, None);
+            // 1 m/s: the list goes stale every few dozen steps
+            e.p.vel.iter_mut().for_each(|v| *v *= 5.0);
+            if two_passes {
+                for _ in 0..480 {
+                    e.invalidate_neighbours();
+                    e.step().unwrap();
+                }
+            } else {
+                e.advance(480).unwrap();
+            }
+            e
+        })
+    };
+    let reference = run(1, true);
+    assert_eq!(reference.rebuilds(), 481);
+    for threads in [1, 2, 3] {
+        let e = run(threads, false);
+        println!("{threads} thread(s): {} list builds in 480 steps", e.rebuilds());
+        assert!(e.rebuilds() >= 3, "the run must cross stale lists");
+        assert!(
+            same_state(&e, &reference),
+            "{threads} thread(s): one pass and two part"
+        );
+    }
+}

@@ -145,33 +145,44 @@ pub const MAX_OVERLAP: f64 = 0.5;
 /// Contacts per law call.
 pub const LAW_CHUNK: usize = 1024;
 
-/// Particles per chunk of contacts (the unit of parallel work) from [`FULL_CHUNK_FROM`]
-/// particles on; smaller piles take [`gather_chunk`]'s.
+/// Particles per chunk of contacts (the unit of parallel work), but in the 3D piles of
+/// [`SMALL_FROM`] to [`FULL_CHUNK_FROM`] particles ([`gather_chunk`]).
 pub const GATHER_CHUNK: usize = 2048;
 
-/// Particles per chunk of contacts in a pile of `n` particles: [`GATHER_CHUNK`] from
-/// [`FULL_CHUNK_FROM`] particles on and below [`SERIAL_BELOW`] (one chunk), else the pile cut
-/// into [`SMALL_CHUNKS`] chunks (a multiple of 64 particles, at least [`MIN_CHUNK`]). A function
-/// of the particle count alone, never of the threads: the chunks fix the order in which forces
-/// are summed, and so a run's bits.
-pub fn gather_chunk(n: usize) -> usize {
-    if !(SERIAL_BELOW..FULL_CHUNK_FROM).contains(&n) {
-        GATHER_CHUNK
-    } else {
+/// Particles per chunk of contacts in a pile of `n` particles in `dim` dimensions: a 3D pile of
+/// [`SMALL_FROM`] particles to fewer than [`FULL_CHUNK_FROM`] is cut into [`SMALL_CHUNKS`]
+/// chunks (a multiple of 64 particles, at least [`MIN_CHUNK`]), so that two or more threads
+/// share its step out; every other pile takes [`GATHER_CHUNK`]s. In 2D, a disk has a third of a
+/// sphere's contacts and work, and a small pile's step would pay its chunks' fixed costs (some
+/// 4,000 instructions a chunk: 8 % of a 2,000-disk step in 16 chunks) for a step of tens of
+/// microseconds. A function of the pile alone, never of the threads: the chunks fix the order
+/// in which forces are summed, and so a run's bits.
+pub fn gather_chunk(n: usize, dim: usize) -> usize {
+    if dim == 3 && (SMALL_FROM..FULL_CHUNK_FROM).contains(&n) {
         n.div_ceil(SMALL_CHUNKS).next_multiple_of(64).max(MIN_CHUNK)
+    } else {
+        GATHER_CHUNK
     }
 }
 
-/// Whether each particle's force in a pile of `n` particles sums the shares of the earlier
-/// chunks' contacts nearest chunk first (the piles of small chunks, [`gather_chunk`]: a chunk's
-/// contacts then add their partners' shares at once when those are the same thread's), or
-/// farthest first (the piles of [`GATHER_CHUNK`]s: the order the engine has always summed
-/// them in, so that a run of a large pile keeps its bits).
-pub fn nearest_first(n: usize) -> bool {
-    gather_chunk(n) < GATHER_CHUNK
+/// Whether a pile of chunks of `chunk` particles ([`gather_chunk`]) sums each particle's
+/// shares of the earlier chunks' contacts nearest chunk first (small chunks: a chunk's contacts
+/// then add their partners' shares at once when those are the same thread's), or farthest
+/// first ([`GATHER_CHUNK`]s: the order the engine has always summed them in, so that such a
+/// pile keeps its bits).
+pub fn nearest_first(chunk: usize) -> bool {
+    chunk < GATHER_CHUNK
 }
 
-/// Chunks of a pile below [`FULL_CHUNK_FROM`] particles (see [`gather_chunk`]).
+/// Whether a pile of `n` particles in chunks of `chunk` steps in parallel on a pool of several
+/// threads: from [`SERIAL_BELOW`] particles on, or in small chunks (fewer chunks share out
+/// badly: two 2,048-particle chunks with a dependency between them ran slower on two threads
+/// than on one).
+pub fn parallel(n: usize, chunk: usize) -> bool {
+    n >= SERIAL_BELOW || nearest_first(chunk)
+}
+
+/// Chunks of a small 3D pile (see [`gather_chunk`]).
 pub const SMALL_CHUNKS: usize = 16;
 
 /// The smallest chunk (particles) (see [`gather_chunk`]).
@@ -497,6 +508,10 @@ impl Contacts {
 /// [`gather_chunk`]).
 pub const FULL_CHUNK_FROM: usize = 4096;
 
-/// Below this many particles the engine runs serially: rayon's dispatch per parallel loop costs
-/// more than a small pile's work (a 50-disk bed ran at 175 µs per step).
-pub const SERIAL_BELOW: usize = 1024;
+/// From this many particles on, a 3D pile is cut into small chunks (see [`gather_chunk`]).
+pub const SMALL_FROM: usize = 1024;
+
+/// Below this many particles the engine runs serially (but a pile of small chunks, see
+/// [`parallel`]): rayon's dispatch per parallel loop costs more than a few thousand particles'
+/// work (a 50-disk bed ran at 175 µs per step).
+pub const SERIAL_BELOW: usize = 4096;

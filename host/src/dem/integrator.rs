@@ -26,7 +26,7 @@
 //! [`MIN_STEPS_PER_COLLISION`] steps, below which the explicit scheme is unstable.
 
 use super::cells::Neighbours;
-use super::contacts::{gather_chunk, nearest_first, Contacts, SERIAL_BELOW};
+use super::contacts::{gather_chunk, nearest_first, parallel, Contacts};
 use super::state::{spin_len, to3, Body, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
@@ -114,8 +114,10 @@ pub struct Engine<const D: usize> {
     /// particle count).
     chunk: usize,
     /// Whether each particle's force sums the shares of earlier chunks' contacts nearest chunk
-    /// first, else farthest first ([`nearest_first`] of the particle count).
+    /// first, else farthest first ([`nearest_first`] of the chunk).
     nearest_first: bool,
+    /// Whether the steps run in parallel on a pool of several threads ([`parallel`]).
+    parallel: bool,
 }
 
 impl<const D: usize> Engine<D> {
@@ -285,8 +287,9 @@ impl<const D: usize> Engine<D> {
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
             order: order::Order::default(),
-            chunk: gather_chunk(bodies.len()),
-            nearest_first: nearest_first(bodies.len()),
+            chunk: gather_chunk(bodies.len(), D),
+            nearest_first: nearest_first(gather_chunk(bodies.len(), D)),
+            parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
         };
         e.order.due = e.sorts();
         e.check(false)?;
@@ -414,7 +417,7 @@ impl<const D: usize> Engine<D> {
     /// [`Engine::advance`] in the engine's order.
     pub(super) fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
-        let parallel = k > 1 && self.p.len() >= SERIAL_BELOW;
+        let parallel = k > 1 && self.parallel;
         let mut block = || {
             for s in 0..k {
                 self.step_with(fuse && s + 1 < k)?;
@@ -478,7 +481,7 @@ impl<const D: usize> Engine<D> {
                             .sum::<f64>()
                     };
                 }
-                if n < SERIAL_BELOW {
+                if !self.parallel {
                     drift_all!(chunks_mut)
                 } else {
                     drift_all!(par_chunks_mut)
@@ -507,7 +510,7 @@ impl<const D: usize> Engine<D> {
             };
             let cs = c * spin_len(D);
             let chunks = p.vel.chunks_mut(c).zip(p.omega.chunks_mut(cs)).enumerate();
-            if n < SERIAL_BELOW {
+            if !self.parallel {
                 chunks.map(run).sum::<f64>()
             } else {
                 p.vel

@@ -3,7 +3,7 @@
 
 use crate::collide::{collide, Options, PairLaw};
 use crate::dem::cells::Domain;
-use crate::dem::contacts::FULL_CHUNK_FROM;
+use crate::dem::contacts::SERIAL_BELOW;
 use crate::dem::state::{Body, Material, Particles, VecD};
 use crate::dem::walls::Wall;
 use crate::dem::{DemError, Laws};
@@ -251,7 +251,7 @@ impl<const D: usize> super::Engine<D> {
             dom.bounded
                 && (0..D).any(|k| !dom.periodic[k] && (p.pos[i][k] < dom.lo[k] || p.pos[i][k] > dom.hi[k]))
         };
-        let bad = if p.len() < FULL_CHUNK_FROM {
+        let bad = if p.len() < SERIAL_BELOW {
             (0..p.len()).find(bad_at)
         } else {
             (0..p.len()).into_par_iter().find_first(bad_at)

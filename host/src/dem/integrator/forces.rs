@@ -2,7 +2,7 @@
 //! gathered and their laws called in parallel, then the serial end of a step's evaluation.
 
 use super::{add_shares, chunk_forces, ChunkContext, ChunkTask, Engine, Overflow};
-use crate::dem::contacts::{View, SERIAL_BELOW};
+use crate::dem::contacts::View;
 use crate::dem::state::{from3, spin_len, Vec3};
 use crate::dem::DemError;
 use rayon::prelude::*;
@@ -88,7 +88,7 @@ impl<const D: usize> Engine<D> {
                     .collect()
             };
         }
-        let results: Vec<Result<(), DemError>> = if n < SERIAL_BELOW {
+        let results: Vec<Result<(), DemError>> = if !self.parallel {
             tasks!(iter, iter_mut, chunks_mut)
         } else {
             tasks!(par_iter, par_iter_mut, par_chunks_mut)

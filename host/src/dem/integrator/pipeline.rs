@@ -34,7 +34,7 @@
 //! partners j beyond the chunk get their *shares* after the forces of j's own chunk. In a pile
 //! of [`GATHER_CHUNK`](crate::dem::contacts::GATHER_CHUNK)s (from 4,096 particles on) the shares come chunk by chunk from the
 //! farthest chunk to the nearest, each chunk's kept in a list ([`Overflow`]) until the end of
-//! the pass. In a pile of small chunks (fewer than 4,096 particles, [`crate::dem::contacts::
+//! the pass. In a pile of small chunks (3D, 1,024 to 4,095 particles, [`crate::dem::contacts::
 //! gather_chunk`]), from the nearest to the farthest: since a range is swept from its last
 //! chunk down, a chunk's partners in later chunks of the same range have then just received
 //! the shares of the chunks between, and get theirs at once; only the shares for later ranges
@@ -64,9 +64,7 @@
 //! lists once that range has flagged their chunk done (release, acquire).
 
 use super::awake::{map_ranked, spin_until, OnDrop};
-use super::{
-    add_shares, chunk_forces, kick_drift_chunk, ChunkContext, Engine, Overflow, Shared, SERIAL_BELOW,
-};
+use super::{add_shares, chunk_forces, kick_drift_chunk, ChunkContext, Engine, Overflow, Shared};
 use crate::dem::contacts::{ContactSet, View};
 use crate::dem::state::spin_len;
 use crate::dem::DemError;
@@ -190,7 +188,7 @@ impl<const D: usize> Engine<D> {
         // (its particles' state then stays in that core's cache: see the module doc); one
         // thread, one range
         let threads = rayon::current_num_threads();
-        let tasks = if n < SERIAL_BELOW || threads == 1 {
+        let tasks = if !self.parallel || threads == 1 {
             1
         } else {
             threads.clamp(1, chunks.max(1))
