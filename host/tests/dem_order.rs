@@ -234,6 +234,37 @@ fn a_reordered_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
     assert!(same_state(&a, &run(2, 8)), "single steps and blocks part");
 }
 
+/// A 3D pile of small chunks (2,880 spheres: 15 chunks of 192, each particle's shares summed
+/// nearest chunk first) is the same bit for bit on one, two and three threads, stepped one by
+/// one or in blocks, reordered every few steps or never (then numbered in a scrambled order:
+/// a chunk's partners lie in every other chunk, and whole ranges are heads).
+#[test]
+fn a_3d_pile_of_small_chunks_is_the_same_bit_for_bit_on_any_threads() {
+    for period in [Some(5), None] {
+        let run = |threads: usize, block: u64| -> Engine<3> {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut e = lattice::<3>(12, 20, period);
+                for _ in 0..(40 / block) {
+                    e.advance(block).unwrap();
+                }
+                e
+            })
+        };
+        let a = run(1, 1);
+        assert!(a.pairs.len() > 2000, "{} pair contacts", a.pairs.len());
+        for (threads, block) in [(2, 1), (2, 8), (3, 8)] {
+            assert!(
+                same_state(&a, &run(threads, block)),
+                "period {period:?}: one thread and {threads} (blocks of {block}) part"
+            );
+        }
+    }
+}
+
 /// An error names the user's particle, not the engine's.
 #[test]
 fn an_error_names_the_users_particle() {
@@ -266,4 +297,42 @@ fn power_shares_are_reported_under_the_users_numbers() {
         scale > 0.0 && dp <= 1e-7 * scale,
         "power shares differ by {dp:e} W of {scale:e} W"
     );
+}
+
+/// A 3D pile of small chunks (2,880 spheres) steps as one pass over the particles, its list
+/// going stale mid-pass now and then: the same bits as the plain two passes (a fresh list and
+/// every force at each step, forced by invalidating the list) on one, two and three threads.
+#[test]
+fn a_3d_pile_of_small_chunks_steps_as_two_passes_would() {
+    let run = |threads: usize, two_passes: bool| -> Engine<3> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut e = lattice::<3>(12, 20, None);
+            // 1 m/s: the list goes stale every few dozen steps
+            e.p.vel.iter_mut().for_each(|v| *v *= 5.0);
+            if two_passes {
+                for _ in 0..480 {
+                    e.invalidate_neighbours();
+                    e.step().unwrap();
+                }
+            } else {
+                e.advance(480).unwrap();
+            }
+            e
+        })
+    };
+    let reference = run(1, true);
+    assert_eq!(reference.rebuilds(), 481);
+    for threads in [1, 2, 3] {
+        let e = run(threads, false);
+        println!("{threads} thread(s): {} list builds in 480 steps", e.rebuilds());
+        assert!(e.rebuilds() >= 3, "the run must cross stale lists");
+        assert!(
+            same_state(&e, &reference),
+            "{threads} thread(s): one pass and two part"
+        );
+    }
 }

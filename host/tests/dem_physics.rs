@@ -539,7 +539,7 @@ fn a_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
 }
 
 /// A step with a valid neighbour list is one pass over the particles (each chunk drifted, then
-/// its forces evaluated, chunks in reverse order, the chunks cut into two ranges per thread
+/// its forces evaluated, chunks in reverse order, the chunks cut into one range per thread
 /// whose first chunks drift as soon as an earlier range needs them); on a step where the list
 /// goes stale mid-pass, the forces are evaluated again after a rebuild. Its result must be the
 /// same bit for bit as the plain two passes (every drift, a fresh list, every force: forced
@@ -548,7 +548,8 @@ fn a_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
 #[test]
 fn the_one_pass_step_is_the_same_bit_for_bit_as_two_passes() {
     // 70 × 72 disks: 3 chunks, one range each on 2 and 3 threads (each a whole head or none);
-    // 140 × 130 disks: 9 chunks, ranges of 1 to 3 chunks, some with a head and more
+    // 140 × 130 disks: 9 chunks, ranges of 3 to 5 chunks, some with a head and more (3D piles
+    // of small chunks: `dem_order.rs`)
     for (cols, rows, steps) in [(70, 72, 600), (140, 130, 480)] {
         one_pass_against_two(cols, rows, steps);
     }

@@ -215,38 +215,49 @@ impl<const D: usize> Neighbours<D> {
             members[fill[c] as usize] = i as u32;
             fill[c] += 1;
         }
-        let neighbour_cells = |c: usize| -> Vec<usize> {
-            let mut idx = [0i64; D];
+        // along each axis, the three neighbour layers of a cell's (−1, 0, +1), wrapped along a
+        // periodic axis, absent past an open one's ends; repeated where a periodic axis has
+        // fewer than three cells, so that the cells are then deduplicated
+        let repeats = (0..D).any(|k| dom.periodic[k] && dims[k] < 3);
+        let neighbour_cells = |c: usize, out: &mut Vec<usize>| {
+            let mut idx = [0usize; D];
             let mut r = c;
             for k in 0..D {
-                idx[k] = (r % dims[k]) as i64;
+                idx[k] = r % dims[k];
                 r /= dims[k];
             }
-            let mut out = Vec::with_capacity(27);
-            let total = 3usize.pow(D as u32);
-            'o: for m in 0..total {
-                let mut mm = m;
-                let mut id = 0usize;
-                let mut q = [0i64; D];
-                for k in 0..D {
-                    q[k] = idx[k] + (mm % 3) as i64 - 1;
-                    mm /= 3;
-                    if q[k] < 0 || q[k] >= dims[k] as i64 {
-                        if dom.periodic[k] {
-                            q[k] = q[k].rem_euclid(dims[k] as i64);
-                        } else {
-                            continue 'o;
-                        }
-                    }
+            // the cells' indices along each axis (at most three)
+            let mut along = [[0usize; 3]; D];
+            let mut count = [0usize; D];
+            for k in 0..D {
+                for d in [-1i64, 0, 1] {
+                    let q = idx[k] as i64 + d;
+                    let q = if (0..dims[k] as i64).contains(&q) {
+                        q
+                    } else if dom.periodic[k] {
+                        q.rem_euclid(dims[k] as i64)
+                    } else {
+                        continue;
+                    };
+                    along[k][count[k]] = q as usize;
+                    count[k] += 1;
                 }
-                for k in (0..D).rev() {
-                    id = id * dims[k] + q[k] as usize;
+            }
+            out.clear();
+            let total: usize = count.iter().product();
+            for m in 0..total {
+                let (mut mm, mut id, mut stride) = (m, 0usize, 1usize);
+                for k in 0..D {
+                    id += along[k][mm % count[k]] * stride;
+                    mm /= count[k];
+                    stride *= dims[k];
                 }
                 out.push(id);
             }
-            out.sort_unstable();
-            out.dedup();
-            out
+            if repeats {
+                out.sort_unstable();
+                out.dedup();
+            }
         };
         let images = dom.images();
         type Rows = (Vec<u32>, Vec<u32>, Vec<bool>);
@@ -258,11 +269,11 @@ impl<const D: usize> Neighbours<D> {
                 let mut cross = Vec::with_capacity(b - a);
                 let mut js = Vec::new();
                 let mut last_cell = usize::MAX;
-                let mut nb = Vec::new();
+                let mut nb = Vec::with_capacity(27);
                 for i in a..b {
                     if cell[i] != last_cell {
                         last_cell = cell[i];
-                        nb = neighbour_cells(last_cell);
+                        neighbour_cells(last_cell, &mut nb);
                     }
                     let before = js.len();
                     let mut crosses = false;

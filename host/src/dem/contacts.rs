@@ -3,8 +3,8 @@
 //!
 //! A contact is keyed by `(i, j)`: two particles with `i < j`, or particle `i` and wall `j`.
 //! The contacts are kept in chunks by their particle `i`: chunk `c` holds those of particles
-//! `c·GATHER_CHUNK .. (c+1)·GATHER_CHUNK`, in key order (particle by particle, partners
-//! sorted). Particle indices never change, so a contact stays in its chunk for life: its
+//! `c·C .. (c+1)·C` for the pile's chunk size `C` ([`gather_chunk`]), in key order (particle
+//! by particle, partners sorted). Particle indices never change, so a contact stays in its chunk for life: its
 //! history is found in the same chunk of the previous step, also in key order, by a merge
 //! (one cursor moving forward through the previous set), and each chunk is gathered, evaluated and
 //! scattered as one parallel task that touches no other chunk's contacts (see
@@ -145,8 +145,48 @@ pub const MAX_OVERLAP: f64 = 0.5;
 /// Contacts per law call.
 pub const LAW_CHUNK: usize = 1024;
 
-/// Particles per chunk of contacts (the unit of parallel work).
+/// Particles per chunk of contacts (the unit of parallel work), but in the 3D piles of
+/// [`SMALL_FROM`] to [`FULL_CHUNK_FROM`] particles ([`gather_chunk`]).
 pub const GATHER_CHUNK: usize = 2048;
+
+/// Particles per chunk of contacts in a pile of `n` particles in `dim` dimensions: a 3D pile of
+/// [`SMALL_FROM`] particles to fewer than [`FULL_CHUNK_FROM`] is cut into [`SMALL_CHUNKS`]
+/// chunks (a multiple of 64 particles, at least [`MIN_CHUNK`]), so that two or more threads
+/// share its step out; every other pile takes [`GATHER_CHUNK`]s. In 2D, a disk has a third of a
+/// sphere's contacts and work, and a small pile's step would pay its chunks' fixed costs (some
+/// 4,000 instructions a chunk: 8 % of a 2,000-disk step in 16 chunks) for a step of tens of
+/// microseconds. A function of the pile alone, never of the threads: the chunks fix the order
+/// in which forces are summed, and so a run's bits.
+pub fn gather_chunk(n: usize, dim: usize) -> usize {
+    if dim == 3 && (SMALL_FROM..FULL_CHUNK_FROM).contains(&n) {
+        n.div_ceil(SMALL_CHUNKS).next_multiple_of(64).max(MIN_CHUNK)
+    } else {
+        GATHER_CHUNK
+    }
+}
+
+/// Whether a pile of chunks of `chunk` particles ([`gather_chunk`]) sums each particle's
+/// shares of the earlier chunks' contacts nearest chunk first (small chunks: a chunk's contacts
+/// then add their partners' shares at once when those are the same thread's), or farthest
+/// first ([`GATHER_CHUNK`]s: the order the engine has always summed them in, so that such a
+/// pile keeps its bits).
+pub fn nearest_first(chunk: usize) -> bool {
+    chunk < GATHER_CHUNK
+}
+
+/// Whether a pile of `n` particles in chunks of `chunk` steps in parallel on a pool of several
+/// threads: from [`SERIAL_BELOW`] particles on, or in small chunks (fewer chunks share out
+/// badly: two 2,048-particle chunks with a dependency between them ran slower on two threads
+/// than on one).
+pub fn parallel(n: usize, chunk: usize) -> bool {
+    n >= SERIAL_BELOW || nearest_first(chunk)
+}
+
+/// Chunks of a small 3D pile (see [`gather_chunk`]).
+pub const SMALL_CHUNKS: usize = 16;
+
+/// The smallest chunk (particles) (see [`gather_chunk`]).
+pub const MIN_CHUNK: usize = 128;
 
 /// The batch of a law of the contact's motion, `motion_batch!(Batch { set[a..b], dt,
 /// normal_force: SLICE, input: ARRAY, history / slots => output: ARRAY })`, on contacts
@@ -358,7 +398,7 @@ impl ContactSet {
     }
 }
 
-/// One kind of contacts of a run, in chunks of [`GATHER_CHUNK`] particles (see the module doc),
+/// One kind of contacts of a run, in chunks of particles ([`gather_chunk`], see the module doc),
 /// each double-buffered.
 #[derive(Debug, Clone, Default)]
 pub struct Contacts {
@@ -464,6 +504,14 @@ impl Contacts {
     }
 }
 
-/// Below this many particles the engine runs serially: rayon's dispatch per parallel loop costs
-/// more than a few thousand particles' work (a 50-disk bed ran at 175 µs per step).
+/// From this many particles on, chunks of contacts are [`GATHER_CHUNK`] particles (see
+/// [`gather_chunk`]).
+pub const FULL_CHUNK_FROM: usize = 4096;
+
+/// From this many particles on, a 3D pile is cut into small chunks (see [`gather_chunk`]).
+pub const SMALL_FROM: usize = 1024;
+
+/// Below this many particles the engine runs serially (but a pile of small chunks, see
+/// [`parallel`]): rayon's dispatch per parallel loop costs more than a few thousand particles'
+/// work (a 50-disk bed ran at 175 µs per step).
 pub const SERIAL_BELOW: usize = 4096;

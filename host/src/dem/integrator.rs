@@ -26,14 +26,15 @@
 //! [`MIN_STEPS_PER_COLLISION`] steps, below which the explicit scheme is unstable.
 
 use super::cells::Neighbours;
-use super::contacts::{Contacts, View, GATHER_CHUNK, SERIAL_BELOW};
-use super::state::{from3, spin_len, to3, Body, Particles, Vec3, VecD};
+use super::contacts::{gather_chunk, nearest_first, parallel, Contacts};
+use super::state::{spin_len, to3, Body, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
 use rayon::prelude::*;
 
 mod awake;
 mod config;
+mod forces;
 mod kernels;
 mod order;
 mod pipeline;
@@ -77,11 +78,18 @@ pub struct Engine<const D: usize> {
     inv_mass: Vec<f64>,
     inv_inertia: Vec<f64>,
     /// Per chunk of contacts, the forces and torques on particles of later chunks (the
-    /// partner j of a pair contact whose i is in the chunk), added after the parallel part.
-    overflow: Vec<Vec<(u32, VecD<D>, Vec3)>>,
+    /// partner j of a pair contact whose i is in the chunk), added after the chunks' own.
+    overflow: Vec<Overflow<D>>,
     /// For each chunk of particles, the last chunk holding a pair partner of one of its
     /// particles (in the current neighbour list).
     reach: Vec<usize>,
+    /// For each chunk of particles, the first chunk reaching it (see `reach`).
+    back: Vec<usize>,
+    /// For each chunk of particles, the time its drift and forces take (s; 0: not measured
+    /// yet), learnt from the steps on several threads: where to cut the chunks between them.
+    cost: Vec<f64>,
+    /// Each chunk's time at the last such step (s).
+    took: Vec<f64>,
     /// For each chunk of particles, a bound on their displacement since the list was built (m)
     /// (see [`kick_drift_chunk`]).
     moved: Vec<f64>,
@@ -102,21 +110,14 @@ pub struct Engine<const D: usize> {
     pub unreported: [bool; 4],
     /// The engine's memory order (see [`Engine::user_index`]).
     order: order::Order<D>,
-}
-
-/// The sum of `x` in four interleaved partial sums added pairwise at the end: the same bits on
-/// every run (the order is fixed), in a loop the compiler vectorises, where a plain sum is one
-/// chain of additions each waiting on the last.
-fn sum4(x: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let mut quads = x.chunks_exact(4);
-    for q in &mut quads {
-        for k in 0..4 {
-            acc[k] += q[k];
-        }
-    }
-    let rest: f64 = quads.remainder().iter().sum();
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + rest
+    /// Particles per chunk of contacts, the unit of parallel work ([`gather_chunk`] of the
+    /// particle count).
+    chunk: usize,
+    /// Whether each particle's force sums the shares of earlier chunks' contacts nearest chunk
+    /// first, else farthest first ([`nearest_first`] of the chunk).
+    nearest_first: bool,
+    /// Whether the steps run in parallel on a pool of several threads ([`parallel`]).
+    parallel: bool,
 }
 
 impl<const D: usize> Engine<D> {
@@ -277,12 +278,18 @@ impl<const D: usize> Engine<D> {
             unreported: [false; 4],
             overflow: Vec::new(),
             reach: Vec::new(),
+            back: Vec::new(),
+            cost: Vec::new(),
+            took: Vec::new(),
             moved: Vec::new(),
             pending_kick: false,
             wall_impulse: vec![VecD::<D>::zeros(); nw],
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
             order: order::Order::default(),
+            chunk: gather_chunk(bodies.len(), D),
+            nearest_first: nearest_first(gather_chunk(bodies.len(), D)),
+            parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
         };
         e.order.due = e.sorts();
         e.check(false)?;
@@ -353,125 +360,6 @@ impl<const D: usize> Engine<D> {
         self.walls.iter().map(|w| w.at(self.t)).collect()
     }
 
-    /// Gathers the contacts at the current positions and predicted velocities, calls the laws,
-    /// and sums forces and torques into the particles.
-    ///
-    /// The particles are cut into chunks of [`GATHER_CHUNK`]; each chunk is one task, run in
-    /// parallel: it gathers its particles' pair and wall contacts (history from the same chunk
-    /// of the last step), calls the laws on them, and sums the forces into its own particles'
-    /// slice of the force and torque arrays ([`chunk_forces`]). A pair partner j beyond the
-    /// chunk gets its share afterwards, chunk by chunk in order ([`Engine::finish_forces`]).
-    /// The sums therefore run in one fixed order whatever the number of threads, and a run is
-    /// bit for bit the same on one core or many. (The steps themselves do this work chunk by
-    /// chunk right after each chunk's drift: [`Engine::drift_and_forces`].)
-    fn forces(&mut self) -> Result<(), DemError> {
-        let ws = self.wall_states();
-        let n = self.p.len();
-        let chunks = n.div_ceil(GATHER_CHUNK);
-        self.overflow.resize_with(chunks, Vec::new);
-        let (prev_p, next_p) = self.pairs.buffers(chunks);
-        let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
-        let p = &mut self.p;
-        let view = View {
-            base: 0,
-            pos: &p.pos,
-            vpred: &self.vpred,
-            vel: &p.vel,
-            omega: &p.omega,
-            radius: &p.radius,
-            mass: &p.mass,
-            uid: (!self.order.uid.is_empty()).then_some(&self.order.uid[..]),
-        };
-        let ctx = ChunkContext {
-            dom: &self.cfg.domain,
-            nb: &self.nb,
-            walls: &ws,
-            laws: &self.laws,
-            dt: self.dt,
-            edges: self.cfg.edge_means,
-        };
-        let work = |(c, ((((pp, np), (pw, nw)), (f, tq)), ov)): ChunkTask<'_, D>| {
-            let range = c * GATHER_CHUNK..(c * GATHER_CHUNK + f.len());
-            chunk_forces(&ctx, range, &view, (pp, np), (pw, nw), f, tq, ov)
-        };
-        let force = &mut p.force;
-        let torque = &mut p.torque;
-        let overflow = &mut self.overflow;
-        // the first error in chunk order, whatever the threads did
-        // the same chain of zips, by std's iterators or rayon's (method names given)
-        macro_rules! tasks {
-            ($iter:ident, $iter_mut:ident, $chunks_mut:ident) => {
-                prev_p
-                    .$iter()
-                    .zip(next_p.$iter_mut())
-                    .zip(prev_w.$iter().zip(next_w.$iter_mut()))
-                    .zip(
-                        force
-                            .$chunks_mut(GATHER_CHUNK)
-                            .zip(torque.$chunks_mut(GATHER_CHUNK * spin_len(D))),
-                    )
-                    .zip(overflow.$iter_mut())
-                    .enumerate()
-                    .map(work)
-                    .collect()
-            };
-        }
-        let results: Vec<Result<(), DemError>> = if n < SERIAL_BELOW {
-            tasks!(iter, iter_mut, chunks_mut)
-        } else {
-            tasks!(par_iter, par_iter_mut, par_chunks_mut)
-        };
-        self.finish_forces(results.into_iter().collect())
-    }
-
-    /// The serial end of a force evaluation whose chunks gave `results` (the first error in
-    /// chunk order): a contact test that met a NaN reports the particle whose state is not
-    /// finite; else the new contacts become the current ones, the partners beyond each chunk
-    /// get their forces (chunk by chunk, in order), and the walls' impulses and episodes and
-    /// the pair episodes are counted.
-    fn finish_forces(&mut self, results: Result<(), DemError>) -> Result<(), DemError> {
-        results.map_err(|e| match self.check(true) {
-            Err(nf @ DemError::NonFinite { .. }) => nf,
-            _ => e,
-        })?;
-        self.pairs.swap();
-        self.wall_contacts.swap();
-        let p = &mut self.p;
-        for ov in &self.overflow {
-            for &(j, f, t) in ov {
-                p.force[j as usize] -= f;
-                add_spin::<D>(&mut p.torque, j as usize, &t);
-            }
-        }
-        for w in &self.wall_contacts.chunks {
-            for m in 0..w.len() {
-                let nv = Vec3::from(w.normal[m]);
-                let fi = nv * w.fnorm[m] + Vec3::from(w.ftan[m]);
-                let k = w.j[m] as usize;
-                self.wall_impulse[k] -= from3::<D>(&fi) * self.dt;
-                if w.fresh[m] {
-                    self.wall_episodes[k] += 1;
-                }
-            }
-        }
-        self.pair_episodes += self.pairs.formed() as u64;
-        if self.cfg.energy {
-            self.account_energy();
-        }
-        Ok(())
-    }
-
-    /// Adds the step's dissipation (each contact's power × dt) to [`Engine::dissipated`], chunk
-    /// by chunk in order.
-    fn account_energy(&mut self) {
-        for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
-            for (k, p) in set.power.iter().enumerate() {
-                self.dissipated[k] += sum4(&p[..set.len()]) * self.dt;
-                self.unreported[k] |= set.unreported[k];
-            }
-        }
-    }
-
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach
     /// and displacement bounds.
     fn rebuild(&mut self) {
@@ -482,7 +370,14 @@ impl<const D: usize> Engine<D> {
             &self.p.radius,
             self.skin + self.law_reach,
         );
-        self.nb.chunk_reach(GATHER_CHUNK, &mut self.reach);
+        self.nb.chunk_reach(self.chunk, &mut self.reach);
+        self.back.clear();
+        self.back.extend(0..self.reach.len());
+        for (k, &far) in self.reach.iter().enumerate().rev() {
+            for m in k + 1..=far {
+                self.back[m] = k;
+            }
+        }
         self.moved.clear();
         self.moved.resize(self.reach.len(), 0.0);
     }
@@ -522,7 +417,7 @@ impl<const D: usize> Engine<D> {
     /// [`Engine::advance`] in the engine's order.
     pub(super) fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
-        let parallel = k > 1 && self.p.len() >= SERIAL_BELOW;
+        let parallel = k > 1 && self.parallel;
         let mut block = || {
             for s in 0..k {
                 self.step_with(fuse && s + 1 < k)?;
@@ -558,12 +453,12 @@ impl<const D: usize> Engine<D> {
                 self.rebuild();
                 self.forces()?;
             } else {
-                self.finish_forces(pass.result)?;
+                self.finish_forces(pass.result, true)?;
             }
         } else {
             // no list (after [`Engine::invalidate_neighbours`]): the kicks and the drift of every
             // particle, then the list, then the forces
-            let c = GATHER_CHUNK;
+            let c = self.chunk;
             let cs = c * spin_len(D);
             let sum = {
                 let p = &mut self.p;
@@ -586,7 +481,7 @@ impl<const D: usize> Engine<D> {
                             .sum::<f64>()
                     };
                 }
-                if n < SERIAL_BELOW {
+                if !self.parallel {
                     drift_all!(chunks_mut)
                 } else {
                     drift_all!(par_chunks_mut)
@@ -604,7 +499,7 @@ impl<const D: usize> Engine<D> {
             self.pending_kick = true;
             return Ok(());
         }
-        let c = GATHER_CHUNK;
+        let c = self.chunk;
         let sum = {
             let p = &mut self.p;
             let shared = Shared::without_anchors(&p.force, &p.torque, &self.inv_mass, &self.inv_inertia);
@@ -615,7 +510,7 @@ impl<const D: usize> Engine<D> {
             };
             let cs = c * spin_len(D);
             let chunks = p.vel.chunks_mut(c).zip(p.omega.chunks_mut(cs)).enumerate();
-            if n < SERIAL_BELOW {
+            if !self.parallel {
                 chunks.map(run).sum::<f64>()
             } else {
                 p.vel

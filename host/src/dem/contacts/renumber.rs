@@ -2,16 +2,17 @@
 //! see [`crate::dem::integrator::Engine::user_index`]): each contact's key moved to the new
 //! numbers, the sets rebuilt in the new chunks in key order, with their history.
 
-use super::{ContactSet, Contacts, GATHER_CHUNK};
+use super::{ContactSet, Contacts};
 
 impl Contacts {
-    /// Renumbers the particles of the current contacts: particle `k` becomes `new_of[k]`. Pair
+    /// Renumbers the particles of the current contacts, kept in chunks of `chunk` particles:
+    /// particle `k` becomes `new_of[k]`. Pair
     /// contacts (`pairs`) keep i < j (the history needs no change: the laws see a pair from the
     /// partner the user numbered first, whatever the engine's numbers); wall contacts keep
     /// their wall. Only what the next gathering reads of the previous sets is carried: keys,
     /// histories, the last-step flags and the reaches. The work is a counting sort by the new
     /// i, then each particle's few partners sorted: linear in the contacts.
-    pub fn renumber(&mut self, new_of: &[u32], pairs: bool) {
+    pub fn renumber(&mut self, new_of: &[u32], pairs: bool, chunk: usize) {
         let n = new_of.len();
         let chunks = self.chunks.len();
         if chunks == 0 {
@@ -49,7 +50,7 @@ impl Contacts {
         }
         let _ = self.buffers(chunks);
         for c in 0..chunks {
-            let (a, b) = (c * GATHER_CHUNK, ((c + 1) * GATHER_CHUNK).min(n));
+            let (a, b) = (c * chunk, ((c + 1) * chunk).min(n));
             let (lo, hi) = (start[a] as usize, start[b] as usize);
             let dst = &mut self.spare[c];
             dst.first = a;

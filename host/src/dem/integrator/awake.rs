@@ -142,6 +142,60 @@ pub(super) fn map_claimed<I: Send, T: Send>(items: Vec<I>, work: impl Fn(I) -> T
         .collect()
 }
 
+/// `work` applied to each of `items` on the threads of the pool, the results in the items'
+/// order, each item run by the same thread from call to call where it can: item 0 by the
+/// calling thread, item r by the r-th worker after it (the workers' indices taken round the
+/// pool), so that a thread works on the same data at every step and finds it in its cache.
+/// A thread done with its own item takes any item not yet taken, in order (a thread held up,
+/// or not woken, leaves its item to the others); the calling thread then waits for the last
+/// ones without sleeping (as [`map_claimed`]). A panic in `work` reaches the caller once
+/// every item has been taken.
+pub(super) fn map_ranked<I: Send, T: Send>(items: Vec<I>, work: impl Fn(I) -> T + Sync) -> Vec<T> {
+    let n = items.len();
+    let threads = rayon::current_num_threads().min(n);
+    let Some(me) = rayon::current_thread_index().filter(|_| threads >= 2) else {
+        return map_claimed(items, work);
+    };
+    let pool = rayon::current_num_threads();
+    let slots: Vec<Mutex<(Option<I>, Option<T>)>> =
+        items.into_iter().map(|i| Mutex::new((Some(i), None))).collect();
+    let taken: Vec<AtomicBool> = (0..n).map(|_| AtomicBool::new(false)).collect();
+    let done = AtomicUsize::new(0);
+    let run = |k: usize| {
+        if taken[k].swap(true, Ordering::AcqRel) {
+            return;
+        }
+        // counted done however the work ends, so that the caller's wait ends
+        let _done = OnDrop(|| {
+            done.fetch_add(1, Ordering::Release);
+        });
+        let item = lock(&slots[k]).0.take();
+        if let Some(item) = item {
+            let out = work(item);
+            lock(&slots[k]).1 = Some(out);
+        }
+    };
+    let claim = || {
+        let rank = rayon::current_thread_index().map_or(0, |w| (w + pool - me) % pool);
+        if rank < n {
+            run(rank);
+        }
+        (0..n).for_each(&run);
+    };
+    rayon::scope(|s| {
+        for _ in 1..threads {
+            s.spawn(|_| claim());
+        }
+        claim();
+        spin_until(|| done.load(Ordering::Acquire) >= n);
+    });
+    // every item's work returned (a panic would have left the scope above)
+    slots
+        .into_iter()
+        .filter_map(|m| m.into_inner().unwrap_or_else(PoisonError::into_inner).1)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -63,25 +63,30 @@ pub(super) type ChunkTask<'a, const D: usize> = (
             ),
             (&'a mut [VecD<D>], &'a mut [f64]),
         ),
-        &'a mut Vec<(u32, VecD<D>, Vec3)>,
+        &'a mut Overflow<D>,
     ),
 );
 
 /// Sums the forces and torques of one chunk's pair contacts `pairs` and wall contacts `walls`
-/// into the chunk's particles (`f`, `tq`: particles `pairs.first..pairs.first + f.len()`,
-/// torques as [`Particles::torque`]), zeroed first; `radius` holds the radii from the chunk's
-/// first particle on (to its farthest partner). A pair partner beyond the chunk gets its force
-/// and torque through `overflow` (force on i, torque on j).
+/// into the chunk's `own` particles (`f`, `tq`: particles `pairs.first..`, torques as
+/// [`Particles::torque`]), zeroed first; `radius` holds the radii from the chunk's first particle
+/// on (to its farthest partner). A pair partner beyond the chunk but within `f` (the later
+/// chunks of a range that sums each particle's shares nearest chunk first, see
+/// `Engine::nearest_first`) gets its force and torque there; one beyond `f` through
+/// `overflow` (force on i, torque on j; chunks of `chunk` particles).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn scatter_chunk<const D: usize>(
     pairs: &ContactSet,
     walls: &ContactSet,
     radius: &[f64],
     f: &mut [VecD<D>],
     tq: &mut [f64],
-    overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
+    own: usize,
+    chunk: usize,
+    overflow: &mut Overflow<D>,
 ) {
-    f.iter_mut().for_each(|v| *v = VecD::<D>::zeros());
-    tq.iter_mut().for_each(|v| *v = 0.0);
+    f[..own].iter_mut().for_each(|v| *v = VecD::<D>::zeros());
+    tq[..own * spin_len(D)].iter_mut().for_each(|v| *v = 0.0);
     overflow.clear();
     let (first, len) = (pairs.first, f.len());
     let signed = !pairs.sign.is_empty();
@@ -104,7 +109,7 @@ pub(super) fn scatter_chunk<const D: usize>(
             f[jl] -= fi;
             add_spin::<D>(tq, jl, &tj);
         } else {
-            overflow.push((j as u32, fi, tj));
+            overflow.push(later(jl, chunk), (j as u32, fi, tj));
         }
     }
     for m in 0..walls.len() {
@@ -115,7 +120,18 @@ pub(super) fn scatter_chunk<const D: usize>(
         add_spin::<D>(tq, i, &-(nv.cross(&ft) * radius[i]));
     }
     if pairs.rotational() || walls.rotational() {
-        scatter_rotation(pairs, walls, tq, overflow);
+        scatter_rotation(pairs, walls, tq, chunk, overflow);
+    }
+}
+
+/// The chunk of the particle `jl` after a chunk's first, as the index into
+/// [`Overflow`]'s lists (the next chunk is 0): mostly the next one, without a division.
+#[inline(always)]
+fn later(jl: usize, chunk: usize) -> usize {
+    if jl < 2 * chunk {
+        0
+    } else {
+        jl / chunk - 1
     }
 }
 
@@ -127,7 +143,8 @@ fn scatter_rotation<const D: usize>(
     pairs: &ContactSet,
     walls: &ContactSet,
     tq: &mut [f64],
-    overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
+    chunk: usize,
+    overflow: &mut Overflow<D>,
 ) {
     let first = pairs.first;
     let len = tq.len() / spin_len(D);
@@ -151,7 +168,7 @@ fn scatter_rotation<const D: usize>(
             if jl < len {
                 add_spin::<D>(tq, jl, &-t);
             } else {
-                overflow.push((j as u32, VecD::<D>::zeros(), -t));
+                overflow.push(later(jl, chunk), (j as u32, VecD::<D>::zeros(), -t));
             }
         }
     }
@@ -171,6 +188,61 @@ pub(super) fn add_spin<const D: usize>(w: &mut [f64], i: usize, v: &Vec3) {
     set_spin::<D>(w, i, &s);
 }
 
+/// A pair contact's force (N) on i and torque (N·m) on its partner j (particle number).
+pub(super) type Share<const D: usize> = (u32, VecD<D>, Vec3);
+
+/// The forces and torques one chunk's pair contacts put on partners in later chunks (the chunk
+/// itself holds those of its own particles), by the partners' chunk: `by[d]` for the chunk
+/// d + 1 after this one, each in the order the contacts gave them. Each partner's shares are
+/// added after the chunk's own, chunk by chunk in order ([`add_shares`]).
+#[derive(Debug, Clone, Default)]
+pub(super) struct Overflow<const D: usize> {
+    by: Vec<Vec<Share<D>>>,
+}
+
+impl<const D: usize> Overflow<D> {
+    /// Empties every list (keeping their room).
+    pub(super) fn clear(&mut self) {
+        self.by.iter_mut().for_each(Vec::clear);
+    }
+
+    /// A share for the chunk `d + 1` after this one.
+    #[inline]
+    pub(super) fn push(&mut self, d: usize, s: Share<D>) {
+        if d >= self.by.len() {
+            self.by.resize_with(d + 1, Vec::new);
+        }
+        self.by[d].push(s);
+    }
+
+    /// The shares for the chunk `d + 1` after this one.
+    #[inline]
+    pub(super) fn to(&self, d: usize) -> &[Share<D>] {
+        self.by.get(d).map_or(&[], |v| &v[..])
+    }
+
+    /// Every list, nearest chunk first.
+    pub(super) fn lists(&self) -> &[Vec<Share<D>>] {
+        &self.by
+    }
+}
+
+/// Adds `shares` to the forces `f` and torques `tq` of particles `base..` (the partner's force
+/// is the opposite of the share's, its torque the share's).
+#[inline]
+pub(super) fn add_shares<const D: usize>(
+    shares: &[Share<D>],
+    base: usize,
+    f: &mut [VecD<D>],
+    tq: &mut [f64],
+) {
+    for &(j, fi, t) in shares {
+        let jl = j as usize - base;
+        f[jl] -= fi;
+        add_spin::<D>(tq, jl, &t);
+    }
+}
+
 /// What every chunk's force evaluation shares: the box, the neighbour list, the walls' states,
 /// the laws, the step (s) and whether contacts' first and last steps take mean forces.
 pub(super) struct ChunkContext<'a, const D: usize> {
@@ -185,7 +257,8 @@ pub(super) struct ChunkContext<'a, const D: usize> {
 /// The forces of the chunk of particles `range`: its pair and wall contacts gathered from
 /// `view` (history from the chunk's previous sets `pairs.0` and `walls.0` into the new ones
 /// `pairs.1` and `walls.1`), the laws called on them, and the forces and torques summed into
-/// the chunk's `f` and `tq` (see [`scatter_chunk`], which fills `overflow`).
+/// `f` and `tq` from the chunk's first particle (see [`scatter_chunk`], which fills `overflow`;
+/// chunks of `chunk` particles).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn chunk_forces<const D: usize>(
     ctx: &ChunkContext<'_, D>,
@@ -195,7 +268,8 @@ pub(super) fn chunk_forces<const D: usize>(
     walls: (&ContactSet, &mut ContactSet),
     f: &mut [VecD<D>],
     tq: &mut [f64],
-    overflow: &mut Vec<(u32, VecD<D>, Vec3)>,
+    chunk: usize,
+    overflow: &mut Overflow<D>,
 ) -> Result<(), DemError> {
     let ((pp, np), (pw, nw)) = (pairs, walls);
     np.gather_pairs(pp, range.clone(), ctx.dom, ctx.nb, view)?;
@@ -227,7 +301,7 @@ pub(super) fn chunk_forces<const D: usize>(
         ctx.edges,
     )?;
     let radius = &view.radius[range.start - view.base..];
-    scatter_chunk(np, nw, radius, f, tq, overflow);
+    scatter_chunk(np, nw, radius, f, tq, range.len(), chunk, overflow);
     Ok(())
 }
 

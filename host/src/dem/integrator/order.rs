@@ -178,8 +178,8 @@ impl<const D: usize> Engine<D> {
         for (k, &o) in perm.iter().enumerate() {
             new_of[o as usize] = k as u32;
         }
-        self.pairs.renumber(&new_of, true);
-        self.wall_contacts.renumber(&new_of, false);
+        self.pairs.renumber(&new_of, true, self.chunk);
+        self.wall_contacts.renumber(&new_of, false, self.chunk);
     }
 }
 

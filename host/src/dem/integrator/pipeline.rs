@@ -9,18 +9,36 @@
 //! that was just drifted and the one before it from cache, and the scatter writes forces the
 //! drift has just read.
 //!
-//! In parallel, the chunks are cut into contiguous ranges, two per thread, of even work (by
-//! particles, listed pairs and the last step's contacts), each range one task, taken in order
-//! by whichever thread is free. A range's last chunks reach partners in the next ranges' first
-//! chunks (their *head*: the chunks up to the farthest chunk any earlier range reaches, from
-//! the neighbour list), which must have drifted before those forces are evaluated. So a head
-//! is drifted by the first task that needs it, its own range's or an earlier one's, and the
-//! others wait the few microseconds until it is done (a head is one chunk in a pile numbered
-//! row by row); each range then runs its own reverse sweep over the chunks outside its head.
-//! There is no serial phase: besides those few microseconds, the pool's threads wait for
-//! each other only at the end of the pass. The result does not depend on the cut nor on who drifts a head: each chunk's
-//! drift and forces are the same arithmetic in any order, and the forces on partners beyond a
-//! chunk are added afterwards in chunk order ([`Engine::finish_forces`]).
+//! In parallel, the chunks are cut into contiguous ranges, one per thread, each range one task,
+//! run by the same thread at every step where it can ([`map_ranked`]): a 3D pile of a few
+//! thousand particles fits in a core's cache, and a range taken by another thread at the next
+//! step would first have to move its particles' state over from the other core. The cut
+//! follows each chunk's measured cost (its drift's time and its forces', learnt step after
+//! step, [`learn_costs`]; before any, its particles, listed pairs and contacts), so that the
+//! ranges take the same time; it moves no result. A range's last chunks reach partners in
+//! the next ranges' first chunks (their *head*: the chunks up to the farthest chunk any earlier
+//! range reaches, from the neighbour list), which must have drifted before those forces are
+//! evaluated. So each task drifts its own head first, and a task whose last chunks need a head
+//! not drifted yet drifts it itself (whoever comes first; the other waits the few microseconds
+//! until it is done); each range then runs its own reverse sweep over the chunks outside its
+//! head. Last, each task adds to its chunks the shares of the earlier chunks' contacts that
+//! were left for it (see below), waiting where needed for an earlier range's chunk to be done
+//! (the earlier range evaluates its last chunks, those that reach this range, first). There is
+//! no serial phase: besides those few microseconds, the pool's threads wait for each other
+//! only at the end of the pass. The result does not depend on the cut nor on who drifts a
+//! head: each chunk's drift and forces are the same arithmetic in any order, and each
+//! particle's force sums the shares of the earlier chunks' contacts in one order fixed by the
+//! chunks alone.
+//!
+//! That order: a chunk's contacts sum their forces into the chunk's own particles, and their
+//! partners j beyond the chunk get their *shares* after the forces of j's own chunk. In a pile
+//! of [`GATHER_CHUNK`](crate::dem::contacts::GATHER_CHUNK)s (from 4,096 particles on) the shares come chunk by chunk from the
+//! farthest chunk to the nearest, each chunk's kept in a list ([`Overflow`]) until the end of
+//! the pass. In a pile of small chunks (3D, 1,024 to 4,095 particles, [`crate::dem::contacts::
+//! gather_chunk`]), from the nearest to the farthest: since a range is swept from its last
+//! chunk down, a chunk's partners in later chunks of the same range have then just received
+//! the shares of the chunks between, and get theirs at once; only the shares for later ranges
+//! wait in lists, and the sweep of a single range (one thread) keeps none.
 //!
 //! If a drift finds the list stale (a particle has moved by more than half the skin since it
 //! was built), the remaining gatherings are skipped, every chunk still drifts, and the step
@@ -39,19 +57,21 @@
 //! compare-and-swap; that task alone then writes the head's positions, velocities, spins,
 //! predicted velocities, previous accelerations and displacement bounds, and publishes them
 //! with the state "done" (release), which every reader of the head waits for (acquire). Task
-//! r writes that state of its own chunks outside its head, and forces and torques only of its
-//! own chunks, those of its head after the head is done (a drift reads them). It reads the
-//! state of its own chunks already drifted and of the heads it has waited for, which nobody
-//! writes any more in the pass.
+//! r writes that state of its own chunks outside its head, and forces, torques, contact sets,
+//! share lists and timings only of its own chunks, those of its head after the head is done
+//! (a drift reads them). It reads the state of its own chunks already drifted and of the heads
+//! it has waited for, which nobody writes any more in the pass, and an earlier range's share
+//! lists once that range has flagged their chunk done (release, acquire).
 
-use super::awake::{map_claimed, spin_until, OnDrop};
-use super::{chunk_forces, kick_drift_chunk, ChunkContext, Engine, Shared, GATHER_CHUNK, SERIAL_BELOW};
+use super::awake::{map_ranked, spin_until, OnDrop};
+use super::{add_shares, chunk_forces, kick_drift_chunk, ChunkContext, Engine, Overflow, Shared};
 use crate::dem::contacts::{ContactSet, View};
-use crate::dem::state::{spin_len, Vec3, VecD};
+use crate::dem::state::spin_len;
 use crate::dem::DemError;
 use std::marker::PhantomData;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
+use std::time::Instant;
 
 /// A particle array shared by the tasks of [`Engine::drift_and_forces`], each
 /// taking slices of it that the schedule (see the module doc) keeps apart from every other
@@ -126,15 +146,25 @@ pub(super) struct Pass {
     pub result: Result<(), DemError>,
 }
 
-/// One range's share of the chunk-owned data: new pair and wall contact sets and overflows of
-/// its chunks.
-type RangeItems<'a, const D: usize> = (
-    usize,
-    (
-        (&'a mut [ContactSet], &'a mut [ContactSet]),
-        &'a mut [Vec<(u32, VecD<D>, Vec3)>],
-    ),
-);
+/// One range's share of the chunk-owned data: new pair and wall contact sets of its chunks.
+type RangeItems<'a> = (usize, (&'a mut [ContactSet], &'a mut [ContactSet]));
+
+/// How fast the chunks' measured costs follow each step's times (see [`learn_costs`]).
+const COST_RATE: f64 = 0.1;
+
+/// The chunks' costs `cost` (s; 0: none measured yet) after a pass whose chunks took `took` (s,
+/// each chunk's drift and forces): each moved by [`COST_RATE`] towards its new time, a time over
+/// twice the cost so far taken as twice it (a thread held up once by the machine moves the cut
+/// a little). Where to cut the chunks between the threads follows these costs; no result does.
+fn learn_costs(cost: &mut [f64], took: &[f64]) {
+    for (c, &t) in cost.iter_mut().zip(took) {
+        *c = if *c > 0.0 {
+            *c + COST_RATE * (t.min(2.0 * *c) - *c)
+        } else {
+            t
+        };
+    }
+}
 
 /// A head not drifted yet, being drifted, drifted.
 const HEAD_TODO: u8 = 0;
@@ -148,42 +178,51 @@ impl<const D: usize> Engine<D> {
     /// left for [`Engine::finish_forces`] to complete unless the pass found the list stale.
     pub(super) fn drift_and_forces(&mut self, pending: bool) -> Pass {
         let n = self.p.len();
-        let c = GATHER_CHUNK;
+        let c = self.chunk;
         let chunks = n.div_ceil(c);
         let dt = self.dt;
         let (h, g) = (0.5 * dt, self.cfg.gravity);
         let t_end = self.t + dt;
         let ws: Vec<_> = self.walls.iter().map(|w| w.at(t_end)).collect();
-        // two ranges per thread, so that a thread held up (by the machine, or by a range denser
-        // in contacts than its weight says) leaves its second range to another; one thread,
-        // one range
+        // one range per thread, each range run by the same thread at every step where it can
+        // (its particles' state then stays in that core's cache: see the module doc); one
+        // thread, one range
         let threads = rayon::current_num_threads();
-        let tasks = if n < SERIAL_BELOW || threads == 1 {
+        let tasks = if !self.parallel || threads == 1 {
             1
         } else {
-            (2 * threads).clamp(1, chunks.max(1))
+            threads.clamp(1, chunks.max(1))
         };
         // range r: chunks cuts[r]..cuts[r + 1]; its head: cuts[r]..head[r] (one range, no
         // head: no allocation, for the small piles whose steps take microseconds)
         let (one_cut, one_head) = ([0, chunks], [0]);
-        let (mut cut_v, mut head_v) = (Vec::new(), Vec::new());
+        let (mut cut_v, mut head_v, mut prefix) = (Vec::new(), Vec::new(), Vec::<f64>::new());
         if tasks > 1 {
             // cut where the work is even: a chunk's work is counted as its particles, its listed
             // pairs and its contacts of the last step (weights ~ their costs in a step)
             let (start, pairs, walls) = (&self.nb.start, &self.pairs.chunks, &self.wall_contacts.chunks);
-            let mut prefix = Vec::with_capacity(chunks + 1);
-            prefix.push(0usize);
+            self.cost.resize(chunks, 0.0);
+            let measured = self.cost.iter().all(|&t| t > 0.0);
+            prefix.reserve(chunks + 1);
+            prefix.push(0.0);
             for k in 0..chunks {
-                let r = k * c..((k + 1) * c).min(n);
-                let listed = (start[r.end] - start[r.start]) as usize;
-                // (a contact costs some 16 particles' worth of pass 1: measured range by range)
-                let touching = pairs.get(k).map_or(0, |s| s.len()) + walls.get(k).map_or(0, |s| s.len());
-                prefix.push(prefix[k] + 4 * r.len() + listed + 16 * touching);
+                // the chunk's measured cost, or before any, its counted work: its particles,
+                // its listed pairs and its contacts of the last step (a contact costs some 16
+                // particles' worth of pass 1: measured range by range)
+                let w = if measured {
+                    self.cost[k]
+                } else {
+                    let r = k * c..((k + 1) * c).min(n);
+                    let listed = (start[r.end] - start[r.start]) as usize;
+                    let touching = pairs.get(k).map_or(0, |s| s.len()) + walls.get(k).map_or(0, |s| s.len());
+                    (4 * r.len() + listed + 16 * touching) as f64
+                };
+                prefix.push(prefix[k] + w);
             }
             cut_v = vec![0; tasks + 1];
             cut_v[tasks] = chunks;
             for r in 1..tasks {
-                let at = prefix.partition_point(|&w| w < prefix[chunks] * r / tasks);
+                let at = prefix.partition_point(|&w| w < prefix[chunks] * r as f64 / tasks as f64);
                 // at least one chunk in every range
                 cut_v[r] = at.clamp(cut_v[r - 1] + 1, chunks - (tasks - r));
             }
@@ -201,7 +240,7 @@ impl<const D: usize> Engine<D> {
         } else {
             (&one_cut, &one_head)
         };
-        self.overflow.resize_with(chunks, Vec::new);
+        self.overflow.resize_with(chunks, Overflow::default);
         let (prev_p, next_p) = self.pairs.buffers(chunks);
         let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
         let p = &mut self.p;
@@ -216,6 +255,9 @@ impl<const D: usize> Engine<D> {
         let force = Parts::new(&mut p.force);
         let torque = Parts::new(&mut p.torque);
         let moved = Parts::new(&mut self.moved);
+        self.took.resize(chunks, 0.0);
+        let took = Parts::new(&mut self.took);
+        let overflow = Parts::new(&mut self.overflow);
         let particles = |k: usize| k * c..((k + 1) * c).min(n);
         // the same particles' spins and torques
         let spins = |r: &Range<usize>| r.start * spin_len(D)..r.end * spin_len(D);
@@ -255,51 +297,62 @@ impl<const D: usize> Engine<D> {
             dt,
             edges: self.cfg.edge_means,
         };
-        let reach = &self.reach;
+        let (reach, back) = (&self.reach, &self.back);
         let uid = (!self.order.uid.is_empty()).then_some(&self.order.uid[..]);
-        // the forces of chunk k, whose particles and partners have drifted
-        let forces = |k: usize,
-                      np: &mut ContactSet,
-                      nw: &mut ContactSet,
-                      ov: &mut Vec<(u32, VecD<D>, Vec3)>|
-         -> Result<(), DemError> {
-            let r = particles(k);
-            let w = r.start..particles(reach[k]).end;
-            // SAFETY: chunks k..=reach[k] have drifted and no task writes their state now;
-            // chunk k's force and torque are this task's alone (the schedule)
-            unsafe {
-                let view = View {
-                    base: r.start,
-                    pos: pos.get(w.clone()),
-                    vpred: vpred.get(w.clone()),
-                    vel: vel.get(w.clone()),
-                    omega: omega.get(spins(&w)),
-                    radius: &radius[w.clone()],
-                    mass: &mass[w.clone()],
-                    uid: uid.map(|u| &u[w]),
+        let nearest_first = self.nearest_first;
+        // the forces of chunk k of the range ending before chunk `end`, whose particles and
+        // partners have drifted (nearest first, the shares of its partners in later chunks of
+        // the range are added at once, else they all wait for the end)
+        let forces =
+            |k: usize, end: usize, np: &mut ContactSet, nw: &mut ContactSet| -> Result<(), DemError> {
+                let r = particles(k);
+                let w = r.start..particles(reach[k]).end;
+                let sink = r.start..if nearest_first {
+                    particles(end - 1).end
+                } else {
+                    r.end
                 };
-                chunk_forces(
-                    &ctx,
-                    r.clone(),
-                    &view,
-                    (&prev_p[k], np),
-                    (&prev_w[k], nw),
-                    force.get_mut(r.clone()),
-                    torque.get_mut(spins(&r)),
-                    ov,
-                )
-            }
-        };
+                // SAFETY: chunks k..=reach[k] have drifted and no task writes their state now;
+                // chunk k's overflow, and the force and torque of chunk k and of the later chunks
+                // of its range (which have drifted), are this task's alone (the schedule)
+                unsafe {
+                    let view = View {
+                        base: r.start,
+                        pos: pos.get(w.clone()),
+                        vpred: vpred.get(w.clone()),
+                        vel: vel.get(w.clone()),
+                        omega: omega.get(spins(&w)),
+                        radius: &radius[w.clone()],
+                        mass: &mass[w.clone()],
+                        uid: uid.map(|u| &u[w]),
+                    };
+                    chunk_forces(
+                        &ctx,
+                        r.clone(),
+                        &view,
+                        (&prev_p[k], np),
+                        (&prev_w[k], nw),
+                        force.get_mut(sink.clone()),
+                        torque.get_mut(spins(&sink)),
+                        c,
+                        &mut overflow.get_mut(k..k + 1)[0],
+                    )
+                }
+            };
         let stale = AtomicBool::new(false);
         // every range's head: drifted by the first task that needs it (its own range's, or an
-        // earlier range's whose last chunks reach it), the others waiting until it is done
-        // (one range: no head, no allocation)
-        let heads: Vec<AtomicU8> = if tasks > 1 {
-            (0..tasks)
-                .map(|r| AtomicU8::new(if head[r] > cuts[r] { HEAD_TODO } else { HEAD_DONE }))
-                .collect()
+        // earlier range's whose last chunks reach it), the others waiting until it is done;
+        // each chunk's forces and overflow: done (or given up, the list being stale) (one
+        // range: no head, no flags, no allocation)
+        let (heads, chunk_done): (Vec<AtomicU8>, Vec<AtomicBool>) = if tasks > 1 {
+            (
+                (0..tasks)
+                    .map(|r| AtomicU8::new(if head[r] > cuts[r] { HEAD_TODO } else { HEAD_DONE }))
+                    .collect(),
+                (0..chunks).map(|_| AtomicBool::new(false)).collect(),
+            )
         } else {
-            Vec::new()
+            (Vec::new(), Vec::new())
         };
         // makes sure head `r` has drifted; the drift's sum if this task drifted it
         let ensure_head = |r: usize| -> f64 {
@@ -325,23 +378,31 @@ impl<const D: usize> Engine<D> {
             spin_until(|| state.load(Ordering::Acquire) == HEAD_DONE);
             0.0
         };
-        // each range's reverse sweep: first the heads of the later ranges its chunks reach,
-        // then its chunks from the last, each drifted (outside its head) and its forces
-        // evaluated; its own head is made sure of before the forces of the head's chunks
-        let sweep = |(r, ((np, nw), ov)): RangeItems<'_, D>| {
+        // each range's task: its own head first (the previous range's last chunks wait for
+        // it); then its chunks from the last, each drifted (outside its head) and its forces
+        // evaluated, the heads of the later ranges it reaches made sure of before the first
+        // forces; then, unless the list went stale, its chunks' shares of the earlier chunks'
+        // contacts added chunk by chunk in order, waiting for an earlier range's chunk to be
+        // done where needed
+        let sweep = |(r, (np, nw)): RangeItems<'_>| {
             let (a, b) = (cuts[r], cuts[r + 1]);
-            let mut sum = 0.0;
-            let far = reach[a..b].iter().copied().max().unwrap_or(0);
-            // (ranges r + 1.. start at cuts[r + 1..tasks])
-            for (q, &start) in cuts.iter().enumerate().take(tasks).skip(r + 1) {
-                if start > far {
-                    break;
+            // every chunk of the range marked done however the task ends
+            let _done = OnDrop(|| {
+                for f in chunk_done.get(a..b).unwrap_or(&[]) {
+                    f.store(true, Ordering::Release);
                 }
-                sum += ensure_head(q);
+            });
+            let mut sum = 0.0;
+            if tasks > 1 {
+                sum += ensure_head(r);
             }
+            let far = reach[a..b].iter().copied().max().unwrap_or(0);
+            let mut later_heads = tasks == 1;
             let mut st = false;
             let mut first_err: Result<(), DemError> = Ok(());
             for k in (a..b).rev() {
+                // (timed on several threads: the drift's time and the forces', not the waits)
+                let clock = (tasks > 1).then(Instant::now);
                 if k >= head[r] {
                     let (s, x) = drift(k);
                     sum += x;
@@ -349,34 +410,85 @@ impl<const D: usize> Engine<D> {
                         st = true;
                         stale.store(true, Ordering::Relaxed);
                     }
-                } else if k + 1 == head[r] {
-                    sum += ensure_head(r);
                 }
+                let drifting = clock.map(|t| t.elapsed());
                 if st || stale.load(Ordering::Relaxed) {
                     continue;
                 }
-                if let Err(e) = forces(k, &mut np[k - a], &mut nw[k - a], &mut ov[k - a]) {
+                if !later_heads {
+                    // (ranges r + 1.. start at cuts[r + 1..tasks])
+                    for (q, &start) in cuts.iter().enumerate().take(tasks).skip(r + 1) {
+                        if start > far {
+                            break;
+                        }
+                        sum += ensure_head(q);
+                    }
+                    later_heads = true;
+                }
+                let clock = drifting.map(|d| (d, Instant::now()));
+                if let Err(e) = forces(k, b, &mut np[k - a], &mut nw[k - a]) {
                     first_err = Err(e);
+                }
+                if let Some((d, t)) = clock {
+                    // SAFETY: chunk k's entry is this task's alone (the schedule)
+                    unsafe { took.get_mut(k..k + 1)[0] = (d + t.elapsed()).as_secs_f64() };
+                }
+                if let Some(f) = chunk_done.get(k) {
+                    f.store(true, Ordering::Release);
+                }
+            }
+            if st || stale.load(Ordering::Relaxed) {
+                return (sum, first_err);
+            }
+            for (m, &first) in back.iter().enumerate().take(b).skip(a) {
+                let r = particles(m);
+                // the shares of chunk k for chunk m (unless added at once), its forces done
+                let add = |k: usize| {
+                    if reach[k] < m || (nearest_first && k >= a) {
+                        return;
+                    }
+                    if k < a {
+                        spin_until(|| chunk_done[k].load(Ordering::Acquire));
+                    }
+                    // SAFETY: chunk k's forces are done (its own range's, or flagged done):
+                    // nobody writes its overflow any more; chunk m's force and torque are
+                    // this task's alone
+                    unsafe {
+                        let shares = overflow.get(k..k + 1)[0].to(m - k - 1);
+                        add_shares::<D>(
+                            shares,
+                            r.start,
+                            force.get_mut(r.clone()),
+                            torque.get_mut(spins(&r)),
+                        );
+                    }
+                };
+                if nearest_first {
+                    (first..m).rev().for_each(add);
+                } else {
+                    (first..m).for_each(add);
                 }
             }
             (sum, first_err)
         };
         let (mut sum, mut result) = (0.0, Ok(()));
         if tasks > 1 {
-            let ranges: Vec<RangeItems<'_, D>> = cut(next_p, cuts)
+            let ranges: Vec<RangeItems<'_>> = cut(next_p, cuts)
                 .into_iter()
                 .zip(cut(next_w, cuts))
-                .zip(cut(&mut self.overflow, cuts))
                 .enumerate()
                 .collect();
-            for (x, res) in map_claimed(ranges, sweep) {
+            for (x, res) in map_ranked(ranges, sweep) {
                 sum += x;
                 if result.is_ok() {
                     result = res;
                 }
             }
+            if !stale.load(Ordering::Relaxed) {
+                learn_costs(&mut self.cost, &self.took);
+            }
         } else {
-            (sum, result) = sweep((0, ((next_p, next_w), &mut self.overflow)));
+            (sum, result) = sweep((0, (next_p, next_w)));
         }
         Pass {
             stale: stale.load(Ordering::Relaxed),
