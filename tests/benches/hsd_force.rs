@@ -23,6 +23,10 @@ use std::hint::black_box;
 
 const N: usize = 1_000_000;
 const REPS: usize = 21;
+/// The contacts of one batch call as the DEM loop makes them (inputs just gathered, in cache).
+const CHUNK: usize = 1024;
+/// The chunks of CHUNK contacts in N.
+const CHUNKS: usize = N / CHUNK;
 
 fn time(f: &mut dyn FnMut()) -> f64 {
     let s = thread_cpu_seconds();
@@ -104,17 +108,9 @@ fn report(r: &[(f64, f64)], per: impl Fn(f64) -> f64, names: [&str; 2], ratio: &
     );
 }
 
-fn normal_step(law: &dyn NormalLaw, c: &Contacts, slots: usize, hist: &mut [f64], out: &mut [f64]) {
-    law.force_batch(NormalBatch {
-        delta: black_box(&c.delta),
-        rate: black_box(&c.rate),
-        mass: &c.mass,
-        radius: &c.radius,
-        slots,
-        history: hist,
-        force: out,
-    })
-    .expect("normal batch");
+/// The normal batch (no history) of every contact of `c`, forces into `out`.
+fn normal_step(law: &dyn NormalLaw, c: &Contacts, out: &mut [f64]) {
+    law.force_batch(normal_chunk(c, 0..N, out)).expect("normal batch");
 }
 
 /// The normal batch (no history) of the contacts `range` of `c`, forces into `out`.
@@ -192,20 +188,19 @@ fn main() {
 
     // the two forms compute the same bits
     let (mut f1, mut f2) = (vec![0.0; N], vec![0.0; N]);
-    normal_step(&hsd_p, &c, 0, &mut [], &mut f1);
-    normal_step(&hsd_s, &c, 0, &mut [], &mut f2);
+    normal_step(&hsd_p, &c, &mut f1);
+    normal_step(&hsd_s, &c, &mut f2);
     assert!(f1.iter().zip(&f2).all(|(a, b)| a.to_bits() == b.to_bits()));
 
     println!("Contact laws over {N} contacts (steel, diameters 4-8 mm, each contact its own m and r), {REPS} interleaved runs (min | median)");
     let ns = |t: f64| t / N as f64 * 1e9;
+    let ns_chunked = |t: f64| t / (CHUNKS * CHUNK) as f64 * 1e9;
 
     // 1. HSD normal, per-contact geometry
     let (mut o1, mut o2) = (vec![0.0; N], vec![0.0; N]);
-    let r = race(
-        &mut [&mut || normal_step(&hsd_s, &c, 0, &mut [], &mut o1), &mut || {
-            normal_step(&hsd_p, &c, 0, &mut [], &mut o2)
-        }],
-    );
+    let r = race(&mut [&mut || normal_step(&hsd_s, &c, &mut o1), &mut || {
+        normal_step(&hsd_p, &c, &mut o2)
+    }]);
     println!("1. HSD normal force, per-contact geometry");
     report(
         &r,
@@ -222,11 +217,11 @@ fn main() {
     let (mut ns_, mut np_) = (vec![0.0; N], vec![0.0; N]);
     let r = race(&mut [
         &mut || {
-            normal_step(&hsd_s, &c, 0, &mut [], &mut ns_);
+            normal_step(&hsd_s, &c, &mut ns_);
             tangential_step(&mind_s, &c, &ns_, &mut hs, &mut ts);
         },
         &mut || {
-            normal_step(&hsd_p, &c, 0, &mut [], &mut np_);
+            normal_step(&hsd_p, &c, &mut np_);
             tangential_step(&mind_p, &c, &np_, &mut hp, &mut tp);
         },
     ]);
@@ -244,8 +239,6 @@ fn main() {
     // 2b. the same plugins with the energy outputs on and off, in chunks of CHUNK contacts in
     // cache as the DEM loop calls them: what the accounting costs the laws
     {
-        const CHUNK: usize = 1024;
-        let reps = N / CHUNK;
         let mut h = [vec![0.0; slots * CHUNK], vec![0.0; slots * CHUNK]];
         let (mut fa, mut fb) = (vec![[0.0; 3]; CHUNK], vec![[0.0; 3]; CHUNK]);
         let (mut p, mut e) = (vec![0.0; CHUNK], vec![0.0; CHUNK]);
@@ -254,7 +247,7 @@ fn main() {
         let [ha, hb] = &mut h;
         let r = race(&mut [
             &mut || {
-                for k in 0..reps {
+                for k in 0..CHUNKS {
                     let range = k * CHUNK..(k + 1) * CHUNK;
                     let nbatch = normal_chunk(&c, range.clone(), &mut na);
                     hsd_p.force_batch(nbatch).expect("normal batch");
@@ -262,7 +255,7 @@ fn main() {
                 }
             },
             &mut || {
-                for k in 0..reps {
+                for k in 0..CHUNKS {
                     let range = k * CHUNK..(k + 1) * CHUNK;
                     let nbatch = normal_chunk(&c, range.clone(), &mut nb);
                     let out = EnergyOut {
@@ -279,9 +272,8 @@ fn main() {
             },
         ]);
         assert_eq!(fa, fb, "the energy outputs change no force");
-        let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
         println!("2b. HSD + Mindlin plugins in chunks of {CHUNK} in cache: energy outputs off against on");
-        report(&r, per, ["energy off", "energy on"], "off / on", "");
+        report(&r, ns_chunked, ["energy off", "energy on"], "off / on", "");
     }
 
     // 3. sdk 0.2 per-contact geometry against sdk 0.1's bound-pair batch
@@ -306,7 +298,7 @@ fn main() {
                     .expect("a 0.1 law")
                     .expect("0.1 batch")
                 },
-                &mut || normal_step(&hsd_p, &c, 0, &mut [], &mut o4),
+                &mut || normal_step(&hsd_p, &c, &mut o4),
             ]);
             println!("3. HSD normal force: sdk 0.2 per-contact geometry vs sdk 0.1 bound-pair batch (both plugins)");
             report(
@@ -319,46 +311,30 @@ fn main() {
 
             // 4. the same two calls as a DEM loop makes them: chunks of CHUNK contacts whose
             // inputs were just gathered (in cache), so the law's cost is measured, not DRAM's
-            const CHUNK: usize = 1024;
-            let reps = N / CHUNK;
-            let (d, v, m, a) = (
-                &c.delta[..CHUNK],
-                &c.rate[..CHUNK],
-                &c.mass[..CHUNK],
-                &c.radius[..CHUNK],
-            );
+            let (d, v) = (&c.delta[..CHUNK], &c.rate[..CHUNK]);
             let (mut o5, mut o6) = (vec![0.0; CHUNK], vec![0.0; CHUNK]);
             let r = race(&mut [
                 &mut || {
-                    for _ in 0..reps {
-                        m01.v1_bound_pair_batch(m[0], a[0], black_box(d), black_box(v), &mut o5)
+                    for _ in 0..CHUNKS {
+                        m01.v1_bound_pair_batch(c.mass[0], c.radius[0], black_box(d), black_box(v), &mut o5)
                             .expect("a 0.1 law")
                             .expect("0.1 batch");
                     }
                 },
                 &mut || {
-                    for _ in 0..reps {
+                    for _ in 0..CHUNKS {
                         hsd_p
-                            .force_batch(NormalBatch {
-                                delta: black_box(d),
-                                rate: black_box(v),
-                                mass: m,
-                                radius: a,
-                                slots: 0,
-                                history: &mut [],
-                                force: &mut o6,
-                            })
+                            .force_batch(normal_chunk(&c, 0..CHUNK, &mut o6))
                             .expect("normal batch");
                     }
                 },
             ]);
-            let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
             println!(
                 "4. the same, in chunks of {CHUNK} contacts already in cache (as the DEM loop calls it)"
             );
             report(
                 &r,
-                per,
+                ns_chunked,
                 ["0.1 bound to one pair", "0.2 per-contact m, r"],
                 "0.2 / 0.1",
                 "   target >= 0.9",
