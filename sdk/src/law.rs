@@ -30,6 +30,20 @@ pub enum LawKind {
     Twisting = 5,
 }
 
+impl LawKind {
+    /// `"contact"`, `"restitution"`, `"tangential"`, `"rolling"` or `"twisting"` (its name in
+    /// JSON too).
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            LawKind::Contact => "contact",
+            LawKind::Restitution => "restitution",
+            LawKind::Tangential => "tangential",
+            LawKind::Rolling => "rolling",
+            LawKind::Twisting => "twisting",
+        }
+    }
+}
+
 /// When a two-body contact is over. Realized restitution and contact time depend on it, so every
 /// number the project reports says which criterion produced it.
 #[repr(u8)]
@@ -233,6 +247,24 @@ impl NormalBatch<'_> {
         all
     }
 
+    /// The lengths of the batch's arrays, as the ABI checks them.
+    pub(crate) fn lengths(&self) -> crate::abi::BatchLengths<4> {
+        crate::abi::BatchLengths {
+            call: "force_batch",
+            inputs: "delta, rate, mass, radius",
+            lens: [
+                self.delta.len(),
+                self.rate.len(),
+                self.mass.len(),
+                self.radius.len(),
+            ],
+            output: "force",
+            n: self.force.len(),
+            slots: self.slots,
+            history: self.history.len(),
+        }
+    }
+
     /// Contact `i` of the batch.
     #[inline(always)]
     pub fn contact(&self, i: usize) -> Contact {
@@ -382,6 +414,39 @@ macro_rules! motion_kind {
         }
 
         impl $batch<'_> {
+            /// The lengths of the batch's arrays, as the ABI checks them.
+            pub(crate) fn lengths(&self) -> crate::abi::BatchLengths<6> {
+                crate::abi::BatchLengths {
+                    call: concat!(stringify!($out), "_batch"),
+                    inputs: concat!("normal, ", stringify!($motion), ", normal_force, delta, mass, radius"),
+                    lens: [
+                        self.normal.len(),
+                        self.$motion.len(),
+                        self.normal_force.len(),
+                        self.delta.len(),
+                        self.mass.len(),
+                        self.radius.len(),
+                    ],
+                    output: stringify!($out),
+                    n: self.$out.len(),
+                    slots: self.slots,
+                    history: self.history.len(),
+                }
+            }
+
+            /// Contact `i`'s value of the scalar input the ABI's fault code `field` names: its
+            /// normal force, overlap, mass or radius, else the step.
+            pub(crate) fn input(&self, field: u8, i: usize) -> f64 {
+                use crate::abi::BatchFault;
+                match field {
+                    BatchFault::NORMAL_FORCE => self.normal_force[i],
+                    BatchFault::DELTA => self.delta[i],
+                    BatchFault::MASS => self.mass[i],
+                    BatchFault::RADIUS => self.radius[i],
+                    _ => self.dt,
+                }
+            }
+
             /// Contact `i` of the batch.
             #[inline(always)]
             pub fn contact(&self, i: usize) -> $contact {

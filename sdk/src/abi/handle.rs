@@ -109,7 +109,7 @@ pub(crate) fn run<K: Kind>(
     let n = K::len(b);
     if !energy.lengths_ok(n) {
         return Err(super::host::length_error(
-            &format!("{} batch", K::WHAT),
+            &format!("{} batch", K::KIND.as_str()),
             format!("the energy outputs must have one value per contact ({n})"),
         ));
     }
@@ -124,7 +124,7 @@ pub(crate) fn run<K: Kind>(
     if st == BatchStatus::Panic {
         return Err(LawError::new(
             ErrorKind::Panic,
-            format!("{} law '{name}' panicked: {}", K::WHAT, take_panic()),
+            format!("{} law '{name}' panicked: {}", K::KIND.as_str(), take_panic()),
         ));
     }
     match st {

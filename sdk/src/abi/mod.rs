@@ -60,6 +60,7 @@ pub use crate::error::FfiError;
 #[doc(hidden)]
 pub use export as __private;
 pub use handle::{BoundModel, LawHandle, ModelHandle, StaticModel};
+pub(crate) use host::BatchLengths;
 pub use host::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
     SdkSeries, TangentialLawHandle, TangentialModelHandle,
