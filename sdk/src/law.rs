@@ -556,28 +556,51 @@ pub(crate) fn history_mut(h: &mut [f64], slots: usize, i: usize) -> &mut [f64] {
     }
 }
 
-/// The state of one contact as a tangential law sees it (see [`VectorContact`]).
-pub type TangentialContact = VectorContact;
+/// Declares a vector kind (tangential, rolling): its names of [`VectorContact`] and
+/// [`VectorBatch`], and its bound-law trait, whose output is the force `$what` on each contact
+/// (`motion_law_methods!`), with the further items `$($more)*`.
+macro_rules! vector_law {
+    (
+        $(#[$cdoc:meta])* $contact:ident, $(#[$bdoc:meta])* $batch:ident,
+        $(#[$tdoc:meta])* $bound:ident: $what:literal { $($more:tt)* }
+    ) => {
+        $(#[$cdoc])*
+        pub type $contact = $crate::law::VectorContact;
 
-/// Every contact of one material pair for a tangential law (see [`VectorBatch`]).
-pub type TangentialBatch<'a> = VectorBatch<'a>;
+        $(#[$bdoc])*
+        pub type $batch<'a> = $crate::law::VectorBatch<'a>;
 
-/// A tangential (friction) law bound to a material pair.
-///
-/// It returns the tangential force on particle i, capped by Coulomb's μ|F_n|, and advances the
-/// history (for a spring: its displacement, rotated into the current tangent plane) by `dt`.
-pub trait BoundTangential: Send + Sync + 'static {
-    motion_law_methods!(
-        "tangential force (N)",
-        TangentialContact,
-        TangentialBatch<'_>,
-        [f64; 3],
-        force,
-        force_batch,
-        force_energy,
-        force_batch_energy
-    );
+        $(#[$tdoc])*
+        pub trait $bound: Send + Sync + 'static {
+            $crate::law::motion_law_methods!(
+                $what,
+                $contact,
+                $batch<'_>,
+                [f64; 3],
+                force,
+                force_batch,
+                force_energy,
+                force_batch_energy
+            );
+
+            $($more)*
+        }
+    };
 }
+pub(crate) use vector_law;
+
+vector_law!(
+    /// The state of one contact as a tangential law sees it (see [`VectorContact`]).
+    TangentialContact,
+    /// Every contact of one material pair for a tangential law (see [`VectorBatch`]).
+    TangentialBatch,
+    /// A tangential (friction) law bound to a material pair.
+    ///
+    /// It returns the tangential force on particle i, capped by Coulomb's μ|F_n|, and advances
+    /// the history (for a spring: its displacement, rotated into the current tangent plane) by
+    /// `dt`.
+    BoundTangential: "tangential force (N)" {}
+);
 
 /// A restitution law bound to a pair.
 pub trait BoundRestitution: Send + Sync + 'static {
