@@ -220,6 +220,7 @@ macro_rules! ffi_object {
     (law $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
         $crate::abi::ffi_object!(@vtable $(#[$doc])* $vt $(<$g>)? { $($body)* });
         $crate::abi::ffi_handle!($(#[$hdoc])* $handle $(<$g>)?, $vt $(<$g>)?);
+        $crate::abi::ffi_object!(@free $handle $(<$g>)?);
     };
     (model $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
         $crate::abi::ffi_object!(@vtable $(#[$doc])* $vt $(<$g>)? {
@@ -228,6 +229,7 @@ macro_rules! ffi_object {
             pub take_panic: extern "C" fn() -> abi_stable::std_types::RString,
         });
         $crate::abi::ffi_handle!($(#[$hdoc])* $handle $(<$g>)?, $vt $(<$g>)?);
+        $crate::abi::ffi_object!(@free $handle $(<$g>)?);
     };
     (model_with_coefficients $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
         $crate::abi::ffi_object!(model $(#[$doc])* $vt $(<$g>)? {
@@ -253,8 +255,49 @@ macro_rules! ffi_object {
             pub drop: unsafe extern "C" fn(obj: *mut std::ffi::c_void),
         }
     };
+    (@free $handle:ident $(<$g:ident>)?) => {
+        impl$(<$g: 'static>)? $crate::abi::FfiObject for $handle$(<$g>)? {
+            unsafe fn free(&self) {
+                // SAFETY: as the caller promises.
+                unsafe { (self.vtable.drop)(self.obj) }
+            }
+        }
+    };
 }
 pub(crate) use ffi_object;
+
+/// A plugin object (every [`ffi_object!`] handle), which its vtable's `drop` frees.
+pub(crate) trait FfiObject {
+    /// Frees the object.
+    ///
+    /// # Safety
+    /// Once, and the object is not used after.
+    unsafe fn free(&self);
+}
+
+/// A plugin object this side owns: freed through its vtable when dropped.
+pub(crate) struct Owned<H: FfiObject>(pub(crate) H);
+
+impl<H: FfiObject> Owned<H> {
+    /// The object a plugin's call returned, now owned here, or the call's error.
+    pub(crate) fn take(r: RResult<H, FfiError>) -> Result<Owned<H>, crate::LawError> {
+        r.into_result().map(Owned).map_err(Into::into)
+    }
+}
+
+impl<H: FfiObject> std::ops::Deref for Owned<H> {
+    type Target = H;
+    fn deref(&self) -> &H {
+        &self.0
+    }
+}
+
+impl<H: FfiObject> Drop for Owned<H> {
+    fn drop(&mut self) {
+        // SAFETY: the object is this side's, freed here once, and unreachable after.
+        unsafe { self.0.free() }
+    }
+}
 
 /// Declares a frozen series' law description: its `LawKind` (the kinds it had) and `LawInfo`
 /// (with the per-contact `history` slots from sdk 0.2 on), and the plain description of one.
