@@ -18,7 +18,7 @@ use dashpot::laws::{compiled, compiled_tangential, EnergyOut, NormalLaw, Tangent
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
-use dashpot_tests::{full_registry, sdk01_registry};
+use dashpot_tests::{assert_same_bits, full_registry, sdk01_registry};
 use std::hint::black_box;
 
 const N: usize = 1_000_000;
@@ -190,7 +190,7 @@ fn main() {
     let (mut f1, mut f2) = (vec![0.0; N], vec![0.0; N]);
     normal_step(&hsd_p, &c, &mut f1);
     normal_step(&hsd_s, &c, &mut f2);
-    assert!(f1.iter().zip(&f2).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_same_bits(&f1, &f2, |i| format!("HSD's force on contact {i}"));
 
     println!("Contact laws over {N} contacts (steel, diameters 4-8 mm, each contact its own m and r), {REPS} interleaved runs (min | median)");
     let ns = |t: f64| t / N as f64 * 1e9;
@@ -226,7 +226,7 @@ fn main() {
         },
     ]);
     // after the same calls in the same order, the springs are the same bits
-    assert!(hs.iter().zip(&hp).all(|(a, b)| a.to_bits() == b.to_bits()));
+    assert_same_bits(&hs, &hp, |k| format!("Mindlin's spring of contact {}", k / slots));
     println!("2. HSD + Mindlin (μ = 0.3) with history: normal batch, then tangential batch");
     report(
         &r,
