@@ -17,10 +17,9 @@
 
 use crate::error::LawError;
 use crate::law::{
-    history_law, history_mut, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo,
-    LawKind,
+    history_law, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo, LawKind,
 };
-use crate::law::{motion_kind, motion_law_methods, vector_law};
+use crate::motion::{history_mut, motion_kind, motion_law_methods, vector_law};
 use crate::pair::MaterialPair;
 use crate::params::{LawParams, ParamValue};
 

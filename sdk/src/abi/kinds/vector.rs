@@ -2,7 +2,8 @@
 //! batch and one checked block loop; they differ only in their law traits.
 
 use super::*;
-use crate::law::{BoundTangential, EnergyBatch, TangentialLaw, VectorBatch};
+use crate::law::{EnergyBatch, TangentialLaw};
+use crate::motion::{BoundTangential, VectorBatch};
 use crate::rotation::{BoundRolling, RollingLaw};
 
 /// A raw batch of a vector kind (tangential, rolling): 0.2's tangential arrays (vectors are `n`
