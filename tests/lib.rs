@@ -52,6 +52,15 @@ pub fn assert_rel(got: f64, want: f64, tol: f64, what: &str) {
     assert!((got / want - 1.0).abs() < tol, "{what} = {got} vs {want}");
 }
 
+/// `a` and `b` hold the same values to the bit (what is promised across sdk series, thread
+/// counts and call paths); `what(i)` names value `i` in the failure message.
+pub fn assert_same_bits(a: &[f64], b: &[f64], what: impl Fn(usize) -> String) {
+    assert_eq!(a.len(), b.len(), "{}: lengths differ", what(0));
+    for (i, (x, y)) in a.iter().zip(b).enumerate() {
+        assert_eq!(x.to_bits(), y.to_bits(), "{}: {x:e} vs {y:e}", what(i));
+    }
+}
+
 /// Uniform numbers in [0, 1) from a 64-bit linear congruential generator (Knuth's MMIX
 /// constants) seeded with `seed`: reproducible initial states without a dependency (the DEM
 /// tests' and the piles' of the benchmarks, the same sequence since their first figures).

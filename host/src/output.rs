@@ -1,6 +1,6 @@
 //! Result files are written whole or not at all; and the one progress bar of every run.
 
-use crate::registry::{kind_str, Registry};
+use crate::registry::Registry;
 use dashpot_sdk::{LawError, LawInfo, ParamValue};
 use serde_json::json;
 use std::io::Write;
@@ -126,7 +126,7 @@ pub fn law_json(reg: &Registry, info: &LawInfo) -> serde_json::Value {
     let plugin = reg.find(info.name.as_str()).map(|(_, p)| p).ok();
     json!({
         "name": info.name.as_str(),
-        "kind": kind_str(info.kind),
+        "kind": info.kind.as_str(),
         "summary": info.summary.as_str(),
         "doc": info.doc.as_str(),
         "end_criterion": info.end_criterion.map(|e| e.as_str()),
@@ -163,7 +163,7 @@ fn finite_or_null(x: f64) -> Option<f64> {
 pub struct Provenance {
     /// The law's name.
     pub law: String,
-    /// "contact", "restitution" or "tangential".
+    /// The law's kind ([`LawKind::as_str`](dashpot_sdk::LawKind::as_str)).
     pub kind: &'static str,
     /// The plugin library the law was taken from.
     pub plugin_file: String,
@@ -234,7 +234,7 @@ impl Provenance {
         }
         Ok(Provenance {
             law: name.to_string(),
-            kind: kind_str(entry.info.kind),
+            kind: entry.info.kind.as_str(),
             plugin_file: plugin.path.display().to_string(),
             plugin_name: plugin.name.clone(),
             plugin_version: plugin.version.clone(),

@@ -9,6 +9,7 @@
 
 pub use crate::energy::{Energy, EnergyBatch};
 use crate::error::LawError;
+use crate::motion::{history_mut, BoundTangential};
 use crate::pair::{MaterialPair, Pair};
 use crate::params::{LawParams, ParamSpec, ParamValue, Params};
 use abi_stable::StableAbi;
@@ -28,6 +29,20 @@ pub enum LawKind {
     Rolling = 4,
     /// A twisting torque (N·m) about the contact normal, with per-contact history (sdk 0.3).
     Twisting = 5,
+}
+
+impl LawKind {
+    /// `"contact"`, `"restitution"`, `"tangential"`, `"rolling"` or `"twisting"` (its name in
+    /// JSON too).
+    pub const fn as_str(self) -> &'static str {
+        match self {
+            LawKind::Contact => "contact",
+            LawKind::Restitution => "restitution",
+            LawKind::Tangential => "tangential",
+            LawKind::Rolling => "rolling",
+            LawKind::Twisting => "twisting",
+        }
+    }
 }
 
 /// When a two-body contact is over. Realized restitution and contact time depend on it, so every
@@ -233,6 +248,24 @@ impl NormalBatch<'_> {
         all
     }
 
+    /// The lengths of the batch's arrays, as the ABI checks them.
+    pub(crate) fn lengths(&self) -> crate::abi::BatchLengths<4> {
+        crate::abi::BatchLengths {
+            call: "force_batch",
+            inputs: "delta, rate, mass, radius",
+            lens: [
+                self.delta.len(),
+                self.rate.len(),
+                self.mass.len(),
+                self.radius.len(),
+            ],
+            output: "force",
+            n: self.force.len(),
+            slots: self.slots,
+            history: self.history.len(),
+        }
+    }
+
     /// Contact `i` of the batch.
     #[inline(always)]
     pub fn contact(&self, i: usize) -> Contact {
@@ -333,193 +366,6 @@ pub trait BoundContact: Send + Sync + 'static {
     fn force_batch_energy(&self, b: NormalBatch<'_>, out: EnergyBatch<'_>) -> bool {
         b.each_energy(out, |c, h| self.force_energy(c, h))
     }
-}
-
-/// Declares the contact and batch types of a kind whose law sees a contact's normal, one
-/// relative motion (`$motion`), the normal force, overlap, effective mass and radius and the
-/// time step, and writes one output per contact (`$out`), with `history` slots per contact; and
-/// the batch's `contact(i)`.
-macro_rules! motion_kind {
-    (
-        $(#[$cdoc:meta])* $contact:ident, $(#[$bdoc:meta])* $batch:ident,
-        $(#[$mdoc:meta])* $motion:ident: $mty:ty, $(#[$odoc:meta])* $out:ident: $oty:ty
-    ) => {
-        $(#[$cdoc])*
-        #[derive(Debug, Clone, Copy, PartialEq)]
-        pub struct $contact {
-            /// Unit contact normal n̂, from partner j to particle i.
-            pub normal: [f64; 3],
-            $(#[$mdoc])*
-            pub $motion: $mty,
-            /// The normal force on the contact (N, > 0 repulsive), from the normal law this step:
-            /// what caps friction, rolling and twisting resistance.
-            pub normal_force: f64,
-            /// Overlap δ (m).
-            pub delta: f64,
-            /// Effective mass (kg).
-            pub mass: f64,
-            /// Effective radius R_eff (m).
-            pub radius: f64,
-            /// The time step (s) over which the history advances.
-            pub dt: f64,
-        }
-
-        $(#[$bdoc])*
-        #[derive(Debug)]
-        pub struct $batch<'a> {
-            /// Time step (s) over which the history advances.
-            pub dt: f64,
-            /// Unit normals n̂ (from partner to particle).
-            pub normal: &'a [[f64; 3]],
-            $(#[$mdoc])*
-            pub $motion: &'a [$mty],
-            /// Normal forces (N, > 0 repulsive).
-            pub normal_force: &'a [f64],
-            /// Overlaps (m).
-            pub delta: &'a [f64],
-            /// Effective masses (kg).
-            pub mass: &'a [f64],
-            /// Effective radii (m).
-            pub radius: &'a [f64],
-            /// History slots per contact.
-            pub slots: usize,
-            /// Per-contact history, read and updated in place.
-            pub history: &'a mut [f64],
-            $(#[$odoc])*
-            pub $out: &'a mut [$oty],
-        }
-
-        impl $batch<'_> {
-            /// Contact `i` of the batch.
-            #[inline(always)]
-            pub fn contact(&self, i: usize) -> $contact {
-                $contact {
-                    normal: self.normal[i],
-                    $motion: self.$motion[i],
-                    normal_force: self.normal_force[i],
-                    delta: self.delta[i],
-                    mass: self.mass[i],
-                    radius: self.radius[i],
-                    dt: self.dt,
-                }
-            }
-
-            #[doc = concat!("`", stringify!($out), "[i] = f(contact i, its history)` for every contact: the loop of a batch call.")]
-            #[inline(always)]
-            pub fn each(self, mut f: impl FnMut(&$contact, &mut [f64]) -> $oty) {
-                let slots = self.slots;
-                for i in 0..self.$out.len() {
-                    let c = self.contact(i);
-                    self.$out[i] = f(&c, history_mut(self.history, slots, i));
-                }
-            }
-
-            #[doc = concat!("`", stringify!($out), "[i]` and contact i's energy from `f(contact i, its history)` for every contact: the loop of a batch call with energy outputs; whether every contact reported one.")]
-            #[inline(always)]
-            pub fn each_energy(
-                self,
-                mut out: $crate::law::EnergyBatch<'_>,
-                mut f: impl FnMut(&$contact, &mut [f64]) -> ($oty, Option<$crate::law::Energy>),
-            ) -> bool {
-                let slots = self.slots;
-                let mut all = true;
-                for i in 0..self.$out.len() {
-                    let c = self.contact(i);
-                    let (o, e) = f(&c, history_mut(self.history, slots, i));
-                    self.$out[i] = o;
-                    all &= out.set(i, e);
-                }
-                all
-            }
-        }
-    };
-}
-pub(crate) use motion_kind;
-
-/// The methods of a bound law of a motion kind (tangential, rolling, twisting), in its trait's
-/// body: `$call` returns the `$what` of one contact (`$out`) and advances its history,
-/// `$batch_call` does so for a batch (`$batch`), `energy` reports a contact's energy after a
-/// call, `$energy_call` and `$batch_energy_call` return the output with the step's energy.
-macro_rules! motion_law_methods {
-    ($what:literal, $contact:ty, $batch:ty, $out:ty,
-     $call:ident, $batch_call:ident, $energy_call:ident, $batch_energy_call:ident) => {
-        #[doc = concat!("The ", $what, " on contact `c`, updating `history` in place.")]
-        fn $call(&self, c: &$contact, history: &mut [f64]) -> $out;
-
-        #[doc = concat!("[`Self::", stringify!($call), "`] for every contact of the batch. Override only if a hand-vectorised form is faster than this loop.")]
-        #[inline(always)]
-        fn $batch_call(&self, b: $batch) {
-            b.each(|c, h| self.$call(c, h));
-        }
-
-        #[doc = concat!("The energy of contact `c` after a call that returned `output` (the ", $what, ") and left `history` (sdk 0.3): the elastic energy stored (J) and the power dissipated (W); `None` (the default) when the law does not account for it. A spring law that needs its history before the step overrides [`Self::", stringify!($energy_call), "`] instead.")]
-        fn energy(&self, _c: &$contact, _history: &[f64], _output: $out) -> Option<Energy> {
-            None
-        }
-
-        #[doc = concat!("The ", $what, " on contact `c`, `history` updated as by [`Self::", stringify!($call), "`], with the contact's energy over the step (sdk 0.3), the history before the step in view (what exact accounting of a sliding spring needs). The default is [`Self::", stringify!($call), "`] then [`Self::energy`].")]
-        #[inline(always)]
-        fn $energy_call(&self, c: &$contact, history: &mut [f64]) -> ($out, Option<Energy>) {
-            let o = self.$call(c, history);
-            (o, self.energy(c, history, o))
-        }
-
-        #[doc = concat!("[`Self::", stringify!($batch_call), "`] with each contact's energy written to `out` (sdk 0.3); whether every contact reported one. The default loops over [`Self::", stringify!($energy_call), "`]: a law that overrides `", stringify!($batch_call), "` for speed overrides this too.")]
-        #[inline(always)]
-        fn $batch_energy_call(&self, b: $batch, out: EnergyBatch<'_>) -> bool {
-            b.each_energy(out, |c, h| self.$energy_call(c, h))
-        }
-    };
-}
-pub(crate) use motion_law_methods;
-
-motion_kind!(
-    /// The state of one contact as a tangential or rolling law sees it. Vectors are 3D (a 2D
-    /// caller sets the third components to 0).
-    VectorContact,
-    /// Every contact of one material pair for a tangential or rolling law, structure of arrays.
-    /// Vectors are `[x, y, z]` triples; `history` is `n × slots` as in [`NormalBatch`].
-    VectorBatch,
-    /// Relative velocity (m/s): for a tangential law, of i's contact point with respect to j's
-    /// (ω × r terms included; the law uses its part in the tangent plane); for a rolling law,
-    /// the rolling velocity v_roll = R_eff (ω_i − ω_j) × n̂.
-    velocity: [f64; 3],
-    /// Output: the force on particle i (N): tangential, in the tangent plane; or the
-    /// rolling-resistance force F_r, whose torque on i is R_eff n̂ × F_r.
-    force: [f64; 3]
-);
-
-/// Contact `i`'s history slots of `h` (`slots` per contact; empty when there are none).
-#[inline(always)]
-pub(crate) fn history_mut(h: &mut [f64], slots: usize, i: usize) -> &mut [f64] {
-    if slots == 0 {
-        &mut []
-    } else {
-        &mut h[i * slots..(i + 1) * slots]
-    }
-}
-
-/// The state of one contact as a tangential law sees it (see [`VectorContact`]).
-pub type TangentialContact = VectorContact;
-
-/// Every contact of one material pair for a tangential law (see [`VectorBatch`]).
-pub type TangentialBatch<'a> = VectorBatch<'a>;
-
-/// A tangential (friction) law bound to a material pair.
-///
-/// It returns the tangential force on particle i, capped by Coulomb's μ|F_n|, and advances the
-/// history (for a spring: its displacement, rotated into the current tangent plane) by `dt`.
-pub trait BoundTangential: Send + Sync + 'static {
-    motion_law_methods!(
-        "tangential force (N)",
-        TangentialContact,
-        TangentialBatch<'_>,
-        [f64; 3],
-        force,
-        force_batch,
-        force_energy,
-        force_batch_energy
-    );
 }
 
 /// A restitution law bound to a pair.

@@ -72,6 +72,7 @@ pub mod abi;
 mod energy;
 mod error;
 mod law;
+mod motion;
 mod pair;
 mod params;
 pub mod physics;
@@ -79,10 +80,10 @@ mod rotation;
 
 pub use error::{ErrorKind, LawError};
 pub use law::{
-    BoundContact, BoundRestitution, BoundTangential, CalibrationTarget, Coefficient, Contact, ContactLaw,
-    EndCriterion, Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
-    TangentialBatch, TangentialContact, TangentialLaw, VectorBatch, VectorContact,
+    BoundContact, BoundRestitution, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion,
+    Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw, TangentialLaw,
 };
+pub use motion::{BoundTangential, TangentialBatch, TangentialContact, VectorBatch, VectorContact};
 pub use pair::{MaterialPair, Pair, Particle};
 #[doc(hidden)]
 pub use params::join_doc as __join_doc;

@@ -17,40 +17,29 @@
 
 use crate::error::LawError;
 use crate::law::{
-    history_law, history_mut, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo,
-    LawKind,
+    history_law, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo, LawKind,
 };
-use crate::law::{motion_kind, motion_law_methods, VectorBatch, VectorContact};
+use crate::motion::{history_mut, motion_kind, motion_law_methods, vector_law};
 use crate::pair::MaterialPair;
 use crate::params::{LawParams, ParamValue};
 
-/// The state of one contact as a rolling law sees it ([`VectorContact`]; its `velocity` is the
-/// relative rolling velocity v_roll = R_eff (ω_i − ω_j) × n̂, m/s, and its `radius` R_eff the
-/// torque arm).
-pub type RollingContact = VectorContact;
-
-/// Every contact of one material pair for a rolling law ([`VectorBatch`]; its `force` is the
-/// rolling-resistance force F_roll (N), whose torque on i is R_eff n̂ × F_roll).
-pub type RollingBatch<'a> = VectorBatch<'a>;
-
-/// A rolling-resistance law bound to a material pair.
-pub trait BoundRolling: Send + Sync + 'static {
-    motion_law_methods!(
-        "rolling-resistance force (N)",
-        RollingContact,
-        RollingBatch<'_>,
-        [f64; 3],
-        force,
-        force_batch,
-        force_energy,
-        force_batch_energy
-    );
-
-    /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
-    fn coefficients(&self, _mass: f64, _radius: f64) -> Vec<Coefficient> {
-        Vec::new()
+vector_law!(
+    /// The state of one contact as a rolling law sees it ([`VectorContact`](crate::VectorContact);
+    /// its `velocity` is the relative rolling velocity v_roll = R_eff (ω_i − ω_j) × n̂, m/s, and
+    /// its `radius` R_eff the torque arm).
+    RollingContact,
+    /// Every contact of one material pair for a rolling law ([`VectorBatch`](crate::VectorBatch);
+    /// its `force` is the rolling-resistance force F_roll (N), whose torque on i is
+    /// R_eff n̂ × F_roll).
+    RollingBatch,
+    /// A rolling-resistance law bound to a material pair.
+    BoundRolling: "rolling-resistance force (N)" {
+        /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
+        fn coefficients(&self, _mass: f64, _radius: f64) -> Vec<Coefficient> {
+            Vec::new()
+        }
     }
-}
+);
 
 motion_kind!(
     /// The state of one contact as a twisting law sees it.

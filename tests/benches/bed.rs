@@ -6,7 +6,7 @@
 //!
 //! Run: `cargo bench -p dashpot-tests --bench bed`
 
-use dashpot::bed::{plugin_laws, Bed, BedConfig, Compiled, Laws, Restitution};
+use dashpot::bed::{bed_particle, plugin_laws, Bed, BedConfig, Compiled, LawChoice, Laws, Restitution};
 use dashpot_mcnamara_falcon::McNamaraFalcon;
 use dashpot_tests::seed_registry;
 
@@ -164,7 +164,12 @@ fn versus_edref(plugin: &Laws<dashpot::laws::PluginRestitution>) {
 
 fn main() {
     let reg = seed_registry();
-    let plugin = plugin_laws(&reg, "mcnamara-falcon", &[], 0.002, 3.27e-5).expect("plugin");
+    let plugin = plugin_laws(
+        &reg,
+        &LawChoice::new("mcnamara-falcon", Vec::new()),
+        &bed_particle(0.002, 3.27e-5),
+    )
+    .expect("plugin");
     let law = McNamaraFalcon { r0: 0.95, vy: 0.3 };
     let stat = Laws {
         disk: Compiled(law),

@@ -24,11 +24,15 @@ use dashpot::laws::{compiled, compiled_tangential, EnergyOut, NormalLaw, Tangent
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
 use dashpot_sdk::{MaterialPair, NormalBatch, ParamValue, Particle, TangentialBatch};
-use dashpot_tests::{full_registry, lib_in, plugin_file, registry_of, sdk01_registry};
+use dashpot_tests::{assert_same_bits, full_registry, lib_in, plugin_file, registry_of, sdk01_registry};
 use std::hint::black_box;
 
 const N: usize = 1_000_000;
 const REPS: usize = 21;
+/// The contacts of one batch call as the DEM loop makes them (inputs just gathered, in cache).
+const CHUNK: usize = 1024;
+/// The chunks of CHUNK contacts in N.
+const CHUNKS: usize = N / CHUNK;
 
 fn time(f: &mut dyn FnMut()) -> f64 {
     let s = thread_cpu_seconds();
@@ -128,34 +132,29 @@ fn versus(
     ns: impl Fn(f64) -> f64,
 ) {
     let [base, this] = laws;
-    normal_step(base, c, 0, &mut [], o1);
-    normal_step(this, c, 0, &mut [], o2);
-    assert!(
-        o1.iter().zip(&*o2).all(|(a, b)| a.to_bits() == b.to_bits()),
-        "the same bits"
-    );
-    let r = race(&mut [&mut || normal_step(base, c, 0, &mut [], o1), &mut || {
-        normal_step(this, c, 0, &mut [], o2)
+    normal_step(base, c, o1);
+    normal_step(this, c, o2);
+    assert_same_bits(o1, o2, |i| format!("the force on contact {i}"));
+    let r = race(&mut [&mut || normal_step(base, c, o1), &mut || {
+        normal_step(this, c, o2)
     }]);
     report(&r, ns, ["baseline build", "this build"], "this / baseline", "");
-    const CHUNK: usize = 1024;
-    let reps = N / CHUNK;
     let r = race(&mut [
         &mut || {
-            for _ in 0..reps {
+            for _ in 0..CHUNKS {
                 base.force_batch(normal_chunk(c, 0..CHUNK, &mut o1[..CHUNK]))
                     .expect("normal batch");
             }
         },
         &mut || {
-            for _ in 0..reps {
+            for _ in 0..CHUNKS {
                 this.force_batch(normal_chunk(c, 0..CHUNK, &mut o2[..CHUNK]))
                     .expect("normal batch");
             }
         },
     ]);
     println!("   the same, in chunks of {CHUNK} contacts already in cache");
-    let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
+    let per = |t: f64| t / (CHUNKS * CHUNK) as f64 * 1e9;
     report(&r, per, ["baseline build", "this build"], "this / baseline", "");
     let (mut p, mut e) = (
         [vec![0.0; CHUNK], vec![0.0; CHUNK]],
@@ -165,7 +164,7 @@ fn versus(
     let [e1, e2] = &mut e;
     let r = race(&mut [
         &mut || {
-            for _ in 0..reps {
+            for _ in 0..CHUNKS {
                 let out = EnergyOut {
                     power: Some(&mut *p1),
                     elastic: Some(&mut *e1),
@@ -175,7 +174,7 @@ fn versus(
             }
         },
         &mut || {
-            for _ in 0..reps {
+            for _ in 0..CHUNKS {
                 let out = EnergyOut {
                     power: Some(&mut *p2),
                     elastic: Some(&mut *e2),
@@ -185,14 +184,8 @@ fn versus(
             }
         },
     ]);
-    assert!(
-        p1.iter().zip(&*p2).all(|(a, b)| a.to_bits() == b.to_bits()),
-        "the same power"
-    );
-    assert!(
-        e1.iter().zip(&*e2).all(|(a, b)| a.to_bits() == b.to_bits()),
-        "the same energy"
-    );
+    assert_same_bits(p1, p2, |i| format!("the power of contact {i}"));
+    assert_same_bits(e1, e2, |i| format!("the elastic energy of contact {i}"));
     println!("   the same with the energy outputs");
     report(&r, per, ["baseline build", "this build"], "this / baseline", "");
 }
@@ -203,17 +196,9 @@ fn section(name: &str) -> bool {
     std::env::var("DASHPOT_BENCH_SECTIONS").map_or(true, |v| v.split(',').any(|s| s.trim() == name))
 }
 
-fn normal_step(law: &dyn NormalLaw, c: &Contacts, slots: usize, hist: &mut [f64], out: &mut [f64]) {
-    law.force_batch(NormalBatch {
-        delta: black_box(&c.delta),
-        rate: black_box(&c.rate),
-        mass: &c.mass,
-        radius: &c.radius,
-        slots,
-        history: hist,
-        force: out,
-    })
-    .expect("normal batch");
+/// The normal batch (no history) of every contact of `c`, forces into `out`.
+fn normal_step(law: &dyn NormalLaw, c: &Contacts, out: &mut [f64]) {
+    law.force_batch(normal_chunk(c, 0..N, out)).expect("normal batch");
 }
 
 /// The normal batch (no history) of the contacts `range` of `c`, forces into `out`.
@@ -291,19 +276,20 @@ fn main() {
 
     // the two forms compute the same bits
     let (mut f1, mut f2) = (vec![0.0; N], vec![0.0; N]);
-    normal_step(&hsd_p, &c, 0, &mut [], &mut f1);
-    normal_step(&hsd_s, &c, 0, &mut [], &mut f2);
-    assert!(f1.iter().zip(&f2).all(|(a, b)| a.to_bits() == b.to_bits()));
+    normal_step(&hsd_p, &c, &mut f1);
+    normal_step(&hsd_s, &c, &mut f2);
+    assert_same_bits(&f1, &f2, |i| format!("HSD's force on contact {i}"));
 
     println!("Contact laws over {N} contacts (steel, diameters 4-8 mm, each contact its own m and r), {REPS} interleaved runs (min | median)");
     let ns = |t: f64| t / N as f64 * 1e9;
+    let ns_chunked = |t: f64| t / (CHUNKS * CHUNK) as f64 * 1e9;
 
     // 1. HSD normal, per-contact geometry
     let (mut o1, mut o2) = (vec![0.0; N], vec![0.0; N]);
     if section("1") {
         let r = race(
-            &mut [&mut || normal_step(&hsd_s, &c, 0, &mut [], &mut o1), &mut || {
-                normal_step(&hsd_p, &c, 0, &mut [], &mut o2)
+            &mut [&mut || normal_step(&hsd_s, &c, &mut o1), &mut || {
+                normal_step(&hsd_p, &c, &mut o2)
             }],
         );
         println!("1. HSD normal force, per-contact geometry");
@@ -347,16 +333,16 @@ fn main() {
         let (mut ns_, mut np_) = (vec![0.0; N], vec![0.0; N]);
         let r = race(&mut [
             &mut || {
-                normal_step(&hsd_s, &c, 0, &mut [], &mut ns_);
+                normal_step(&hsd_s, &c, &mut ns_);
                 tangential_step(&mind_s, &c, &ns_, &mut hs, &mut ts);
             },
             &mut || {
-                normal_step(&hsd_p, &c, 0, &mut [], &mut np_);
+                normal_step(&hsd_p, &c, &mut np_);
                 tangential_step(&mind_p, &c, &np_, &mut hp, &mut tp);
             },
         ]);
         // after the same calls in the same order, the springs are the same bits
-        assert!(hs.iter().zip(&hp).all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert_same_bits(&hs, &hp, |k| format!("Mindlin's spring of contact {}", k / slots));
         println!("2. HSD + Mindlin (μ = 0.3) with history: normal batch, then tangential batch");
         report(
             &r,
@@ -370,8 +356,6 @@ fn main() {
     // 2b. the same plugins with the energy outputs on and off, in chunks of CHUNK contacts in
     // cache as the DEM loop calls them: what the accounting costs the laws
     if section("2b") {
-        const CHUNK: usize = 1024;
-        let reps = N / CHUNK;
         let mut h = [vec![0.0; slots * CHUNK], vec![0.0; slots * CHUNK]];
         let (mut fa, mut fb) = (vec![[0.0; 3]; CHUNK], vec![[0.0; 3]; CHUNK]);
         let (mut p, mut e) = (vec![0.0; CHUNK], vec![0.0; CHUNK]);
@@ -380,7 +364,7 @@ fn main() {
         let [ha, hb] = &mut h;
         let r = race(&mut [
             &mut || {
-                for k in 0..reps {
+                for k in 0..CHUNKS {
                     let range = k * CHUNK..(k + 1) * CHUNK;
                     let nbatch = normal_chunk(&c, range.clone(), &mut na);
                     hsd_p.force_batch(nbatch).expect("normal batch");
@@ -388,7 +372,7 @@ fn main() {
                 }
             },
             &mut || {
-                for k in 0..reps {
+                for k in 0..CHUNKS {
                     let range = k * CHUNK..(k + 1) * CHUNK;
                     let nbatch = normal_chunk(&c, range.clone(), &mut nb);
                     let out = EnergyOut {
@@ -405,9 +389,8 @@ fn main() {
             },
         ]);
         assert_eq!(fa, fb, "the energy outputs change no force");
-        let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
         println!("2b. HSD + Mindlin plugins in chunks of {CHUNK} in cache: energy outputs off against on");
-        report(&r, per, ["energy off", "energy on"], "off / on", "");
+        report(&r, ns_chunked, ["energy off", "energy on"], "off / on", "");
     }
 
     // 3. sdk 0.2 per-contact geometry against sdk 0.1's bound-pair batch
@@ -435,7 +418,7 @@ fn main() {
                     .expect("a 0.1 law")
                     .expect("0.1 batch")
                 },
-                &mut || normal_step(&hsd_p, &c, 0, &mut [], &mut o4),
+                &mut || normal_step(&hsd_p, &c, &mut o4),
             ]);
             println!("3. HSD normal force: sdk 0.2 per-contact geometry vs sdk 0.1 bound-pair batch (both plugins)");
             report(
@@ -448,46 +431,30 @@ fn main() {
 
             // 4. the same two calls as a DEM loop makes them: chunks of CHUNK contacts whose
             // inputs were just gathered (in cache), so the law's cost is measured, not DRAM's
-            const CHUNK: usize = 1024;
-            let reps = N / CHUNK;
-            let (d, v, m, a) = (
-                &c.delta[..CHUNK],
-                &c.rate[..CHUNK],
-                &c.mass[..CHUNK],
-                &c.radius[..CHUNK],
-            );
+            let (d, v) = (&c.delta[..CHUNK], &c.rate[..CHUNK]);
             let (mut o5, mut o6) = (vec![0.0; CHUNK], vec![0.0; CHUNK]);
             let r = race(&mut [
                 &mut || {
-                    for _ in 0..reps {
-                        m01.v1_bound_pair_batch(m[0], a[0], black_box(d), black_box(v), &mut o5)
+                    for _ in 0..CHUNKS {
+                        m01.v1_bound_pair_batch(c.mass[0], c.radius[0], black_box(d), black_box(v), &mut o5)
                             .expect("a 0.1 law")
                             .expect("0.1 batch");
                     }
                 },
                 &mut || {
-                    for _ in 0..reps {
+                    for _ in 0..CHUNKS {
                         hsd_p
-                            .force_batch(NormalBatch {
-                                delta: black_box(d),
-                                rate: black_box(v),
-                                mass: m,
-                                radius: a,
-                                slots: 0,
-                                history: &mut [],
-                                force: &mut o6,
-                            })
+                            .force_batch(normal_chunk(&c, 0..CHUNK, &mut o6))
                             .expect("normal batch");
                     }
                 },
             ]);
-            let per = |t: f64| t / (reps * CHUNK) as f64 * 1e9;
             println!(
                 "4. the same, in chunks of {CHUNK} contacts already in cache (as the DEM loop calls it)"
             );
             report(
                 &r,
-                per,
+                ns_chunked,
                 ["0.1 bound to one pair", "0.2 per-contact m, r"],
                 "0.2 / 0.1",
                 "   target >= 0.9",

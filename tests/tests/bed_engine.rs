@@ -1,23 +1,22 @@
 //! The event-driven bed against exact invariants and closed forms, through the real plugins.
 
-use dashpot::bed::{plugin_laws, Bed, BedConfig, Kind, Laws};
+use dashpot::bed::{bed_particle, plugin_laws, Bed, BedConfig, Kind, LawChoice, Laws};
 use dashpot::laws::PluginRestitution as BoundRestitutionHandle;
-use dashpot_sdk::ParamValue;
+use dashpot_sdk::{LawError, ParamValue};
 use dashpot_tests::seed_registry;
 
+/// Restitution law `name` with `params`, bound to the paper's disks (2 mm, 3.27·10⁻⁵ kg).
+fn paper_laws(name: &str, params: &[ParamValue]) -> Result<Laws<BoundRestitutionHandle>, LawError> {
+    let law = LawChoice::new(name, params.to_vec());
+    plugin_laws(&seed_registry(), &law, &bed_particle(0.002, 3.27e-5))
+}
+
 fn constant(r: f64) -> Laws<BoundRestitutionHandle> {
-    plugin_laws(
-        &seed_registry(),
-        "constant",
-        &[ParamValue::new("r", r)],
-        0.002,
-        3.27e-5,
-    )
-    .expect("constant law")
+    paper_laws("constant", &[ParamValue::new("r", r)]).expect("constant law")
 }
 
 fn mcnamara_falcon() -> Laws<BoundRestitutionHandle> {
-    plugin_laws(&seed_registry(), "mcnamara-falcon", &[], 0.002, 3.27e-5).expect("r(v)")
+    paper_laws("mcnamara-falcon", &[]).expect("r(v)")
 }
 
 /// One disk in a tall box over a fixed floor (A = 0).
@@ -356,14 +355,8 @@ fn bad_input_is_a_clear_error() {
         ..p
     })
     .contains("[-1, 1]"));
-    let e = plugin_laws(&seed_registry(), "no-such-law", &[], 0.002, 3.27e-5)
-        .err()
-        .unwrap()
-        .to_string();
+    let e = paper_laws("no-such-law", &[]).err().unwrap().to_string();
     assert!(e.contains("no-such-law") && e.contains("mcnamara-falcon"), "{e}");
-    let e = plugin_laws(&seed_registry(), "hsd", &[], 0.002, 3.27e-5)
-        .err()
-        .unwrap()
-        .to_string();
+    let e = paper_laws("hsd", &[]).err().unwrap().to_string();
     assert!(e.contains("restitution law is needed"), "{e}");
 }

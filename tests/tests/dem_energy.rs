@@ -56,6 +56,20 @@ struct Run {
     by_particle: f64,
 }
 
+impl Run {
+    /// The balance closes: what the particles lost, E0 − E, is the elastic energy left in the
+    /// contacts plus what every family dissipated, to 1e-3 of the loss.
+    fn assert_balance_closes(&self) {
+        let lost = self.e0 - self.e;
+        let residual = lost - self.el - self.d.iter().sum::<f64>();
+        assert!(
+            residual.abs() < 1e-3 * lost,
+            "E0 − E − elastic − dissipated = {residual:e} J against the {lost:e} J lost (dissipated {:?})",
+            self.d
+        );
+    }
+}
+
 fn run(text: &str) -> Run {
     let file = SceneFile::parse(text).unwrap();
     let scene = file.scene::<3>().unwrap();
@@ -103,23 +117,12 @@ fn run(text: &str) -> Run {
 
 #[test]
 fn a_settling_pile_under_hsd_closes_its_energy_balance() {
-    let Run {
-        e0,
-        e,
-        el,
-        d,
-        unreported,
-        ..
-    } = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", ""));
-    assert_eq!(unreported, [false; 4]);
-    let lost = e0 - e;
+    let r = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", ""));
+    assert_eq!(r.unreported, [false; 4]);
+    let (e0, lost) = (r.e0, r.e0 - r.e);
     assert!(lost > 0.3 * e0, "the pile must settle: lost {lost} J of {e0} J");
-    let total: f64 = d.iter().sum();
-    let residual = e0 - e - el - total;
-    assert!(
-        residual.abs() < 1e-3 * lost,
-        "E0 − E − elastic − dissipated = {residual:e} J against the {lost:e} J lost (dissipated {d:?})"
-    );
+    r.assert_balance_closes();
+    let d = r.d;
     assert!(d[0] > 0.0 && d[1..].iter().all(|&x| x == 0.0), "{d:?}");
 }
 
@@ -134,15 +137,9 @@ fn an_elastic_frictionless_pile_dissipates_nothing() {
 fn with_friction_and_rolling_every_family_dissipates_a_non_negative_share() {
     let extra = "[tangential]\nname = \"mindlin\"\nparams = { mu = 0.5 }\n\
                  [rolling]\nname = \"rolling-sds\"\nparams = { k = 100.0, gamma = 0.0, mu = 0.1 }";
-    let Run {
-        e0,
-        e,
-        el,
-        d,
-        unreported,
-        by_particle,
-    } = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", extra));
-    assert_eq!(unreported, [false; 4]);
+    let r = run(&pile("[law]\nname = \"hsd\"\nparams = { eps = 0.5 }", extra));
+    let (d, by_particle) = (r.d, r.by_particle);
+    assert_eq!(r.unreported, [false; 4]);
     assert!(d[0] > 0.0 && d[1] > 0.0 && d[2] > 0.0 && d[3] == 0.0, "{d:?}");
     // the particles' shares (half a pair contact's power each, a wall contact's whole) add up
     // to every contact's power at every step: the same sum in another order
@@ -153,12 +150,7 @@ fn with_friction_and_rolling_every_family_dissipates_a_non_negative_share() {
     );
     // the balance with friction and rolling resistance closes as the frictionless one does:
     // the spring laws account each step from their history before and after it
-    let lost = e0 - e;
-    let residual = e0 - e - el - d.iter().sum::<f64>();
-    assert!(
-        residual.abs() < 1e-3 * lost,
-        "residual {residual:e} J of {lost:e} J lost ({d:?})"
-    );
+    r.assert_balance_closes();
 }
 
 /// A JKR pair in the DEM engine keeps its contact past touching: slower than the critical speed

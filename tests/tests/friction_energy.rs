@@ -146,7 +146,7 @@ fn mindlin(mu: f64, zeta: f64) -> dashpot_mindlin::MindlinBound {
 }
 
 /// `linear-history` with k_t = 2000 N/m, friction coefficient `mu` and damping ratio `zeta`.
-fn linear(mu: f64, zeta: f64) -> dashpot_linear_history::LinearHistoryBound {
+fn linear(mu: f64, zeta: f64) -> LinearHistory {
     let p = [("kt", 2000.0), ("mu", mu), ("damping", zeta)].map(|(n, v)| ParamValue::new(n, v));
     LinearHistory::from_values(&p)
         .unwrap()

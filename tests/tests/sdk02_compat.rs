@@ -5,7 +5,7 @@
 //! overlap, Mindlin's spring through stick and slip).
 
 use dashpot_sdk::{LawKind, MaterialPair, NormalBatch, ParamValue, TangentialBatch};
-use dashpot_tests::{full_registry, memoryless_batch, next_series_plugin, sdk02_registry};
+use dashpot_tests::{assert_same_bits, full_registry, memoryless_batch, next_series_plugin, sdk02_registry};
 
 fn materials() -> MaterialPair {
     MaterialPair::new(7.0e10, 2.7e10).unwrap()
@@ -79,13 +79,9 @@ fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
                 })
                 .unwrap();
             }
-            for i in 0..n {
-                assert_eq!(fo[i].to_bits(), fnew[i].to_bits(), "{name} step {s} contact {i}");
-                compared += 1;
-            }
-            for (a, b) in ho.iter().zip(&hn) {
-                assert_eq!(a.to_bits(), b.to_bits(), "{name} history, step {s}");
-            }
+            assert_same_bits(&fo, &fnew, |i| format!("{name} step {s} contact {i}"));
+            assert_same_bits(&ho, &hn, |_| format!("{name} history, step {s}"));
+            compared += n;
             // the cycle unloads after yield: Thornton's unloading branch is exercised
             plastic |= name == "thornton" && fo.iter().zip(&delta[s]).any(|(f, d)| *d > 0.0 && *f < 1.0);
         }
@@ -134,23 +130,16 @@ fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
             })
             .unwrap();
         }
-        for i in 0..n {
-            for k in 0..3 {
-                assert_eq!(
-                    fo[i][k].to_bits(),
-                    fnew[i][k].to_bits(),
-                    "mindlin step {s} contact {i}"
-                );
-            }
-            let f = fo[i];
+        assert_same_bits(fo.as_flattened(), fnew.as_flattened(), |k| {
+            format!("mindlin step {s} contact {}", k / 3)
+        });
+        compared += n;
+        for (f, fn_) in fo.iter().zip(&fnorm) {
             let mag = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
-            slipped |= fnorm[i] > 0.0 && (mag - 0.3 * fnorm[i]).abs() <= 1e-12 * fnorm[i];
-            compared += 1;
+            slipped |= *fn_ > 0.0 && (mag - 0.3 * fn_).abs() <= 1e-12 * fn_;
         }
         for (a, b) in ho.chunks_exact(3).zip(hn.chunks_exact(4)) {
-            for k in 0..3 {
-                assert_eq!(a[k].to_bits(), b[k].to_bits(), "mindlin spring, step {s}");
-            }
+            assert_same_bits(a, &b[..3], |_| format!("mindlin spring, step {s}"));
         }
     }
     assert!(slipped, "the sequence reaches the Coulomb cap");

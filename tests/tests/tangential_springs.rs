@@ -4,7 +4,7 @@
 //! μ (1 + e) v_n; the spring rotates at its length, opposes the slip, carries no friction in
 //! tension and is dropped out of contact.
 
-use dashpot_linear_history::{LinearHistory, LinearHistoryBound};
+use dashpot_linear_history::LinearHistory;
 use dashpot_mindlin::{Mindlin, MindlinBound};
 use dashpot_sdk::physics::dot;
 use dashpot_sdk::{BoundTangential, MaterialPair, ParamValue, TangentialContact, TangentialLaw};
@@ -20,7 +20,7 @@ trait Spring: BoundTangential {
     fn mu(&self) -> f64;
 }
 
-impl Spring for LinearHistoryBound {
+impl Spring for LinearHistory {
     fn kt(&self, _radius: f64, _delta: f64) -> f64 {
         self.kt
     }
@@ -43,7 +43,7 @@ fn materials(e: f64) -> MaterialPair {
 }
 
 /// linear-history with stiffness `kt` (N/m), bound to a steel-like wall pair.
-fn linear(kt: f64, mu: f64, damping: f64) -> LinearHistoryBound {
+fn linear(kt: f64, mu: f64, damping: f64) -> LinearHistory {
     let p = [("kt", kt), ("mu", mu), ("damping", damping)].map(|(n, v)| ParamValue::new(n, v));
     LinearHistory::from_values(&p)
         .unwrap()

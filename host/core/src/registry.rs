@@ -286,7 +286,7 @@ impl Registry {
         } else {
             self.laws
                 .iter()
-                .map(|l| format!("{} ({})", l.info.name, kind_str(l.info.kind)))
+                .map(|l| format!("{} ({})", l.info.name, l.info.kind.as_str()))
                 .collect::<Vec<_>>()
                 .join(", ")
         }
@@ -308,9 +308,9 @@ impl Registry {
                 ErrorKind::UnknownLaw,
                 format!(
                     "law '{name}' is a {} law, but a {} law is needed here{hint}; {} laws loaded: {}",
-                    kind_str(e.info.kind),
-                    kind_str(kind),
-                    kind_str(kind),
+                    e.info.kind.as_str(),
+                    kind.as_str(),
+                    kind.as_str(),
                     self.names_of(kind)
                 ),
             ));
@@ -481,17 +481,6 @@ pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str
     closest(name, candidates)
         .map(|c| format!(" (did you mean `{c}`?)"))
         .unwrap_or_default()
-}
-
-/// "contact", "restitution", "tangential", "rolling" or "twisting".
-pub fn kind_str(k: LawKind) -> &'static str {
-    match k {
-        LawKind::Contact => "contact",
-        LawKind::Restitution => "restitution",
-        LawKind::Tangential => "tangential",
-        LawKind::Rolling => "rolling",
-        LawKind::Twisting => "twisting",
-    }
 }
 
 #[cfg(test)]

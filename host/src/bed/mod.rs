@@ -32,6 +32,7 @@ pub use engine::{Bed, BedConfig, BedReport, EventRecord, Kind};
 
 pub use dashpot_core::laws::{Compiled, PluginRestitution, Restitution};
 use dashpot_sdk::{LawError, Pair, Particle};
+pub use spec::LawChoice;
 
 /// The restitution of the two kinds of pair in the bed: two disks, and a disk against a wall
 /// (the lid or the piston, of infinite mass).
@@ -70,76 +71,68 @@ fn particle_pairs(p: &Particle) -> Result<(Pair, Pair), LawError> {
     Ok((Pair::spheres(p, p)?, Pair::wall(p)?))
 }
 
-/// Loads restitution law `name` from the registry with `params` and binds it to the bed's pairs.
+/// Restitution law `law` from the registry, bound to the pairs of the disks `p` (two disks, a
+/// disk and a wall).
 pub fn plugin_laws(
     reg: &crate::Registry,
-    name: &str,
-    params: &[dashpot_sdk::ParamValue],
-    d: f64,
-    m: f64,
-) -> Result<Laws<PluginRestitution>, LawError> {
-    let law = reg.restitution(name, params)?;
-    bound_to_pairs_of(&bed_particle(d, m), |pair| law.bind(pair))
-}
-
-/// A law bound by `bind` to the pairs of particle `p` (two disks, a disk and a wall).
-fn bound_to_pairs_of<R>(
+    law: &LawChoice,
     p: &Particle,
-    bind: impl Fn(&Pair) -> Result<R, LawError>,
-) -> Result<Laws<R>, LawError> {
+) -> Result<Laws<PluginRestitution>, LawError> {
+    let law = reg.restitution(&law.name, &law.params)?;
     let (pp, pw) = particle_pairs(p)?;
     Ok(Laws {
-        disk: bind(&pp)?,
-        wall: bind(&pw)?,
+        disk: law.bind(&pp)?,
+        wall: law.bind(&pw)?,
     })
+}
+
+/// Contact law `law`, turned into restitution laws for the disk–disk and disk–wall pairs of the
+/// disks `p`: r(v) is the restitution the collision driver realizes at impact speed v, under
+/// the end-of-contact criterion the law declares, tabulated on a log grid over [1e-4, 20] m/s
+/// to within 1e-6 (power-law tails outside).
+pub fn contact_laws(
+    reg: &crate::Registry,
+    law: &LawChoice,
+    p: &Particle,
+) -> Result<Laws<crate::collide::TabulatedRestitution>, LawError> {
+    let (disk, wall) = crate::tabulate::contact_restitution(reg, &law.name, &law.params, p)?;
+    Ok(Laws { disk, wall })
 }
 
 /// A restitution of any kind, chosen by name at run time.
 pub type DynRestitution = Box<dyn Restitution + Send>;
 
-/// The restitution named `name` with `params`, bound to the pairs of the disks `p` (the bed's
-/// diameter and mass, and a material: steel's by default ([`bed_particle`]), else what `--young`
-/// and `--poisson` give, which a `from:LAW` table is computed for): what `dashpot bed`,
-/// `scaling` and `figures bed` use. A name is a restitution-law plugin, or `from:` a contact
-/// law integrated over a collision.
+impl<R> Laws<R> {
+    /// Both laws as [`DynRestitution`]s, each as `wrap` makes it.
+    fn boxed<W: Restitution + Send + 'static>(self, wrap: impl Fn(R) -> W) -> Laws<DynRestitution> {
+        Laws {
+            disk: Box::new(wrap(self.disk)),
+            wall: Box::new(wrap(self.wall)),
+        }
+    }
+}
+
+/// The restitution `law`, bound to the pairs of the disks `p` (the bed's diameter and mass, and
+/// a material: steel's by default ([`bed_particle`]), else what `--young` and `--poisson` give,
+/// which a `from:LAW` table is computed for): what `dashpot bed`, `scaling` and `figures bed`
+/// use. A name is a restitution-law plugin ([`plugin_laws`]), or `from:` a contact law
+/// integrated over a collision ([`contact_laws`]).
 pub fn resolve_for(
     reg: &crate::Registry,
-    name: &str,
-    params: &[dashpot_sdk::ParamValue],
+    law: &LawChoice,
     p: &Particle,
 ) -> Result<Laws<DynRestitution>, LawError> {
-    if let Some(contact) = name.strip_prefix(FROM_CONTACT) {
-        let (disk, wall) = crate::tabulate::contact_restitution(reg, contact, params, p)?;
-        return Ok(Laws {
-            disk: Box::new(Compiled(disk)),
-            wall: Box::new(Compiled(wall)),
-        });
-    }
-    let law = reg.restitution(name, params)?;
-    let l = bound_to_pairs_of(p, |pair| law.bind(pair))?;
-    Ok(Laws {
-        disk: Box::new(l.disk),
-        wall: Box::new(l.wall),
+    Ok(match law.name.strip_prefix(FROM_CONTACT) {
+        Some(contact) => {
+            let contact = LawChoice::new(contact, law.params.clone());
+            contact_laws(reg, &contact, p)?.boxed(Compiled)
+        }
+        None => plugin_laws(reg, law, p)?.boxed(|law| law),
     })
 }
 
 /// The prefix that selects a contact law as a restitution law: `--restitution from:hsd`.
 pub const FROM_CONTACT: &str = "from:";
-
-/// Contact law `name` with `params`, turned into restitution laws for the bed's disk–disk and
-/// disk–wall pairs: r(v) is the restitution the collision driver realizes at impact speed v,
-/// under the end-of-contact criterion the law declares, tabulated on a log grid over
-/// [1e-4, 20] m/s to within 1e-6 (power-law tails outside).
-pub fn contact_laws(
-    reg: &crate::Registry,
-    name: &str,
-    params: &[dashpot_sdk::ParamValue],
-    d: f64,
-    m: f64,
-) -> Result<Laws<crate::collide::TabulatedRestitution>, LawError> {
-    let (disk, wall) = crate::tabulate::contact_restitution(reg, name, params, &bed_particle(d, m))?;
-    Ok(Laws { disk, wall })
-}
 
 /// What can go wrong in a bed run.
 #[derive(Debug, thiserror::Error)]

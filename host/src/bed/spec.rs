@@ -151,12 +151,7 @@ impl BedSpec {
         let BedEngine::Event { restitution } = &self.engine else {
             bail!("the DEM engine takes a contact law, not a restitution law");
         };
-        Ok(resolve_for(
-            reg,
-            &restitution.name,
-            &restitution.params,
-            &self.particle(),
-        )?)
+        Ok(resolve_for(reg, restitution, &self.particle())?)
     }
 
     /// The DEM bed at `cfg` (the disks' moduli, the step).

@@ -9,7 +9,7 @@ pub mod roll;
 
 pub use args::{LawArgs, ParticleArgs, Selection, UsageError};
 
-use crate::registry::{kind_str, Registry, SearchPath};
+use crate::registry::{Registry, SearchPath};
 use anyhow::{bail, Context, Result};
 use clap::{Args, Parser, Subcommand};
 use dashpot_sdk::{Contact, LawKind};
@@ -194,7 +194,7 @@ fn laws(reg: &Registry, json_out: bool) -> Result<()> {
     }
     for l in &reg.laws {
         let p = &reg.plugins[l.plugin];
-        println!("{}  [{}]  {}", l.info.name, kind_str(l.info.kind), l.info.summary);
+        println!("{}  [{}]  {}", l.info.name, l.info.kind.as_str(), l.info.summary);
         println!(
             "    plugin: {} ({} {})",
             p.path
@@ -225,7 +225,7 @@ fn law(reg: &Registry, name: &str, json_out: bool) -> Result<()> {
         return Ok(());
     }
     let i = &e.info;
-    println!("{} ({} law)", i.name, kind_str(i.kind));
+    println!("{} ({} law)", i.name, i.kind.as_str());
     println!(
         "plugin: {} ({} {}, sdk {})",
         p.path.display(),
@@ -351,7 +351,7 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
             bail!(
                 "'{name}' is a {} law: it acts together with a contact law on a contact's \
                  rotation; `dashpot eval` evaluates contact and restitution laws only",
-                kind_str(entry.info.kind)
+                entry.info.kind.as_str()
             );
         }
         LawKind::Restitution => {

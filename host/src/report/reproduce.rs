@@ -87,7 +87,7 @@ pub fn run(reg: &Registry, out: &Path, quick: bool) -> Result<()> {
             md,
             "| {} | {} | {} {} | {} | `{}` | {} |",
             l.info.name,
-            crate::registry::kind_str(l.info.kind),
+            l.info.kind.as_str(),
             p.name,
             p.version,
             p.sdk_version,

@@ -58,11 +58,11 @@ dashpot_sdk::law_params! {
     #[derive(Debug, Clone)]
     pub struct LinearHistory {
         /// tangential stiffness k_t; the default is illustrative, not a material value
-        kt: f64 { unit: "N/m", default: 1.0e5, range: Range::positive() },
+        pub kt: f64 { unit: "N/m", default: 1.0e5, range: Range::positive() },
         /// Coulomb friction coefficient μ
-        mu: f64 { unit: "1", default: 0.5, range: Range::non_negative() },
+        pub mu: f64 { unit: "1", default: 0.5, range: Range::non_negative() },
         /// tangential damping ratio ζ_t: η_t = 2 ζ_t √(m k_t)
-        damping: f64 { unit: "1", default: 0.0, range: Range::non_negative() },
+        pub damping: f64 { unit: "1", default: 0.0, range: Range::non_negative() },
     }
 }
 
@@ -74,19 +74,9 @@ impl LinearHistory {
     }
 }
 
-/// The law bound to a pair of materials (which it does not use).
-#[derive(Debug, Clone)]
-pub struct LinearHistoryBound {
-    /// Tangential stiffness k_t (N/m).
-    pub kt: f64,
-    /// Coulomb friction coefficient μ.
-    pub mu: f64,
-    /// Damping ratio ζ_t: η_t = 2 ζ_t √(m k_t).
-    pub damping: f64,
-}
-
+/// The law does not depend on the materials: bound, it is itself.
 impl TangentialLaw for LinearHistory {
-    type Bound = LinearHistoryBound;
+    type Bound = LinearHistory;
     const NAME: &'static str = "linear-history";
     const SUMMARY: &'static str =
         "Cundall–Strack tangential spring of constant k_t with history, Coulomb cap μ F_n, optional damping";
@@ -106,16 +96,12 @@ impl TangentialLaw for LinearHistory {
         tangential velocity by μ (1 + e) v_n.";
     const HISTORY: &'static [History] = &History::TANGENTIAL_SPRING;
 
-    fn bind(&self, _materials: &MaterialPair) -> Result<LinearHistoryBound, LawError> {
-        Ok(LinearHistoryBound {
-            kt: self.kt,
-            mu: self.mu,
-            damping: self.damping,
-        })
+    fn bind(&self, _materials: &MaterialPair) -> Result<LinearHistory, LawError> {
+        Ok(self.clone())
     }
 }
 
-impl BoundTangential for LinearHistoryBound {
+impl BoundTangential for LinearHistory {
     #[inline]
     fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3] {
         let eta = 2.0 * self.damping * (c.mass * self.kt).sqrt();

@@ -91,35 +91,35 @@ extern "C" fn laws<T: Tables>() -> RResult<RVec<ffi::LawInfo>, FfiError> {
     })
 }
 
-/// One table of [`Tables`]: the laws of kind `WHAT`, made as `F`.
+/// One table of [`Tables`]: the laws of kind `KIND`, made as `F`.
 trait Table<T: Tables, F: 'static> {
-    const WHAT: &'static str;
+    const KIND: crate::LawKind;
     fn table() -> &'static [Entry<Create<F>>];
 }
 
 macro_rules! table {
-    ($name:ident, $what:literal, $made:ty, $field:ident) => {
+    ($name:ident, $kind:ident, $made:ty, $field:ident) => {
         struct $name;
         impl<T: Tables> Table<T, $made> for $name {
-            const WHAT: &'static str = $what;
+            const KIND: crate::LawKind = crate::LawKind::$kind;
             fn table() -> &'static [Entry<Create<$made>>] {
                 T::$field
             }
         }
     };
 }
-table!(Contact, "contact", FfiLaw<FfiNormalBatch3>, CONTACT);
-table!(TangentialTable, "tangential", FfiLaw<FfiVectorBatch>, TANGENTIAL);
-table!(RollingTable, "rolling", FfiLaw<FfiVectorBatch>, ROLLING);
-table!(TwistingTable, "twisting", FfiLaw<FfiTwistingBatch>, TWISTING);
-table!(RestitutionTable, "restitution", FfiRestitutionLaw, RESTITUTION);
+table!(Contact, Contact, FfiLaw<FfiNormalBatch3>, CONTACT);
+table!(TangentialTable, Tangential, FfiLaw<FfiVectorBatch>, TANGENTIAL);
+table!(RollingTable, Rolling, FfiLaw<FfiVectorBatch>, ROLLING);
+table!(TwistingTable, Twisting, FfiLaw<FfiTwistingBatch>, TWISTING);
+table!(RestitutionTable, Restitution, FfiRestitutionLaw, RESTITUTION);
 
 /// The root module's constructor of the laws of table `K` of plugin `T`.
 extern "C" fn new_kind<T: Tables, F: 'static, K: Table<T, F>>(
     name: RStr<'_>,
     params: RSlice<'_, ffi::ParamValue>,
 ) -> RResult<F, FfiError> {
-    new_law(K::table(), K::WHAT, name, params)
+    new_law(K::table(), K::KIND.as_str(), name, params)
 }
 
 /// A contact law's closed-form calibration, by name (the root module's `calibrate`).

@@ -5,11 +5,11 @@
 
 use super::guard::take_panic;
 use super::kind::{model_batch, EnergyOut, FfiLaw, FfiModel, Kind, KindBound, KindLaw};
-use super::{BatchFault, BatchStatus};
+use super::{BatchFault, BatchStatus, Owned};
 use crate::error::{ErrorKind, LawError};
 use crate::law::{Coefficient, LawInfo};
 use crate::pair::MaterialPair;
-use abi_stable::std_types::{RResult, RString};
+use abi_stable::std_types::RString;
 use std::ffi::c_void;
 
 /// A law of kind `K` bound to a pair of materials, as a host calls it: from a plugin of any sdk
@@ -109,7 +109,7 @@ pub(crate) fn run<K: Kind>(
     let n = K::len(b);
     if !energy.lengths_ok(n) {
         return Err(super::host::length_error(
-            &format!("{} batch", K::WHAT),
+            &format!("{} batch", K::KIND.as_str()),
             format!("the energy outputs must have one value per contact ({n})"),
         ));
     }
@@ -124,7 +124,7 @@ pub(crate) fn run<K: Kind>(
     if st == BatchStatus::Panic {
         return Err(LawError::new(
             ErrorKind::Panic,
-            format!("{} law '{name}' panicked: {}", K::WHAT, take_panic()),
+            format!("{} law '{name}' panicked: {}", K::KIND.as_str(), take_panic()),
         ));
     }
     match st {
@@ -135,12 +135,12 @@ pub(crate) fn run<K: Kind>(
 
 /// A configured law of kind `K` from a plugin.
 pub struct LawHandle<K: Kind> {
-    ffi: FfiLaw<K::Ffi>,
+    ffi: Owned<FfiLaw<K::Ffi>>,
     info: LawInfo,
 }
 
 impl<K: Kind> LawHandle<K> {
-    pub(crate) fn new(ffi: FfiLaw<K::Ffi>, info: LawInfo) -> Self {
+    pub(crate) fn new(ffi: Owned<FfiLaw<K::Ffi>>, info: LawInfo) -> Self {
         LawHandle { ffi, info }
     }
 
@@ -152,27 +152,18 @@ impl<K: Kind> LawHandle<K> {
     /// Binds the law to a pair of materials (validated first).
     pub fn bind(&self, materials: &MaterialPair) -> Result<ModelHandle<K>, LawError> {
         materials.validate()?;
-        match unsafe { (self.ffi.vtable.bind)(self.ffi.obj, materials) } {
-            RResult::ROk(ffi) => Ok(ModelHandle {
-                ffi,
-                name: self.info.name.to_string(),
-                slots: self.info.history.len(),
-            }),
-            RResult::RErr(e) => Err(e.into()),
-        }
-    }
-}
-
-impl<K: Kind> Drop for LawHandle<K> {
-    fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
+        Ok(ModelHandle {
+            ffi: Owned::take(unsafe { (self.ffi.vtable.bind)(self.ffi.obj, materials) })?,
+            name: self.info.name.to_string(),
+            slots: self.info.history.len(),
+        })
     }
 }
 
 /// A law of kind `K` bound to a pair of materials: the hot path, every input and output
 /// checked.
 pub struct ModelHandle<K: Kind> {
-    ffi: FfiModel<K::Ffi>,
+    ffi: Owned<FfiModel<K::Ffi>>,
     name: String,
     slots: usize,
 }
@@ -206,12 +197,6 @@ impl<K: Kind> ModelHandle<K> {
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
     pub fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
         super::host::coefficients(unsafe { (self.ffi.vtable.coefficients)(self.ffi.obj, mass, radius) })
-    }
-}
-
-impl<K: Kind> Drop for ModelHandle<K> {
-    fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
     }
 }
 

@@ -94,10 +94,8 @@ pub trait Kind: 'static {
     type Ffi: StableAbi + 'static;
     /// The batch as a host passes it (slices).
     type Batch<'a>;
-    /// Which kind.
+    /// Which kind (named in messages by [`LawKind::as_str`]).
     const KIND: LawKind;
-    /// "contact", "tangential", ... for messages.
-    const WHAT: &'static str;
     /// Number of contacts of a batch.
     fn len(b: &Self::Batch<'_>) -> usize;
     /// Checks the lengths of a batch's arrays against its contact count and the law's history
@@ -207,7 +205,7 @@ unsafe extern "C" fn law_bind<K: Kind, T: KindLaw<K>>(
     obj: *const c_void,
     materials: &MaterialPair,
 ) -> RResult<FfiModel<K::Ffi>, FfiError> {
-    guard(&format!("{} law '{}' (bind)", K::WHAT, T::NAME), || {
+    guard(&format!("{} law '{}' (bind)", K::KIND.as_str(), T::NAME), || {
         materials.validate()?;
         let bound = unsafe { &*(obj as *const T) }.kind_bind(materials)?;
         Ok(FfiModel {

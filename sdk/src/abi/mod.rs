@@ -60,6 +60,7 @@ pub use crate::error::FfiError;
 #[doc(hidden)]
 pub use export as __private;
 pub use handle::{BoundModel, LawHandle, ModelHandle, StaticModel};
+pub(crate) use host::BatchLengths;
 pub use host::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
     SdkSeries, TangentialLawHandle, TangentialModelHandle,
@@ -71,10 +72,10 @@ use crate::pair::{MaterialPair, Pair};
 use abi_stable::{
     library::RootModule,
     sabi_types::VersionStrings,
-    std_types::{ROption, RResult, RSlice, RStr, RString, RVec},
+    std_types::{RResult, RSlice, RStr, RString, RVec},
     StableAbi,
 };
-use ffi::{CalibrationTarget, LawInfo, ParamValue};
+use ffi::{LawInfo, ParamValue};
 use std::ffi::c_void;
 
 /// The dashpot-sdk version a plugin or host is built against (`major.minor.patch`).
@@ -219,6 +220,7 @@ macro_rules! ffi_object {
     (law $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
         $crate::abi::ffi_object!(@vtable $(#[$doc])* $vt $(<$g>)? { $($body)* });
         $crate::abi::ffi_handle!($(#[$hdoc])* $handle $(<$g>)?, $vt $(<$g>)?);
+        $crate::abi::ffi_object!(@free $handle $(<$g>)?);
     };
     (model $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
         $crate::abi::ffi_object!(@vtable $(#[$doc])* $vt $(<$g>)? {
@@ -227,6 +229,7 @@ macro_rules! ffi_object {
             pub take_panic: extern "C" fn() -> abi_stable::std_types::RString,
         });
         $crate::abi::ffi_handle!($(#[$hdoc])* $handle $(<$g>)?, $vt $(<$g>)?);
+        $crate::abi::ffi_object!(@free $handle $(<$g>)?);
     };
     (model_with_coefficients $(#[$doc:meta])* $vt:ident $(<$g:ident>)? { $($body:tt)* } $(#[$hdoc:meta])* $handle:ident) => {
         $crate::abi::ffi_object!(model $(#[$doc])* $vt $(<$g>)? {
@@ -252,8 +255,49 @@ macro_rules! ffi_object {
             pub drop: unsafe extern "C" fn(obj: *mut std::ffi::c_void),
         }
     };
+    (@free $handle:ident $(<$g:ident>)?) => {
+        impl$(<$g: 'static>)? $crate::abi::FfiObject for $handle$(<$g>)? {
+            unsafe fn free(&self) {
+                // SAFETY: as the caller promises.
+                unsafe { (self.vtable.drop)(self.obj) }
+            }
+        }
+    };
 }
 pub(crate) use ffi_object;
+
+/// A plugin object (every [`ffi_object!`] handle), which its vtable's `drop` frees.
+pub(crate) trait FfiObject {
+    /// Frees the object.
+    ///
+    /// # Safety
+    /// Once, and the object is not used after.
+    unsafe fn free(&self);
+}
+
+/// A plugin object this side owns: freed through its vtable when dropped.
+pub(crate) struct Owned<H: FfiObject>(pub(crate) H);
+
+impl<H: FfiObject> Owned<H> {
+    /// The object a plugin's call returned, now owned here, or the call's error.
+    pub(crate) fn take(r: RResult<H, FfiError>) -> Result<Owned<H>, crate::LawError> {
+        r.into_result().map(Owned).map_err(Into::into)
+    }
+}
+
+impl<H: FfiObject> std::ops::Deref for Owned<H> {
+    type Target = H;
+    fn deref(&self) -> &H {
+        &self.0
+    }
+}
+
+impl<H: FfiObject> Drop for Owned<H> {
+    fn drop(&mut self) {
+        // SAFETY: the object is this side's, freed here once, and unreachable after.
+        unsafe { self.0.free() }
+    }
+}
 
 /// Declares a frozen series' law description: its `LawKind` (the kinds it had) and `LawInfo`
 /// (with the per-contact `history` slots from sdk 0.2 on), and the plain description of one.
@@ -338,55 +382,80 @@ ffi_object!(model
     FfiBoundRestitution
 );
 
-/// The root module every sdk 0.3 plugin exports (an abi_stable prefix type: a later 0.3 release
-/// may append fields after the last prefix field without breaking older plugins, whose missing
-/// fields then read as `None`).
-#[repr(C)]
-#[derive(StableAbi)]
-#[sabi(kind(Prefix(prefix_ref = PluginModuleRef)))]
-#[sabi(missing_field(panic))]
-pub struct PluginModule {
-    /// The plugin crate's name.
-    pub name: RStr<'static>,
-    /// The plugin crate's version.
-    pub version: RStr<'static>,
-    /// The dashpot-sdk version it was built against ([`ABI_VERSION`] on its side).
-    pub sdk_version: RStr<'static>,
-    /// Every law the plugin exports, of every kind.
-    pub laws: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
-    /// Creates contact law `name` from parameters (validated against its schema).
-    pub new_contact: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError>,
-    /// Creates tangential law `name`.
-    pub new_tangential: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
-    /// Creates rolling law `name`.
-    pub new_rolling: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
-    /// Creates twisting law `name`.
-    pub new_twisting: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError>,
-    /// Creates restitution law `name` (the ABI of sdk 0.1).
-    pub new_restitution:
-        extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiRestitutionLaw, FfiError>,
-    /// Closed-form parameters of contact law `name` that reproduce `target` for `pair`, given the
-    /// parameters the user fixed; `RNone` when the law has no closed form for it.
-    #[sabi(last_prefix_field)]
-    pub calibrate: extern "C" fn(
-        name: RStr<'_>,
-        target: &CalibrationTarget,
-        pair: &Pair,
-        fixed: RSlice<'_, ParamValue>,
-    ) -> RResult<ROption<RVec<ParamValue>>, FfiError>,
+/// Declares the root module of a series (an abi_stable prefix type, referred to by
+/// `PluginModuleRef`): the plugin's identity, the series' own law list and constructors
+/// (`$entries`), the two entries no series has changed (a restitution law's constructor and the
+/// closed-form calibration, the last prefix field: what the host reads from a plugin of any
+/// series), then the fields appended after the prefix (`$later`). Only tokens that every series
+/// declared the same are written here: each series' layout is the one it was released with.
+macro_rules! root_module {
+    ($(#[$doc:meta])* { $($entries:tt)* } $($later:tt)*) => {
+        $(#[$doc])*
+        #[repr(C)]
+        #[derive(abi_stable::StableAbi)]
+        #[sabi(kind(Prefix(prefix_ref = PluginModuleRef)))]
+        #[sabi(missing_field(panic))]
+        pub struct PluginModule {
+            /// The plugin crate's name.
+            pub name: abi_stable::std_types::RStr<'static>,
+            /// The plugin crate's version.
+            pub version: abi_stable::std_types::RStr<'static>,
+            /// The dashpot-sdk version it was built against (its `ABI_VERSION`).
+            pub sdk_version: abi_stable::std_types::RStr<'static>,
+            $($entries)*
+            /// Creates restitution law `name` (the ABI of sdk 0.1).
+            pub new_restitution: extern "C" fn(
+                name: abi_stable::std_types::RStr<'_>,
+                params: abi_stable::std_types::RSlice<'_, $crate::abi::ffi::ParamValue>,
+            ) -> abi_stable::std_types::RResult<$crate::abi::FfiRestitutionLaw, $crate::error::FfiError>,
+            /// Closed-form parameters of contact law `name` that reproduce `target` for `pair`,
+            /// given the parameters the user fixed; `RNone` when the law has no closed form for
+            /// it.
+            #[sabi(last_prefix_field)]
+            pub calibrate: extern "C" fn(
+                name: abi_stable::std_types::RStr<'_>,
+                target: &$crate::abi::ffi::CalibrationTarget,
+                pair: &$crate::pair::Pair,
+                fixed: abi_stable::std_types::RSlice<'_, $crate::abi::ffi::ParamValue>,
+            ) -> abi_stable::std_types::RResult<
+                abi_stable::std_types::ROption<abi_stable::std_types::RVec<$crate::abi::ffi::ParamValue>>,
+                $crate::error::FfiError,
+            >,
+            $($later)*
+        }
+    };
 }
+pub(crate) use root_module;
+
+root_module!(
+    /// The root module every sdk 0.3 plugin exports (an abi_stable prefix type: a later 0.3
+    /// release may append fields after the last prefix field without breaking older plugins,
+    /// whose missing fields then read as `None`).
+    {
+        /// Every law the plugin exports, of every kind.
+        pub laws: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
+        /// Creates contact law `name` from parameters (validated against its schema).
+        pub new_contact: extern "C" fn(
+            name: RStr<'_>,
+            params: RSlice<'_, ParamValue>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError>,
+        /// Creates tangential law `name`.
+        pub new_tangential: extern "C" fn(
+            name: RStr<'_>,
+            params: RSlice<'_, ParamValue>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+        /// Creates rolling law `name`.
+        pub new_rolling: extern "C" fn(
+            name: RStr<'_>,
+            params: RSlice<'_, ParamValue>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+        /// Creates twisting law `name`.
+        pub new_twisting: extern "C" fn(
+            name: RStr<'_>,
+            params: RSlice<'_, ParamValue>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError>,
+    }
+);
 
 impl RootModule for PluginModuleRef {
     abi_stable::declare_root_module_statics! {PluginModuleRef}

@@ -66,38 +66,17 @@ ffi_object!(model
     FfiBoundContact
 );
 
-/// The root module of an sdk 0.1 plugin, exactly as 0.1 declared it (abi_stable refuses to read
-/// a library whose prefix type has fewer fields than the host's, so 0.1 plugins are read through
-/// this frozen copy).
-#[repr(C)]
-#[derive(StableAbi)]
-#[sabi(kind(Prefix(prefix_ref = PluginModuleRef)))]
-#[sabi(missing_field(panic))]
-pub struct PluginModule {
-    /// The plugin crate's name.
-    pub name: abi_stable::std_types::RStr<'static>,
-    /// The plugin crate's version.
-    pub version: abi_stable::std_types::RStr<'static>,
-    /// The dashpot-sdk version it was built against.
-    pub sdk_version: abi_stable::std_types::RStr<'static>,
-    /// The laws.
-    pub laws: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
-    /// Creates a contact law.
-    pub new_contact: extern "C" fn(
-        name: abi_stable::std_types::RStr<'_>,
-        params: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
-    ) -> RResult<FfiContactLaw, FfiError>,
-    /// Creates a restitution law.
-    pub new_restitution: extern "C" fn(
-        name: abi_stable::std_types::RStr<'_>,
-        params: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
-    ) -> RResult<super::FfiRestitutionLaw, FfiError>,
-    /// Closed-form calibration.
-    #[sabi(last_prefix_field)]
-    pub calibrate: extern "C" fn(
-        name: abi_stable::std_types::RStr<'_>,
-        target: &super::ffi::CalibrationTarget,
-        pair: &Pair,
-        fixed: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
-    ) -> RResult<ROption<RVec<super::ffi::ParamValue>>, FfiError>,
-}
+super::root_module!(
+    /// The root module of an sdk 0.1 plugin, exactly as 0.1 declared it (abi_stable refuses to
+    /// read a library whose prefix type has fewer fields than the host's, so 0.1 plugins are
+    /// read through this frozen copy).
+    {
+        /// The laws.
+        pub laws: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
+        /// Creates a contact law.
+        pub new_contact: extern "C" fn(
+            name: abi_stable::std_types::RStr<'_>,
+            params: abi_stable::std_types::RSlice<'_, super::ffi::ParamValue>,
+        ) -> RResult<FfiContactLaw, FfiError>,
+    }
+);

@@ -5,11 +5,11 @@
 //! Their layout must never change: abi_stable compares it, field by field, with the one recorded
 //! in every 0.2 plugin.
 
-use super::ffi::{CalibrationTarget, ParamValue};
-use super::{ffi_object, frozen_law_info, BatchFault, BatchStatus, FfiRestitutionLaw};
+use super::ffi::ParamValue;
+use super::{ffi_object, frozen_law_info, BatchFault, BatchStatus};
 use crate::error::FfiError;
 use crate::law::EndCriterion;
-use crate::pair::{MaterialPair, Pair};
+use crate::pair::MaterialPair;
 use abi_stable::{
     std_types::{ROption, RResult, RSlice, RStr, RString, RVec},
     StableAbi,
@@ -26,37 +26,18 @@ frozen_law_info!(
     history
 );
 
-/// The root module of an sdk 0.2 plugin, exactly as 0.2 declared it (with its law list in the
-/// 0.2 description).
-#[repr(C)]
-#[derive(StableAbi)]
-#[sabi(kind(Prefix(prefix_ref = PluginModuleRef)))]
-#[sabi(missing_field(panic))]
-pub struct PluginModule {
-    /// The plugin crate's name.
-    pub name: RStr<'static>,
-    /// The plugin crate's version.
-    pub version: RStr<'static>,
-    /// The dashpot-sdk version it was built against.
-    pub sdk_version: RStr<'static>,
-    /// sdk 0.1's law list.
-    pub laws: extern "C" fn() -> RResult<RVec<super::v1::LawInfo>, FfiError>,
-    /// sdk 0.1's contact-law constructor (an error in a 0.2 plugin).
-    pub new_contact: extern "C" fn(
-        name: RStr<'_>,
-        params: RSlice<'_, ParamValue>,
-    ) -> RResult<super::v1::FfiContactLaw, FfiError>,
-    /// Creates a restitution law.
-    pub new_restitution:
-        extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiRestitutionLaw, FfiError>,
-    /// Closed-form calibration.
-    #[sabi(last_prefix_field)]
-    pub calibrate: extern "C" fn(
-        name: RStr<'_>,
-        target: &CalibrationTarget,
-        pair: &Pair,
-        fixed: RSlice<'_, ParamValue>,
-    ) -> RResult<ROption<RVec<ParamValue>>, FfiError>,
+super::root_module!(
+    /// The root module of an sdk 0.2 plugin, exactly as 0.2 declared it (with its law list in the
+    /// 0.2 description).
+    {
+        /// sdk 0.1's law list.
+        pub laws: extern "C" fn() -> RResult<RVec<super::v1::LawInfo>, FfiError>,
+        /// sdk 0.1's contact-law constructor (an error in a 0.2 plugin).
+        pub new_contact: extern "C" fn(
+            name: RStr<'_>,
+            params: RSlice<'_, ParamValue>,
+        ) -> RResult<super::v1::FfiContactLaw, FfiError>,
+    }
     /// The 0.2 law list.
     #[sabi(missing_field(option))]
     pub laws2: extern "C" fn() -> RResult<RVec<LawInfo>, FfiError>,
@@ -68,7 +49,7 @@ pub struct PluginModule {
     #[sabi(missing_field(option))]
     pub new_tangential:
         extern "C" fn(name: RStr<'_>, params: RSlice<'_, ParamValue>) -> RResult<FfiTangentialLaw, FfiError>,
-}
+);
 
 /// A batch of contacts for a normal law, as raw arrays (see [`NormalBatch`](crate::NormalBatch)).
 /// All pointers refer to `n` values except `history` (`n × slots`); they may dangle when

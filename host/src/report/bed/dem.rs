@@ -131,7 +131,8 @@ pub fn run_dem(reg: &Registry, out: &Path, size: &Size, young: f64, only: &[u8])
         let bc = BedConfig::paper(1.0, f);
         let mut p = crate::bed::bed_particle(bc.diameter, bc.mass);
         p.young = young;
-        let kk_table: Plug = crate::bed::resolve_for(reg, "from:kuwabara-kono", &kk, &p)?;
+        let kk_table: Plug =
+            crate::bed::resolve_for(reg, &LawChoice::new("from:kuwabara-kono", kk.to_vec()), &p)?;
         struct Row {
             n: f64,
             what: &'static str,

@@ -3,7 +3,7 @@
 
 use crate::bed::engine::{BedConfig, BedReport};
 use crate::bed::scaling::{provenance, run_grid, Grid, Measured};
-use crate::bed::{bed_particle, resolve_for, DynRestitution, Laws};
+use crate::bed::{bed_particle, resolve_for, DynRestitution, LawChoice, Laws};
 use crate::output::progress_bar;
 use crate::output::Provenance;
 use crate::plot::{Mark, Panel, Series, PALETTE};
@@ -113,7 +113,8 @@ type Plug = Laws<DynRestitution>;
 
 fn law(reg: &Registry, name: &str, params: &[ParamValue]) -> Result<Plug> {
     let c = BedConfig::paper(1.0, 20.0);
-    Ok(resolve_for(reg, name, params, &bed_particle(c.diameter, c.mass))?)
+    let law = LawChoice::new(name, params.to_vec());
+    Ok(resolve_for(reg, &law, &bed_particle(c.diameter, c.mass))?)
 }
 
 /// The three laws of the paper: r(v) (eq. 1), r = 0.95, r = 0.7, and their provenance (for

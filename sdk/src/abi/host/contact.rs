@@ -6,32 +6,20 @@ use crate::abi::kinds::normal_non_finite;
 /// A 0.1 contact law and the pairs it has been bound to (one per distinct effective mass and
 /// radius: sdk 0.1 had no per-contact geometry).
 pub(super) struct V1Law {
-    ffi: v1::FfiContactLaw,
+    ffi: Owned<v1::FfiContactLaw>,
     bound: Mutex<Vec<V1Entry>>,
-}
-
-impl Drop for V1Law {
-    fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
-    }
 }
 
 /// (mass, radius, young) bits and the 0.1 law bound to that pair.
 type V1Entry = (u64, u64, u64, Arc<V1Bound>);
 
 struct V1Bound {
-    ffi: v1::FfiBoundContact,
-}
-
-impl Drop for V1Bound {
-    fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
-    }
+    ffi: Owned<v1::FfiBoundContact>,
 }
 
 impl V1Law {
     /// A 0.1 law, bound to no pair yet.
-    pub(super) fn new(ffi: v1::FfiContactLaw) -> V1Law {
+    pub(super) fn new(ffi: Owned<v1::FfiContactLaw>) -> V1Law {
         V1Law {
             ffi,
             bound: Mutex::new(Vec::new()),
@@ -46,10 +34,8 @@ impl V1Law {
             return Ok(b.clone());
         }
         let pair = Pair::new(mass, radius, young)?;
-        let b = match unsafe { (self.ffi.vtable.bind)(self.ffi.obj, &pair) } {
-            RResult::ROk(ffi) => Arc::new(V1Bound { ffi }),
-            RResult::RErr(e) => return Err(e.into()),
-        };
+        let ffi = Owned::take(unsafe { (self.ffi.vtable.bind)(self.ffi.obj, &pair) })?;
+        let b = Arc::new(V1Bound { ffi });
         cache.push((key.0, key.1, key.2, b.clone()));
         Ok(b)
     }
@@ -57,7 +43,7 @@ impl V1Law {
 
 pub(super) enum ContactInner {
     V1(Arc<V1Law>),
-    V2(v2::FfiContactLaw),
+    V2(Owned<v2::FfiContactLaw>),
     /// A 0.3 law, through the generic shape of its kind.
     V3(LawHandle<Normal>),
 }
@@ -84,57 +70,29 @@ impl ContactLawHandle {
     pub fn bind(&self, materials: &MaterialPair) -> Result<ContactModelHandle, LawError> {
         materials.validate()?;
         let inner = match &self.inner {
-            ContactInner::V2(ffi) => match unsafe { (ffi.vtable.bind)(ffi.obj, materials) } {
-                RResult::ROk(m) => ModelInner::V2(m),
-                RResult::RErr(e) => return Err(e.into()),
-            },
+            ContactInner::V2(ffi) => {
+                ModelInner::V2(Owned::take(unsafe { (ffi.vtable.bind)(ffi.obj, materials) })?)
+            }
             ContactInner::V1(law) => ModelInner::V1 {
                 law: law.clone(),
                 young: materials.young,
             },
             ContactInner::V3(law) => ModelInner::V3(law.bind(materials)?),
         };
-        Ok(ContactModelHandle {
-            inner,
-            name: self.info.name.to_string(),
-            slots: self.info.history.len(),
-        })
+        Ok(ContactModelHandle::new(inner, &self.info))
     }
 }
 
-impl Drop for ContactLawHandle {
-    fn drop(&mut self) {
-        if let ContactInner::V2(ffi) = &self.inner {
-            unsafe { (ffi.vtable.drop)(ffi.obj) }
-        }
-    }
-}
-
-enum ModelInner {
-    V1 { law: Arc<V1Law>, young: f64 },
-    V2(v2::FfiContactModel),
-    V3(ModelHandle<Normal>),
-}
-
-/// A contact law bound to a pair of materials: the hot path, per-contact geometry and history,
-/// every input and output checked.
-pub struct ContactModelHandle {
-    inner: ModelInner,
-    name: String,
-    slots: usize,
-}
+model_handle!(
+    /// A contact law bound to a pair of materials: the hot path, per-contact geometry and
+    /// history, every input and output checked.
+    ContactModelHandle: Normal, call, v2: v2::FfiContactModel,
+    /// A 0.1 law, bound on demand to each run of contacts of one geometry, of the materials'
+    /// modulus `young`.
+    V1 { law: Arc<V1Law>, young: f64 }
+);
 
 impl ContactModelHandle {
-    /// The law's name.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// History slots per contact.
-    pub fn history_slots(&self) -> usize {
-        self.slots
-    }
-
     fn panic_error(&self, msg: RString) -> LawError {
         LawError::new(
             ErrorKind::Panic,
@@ -185,6 +143,12 @@ impl ContactModelHandle {
                 no_reach(call.reach)
             }
         }
+    }
+
+    /// [`ContactModelHandle::force_batch_with`] on a call of the normal kind (its batch and reach).
+    #[inline]
+    fn call(&self, c: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        self.force_batch_with(c.batch, c.reach, energy)
     }
 
     /// A 0.1 law: inputs checked here (0.1 plugins do not), then one 0.1 batch call per run of
@@ -310,14 +274,6 @@ impl ContactModelHandle {
     }
 }
 
-impl Drop for ContactModelHandle {
-    fn drop(&mut self) {
-        if let ModelInner::V2(m) = &self.inner {
-            unsafe { (m.vtable.drop)(m.obj) }
-        }
-    }
-}
-
 /// A law older than sdk 0.3 has reach 0 (the contact ends when the overlap does) and no energy
 /// outputs.
 fn no_reach(reach: Option<&mut [f64]>) -> Result<bool, LawError> {
@@ -325,20 +281,4 @@ fn no_reach(reach: Option<&mut [f64]>) -> Result<bool, LawError> {
         r.fill(0.0);
     }
     Ok(false)
-}
-
-impl BoundModel<Normal> for ContactModelHandle {
-    fn name(&self) -> &str {
-        &self.name
-    }
-    fn history_slots(&self) -> usize {
-        self.slots
-    }
-    #[inline]
-    fn batch(&self, c: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
-        self.force_batch_with(c.batch, c.reach, energy)
-    }
-    fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
-        ContactModelHandle::coefficients(self, mass, radius)
-    }
 }

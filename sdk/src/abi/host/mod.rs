@@ -6,10 +6,60 @@ use super::kind::{EnergyOut, Kind, NewFn};
 use super::*;
 use super::{v1, v2, BoundModel, LawHandle, ModelHandle, Normal, NormalCall, Rolling, Tangential, Twisting};
 use crate::error::{ErrorKind, LawError};
-use crate::law::{CalibrationTarget, Coefficient, Contact, LawInfo, LawKind, NormalBatch, TangentialBatch};
+use crate::law::{CalibrationTarget, Coefficient, Contact, LawInfo, LawKind, NormalBatch};
+use crate::motion::TangentialBatch;
 use crate::params::ParamValue;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+
+/// Declares `$handle`, a plugin's law of kind `$kind` bound to a pair of materials through the
+/// ABI of its series (`ModelInner`: 0.2's model of type `$v2`, owned, 0.3's generic one, and
+/// the older forms `$older` the kind had), with the law's name and history slots; and its
+/// [`BoundModel`] implementation, whose batch call is the handle's `$batch`.
+macro_rules! model_handle {
+    (
+        $(#[$doc:meta])* $handle:ident: $kind:ty, $batch:ident, v2: $v2:ty
+        $(, $(#[$odoc:meta])* $older:ident $ofields:tt)*
+    ) => {
+        enum ModelInner {
+            $($(#[$odoc])* $older $ofields,)*
+            /// A 0.2 model.
+            V2(Owned<$v2>),
+            /// A 0.3 model, through the generic shape of its kind.
+            V3(ModelHandle<$kind>),
+        }
+
+        $(#[$doc])*
+        pub struct $handle {
+            inner: ModelInner,
+            name: String,
+            slots: usize,
+        }
+
+        impl $handle {
+            /// The model `inner` of the law described by `info`.
+            fn new(inner: ModelInner, info: &LawInfo) -> $handle {
+                $handle {
+                    inner,
+                    name: info.name.to_string(),
+                    slots: info.history.len(),
+                }
+            }
+
+            /// The law's name.
+            pub fn name(&self) -> &str {
+                &self.name
+            }
+
+            /// History slots per contact.
+            pub fn history_slots(&self) -> usize {
+                self.slots
+            }
+        }
+
+        $crate::abi::handle::bound_model!(impl<> $kind => $handle, $batch);
+    };
+}
 
 mod contact;
 mod restitution;
@@ -71,17 +121,15 @@ macro_rules! shared {
     };
 }
 
-/// Calls a root-module entry with a law name and parameters (converted to their mirrors),
-/// turning its error into a [`LawError`].
-fn call<T>(
+/// Calls a root-module entry with a law name and parameters (converted to their mirrors): the
+/// law it makes, owned here, or its error as a [`LawError`].
+fn call<T: FfiObject>(
     f: extern "C" fn(RStr<'_>, RSlice<'_, ffi::ParamValue>) -> RResult<T, FfiError>,
     name: &str,
     params: &[ParamValue],
-) -> Result<T, LawError> {
+) -> Result<Owned<T>, LawError> {
     let params: RVec<ffi::ParamValue> = ffi::to_ffi(params);
-    f(RStr::from_str(name), params.as_rslice())
-        .into_result()
-        .map_err(LawError::from)
+    Owned::take(f(RStr::from_str(name), params.as_rslice()))
 }
 
 impl std::fmt::Debug for LoadedPlugin {
@@ -384,6 +432,44 @@ pub(crate) fn length_error(what: &str, detail: String) -> LawError {
         ErrorKind::Other,
         format!("{what}: the batch's arrays disagree in length: {detail}"),
     )
+}
+
+/// The lengths of the arrays of a batch for `call` ("force_batch", ...): its inputs (`inputs`
+/// names them, `lens` gives them), its output (`output`, of `n` values: the number of contacts)
+/// and its history (`slots` per contact, `history` values in all).
+pub(crate) struct BatchLengths<const N: usize> {
+    pub(crate) call: &'static str,
+    pub(crate) inputs: &'static str,
+    pub(crate) lens: [usize; N],
+    pub(crate) output: &'static str,
+    pub(crate) n: usize,
+    pub(crate) slots: usize,
+    pub(crate) history: usize,
+}
+
+impl<const N: usize> BatchLengths<N> {
+    /// Checks them for the `kind` law `name`, which keeps `slots` history values per contact:
+    /// every input one value per contact, the history `n × slots`.
+    pub(crate) fn check(&self, kind: &str, name: &str, slots: usize) -> Result<(), LawError> {
+        let n = self.n;
+        let call = || format!("{kind} {}", self.call);
+        if self.lens.iter().any(|&l| l != n) {
+            return Err(length_error(
+                &call(),
+                format!("{} {:?}, {} {n}", self.inputs, self.lens, self.output),
+            ));
+        }
+        if self.slots != slots || self.history != n * slots {
+            return Err(length_error(
+                &call(),
+                format!(
+                    "history has {} values for {n} contacts of {} slots (law '{name}' keeps {slots})",
+                    self.history, self.slots
+                ),
+            ));
+        }
+        Ok(())
+    }
 }
 
 pub(crate) fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> LawError {

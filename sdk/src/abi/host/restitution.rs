@@ -4,7 +4,7 @@ use super::*;
 
 /// A configured restitution law from a plugin.
 pub struct RestitutionLawHandle {
-    pub(super) ffi: FfiRestitutionLaw,
+    pub(super) ffi: Owned<FfiRestitutionLaw>,
     pub(super) info: LawInfo,
 }
 
@@ -17,25 +17,16 @@ impl RestitutionLawHandle {
     /// Binds the law to `pair` (validated first).
     pub fn bind(&self, pair: &Pair) -> Result<BoundRestitutionHandle, LawError> {
         pair.validate()?;
-        match unsafe { (self.ffi.vtable.bind)(self.ffi.obj, pair) } {
-            RResult::ROk(ffi) => Ok(BoundRestitutionHandle {
-                ffi,
-                name: self.info.name.to_string(),
-            }),
-            RResult::RErr(e) => Err(e.into()),
-        }
-    }
-}
-
-impl Drop for RestitutionLawHandle {
-    fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
+        Ok(BoundRestitutionHandle {
+            ffi: Owned::take(unsafe { (self.ffi.vtable.bind)(self.ffi.obj, pair) })?,
+            name: self.info.name.to_string(),
+        })
     }
 }
 
 /// A restitution law bound to a pair, with every input and output checked.
 pub struct BoundRestitutionHandle {
-    ffi: FfiBoundRestitution,
+    ffi: Owned<FfiBoundRestitution>,
     name: String,
 }
 
@@ -112,11 +103,5 @@ impl BoundRestitutionHandle {
                 Err(self.non_finite(out[i], speed[i]))
             }
         }
-    }
-}
-
-impl Drop for BoundRestitutionHandle {
-    fn drop(&mut self) {
-        unsafe { (self.ffi.vtable.drop)(self.ffi.obj) }
     }
 }

@@ -4,7 +4,7 @@ use super::*;
 
 pub(super) enum TangentialInner {
     V2 {
-        ffi: v2::FfiTangentialLaw,
+        ffi: Owned<v2::FfiTangentialLaw>,
         info: LawInfo,
     },
     /// A 0.3 law, through the generic shape of its kind.
@@ -28,51 +28,21 @@ impl TangentialLawHandle {
         materials.validate()?;
         let info = self.info();
         let inner = match &self.0 {
-            TangentialInner::V2 { ffi, .. } => match unsafe { (ffi.vtable.bind)(ffi.obj, materials) } {
-                RResult::ROk(ffi) => ModelInner::V2(ffi),
-                RResult::RErr(e) => return Err(e.into()),
-            },
+            TangentialInner::V2 { ffi, .. } => {
+                ModelInner::V2(Owned::take(unsafe { (ffi.vtable.bind)(ffi.obj, materials) })?)
+            }
             TangentialInner::V3(l) => ModelInner::V3(l.bind(materials)?),
         };
-        Ok(TangentialModelHandle {
-            inner,
-            name: info.name.to_string(),
-            slots: info.history.len(),
-        })
+        Ok(TangentialModelHandle::new(inner, info))
     }
 }
 
-impl Drop for TangentialLawHandle {
-    fn drop(&mut self) {
-        if let TangentialInner::V2 { ffi, .. } = &self.0 {
-            unsafe { (ffi.vtable.drop)(ffi.obj) }
-        }
-    }
-}
-
-enum ModelInner {
-    V2(v2::FfiTangentialModel),
-    V3(ModelHandle<Tangential>),
-}
-
-/// A tangential law bound to a pair of materials, every input and output checked.
-pub struct TangentialModelHandle {
-    inner: ModelInner,
-    name: String,
-    slots: usize,
-}
+model_handle!(
+    /// A tangential law bound to a pair of materials, every input and output checked.
+    TangentialModelHandle: Tangential, force_batch_with, v2: v2::FfiTangentialModel
+);
 
 impl TangentialModelHandle {
-    /// The law's name.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// History slots per contact.
-    pub fn history_slots(&self) -> usize {
-        self.slots
-    }
-
     /// As [`TangentialModelHandle::force_batch`], with the energy outputs `energy` asks for:
     /// `Ok(true)` when they were written, `Ok(false)` for a law that does not account for
     /// energy (every law of a plugin older than sdk 0.3).
@@ -103,15 +73,5 @@ impl TangentialModelHandle {
     /// No derived constants (for the shape every kind shares).
     pub fn coefficients(&self, _mass: f64, _radius: f64) -> Result<Vec<Coefficient>, LawError> {
         Ok(Vec::new())
-    }
-}
-
-super::super::handle::bound_model!(impl<> Tangential => TangentialModelHandle, force_batch_with);
-
-impl Drop for TangentialModelHandle {
-    fn drop(&mut self) {
-        if let ModelInner::V2(ffi) = &self.inner {
-            unsafe { (ffi.vtable.drop)(ffi.obj) }
-        }
     }
 }

@@ -222,31 +222,18 @@ impl Kind for Normal {
     type Ffi = FfiNormalBatch3;
     type Batch<'a> = NormalCall<'a>;
     const KIND: LawKind = LawKind::Contact;
-    const WHAT: &'static str = "contact";
     fn len(b: &NormalCall<'_>) -> usize {
         b.batch.force.len()
     }
     fn check_lengths(name: &str, slots: usize, c: &NormalCall<'_>) -> Result<(), LawError> {
-        let b = &c.batch;
-        let n = b.force.len();
-        let lens = [b.delta.len(), b.rate.len(), b.mass.len(), b.radius.len()];
-        if lens.iter().any(|&l| l != n) || c.reach.as_ref().is_some_and(|r| r.len() != n) {
+        let n = c.batch.force.len();
+        if let Some(r) = c.reach.as_ref().filter(|r| r.len() != n) {
             return Err(length_error(
-                "force_batch",
-                format!("delta, rate, mass, radius {lens:?}, force {n}"),
+                "contact force_batch",
+                format!("reach {}, force {n}", r.len()),
             ));
         }
-        if b.slots != slots || b.history.len() != n * slots {
-            return Err(length_error(
-                "force_batch",
-                format!(
-                    "history has {} values for {n} contacts of {} slots (law '{name}' keeps {slots})",
-                    b.history.len(),
-                    b.slots
-                ),
-            ));
-        }
-        Ok(())
+        c.batch.lengths().check("contact", name, slots)
     }
     fn raw(c: &mut NormalCall<'_>, power: *mut f64, elastic: *mut f64) -> FfiNormalBatch3 {
         let b = &mut c.batch;

@@ -43,32 +43,11 @@ impl Kind for Twisting {
     type Ffi = FfiTwistingBatch;
     type Batch<'a> = TwistingBatch<'a>;
     const KIND: LawKind = LawKind::Twisting;
-    const WHAT: &'static str = "twisting";
     fn len(b: &TwistingBatch<'_>) -> usize {
         b.torque.len()
     }
     fn check_lengths(name: &str, slots: usize, b: &TwistingBatch<'_>) -> Result<(), LawError> {
-        let n = b.torque.len();
-        let lens = [
-            b.normal.len(),
-            b.rate.len(),
-            b.normal_force.len(),
-            b.delta.len(),
-            b.mass.len(),
-            b.radius.len(),
-        ];
-        if lens.iter().any(|&l| l != n) || b.slots != slots || b.history.len() != n * slots {
-            return Err(length_error(
-                "twisting torque_batch",
-                format!(
-                    "normal, rate, normal_force, delta, mass, radius {lens:?}, torque {n}, history {} of {} \
-                     slots (law '{name}' keeps {slots})",
-                    b.history.len(),
-                    b.slots
-                ),
-            ));
-        }
-        Ok(())
+        b.lengths().check("twisting", name, slots)
     }
     fn raw(b: &mut TwistingBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiTwistingBatch {
         FfiTwistingBatch {
@@ -105,17 +84,8 @@ impl Kind for Twisting {
                 ),
             ),
             (_, BatchFault::NORMAL) => bad_vector("twisting", name, BatchFault::NORMAL, i, b.normal[i]),
-            (_, field) => {
-                let v = match field {
-                    BatchFault::RATE => b.rate[i],
-                    BatchFault::NORMAL_FORCE => b.normal_force[i],
-                    BatchFault::DELTA => b.delta[i],
-                    BatchFault::MASS => b.mass[i],
-                    BatchFault::RADIUS => b.radius[i],
-                    _ => b.dt,
-                };
-                bad_input("twisting", name, field, i, v)
-            }
+            (_, BatchFault::RATE) => bad_input("twisting", name, BatchFault::RATE, i, b.rate[i]),
+            (_, field) => bad_input("twisting", name, field, i, b.input(field, i)),
         }
     }
 }

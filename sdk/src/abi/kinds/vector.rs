@@ -2,7 +2,8 @@
 //! batch and one checked block loop; they differ only in their law traits.
 
 use super::*;
-use crate::law::{BoundTangential, EnergyBatch, TangentialLaw, VectorBatch};
+use crate::law::{EnergyBatch, TangentialLaw};
+use crate::motion::{BoundTangential, VectorBatch};
 use crate::rotation::{BoundRolling, RollingLaw};
 
 /// A raw batch of a vector kind (tangential, rolling): 0.2's tangential arrays (vectors are `n`
@@ -25,9 +26,9 @@ trait VectorLaw {
     fn batch_energy(&self, b: VectorBatch<'_>, out: EnergyBatch<'_>) -> bool;
 }
 
-/// Declares vector kind `$kind` ("$what") of bound-law trait `$bound` and law trait `$law`.
+/// Declares vector kind `$kind` (`$law_kind`) of bound-law trait `$bound` and law trait `$law`.
 macro_rules! vector_kind {
-    ($(#[$doc:meta])* $kind:ident, $what:literal, $law_kind:expr, $bound:ident, $law:ident, $coef:expr) => {
+    ($(#[$doc:meta])* $kind:ident, $law_kind:expr, $bound:ident, $law:ident, $coef:expr) => {
         $(#[$doc])*
         pub struct $kind;
 
@@ -35,12 +36,11 @@ macro_rules! vector_kind {
             type Ffi = FfiVectorBatch;
             type Batch<'a> = VectorBatch<'a>;
             const KIND: LawKind = $law_kind;
-            const WHAT: &'static str = $what;
             fn len(b: &VectorBatch<'_>) -> usize {
                 b.force.len()
             }
             fn check_lengths(name: &str, slots: usize, b: &VectorBatch<'_>) -> Result<(), LawError> {
-                check_lengths($what, name, slots, b)
+                b.lengths().check(Self::KIND.as_str(), name, slots)
             }
             fn raw(b: &mut VectorBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiVectorBatch {
                 FfiVectorBatch {
@@ -50,7 +50,7 @@ macro_rules! vector_kind {
                 }
             }
             fn fault_error(name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: BatchFault) -> LawError {
-                fault_error($what, name, b, st, f)
+                fault_error(Self::KIND.as_str(), name, b, st, f)
             }
         }
 
@@ -86,7 +86,6 @@ struct Bound<'a, K, B>(&'a B, std::marker::PhantomData<K>);
 vector_kind!(
     /// The tangential kind of sdk 0.3.
     Tangential,
-    "tangential",
     LawKind::Tangential,
     BoundTangential,
     TangentialLaw,
@@ -96,7 +95,6 @@ vector_kind!(
 vector_kind!(
     /// The rolling kind of sdk 0.3.
     Rolling,
-    "rolling",
     LawKind::Rolling,
     BoundRolling,
     RollingLaw,
@@ -120,35 +118,6 @@ pub(crate) fn raw_base(b: &mut VectorBatch<'_>) -> v2::FfiTangentialBatch {
     }
 }
 
-fn check_lengths(what: &str, name: &str, slots: usize, b: &VectorBatch<'_>) -> Result<(), LawError> {
-    let n = b.force.len();
-    let lens = [
-        b.normal.len(),
-        b.velocity.len(),
-        b.normal_force.len(),
-        b.delta.len(),
-        b.mass.len(),
-        b.radius.len(),
-    ];
-    if lens.iter().any(|&l| l != n) {
-        return Err(length_error(
-            &format!("{what} force_batch"),
-            format!("normal, velocity, normal_force, delta, mass, radius {lens:?}, force {n}"),
-        ));
-    }
-    if b.slots != slots || b.history.len() != n * slots {
-        return Err(length_error(
-            &format!("{what} force_batch"),
-            format!(
-                "history has {} values for {n} contacts of {} slots (law '{name}' keeps {slots})",
-                b.history.len(),
-                b.slots
-            ),
-        ));
-    }
-    Ok(())
-}
-
 fn fault_error(what: &str, name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: BatchFault) -> LawError {
     let i = f.index.min(b.force.len().saturating_sub(1));
     match (st, f.field) {
@@ -165,16 +134,7 @@ fn fault_error(what: &str, name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: 
         }
         (_, BatchFault::NORMAL) => bad_vector(what, name, BatchFault::NORMAL, i, b.normal[i]),
         (_, BatchFault::VELOCITY) => bad_vector(what, name, BatchFault::VELOCITY, i, b.velocity[i]),
-        (_, field) => {
-            let v = match field {
-                BatchFault::NORMAL_FORCE => b.normal_force[i],
-                BatchFault::DELTA => b.delta[i],
-                BatchFault::MASS => b.mass[i],
-                BatchFault::RADIUS => b.radius[i],
-                _ => b.dt,
-            };
-            bad_input(what, name, field, i, v)
-        }
+        (_, field) => bad_input(what, name, field, i, b.input(field, i)),
     }
 }
 
