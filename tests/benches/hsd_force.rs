@@ -135,9 +135,7 @@ fn versus(
     normal_step(base, c, o1);
     normal_step(this, c, o2);
     assert_same_bits(o1, o2, |i| format!("the force on contact {i}"));
-    let r = race(&mut [&mut || normal_step(base, c, o1), &mut || {
-        normal_step(this, c, o2)
-    }]);
+    let r = race(&mut [&mut || normal_step(base, c, o1), &mut || normal_step(this, c, o2)]);
     report(&r, ns, ["baseline build", "this build"], "this / baseline", "");
     let r = race(&mut [
         &mut || {
@@ -287,11 +285,9 @@ fn main() {
     // 1. HSD normal, per-contact geometry
     let (mut o1, mut o2) = (vec![0.0; N], vec![0.0; N]);
     if section("1") {
-        let r = race(
-            &mut [&mut || normal_step(&hsd_s, &c, &mut o1), &mut || {
-                normal_step(&hsd_p, &c, &mut o2)
-            }],
-        );
+        let r = race(&mut [&mut || normal_step(&hsd_s, &c, &mut o1), &mut || {
+            normal_step(&hsd_p, &c, &mut o2)
+        }]);
         println!("1. HSD normal force, per-contact geometry");
         report(
             &r,
