@@ -76,6 +76,8 @@ mod pair;
 mod params;
 pub mod physics;
 mod rotation;
+#[cfg(target_arch = "x86_64")]
+pub mod simd;
 
 pub use error::{ErrorKind, LawError};
 pub use law::{
