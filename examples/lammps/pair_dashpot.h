@@ -166,10 +166,10 @@ class PairDashpot : public Pair {
     int key_of(int itype, int jtype) const;
     void bind_key(int key, double e1, double nu1, double e2, double nu2, bool wall);
     void layout_slots();
-    template <int NS, int NT> void compute_t();
-    template <int NS, int NT> void evaluate(int n, bool mixed, bool wall);
-    template <int NS, int NT> void scatter(Chunk &c, int n, Slots *slots, const double *reach);
-    template <int NS, int NT> void gather(int n, const Slots &slots);
+    template <int NS, int NT, int NR> void compute_t();
+    template <int NS, int NT, int NR> void evaluate(int n, bool mixed, bool wall);
+    template <int NS, int NT, int NR> void scatter(Chunk &c, int n, Slots *slots, const double *reach);
+    template <int NS, int NT, int NR> void gather(int n, const Slots &slots);
     void sort_chunk(int n);
     void run_laws(Chunk &c, int lo, int m, int key, double *const *hist, double *reach);
     const double *stored_energy(int i, int j) const;
