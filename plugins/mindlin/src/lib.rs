@@ -153,7 +153,8 @@ impl BoundTangential for MindlinBound {
     /// The same arithmetic as [`BoundTangential::force`], contact for contact, rearranged for
     /// SIMD: lanes of `LANES` contacts are transposed into component arrays, every branch of
     /// steps 1–6 becomes a select (both sides computed, the unused one discarded), and the
-    /// results are transposed back. A test checks the bits against the per-contact form.
+    /// results are transposed back; on x86-64 CPUs with AVX2, four contacts at a time in
+    /// explicit lanes (`avx2.rs`). A test checks the bits of both against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
         // the host checks every batch against the law's declared slots (four: ξ, k_t); a caller
