@@ -55,15 +55,13 @@ void FixDashpotHistory::setup_pre_exchange()
     refresh();
 }
 
-void FixDashpotHistory::pre_exchange()
-{
-    refresh();
-}
+// Before an exchange the records are left stale: whatever moves an atom (pack_exchange,
+// copy_arrays) or brings one (unpack_exchange) refreshes them first, and when nothing has moved,
+// the pair style lays its next slots out from its last ones (a list build on one rank without a
+// sort, most of them: no round trip through every atom's records).
+void FixDashpotHistory::pre_exchange() {}
 
-void FixDashpotHistory::min_pre_exchange()
-{
-    refresh();
-}
+void FixDashpotHistory::min_pre_exchange() {}
 
 void FixDashpotHistory::post_run()
 {
@@ -127,6 +125,7 @@ int FixDashpotHistory::pack_exchange(int i, double *buf)
 
 int FixDashpotHistory::unpack_exchange(int i, double *buf)
 {
+    refresh();    // the records, not the pair style's slots, now hold this atom's contacts
     int m = 0;
     npartner[i] = (int) buf[m++];
     for (int k = 0; k < npartner[i]; k++) {

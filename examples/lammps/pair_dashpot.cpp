@@ -35,7 +35,7 @@ PairDashpot::PairDashpot(LAMMPS *lmp) :
     Pair(lmp), registry(nullptr), law(nullptr), tlaw(nullptr), rlaw(nullptr), wlaw(nullptr), wall_flag(0),
     wall_z(0.0), energy_flag(0), young(nullptr), poisson(nullptr), young2(nullptr), poisson2(nullptr), nslots{0, 0, 0, 0},
     offset{0, 0, 0, 0}, adhesive(0), reach_at(0), nvalues(0), fix_history(nullptr), nwall_slots(0),
-    slots_ncalls(-1)
+    slots_ncalls(-1), slots_nlocal(0)
 {
     single_enable = 1;
     // svector: F_n, |F_t| (N); dissipated power: total, normal, tangential, rolling, twisting (W);
@@ -170,6 +170,8 @@ void PairDashpot::apply_settings(const std::vector<std::string> &arg)
     slots_ncalls = -1;
     pair_slots = Slots();
     wall_slots = Slots();
+    carry_pairs = Slots();
+    carry_wall = Slots();
     nwall_slots = 0;
     stage = Chunk();    // its columns hold the history of the laws: sized again
     sorted = Chunk();

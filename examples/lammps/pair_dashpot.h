@@ -119,6 +119,7 @@ class PairDashpot : public Pair {
 
  private:
     Slots pair_slots, wall_slots;
+    Slots carry_pairs, carry_wall;    // the last layout's, while the next is laid out
     std::vector<int> slot_i, slot_j;          // the pair's local indices, for history_to_atoms
     std::vector<tagint> slot_ti, slot_tj;     // and tags (indices may be reused by then)
     std::vector<int> slot_first;              // per local atom i: the slot of its first list pair
@@ -128,6 +129,12 @@ class PairDashpot : public Pair {
     std::vector<tagint> wall_tag;
     int nwall_slots;
     bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)
+    int slots_nlocal;       // atom->nlocal then
+    // the last layout's contacts by local atom, for the next layout when no atom has moved:
+    // atom i's partners' tags and slots at carry_first[i] .. carry_first[i + 1] - 1
+    std::vector<int> carry_first, carry_slot, carry_next;
+    std::vector<tagint> carry_tag;
+    std::vector<unsigned char> carry_keep;
 
     // Contacts are staged a chunk at a time in structure-of-arrays columns sized to stay in
     // cache, then evaluated by one batch call per family and kind of pair (bound model)
@@ -166,10 +173,12 @@ class PairDashpot : public Pair {
     int key_of(int itype, int jtype) const;
     void bind_key(int key, double e1, double nu1, double e2, double nu2, bool wall);
     void layout_slots();
-    template <int NS, int NT> void compute_t();
-    template <int NS, int NT> void evaluate(int n, bool mixed, bool wall);
-    template <int NS, int NT> void scatter(Chunk &c, int n, Slots *slots, const double *reach);
-    template <int NS, int NT> void gather(int n, const Slots &slots);
+    void index_slots();
+    int carried_slot(int i, tagint partner) const;
+    template <int NS, int NT, int NR> void compute_t();
+    template <int NS, int NT, int NR> void evaluate(int n, bool mixed, bool wall);
+    template <int NS, int NT, int NR> void scatter(Chunk &c, int n, Slots *slots, const double *reach);
+    template <int NS, int NT, int NR> void gather(int n, const Slots &slots);
     void sort_chunk(int n);
     void run_laws(Chunk &c, int lo, int m, int key, double *const *hist, double *reach);
     const double *stored_energy(int i, int j) const;

@@ -167,10 +167,10 @@ void PairDashpot::run_laws(Chunk &c, int lo, int m, int key, double *const *hist
  * force's, -r (n x F_t) on each sphere (contact point a radius from each centre: the two-body
  * driver's convention); rolling, R_eff n x F_roll on a and its opposite on b; twisting, M n on a
  * and its opposite on b (LAMMPS pair granular's). */
-template <int NS, int NT> void PairDashpot::scatter(Chunk &c, int n, Slots *slots, const double *reach)
+template <int NS, int NT, int NR> void PairDashpot::scatter(Chunk &c, int n, Slots *slots, const double *reach)
 {
     const int ns = NS >= 0 ? NS : nslots[NORMAL], nt = NT >= 0 ? NT : nslots[TANGENTIAL];
-    const int nr = nslots[ROLLING], nw = nslots[TWISTING];
+    const int nr = NR >= 0 ? NR : nslots[ROLLING], nw = nslots[TWISTING];
     const bool tang = tlaw != nullptr, roll = rlaw != nullptr, twst = wlaw != nullptr, adh = adhesive;
     const bool store = slots != nullptr;
     double *f0 = atom->f[0], *t0 = atom->torque[0];    // contiguous: indexed from the first row
@@ -269,10 +269,10 @@ template <int NS, int NT> void PairDashpot::scatter(Chunk &c, int n, Slots *slot
 }
 
 /* Copies the history of the n staged contacts from their slots into the chunk's columns. */
-template <int NS, int NT> void PairDashpot::gather(int n, const Slots &slots)
+template <int NS, int NT, int NR> void PairDashpot::gather(int n, const Slots &slots)
 {
     const int ns = NS >= 0 ? NS : nslots[NORMAL], nt = NT >= 0 ? NT : nslots[TANGENTIAL];
-    const int nr = nslots[ROLLING], nw = nslots[TWISTING];
+    const int nr = NR >= 0 ? NR : nslots[ROLLING], nw = nslots[TWISTING];
     const int *cs = stage.slot;
     for (int k = 0; k < n; k++) {
         const size_t s = cs[k];
@@ -323,7 +323,7 @@ void PairDashpot::sort_chunk(int n)
 /* Evaluates the n contacts staged in `stage`: one batch call per family and kind of pair
  * present (when there are several, through a counting sort into `sorted`), then forces,
  * torques and history. */
-template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed, bool wall)
+template <int NS, int NT, int NR> void PairDashpot::evaluate(int n, bool mixed, bool wall)
 {
     if (n == 0) return;
     Slots &sl = wall ? wall_slots : pair_slots;
@@ -336,11 +336,11 @@ template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed, bool wal
         for (int f = 0; f < NFAMILY; f++) h[f] = nslots[f] ? sl.fam[f].data() + (size_t) slot0 * nslots[f] : nullptr;
         double *reach = adhesive ? sl.reach.data() + slot0 : nullptr;
         run_laws(stage, 0, n, stage.key[0], h, reach);
-        scatter<NS, NT>(stage, n, nullptr, reach);
+        scatter<NS, NT, NR>(stage, n, nullptr, reach);
         std::memset(sl.touched.data() + slot0, 1, n);
         return;
     }
-    if (nvalues > 0) gather<NS, NT>(n, sl);
+    if (nvalues > 0) gather<NS, NT, NR>(n, sl);
     Chunk &c = mixed ? sorted : stage;
     if (mixed) sort_chunk(n);
     const int nk = mixed ? (int) cmodel.size() : 1;
@@ -351,28 +351,34 @@ template <int NS, int NT> void PairDashpot::evaluate(int n, bool mixed, bool wal
         for (int f = 0; f < NFAMILY; f++) h[f] = c.hist[f] + (size_t) lo * nslots[f];
         run_laws(c, lo, m, mixed ? q : c.key[0], h, adhesive ? c.reach + lo : nullptr);
     }
-    scatter<NS, NT>(c, n, keep ? &sl : nullptr, c.reach);
+    scatter<NS, NT, NR>(c, n, keep ? &sl : nullptr, c.reach);
 }
 
 void PairDashpot::compute(int eflag, int vflag)
 {
     ev_init(eflag, vflag);
-    const int ns = nslots[NORMAL], nt = nslots[TANGENTIAL];
-    if (ns == 0 && nt == 3)
-        compute_t<0, 3>();
-    else if (ns == 0 && nt == 0)
-        compute_t<0, 0>();
-    else if (ns == 1 && nt == 3)
-        compute_t<1, 3>();
-    else if (ns == 1 && nt == 0)
-        compute_t<1, 0>();
+    const int ns = nslots[NORMAL], nt = nslots[TANGENTIAL], nr = nslots[ROLLING];
+    // the history widths of the common laws (hsd; thornton; mindlin, linear-history; rolling
+    // sds) as constants
+    if (ns == 0 && nt == 4 && nr == 3)
+        compute_t<0, 4, 3>();
+    else if (ns == 0 && nt == 4 && nr == 0)
+        compute_t<0, 4, 0>();
+    else if (ns == 0 && nt == 3 && nr == 0)
+        compute_t<0, 3, 0>();
+    else if (ns == 0 && nt == 0 && nr == 0)
+        compute_t<0, 0, 0>();
+    else if (ns == 1 && nt == 4 && nr == 0)
+        compute_t<1, 4, 0>();
+    else if (ns == 1 && nt == 0 && nr == 0)
+        compute_t<1, 0, 0>();
     else
-        compute_t<-1, -1>();
+        compute_t<-1, -1, -1>();
 }
 
-/* The step's forces, with the normal and tangential history slot counts known at compile time
- * for the common laws (NS, NT < 0: read at run time). */
-template <int NS, int NT> void PairDashpot::compute_t()
+/* The step's forces, with the normal, tangential and rolling history slot counts known at
+ * compile time for the common laws (NS, NT, NR < 0: read at run time). */
+template <int NS, int NT, int NR> void PairDashpot::compute_t()
 {
     double **x = atom->x, **v = atom->v, **omega = atom->omega;
     const double *radius = atom->radius, *rmass = atom->rmass;
@@ -462,7 +468,7 @@ template <int NS, int NT> void PairDashpot::compute_t()
             if (twst) ctwist[n] = rx * nx + ry * ny + rz * nz;
         }
         if (++n == CHUNK) {
-            evaluate<NS, NT>(n, mixed, b < 0);
+            evaluate<NS, NT, NR>(n, mixed, b < 0);
             n = 0;
             mixed = false;
         }
@@ -515,7 +521,7 @@ template <int NS, int NT> void PairDashpot::compute_t()
         }
     }
     // the pairs' last chunk, not full: a chunk holds pairs or wall contacts, not both
-    evaluate<NS, NT>(n, mixed, false);
+    evaluate<NS, NT, NR>(n, mixed, false);
     n = 0;
     mixed = false;
     if (wall_flag) {
@@ -531,6 +537,6 @@ template <int NS, int NT> void PairDashpot::compute_t()
         }
     }
     // 2. The wall's last chunk, not full.
-    evaluate<NS, NT>(n, mixed, true);
+    evaluate<NS, NT, NR>(n, mixed, true);
     if (nv > 0) fix_history->stale = 1;
 }

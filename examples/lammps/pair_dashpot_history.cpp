@@ -18,13 +18,24 @@
 using namespace LAMMPS_NS;
 
 /* Lays the history out in the order of the neighbour list just built: slot k is the k-th pair
- * (i, j) of the list, and takes the values atom i (or j) carries in fix DASHPOT/HISTORY for
- * that partner, zero if none. The wall's history is laid out per local atom. Runs once per
- * list build (at the first compute after it), never in the steps between. */
+ * (i, j) of the list, and takes the history that pair had, zero if none. The wall's history is
+ * laid out per local atom. Runs once per list build (at the first compute after it), never in
+ * the steps between. The history comes from the slots of the last layout when no atom has
+ * moved since the last compute (fix DASHPOT/HISTORY's records are then stale: every move of an
+ * atom, an exchange, a sort or a deletion, refreshes them first), else from the records atom i
+ * (or j) carries for that partner. */
 void PairDashpot::layout_slots()
 {
-    if (fix_history->stale) history_to_atoms();    // a build without a pre_exchange before it
     const int nv = nvalues;
+    const bool carry = nv > 0 && fix_history->stale && slots_ncalls >= 0;
+    // the last layout's slots, kept (their arrays reused by the next layout)
+    Slots &old_pairs = carry_pairs, &old_wall = carry_wall;
+    if (carry) {
+        // the last layout's contacts of each local atom, found by the partner's tag
+        index_slots();
+        std::swap(old_pairs, pair_slots);
+        std::swap(old_wall, wall_slots);
+    }
     tagint *tag = atom->tag;
     int nlocal = atom->nlocal;
     int inum = list->inum;
@@ -39,6 +50,7 @@ void PairDashpot::layout_slots()
     slot_tj.resize(nslot);
     slot_first.assign(nlocal, -1);
     if (energy_flag) slot_energy.assign(nslot * NENERGY, 0.0);
+    std::vector<double> record(nv > 0 ? nv : 1);
     size_t k = 0;
     for (int ii = 0; ii < inum; ii++) {
         int i = ilist[ii];
@@ -52,21 +64,87 @@ void PairDashpot::layout_slots()
             slot_tj[k] = tag[j];
             if (nv == 0) continue;
             // the record is on both atoms when both were owned here; i always is (half list)
+            if (carry) {
+                int s = carried_slot(i, tag[j]);
+                if (s < 0 && j < nlocal) s = carried_slot(j, tag[i]);
+                if (s >= 0) {
+                    old_pairs.get(s, nslots, record.data());
+                    pair_slots.set(k, nslots, record.data());
+                }
+                continue;
+            }
             const double *h = fix_history->find(i, tag[j]);
             if (!h && j < nlocal) h = fix_history->find(j, tag[i]);
             if (h) pair_slots.set(k, nslots, h);
         }
     }
+    const int nwall_old = nwall_slots;
     nwall_slots = wall_flag ? nlocal : 0;
     wall_slots.assign(nwall_slots, nslots, adhesive);
     wall_tag.resize(nwall_slots);
     for (int i = 0; i < nwall_slots; i++) {
         wall_tag[i] = tag[i];
+        if (carry) {
+            if (i < nwall_old && old_wall.touched[i]) {
+                old_wall.get(i, nslots, record.data());
+                wall_slots.set(i, nslots, record.data());
+            }
+            continue;
+        }
         const double *h = nv > 0 ? fix_history->find(i, 0) : nullptr;
         if (h) wall_slots.set(i, nslots, h);
     }
     slots_ncalls = neighbor->ncalls;
+    slots_nlocal = nlocal;
     fix_history->rebuilt = 0;
+}
+
+/* Indexes the contacts of the last layout by local atom (no atom has moved since): for each
+ * local atom, its partners' tags and the contacts' slots, as history_to_atoms would record
+ * them (a contact whose history is all zero is the same as none). */
+void PairDashpot::index_slots()
+{
+    const int n = slots_nlocal;
+    carry_first.assign(n + 1, 0);
+    const size_t nslot = pair_slots.touched.size();
+    std::vector<double> record(nvalues);
+    std::vector<unsigned char> &keep = carry_keep;
+    keep.assign(nslot, 0);
+    for (size_t k = 0; k < nslot; k++) {
+        if (!pair_slots.touched[k]) continue;
+        pair_slots.get(k, nslots, record.data());
+        bool zero = true;
+        for (int s = 0; s < nvalues; s++) zero = zero && record[s] == 0.0;
+        if (zero) continue;
+        keep[k] = 1;
+        carry_first[slot_i[k] + 1]++;
+        if (slot_j[k] < n) carry_first[slot_j[k] + 1]++;
+    }
+    for (int i = 0; i < n; i++) carry_first[i + 1] += carry_first[i];
+    carry_tag.resize(carry_first[n]);
+    carry_slot.resize(carry_first[n]);
+    std::vector<int> &next = carry_next;
+    next.assign(carry_first.begin(), carry_first.end() - 1);
+    for (size_t k = 0; k < nslot; k++) {
+        if (!keep[k]) continue;
+        int q = next[slot_i[k]]++;
+        carry_tag[q] = slot_tj[k];
+        carry_slot[q] = (int) k;
+        if (slot_j[k] < n) {
+            q = next[slot_j[k]]++;
+            carry_tag[q] = slot_ti[k];
+            carry_slot[q] = (int) k;
+        }
+    }
+}
+
+/* The last layout's slot of local atom i's contact with the partner of tag `partner`, or -1. */
+int PairDashpot::carried_slot(int i, tagint partner) const
+{
+    if (i >= slots_nlocal) return -1;    // an atom inserted since: no contact yet
+    for (int q = carry_first[i]; q < carry_first[i + 1]; q++)
+        if (carry_tag[q] == partner) return carry_slot[q];
+    return -1;
 }
 
 void PairDashpot::history_to_atoms()

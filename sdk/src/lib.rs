@@ -77,6 +77,8 @@ mod pair;
 mod params;
 pub mod physics;
 mod rotation;
+#[cfg(target_arch = "x86_64")]
+pub mod simd;
 
 pub use error::{ErrorKind, LawError};
 pub use law::{

@@ -153,12 +153,24 @@ impl BoundTangential for MindlinBound {
     /// The same arithmetic as [`BoundTangential::force`], contact for contact, rearranged for
     /// SIMD: lanes of `LANES` contacts are transposed into component arrays, every branch of
     /// steps 1–6 becomes a select (both sides computed, the unused one discarded), and the
-    /// results are transposed back. A test checks the bits against the per-contact form.
+    /// results are transposed back; on x86-64 CPUs with AVX2, four contacts at a time in
+    /// explicit lanes (`avx2.rs`). A test checks the bits of both against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
         // the host checks every batch against the law's declared slots (four: ξ, k_t); a caller
         // that does not is told so through the trampoline's panic catch
         assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above); the slots were checked.
+            return unsafe {
+                if self.damping == 0.0 {
+                    avx2::lanes::<false, false>(self, b, None)
+                } else {
+                    avx2::lanes::<true, false>(self, b, None)
+                }
+            };
+        }
         if self.damping == 0.0 {
             lanes::<false, false>(self, b, None)
         } else {
@@ -185,6 +197,18 @@ impl BoundTangential for MindlinBound {
     #[inline(always)]
     fn force_batch_energy(&self, b: TangentialBatch<'_>, out: EnergyBatch<'_>) -> bool {
         assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
+        #[cfg(target_arch = "x86_64")]
+        if std::is_x86_feature_detected!("avx2") {
+            // SAFETY: the CPU has AVX2 (checked just above); the slots were checked.
+            unsafe {
+                if self.damping == 0.0 {
+                    avx2::lanes::<false, true>(self, b, Some(out))
+                } else {
+                    avx2::lanes::<true, true>(self, b, Some(out))
+                }
+            }
+            return true;
+        }
         if self.damping == 0.0 {
             lanes::<false, true>(self, b, Some(out))
         } else {
@@ -314,6 +338,9 @@ fn lanes<const DAMPED: bool, const ENERGY: bool>(
         lo += m;
     }
 }
+
+#[cfg(target_arch = "x86_64")]
+mod avx2;
 
 dashpot_sdk::export_laws!(tangential: [Mindlin]);
 

@@ -73,6 +73,49 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
             |b, e| l.force_batch_energy(b, e),
             &what,
         );
+        // every batch length (whole and partial lane groups and blocks, a remainder through the
+        // per-contact form), through the dispatch (AVX2 where the CPU has it) and through the
+        // portable lanes
+        for m in [1, 3, 4, 5, 9, 32, 37, 70] {
+            let (c, h) = (&contacts[n - m..], &hist[4 * (n - m)..]);
+            let what = format!("{what}, {m} contacts");
+            dashpot_testkit::batch_is_per_contact(c, h, 4, |c, h| l.force(c, h), |b| l.force_batch(b), &what);
+            let portable = |b: TangentialBatch<'_>| {
+                if damping == 0.0 {
+                    lanes::<false, false>(&l, b, None)
+                } else {
+                    lanes::<true, false>(&l, b, None)
+                }
+            };
+            dashpot_testkit::batch_is_per_contact(
+                c,
+                h,
+                4,
+                |c, h| l.force(c, h),
+                portable,
+                &format!("{what} (portable)"),
+            );
+            for portable in [false, true] {
+                dashpot_testkit::batch_energy_is_per_contact(
+                    c,
+                    h,
+                    4,
+                    |c, h| l.force_energy(c, h),
+                    |b, e| match (portable, damping == 0.0) {
+                        (false, _) => l.force_batch_energy(b, e),
+                        (true, true) => {
+                            lanes::<false, true>(&l, b, Some(e));
+                            true
+                        }
+                        (true, false) => {
+                            lanes::<true, true>(&l, b, Some(e));
+                            true
+                        }
+                    },
+                    &format!("{what} with energy (portable lanes: {portable})"),
+                );
+            }
+        }
         let slid = f1
             .iter()
             .zip(&contacts)

@@ -126,7 +126,8 @@ impl BoundRolling for RollingSds {
     /// The same arithmetic as [`BoundRolling::force`], contact for contact, rearranged for SIMD:
     /// lanes of `LANES` contacts are transposed into component arrays, each branch becomes a
     /// select (both sides computed, the unused one discarded), and the results are transposed
-    /// back. A test checks the bits against the per-contact form.
+    /// back; on x86-64 CPUs with AVX2, four contacts at a time in explicit lanes (`avx2.rs`).
+    /// A test checks the bits of both against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: RollingBatch<'_>) {
         // the host checks every batch against the law's declared slots (three: ξ)
@@ -134,7 +135,7 @@ impl BoundRolling for RollingSds {
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { lanes_avx2::<false>(self, b, None) };
+            return unsafe { avx2::lanes::<false>(self, b, None) };
         }
         lanes::<false>(self, b, None)
     }
@@ -157,7 +158,7 @@ impl BoundRolling for RollingSds {
         #[cfg(target_arch = "x86_64")]
         if std::is_x86_feature_detected!("avx2") {
             // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe { lanes_avx2::<true>(self, b, Some(out)) };
+            unsafe { avx2::lanes::<true>(self, b, Some(out)) };
             return true;
         }
         lanes::<true>(self, b, Some(out));
@@ -167,21 +168,6 @@ impl BoundRolling for RollingSds {
 
 /// Contacts per SIMD lane group.
 const LANES: usize = 8;
-
-/// [`lanes`] compiled for AVX2: the same bits, four lanes at a time. (The sdk's AVX2 copy of the
-/// batch loop does not reach into the rolling kind's per-block closure, so the law asks itself.)
-///
-/// # Safety
-/// The CPU must support AVX2.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2")]
-unsafe fn lanes_avx2<const ENERGY: bool>(
-    law: &RollingSds,
-    b: RollingBatch<'_>,
-    out: Option<EnergyBatch<'_>>,
-) {
-    lanes::<ENERGY>(law, b, out)
-}
 
 /// Up to `LANES` vectors as three component arrays (idle lanes 0).
 #[inline(always)]
@@ -269,15 +255,20 @@ fn lanes<const ENERGY: bool>(law: &RollingSds, b: RollingBatch<'_>, mut out: Opt
     }
 }
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
 dashpot_sdk::export_laws!(rolling: [RollingSds]);
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// The SIMD batch gives the per-contact form's bits on every path: a fresh spring, one to
-    /// rotate into the tangent plane, one held, one capped (with and without a spring), idle
-    /// lanes of a last partial group; with its energy outputs too.
+    /// The batch gives the per-contact form's bits on every path (a fresh spring, one to rotate
+    /// into the tangent plane, one held, one capped with and without a spring), on every batch
+    /// length (whole and partial lane groups and blocks, a remainder through the per-contact
+    /// form), through the dispatch (AVX2 where the CPU has it) and through the portable lanes;
+    /// with its energy outputs too.
     #[test]
     fn the_batch_gives_the_per_contact_bits() {
         let law = RollingSds {
@@ -285,60 +276,85 @@ mod tests {
             gamma: 0.07,
             mu: 0.2,
         };
-        let n = 11;
-        let mut normal = Vec::new();
-        let mut velocity = Vec::new();
-        let mut fnorm = Vec::new();
-        let mut hist = Vec::new();
-        for i in 0..n {
-            let t = i as f64;
-            let (a, b) = (0.3 * t, 0.7 + 0.2 * t);
-            normal.push([a.cos() * b.sin(), a.sin() * b.sin(), b.cos()]);
-            velocity.push([
-                0.01 * (t - 5.0),
-                0.02 * t.sin(),
-                if i % 4 == 0 { 3.0 } else { 0.001 },
-            ]);
-            fnorm.push(if i == 7 { -0.5 } else { 0.4 + 0.1 * t });
-            let x = if i % 3 == 0 {
-                [0.0; 3]
-            } else {
-                [1e-4 * t, -2e-4, 3e-5 * t]
-            };
-            hist.extend_from_slice(&x);
+        for n in [1, 3, 4, 11, 37, 70] {
+            let mut normal = Vec::new();
+            let mut velocity = Vec::new();
+            let mut fnorm = Vec::new();
+            let mut hist = Vec::new();
+            for i in 0..n {
+                let t = i as f64;
+                let (a, b) = (0.3 * t, 0.7 + 0.2 * t);
+                normal.push([a.cos() * b.sin(), a.sin() * b.sin(), b.cos()]);
+                velocity.push([
+                    0.01 * (t - 5.0),
+                    0.02 * t.sin(),
+                    if i % 4 == 0 { 3.0 } else { 0.001 },
+                ]);
+                fnorm.push(if i % 11 == 7 { -0.5 } else { 0.4 + 0.1 * (t % 13.0) });
+                let x = if i % 3 == 0 {
+                    [0.0; 3]
+                } else {
+                    [1e-4 * (t % 9.0), -2e-4, 3e-5 * (t % 7.0)]
+                };
+                hist.extend_from_slice(&x);
+            }
+            let contacts: Vec<RollingContact> = (0..n)
+                .map(|i| RollingContact {
+                    normal: normal[i],
+                    velocity: velocity[i],
+                    normal_force: fnorm[i],
+                    delta: 1e-5,
+                    mass: 1e-3,
+                    radius: 2e-3,
+                    dt: 1e-4,
+                })
+                .collect();
+            let what = format!("rolling-sds, {n} contacts");
+            let f1 = dashpot_testkit::batch_is_per_contact(
+                &contacts,
+                &hist,
+                3,
+                |c, h| law.force(c, h),
+                |b| law.force_batch(b),
+                &what,
+            );
+            dashpot_testkit::batch_is_per_contact(
+                &contacts,
+                &hist,
+                3,
+                |c, h| law.force(c, h),
+                |b| lanes::<false>(&law, b, None),
+                &format!("{what} (portable lanes)"),
+            );
+            for portable in [false, true] {
+                dashpot_testkit::batch_energy_is_per_contact(
+                    &contacts,
+                    &hist,
+                    3,
+                    |c, h| law.force_energy(c, h),
+                    |b, e| {
+                        if portable {
+                            lanes::<true>(&law, b, Some(e));
+                            true
+                        } else {
+                            law.force_batch_energy(b, e)
+                        }
+                    },
+                    &format!("{what} with energy (portable lanes: {portable})"),
+                );
+            }
+            if n >= 11 {
+                let capped = (0..n)
+                    .filter(|&i| {
+                        (f1[i].iter().map(|x| x * x).sum::<f64>().sqrt() - law.mu * fnorm[i].abs()).abs()
+                            < 1e-12
+                    })
+                    .count();
+                assert!(
+                    capped >= 2,
+                    "the cases must include capped contacts ({capped} of {n})"
+                );
+            }
         }
-        let contacts: Vec<RollingContact> = (0..n)
-            .map(|i| RollingContact {
-                normal: normal[i],
-                velocity: velocity[i],
-                normal_force: fnorm[i],
-                delta: 1e-5,
-                mass: 1e-3,
-                radius: 2e-3,
-                dt: 1e-4,
-            })
-            .collect();
-        let f1 = dashpot_testkit::batch_is_per_contact(
-            &contacts,
-            &hist,
-            3,
-            |c, h| law.force(c, h),
-            |b| law.force_batch(b),
-            "rolling-sds",
-        );
-        dashpot_testkit::batch_energy_is_per_contact(
-            &contacts,
-            &hist,
-            3,
-            |c, h| law.force_energy(c, h),
-            |b, e| law.force_batch_energy(b, e),
-            "rolling-sds with energy",
-        );
-        let capped = (0..n)
-            .filter(|&i| {
-                (f1[i].iter().map(|x| x * x).sum::<f64>().sqrt() - law.mu * fnorm[i].abs()).abs() < 1e-12
-            })
-            .count();
-        assert!(capped >= 2, "the cases must include capped contacts ({capped})");
     }
 }
