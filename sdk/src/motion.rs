@@ -137,6 +137,30 @@ macro_rules! motion_kind {
                 }
                 all
             }
+
+            #[doc = concat!("Contacts `from..` through the per-contact forms: `", stringify!($out), "[i] = force(contact i, its history)`, or `force_energy` with contact i's energy written to `out` when there is one (the last contacts of a batch whose first ones went through lanes).")]
+            #[inline]
+            pub fn each_from(
+                self,
+                from: usize,
+                mut out: Option<&mut $crate::law::EnergyBatch<'_>>,
+                mut force: impl FnMut(&$contact, &mut [f64]) -> $oty,
+                mut force_energy: impl FnMut(&$contact, &mut [f64]) -> ($oty, Option<$crate::law::Energy>),
+            ) {
+                let slots = self.slots;
+                for i in from..self.$out.len() {
+                    let c = self.contact(i);
+                    let h = history_mut(self.history, slots, i);
+                    match out.as_mut() {
+                        Some(o) => {
+                            let (f, e) = force_energy(&c, h);
+                            self.$out[i] = f;
+                            o.set(i, e);
+                        }
+                        None => self.$out[i] = force(&c, h),
+                    }
+                }
+            }
         }
     };
 }

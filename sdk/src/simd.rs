@@ -205,6 +205,56 @@ pub unsafe fn select3(mask: F64x4, a: V3, b: V3) -> V3 {
     ]
 }
 
+/// One step of a capped spring–dashpot on four lanes, as [`crate::physics::SliderStep`] holds
+/// it: what [`SliderLanes::energy`] needs of the step.
+#[derive(Clone, Copy)]
+pub struct SliderLanes {
+    /// The spring as the step read it (m, or rad for a rotation).
+    pub xi_before: V3,
+    /// The stiffness of the last step (N/m).
+    pub k_before: F64x4,
+    /// The stiffness of this step (N/m).
+    pub k: F64x4,
+    /// The dashpot (N·s/m).
+    pub eta: F64x4,
+    /// 1/dt (1/s), the same on every lane.
+    pub rate: F64x4,
+    /// Whether dt > 0: a step of no length dissipates nothing.
+    pub timed: bool,
+}
+
+impl SliderLanes {
+    /// [`crate::physics::SliderStep::energy`] lane by lane, operation for operation (the same
+    /// bits): the power dissipated (W) and the energy stored (J) by a step that ended with
+    /// spring `xi`, relative velocity `v` and force `force`, sliding on the lanes of `sliding`.
+    ///
+    /// # Safety
+    /// The CPU must support AVX2.
+    #[inline]
+    #[target_feature(enable = "avx2")]
+    pub unsafe fn energy(&self, sliding: F64x4, xi: V3, v: V3, force: V3) -> (F64x4, F64x4) {
+        let (zero, half) = (F64x4::splat(0.0), F64x4::splat(0.5));
+        let elastic = half.mul(self.k).mul(dot(xi, xi));
+        let x0 = dot(self.xi_before, self.xi_before);
+        let before = half.mul(self.k_before).mul(x0);
+        let formed = x0.gt(zero);
+        let kb = F64x4::select(formed, self.k_before, zero);
+        let held = F64x4::select(formed, self.eta, zero);
+        let mut mean = [zero; 3];
+        for (q, m) in mean.iter_mut().enumerate() {
+            *m = half.mul(force[q].sub(kb.mul(self.xi_before[q])).sub(held.mul(v[q])));
+        }
+        let work = F64x4::select(sliding, dot(mean, v).neg(), self.eta.mul(dot(v, v)));
+        let stored = F64x4::select(sliding, before.sub(elastic), before.sub(half.mul(self.k).mul(x0)));
+        let power = if self.timed {
+            work.add(stored.mul(self.rate))
+        } else {
+            zero
+        };
+        (power, elastic)
+    }
+}
+
 /// Rows of four lanes to columns (and back: the same operation).
 #[inline]
 #[target_feature(enable = "avx2")]

@@ -10,7 +10,7 @@
 
 use super::{MindlinBound, SLOTS};
 use dashpot_sdk::simd::{
-    add3, dot, put_quads, put_triples, quads, scale3, select3, sub3, triples, F64x4, V3,
+    add3, dot, put_quads, put_triples, quads, scale3, select3, sub3, triples, F64x4, SliderLanes, V3,
 };
 use dashpot_sdk::{BoundTangential, EnergyBatch, TangentialBatch};
 
@@ -63,7 +63,7 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
         F64x4::splat(law.mu),
         F64x4::splat(2.0 * law.damping),
     );
-    let (dt, half) = (F64x4::splat(b.dt), F64x4::splat(0.5));
+    let dt = F64x4::splat(b.dt);
     // SliderStep's 1/dt, the same value for every contact
     let rate = F64x4::splat(1.0 / b.dt);
     let (normal, velocity) = (b.normal.as_flattened(), b.velocity.as_flattened());
@@ -145,45 +145,21 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
             if let (true, Some(o)) = (ENERGY, out.as_mut()) {
                 // SliderStep::energy from the spring the step started from (as read when the
                 // contact is dropped), with k_t of the last call
-                let before = select3(touching, t0, x0);
-                let sliding = slide.or(delta.not_gt(zero));
-                let elastic = half.mul(kt).mul(dot(h, h));
-                let x0b = dot(before, before);
-                let stored_before = half.mul(kprev).mul(x0b);
-                let formed = x0b.gt(zero);
-                let kb = F64x4::select(formed, kprev, zero);
-                let held = F64x4::select(formed, eta, zero);
-                let mut mean = [zero; 3];
-                for k in 0..3 {
-                    mean[k] = half.mul(f[k].sub(kb.mul(before[k])).sub(held.mul(vt[k])));
-                }
-                let work = F64x4::select(sliding, dot(mean, vt).neg(), eta.mul(dot(vt, vt)));
-                let stored = F64x4::select(
-                    sliding,
-                    stored_before.sub(elastic),
-                    stored_before.sub(half.mul(kt).mul(x0b)),
-                );
-                let power = if b.dt > 0.0 {
-                    work.add(stored.mul(rate))
-                } else {
-                    zero
+                let step = SliderLanes {
+                    xi_before: select3(touching, t0, x0),
+                    k_before: kprev,
+                    k: kt,
+                    eta,
+                    rate,
+                    timed: b.dt > 0.0,
                 };
+                let (power, elastic) = step.energy(slide.or(delta.not_gt(zero)), h, vt, f);
                 o.put(i, &power.to_array(), &elastic.to_array());
             }
         }
         lo += 4 * steps;
     }
     // the last contacts, one at a time
-    for c in n4..n {
-        let contact = b.contact(c);
-        let h = &mut b.history[SLOTS * c..SLOTS * c + SLOTS];
-        match out.as_mut() {
-            Some(o) if ENERGY => {
-                let (f, e) = law.force_energy(&contact, h);
-                b.force[c] = f;
-                o.set(c, e);
-            }
-            _ => b.force[c] = law.force(&contact, h),
-        }
-    }
+    let out = out.as_mut().filter(|_| ENERGY);
+    b.each_from(n4, out, |c, h| law.force(c, h), |c, h| law.force_energy(c, h));
 }

@@ -8,7 +8,7 @@
 //! ([`super::lanes`]) costs more.
 
 use super::{RollingSds, FRAME_EPS};
-use dashpot_sdk::simd::{add3, dot, put_triples, scale3, select3, sub3, triples, F64x4, V3};
+use dashpot_sdk::simd::{add3, dot, put_triples, scale3, select3, sub3, triples, F64x4, SliderLanes, V3};
 use dashpot_sdk::{BoundRolling, EnergyBatch, RollingBatch};
 
 /// Contacts per block of the two passes.
@@ -47,7 +47,7 @@ pub(crate) unsafe fn lanes<const ENERGY: bool>(
         F64x4::splat(law.mu),
         F64x4::splat(b.dt),
     );
-    let (frame_eps, half) = (F64x4::splat(FRAME_EPS), F64x4::splat(0.5));
+    let frame_eps = F64x4::splat(FRAME_EPS);
     // SliderStep's 1/dt, the same value for every contact
     let rate = F64x4::splat(1.0 / b.dt);
     let (normal, velocity) = (b.normal.as_flattened(), b.velocity.as_flattened());
@@ -100,43 +100,21 @@ pub(crate) unsafe fn lanes<const ENERGY: bool>(
             put_triples(h, b.history, i);
             if let (true, Some(o)) = (ENERGY, out.as_mut()) {
                 // dashpot_sdk::physics::SliderStep::energy, a constant stiffness and dashpot
-                let elastic = half.mul(k).mul(dot(h, h));
-                let x0 = dot(before, before);
-                let stored_before = half.mul(k).mul(x0);
-                let formed = x0.gt(zero);
-                let kb = F64x4::select(formed, k, zero);
-                let eta = F64x4::select(formed, gamma, zero);
-                let mut mean = [zero; 3];
-                for q in 0..3 {
-                    mean[q] = half.mul(f[q].sub(kb.mul(before[q])).sub(eta.mul(v[q])));
-                }
-                let work = F64x4::select(capped, dot(mean, v).neg(), gamma.mul(dot(v, v)));
-                let stored = F64x4::select(
-                    capped,
-                    stored_before.sub(elastic),
-                    stored_before.sub(half.mul(k).mul(x0)),
-                );
-                let power = if b.dt > 0.0 {
-                    work.add(stored.mul(rate))
-                } else {
-                    zero
+                let step = SliderLanes {
+                    xi_before: before,
+                    k_before: k,
+                    k,
+                    eta: gamma,
+                    rate,
+                    timed: b.dt > 0.0,
                 };
+                let (power, elastic) = step.energy(capped, h, v, f);
                 o.put(i, &power.to_array(), &elastic.to_array());
             }
         }
         lo += 4 * steps;
     }
     // the last contacts, one at a time
-    for c in n4..n {
-        let contact = b.contact(c);
-        let h = &mut b.history[3 * c..3 * c + 3];
-        match out.as_mut() {
-            Some(o) if ENERGY => {
-                let (f, e) = law.force_energy(&contact, h);
-                b.force[c] = f;
-                o.set(c, e);
-            }
-            _ => b.force[c] = law.force(&contact, h),
-        }
-    }
+    let out = out.as_mut().filter(|_| ENERGY);
+    b.each_from(n4, out, |c, h| law.force(c, h), |c, h| law.force_energy(c, h));
 }
