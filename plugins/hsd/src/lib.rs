@@ -156,7 +156,8 @@ dashpot_sdk::export_laws!(contact: [Hsd]);
 mod tests {
     use super::*;
     use dashpot_sdk::abi::{EnergyOut, Normal, NormalCall, StaticModel};
-    use dashpot_sdk::{NormalBatch, Particle};
+    use dashpot_sdk::NormalBatch;
+    use dashpot_testkit::{uniform, STEEL_6MM};
 
     /// The batch through the sdk's checked trampoline (the pipelined loop for its full blocks of
     /// 64, the plain one for the rest; the AVX2 build when the CPU has it) gives, bit for bit,
@@ -165,22 +166,10 @@ mod tests {
     /// on batches of every length around the block size, polydisperse, overlaps of both signs.
     #[test]
     fn the_batch_is_the_closed_form_bit_for_bit() {
-        let steel = Particle {
-            diameter: 0.006,
-            density: 7800.0,
-            young: 2.0e11,
-            poisson: 0.3,
-        };
-        let mat = MaterialPair::spheres(&steel, &steel).expect("materials");
+        let mat = MaterialPair::spheres(&STEEL_6MM, &STEEL_6MM).expect("materials");
         let model = StaticModel::<Normal, HsdBound>::bind(&Hsd::with(0.54), &mat).expect("bind");
         let law = Hsd::with(0.54).bind(&mat).expect("bind");
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut rnd = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = uniform(0x9e37_79b9_7f4a_7c15_u64);
         for n in [1, 63, 64, 65, 127, 128, 640, 1000, 1024 + 7] {
             let delta: Vec<f64> = (0..n).map(|_| 1.2e-5 * rnd() - 2e-6).collect();
             let rate: Vec<f64> = (0..n).map(|_| 2.0 * rnd() - 1.0).collect();

@@ -27,13 +27,7 @@ fn schema_and_history_slots() {
 /// with its energy outputs too, and force_energy the same forces as force.
 #[test]
 fn batch_is_the_per_contact_form_bit_for_bit() {
-    let mut x = 0x2545_f491_4f6c_dd1d_u64;
-    let mut rnd = move || {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rnd = dashpot_testkit::uniform(0x2545_f491_4f6c_dd1d_u64);
     for damping in [0.0, 0.4] {
         let l = law(2.0e11, 0.3, damping);
         let n = 203;

@@ -1,8 +1,30 @@
 //! What the plugins' unit tests share (a dev-dependency of the plugins, never linked into one):
 //! a head-on collision integrated on a contact law, a tangential or rolling law's batch checked
-//! against its per-contact form bit for bit, and the history of a tangential spring.
+//! against its per-contact form bit for bit, the history of a tangential spring, and the
+//! inputs of such checks (a steel bead, uniform random numbers).
 
-use dashpot_sdk::{BoundContact, Contact, Energy, EnergyBatch, LawInfo, VectorBatch, VectorContact};
+use dashpot_sdk::{
+    BoundContact, Contact, Energy, EnergyBatch, LawInfo, Particle, VectorBatch, VectorContact,
+};
+
+/// A steel bead of 6 mm diameter (m), 7800 kg/m³, E = 200 GPa, ν = 0.3.
+pub const STEEL_6MM: Particle = Particle {
+    diameter: 0.006,
+    density: 7800.0,
+    young: 2.0e11,
+    poisson: 0.3,
+};
+
+/// Uniform numbers in [0, 1) from a xorshift64 generator (Marsaglia 2003) started at `seed`
+/// (not 0): the same sequence on every machine, so a failing case can be replayed.
+pub fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
 
 /// One head-on collision integrated by velocity Verlet on the overlap δ (m): impact speed `v0`
 /// (m/s), effective mass `mass` (kg), effective radius `radius` (m), step `dt` (s). The law is
