@@ -98,6 +98,53 @@ fn lock<X>(m: &Mutex<X>) -> MutexGuard<'_, X> {
     m.lock().unwrap_or_else(PoisonError::into_inner)
 }
 
+/// The items of a parallel map, each with its result behind a lock, and how many are done.
+struct Slots<I, T> {
+    slots: Vec<Mutex<(Option<I>, Option<T>)>>,
+    done: AtomicUsize,
+}
+
+impl<I: Send, T: Send> Slots<I, T> {
+    fn new(items: Vec<I>) -> Self {
+        let slots = items.into_iter().map(|i| Mutex::new((Some(i), None))).collect();
+        Slots {
+            slots,
+            done: AtomicUsize::new(0),
+        }
+    }
+
+    /// Runs item `k` through `work` and keeps its result (an item already taken is left).
+    fn run(&self, k: usize, work: &impl Fn(I) -> T) {
+        // counted done however the work ends, so that the caller's wait ends
+        let _done = OnDrop(|| {
+            self.done.fetch_add(1, Ordering::Release);
+        });
+        let item = lock(&self.slots[k]).0.take();
+        if let Some(item) = item {
+            let out = work(item);
+            lock(&self.slots[k]).1 = Some(out);
+        }
+    }
+
+    /// `claim` on `threads` threads of the pool, the calling one among them, which then waits
+    /// without sleeping until every item is done; the results in the items' order.
+    fn run_all(self, threads: usize, claim: impl Fn(&Self) + Sync) -> Vec<T> {
+        let n = self.slots.len();
+        rayon::scope(|s| {
+            for _ in 1..threads {
+                s.spawn(|_| claim(&self));
+            }
+            claim(&self);
+            spin_until(|| self.done.load(Ordering::Acquire) >= n);
+        });
+        // every item's work returned (a panic would have left the scope above)
+        self.slots
+            .into_iter()
+            .filter_map(|m| m.into_inner().unwrap_or_else(PoisonError::into_inner).1)
+            .collect()
+    }
+}
+
 /// `work` applied to each of `items` on the threads of the pool, the results in the items'
 /// order. Each item is taken, in order, by whichever thread is free (the calling one among
 /// them), so that a thread held up leaves the later items to the others; the calling thread
@@ -110,36 +157,14 @@ pub(super) fn map_claimed<I: Send, T: Send>(items: Vec<I>, work: impl Fn(I) -> T
     if threads < 2 {
         return items.into_iter().map(work).collect();
     }
-    let slots: Vec<Mutex<(Option<I>, Option<T>)>> =
-        items.into_iter().map(|i| Mutex::new((Some(i), None))).collect();
-    let (next, done) = (AtomicUsize::new(0), AtomicUsize::new(0));
-    let claim = || loop {
+    let next = AtomicUsize::new(0);
+    Slots::new(items).run_all(threads, |s| loop {
         let k = next.fetch_add(1, Ordering::Relaxed);
         if k >= n {
             return;
         }
-        // counted done however the work ends, so that the caller's wait ends
-        let _done = OnDrop(|| {
-            done.fetch_add(1, Ordering::Release);
-        });
-        let item = lock(&slots[k]).0.take();
-        if let Some(item) = item {
-            let out = work(item);
-            lock(&slots[k]).1 = Some(out);
-        }
-    };
-    rayon::scope(|s| {
-        for _ in 1..threads {
-            s.spawn(|_| claim());
-        }
-        claim();
-        spin_until(|| done.load(Ordering::Acquire) >= n);
-    });
-    // every item's work returned (a panic would have left the scope above)
-    slots
-        .into_iter()
-        .filter_map(|m| m.into_inner().unwrap_or_else(PoisonError::into_inner).1)
-        .collect()
+        s.run(k, &work);
+    })
 }
 
 /// `work` applied to each of `items` on the threads of the pool, the results in the items'
@@ -157,43 +182,19 @@ pub(super) fn map_ranked<I: Send, T: Send>(items: Vec<I>, work: impl Fn(I) -> T 
         return map_claimed(items, work);
     };
     let pool = rayon::current_num_threads();
-    let slots: Vec<Mutex<(Option<I>, Option<T>)>> =
-        items.into_iter().map(|i| Mutex::new((Some(i), None))).collect();
     let taken: Vec<AtomicBool> = (0..n).map(|_| AtomicBool::new(false)).collect();
-    let done = AtomicUsize::new(0);
-    let run = |k: usize| {
-        if taken[k].swap(true, Ordering::AcqRel) {
-            return;
-        }
-        // counted done however the work ends, so that the caller's wait ends
-        let _done = OnDrop(|| {
-            done.fetch_add(1, Ordering::Release);
-        });
-        let item = lock(&slots[k]).0.take();
-        if let Some(item) = item {
-            let out = work(item);
-            lock(&slots[k]).1 = Some(out);
+    let run = |s: &Slots<I, T>, k: usize| {
+        if !taken[k].swap(true, Ordering::AcqRel) {
+            s.run(k, &work);
         }
     };
-    let claim = || {
+    Slots::new(items).run_all(threads, |s| {
         let rank = rayon::current_thread_index().map_or(0, |w| (w + pool - me) % pool);
         if rank < n {
-            run(rank);
+            run(s, rank);
         }
-        (0..n).for_each(&run);
-    };
-    rayon::scope(|s| {
-        for _ in 1..threads {
-            s.spawn(|_| claim());
-        }
-        claim();
-        spin_until(|| done.load(Ordering::Acquire) >= n);
-    });
-    // every item's work returned (a panic would have left the scope above)
-    slots
-        .into_iter()
-        .filter_map(|m| m.into_inner().unwrap_or_else(PoisonError::into_inner).1)
-        .collect()
+        (0..n).for_each(|k| run(s, k));
+    })
 }
 
 #[cfg(test)]
