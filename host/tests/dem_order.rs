@@ -200,6 +200,12 @@ fn same_run_in_any_order<const D: usize>(cols: usize, layers: usize, steps: u64)
     );
 }
 
+/// `f` run on a pool of `threads` threads.
+fn on_threads<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+    pool.expect("a thread pool").install(f)
+}
+
 #[test]
 fn a_reordered_2d_run_is_the_same_run_in_the_users_numbering() {
     // 64 × 80 disks: 3 chunks of contacts
@@ -217,11 +223,7 @@ fn a_reordered_3d_run_is_the_same_run_in_the_users_numbering() {
 #[test]
 fn a_reordered_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
     let run = |threads: usize, block: u64| -> Engine<2> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        on_threads(threads, || {
             let mut e = lattice::<2>(64, 80, Some(5));
             for _ in 0..(40 / block) {
                 e.advance(block).unwrap();
@@ -242,11 +244,7 @@ fn a_reordered_run_is_the_same_bit_for_bit_on_one_thread_and_two() {
 fn a_3d_pile_of_small_chunks_is_the_same_bit_for_bit_on_any_threads() {
     for period in [Some(5), None] {
         let run = |threads: usize, block: u64| -> Engine<3> {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
-            pool.install(|| {
+            on_threads(threads, || {
                 let mut e = lattice::<3>(12, 20, period);
                 for _ in 0..(40 / block) {
                     e.advance(block).unwrap();
@@ -305,11 +303,7 @@ fn power_shares_are_reported_under_the_users_numbers() {
 #[test]
 fn a_3d_pile_of_small_chunks_steps_as_two_passes_would() {
     let run = |threads: usize, two_passes: bool| -> Engine<3> {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+        on_threads(threads, || {
             let mut e = lattice::<3>(12, 20, None);
             // 1 m/s: the list goes stale every few dozen steps
             e.p.vel.iter_mut().for_each(|v| *v *= 5.0);

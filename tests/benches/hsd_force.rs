@@ -114,6 +114,25 @@ fn report(r: &[(f64, f64)], per: impl Fn(f64) -> f64, names: [&str; 2], ratio: &
     );
 }
 
+/// `law` on the first [`CHUNK`] contacts of `c`, [`CHUNKS`] times over (so that they stay in
+/// cache), with the energy outputs given.
+fn in_chunks(
+    law: &dyn NormalLaw,
+    c: &Contacts,
+    o: &mut [f64],
+    mut power: Option<&mut [f64]>,
+    mut elastic: Option<&mut [f64]>,
+) {
+    for _ in 0..CHUNKS {
+        let out = EnergyOut {
+            power: power.as_deref_mut(),
+            elastic: elastic.as_deref_mut(),
+        };
+        law.force_batch_with(normal_chunk(c, 0..CHUNK, &mut o[..CHUNK]), None, out)
+            .expect("normal batch");
+    }
+}
+
 /// The normal laws without history that section 1b races against another build: (library,
 /// law).
 const BASELINE_LAWS: [(&str, &str); 4] = [
@@ -137,20 +156,9 @@ fn versus(
     assert_same_bits(o1, o2, |i| format!("the force on contact {i}"));
     let r = race(&mut [&mut || normal_step(base, c, o1), &mut || normal_step(this, c, o2)]);
     report(&r, ns, ["baseline build", "this build"], "this / baseline", "");
-    let r = race(&mut [
-        &mut || {
-            for _ in 0..CHUNKS {
-                base.force_batch(normal_chunk(c, 0..CHUNK, &mut o1[..CHUNK]))
-                    .expect("normal batch");
-            }
-        },
-        &mut || {
-            for _ in 0..CHUNKS {
-                this.force_batch(normal_chunk(c, 0..CHUNK, &mut o2[..CHUNK]))
-                    .expect("normal batch");
-            }
-        },
-    ]);
+    let r = race(&mut [&mut || in_chunks(base, c, o1, None, None), &mut || {
+        in_chunks(this, c, o2, None, None)
+    }]);
     println!("   the same, in chunks of {CHUNK} contacts already in cache");
     let per = |t: f64| t / (CHUNKS * CHUNK) as f64 * 1e9;
     report(&r, per, ["baseline build", "this build"], "this / baseline", "");
@@ -160,28 +168,11 @@ fn versus(
     );
     let [p1, p2] = &mut p;
     let [e1, e2] = &mut e;
-    let r = race(&mut [
-        &mut || {
-            for _ in 0..CHUNKS {
-                let out = EnergyOut {
-                    power: Some(&mut *p1),
-                    elastic: Some(&mut *e1),
-                };
-                base.force_batch_with(normal_chunk(c, 0..CHUNK, &mut o1[..CHUNK]), None, out)
-                    .expect("normal batch");
-            }
-        },
-        &mut || {
-            for _ in 0..CHUNKS {
-                let out = EnergyOut {
-                    power: Some(&mut *p2),
-                    elastic: Some(&mut *e2),
-                };
-                this.force_batch_with(normal_chunk(c, 0..CHUNK, &mut o2[..CHUNK]), None, out)
-                    .expect("normal batch");
-            }
-        },
-    ]);
+    let r = race(
+        &mut [&mut || in_chunks(base, c, o1, Some(p1), Some(e1)), &mut || {
+            in_chunks(this, c, o2, Some(p2), Some(e2))
+        }],
+    );
     assert_same_bits(p1, p2, |i| format!("the power of contact {i}"));
     assert_same_bits(e1, e2, |i| format!("the elastic energy of contact {i}"));
     println!("   the same with the energy outputs");
