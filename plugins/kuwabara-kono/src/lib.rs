@@ -54,6 +54,10 @@ impl ContactLaw for KuwabaraKono {
 }
 
 impl BoundContact for KuwabaraKonoBound {
+    /// One square root and a few products, no branch: the sdk evaluates the law eight contacts
+    /// at a time between the checks of the next ones.
+    const STRAIGHT_LINE: bool = true;
+
     /// K √δ (δ + (3/2) A δ̇) = a √(rδ) (δ + (3/2) A δ̇): one square root per contact.
     #[inline(always)]
     fn force(&self, c: Contact, _history: &mut [f64]) -> f64 {
