@@ -127,6 +127,9 @@ pub struct ContactSet {
     pub elastic: [Vec<f64>; 4],
     /// The families whose law did not report its energy at the last evaluation.
     pub unreported: [bool; 4],
+    /// The contacts' dissipated power summed by family at the last evaluation (W; with
+    /// `energy`), block by block as the laws wrote it (while it is in cache).
+    pub power_sum: [f64; 4],
     /// The chunk's first particle.
     pub first: usize,
     /// Contacts of this set that were not in the previous one (first touches this step).
@@ -239,7 +242,30 @@ fn family_out<'v>(
     }
 }
 
+/// The sum of `x` in four interleaved partial sums added pairwise at the end: the same bits on
+/// every run (the order is fixed), in a loop the compiler vectorises, where a plain sum is one
+/// chain of additions each waiting on the last.
+fn sum4(x: &[f64]) -> f64 {
+    let mut acc = [0.0; 4];
+    let mut quads = x.chunks_exact(4);
+    for q in &mut quads {
+        for k in 0..4 {
+            acc[k] += q[k];
+        }
+    }
+    let rest: f64 = quads.remainder().iter().sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + rest
+}
+
 impl ContactSet {
+    /// Adds family `k`'s power on contacts `r`, just written by its law, to
+    /// [`ContactSet::power_sum`] (with `energy`).
+    fn add_power(&mut self, k: usize, r: Range<usize>) {
+        if self.energy {
+            self.power_sum[k] += sum4(&self.power[k][r]);
+        }
+    }
+
     /// An empty set for laws keeping `slots_n` and `slots_t` history values.
     pub fn new(slots_n: usize, slots_t: usize) -> ContactSet {
         ContactSet {
@@ -341,6 +367,7 @@ impl ContactSet {
         // a law with history would see its history advanced by the extra calls: plain rule
         let edges = edge_means && sn == 0;
         self.unreported = [false; 4];
+        self.power_sum = [0.0; 4];
         let mut a = 0;
         while a < n {
             let b = (a + LAW_CHUNK).min(n);
@@ -385,6 +412,7 @@ impl ContactSet {
                 if self.energy {
                     let out = family_out(true, &mut self.power, &mut self.elastic, 1, a..b);
                     self.unreported[1] |= !t.force_batch_with(tb, out)?;
+                    self.add_power(1, a..b);
                 } else {
                     t.force_batch(tb)?;
                 }
@@ -392,6 +420,7 @@ impl ContactSet {
             if self.rotational() {
                 self.evaluate_rotation(&rotation, a..b, dt)?;
             }
+            self.add_power(0, a..b);
             a = b;
         }
         Ok(())

@@ -35,6 +35,7 @@ impl ContactSet {
                 family_out(energy, &mut self.power, &mut self.elastic, 2, a..b),
             )?;
             self.unreported[2] |= energy && !written;
+            self.add_power(2, r.clone());
         }
         if let (Some(law), Some(sw)) = (rot.twisting, self.slots_w) {
             let written = law.torque_batch(
@@ -45,6 +46,7 @@ impl ContactSet {
                 family_out(energy, &mut self.power, &mut self.elastic, 3, a..b),
             )?;
             self.unreported[3] |= energy && !written;
+            self.add_power(3, r);
         }
         Ok(())
     }

@@ -7,21 +7,6 @@ use crate::dem::state::{from3, spin_len, Vec3};
 use crate::dem::DemError;
 use rayon::prelude::*;
 
-/// The sum of `x` in four interleaved partial sums added pairwise at the end: the same bits on
-/// every run (the order is fixed), in a loop the compiler vectorises, where a plain sum is one
-/// chain of additions each waiting on the last.
-fn sum4(x: &[f64]) -> f64 {
-    let mut acc = [0.0; 4];
-    let mut quads = x.chunks_exact(4);
-    for q in &mut quads {
-        for k in 0..4 {
-            acc[k] += q[k];
-        }
-    }
-    let rest: f64 = quads.remainder().iter().sum();
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + rest
-}
-
 impl<const D: usize> Engine<D> {
     /// Gathers the contacts at the current positions and predicted velocities, calls the laws,
     /// and sums forces and torques into the particles.
@@ -149,8 +134,8 @@ impl<const D: usize> Engine<D> {
     /// by chunk in order.
     fn account_energy(&mut self) {
         for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
-            for (k, p) in set.power.iter().enumerate() {
-                self.dissipated[k] += sum4(&p[..set.len()]) * self.dt;
+            for (k, p) in set.power_sum.iter().enumerate() {
+                self.dissipated[k] += p * self.dt;
                 self.unreported[k] |= set.unreported[k];
             }
         }
