@@ -519,7 +519,7 @@ fn main() {
     if run("plugins3d") || run("energy") {
         let base = base3d(&one, plugin_laws(&reg, true));
         let n = 4 * BASE3D;
-        const BLOCKS: usize = 9;
+        const BLOCKS: usize = 21;
         const K: usize = 400;
         let ps = |t: f64| (n * K) as f64 / t;
         let contest = |a: &mut Engine<3>, b: &mut Engine<3>| {

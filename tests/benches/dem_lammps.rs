@@ -32,7 +32,7 @@
 
 mod common;
 
-use common::{median, thread_cpu_seconds};
+use common::{median, process_cpu_seconds, thread_cpu_seconds};
 use dashpot::dem::{Body, Engine, Laws, Material};
 use dashpot_sdk::ParamValue;
 use dashpot_tests::full_registry;
@@ -191,12 +191,17 @@ fn dashpot_run<const D: usize>(
     pool.install(|| {
         let mut e = make();
         e.advance(case.settle as u64).expect("steps");
-        let (c, w) = (thread_cpu_seconds(), Instant::now());
+        let (c, w, all) = (thread_cpu_seconds(), Instant::now(), process_cpu_seconds());
         e.advance(case.steps as u64).expect("steps");
         let t = if one {
             thread_cpu_seconds() - c
         } else {
-            w.elapsed().as_secs_f64()
+            // how busy the threads were (waits spin): a wall time far above the CPU time
+            // over the threads means they were not given their cores
+            let cpu = process_cpu_seconds() - all;
+            let wall = w.elapsed().as_secs_f64();
+            print!("  (dashpot {wall:.3} s wall, {cpu:.3} s CPU over its threads)");
+            wall
         };
         (t, common::com_height(&e), e.contacts())
     })
