@@ -52,7 +52,10 @@ fn continued(first: &str, lines: &mut std::str::Lines<'_>) -> String {
 /// `##KIND##` replaced, or the name itself when the macro declares `NAME`.
 fn header_functions() -> Vec<String> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let header = std::fs::read_to_string(dir.join("include/dashpot.h")).expect("read include/dashpot.h");
+    // the generated header, then the kinds' functions it includes at its end
+    let header = ["include/dashpot.h", "include/dashpot_kinds.h"]
+        .map(|f| std::fs::read_to_string(dir.join(f)).unwrap_or_else(|e| panic!("read {f}: {e}")))
+        .concat();
     let mut names: Vec<String> = Vec::new();
     let mut add = |name: String| {
         if !names.contains(&name) {
