@@ -116,8 +116,13 @@ pub struct Engine<const D: usize> {
     /// Whether each particle's force sums the shares of earlier chunks' contacts nearest chunk
     /// first, else farthest first ([`nearest_first`] of the chunk).
     nearest_first: bool,
-    /// Whether the steps run in parallel on a pool of several threads ([`parallel`]).
+    /// Whether the steps run in parallel on a pool of several threads ([`parallel`]) (for a
+    /// block of [`Engine::advance`], as [`awake::Pace`] chooses).
     parallel: bool,
+    /// Whether this pile steps in parallel at all ([`parallel`] of its size and chunk).
+    can_parallel: bool,
+    /// Which of a parallel and a serial block is faster for this pile now.
+    pace: awake::Pace,
 }
 
 impl<const D: usize> Engine<D> {
@@ -290,6 +295,8 @@ impl<const D: usize> Engine<D> {
             chunk: gather_chunk(bodies.len(), D),
             nearest_first: nearest_first(gather_chunk(bodies.len(), D)),
             parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
+            can_parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
+            pace: awake::Pace::default(),
         };
         e.order.due = e.sorts();
         e.check(false)?;
@@ -415,20 +422,41 @@ impl<const D: usize> Engine<D> {
     }
 
     /// [`Engine::advance`] in the engine's order.
+    ///
+    /// On a pool of several threads the steps go in timed blocks, each run in parallel or on
+    /// the calling thread alone as [`awake::Pace`] finds faster for this pile on this machine
+    /// now: the same steps and bits either way (the chunks fix every sum's order).
     pub(super) fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
-        let parallel = k > 1 && self.parallel;
-        let mut block = || {
+        if !(k > 1 && self.can_parallel && rayon::current_num_threads() >= 2) {
             for s in 0..k {
                 self.step_with(fuse && s + 1 < k)?;
             }
-            Ok(())
-        };
-        if parallel {
-            awake::with_pool_awake(block)
-        } else {
-            block()
+            return Ok(());
         }
+        let mut s = 0;
+        while s < k {
+            let (parallel, steps) = self.pace.next(k - s);
+            let (from, to) = (s, s + steps);
+            let clock = std::time::Instant::now();
+            self.parallel = parallel;
+            let mut block = || -> Result<(), DemError> {
+                for s in from..to {
+                    self.step_with(fuse && s + 1 < k)?;
+                }
+                Ok(())
+            };
+            let done = if parallel {
+                awake::with_pool_awake(block)
+            } else {
+                block()
+            };
+            self.parallel = self.can_parallel;
+            done?;
+            self.pace.record(parallel, clock.elapsed(), steps);
+            s = to;
+        }
+        Ok(())
     }
 
     /// One step; with `defer`, the step ends before its second half-kick, which the next step

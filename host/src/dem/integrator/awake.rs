@@ -75,6 +75,85 @@ pub(super) fn with_pool_awake<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     })
 }
 
+/// Which is faster for a pile on this machine now, a block of steps in parallel or on the
+/// calling thread alone. A second thread mostly pays, but not always: on a virtual machine
+/// whose two cores do not share a cache at times, handing a range's particles from one core to
+/// the other each step can cost more than the second core gains (BENCHMARKS.md, "Against
+/// LAMMPS"). The engine steps in blocks the faster way, and now and then tries the other on a
+/// short block, compared with the blocks of the current way just before and after it (a
+/// pile's cost per step changes as it falls and settles, so only neighbouring blocks compare):
+/// a change of the machine's state is seen within a few thousand steps.
+#[derive(Debug, Clone)]
+pub(super) struct Pace {
+    /// The current way: in parallel, or not.
+    parallel: bool,
+    /// Wall time per step (ns) of the current way's last block (0: none yet).
+    last: f64,
+    /// Wall time per step of the other way's trial, waiting for the next block to compare with.
+    trial: Option<f64>,
+    /// The other way's time over the current way's at the last trial.
+    margin: f64,
+    /// Blocks timed so far.
+    blocks: u64,
+}
+
+impl Default for Pace {
+    fn default() -> Self {
+        Pace {
+            parallel: true,
+            last: 0.0,
+            trial: None,
+            margin: 1.0,
+            blocks: 0,
+        }
+    }
+}
+
+/// Steps of a block, and of a block that tries the other way.
+const PACE_BLOCK: u64 = 250;
+const PACE_TRIAL: u64 = 50;
+
+impl Pace {
+    /// Whether to run the next block in parallel, and how many of the `left` steps it takes.
+    pub(super) fn next(&self, left: u64) -> (bool, u64) {
+        // a trial after the first block, then often while the two ways are close, rarely once
+        // the other is far behind
+        let every = if self.margin > 1.3 { 64 } else { 16 };
+        let trial = self.last > 0.0 && self.trial.is_none() && (self.blocks == 1 || self.blocks % every == 0);
+        if trial {
+            (!self.parallel, PACE_TRIAL.min(left))
+        } else {
+            (self.parallel, PACE_BLOCK.min(left))
+        }
+    }
+
+    /// Records a block of `steps` run in parallel or not that took `took`.
+    pub(super) fn record(&mut self, parallel: bool, took: std::time::Duration, steps: u64) {
+        // a few steps time too little to tell
+        if steps < PACE_TRIAL {
+            return;
+        }
+        let ns = took.as_nanos() as f64 / steps as f64;
+        self.blocks += 1;
+        if parallel != self.parallel {
+            self.trial = Some(ns);
+            return;
+        }
+        if let Some(other) = self.trial.take() {
+            let current = 0.5 * (self.last + ns);
+            self.margin = other / current;
+            // the other way is taken when it is clearly faster
+            if self.margin < 0.95 {
+                self.parallel = !self.parallel;
+                self.margin = 1.0 / self.margin;
+                self.last = other;
+                return;
+            }
+        }
+        self.last = ns;
+    }
+}
+
 /// Runs its closure when dropped: at the end of the scope it guards, however that ends (a
 /// panic included), so that no thread is left waiting for a flag.
 pub(super) struct OnDrop<F: FnMut()>(pub F);
@@ -206,6 +285,55 @@ mod tests {
             .num_threads(threads)
             .build()
             .expect("a pool")
+    }
+
+    /// Pace takes the way that is faster now: parallel first, the other way tried after the
+    /// first block and then now and then, a switch when the trial beats its neighbours by 5 %,
+    /// and back when the machine changes again; every step is run exactly once.
+    #[test]
+    fn pace_follows_the_faster_way_as_the_machine_changes() {
+        use std::time::Duration;
+        // per-step cost (ns) of each way, as a function of the step reached
+        let run = |cost: &dyn Fn(bool, u64) -> f64, total: u64| -> (Pace, Vec<(bool, u64)>) {
+            let (mut pace, mut done, mut log) = (Pace::default(), 0, Vec::new());
+            while done < total {
+                let (way, steps) = pace.next(total - done);
+                assert!(steps > 0 && steps <= total - done);
+                let ns = cost(way, done) * steps as f64;
+                pace.record(way, Duration::from_nanos(ns as u64), steps);
+                log.push((way, steps));
+                done += steps;
+            }
+            (pace, log)
+        };
+        // parallel twice as fast: it stays parallel, serial tried on short blocks only
+        let (pace, log) = run(&|par, _| if par { 100.0 } else { 200.0 }, 100_000);
+        assert!(pace.parallel);
+        let serial: u64 = log.iter().filter(|b| !b.0).map(|b| b.1).sum();
+        assert!(serial > 0 && serial <= 100_000 / 50, "{serial} serial steps");
+        // parallel slower (the cores stopped sharing a cache): serial from the first trial on
+        let (pace, log) = run(&|par, _| if par { 240.0 } else { 200.0 }, 100_000);
+        assert!(!pace.parallel);
+        assert!(log.iter().skip(3).filter(|b| b.0).map(|b| b.1).sum::<u64>() <= 100_000 / 50);
+        // the machine changes back and forth: the last way is the one faster at the end
+        let flip = |par: bool, at: u64| {
+            let slow = (at / 40_000) % 2 == 1;
+            match (par, slow) {
+                (true, false) => 100.0,
+                (true, true) => 260.0,
+                (false, _) => 200.0,
+            }
+        };
+        let (pace, _) = run(&flip, 100_000);
+        assert!(pace.parallel, "steps 80,000-100,000 are fast in parallel");
+        let (pace, _) = run(&flip, 70_000);
+        assert!(!pace.parallel, "steps 40,000-70,000 are slow in parallel");
+        // a cost rising fast as the pile settles is not mistaken for the other way's
+        let (pace, _) = run(
+            &|par, at| (1.0 + at as f64 / 2000.0) * if par { 100.0 } else { 160.0 },
+            60_000,
+        );
+        assert!(pace.parallel);
     }
 
     #[test]
