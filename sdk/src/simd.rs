@@ -1,6 +1,5 @@
 //! Four-lane f64 arithmetic in AVX2 registers, for laws whose batch kernels evaluate four
-//! contacts at a time (x86-64 only; the caller checks that the CPU has AVX2, for example with
-//! `std::is_x86_feature_detected!("avx2")`, and keeps a portable path).
+//! contacts at a time (x86-64 only; the caller checks [`available`] and keeps a portable path).
 //!
 //! Every lane operation is one IEEE 754 operation, exactly rounded and never fused with
 //! another, so a kernel that writes a law's per-contact arithmetic in the same order on
@@ -12,6 +11,19 @@
 //! Closures are avoided on purpose: one compiled without AVX2 would call every operation.
 
 use std::arch::x86_64::*;
+
+/// Whether a law's AVX2 kernels may run: the CPU has AVX2 and `DASHPOT_SIMD=baseline` was not
+/// set when the plugin was first called, the same rule as the sdk's own batch loops (so that
+/// one variable takes every AVX2 path out, to measure or rule out the difference; the results
+/// are the same bits either way).
+#[inline]
+pub fn available() -> bool {
+    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *AVX2.get_or_init(|| {
+        std::arch::is_x86_feature_detected!("avx2")
+            && std::env::var("DASHPOT_SIMD").map_or(true, |v| v != "baseline")
+    })
+}
 
 /// Four f64 lanes (one AVX2 register); a mask is a lane vector with all bits set where the
 /// condition holds and none where it does not.

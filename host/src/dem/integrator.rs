@@ -116,11 +116,10 @@ pub struct Engine<const D: usize> {
     /// Whether each particle's force sums the shares of earlier chunks' contacts nearest chunk
     /// first, else farthest first ([`nearest_first`] of the chunk).
     nearest_first: bool,
-    /// Whether the steps run in parallel on a pool of several threads ([`parallel`]) (for a
-    /// block of [`Engine::advance`], as [`awake::Pace`] chooses).
+    /// Whether the steps run in parallel on a pool of several threads: [`parallel`] of the
+    /// pile's size and chunk, but for the blocks of [`Engine::advance`] that [`awake::Pace`]
+    /// runs on one thread.
     parallel: bool,
-    /// Whether this pile steps in parallel at all ([`parallel`] of its size and chunk).
-    can_parallel: bool,
     /// Which of a parallel and a serial block is faster for this pile now.
     pace: awake::Pace,
 }
@@ -295,7 +294,6 @@ impl<const D: usize> Engine<D> {
             chunk: gather_chunk(bodies.len(), D),
             nearest_first: nearest_first(gather_chunk(bodies.len(), D)),
             parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
-            can_parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
             pace: awake::Pace::default(),
         };
         e.order.due = e.sorts();
@@ -428,7 +426,8 @@ impl<const D: usize> Engine<D> {
     /// now: the same steps and bits either way (the chunks fix every sum's order).
     pub(super) fn advance_inside(&mut self, k: u64) -> Result<(), DemError> {
         let fuse = !self.cfg.domain.bounded;
-        if !(k > 1 && self.can_parallel && rayon::current_num_threads() >= 2) {
+        let can = parallel(self.p.len(), self.chunk);
+        if !(k > 1 && can && rayon::current_num_threads() >= 2) {
             for s in 0..k {
                 self.step_with(fuse && s + 1 < k)?;
             }
@@ -451,7 +450,7 @@ impl<const D: usize> Engine<D> {
             } else {
                 block()
             };
-            self.parallel = self.can_parallel;
+            self.parallel = can;
             done?;
             self.pace.record(parallel, clock.elapsed(), steps);
             s = to;

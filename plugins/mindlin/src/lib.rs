@@ -157,25 +157,7 @@ impl BoundTangential for MindlinBound {
     /// explicit lanes (`avx2.rs`). A test checks the bits of both against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
-        // the host checks every batch against the law's declared slots (four: ξ, k_t); a caller
-        // that does not is told so through the trampoline's panic catch
-        assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above); the slots were checked.
-            return unsafe {
-                if self.damping == 0.0 {
-                    avx2::lanes::<false, false>(self, b, None)
-                } else {
-                    avx2::lanes::<true, false>(self, b, None)
-                }
-            };
-        }
-        if self.damping == 0.0 {
-            lanes::<false, false>(self, b, None)
-        } else {
-            lanes::<true, false>(self, b, None)
-        }
+        self.batch::<false>(b, None)
     }
 
     /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): the dashpot's
@@ -196,25 +178,36 @@ impl BoundTangential for MindlinBound {
     /// [`BoundTangential::force_batch`], the same bits contact for contact (a test checks).
     #[inline(always)]
     fn force_batch_energy(&self, b: TangentialBatch<'_>, out: EnergyBatch<'_>) -> bool {
-        assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
-        #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
-            // SAFETY: the CPU has AVX2 (checked just above); the slots were checked.
-            unsafe {
-                if self.damping == 0.0 {
-                    avx2::lanes::<false, true>(self, b, Some(out))
-                } else {
-                    avx2::lanes::<true, true>(self, b, Some(out))
-                }
-            }
-            return true;
-        }
-        if self.damping == 0.0 {
-            lanes::<false, true>(self, b, Some(out))
-        } else {
-            lanes::<true, true>(self, b, Some(out))
-        }
+        self.batch::<true>(b, Some(out));
         true
+    }
+}
+
+impl MindlinBound {
+    /// The batch with (`ENERGY`) or without its energy outputs, in AVX2 lanes where the CPU has
+    /// them ([`dashpot_sdk::simd::available`]), else in the portable lanes.
+    #[inline(always)]
+    fn batch<const ENERGY: bool>(&self, b: TangentialBatch<'_>, out: Option<EnergyBatch<'_>>) {
+        // the host checks every batch against the law's declared slots (four: ξ, k_t); a caller
+        // that does not is told so through the trampoline's panic catch
+        assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
+        let damped = self.damping != 0.0;
+        #[cfg(target_arch = "x86_64")]
+        if dashpot_sdk::simd::available() {
+            // SAFETY: the CPU has AVX2 (checked just above); the slots were checked.
+            return unsafe {
+                if damped {
+                    avx2::lanes::<true, ENERGY>(self, b, out)
+                } else {
+                    avx2::lanes::<false, ENERGY>(self, b, out)
+                }
+            };
+        }
+        if damped {
+            lanes::<true, ENERGY>(self, b, out)
+        } else {
+            lanes::<false, ENERGY>(self, b, out)
+        }
     }
 }
 

@@ -133,7 +133,7 @@ impl BoundRolling for RollingSds {
         // the host checks every batch against the law's declared slots (three: ξ)
         assert_eq!(b.slots, 3, "rolling-sds keeps 3 history slots per contact");
         #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
+        if dashpot_sdk::simd::available() {
             // SAFETY: the CPU has AVX2 (checked just above).
             return unsafe { avx2::lanes::<false>(self, b, None) };
         }
@@ -156,7 +156,7 @@ impl BoundRolling for RollingSds {
     fn force_batch_energy(&self, b: RollingBatch<'_>, out: EnergyBatch<'_>) -> bool {
         assert_eq!(b.slots, 3, "rolling-sds keeps 3 history slots per contact");
         #[cfg(target_arch = "x86_64")]
-        if std::is_x86_feature_detected!("avx2") {
+        if dashpot_sdk::simd::available() {
             // SAFETY: the CPU has AVX2 (checked just above).
             unsafe { avx2::lanes::<true>(self, b, Some(out)) };
             return true;

@@ -243,19 +243,6 @@ pub(crate) fn check_normal_inputs(d: &[f64], r: &[f64], m: &[f64], a: &[f64]) ->
     None
 }
 
-/// Whether the batch loops run their AVX2 build: when the CPU has AVX2, unless the environment
-/// variable `DASHPOT_SIMD=baseline` was set when the plugin was first called (to measure or rule
-/// out the difference; the results are the same bits either way).
-#[cfg(target_arch = "x86_64")]
-#[inline]
-pub(crate) fn use_avx2() -> bool {
-    static AVX2: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    *AVX2.get_or_init(|| {
-        std::arch::is_x86_feature_detected!("avx2")
-            && std::env::var("DASHPOT_SIMD").map_or(true, |v| v != "baseline")
-    })
-}
-
 /// Whether a tangential block's inputs are surely good (every component finite, m and r finite
 /// and > 0), by the same fused sums and minima as [`normal_inputs_ok`]; `normal` and `velocity`
 /// are the flattened 3-vectors.

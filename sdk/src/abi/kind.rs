@@ -170,7 +170,7 @@ pub unsafe extern "C" fn model_batch<K: Kind, B: KindBound<K>>(
     let res = hot(|| unsafe {
         let law = &*(obj as *const B);
         #[cfg(target_arch = "x86_64")]
-        if super::checks::use_avx2() {
+        if crate::simd::available() {
             return run_avx2::<K, B>(law, b);
         }
         law.run(b)
