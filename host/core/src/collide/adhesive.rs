@@ -121,7 +121,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
             continue;
         }
         if max_overlap.is_none() && s.y[1] <= 0.0 {
-            let (sm, zm) = locate_speed_zero(opt.method, &mut tp, t, &z, &kz, h, &s)?;
+            let (sm, zm) = locate_speed_zero(opt, &mut tp, t, &z, &kz, h, &s)?;
             max_overlap = Some((t + sm, zm[0]));
             // restart at the maximum (a law with memory changes branch there)
             t += sm;
@@ -134,7 +134,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
         }
         if max_overlap.is_some() && s.y[1] > 0.0 {
             // turned back towards compression while the contact acts: stuck
-            let (sm, zm) = locate_speed_zero(opt.method, &mut tp, t, &z, &kz, h, &s)?;
+            let (sm, zm) = locate_speed_zero(opt, &mut tp, t, &z, &kz, h, &s)?;
             steps += 1;
             let f = law.force(zm[0], 0.0)?;
             record(t + sm, zm[0], 0.0, f);

@@ -26,41 +26,39 @@ use super::rk::{locate, RhsError, Step, System, Tolerance};
 use dashpot_sdk::{EndCriterion, LawError};
 
 /// The overlap scale δ* where F·δ* = m v0² (the kinetic energy in force × overlap), with
-/// F = max(|F(δ*, 0)|, |F(δ*, v0)|) so that purely dissipative laws have a scale too.
+/// F = max(|F(δ*, 0)|, |F(δ*, v0)|) so that purely dissipative laws have a scale too. It sets
+/// the collision's tolerances, first steps and time limit: a scale, found to a few per cent.
 ///
 /// The law is only asked about overlaps the collision itself comes near: the search starts far
 /// below any physical overlap ([`PROBE_START`]) and grows, never past the first overlap where
 /// F·δ ≥ m v0² (and the collision's maximum overlap δ_max satisfies ∫F dδ = m v0²/2, so for any
-/// force that does not decrease with δ, δ* ≤ 2 δ_max). A law valid only up to some overlap (a
-/// fitted or tabulated law, a plastic limit) is thus never evaluated far beyond what the
-/// collision reaches. Each growth step goes at most half-way (in log δ) to where the power law
-/// through the last two points would cross, and at least a factor 2, so the largest overlap
-/// probed is below 2 δ*. The crossing is then narrowed to within a factor 1.01 on geometric
-/// grids inside the bracket. Every probe asks for both rates in one call of the law, and each
-/// grid is one call: about fifteen calls in all.
+/// force that does not decrease with δ, δ* ≤ 2 δ_max). Each growth step goes half-way (in log δ)
+/// to where the power law through the last two points would cross, at least a factor 2 and at
+/// most [`MAX_GROWTH`], so the largest overlap probed stays below 2 δ* even where the law's
+/// exponent doubles (a dashpot term δ^{1/4} δ̇ giving way to a Hertz spring δ^{3/2}). The first
+/// call probes two overlaps a decade apart, so the first step is already aimed. A bracket wider
+/// than [`FINE_BRACKET`] is narrowed by one geometric grid (one call of the law); the crossing
+/// is then interpolated as a power law through the bracket's ends. About eight calls in all.
 pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64, CollideError> {
     let target = mass * v0 * v0;
-    let work = |d: f64| -> Result<f64, CollideError> {
-        let mut w = [0.0];
-        works(law, v0, &[d], &mut w)?;
-        Ok(w[0])
-    };
-    let (mut lo, mut w_lo) = (PROBE_START, work(PROBE_START)?);
+    let mut w2 = [0.0; 2];
+    works(law, v0, &[PROBE_START, 10.0 * PROBE_START], &mut w2)?;
+    let (mut lo, mut w_lo) = (PROBE_START, w2[0]);
     if w_lo >= target {
         return Ok(lo);
     }
-    let mut hi;
-    let mut prev: Option<(f64, f64)> = None;
-    loop {
-        // the next overlap: half-way to the power-law estimate of the crossing, in [2, 1e3]×
+    let mut prev;
+    let (mut hi, mut w_hi) = (10.0 * PROBE_START, w2[1]);
+    while w_hi < target {
+        (prev, lo, w_lo) = ((lo, w_lo), hi, w_hi);
+        // the next overlap: half-way to the power-law estimate of the crossing
         let mut factor = 2.0f64;
-        if let Some((d0, w0)) = prev {
-            if w0 > 0.0 && w_lo > w0 {
-                let p = (w_lo / w0).ln() / (lo / d0).ln();
-                let to_cross = ((target / w_lo).ln() / p).exp();
-                if to_cross.is_finite() {
-                    factor = to_cross.sqrt().clamp(2.0, 1e3);
-                }
+        let (d0, w0) = prev;
+        if w0 > 0.0 && w_lo > w0 {
+            let p = (w_lo / w0).ln() / (lo / d0).ln();
+            let to_cross = ((target / w_lo).ln() / p).exp();
+            if to_cross.is_finite() {
+                factor = to_cross.sqrt().clamp(2.0, MAX_GROWTH);
             }
         }
         hi = lo * factor;
@@ -70,15 +68,12 @@ pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64
                 f_at_1m: law.force(lo, v0)?,
             });
         }
-        let w_hi = work(hi)?;
-        if w_hi >= target {
-            break;
-        }
-        prev = Some((lo, w_lo));
-        (lo, w_lo) = (hi, w_hi);
+        let mut w = [0.0];
+        works(law, v0, &[hi], &mut w)?;
+        w_hi = w[0];
     }
-    // geometric grids inside [lo, hi], each one call of the law, to within a factor 1.01
-    while hi > 1.01 * lo {
+    // one geometric grid inside a wide bracket [lo, hi], one call of the law
+    if hi > FINE_BRACKET * lo {
         let step = (hi / lo).powf(1.0 / (GRID + 1) as f64);
         let mut ds = [0.0; GRID];
         let mut d = lo;
@@ -89,13 +84,28 @@ pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64
         let mut w = [0.0; GRID];
         works(law, v0, &ds, &mut w)?;
         match w.iter().position(|&w| w >= target) {
-            Some(0) => hi = ds[0],
-            Some(i) => (lo, hi) = (ds[i - 1], ds[i]),
-            None => lo = ds[GRID - 1],
+            Some(0) => (hi, w_hi) = (ds[0], w[0]),
+            Some(i) => (lo, w_lo, hi, w_hi) = (ds[i - 1], w[i - 1], ds[i], w[i]),
+            None => (lo, w_lo) = (ds[GRID - 1], w[GRID - 1]),
+        }
+    }
+    // the crossing of the power law through the bracket's ends (hi if that is not defined)
+    if w_lo > 0.0 && w_hi > w_lo {
+        let p = (w_hi / w_lo).ln() / (hi / lo).ln();
+        let d = lo * ((target / w_lo).ln() / p).exp();
+        if d.is_finite() && d > lo && d <= hi {
+            return Ok(d);
         }
     }
     Ok(hi)
 }
+
+/// The largest growth factor of one step of the scale search.
+const MAX_GROWTH: f64 = 1e6;
+
+/// A bracket of the scale search wider than this factor is narrowed by a grid before the
+/// crossing is interpolated.
+const FINE_BRACKET: f64 = 1.2;
 
 /// Interior overlaps of each grid of the scale search (two states each: one call of the law).
 const GRID: usize = 7;
@@ -235,7 +245,7 @@ impl<C: ContactForce> System<2> for TPhase<'_, C> {
 /// guess, then Newton's method on fresh steps (the derivative of δ̇ is the acceleration, which
 /// every trial step returns), with a regula-falsi fallback.
 pub(crate) fn locate_speed_zero<S: System<2>>(
-    m: Method,
+    opt: &Options,
     sys: &mut S,
     t: f64,
     z: &[f64; 2],
@@ -264,6 +274,7 @@ pub(crate) fn locate_speed_zero<S: System<2>>(
             hi = mid
         }
     }
+    let m = opt.method;
     let mut sv = 0.5 * (lo + hi) * h;
     for _ in 0..8 {
         let st = m.step(sys, t, z, kz, sv)?;
@@ -275,10 +286,12 @@ pub(crate) fn locate_speed_zero<S: System<2>>(
         if !(next > 0.0 && next <= h) {
             break;
         }
-        // Newton converges quadratically: once the correction is below 1e-7 of the step, the
-        // next one would be below round-off, and the state at `next` follows from the one at
-        // `sv` to second order (δ̇ ≈ 0 there): no further step is needed.
-        if (next - sv).abs() <= 1e-7 * h {
+        // Newton converges quadratically: `next` misses the zero by about (next − sv)²/T on the
+        // contact's time scale T > h, and δ at `next` follows from the state at `sv` to third
+        // order (δ̇ ≈ 0 there). Once that miss is below a tenth of the tolerance (of h), no
+        // further step is needed: usually the first step from the Hermite guess.
+        let c = (next - sv) / h;
+        if c * c <= 0.1 * opt.rtol {
             let dt = next - sv;
             return Ok((next, [st.y[0] + v * dt + 0.5 * a * dt * dt, 0.0]));
         }
@@ -436,7 +449,7 @@ pub fn collide<C: ContactForce>(
         // accepted: events inside [t, t + h]
         let mut s_from = 0.0;
         if max_overlap.is_none() && s.y[1] <= 0.0 {
-            let (sm, zm) = locate_speed_zero(opt.method, &mut tp, t, &z, &kz, h, &s)?;
+            let (sm, zm) = locate_speed_zero(opt, &mut tp, t, &z, &kz, h, &s)?;
             max_overlap = Some((t + sm, zm[0]));
             record(&mut traj, t + sm, zm[0], 0.0)?;
             if law.has_history() {
