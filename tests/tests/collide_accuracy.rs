@@ -426,3 +426,32 @@ fn runge_kutta_and_extrapolation_agree() {
         assert!((a.max_overlap / b.max_overlap - 1.0).abs() < 1e-10, "{law}");
     }
 }
+
+/// The maximum overlap is located from one fresh step when Newton's next correction would move
+/// it by less than √(rtol/10) of the step: its time then misses by about a tenth of the
+/// tolerance, at loose tolerances too (LSD's closed forms, eqs. 20 and 21).
+#[test]
+fn the_maximum_is_located_to_the_tolerance_asked() {
+    let reg = seed_registry();
+    let pair = mcc();
+    let k = 2.0 / 3.0 * pair.young * 0.01;
+    for rtol in [1e-6, 1e-8, 1e-10] {
+        let opt = Options {
+            rtol,
+            ..Options::default()
+        };
+        for e in [0.05, 0.54, 0.95] {
+            for v0 in [0.01, 1.0, 7.0] {
+                let c = collide_named(&reg, "lsd", &eps(e), &pair, v0, EndCriterion::Overlap, &opt).unwrap();
+                let x = LsdExact::new(k, pair.mass, e, v0);
+                let rel = |a: f64, b: f64| (a / b - 1.0).abs();
+                assert!(
+                    rel(c.max_overlap_time, x.t_max()) < rtol,
+                    "rtol {rtol}, eps {e}, v0 {v0}: t_max off by {:e}",
+                    rel(c.max_overlap_time, x.t_max())
+                );
+                assert!(rel(c.max_overlap, x.delta_max()) < rtol, "δ_max");
+            }
+        }
+    }
+}
