@@ -13,6 +13,7 @@ use dashpot_sdk::simd::{
     add3, dot, put_quads, put_triples, quads, scale3, select3, sub3, triples, F64x4, SliderLanes, V3,
 };
 use dashpot_sdk::{BoundTangential, EnergyBatch, TangentialBatch};
+use std::mem::MaybeUninit;
 
 /// Contacts per block of the two passes.
 const BLOCK: usize = 32;
@@ -67,20 +68,12 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
     // SliderStep's 1/dt, the same value for every contact
     let rate = F64x4::splat(1.0 / b.dt);
     let (normal, velocity) = (b.normal.as_flattened(), b.velocity.as_flattened());
-    let unset = Turned {
-        kt: zero,
-        eta: zero,
-        xi: [zero; 3],
-        x0: [zero; 3],
-        vt: [zero; 3],
-        kprev: zero,
-        delta: zero,
-        cap: zero,
-    };
     let mut lo = 0;
     while lo < n4 {
         let steps = (n4 - lo).min(BLOCK) / 4;
-        let mut turned = [unset; BLOCK / 4];
+        // (not zeroed: the first pass writes the block's `steps` entries, the second reads
+        // them; zeroing the whole array for every block was a memset of its size per block)
+        let mut turned = [const { MaybeUninit::<Turned>::uninit() }; BLOCK / 4];
         // 1. the stiffness and dashpot, the spring turned into the tangent plane (keeping its
         // length), the tangential velocity
         for (j, t) in turned[..steps].iter_mut().enumerate() {
@@ -102,7 +95,7 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
             let p = sub3(x0, scale3(nv, xn));
             let plen2 = dot(p, p);
             let s = F64x4::select(plen2.gt(zero), len2.div(plen2).sqrt(), zero);
-            *t = Turned {
+            t.write(Turned {
                 kt,
                 eta,
                 xi: select3(xn.ne(zero), scale3(p, s), x0),
@@ -111,12 +104,13 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
                 kprev,
                 delta,
                 cap: mu.mul(F64x4::load(b.normal_force, i).max(zero)),
-            };
+            });
         }
         // 2. advance, trial force, Coulomb cap with the spring reset to the capped force; out of
         // touch, no force and the spring dropped
         for (j, t) in turned[..steps].iter().enumerate() {
             let i = lo + 4 * j;
+            // SAFETY: the first pass wrote entries ..steps
             let Turned {
                 kt,
                 eta,
@@ -126,7 +120,7 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
                 kprev,
                 delta,
                 cap,
-            } = *t;
+            } = unsafe { t.assume_init_read() };
             let xi = add3(t0, scale3(vt, dt));
             let ft = sub3(scale3(xi, kt.neg()), scale3(vt, eta));
             let f2 = dot(ft, ft);

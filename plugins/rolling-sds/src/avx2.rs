@@ -10,6 +10,7 @@
 use super::{RollingSds, FRAME_EPS};
 use dashpot_sdk::simd::{add3, dot, put_triples, scale3, select3, sub3, triples, F64x4, SliderLanes, V3};
 use dashpot_sdk::{BoundRolling, EnergyBatch, RollingBatch};
+use std::mem::MaybeUninit;
 
 /// Contacts per block of the two passes.
 const BLOCK: usize = 32;
@@ -51,15 +52,12 @@ pub(crate) unsafe fn lanes<const ENERGY: bool>(
     // SliderStep's 1/dt, the same value for every contact
     let rate = F64x4::splat(1.0 / b.dt);
     let (normal, velocity) = (b.normal.as_flattened(), b.velocity.as_flattened());
-    let unset = Turned {
-        xi: [zero; 3],
-        v: [zero; 3],
-        fcrit: zero,
-    };
     let mut lo = 0;
     while lo < n4 {
         let steps = (n4 - lo).min(BLOCK) / 4;
-        let mut turned = [unset; BLOCK / 4];
+        // (not zeroed: the first pass writes the block's `steps` entries, the second reads
+        // them; zeroing the whole array for every block was a memset of its size per block)
+        let mut turned = [const { MaybeUninit::<Turned>::uninit() }; BLOCK / 4];
         // 1. the frame update: projected into the tangent plane, rescaled to its length
         for (j, t) in turned[..steps].iter_mut().enumerate() {
             let i = lo + 4 * j;
@@ -72,17 +70,18 @@ pub(crate) unsafe fn lanes<const ENERGY: bool>(
             let p = sub3(x0, scale3(nv, xn));
             let prj = dot(p, p).sqrt();
             let s = F64x4::select(prj.gt(zero), len.div(prj), zero);
-            *t = Turned {
+            t.write(Turned {
                 xi: select3(rot, scale3(p, s), x0),
                 v: triples(velocity, i),
                 fcrit,
-            };
+            });
         }
         // 2. advance, trial force, the cap: the spring reset to the capped force, or no force
         // from a zero spring
         for (j, t) in turned[..steps].iter().enumerate() {
             let i = lo + 4 * j;
-            let Turned { xi: before, v, fcrit } = *t;
+            // SAFETY: the first pass wrote entries ..steps
+            let Turned { xi: before, v, fcrit } = unsafe { t.assume_init_read() };
             let xi = add3(before, scale3(v, dt));
             let ft = sub3(scale3(xi, k.neg()), scale3(v, gamma));
             let mag = dot(ft, ft).sqrt();
