@@ -46,35 +46,15 @@ fn measure<C: ContactForce>(
     };
     let laws: Vec<C> = cases.iter().map(|c| make(c.eps)).collect();
     let mut worst: f64 = 0.0;
-    let t = cpu_time();
+    let t = common::process_cpu_seconds();
     for (c, law) in cases.iter().zip(&laws) {
         let r = collide(law, mass, c.v0, end, &opt).expect("collision");
         if check {
             worst = worst.max((r.restitution - c.eps).abs());
         }
     }
-    let dt = cpu_time() - t;
+    let dt = common::process_cpu_seconds() - t;
     (cases.len() as f64 / dt, worst)
-}
-
-fn cpu_time() -> f64 {
-    // process CPU time (user + system), so the figure is per core even on a busy machine
-    let mut ts = libc_timespec {
-        tv_sec: 0,
-        tv_nsec: 0,
-    };
-    unsafe { clock_gettime(2, &mut ts) }; // CLOCK_PROCESS_CPUTIME_ID
-    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
-}
-
-#[repr(C)]
-struct libc_timespec {
-    tv_sec: i64,
-    tv_nsec: i64,
-}
-
-extern "C" {
-    fn clock_gettime(clk: i32, ts: *mut libc_timespec) -> i32;
 }
 
 fn main() {
