@@ -6,7 +6,9 @@
 //! has moved by skin/2 no other pair can touch, so contacts are found by scanning the list only.
 
 use super::state::VecD;
+use super::walls::WallState;
 use rayon::prelude::*;
+use std::ops::Range;
 
 /// The simulation box: periodic along some axes (positions wrapped into `[lo, hi)` there), open
 /// along the others (particles may go anywhere; walls confine them).
@@ -136,6 +138,12 @@ pub struct Neighbours<const D: usize> {
     pub skin: f64,
     /// Builds so far.
     pub builds: u64,
+    /// The particles that may touch a wall before the next build, sorted
+    /// ([`Neighbours::find_wall_candidates`]).
+    pub wall_cand: Vec<u32>,
+    /// Each wall's offset along its normal (point · normal, m) when they were found; empty
+    /// until then.
+    pub wall_offset: Vec<f64>,
 }
 
 /// Particles per parallel task.
@@ -148,6 +156,8 @@ impl<const D: usize> Neighbours<D> {
         pos.par_iter_mut().for_each(|x| dom.wrap(x));
         self.skin = skin;
         self.builds += 1;
+        self.wall_cand.clear();
+        self.wall_offset.clear();
         self.anchor.clear();
         self.anchor.extend_from_slice(pos);
         if n == 0 {
@@ -312,6 +322,55 @@ impl<const D: usize> Neighbours<D> {
         }
     }
 
+    /// After a build: the particles that may touch one of `walls` (their planes now) before the
+    /// next build, for laws acting up to `reach` (m) beyond touching. While the list is valid a
+    /// particle moves by less than half the skin from its anchor, and [`Neighbours::
+    /// wall_candidates`] allows a wall half the skin along its normal: a particle whose gap
+    /// to every wall is wider than the skin plus `reach` (with 1 % to spare, and a millionth
+    /// of its radius for round-off) cannot come within `reach` of one before the next build.
+    pub fn find_wall_candidates(&mut self, walls: &[WallState<D>], radius: &[f64], reach: f64) {
+        let margin = 1.01 * (self.skin + reach);
+        self.wall_cand.clear();
+        self.wall_cand.extend(
+            self.anchor
+                .iter()
+                .zip(radius)
+                .enumerate()
+                .filter(|(_, (x, &r))| {
+                    walls.iter().any(|w| {
+                        let d = r - (*x - w.point).dot(&w.normal);
+                        // (NaN kept: the gathering reports it)
+                        d > -(margin + 1e-6 * r) || d.is_nan()
+                    })
+                })
+                .map(|(i, _)| i as u32),
+        );
+        self.wall_offset.clear();
+        self.wall_offset
+            .extend(walls.iter().map(|w| w.point.dot(&w.normal)));
+    }
+
+    /// The wall candidates among the particles `range` ([`Neighbours::find_wall_candidates`]),
+    /// or `None` if there are none to go by: not found since the build, other walls, or a wall
+    /// moved by more than half the skin along its normal since (then every particle is looked
+    /// at, with the same result).
+    pub fn wall_candidates(&self, range: Range<usize>, walls: &[WallState<D>]) -> Option<&[u32]> {
+        if self.wall_offset.len() != walls.len() || walls.is_empty() {
+            return None;
+        }
+        let fixed = walls
+            .iter()
+            .zip(&self.wall_offset)
+            .all(|(w, &o)| (w.point.dot(&w.normal) - o).abs() <= 0.5 * self.skin);
+        if !fixed {
+            return None;
+        }
+        let c = &self.wall_cand;
+        let a = c.partition_point(|&i| (i as usize) < range.start);
+        let b = a + c[a..].partition_point(|&i| (i as usize) < range.end);
+        Some(&c[a..b])
+    }
+
     /// For each chunk of `chunk` particles, the last chunk holding a partner of one of its
     /// particles (the chunk itself if none lies beyond), written into `out`.
     pub fn chunk_reach(&self, chunk: usize, out: &mut Vec<usize>) {
@@ -333,5 +392,108 @@ impl<const D: usize> Neighbours<D> {
     #[inline]
     pub fn of(&self, i: usize) -> &[u32] {
         &self.js[self.start[i] as usize..self.start[i + 1] as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dem::walls::Wall;
+
+    /// Every particle that comes within `reach` of a wall while the list is valid (moved by at
+    /// most half the skin, the walls by at most half the skin along their normals) is among
+    /// the candidates; a wall moved further gives no candidates (every particle is looked at).
+    #[test]
+    fn wall_candidates_hold_every_particle_that_can_reach_a_wall() {
+        let dom = Domain::<3> {
+            lo: VecD::<3>::new(0.0, 0.0, 0.0),
+            hi: VecD::<3>::new(0.02, 0.02, 0.02),
+            periodic: [true, true, false],
+            bounded: false,
+        };
+        let walls = [
+            Wall::fixed(VecD::<3>::new(0.0, 0.0, 0.0), VecD::<3>::new(0.0, 0.0, 1.0)),
+            Wall::fixed(VecD::<3>::new(0.0, 0.0, 0.02), VecD::<3>::new(0.0, 0.0, -1.0)),
+        ];
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (skin, reach) = (4e-4, 1e-4);
+        let n = 2000;
+        let radius: Vec<f64> = (0..n).map(|_| 5e-4 + 5e-4 * rnd()).collect();
+        let mut pos: Vec<VecD<3>> = (0..n)
+            .map(|_| VecD::<3>::new(0.02 * rnd(), 0.02 * rnd(), 0.02 * rnd()))
+            .collect();
+        let mut nb = Neighbours::<3>::default();
+        nb.build(&dom, &mut pos, &radius, skin + reach);
+        let now: Vec<WallState<3>> = walls.iter().map(|w| w.at(0.0)).collect();
+        nb.find_wall_candidates(&now, &radius, reach);
+        let all = nb.wall_candidates(0..n, &now).expect("candidates");
+        assert!(!all.is_empty() && all.len() < n / 2, "{} candidates", all.len());
+        for trial in 0..200 {
+            // every particle moved by up to half the skin, the walls by up to half of it
+            let s = 0.5 * nb.skin;
+            let shift = [s * (2.0 * rnd() - 1.0), s * (2.0 * rnd() - 1.0)];
+            let moved: Vec<WallState<3>> = now
+                .iter()
+                .zip(shift)
+                .map(|(w, z)| WallState {
+                    point: w.point + w.normal * z,
+                    ..*w
+                })
+                .collect();
+            let near = nb
+                .wall_candidates(0..n, &moved)
+                .expect("walls within half the skin");
+            for (i, x0) in nb.anchor.iter().enumerate() {
+                let dir = VecD::<3>::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5).normalize();
+                let x = x0 + dir * (s * rnd());
+                let d = moved
+                    .iter()
+                    .map(|w| radius[i] - (x - w.point).dot(&w.normal))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                if d > -reach {
+                    assert!(near.contains(&(i as u32)), "trial {trial}: particle {i} at {d} m");
+                }
+            }
+            // half the candidates of a chunk are the chunk's
+            let c = nb.wall_candidates(500..1000, &moved).expect("candidates");
+            assert!(c.iter().all(|&i| (500..1000).contains(&(i as usize))));
+            assert_eq!(
+                c.len(),
+                near.iter()
+                    .filter(|&&i| (500..1000).contains(&(i as usize)))
+                    .count()
+            );
+        }
+        // the worst case: each wall half the skin into the pile, each particle half the skin
+        // straight at it (just under: the wall's offset is compared after round-off)
+        let s = 0.4999 * nb.skin;
+        for (w, wall) in now.iter().enumerate() {
+            let mut moved = now.clone();
+            moved[w].point = wall.point + wall.normal * s;
+            let near = nb
+                .wall_candidates(0..n, &moved)
+                .expect("walls within half the skin");
+            for (i, x0) in nb.anchor.iter().enumerate() {
+                let x = x0 - wall.normal * s;
+                let d = radius[i] - (x - moved[w].point).dot(&wall.normal);
+                if d > -reach {
+                    assert!(near.contains(&(i as u32)), "wall {w}: particle {i} at {d} m");
+                }
+            }
+        }
+        let far = [
+            WallState {
+                point: now[0].point + now[0].normal * (0.51 * nb.skin),
+                ..now[0]
+            },
+            now[1],
+        ];
+        assert!(nb.wall_candidates(0..n, &far).is_none());
     }
 }

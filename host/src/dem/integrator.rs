@@ -375,6 +375,9 @@ impl<const D: usize> Engine<D> {
             &self.p.radius,
             self.skin + self.law_reach,
         );
+        let walls = self.wall_states();
+        self.nb
+            .find_wall_candidates(&walls, &self.p.radius, self.law_reach);
         self.nb.chunk_reach(self.chunk, &mut self.reach);
         self.back.clear();
         self.back.extend(0..self.reach.len());

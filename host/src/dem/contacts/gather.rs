@@ -294,12 +294,16 @@ impl ContactSet {
     }
 
     /// Fills `self` with the particle–wall contacts of the particles of `range` at the current
-    /// state, carrying history over from `prev` (see [`ContactSet::gather_pairs`]).
+    /// state, carrying history over from `prev` (see [`ContactSet::gather_pairs`]). `near`, if
+    /// given, holds the only particles of `range` that can be within reach of a wall (sorted:
+    /// [`Neighbours::wall_candidates`](crate::dem::cells::Neighbours::wall_candidates)); the
+    /// others are not looked at.
     pub fn gather_walls<const D: usize>(
         &mut self,
         prev: &ContactSet,
         range: Range<usize>,
         walls: &[WallState<D>],
+        near: Option<&[u32]>,
         view: &View<'_, D>,
     ) -> Result<(), DemError> {
         self.first = range.start;
@@ -310,27 +314,41 @@ impl ContactSet {
         // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall
         // over the particles, a loop without branches; pass 2 over the particles it picks
         let mut cand = std::mem::take(&mut self.cand);
-        let mut worst = std::mem::take(&mut self.scratch);
-        let (xs, rs) = (&pos[local.clone()], &radius[local.clone()]);
-        worst.clear();
-        worst.resize(range.len(), f64::NEG_INFINITY);
-        for ws in walls {
-            let (p, n) = (ws.point, ws.normal);
-            for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
-                // the very expression of pass 2, so that both agree on every contact
-                let d = r - (x - p).dot(&n);
-                *m = if d > *m || d.is_nan() { d } else { *m };
-            }
-        }
         if cand.len() < range.len() {
             cand.resize(range.len(), (0, 0));
         }
         let mut count = 0;
-        for (k, m) in worst.iter().enumerate() {
-            cand[count] = ((range.start + k) as u32, 0);
-            count += usize::from((*m > -self.reach_bound) | m.is_nan());
+        if let Some(near) = near {
+            // only the particles that can be near a wall, in order: the same picks
+            for &ig in near {
+                let i = ig as usize - base;
+                let mut m = f64::NEG_INFINITY;
+                for ws in walls {
+                    let d = radius[i] - (pos[i] - ws.point).dot(&ws.normal);
+                    m = if d > m || d.is_nan() { d } else { m };
+                }
+                cand[count] = (ig, 0);
+                count += usize::from((m > -self.reach_bound) | m.is_nan());
+            }
+        } else {
+            let mut worst = std::mem::take(&mut self.scratch);
+            let (xs, rs) = (&pos[local.clone()], &radius[local.clone()]);
+            worst.clear();
+            worst.resize(range.len(), f64::NEG_INFINITY);
+            for ws in walls {
+                let (p, n) = (ws.point, ws.normal);
+                for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
+                    // the very expression of pass 2, so that both agree on every contact
+                    let d = r - (x - p).dot(&n);
+                    *m = if d > *m || d.is_nan() { d } else { *m };
+                }
+            }
+            for (k, m) in worst.iter().enumerate() {
+                cand[count] = ((range.start + k) as u32, 0);
+                count += usize::from((*m > -self.reach_bound) | m.is_nan());
+            }
+            self.scratch = worst;
         }
-        self.scratch = worst;
         // pass 2: each picked particle's contacts, wall by wall (one not touching is kept only
         // under an adhesive law, for the merge to decide)
         self.size(count * walls.len());

@@ -273,7 +273,8 @@ pub(super) fn chunk_forces<const D: usize>(
 ) -> Result<(), DemError> {
     let ((pp, np), (pw, nw)) = (pairs, walls);
     np.gather_pairs(pp, range.clone(), ctx.dom, ctx.nb, view)?;
-    nw.gather_walls(pw, range.clone(), ctx.walls, view)?;
+    let near = ctx.nb.wall_candidates(range.clone(), ctx.walls);
+    nw.gather_walls(pw, range.clone(), ctx.walls, near, view)?;
     let laws = ctx.laws;
     let rot = &laws.rotation;
     let (pr, wr) = (
