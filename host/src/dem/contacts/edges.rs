@@ -38,11 +38,20 @@ pub(super) fn step_edge_means(
         let (d, r) = (c.delta[m], c.rate[m]);
         let was_last = last[m];
         last[m] = false;
-        if c.fresh[m] && r > 0.0 && d <= 1.5 * r * dt {
+        // the first step of a contact, the step after its last, its last step: the three tests
+        // without a branch each (in a settled pile the rate's sign is a coin toss), then one
+        // branch, rarely taken (4.8 % of the 3D pile's step, same bits)
+        let first = c.fresh[m] & (r > 0.0) & (d <= 1.5 * r * dt);
+        let gone = was_last & (r < 0.0) & (d < -r * h);
+        let ends = (r < 0.0) & (d + r * dt - f[m] / c.mass[m] * h * dt <= 0.0);
+        if !(first | gone | ends) {
+            continue;
+        }
+        if first {
             jobs.push((m, d + r * h, r * dt));
-        } else if was_last && r < 0.0 && d < -r * h {
+        } else if gone {
             f[m] = 0.0;
-        } else if r < 0.0 && d + r * dt - f[m] / c.mass[m] * h * dt <= 0.0 {
+        } else {
             jobs.push((m, d - r * h, -r * dt));
             last[m] = true;
         }
