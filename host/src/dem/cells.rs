@@ -338,7 +338,7 @@ impl<const D: usize> Neighbours<D> {
                 .enumerate()
                 .filter(|(_, (x, &r))| {
                     walls.iter().any(|w| {
-                        let d = r - (*x - w.point).dot(&w.normal);
+                        let d = w.overlap(x, r);
                         // (NaN kept: the gathering reports it)
                         d > -(margin + 1e-6 * r) || d.is_nan()
                     })
@@ -346,8 +346,7 @@ impl<const D: usize> Neighbours<D> {
                 .map(|(i, _)| i as u32),
         );
         self.wall_offset.clear();
-        self.wall_offset
-            .extend(walls.iter().map(|w| w.point.dot(&w.normal)));
+        self.wall_offset.extend(walls.iter().map(WallState::offset));
     }
 
     /// The wall candidates among the particles `range` ([`Neighbours::find_wall_candidates`]),
@@ -361,7 +360,7 @@ impl<const D: usize> Neighbours<D> {
         let fixed = walls
             .iter()
             .zip(&self.wall_offset)
-            .all(|(w, &o)| (w.point.dot(&w.normal) - o).abs() <= 0.5 * self.skin);
+            .all(|(w, &o)| (w.offset() - o).abs() <= 0.5 * self.skin);
         if !fixed {
             return None;
         }
@@ -454,7 +453,7 @@ mod tests {
                 let x = x0 + dir * (s * rnd());
                 let d = moved
                     .iter()
-                    .map(|w| radius[i] - (x - w.point).dot(&w.normal))
+                    .map(|w| w.overlap(&x, radius[i]))
                     .fold(f64::NEG_INFINITY, f64::max);
                 if d > -reach {
                     assert!(near.contains(&(i as u32)), "trial {trial}: particle {i} at {d} m");

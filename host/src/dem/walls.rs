@@ -69,6 +69,22 @@ pub struct WallState<const D: usize> {
     pub velocity: VecD<D>,
 }
 
+impl<const D: usize> WallState<D> {
+    /// How far a sphere of radius `r` (m) at `x` reaches past the plane (m): its overlap with
+    /// the wall, negative when apart. The one expression every wall test uses, so that they
+    /// agree on every contact.
+    #[inline(always)]
+    pub fn overlap(&self, x: &VecD<D>, r: f64) -> f64 {
+        r - (x - self.point).dot(&self.normal)
+    }
+
+    /// The plane's offset along its normal (m): point · normal.
+    #[inline]
+    pub fn offset(&self) -> f64 {
+        self.point.dot(&self.normal)
+    }
+}
+
 impl<const D: usize> Wall<D> {
     /// A fixed wall through `point` with normal `normal` (normalised here; must be non-zero).
     pub fn fixed(point: VecD<D>, normal: VecD<D>) -> Wall<D> {

@@ -130,14 +130,7 @@ impl BoundRolling for RollingSds {
     /// A test checks the bits of both against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: RollingBatch<'_>) {
-        // the host checks every batch against the law's declared slots (three: ξ)
-        assert_eq!(b.slots, 3, "rolling-sds keeps 3 history slots per contact");
-        #[cfg(target_arch = "x86_64")]
-        if dashpot_sdk::simd::available() {
-            // SAFETY: the CPU has AVX2 (checked just above).
-            return unsafe { avx2::lanes::<false>(self, b, None) };
-        }
-        lanes::<false>(self, b, None)
+        self.batch::<false>(b, None)
     }
 
     /// The force with the step's energy: elastic k |ξ|²/2 (J); power (W): γ |v_roll|² while the
@@ -154,15 +147,24 @@ impl BoundRolling for RollingSds {
     /// [`BoundRolling::force_batch`], the same bits contact for contact (a test checks).
     #[inline(always)]
     fn force_batch_energy(&self, b: RollingBatch<'_>, out: EnergyBatch<'_>) -> bool {
+        self.batch::<true>(b, Some(out));
+        true
+    }
+}
+
+impl RollingSds {
+    /// The batch with (`ENERGY`) or without its energy outputs, in AVX2 lanes where the CPU has
+    /// them ([`dashpot_sdk::simd::available`]), else in the portable lanes.
+    #[inline(always)]
+    fn batch<const ENERGY: bool>(&self, b: RollingBatch<'_>, out: Option<EnergyBatch<'_>>) {
+        // the host checks every batch against the law's declared slots (three: ξ)
         assert_eq!(b.slots, 3, "rolling-sds keeps 3 history slots per contact");
         #[cfg(target_arch = "x86_64")]
         if dashpot_sdk::simd::available() {
             // SAFETY: the CPU has AVX2 (checked just above).
-            unsafe { avx2::lanes::<true>(self, b, Some(out)) };
-            return true;
+            return unsafe { avx2::lanes::<ENERGY>(self, b, out) };
         }
-        lanes::<true>(self, b, Some(out));
-        true
+        lanes::<ENERGY>(self, b, out)
     }
 }
 

@@ -53,9 +53,7 @@ pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64
         (prev, lo, w_lo) = ((lo, w_lo), hi, w_hi);
         // the next overlap: half-way to the power-law estimate of the crossing
         let mut factor = 2.0f64;
-        let (d0, w0) = prev;
-        if w0 > 0.0 && w_lo > w0 {
-            let p = (w_lo / w0).ln() / (lo / d0).ln();
+        if let Some(p) = power_exponent(prev, (lo, w_lo)) {
             let to_cross = ((target / w_lo).ln() / p).exp();
             if to_cross.is_finite() {
                 factor = to_cross.sqrt().clamp(2.0, MAX_GROWTH);
@@ -90,14 +88,19 @@ pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64
         }
     }
     // the crossing of the power law through the bracket's ends (hi if that is not defined)
-    if w_lo > 0.0 && w_hi > w_lo {
-        let p = (w_hi / w_lo).ln() / (hi / lo).ln();
+    if let Some(p) = power_exponent((lo, w_lo), (hi, w_hi)) {
         let d = lo * ((target / w_lo).ln() / p).exp();
         if d.is_finite() && d > lo && d <= hi {
             return Ok(d);
         }
     }
     Ok(hi)
+}
+
+/// The exponent p of the power law w ∝ δ^p through the points `(d0, w0)` and `(d1, w1)` of the
+/// scale search, if w is positive and grows between them.
+fn power_exponent((d0, w0): (f64, f64), (d1, w1): (f64, f64)) -> Option<f64> {
+    (w0 > 0.0 && w1 > w0).then(|| (w1 / w0).ln() / (d1 / d0).ln())
 }
 
 /// The largest growth factor of one step of the scale search.

@@ -324,7 +324,7 @@ impl ContactSet {
                 let i = ig as usize - base;
                 let mut m = f64::NEG_INFINITY;
                 for ws in walls {
-                    let d = radius[i] - (pos[i] - ws.point).dot(&ws.normal);
+                    let d = ws.overlap(&pos[i], radius[i]);
                     m = if d > m || d.is_nan() { d } else { m };
                 }
                 cand[count] = (ig, 0);
@@ -336,10 +336,8 @@ impl ContactSet {
             worst.clear();
             worst.resize(range.len(), f64::NEG_INFINITY);
             for ws in walls {
-                let (p, n) = (ws.point, ws.normal);
                 for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
-                    // the very expression of pass 2, so that both agree on every contact
-                    let d = r - (x - p).dot(&n);
+                    let d = ws.overlap(x, *r);
                     *m = if d > *m || d.is_nan() { d } else { *m };
                 }
             }
@@ -357,8 +355,7 @@ impl ContactSet {
         for &(ig, _) in &cand[..count] {
             let (ig, i) = (ig as usize, ig as usize - base);
             for (w, ws) in walls.iter().enumerate() {
-                let gap = (pos[i] - ws.point).dot(&ws.normal);
-                let delta = radius[i] - gap;
+                let delta = ws.overlap(&pos[i], radius[i]);
                 if delta <= 0.0 && !adhesive {
                     continue;
                 }

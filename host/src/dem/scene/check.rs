@@ -131,7 +131,7 @@ fn wall_overlaps<const D: usize>(
         let s = wall.at(0.0);
         for (i, b) in bodies.iter().enumerate() {
             let r = 0.5 * b.diameter;
-            let delta = r - (b.position - s.point).dot(&s.normal);
+            let delta = s.overlap(&b.position, r);
             if refused(delta, r, allow_overlap) {
                 count += 1;
                 if worst.is_none_or(|(_, _, d)| delta > d) {
