@@ -65,7 +65,10 @@ pub struct EngineConfig<const D: usize> {
     /// cell (see [`super::Engine::user_index`]): in 3D [`SORT_FROM`] by default, in 2D never
     /// (`usize::MAX`: a 2D pile numbered row by row has its neighbours within a row's length
     /// in memory, in cache already, and the reordering cost more than it gained on the
-    /// benchmarks' 10⁶-disk pile); 0: always. What a user sees is numbered as given either way.
+    /// benchmarks' 10⁶-disk pile); 0: always. A 3D pile of small chunks (1,024 to 4,095
+    /// particles, [`crate::dem::contacts::gather_chunk`]) keeps an order of its own whatever
+    /// the count, in slabs (see `integrator/order.rs`), unless this is `usize::MAX` (never).
+    /// What a user sees is numbered as given either way.
     pub sort_from: usize,
     /// Steps between two reorderings (default [`super::SORT_PERIOD`], at least 1).
     pub sort_period: u64,

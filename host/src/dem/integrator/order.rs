@@ -6,6 +6,18 @@
 //! pile generated layer by layer has a particle's neighbours above and below a whole layer
 //! away in memory).
 //!
+//! A 3D pile of small chunks (1,024 to 4,095 particles, [`crate::dem::contacts::gather_chunk`])
+//! sits in the caches in any order; what its order decides is how its step shares out between
+//! threads, which take contiguous ranges of chunks (`pipeline.rs`). Its cells go slab by slab
+//! along its longest axis (a periodic one counted at half its length: it is cut twice), in
+//! Morton order within a slab, the slabs folded about a periodic seam ([`slab_rank`]). Two
+//! ranges then meet at a plane (two planes, across a fold), and a range's last chunks reach
+//! only the next range's first few: the *head* that range drifts before the others may
+//! evaluate the forces across the cut. Along a Morton curve, or in a pile numbered layer by
+//! layer whose layers have mixed as it fell, they reach most of the next range, which the other
+//! thread must then drift before any of its forces (measured on the 3D pile of the benchmarks:
+//! heads of 2.4 chunks of 8 instead of 6, BENCHMARKS.md).
+//!
 //! The renumbering is invisible from outside: between the engine's calls the particle arrays
 //! ([`Engine::p`]) are in the user's order, in the same buffers after every call (so views of
 //! them stay valid). Each [`Engine::step`] and [`Engine::advance`] permutes them into the
@@ -124,7 +136,8 @@ impl<const D: usize> Engine<D> {
 
     /// Whether this run keeps its own order.
     pub(super) fn sorts(&self) -> bool {
-        self.p.len() >= self.cfg.sort_from.max(2)
+        let n = self.p.len();
+        n >= 2 && (n >= self.cfg.sort_from || (self.nearest_first && self.cfg.sort_from != usize::MAX))
     }
 
     /// At the start of a step: if it is a renumbering's (see the module doc), the list is
@@ -151,6 +164,7 @@ impl<const D: usize> Engine<D> {
             &self.cfg.domain,
             &self.p.pos,
             2.0 * rmax + self.skin + self.law_reach,
+            self.nearest_first,
         );
         if self.order.uid.is_empty() {
             // the first renumbering: the user's fixed arrays kept aside as they are
@@ -211,11 +225,18 @@ fn permute_into<T: Copy>(src: &[T], dst: &mut Vec<T>, uid: &[u32], stride: usize
 
 /// The particles at `pos` in the Morton order of their cells of side `size` (m) (a grid over
 /// the box along periodic axes, over the particles' extent along the others), ties in the
-/// current order: the new particle `k` is `perm[k]`.
-pub(super) fn morton_order<const D: usize>(dom: &Domain<D>, pos: &[VecD<D>], size: f64) -> Vec<u32> {
+/// current order: the new particle `k` is `perm[k]`. With `slabs`, the cells are taken slab by
+/// slab along the pile's longest axis, in Morton order within each slab (see [`slab_rank`]).
+pub(super) fn morton_order<const D: usize>(
+    dom: &Domain<D>,
+    pos: &[VecD<D>],
+    size: f64,
+    slabs: bool,
+) -> Vec<u32> {
     let bits = if D == 2 { 31 } else { 63 / D as u32 };
     let mut lo = [0.0; D];
     let mut cell = [size; D];
+    let mut cells = [0u64; D];
     for k in 0..D {
         let (a, b) = if dom.periodic[k] {
             (dom.lo[k], dom.hi[k])
@@ -230,17 +251,42 @@ pub(super) fn morton_order<const D: usize>(dom: &Domain<D>, pos: &[VecD<D>], siz
         if (b - a) / size > most {
             cell[k] = (b - a) / most;
         }
+        let n = ((b - a) / cell[k]).ceil();
+        cells[k] = if n >= 1.0 { (n as u64).min(1u64 << bits) } else { 1 };
     }
+    // the slabs' axis: the longest, a periodic one counted at half its length (it is cut twice)
+    let slab = slabs.then(|| {
+        (0..D)
+            .max_by(|&i, &j| {
+                let len = |k: usize| cells[k] as f64 / if dom.periodic[k] { 2.0 } else { 1.0 };
+                len(i).total_cmp(&len(j))
+            })
+            .unwrap_or(0)
+    });
     let top = (1u64 << bits) - 1;
     let key = |x: &VecD<D>| -> u64 {
-        let mut code = 0u64;
-        for k in 0..D {
+        let q = |k: usize| {
             let q = ((x[k] - lo[k]) / cell[k]).floor();
             // (NaN: cell 0)
-            let q = if q >= 0.0 { (q as u64).min(top) } else { 0 };
-            code |= spread::<D>(q) << k;
+            if q >= 0.0 {
+                (q as u64).min(top)
+            } else {
+                0
+            }
+        };
+        match slab {
+            None => (0..D).fold(0u64, |code, k| code | spread::<D>(q(k)) << k),
+            Some(s) => {
+                // the slab's place, then the other axes' Morton code (one axis in 2D: its cell)
+                let rank = slab_rank(q(s).min(cells[s] - 1), cells[s], dom.periodic[s]);
+                let (a, b) = ((s + 1) % D, (s + 2) % D);
+                if D == 3 {
+                    rank << (2 * bits) | spread::<2>(q(a.min(b))) | spread::<2>(q(a.max(b))) << 1
+                } else {
+                    rank << bits | q(a)
+                }
+            }
         }
-        code
     };
     let mut keyed: Vec<(u64, u32)> = pos
         .par_iter()
@@ -250,6 +296,18 @@ pub(super) fn morton_order<const D: usize>(dom: &Domain<D>, pos: &[VecD<D>], siz
     // the keys are distinct (the index breaks ties): the result is one, on any threads
     keyed.par_sort_unstable();
     keyed.into_iter().map(|(_, i)| i).collect()
+}
+
+/// The place of slab `q` of `n` along the slabs' axis. Along an open axis, the slabs in order.
+/// Along a periodic one, folded about the seam: 0, n − 1, 1, n − 2, 2, … so that the slabs on
+/// either side of the seam are neighbours in memory too, and a slab's neighbours are at most
+/// three places away.
+fn slab_rank(q: u64, n: u64, periodic: bool) -> u64 {
+    if !periodic {
+        return q;
+    }
+    let back = n - 1 - q;
+    2 * q.min(back) + u64::from(q > back)
 }
 
 /// The bits [`spread`] keeps of a coordinate, then its steps (shift, mask), widest first: in 2D
@@ -282,4 +340,63 @@ fn spread<const D: usize>(q: u64) -> u64 {
     steps
         .iter()
         .fold(q & keep, |x, &(shift, mask)| (x | (x << shift)) & mask)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slab_ranks_are_a_permutation_with_neighbours_close() {
+        for n in 1..40u64 {
+            for periodic in [false, true] {
+                let ranks: Vec<u64> = (0..n).map(|q| slab_rank(q, n, periodic)).collect();
+                let mut sorted = ranks.clone();
+                sorted.sort_unstable();
+                assert_eq!(sorted, (0..n).collect::<Vec<_>>(), "n = {n}, periodic {periodic}");
+                // each slab and its neighbour (across the seam too, if periodic)
+                let pairs = if periodic { n } else { n - 1 };
+                for q in 0..pairs {
+                    let (a, b) = (ranks[q as usize], ranks[((q + 1) % n) as usize]);
+                    let most = if periodic { 3 } else { 1 };
+                    assert!(a.abs_diff(b) <= most, "n = {n}: slabs {q}, {} at {a}, {b}", q + 1);
+                }
+            }
+        }
+    }
+
+    /// A box of 12 × 4 cells, periodic in x and y, one particle a cell in 3 layers: the slabs
+    /// go along x (12 cells, counted as 6, against 4 along y counted as 2 and the particles' 2
+    /// along z), folded about the seam, and each slab's 12 particles come together.
+    #[test]
+    fn a_small_pile_is_ordered_slab_by_slab_along_its_longest_axis() {
+        let dom = Domain::<3> {
+            lo: VecD::<3>::zeros(),
+            hi: VecD::<3>::new(12.0, 4.0, 10.0),
+            periodic: [true, true, false],
+            bounded: false,
+        };
+        let mut pos = Vec::new();
+        for z in 0..3 {
+            for y in 0..4 {
+                for x in 0..12 {
+                    pos.push(VecD::<3>::new(x as f64 + 0.5, y as f64 + 0.5, z as f64 + 0.5));
+                }
+            }
+        }
+        let perm = morton_order(&dom, &pos, 1.0, true);
+        let slab_of = |k: usize| pos[perm[k] as usize][0].floor() as u64;
+        for (k, chunk) in (0..perm.len()).collect::<Vec<_>>().chunks(12).enumerate() {
+            for &i in chunk {
+                assert_eq!(slab_rank(slab_of(i), 12, true), k as u64, "particle {i}");
+            }
+        }
+        // without slabs: the Morton order, whose first eight particles fill the corner's
+        // 2 × 2 × 2 cells
+        let perm = morton_order(&dom, &pos, 1.0, false);
+        for &i in &perm[..8] {
+            let x = pos[i as usize];
+            assert!(x[0] < 2.0 && x[1] < 2.0 && x[2] < 2.0, "{x:?}");
+        }
+    }
 }

@@ -19,9 +19,12 @@
 //! the next ranges' first chunks (their *head*: the chunks up to the farthest chunk any earlier
 //! range reaches, from the neighbour list), which must have drifted before those forces are
 //! evaluated. So each task drifts its own head first, and a task whose last chunks need a head
-//! not drifted yet drifts it itself (whoever comes first; the other waits the few microseconds
-//! until it is done); each range then runs its own reverse sweep over the chunks outside its
-//! head. Last, each task adds to its chunks the shares of the earlier chunks' contacts that
+//! not drifted yet drifts it itself (whoever comes first); each range then runs its own reverse
+//! sweep over the chunks outside its head. A task that finds a head it needs being drifted by
+//! another does not wait: it drifts its own next chunks meanwhile, and once the head is done
+//! evaluates the forces it put off, from the last chunk down as always (it waits only when it
+//! has nothing left to drift). A pile of small chunks is numbered so that heads are short
+//! (`order.rs`). Last, each task adds to its chunks the shares of the earlier chunks' contacts that
 //! were left for it (see below), waiting where needed for an earlier range's chunk to be done
 //! (the earlier range evaluates its last chunks, those that reach this range, first). There is
 //! no serial phase: besides those few microseconds, the pool's threads wait for each other
@@ -354,8 +357,9 @@ impl<const D: usize> Engine<D> {
         } else {
             (Vec::new(), Vec::new())
         };
-        // makes sure head `r` has drifted; the drift's sum if this task drifted it
-        let ensure_head = |r: usize| -> f64 {
+        // makes sure head `r` has drifted (`wait`), or only tries to (None: another task is
+        // drifting it); the drift's sum if this task drifted it
+        let try_head = |r: usize, wait: bool| -> Option<f64> {
             let state = &heads[r];
             if state
                 .compare_exchange(HEAD_TODO, HEAD_BUSY, Ordering::Acquire, Ordering::Acquire)
@@ -373,10 +377,13 @@ impl<const D: usize> Engine<D> {
                 if st {
                     stale.store(true, Ordering::Relaxed);
                 }
-                return sum;
+                return Some(sum);
+            }
+            if !wait {
+                return (state.load(Ordering::Acquire) == HEAD_DONE).then_some(0.0);
             }
             spin_until(|| state.load(Ordering::Acquire) == HEAD_DONE);
-            0.0
+            Some(0.0)
         };
         // each range's task: its own head first (the previous range's last chunks wait for
         // it); then its chunks from the last, each drifted (outside its head) and its forces
@@ -394,48 +401,70 @@ impl<const D: usize> Engine<D> {
             });
             let mut sum = 0.0;
             if tasks > 1 {
-                sum += ensure_head(r);
+                sum += try_head(r, true).unwrap_or(0.0);
             }
             let far = reach[a..b].iter().copied().max().unwrap_or(0);
-            let mut later_heads = tasks == 1;
+            // the later ranges whose heads this range's chunks reach (ranges r + 1.. start at
+            // cuts[r + 1..tasks]), made sure of before the first forces
+            let reached = (r + 1..tasks).take_while(|&q| cuts[q] <= far);
+            let mut later_heads = tasks == 1 || reached.clone().next().is_none();
             let mut st = false;
             let mut first_err: Result<(), DemError> = Ok(());
+            // the chunks from `due` on have their forces evaluated; those between the chunk
+            // drifted last and `due` wait for the later heads (a head being drifted by another
+            // task: this one drifts its own next chunks meanwhile, the forces still evaluated
+            // from the last chunk down, in the same order)
+            let mut due = b;
             for k in (a..b).rev() {
                 // (timed on several threads: the drift's time and the forces', not the waits)
-                let clock = (tasks > 1).then(Instant::now);
                 if k >= head[r] {
+                    let clock = (tasks > 1).then(Instant::now);
                     let (s, x) = drift(k);
                     sum += x;
                     if s {
                         st = true;
                         stale.store(true, Ordering::Relaxed);
                     }
+                    if let Some(t) = clock {
+                        // SAFETY: chunk k's entry is this task's alone (the schedule)
+                        unsafe { took.get_mut(k..k + 1)[0] = t.elapsed().as_secs_f64() };
+                    }
+                } else if tasks > 1 {
+                    // SAFETY: as above
+                    unsafe { took.get_mut(k..k + 1)[0] = 0.0 };
                 }
-                let drifting = clock.map(|t| t.elapsed());
                 if st || stale.load(Ordering::Relaxed) {
                     continue;
                 }
                 if !later_heads {
-                    // (ranges r + 1.. start at cuts[r + 1..tasks])
-                    for (q, &start) in cuts.iter().enumerate().take(tasks).skip(r + 1) {
-                        if start > far {
-                            break;
+                    // own chunks left to drift: wait for no head being drifted by another task
+                    let more = k > head[r].max(a);
+                    let mut ready = true;
+                    for q in reached.clone() {
+                        match try_head(q, !more) {
+                            Some(x) => sum += x,
+                            None => ready = false,
                         }
-                        sum += ensure_head(q);
+                    }
+                    if !ready {
+                        continue;
                     }
                     later_heads = true;
                 }
-                let clock = drifting.map(|d| (d, Instant::now()));
-                if let Err(e) = forces(k, b, &mut np[k - a], &mut nw[k - a]) {
-                    first_err = Err(e);
+                for k in (k..due).rev() {
+                    let clock = (tasks > 1).then(Instant::now);
+                    if let Err(e) = forces(k, b, &mut np[k - a], &mut nw[k - a]) {
+                        first_err = Err(e);
+                    }
+                    if let Some(t) = clock {
+                        // SAFETY: chunk k's entry is this task's alone (the schedule)
+                        unsafe { took.get_mut(k..k + 1)[0] += t.elapsed().as_secs_f64() };
+                    }
+                    if let Some(f) = chunk_done.get(k) {
+                        f.store(true, Ordering::Release);
+                    }
                 }
-                if let Some((d, t)) = clock {
-                    // SAFETY: chunk k's entry is this task's alone (the schedule)
-                    unsafe { took.get_mut(k..k + 1)[0] = (d + t.elapsed()).as_secs_f64() };
-                }
-                if let Some(f) = chunk_done.get(k) {
-                    f.store(true, Ordering::Release);
-                }
+                due = k;
             }
             if st || stale.load(Ordering::Relaxed) {
                 return (sum, first_err);
