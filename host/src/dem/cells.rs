@@ -459,7 +459,7 @@ mod tests {
                     assert!(near.contains(&(i as u32)), "trial {trial}: particle {i} at {d} m");
                 }
             }
-            // half the candidates of a chunk are the chunk's
+            // the candidates of a range of particles: those of all the candidates in the range
             let c = nb.wall_candidates(500..1000, &moved).expect("candidates");
             assert!(c.iter().all(|&i| (500..1000).contains(&(i as usize))));
             assert_eq!(

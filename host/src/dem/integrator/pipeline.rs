@@ -24,11 +24,11 @@
 //! another does not wait: it drifts its own next chunks meanwhile, and once the head is done
 //! evaluates the forces it put off, from the last chunk down as always (it waits only when it
 //! has nothing left to drift). A pile of small chunks is numbered so that heads are short
-//! (`order.rs`). Last, each task adds to its chunks the shares of the earlier chunks' contacts that
-//! were left for it (see below), waiting where needed for an earlier range's chunk to be done
-//! (the earlier range evaluates its last chunks, those that reach this range, first). There is
-//! no serial phase: besides those few microseconds, the pool's threads wait for each other
-//! only at the end of the pass. The result does not depend on the cut nor on who drifts a
+//! (`order.rs`). Last, each task adds to its chunks the shares of the earlier chunks' contacts
+//! that were left for it (see below), waiting where needed for an earlier range's chunk to be
+//! done (the earlier range evaluates its last chunks, those that reach this range, first).
+//! There is no serial phase: besides those waits for a head or a chunk, the pool's threads wait
+//! for each other only at the end of the pass. The result does not depend on the cut nor on who drifts a
 //! head: each chunk's drift and forces are the same arithmetic in any order, and each
 //! particle's force sums the shares of the earlier chunks' contacts in one order fixed by the
 //! chunks alone.
@@ -437,7 +437,8 @@ impl<const D: usize> Engine<D> {
                     continue;
                 }
                 if !later_heads {
-                    // own chunks left to drift: wait for no head being drifted by another task
+                    // while own chunks are left to drift, a head another task is drifting is
+                    // not waited for: the forces are put off
                     let more = k > head[r].max(a);
                     let mut ready = true;
                     for q in reached.clone() {
