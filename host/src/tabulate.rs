@@ -53,7 +53,7 @@ impl TabulatedRestitution {
     /// Tabulates r(v) = realized restitution of `law` (bound to a pair of effective mass `mass`)
     /// for v in [`v_min`, `v_max`], refining the grid until the spline is within `tol` of the
     /// integrator at every midpoint. Collisions run in parallel.
-    pub fn build<C: ContactForce>(
+    pub fn build<C: ContactForce + Sync>(
         law: &C,
         mass: f64,
         end: EndCriterion,

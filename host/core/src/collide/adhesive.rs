@@ -17,7 +17,7 @@
 use super::outcome::{in_domain, no_return, overrun};
 use super::outcome::{CollideError, Collision, Options};
 use super::rk::{locate, RhsError, System, Tolerance};
-use super::two_body::{locate_speed_zero, TPhase};
+use super::two_body::{locate_speed_zero, Phase};
 use super::ContactForce;
 use dashpot_sdk::EndCriterion;
 
@@ -59,7 +59,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
     }
     let inv_m = 1.0 / mass;
     let no_return = no_return(tstar);
-    let mut tp = TPhase { law, inv_m, evals: 0 };
+    let mut tp = Phase::t(law, inv_m);
     let tol = Tolerance {
         rtol: opt.rtol,
         atol: [1e-3 * opt.rtol * xscale, 1e-3 * opt.rtol * v0],

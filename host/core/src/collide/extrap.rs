@@ -21,47 +21,102 @@ pub fn step<S: System<N>, const N: usize>(
     h: f64,
     k: usize,
 ) -> Result<Step<N>, RhsError> {
-    let k = k.clamp(2, MAX_COLUMNS);
-    // The k modified-midpoint sequences (n_j = 2(j + 1) substeps) are independent: they advance
-    // in lockstep and their right-hand sides are evaluated together, one batch per substep
-    // index m, for sequences j ≥ m/2 (those with n_j > m).
-    let mut hs = [0.0f64; MAX_COLUMNS];
-    let mut z0 = [[0.0f64; N]; MAX_COLUMNS];
-    let mut z1 = [[0.0f64; N]; MAX_COLUMNS];
-    for j in 0..k {
-        hs[j] = h / (2 * (j + 1)) as f64;
-        z0[j] = *y;
-        for i in 0..N {
-            z1[j][i] = y[i] + hs[j] * f0[i];
-        }
-    }
-    let mut xs = [0.0f64; MAX_COLUMNS];
+    let mut g = Gbs::new(x, y, f0, h, k);
     let mut fs = [[0.0f64; N]; MAX_COLUMNS];
-    for m in 1..2 * k {
-        let j0 = m / 2;
-        for j in j0..k {
-            xs[j] = x + m as f64 * hs[j];
-        }
-        sys.rhs_many(&xs[j0..k], &z1[j0..k], &mut fs[j0..k])?;
-        for j in j0..k {
+    for m in 1..g.rounds() {
+        let n = {
+            let (xs, zs) = g.points(m);
+            sys.rhs_many(xs, zs, &mut fs[..xs.len()])?;
+            xs.len()
+        };
+        g.advance(m, &fs[..n]);
+    }
+    let (y1, err) = g.finish();
+    let f1 = sys.rhs(x + h, &y1)?;
+    Ok(Step { y: y1, f: f1, err })
+}
+
+/// One extrapolated step in the making: the k modified-midpoint sequences (n_j = 2(j + 1)
+/// substeps) are independent, so they advance in lockstep and their right-hand sides are
+/// evaluated together, one batch per substep index m = 1 … 2k − 1, for the sequences j ≥ m/2
+/// (those with n_j > m). [`step`] drives it with one system; the collisions of a restitution
+/// curve drive one each, all their batches in one call of the law.
+pub struct Gbs<const N: usize> {
+    k: usize,
+    x: f64,
+    hs: [f64; MAX_COLUMNS],
+    z0: [[f64; N]; MAX_COLUMNS],
+    z1: [[f64; N]; MAX_COLUMNS],
+    xs: [f64; MAX_COLUMNS],
+}
+
+impl<const N: usize> Gbs<N> {
+    /// The most points of one substep (the columns).
+    pub const MAX_POINTS: usize = MAX_COLUMNS;
+
+    /// The step of size `h` from `(x, y)` with `f0 = f(x, y)` and `k` columns (clamped to
+    /// 2 … 10), before its first substep.
+    pub fn new(x: f64, y: &[f64; N], f0: &[f64; N], h: f64, k: usize) -> Self {
+        let k = k.clamp(2, MAX_COLUMNS);
+        let mut g = Gbs {
+            k,
+            x,
+            hs: [0.0; MAX_COLUMNS],
+            z0: [[0.0; N]; MAX_COLUMNS],
+            z1: [[0.0; N]; MAX_COLUMNS],
+            xs: [0.0; MAX_COLUMNS],
+        };
+        for j in 0..k {
+            g.hs[j] = h / (2 * (j + 1)) as f64;
+            g.z0[j] = *y;
             for i in 0..N {
-                let z2 = z0[j][i] + 2.0 * hs[j] * fs[j][i];
-                z0[j][i] = z1[j][i];
-                z1[j][i] = z2;
+                g.z1[j][i] = y[i] + g.hs[j] * f0[i];
+            }
+        }
+        g
+    }
+
+    /// One past the last substep index: the substeps are m = 1 … `rounds() − 1`.
+    pub fn rounds(&self) -> usize {
+        2 * self.k
+    }
+
+    /// The points whose right-hand sides substep `m` needs: the abscissae and states of the
+    /// sequences j = m/2 … k − 1.
+    pub fn points(&mut self, m: usize) -> (&[f64], &[[f64; N]]) {
+        let j0 = m / 2;
+        for j in j0..self.k {
+            self.xs[j] = self.x + m as f64 * self.hs[j];
+        }
+        (&self.xs[j0..self.k], &self.z1[j0..self.k])
+    }
+
+    /// Substep `m` with the right-hand sides `fs` at its [`points`](Gbs::points).
+    #[allow(clippy::needless_range_loop)] // three arrays indexed alike
+    pub fn advance(&mut self, m: usize, fs: &[[f64; N]]) {
+        let j0 = m / 2;
+        for (j, f) in (j0..self.k).zip(fs) {
+            for i in 0..N {
+                let z2 = self.z0[j][i] + 2.0 * self.hs[j] * f[i];
+                self.z0[j][i] = self.z1[j][i];
+                self.z1[j][i] = z2;
             }
         }
     }
-    let mut t = z1;
-    neville(&mut t, k, k);
-    let mut u = z1;
-    neville(&mut u, k, k - 1);
-    let mut err = [0.0f64; N];
-    for ((e, a), b) in err.iter_mut().zip(&t[k - 1]).zip(&u[k - 1]) {
-        *e = a - b;
+
+    /// The extrapolated state at x + h and its error estimate (the last two columns).
+    pub fn finish(&self) -> ([f64; N], [f64; N]) {
+        let k = self.k;
+        let mut t = self.z1;
+        neville(&mut t, k, k);
+        let mut u = self.z1;
+        neville(&mut u, k, k - 1);
+        let mut err = [0.0f64; N];
+        for ((e, a), b) in err.iter_mut().zip(&t[k - 1]).zip(&u[k - 1]) {
+            *e = a - b;
+        }
+        (t[k - 1], err)
     }
-    let y1 = t[k - 1];
-    let f1 = sys.rhs(x + h, &y1)?;
-    Ok(Step { y: y1, f: f1, err })
 }
 
 /// Aitken–Neville in h² over rows 0..k, up to column `columns − 1`, in place: afterwards

@@ -5,6 +5,7 @@
 pub mod adhesive;
 pub mod calibrate;
 pub mod extrap;
+pub mod lanes;
 pub mod oblique;
 pub mod outcome;
 pub mod pair_law;
@@ -12,6 +13,7 @@ pub mod rk;
 pub mod rolling;
 pub mod two_body;
 
+pub use lanes::collide_many;
 pub use oblique::{oblique, Body, Impact, ObliqueCollision, ObliqueError, Target};
 pub use two_body::{collide, collide_named, CollideError, Collision, ContactForce, Options, PairLaw, Sample};
 

@@ -26,7 +26,10 @@ impl Method {
     ) -> Result<Step<2>, RhsError> {
         match self {
             Method::DormandPrince5 => rk::step(sys, x, y, f, h),
-            Method::Extrapolation(k) => extrap::step(sys, x, y, f, h, k),
+            Method::Extrapolation(k) => match sys.lockstep_step(x, y, f, h, k) {
+                Some(s) => s,
+                None => extrap::step(sys, x, y, f, h, k),
+            },
         }
     }
 

@@ -1,12 +1,14 @@
 //! A contact law as the two-body integrator sees it: F(δ, δ̇) for the collision's fixed pair.
 
+use super::rk::{RhsError, Step};
+use super::two_body::Formulation;
 use crate::laws::{EnergyOut, NormalLaw};
 use dashpot_sdk::{Contact, LawError, NormalBatch};
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 
 /// A contact law as the integrator sees it: F(δ, δ̇) in newtons for the collision's fixed pair,
 /// or an error.
-pub trait ContactForce: Sync {
+pub trait ContactForce {
     /// The normal force (N) at overlap `delta` (m) and rate `rate` (m/s), from the committed
     /// history (which it does not change).
     fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError>;
@@ -41,6 +43,23 @@ pub trait ContactForce: Sync {
     fn reach(&self, _delta: f64, _rate: f64) -> Result<f64, LawError> {
         Ok(0.0)
     }
+
+    /// An extrapolation step (`k` columns, size `h`, from `(x, y)` with `f0 = f(x, y)`) of
+    /// formulation `form` taken elsewhere, with the number of force evaluations it made; `None`
+    /// (the default) lets the integrator take it. The collisions of a restitution curve take
+    /// their steps together this way ([`crate::collide::lanes`]).
+    #[doc(hidden)]
+    fn lockstep_step(
+        &self,
+        _form: Formulation,
+        _x: f64,
+        _y: &[f64; 2],
+        _f0: &[f64; 2],
+        _h: f64,
+        _k: usize,
+    ) -> Option<(Result<Step<2>, RhsError>, usize)> {
+        None
+    }
 }
 
 /// A law bound to a collision's pair: its [`NormalLaw`] with the pair's effective mass (kg) and
@@ -56,6 +75,9 @@ pub struct PairLaw<L> {
     radii: [f64; PAIR_CHUNK],
     slots: usize,
     committed: Mutex<Vec<f64>>,
+    /// The same for the wide batches of a restitution curve's collisions in lockstep
+    /// ([`crate::collide::lanes`]), made at the first.
+    wide: OnceLock<(Vec<f64>, Vec<f64>)>,
 }
 
 impl<L: NormalLaw> PairLaw<L> {
@@ -70,6 +92,7 @@ impl<L: NormalLaw> PairLaw<L> {
             radii: [radius; PAIR_CHUNK],
             slots,
             committed: Mutex::new(vec![0.0; slots]),
+            wide: OnceLock::new(),
         }
     }
 
@@ -109,6 +132,9 @@ impl PairLaw<crate::laws::ContactModelHandle> {
 /// Contacts evaluated per call of the law (stack arrays for the constant geometry).
 const PAIR_CHUNK: usize = 16;
 
+/// Contacts evaluated per call of a law without history in a wide batch.
+const WIDE_CHUNK: usize = 256;
+
 impl<L: NormalLaw> ContactForce for PairLaw<L> {
     #[inline]
     fn force(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
@@ -120,17 +146,25 @@ impl<L: NormalLaw> ContactForce for PairLaw<L> {
     #[inline]
     fn force_batch(&self, delta: &[f64], rate: &[f64], out: &mut [f64]) -> Result<(), LawError> {
         if self.slots == 0 {
+            let (masses, radii, chunk) = if delta.len() <= PAIR_CHUNK {
+                (&self.masses[..], &self.radii[..], PAIR_CHUNK)
+            } else {
+                let (m, r) = self
+                    .wide
+                    .get_or_init(|| (vec![self.mass; WIDE_CHUNK], vec![self.radius; WIDE_CHUNK]));
+                (&m[..], &r[..], WIDE_CHUNK)
+            };
             for ((d, r), o) in delta
-                .chunks(PAIR_CHUNK)
-                .zip(rate.chunks(PAIR_CHUNK))
-                .zip(out.chunks_mut(PAIR_CHUNK))
+                .chunks(chunk)
+                .zip(rate.chunks(chunk))
+                .zip(out.chunks_mut(chunk))
             {
                 let n = o.len();
                 self.law.force_batch(NormalBatch {
                     delta: d,
                     rate: r,
-                    mass: &self.masses[..n],
-                    radius: &self.radii[..n],
+                    mass: &masses[..n],
+                    radius: &radii[..n],
                     slots: 0,
                     history: &mut [],
                     force: o,
@@ -238,5 +272,17 @@ impl<C: ContactForce + ?Sized> ContactForce for &C {
 
     fn reach(&self, delta: f64, rate: f64) -> Result<f64, LawError> {
         (**self).reach(delta, rate)
+    }
+
+    fn lockstep_step(
+        &self,
+        form: Formulation,
+        x: f64,
+        y: &[f64; 2],
+        f0: &[f64; 2],
+        h: f64,
+        k: usize,
+    ) -> Option<(Result<Step<2>, RhsError>, usize)> {
+        (**self).lockstep_step(form, x, y, f0, h, k)
     }
 }

@@ -37,6 +37,20 @@ pub trait System<const N: usize> {
         }
         Ok(())
     }
+
+    /// The extrapolation step of size `h` from `(x, y)` with `f0 = f(x, y)` and `k` columns
+    /// when it is taken elsewhere (with the steps of other collisions, in lockstep), or `None`
+    /// to take it here.
+    fn lockstep_step(
+        &mut self,
+        _x: f64,
+        _y: &[f64; N],
+        _f0: &[f64; N],
+        _h: f64,
+        _k: usize,
+    ) -> Option<Result<Step<N>, RhsError>> {
+        None
+    }
 }
 
 // Dormand & Prince (1980), RK5(4)7M: nodes, stage weights, 5th-order weights (the last stage is

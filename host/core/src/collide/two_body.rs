@@ -160,30 +160,106 @@ macro_rules! overdamped_hint {
     };
 }
 
-/// Phases 1 and 3: u = δ^{1/4} is the independent variable, the state is (v, t).
-struct UPhase<'a, C> {
-    law: &'a C,
-    inv_m: f64,
-    /// The speed must keep this sign and stay above `vmin` in magnitude.
-    sign: f64,
-    vmin: f64,
-    evals: usize,
+/// A formulation of the collision as a first-order system y' = f(x, y) with f from the force:
+/// what a step needs besides the law, so that the collisions of a restitution curve can take
+/// their steps together ([`crate::collide::lanes`]). Each method is the arithmetic of
+/// [`Phase`]'s right-hand sides, which use them, so both give the same bits.
+#[derive(Debug, Clone, Copy)]
+pub enum Formulation {
+    /// Phases 1 and 3: u = δ^{1/4} (m^{1/4}) is the independent variable, the state is (v, t)
+    /// (m/s, s); the speed must keep the sign `sign` and stay above `vmin` (m/s) in magnitude.
+    U {
+        /// 1 / the effective mass (1/kg).
+        inv_m: f64,
+        /// The sign the speed keeps.
+        sign: f64,
+        /// The smallest speed magnitude (m/s).
+        vmin: f64,
+    },
+    /// Phase 2: time (s) is the independent variable, the state is (δ, v) (m, m/s).
+    T {
+        /// 1 / the effective mass (1/kg).
+        inv_m: f64,
+    },
 }
 
-impl<C: ContactForce> System<2> for UPhase<'_, C> {
+impl Formulation {
+    /// The contact state (δ m, δ̇ m/s) at point `(x, y)`, or [`RhsError::OutOfDomain`].
     #[inline]
-    fn rhs(&mut self, u: f64, y: &[f64; 2]) -> Result<[f64; 2], RhsError> {
-        let v = y[0];
-        if self.sign * v <= self.vmin || !v.is_finite() {
-            return Err(RhsError::OutOfDomain);
+    pub fn state(&self, x: f64, y: &[f64; 2]) -> Result<(f64, f64), RhsError> {
+        match *self {
+            Formulation::U { sign, vmin, .. } => {
+                let v = y[0];
+                if sign * v <= vmin || !v.is_finite() {
+                    return Err(RhsError::OutOfDomain);
+                }
+                let u = x.max(0.0);
+                let u2 = u * u;
+                Ok((u2 * u2, v))
+            }
+            Formulation::T { .. } => Ok((y[0], y[1])),
         }
-        let u = u.max(0.0);
-        let u2 = u * u;
-        let d = u2 * u2;
+    }
+
+    /// f(x, y) at a point of a batch, from the force `f` (N) at its [`state`](Self::state)
+    /// with rate `v` (m/s).
+    #[inline]
+    pub fn rhs_of(&self, x: f64, v: f64, f: f64) -> [f64; 2] {
+        match *self {
+            Formulation::U { inv_m, .. } => {
+                let u = x.max(0.0);
+                let q = 4.0 * u * u * u / v;
+                [-q * f * inv_m, q]
+            }
+            Formulation::T { inv_m } => [v, -f * inv_m],
+        }
+    }
+
+    /// f(x, y) at a single point (the first and last of a step), from the force `f` (N) at its
+    /// [`state`](Self::state) with rate `v` (m/s).
+    #[inline]
+    pub fn rhs_of_one(&self, x: f64, v: f64, f: f64) -> [f64; 2] {
+        match *self {
+            Formulation::U { inv_m, .. } => {
+                let u = x.max(0.0);
+                let u2 = u * u;
+                let a = -f * inv_m;
+                let q = 4.0 * u2 * u / v;
+                [q * a, q]
+            }
+            Formulation::T { inv_m } => [v, -f * inv_m],
+        }
+    }
+}
+
+/// A formulation with its law: the system a phase integrates, counting force evaluations.
+pub(crate) struct Phase<'a, C> {
+    pub(crate) law: &'a C,
+    pub(crate) form: Formulation,
+    pub(crate) evals: usize,
+}
+
+impl<'a, C> Phase<'a, C> {
+    /// Phases 1 and 3 (in u).
+    fn u(law: &'a C, inv_m: f64, sign: f64, vmin: f64) -> Self {
+        let form = Formulation::U { inv_m, sign, vmin };
+        Phase { law, form, evals: 0 }
+    }
+
+    /// Phase 2 (in time).
+    pub(crate) fn t(law: &'a C, inv_m: f64) -> Self {
+        let form = Formulation::T { inv_m };
+        Phase { law, form, evals: 0 }
+    }
+}
+
+impl<C: ContactForce> System<2> for Phase<'_, C> {
+    #[inline]
+    fn rhs(&mut self, x: f64, y: &[f64; 2]) -> Result<[f64; 2], RhsError> {
+        let (d, v) = self.form.state(x, y)?;
         self.evals += 1;
-        let a = -self.law.force(d, v)? * self.inv_m;
-        let q = 4.0 * u2 * u / v;
-        Ok([q * a, q])
+        let f = self.law.force(d, v)?;
+        Ok(self.form.rhs_of_one(x, v, f))
     }
 
     #[inline]
@@ -191,58 +267,33 @@ impl<C: ContactForce> System<2> for UPhase<'_, C> {
         let n = x.len();
         let (mut d, mut v, mut f) = ([0.0; MAX_BATCH], [0.0; MAX_BATCH], [0.0; MAX_BATCH]);
         for i in 0..n {
-            let (u, vi) = (x[i].max(0.0), y[i][0]);
-            if self.sign * vi <= self.vmin || !vi.is_finite() {
-                return Err(RhsError::OutOfDomain);
-            }
-            let u2 = u * u;
-            d[i] = u2 * u2;
-            v[i] = vi;
+            (d[i], v[i]) = self.form.state(x[i], &y[i])?;
         }
         self.evals += n;
         self.law.force_batch(&d[..n], &v[..n], &mut f[..n])?;
         for i in 0..n {
-            let u = x[i].max(0.0);
-            let q = 4.0 * u * u * u / v[i];
-            out[i] = [-q * f[i] * self.inv_m, q];
+            out[i] = self.form.rhs_of(x[i], v[i], f[i]);
         }
         Ok(())
+    }
+
+    #[inline]
+    fn lockstep_step(
+        &mut self,
+        x: f64,
+        y: &[f64; 2],
+        f0: &[f64; 2],
+        h: f64,
+        k: usize,
+    ) -> Option<Result<Step<2>, RhsError>> {
+        let (r, evals) = self.law.lockstep_step(self.form, x, y, f0, h, k)?;
+        self.evals += evals;
+        Some(r)
     }
 }
 
 /// The most states evaluated together (the extrapolation method's columns).
 const MAX_BATCH: usize = 10;
-
-/// Phase 2: time is the independent variable, the state is (δ, v).
-pub(crate) struct TPhase<'a, C> {
-    pub(crate) law: &'a C,
-    pub(crate) inv_m: f64,
-    pub(crate) evals: usize,
-}
-
-impl<C: ContactForce> System<2> for TPhase<'_, C> {
-    #[inline]
-    fn rhs(&mut self, _t: f64, y: &[f64; 2]) -> Result<[f64; 2], RhsError> {
-        self.evals += 1;
-        Ok([y[1], -self.law.force(y[0], y[1])? * self.inv_m])
-    }
-
-    #[inline]
-    fn rhs_many(&mut self, _x: &[f64], y: &[[f64; 2]], out: &mut [[f64; 2]]) -> Result<(), RhsError> {
-        let n = y.len();
-        let (mut d, mut v, mut f) = ([0.0; MAX_BATCH], [0.0; MAX_BATCH], [0.0; MAX_BATCH]);
-        for i in 0..n {
-            d[i] = y[i][0];
-            v[i] = y[i][1];
-        }
-        self.evals += n;
-        self.law.force_batch(&d[..n], &v[..n], &mut f[..n])?;
-        for i in 0..n {
-            out[i] = [v[i], -f[i] * self.inv_m];
-        }
-        Ok(())
-    }
-}
 
 /// Locates δ̇ = 0 inside the accepted step `s` of length `h` from `(t, z)`: a cubic Hermite
 /// guess, then Newton's method on fresh steps (the derivative of δ̇ is the acceleration, which
@@ -361,13 +412,7 @@ pub fn collide<C: ContactForce>(
     let no_return = no_return(tstar);
 
     // ---- phase 1: compression start, u from 0 while v > v0/2 ----
-    let mut ph = UPhase {
-        law,
-        inv_m,
-        sign: 1.0,
-        vmin: 0.05 * v0,
-        evals: 0,
-    };
+    let mut ph = Phase::u(law, inv_m, 1.0, 0.05 * v0);
     let tol_u = Tolerance {
         rtol,
         atol: [1e-3 * rtol * v0, 1e-300],
@@ -410,7 +455,7 @@ pub fn collide<C: ContactForce>(
     evals += ph.evals;
 
     // ---- phase 2: around maximum compression, in time ----
-    let mut tp = TPhase { law, inv_m, evals: 0 };
+    let mut tp = Phase::t(law, inv_m);
     let tol_t = Tolerance {
         rtol,
         atol: [1e-3 * rtol * dstar, 1e-3 * rtol * v0],
@@ -531,13 +576,7 @@ pub fn collide<C: ContactForce>(
     }
 
     // ---- phase 3: rebound end, u from (δ)^{1/4} down to 0 ----
-    let mut ph = UPhase {
-        law,
-        inv_m,
-        sign: -1.0,
-        vmin: 1e-9 * v0,
-        evals: 0,
-    };
+    let mut ph = Phase::u(law, inv_m, -1.0, 1e-9 * v0);
     let mut u = z[0].powf(0.25);
     let mut y = [z[1], t];
     let mut k = ph.rhs(u, &y)?;
