@@ -9,12 +9,32 @@ use dashpot_sdk::{EndCriterion, LawError};
 pub enum Method {
     /// Dormand–Prince 5(4): robust, for loose tolerances.
     DormandPrince5,
-    /// Gragg–Bulirsch–Stoer extrapolation with this many columns (order twice that): the
-    /// default, several times fewer force evaluations at tight tolerances.
+    /// Gragg–Bulirsch–Stoer extrapolation with this many columns (order twice that): several
+    /// times fewer force evaluations than Dormand–Prince at tight tolerances.
     Extrapolation(usize),
+    /// The default: extrapolation with its columns chosen from the tolerance
+    /// ([`Method::resolve`]).
+    Auto,
 }
 
+/// The extrapolation's columns at tolerances from this one up ([`Method::Auto`]); 5 below.
+pub const FOUR_COLUMNS_FROM_RTOL: f64 = 1e-8;
+
 impl Method {
+    /// The method [`Method::Auto`] stands for at relative tolerance `rtol`: extrapolation with 4
+    /// columns (order 8) for rtol ≥ 1e-8, 5 (order 10) below. Measured over 3,000 HSD and as
+    /// many linear spring-dashpot collisions (ε in [0.01, 0.99], v0 in [10⁻³, 10] m/s): at every
+    /// rtol from 1e-4 to 1e-8, 4 columns make 2–35 % fewer force evaluations than 5 and a worst
+    /// restitution error as small or smaller (HSD at 1e-7: 9.1e-9 against 5.7e-7); at 1e-9 and
+    /// below, 5 columns make fewer.
+    pub fn resolve(self, rtol: f64) -> Method {
+        match self {
+            Method::Auto if rtol >= FOUR_COLUMNS_FROM_RTOL => Method::Extrapolation(4),
+            Method::Auto => Method::Extrapolation(5),
+            m => m,
+        }
+    }
+
     #[inline]
     pub(crate) fn step<S: System<2>>(
         self,
@@ -30,6 +50,8 @@ impl Method {
                 Some(s) => s,
                 None => extrap::step(sys, x, y, f, h, k),
             },
+            // resolved by `collide` before any step; 5 columns if not
+            Method::Auto => Method::Extrapolation(5).step(sys, x, y, f, h),
         }
     }
 
@@ -38,6 +60,7 @@ impl Method {
         match self {
             Method::DormandPrince5 => rk::step_factor(e),
             Method::Extrapolation(k) => extrap::step_factor(e, k),
+            Method::Auto => extrap::step_factor(e, 5),
         }
     }
 }
@@ -65,7 +88,7 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             rtol: 1e-11,
-            method: Method::Extrapolation(5),
+            method: Method::Auto,
             record: false,
             max_step_fraction: 1.0,
             h0_fraction: 0.05,

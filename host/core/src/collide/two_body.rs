@@ -387,6 +387,10 @@ pub fn collide<C: ContactForce>(
     if !(mass.is_finite() && mass > 0.0) {
         return Err(CollideError::BadMass(mass));
     }
+    let opt = &Options {
+        method: opt.method.resolve(opt.rtol),
+        ..*opt
+    };
     law.reset();
     let dstar = overlap_scale(law, mass, v0)?;
     if super::adhesive::is_adhesive(law, dstar)? {
@@ -492,6 +496,14 @@ pub fn collide<C: ContactForce>(
         let e = tol_t.norm(&z, &s.y, &s.err);
         if e > 1.0 {
             h *= opt.method.factor(e);
+            continue;
+        }
+        // A step that ends out of contact (δ ≤ 0) jumped over the rest of this phase and the
+        // whole rebound phase, where the law is not smooth in time: its error estimate does not
+        // see that, and at a loose tolerance such a step passed it (a linear spring-dashpot at
+        // rtol 1e-7 came out 2 % off). Shorter, until the step ends in contact.
+        if s.y[0] <= 0.0 {
+            h *= 0.5;
             continue;
         }
         // accepted: events inside [t, t + h]
