@@ -57,23 +57,29 @@ impl<const N: usize> Gbs<N> {
     /// The step of size `h` from `(x, y)` with `f0 = f(x, y)` and `k` columns (clamped to
     /// 2 … 10), before its first substep.
     pub fn new(x: f64, y: &[f64; N], f0: &[f64; N], h: f64, k: usize) -> Self {
-        let k = k.clamp(2, MAX_COLUMNS);
         let mut g = Gbs {
-            k,
-            x,
+            k: 0,
+            x: 0.0,
             hs: [0.0; MAX_COLUMNS],
             z0: [[0.0; N]; MAX_COLUMNS],
             z1: [[0.0; N]; MAX_COLUMNS],
             xs: [0.0; MAX_COLUMNS],
         };
+        g.restart(x, y, f0, h, k);
+        g
+    }
+
+    /// The same, in place: a new step of this one.
+    pub fn restart(&mut self, x: f64, y: &[f64; N], f0: &[f64; N], h: f64, k: usize) {
+        let k = k.clamp(2, MAX_COLUMNS);
+        (self.k, self.x) = (k, x);
         for j in 0..k {
-            g.hs[j] = h / (2 * (j + 1)) as f64;
-            g.z0[j] = *y;
+            self.hs[j] = h / (2 * (j + 1)) as f64;
+            self.z0[j] = *y;
             for i in 0..N {
-                g.z1[j][i] = y[i] + g.hs[j] * f0[i];
+                self.z1[j][i] = y[i] + self.hs[j] * f0[i];
             }
         }
-        g
     }
 
     /// One past the last substep index: the substeps are m = 1 … `rounds() − 1`.

@@ -324,8 +324,10 @@ fn drive<C: ContactForce>(
 /// states of all in one call of the law.
 #[derive(Default)]
 struct Lockstep {
-    /// Per collision: the step in the making, its formulation, its evaluations, its failure.
+    /// Per collision: the step in the making, its formulation, its evaluations, its failure
+    /// (the first `count`; the rest are kept for their memory).
     taking: Vec<Taking>,
+    count: usize,
     /// Per collision (index of the lane): the finished step and its evaluations.
     done: Vec<Option<(Result<Step<2>, RhsError>, usize)>>,
     delta: Vec<f64>,
@@ -345,6 +347,8 @@ struct Taking {
     /// Its points' rates (m/s) and abscissae, for the right-hand sides.
     rate: [f64; Gbs::<2>::MAX_POINTS],
     x: [f64; Gbs::<2>::MAX_POINTS],
+    /// The step's result and error estimate.
+    end: ([f64; 2], [f64; 2]),
 }
 
 impl Lockstep {
@@ -352,30 +356,41 @@ impl Lockstep {
     /// results in `done` by lane, with the arithmetic of [`super::extrap::step`] and of
     /// [`Formulation`], so each is the step the collision would have taken alone.
     fn run<C: ContactForce>(&mut self, law: &C, pending: &mut [Option<Ask>]) {
-        self.taking.clear();
         self.done.clear();
         self.done.resize_with(pending.len(), || None);
+        self.count = 0;
         for (lane, slot) in pending.iter_mut().enumerate() {
             if let Some(Ask::Step(a)) = slot.take_if(|a| matches!(a, Ask::Step(_))) {
-                let gbs = Gbs::new(a.x, &a.y, &a.f0, a.h, a.k);
-                self.taking.push(Taking {
-                    lane,
-                    ask: a,
-                    gbs,
-                    evals: 0,
-                    failed: None,
-                    span: (0, 0),
-                    rate: [0.0; Gbs::<2>::MAX_POINTS],
-                    x: [0.0; Gbs::<2>::MAX_POINTS],
-                });
+                if self.count == self.taking.len() {
+                    self.taking.push(Taking {
+                        lane,
+                        gbs: Gbs::new(a.x, &a.y, &a.f0, a.h, a.k),
+                        ask: a,
+                        evals: 0,
+                        failed: None,
+                        span: (0, 0),
+                        rate: [0.0; Gbs::<2>::MAX_POINTS],
+                        x: [0.0; Gbs::<2>::MAX_POINTS],
+                        end: ([0.0; 2], [0.0; 2]),
+                    });
+                } else {
+                    let t = &mut self.taking[self.count];
+                    t.gbs.restart(a.x, &a.y, &a.f0, a.h, a.k);
+                    (t.lane, t.ask, t.evals, t.failed) = (lane, a, 0, None);
+                }
+                self.count += 1;
             }
         }
-        let rounds = self.taking.iter().map(|t| t.gbs.rounds()).max().unwrap_or(0);
+        let n_steps = self.count;
+        let rounds = self.taking[..n_steps]
+            .iter()
+            .map(|t| t.gbs.rounds())
+            .max()
+            .unwrap_or(0);
         for m in 1..rounds {
             self.delta.clear();
             self.rate.clear();
-            for t in self
-                .taking
+            for t in self.taking[..n_steps]
                 .iter_mut()
                 .filter(|t| t.failed.is_none() && m < t.gbs.rounds())
             {
@@ -407,8 +422,7 @@ impl Lockstep {
                 t.span = (at, n);
             }
             self.evaluate(law, |t| t.failed.is_none() && m < t.gbs.rounds());
-            for t in self
-                .taking
+            for t in self.taking[..n_steps]
                 .iter_mut()
                 .filter(|t| t.failed.is_none() && m < t.gbs.rounds())
             {
@@ -423,10 +437,9 @@ impl Lockstep {
         // the right-hand side at the end of each step: the first of its next
         self.delta.clear();
         self.rate.clear();
-        let mut ends = Vec::with_capacity(self.taking.len());
-        for t in self.taking.iter_mut() {
+        for t in self.taking[..n_steps].iter_mut() {
             let (y1, err) = t.gbs.finish();
-            ends.push((y1, err));
+            t.end = (y1, err);
             if t.failed.is_some() {
                 continue;
             }
@@ -444,8 +457,9 @@ impl Lockstep {
             }
         }
         self.evaluate(law, |t| t.failed.is_none());
-        for (t, (y1, err)) in self.taking.drain(..).zip(ends) {
-            let r = match t.failed {
+        for t in self.taking[..n_steps].iter_mut() {
+            let (y1, err) = t.end;
+            let r = match t.failed.take() {
                 Some(e) => Err(e),
                 None => {
                     let f1 = t.ask.form.rhs_of_one(t.x[0], t.rate[0], self.force[t.span.0]);
@@ -465,7 +479,7 @@ impl Lockstep {
         if law.force_batch(&self.delta, &self.rate, &mut self.force).is_ok() {
             return;
         }
-        for t in self.taking.iter_mut().filter(|t| active(t)) {
+        for t in self.taking[..self.count].iter_mut().filter(|t| active(t)) {
             let (at, n) = t.span;
             let span = at..at + n;
             if let Err(e) = law.force_batch(
