@@ -3,6 +3,7 @@
 use super::args::{LawArgs, Selection};
 use super::grid::parse_grid;
 use crate::collide::calibrate::{calibrate, CalibrateSpec};
+use crate::collide::lanes::{collide_many, MAX_LANES};
 use crate::collide::two_body::{collide, Collision, Options, PairLaw};
 use crate::output::write_atomic;
 use crate::registry::Registry;
@@ -308,32 +309,41 @@ pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
     for c in &combos {
         reg.contact(name, c)?.bind(spec.materials)?;
     }
-    let tasks: Vec<(usize, f64)> = (0..combos.len())
-        .flat_map(|i| v0s.iter().map(move |&v| (i, v)))
+    // tasks: each parameter set's speeds in runs of up to MAX_LANES, run as a restitution curve
+    // (its collisions in lockstep, each the bits of `collide` alone), the runs in parallel
+    let tasks: Vec<(usize, &[f64])> = (0..combos.len())
+        .flat_map(|i| v0s.chunks(MAX_LANES).map(move |c| (i, c)))
         .collect();
-    let pb = ProgressBar::new(tasks.len() as u64);
+    let pb = ProgressBar::new((combos.len() * v0s.len()) as u64);
     pb.set_style(
         ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} collisions, {elapsed} (eta {eta})")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     pb.set_prefix("sweep");
-    let rows: Vec<SweepRow> = tasks
+    let runs: Vec<Vec<SweepRow>> = tasks
         .par_iter()
-        .map(|&(i, v0)| -> Result<SweepRow> {
+        .map(|&(i, speeds)| -> Result<Vec<SweepRow>> {
             let law = PairLaw::new(
                 reg.contact(name, &combos[i])?.bind(spec.materials)?,
                 pair.mass,
                 pair.radius,
             );
-            let c = collide(&law, pair.mass, v0, end, opt)
-                .with_context(|| format!("collision at v0 = {v0} m/s with {:?}", combos[i]))?;
-            pb.inc(1);
-            Ok(SweepRow {
-                params: combos[i].clone(),
-                collision: c,
-            })
+            let curve = collide_many(&law, pair.mass, speeds, end, opt);
+            pb.inc(speeds.len() as u64);
+            curve
+                .into_iter()
+                .zip(speeds)
+                .map(|(c, &v0)| {
+                    let c = c.with_context(|| format!("collision at v0 = {v0} m/s with {:?}", combos[i]))?;
+                    Ok(SweepRow {
+                        params: combos[i].clone(),
+                        collision: c,
+                    })
+                })
+                .collect()
         })
         .collect::<Result<_>>()?;
+    let rows: Vec<SweepRow> = runs.into_iter().flatten().collect();
     pb.finish_and_clear();
     Ok(rows)
 }
