@@ -3,11 +3,11 @@
 
 use super::*;
 use dashpot::cli::collide::{sweep as sweep_rows, SweepSpec};
-use dashpot::collide::{collide as collide_one, Options, PairLaw};
+use dashpot::collide::{collide as collide_one, collide_many, Options, PairLaw};
 use dashpot::laws::{ContactLawHandle, ContactModelHandle};
 use dashpot::output::ParamSource;
 use dashpot_sdk::EndCriterion;
-use numpy::IntoPyArray;
+use numpy::{IntoPyArray, PyReadonlyArray1};
 use pyo3::intern;
 use pyo3::types::{PyList, PyString};
 use std::collections::HashMap;
@@ -278,15 +278,7 @@ fn collide<'py>(
     out.set_item(intern!(py, "tensile_peak"), c.tensile_peak)?;
     out.set_item(intern!(py, "steps"), c.steps)?;
     out.set_item(intern!(py, "force_evals"), c.force_evals)?;
-    out.set_item(intern!(py, "rtol"), rtol)?;
-    let pd = PyDict::new(py);
-    pd.set_item(intern!(py, "mass"), pair.mass)?;
-    pd.set_item(intern!(py, "radius"), pair.radius)?;
-    pd.set_item(intern!(py, "young"), pair.young)?;
-    out.set_item(intern!(py, "pair"), pd)?;
-    let (params, provenance) = provenance_of(py, &cached.template, &p)?;
-    out.set_item(intern!(py, "params"), params)?;
-    out.set_item(intern!(py, "provenance"), provenance)?;
+    run_items(py, &out, rtol, &pair, &cached.template, &p)?;
     if record {
         let col =
             |f: fn(&dashpot::collide::Sample) -> f64| -> Vec<f64> { c.trajectory.iter().map(f).collect() };
@@ -295,6 +287,101 @@ fn collide<'py>(
         out.set_item("rate", col(|s| s.rate).into_pyarray(py))?;
         out.set_item("force", col(|s| s.force).into_pyarray(py))?;
     }
+    Ok(out)
+}
+
+/// What a collision's dict holds besides its observables: `rtol`, the `pair` (mass kg, radius
+/// m, young Pa), `params` and `provenance`.
+fn run_items(
+    py: Python<'_>,
+    out: &Bound<'_, PyDict>,
+    rtol: f64,
+    pair: &dashpot_sdk::Pair,
+    template: &Template,
+    p: &[ParamValue],
+) -> PyResult<()> {
+    out.set_item(intern!(py, "rtol"), rtol)?;
+    let pd = PyDict::new(py);
+    pd.set_item(intern!(py, "mass"), pair.mass)?;
+    pd.set_item(intern!(py, "radius"), pair.radius)?;
+    pd.set_item(intern!(py, "young"), pair.young)?;
+    out.set_item(intern!(py, "pair"), pd)?;
+    let (params, provenance) = provenance_of(py, template, p)?;
+    out.set_item(intern!(py, "params"), params)?;
+    out.set_item(intern!(py, "provenance"), provenance)?;
+    Ok(())
+}
+
+/// Impact speeds per block of a curve, with a Ctrl-C check between blocks.
+const CURVE_BLOCK: usize = 1024;
+
+/// The head-on collisions at each impact speed of `v0` (m/s, a contiguous float64 array) for
+/// one law and particle: a restitution curve, its collisions in lockstep
+/// ([`collide_many`]), each the bits of `collide` at that speed. Returns the dict of `collide`
+/// with an array (one value per speed) for each observable. Ctrl-C stops it between blocks.
+#[pyfunction]
+#[pyo3(signature = (name, params, v0, body, end, rtol))]
+fn collide_curve<'py>(
+    py: Python<'py>,
+    name: &str,
+    params: Option<&Bound<'py, PyDict>>,
+    v0: PyReadonlyArray1<'py, f64>,
+    body: Body,
+    end: Option<&str>,
+    rtol: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let v0s = v0.as_slice()?;
+    for (i, &v) in v0s.iter().enumerate() {
+        check_v0(v).map_err(|e| PyValueError::new_err(format!("v0[{i}]: {}", e.value(py))))?;
+    }
+    let opt = options(rtol)?;
+    let end = end_of(end, EndCriterion::Overlap)?;
+    let p = params_of(params)?;
+    let pair = body.pair()?;
+    let cached = cached_contact(py, name, &p)?;
+    let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, body.3).map_err(law_err)?;
+    let n = v0s.len();
+    let (mut e, mut tc, mut dm, mut tm, mut tp) = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    );
+    let (mut stuck, mut steps, mut evals) = (
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+        Vec::with_capacity(n),
+    );
+    for block in v0s.chunks(CURVE_BLOCK) {
+        let got = py.allow_threads(|| collide_many(&bound, pair.mass, block, end, &opt));
+        for (c, &v) in got.into_iter().zip(block) {
+            let c =
+                c.map_err(|e| PyValueError::new_err(format!("collision of '{name}' at v0 = {v} m/s: {e}")))?;
+            e.push(c.restitution);
+            tc.push(c.contact_time);
+            dm.push(c.max_overlap);
+            tm.push(c.max_overlap_time);
+            tp.push(c.tensile_peak.unwrap_or(f64::NAN));
+            stuck.push(c.stuck);
+            steps.push(c.steps as i64);
+            evals.push(c.force_evals as i64);
+        }
+        py.check_signals()?;
+    }
+    let out = PyDict::new(py);
+    out.set_item(intern!(py, "law"), name)?;
+    out.set_item(intern!(py, "v0"), v0s.to_vec().into_pyarray(py))?;
+    out.set_item(intern!(py, "end"), end.as_str())?;
+    out.set_item(intern!(py, "restitution"), e.into_pyarray(py))?;
+    out.set_item(intern!(py, "contact_time"), tc.into_pyarray(py))?;
+    out.set_item(intern!(py, "max_overlap"), dm.into_pyarray(py))?;
+    out.set_item(intern!(py, "max_overlap_time"), tm.into_pyarray(py))?;
+    out.set_item(intern!(py, "stuck"), stuck.into_pyarray(py))?;
+    out.set_item(intern!(py, "tensile_peak"), tp.into_pyarray(py))?;
+    out.set_item(intern!(py, "steps"), steps.into_pyarray(py))?;
+    out.set_item(intern!(py, "force_evals"), evals.into_pyarray(py))?;
+    run_items(py, &out, rtol, &pair, &cached.template, &p)?;
     Ok(out)
 }
 
@@ -391,6 +478,7 @@ fn sweep(
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(collide, m)?)?;
+    m.add_function(wrap_pyfunction!(collide_curve, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
     m.add_function(wrap_pyfunction!(_time_collisions, m)?)?;
     Ok(())

@@ -138,3 +138,49 @@ def test_collide_gives_each_new_parameter_value_its_own_provenance():
             same_json(ref, dict(c))
             assert c["params"][name] == x and c["provenance"]["params"][name] == x
             c["params"][name] = c["provenance"]["params"][name] = -1.0  # each result's own
+
+
+@pytest.mark.parametrize("law,params", [("hsd", {"eps": 0.3}), ("lsd", {"eps": 0.7}), ("kuwabara-kono", {"A": 2e-6}),
+                                        ("jkr", {"w": 0.5, "eps": 0.8}), ("thornton", {"py": 1e7})])
+def test_a_curve_is_its_collisions_to_the_bit(law, params):
+    # 37 speeds: more than the collisions run in lockstep at once; both end criteria
+    v0 = np.logspace(-3, 1, 37)
+    for end in ("overlap", "force"):
+        c = dashpot.collide(law, v0=v0, end=end, rtol=1e-9, **params)
+        assert c["v0"].dtype == np.float64 and np.array_equal(c["v0"], v0)
+        for i, v in enumerate(v0):
+            one = dashpot.collide(law, v0=float(v), end=end, rtol=1e-9, **params)
+            for key in ("restitution", "contact_time", "max_overlap", "max_overlap_time"):
+                assert c[key][i].tobytes() == np.float64(one[key]).tobytes(), (key, v)
+            for key in ("steps", "force_evals", "stuck"):
+                assert c[key][i] == one[key], (key, v)
+            tp = one["tensile_peak"]
+            assert (math.isnan(c["tensile_peak"][i]) if tp is None else c["tensile_peak"][i] == tp)
+        for key in ("law", "end", "rtol", "pair", "params", "provenance"):
+            assert c[key] == one[key], key
+
+
+def test_a_curve_realizes_hsds_epsilon_and_takes_any_real_array():
+    # HSD's ε does not depend on v0 (Antypov & Elliott); ints and float32 are converted
+    c = dashpot.collide("hsd", v0=np.array([1, 2, 5]), eps=0.25, rtol=1e-10)
+    assert np.all(np.abs(c["restitution"] - 0.25) < 1e-9)
+    c32 = dashpot.collide("hsd", v0=np.array([1, 2, 5], dtype=np.float32), eps=0.25, rtol=1e-10)
+    assert np.array_equal(c32["restitution"], c["restitution"])
+    assert dashpot.collide("hsd", v0=np.array([]), eps=0.25)["restitution"].shape == (0,)
+
+
+def test_a_curve_refuses_what_one_collision_refuses():
+    with pytest.raises(ValueError, match=r"v0\[2\].*NaN"):
+        dashpot.collide("hsd", v0=[1.0, 2.0, float("nan")])
+    with pytest.raises(ValueError, match=r"v0\[0\].*-1"):
+        dashpot.collide("hsd", v0=[-1.0])
+    with pytest.raises(ValueError, match=r"shape \(2, 2\)"):
+        dashpot.collide("hsd", v0=np.ones((2, 2)))
+    with pytest.raises(ValueError, match="dtype"):
+        dashpot.collide("hsd", v0=np.array(["1", "2"]))
+    with pytest.raises(ValueError, match="record"):
+        dashpot.collide("hsd", v0=[1.0, 2.0], record=True)
+    with pytest.raises(ValueError, match="eps"):
+        dashpot.collide("hsd", v0=[1.0, 2.0], eps=2.0)
+    with pytest.raises(ValueError, match="rtol"):
+        dashpot.collide("hsd", v0=[1.0, 2.0], rtol=0.5)
