@@ -201,8 +201,8 @@ def calibration():
     one = np.array([dashpot.collide("hsd", v0=v0, eps=eps, rtol=rd)["restitution"] for eps, v0 in cases])
     assert np.array_equal(curve, one), "a curve differs from its collisions one by one"
 
-    r, p = median_ratio(run_scipy, run_dashpot, 3)
-    rc, pc = median_ratio(run_scipy, run_curves, 3)
+    r, p = median_ratio(run_scipy, run_dashpot, 5)
+    rc, pc = median_ratio(run_scipy, run_curves, 5)
     # where a call's time goes: Rust alone (the same loop: law created, bound, integrated),
     # the native call (arguments, law lookup, result dict), the package's function (provenance)
     def rust():
