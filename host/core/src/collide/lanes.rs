@@ -8,8 +8,8 @@
 //! [`collide`]:
 //! - an extrapolation step (most of a collision's force evaluations) is handed over whole: the
 //!   steps of all collisions waiting for one are taken together, every substep's states of all
-//!   in one call of the law ([`Lockstep`]), with the arithmetic of [`super::extrap::step`] and
-//!   [`Formulation`];
+//!   in one call of the law (`Lockstep`), with the arithmetic of [`super::extrap::step`] and
+//!   [`Formulation`](super::two_body::Formulation);
 //! - any other force call (the overlap scale, the first state of a phase, an event) hands its
 //!   states over, and the states of all collisions waiting for forces go to the law in one call.
 //!
@@ -22,7 +22,7 @@
 
 use super::extrap::Gbs;
 use super::rk::{RhsError, Step};
-use super::two_body::{collide, CollideError, Collision, ContactForce, Formulation, Options};
+use super::two_body::{collide, CollideError, Collision, ContactForce, Options, StepAsk};
 use corosensei::stack::DefaultStack;
 use corosensei::{CoroutineResult, ScopedCoroutine, ScopedCoroutineRef, Yielder};
 use dashpot_sdk::{EndCriterion, LawError};
@@ -53,16 +53,6 @@ enum Ask {
     Forces(usize, usize),
     /// An extrapolation step.
     Step(StepAsk),
-}
-
-/// An extrapolation step of `k` columns and size `h` from `(x, y)` with `f0 = f(x, y)`.
-struct StepAsk {
-    form: Formulation,
-    x: f64,
-    y: [f64; 2],
-    f0: [f64; 2],
-    h: f64,
-    k: usize,
 }
 
 /// The answer to an [`Ask`].
@@ -137,24 +127,8 @@ impl<C: ContactForce> ContactForce for LaneLaw<'_, C> {
         self.law.reach(delta, rate)
     }
 
-    fn lockstep_step(
-        &self,
-        form: Formulation,
-        x: f64,
-        y: &[f64; 2],
-        f0: &[f64; 2],
-        h: f64,
-        k: usize,
-    ) -> Option<(Result<Step<2>, RhsError>, usize)> {
-        let ask = StepAsk {
-            form,
-            x,
-            y: *y,
-            f0: *f0,
-            h,
-            k,
-        };
-        match self.yielder.suspend(Ask::Step(ask)) {
+    fn lockstep_step(&self, ask: &StepAsk) -> Option<(Result<Step<2>, RhsError>, usize)> {
+        match self.yielder.suspend(Ask::Step(*ask)) {
             Reply::Step(s, evals) => Some((s, evals)),
             Reply::Forces(_) => unreachable!("a step request is answered with a step"),
         }
@@ -354,7 +328,7 @@ struct Taking {
 impl Lockstep {
     /// Takes the step each `Ask::Step` of `pending` asks for (leaving `None` there), the
     /// results in `done` by lane, with the arithmetic of [`super::extrap::step`] and of
-    /// [`Formulation`], so each is the step the collision would have taken alone.
+    /// [`Formulation`](super::two_body::Formulation), so each is the step the collision would have taken alone.
     fn run<C: ContactForce>(&mut self, law: &C, pending: &mut [Option<Ask>]) {
         self.done.clear();
         self.done.resize_with(pending.len(), || None);

@@ -1,7 +1,7 @@
 //! A contact law as the two-body integrator sees it: F(δ, δ̇) for the collision's fixed pair.
 
 use super::rk::{RhsError, Step};
-use super::two_body::Formulation;
+use super::two_body::StepAsk;
 use crate::laws::{EnergyOut, NormalLaw};
 use dashpot_sdk::{Contact, LawError, NormalBatch};
 use std::sync::{Mutex, OnceLock};
@@ -33,7 +33,7 @@ pub trait ContactForce {
         Ok(())
     }
 
-    /// Forgets the history: a new first touch. [`collide`] calls it first; a law with history
+    /// Forgets the history: a new first touch. [`collide`](crate::collide::collide) calls it first; a law with history
     /// holds the state of one collision at a time, so it must not serve concurrent collisions.
     fn reset(&self) {}
 
@@ -44,20 +44,12 @@ pub trait ContactForce {
         Ok(0.0)
     }
 
-    /// An extrapolation step (`k` columns, size `h`, from `(x, y)` with `f0 = f(x, y)`) of
-    /// formulation `form` taken elsewhere, with the number of force evaluations it made; `None`
+    /// The extrapolation step `ask` taken elsewhere, with the number of force evaluations it
+    /// made; `None`
     /// (the default) lets the integrator take it. The collisions of a restitution curve take
     /// their steps together this way ([`crate::collide::lanes`]).
     #[doc(hidden)]
-    fn lockstep_step(
-        &self,
-        _form: Formulation,
-        _x: f64,
-        _y: &[f64; 2],
-        _f0: &[f64; 2],
-        _h: f64,
-        _k: usize,
-    ) -> Option<(Result<Step<2>, RhsError>, usize)> {
+    fn lockstep_step(&self, _ask: &StepAsk) -> Option<(Result<Step<2>, RhsError>, usize)> {
         None
     }
 }
@@ -274,15 +266,7 @@ impl<C: ContactForce + ?Sized> ContactForce for &C {
         (**self).reach(delta, rate)
     }
 
-    fn lockstep_step(
-        &self,
-        form: Formulation,
-        x: f64,
-        y: &[f64; 2],
-        f0: &[f64; 2],
-        h: f64,
-        k: usize,
-    ) -> Option<(Result<Step<2>, RhsError>, usize)> {
-        (**self).lockstep_step(form, x, y, f0, h, k)
+    fn lockstep_step(&self, ask: &StepAsk) -> Option<(Result<Step<2>, RhsError>, usize)> {
+        (**self).lockstep_step(ask)
     }
 }

@@ -9,7 +9,7 @@
 //! a = μ_r m g r² / (I + m r²), (5/7) μ_r g for a solid sphere, so the sphere stops after
 //! t = v0/a and x = v0²/(2a) (7 v0²/(10 μ_r g) for a solid sphere).
 //!
-//! Integrated by velocity Verlet (the scheme of [`super::oblique`]) with a step of 1/`steps` of
+//! Integrated by velocity Verlet (the scheme of [`super::oblique`](mod@super::oblique)) with a step of 1/`steps` of
 //! the period of the normal contact's oscillation about its resting overlap; the stop is the
 //! first instant the centre's speed along x̂ reaches 0, located by linear interpolation within
 //! the step.

@@ -34,10 +34,10 @@ use dashpot_sdk::{EndCriterion, LawError};
 /// F·δ ≥ m v0² (and the collision's maximum overlap δ_max satisfies ∫F dδ = m v0²/2, so for any
 /// force that does not decrease with δ, δ* ≤ 2 δ_max). Each growth step goes half-way (in log δ)
 /// to where the power law through the last two points would cross, at least a factor 2 and at
-/// most [`MAX_GROWTH`], so the largest overlap probed stays below 2 δ* even where the law's
+/// most `MAX_GROWTH`, so the largest overlap probed stays below 2 δ* even where the law's
 /// exponent doubles (a dashpot term δ^{1/4} δ̇ giving way to a Hertz spring δ^{3/2}). The first
 /// call probes two overlaps a decade apart, so the first step is already aimed. A bracket wider
-/// than [`FINE_BRACKET`] is narrowed by one geometric grid (one call of the law); the crossing
+/// than `FINE_BRACKET` is narrowed by one geometric grid (one call of the law); the crossing
 /// is then interpolated as a power law through the bracket's ends. About eight calls in all.
 pub fn overlap_scale<C: ContactForce>(law: &C, mass: f64, v0: f64) -> Result<f64, CollideError> {
     let target = mass * v0 * v0;
@@ -163,7 +163,7 @@ macro_rules! overdamped_hint {
 /// A formulation of the collision as a first-order system y' = f(x, y) with f from the force:
 /// what a step needs besides the law, so that the collisions of a restitution curve can take
 /// their steps together ([`crate::collide::lanes`]). Each method is the arithmetic of
-/// [`Phase`]'s right-hand sides, which use them, so both give the same bits.
+/// `Phase`'s right-hand sides, which use them, so both give the same bits.
 #[derive(Debug, Clone, Copy)]
 pub enum Formulation {
     /// Phases 1 and 3: u = δ^{1/4} (m^{1/4}) is the independent variable, the state is (v, t)
@@ -232,6 +232,24 @@ impl Formulation {
     }
 }
 
+/// An extrapolation step to take: `k` columns, size `h` (either sign, in the formulation's
+/// independent variable) from `(x, y)` with `f0 = f(x, y)`, of formulation `form`.
+#[derive(Debug, Clone, Copy)]
+pub struct StepAsk {
+    /// The formulation.
+    pub form: Formulation,
+    /// The independent variable at the step's start (m^{1/4} or s).
+    pub x: f64,
+    /// The state there.
+    pub y: [f64; 2],
+    /// f(x, y).
+    pub f0: [f64; 2],
+    /// The step size.
+    pub h: f64,
+    /// The extrapolation's columns.
+    pub k: usize,
+}
+
 /// A formulation with its law: the system a phase integrates, counting force evaluations.
 pub(crate) struct Phase<'a, C> {
     pub(crate) law: &'a C,
@@ -286,7 +304,15 @@ impl<C: ContactForce> System<2> for Phase<'_, C> {
         h: f64,
         k: usize,
     ) -> Option<Result<Step<2>, RhsError>> {
-        let (r, evals) = self.law.lockstep_step(self.form, x, y, f0, h, k)?;
+        let ask = StepAsk {
+            form: self.form,
+            x,
+            y: *y,
+            f0: *f0,
+            h,
+            k,
+        };
+        let (r, evals) = self.law.lockstep_step(&ask)?;
         self.evals += evals;
         Some(r)
     }
