@@ -1,5 +1,5 @@
 """Ctrl-C (SIGINT) stops a long run cleanly: a child Python process starts a run that would
-last hours, the test sends it SIGINT, and the child catches KeyboardInterrupt within a second or
+last hours (or seconds: a sweep, a restitution curve), the test sends it SIGINT, and the child catches KeyboardInterrupt within a second or
 two, reports where the run stood, and exits 0; no panic, no thread left running."""
 
 import os
@@ -24,7 +24,10 @@ try:
     elif what == "bed":
         dashpot.bed(restitution="mcnamara-falcon", layers=1, freq=20, cycles=1e7, transient=0)
     elif what == "sweep":
-        dashpot.sweep("kuwabara-kono", v0="1e-3:10:100000", end="force")
+        dashpot.sweep("kuwabara-kono", v0="1e-3:10:1000000", end="force")
+    elif what == "curve":
+        import numpy as np
+        dashpot.collide("kuwabara-kono", v0=np.logspace(-3, 1, 1000000), end="force")
     print("finished", flush=True)
 except KeyboardInterrupt:
     state = f" at step {sim.steps}, t = {sim.time} s" if what == "scene" else ""
@@ -36,7 +39,7 @@ except KeyboardInterrupt:
 """
 
 
-@pytest.mark.parametrize("what", ["scene", "bed", "sweep"])
+@pytest.mark.parametrize("what", ["scene", "bed", "sweep", "curve"])
 def test_sigint_stops_a_long_run_with_a_keyboard_interrupt(what):
     p = subprocess.Popen([sys.executable, "-c", CHILD, what], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                          text=True, env=dict(os.environ))
