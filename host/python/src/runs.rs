@@ -2,7 +2,7 @@
 //! `sweep` (collisions over grids, as `dashpot sweep`).
 
 use super::*;
-use dashpot::cli::collide::{sweep as sweep_rows, SweepSpec};
+use dashpot::cli::sweep::{sweep as sweep_rows, SweepSpec};
 use dashpot::collide::{collide as collide_one, collide_many, Options, PairLaw};
 use dashpot::laws::{ContactLawHandle, ContactModelHandle};
 use dashpot::output::ParamSource;

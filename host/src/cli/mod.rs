@@ -6,6 +6,7 @@ pub mod collide;
 pub mod dem;
 pub mod grid;
 pub mod roll;
+pub mod sweep;
 
 pub use args::{LawArgs, ParticleArgs, Selection, UsageError};
 
@@ -76,7 +77,7 @@ pub enum Command {
     /// Integrate one head-on collision under a contact law: restitution, contact time, maximum overlap.
     Collide(crate::cli::collide::CollideArgs),
     /// Collisions over a grid of impact speeds and law parameters, in parallel, to CSV.
-    Sweep(crate::cli::collide::SweepArgs),
+    Sweep(crate::cli::sweep::SweepArgs),
     /// The law parameters that reproduce a measured restitution (and contact time).
     Calibrate(crate::cli::collide::CalibrateArgs),
     /// Reproduce a paper's figures (PNG, SVG, CSV and a markdown report) into a folder.
@@ -151,7 +152,7 @@ fn dispatch(cli: Cli) -> Result<()> {
         Command::Law { name, json } => law(&reg, &name, json),
         Command::Eval(a) => eval(&reg, &a),
         Command::Collide(a) => crate::cli::collide::run_collide(&reg, &a),
-        Command::Sweep(a) => crate::cli::collide::run_sweep(&reg, &a),
+        Command::Sweep(a) => crate::cli::sweep::run_sweep(&reg, &a),
         Command::Calibrate(a) => crate::cli::collide::run_calibrate(&reg, &a),
         Command::Figures(FigureSet::Collide { out }) => {
             let md = crate::report::collide::collide_figures(&reg, &out)?;
