@@ -97,6 +97,11 @@ impl<const N: usize> Gbs<N> {
         (&self.xs[j0..self.k], &self.z1[j0..self.k])
     }
 
+    /// The abscissae of substep `m`'s points, once [`points`](Gbs::points) has made them.
+    pub fn abscissae(&self, m: usize) -> &[f64] {
+        &self.xs[m / 2..self.k]
+    }
+
     /// Substep `m` with the right-hand sides `fs` at its [`points`](Gbs::points).
     #[allow(clippy::needless_range_loop)] // three arrays indexed alike
     pub fn advance(&mut self, m: usize, fs: &[[f64; N]]) {

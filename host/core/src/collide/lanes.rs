@@ -259,21 +259,16 @@ fn drive<C: ContactForce>(
             let together = {
                 let mut r = rounds[now].borrow_mut();
                 let Round { delta, rate, force } = &mut *r;
-                force.clear();
-                force.resize(delta.len(), 0.0);
-                law.force_batch(delta, rate, force).is_ok()
+                batch(law, delta, rate, force)
             };
             for (lane, slot) in lanes.iter_mut().zip(pending.iter_mut()) {
                 let Some(Ask::Forces(at, n)) = *slot else { continue };
                 let err = match together {
                     true => None,
-                    // the batch failed: each collision gets its own states' answer, as alone
                     false => {
                         let mut r = rounds[now].borrow_mut();
                         let Round { delta, rate, force } = &mut *r;
-                        let span = at..at + n;
-                        law.force_batch(&delta[span.clone()], &rate[span.clone()], &mut force[span])
-                            .err()
+                        alone(law, delta, rate, force, (at, n))
                     }
                 };
                 *slot = ask(lane.resume(Reply::Forces(err)));
@@ -292,6 +287,28 @@ fn drive<C: ContactForce>(
             break;
         }
     }
+}
+
+/// The forces at all the states `delta` (m), `rate` (m/s) into `force` (N), in one call of
+/// `law`; whether it succeeded.
+fn batch<C: ContactForce>(law: &C, delta: &[f64], rate: &[f64], force: &mut Vec<f64>) -> bool {
+    force.clear();
+    force.resize(delta.len(), 0.0);
+    law.force_batch(delta, rate, force).is_ok()
+}
+
+/// After a failed [`batch`]: the states `start .. start + count` of one collision alone, so that
+/// it gets the law's answer to its own states, as it would alone (`None`: they succeed).
+fn alone<C: ContactForce>(
+    law: &C,
+    delta: &[f64],
+    rate: &[f64],
+    force: &mut [f64],
+    (at, n): (usize, usize),
+) -> Option<LawError> {
+    let span = at..at + n;
+    law.force_batch(&delta[span.clone()], &rate[span.clone()], &mut force[span])
+        .err()
 }
 
 /// The extrapolation steps of the collisions waiting for one, taken together: every substep's
@@ -318,9 +335,6 @@ struct Taking {
     failed: Option<RhsError>,
     /// Where its states of this substep are in the batch: (start, count).
     span: (usize, usize),
-    /// Its points' rates (m/s) and abscissae, for the right-hand sides.
-    rate: [f64; Gbs::<2>::MAX_POINTS],
-    x: [f64; Gbs::<2>::MAX_POINTS],
     /// The step's result and error estimate.
     end: ([f64; 2], [f64; 2]),
 }
@@ -343,8 +357,6 @@ impl Lockstep {
                         evals: 0,
                         failed: None,
                         span: (0, 0),
-                        rate: [0.0; Gbs::<2>::MAX_POINTS],
-                        x: [0.0; Gbs::<2>::MAX_POINTS],
                         end: ([0.0; 2], [0.0; 2]),
                     });
                 } else {
@@ -377,8 +389,6 @@ impl Lockstep {
                         Ok((d, v)) => {
                             self.delta.push(d);
                             self.rate.push(v);
-                            t.rate[i] = v;
-                            t.x[i] = xs[i];
                         }
                         Err(e) => {
                             ok = Err(e);
@@ -402,8 +412,8 @@ impl Lockstep {
             {
                 let (at, n) = t.span;
                 let mut fs = [[0.0; 2]; Gbs::<2>::MAX_POINTS];
-                for (i, f) in fs[..n].iter_mut().enumerate() {
-                    *f = t.ask.form.rhs_of(t.x[i], t.rate[i], self.force[at + i]);
+                for ((f, &x), i) in fs[..n].iter_mut().zip(t.gbs.abscissae(m)).zip(at..) {
+                    *f = t.ask.form.rhs_of(x, self.rate[i], self.force[i]);
                 }
                 t.gbs.advance(m, &fs[..n]);
             }
@@ -423,8 +433,6 @@ impl Lockstep {
                     t.span = (self.delta.len(), 1);
                     self.delta.push(d);
                     self.rate.push(v);
-                    t.rate[0] = v;
-                    t.x[0] = x1;
                     t.evals += 1;
                 }
                 Err(e) => t.failed = Some(e),
@@ -436,7 +444,11 @@ impl Lockstep {
             let r = match t.failed.take() {
                 Some(e) => Err(e),
                 None => {
-                    let f1 = t.ask.form.rhs_of_one(t.x[0], t.rate[0], self.force[t.span.0]);
+                    let i = t.span.0;
+                    let f1 = t
+                        .ask
+                        .form
+                        .rhs_of_one(t.ask.x + t.ask.h, self.rate[i], self.force[i]);
                     Ok(Step { y: y1, f: f1, err })
                 }
             };
@@ -448,19 +460,11 @@ impl Lockstep {
     /// if it fails, each step's states alone, and a step whose states fail fails with the
     /// law's error, as it would alone.
     fn evaluate<C: ContactForce>(&mut self, law: &C, active: impl Fn(&Taking) -> bool) {
-        self.force.clear();
-        self.force.resize(self.delta.len(), 0.0);
-        if law.force_batch(&self.delta, &self.rate, &mut self.force).is_ok() {
+        if batch(law, &self.delta, &self.rate, &mut self.force) {
             return;
         }
         for t in self.taking[..self.count].iter_mut().filter(|t| active(t)) {
-            let (at, n) = t.span;
-            let span = at..at + n;
-            if let Err(e) = law.force_batch(
-                &self.delta[span.clone()],
-                &self.rate[span.clone()],
-                &mut self.force[span],
-            ) {
+            if let Some(e) = alone(law, &self.delta, &self.rate, &mut self.force, t.span) {
                 t.failed = Some(RhsError::Law(e));
             }
         }
