@@ -615,6 +615,17 @@ pub fn collide<C: ContactForce>(
 
     // ---- phase 3: rebound end, u from (δ)^{1/4} down to 0 ----
     let mut ph = Phase::u(law, inv_m, -1.0, 1e-9 * v0);
+    if !(z[0] > 0.0 && z[1] < 0.0) {
+        // phase 2 keeps every state it accepts in contact and rebounding; never report the
+        // speed of a state that is not (the rebound phase would be skipped)
+        return Err(no_return(
+            t,
+            z[0],
+            z[1],
+            steps,
+            "the rebound phase would start out of contact",
+        ));
+    }
     let mut u = z[0].powf(0.25);
     let mut y = [z[1], t];
     let mut k = ph.rhs(u, &y)?;
