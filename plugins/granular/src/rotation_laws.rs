@@ -1,0 +1,252 @@
+//! The rolling and twisting laws `gran-rolling-sds`, `gran-twisting-sds` and
+//! `gran-twisting-marshall`, reading the normal law's context.
+
+use crate::rotation::{marshall_twist, rolling_sds, Sds, Twist};
+use crate::tangential::{Motion, Step};
+use crate::spring::{context_of, SpringStep};
+use crate::tangential_laws::need;
+use dashpot_sdk::{
+    BoundRolling, BoundTwisting, Energy, History, LawError, MaterialPair, Range, RollingContact, RollingLaw,
+    TwistingContact, TwistingLaw,
+};
+
+/// The common end of the rolling and twisting laws' documentation.
+macro_rules! rotation_common_doc {
+    () => {
+        " The cap F_c (N, LAMMPS's Fncrit) and, for marshall, the contact radius a and the normal \
+        damping prefactor η_n come from the contact's normal law (the sdk 0.4 normal context; \
+        a law reporting none: F_c = max(F_n, 0), a = √(δR), η_n = 0). Energy: elastic spring \
+        energy (J); power (W) the energy taken from the motion and the spring per second. Same \
+        torques as LAMMPS 22 Jul 2025 to rounding, step by step. References: LAMMPS pair_style \
+        granular documentation; Luding, Granular Matter 10, 235 (2008); Wang et al., \
+        Particuology 23, 49 (2015); Marshall, J. Comput. Phys. 228, 1541 (2009)."
+    };
+}
+
+dashpot_sdk::law_params! {
+    /// LAMMPS `rolling sds k γ μ`.
+    #[derive(Debug, Clone)]
+    pub struct GranRollingSds {
+        /// rolling stiffness k_roll (required)
+        pub k: Option<f64> { unit: "N/m", range: Range::positive() },
+        /// rolling damping γ_roll (required)
+        pub gamma: Option<f64> { unit: "N*s/m", range: Range::non_negative() },
+        /// rolling friction coefficient μ_roll (required)
+        pub mu: Option<f64> { unit: "1", range: Range::non_negative() },
+    }
+}
+
+/// `k`, `gamma`, `mu` of an sds law, each required.
+fn sds(name: &str, k: Option<f64>, gamma: Option<f64>, mu: Option<f64>, units: [&str; 3]) -> Result<Sds, LawError> {
+    Ok(Sds {
+        k: need(k, name, "k", units[0])?,
+        gamma: need(gamma, name, "gamma", units[1])?,
+        mu: need(mu, name, "mu", units[2])?,
+    })
+}
+
+const ROLL_UNITS: [&str; 3] = ["N/m, > 0", "N*s/m, >= 0", "1, >= 0"];
+const TWIST_UNITS: [&str; 3] = ["N*m/rad, > 0", "N*m*s/rad, >= 0", "m, >= 0"];
+
+impl RollingLaw for GranRollingSds {
+    type Bound = Sds;
+    const NAME: &'static str = "gran-rolling-sds";
+    const SUMMARY: &'static str = "LAMMPS rolling sds: F_r = −k ξ_r − γ v_roll, |F_r| ≤ μ F_c, torque R n̂ × F_r";
+    const DOC: &'static str = concat!(
+        "LAMMPS `rolling sds k γ μ` (Luding 2008; Wang et al. 2015): the rolling velocity \
+        v_roll = R (ω_i − ω_j) × n̂ (m/s) advances a spring ξ_r (m): ξ_r is turned into the \
+        tangent plane at its length when |ξ_r·n̂| k > 10⁻¹⁰ μ F_c; ξ_r += v_roll dt; \
+        F_r = −k ξ_r − γ v_roll; if |F_r| > μ F_c: with ξ_r ≠ 0, ξ_r = −(μ F_c F_r/|F_r| + \
+        γ v_roll)/k and F_r scaled to μ F_c, with ξ_r = 0, F_r = 0. The torque on the particle \
+        is R n̂ × F_r (N·m), on the partner its opposite; F_r is not applied to the centres. \
+        Parameters: k (N/m), gamma (N·s/m), mu.",
+        rotation_common_doc!()
+    );
+    const HISTORY: &'static [History] = &[
+        History::new("xi_x", "m", "rolling displacement ξ_r, x component"),
+        History::new("xi_y", "m", "rolling displacement ξ_r, y component"),
+        History::new("xi_z", "m", "rolling displacement ξ_r, z component"),
+    ];
+
+    fn check(&self) -> Result<(), LawError> {
+        sds(Self::NAME, self.k, self.gamma, self.mu, ROLL_UNITS).map(|_| ())
+    }
+
+    fn bind(&self, _m: &MaterialPair) -> Result<Sds, LawError> {
+        sds(Self::NAME, self.k, self.gamma, self.mu, ROLL_UNITS)
+    }
+}
+
+/// One rolling step of contact `c`.
+#[inline(always)]
+fn roll(s: &Sds, c: &RollingContact, h: &mut [f64]) -> Step {
+    let cap = context_of(c.normal_force, c.delta, c.radius).cap_force;
+    let m = Motion {
+        n: c.normal,
+        v: c.velocity,
+        dt: c.dt,
+    };
+    rolling_sds(s, cap, &m, h)
+}
+
+impl BoundRolling for Sds {
+    #[inline]
+    fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
+        roll(self, c, h).force
+    }
+
+    #[inline]
+    fn force_energy(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
+        let s = roll(self, c, h);
+        (s.force, Some(s.spring.energy(c.dt)))
+    }
+}
+
+dashpot_sdk::law_params! {
+    /// LAMMPS `twisting sds k γ μ`.
+    #[derive(Debug, Clone)]
+    pub struct GranTwistingSds {
+        /// twisting stiffness k_twist (required)
+        pub k: Option<f64> { unit: "N*m/rad", range: Range::positive() },
+        /// twisting damping γ_twist (required)
+        pub gamma: Option<f64> { unit: "N*m*s/rad", range: Range::non_negative() },
+        /// twisting friction coefficient μ_twist (required): the critical torque is μ F_c
+        pub mu: Option<f64> { unit: "m", range: Range::non_negative() },
+    }
+}
+
+/// `gran-twisting-sds` bound.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwistSdsBound(pub Twist);
+
+impl TwistingLaw for GranTwistingSds {
+    type Bound = TwistSdsBound;
+    const NAME: &'static str = "gran-twisting-sds";
+    const SUMMARY: &'static str = "LAMMPS twisting sds: M = −k θ − γ ω_t, |M| ≤ μ F_c";
+    const DOC: &'static str = concat!(
+        "LAMMPS `twisting sds k γ μ` (Luding 2008): the twist rate ω_t = (ω_i − ω_j)·n̂ (rad/s) \
+        advances an angle θ (rad): θ += ω_t dt; M = −k θ − γ ω_t (N·m, about n̂ on the particle); \
+        if |M| > μ F_c: θ = (μ F_c sgn ω_t − γ ω_t)/k and M = −μ F_c sgn ω_t. History θ (rad). \
+        Parameters: k (N·m/rad), gamma (N·m·s/rad), mu (m).",
+        rotation_common_doc!()
+    );
+    const HISTORY: &'static [History] = &[History::new("theta", "rad", "twist angle θ")];
+
+    fn check(&self) -> Result<(), LawError> {
+        sds(Self::NAME, self.k, self.gamma, self.mu, TWIST_UNITS).map(|_| ())
+    }
+
+    fn bind(&self, _m: &MaterialPair) -> Result<TwistSdsBound, LawError> {
+        let s = sds(Self::NAME, self.k, self.gamma, self.mu, TWIST_UNITS)?;
+        Ok(TwistSdsBound(Twist {
+            k: s.k,
+            damp: s.gamma,
+            mu: s.mu,
+        }))
+    }
+}
+
+impl TwistSdsBound {
+    #[inline(always)]
+    fn step(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
+        let cap = context_of(c.normal_force, c.delta, c.radius).cap_force;
+        self.0.step(cap, c.rate, c.dt, &mut h[0], self.0.k)
+    }
+}
+
+impl BoundTwisting for TwistSdsBound {
+    #[inline]
+    fn torque(&self, c: &TwistingContact, h: &mut [f64]) -> f64 {
+        self.step(c, h).0
+    }
+
+    #[inline]
+    fn torque_energy(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, Option<Energy>) {
+        let (m, s) = self.step(c, h);
+        (m, Some(s.energy(c.dt)))
+    }
+}
+
+dashpot_sdk::law_params! {
+    /// LAMMPS `twisting marshall`, with the tangential model's constants.
+    #[derive(Debug, Clone)]
+    pub struct GranTwistingMarshall {
+        /// the tangential model's stiffness as LAMMPS keeps it (N/m for linear_history, N/m² for mindlin); absent: 8 G_eff (mindlin NULL)
+        pub kt: Option<f64> { unit: "N/m or N/m^2", range: Range::positive() },
+        /// the tangential model's x_t (required)
+        pub xt: Option<f64> { unit: "1", range: Range::non_negative() },
+        /// the tangential model's friction coefficient μ (required)
+        pub mu: Option<f64> { unit: "1", range: Range::non_negative() },
+    }
+}
+
+/// `gran-twisting-marshall` bound: the tangential model's k_t, x_t and μ.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MarshallBound {
+    /// k_t.
+    pub kt: f64,
+    /// x_t.
+    pub xt: f64,
+    /// μ.
+    pub mu: f64,
+}
+
+impl TwistingLaw for GranTwistingMarshall {
+    type Bound = MarshallBound;
+    const NAME: &'static str = "gran-twisting-marshall";
+    const SUMMARY: &'static str =
+        "LAMMPS twisting marshall: k = k_t a²/2, γ = x_t η_n a²/2, M_c = (2/3) μ a F_c from the tangential model";
+    const DOC: &'static str = concat!(
+        "LAMMPS `twisting marshall` (Marshall 2009, eqs. 30–34): a twisting spring–dashpot–slider \
+        whose constants follow the tangential model and the contact radius a at each step: \
+        k = k_t a²/2 (k_t as LAMMPS keeps it: N/m for linear_history, N/m² for the mindlin \
+        variants, so that k is then k a²/2 of the per-radius stiffness, as in LAMMPS), \
+        γ = x_t η_n a²/2, M_c = (2/3) μ a F_c; then as gran-twisting-sds: θ += ω_t dt, \
+        M = −k θ − γ ω_t, past M_c θ = (M_c sgn ω_t − γ ω_t)/k and M = −M_c sgn ω_t. Parameters: \
+        the tangential model's kt (absent: 8 G_eff, LAMMPS's mindlin NULL), xt and mu, which a \
+        translation of LAMMPS's syntax copies. History θ (rad) and a_last (m, for the energy).",
+        rotation_common_doc!()
+    );
+    const HISTORY: &'static [History] = &[
+        History::new("theta", "rad", "twist angle θ"),
+        History::new("a_last", "m", "the contact radius at the last step"),
+    ];
+
+    fn check(&self) -> Result<(), LawError> {
+        need(self.xt, Self::NAME, "xt", "1, >= 0")?;
+        need(self.mu, Self::NAME, "mu", "1, >= 0").map(|_| ())
+    }
+
+    fn bind(&self, m: &MaterialPair) -> Result<MarshallBound, LawError> {
+        Ok(MarshallBound {
+            kt: self.kt.unwrap_or(8.0 * m.shear),
+            xt: need(self.xt, Self::NAME, "xt", "1, >= 0")?,
+            mu: need(self.mu, Self::NAME, "mu", "1, >= 0")?,
+        })
+    }
+}
+
+impl MarshallBound {
+    #[inline(always)]
+    fn step(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
+        let x = context_of(c.normal_force, c.delta, c.radius);
+        let t = marshall_twist(self.kt, self.xt, self.mu, &x);
+        let k_before = 0.5 * self.kt * h[1] * h[1];
+        let out = t.step(x.cap_force, c.rate, c.dt, &mut h[0], k_before);
+        h[1] = x.contact_radius;
+        out
+    }
+}
+
+impl BoundTwisting for MarshallBound {
+    #[inline]
+    fn torque(&self, c: &TwistingContact, h: &mut [f64]) -> f64 {
+        self.step(c, h).0
+    }
+
+    #[inline]
+    fn torque_energy(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, Option<Energy>) {
+        let (m, s) = self.step(c, h);
+        (m, Some(s.energy(c.dt)))
+    }
+}
