@@ -192,8 +192,8 @@ impl NormalModel for Jkr {
     #[inline(always)]
     fn elastic(&self, a: f64, _delta: f64, reff: f64) -> (f64, f64) {
         let a2 = a * a;
-        let fne = self.k * a * a2 / reff
-            - 2.0 * PI * a2 * (4.0 * self.cohesion * self.emix / (PI * a)).sqrt();
+        let fne =
+            self.k * a * a2 / reff - 2.0 * PI * a2 * (4.0 * self.cohesion * self.emix / (PI * a)).sqrt();
         (fne, 3.0 * PI * self.cohesion * reff)
     }
 
@@ -427,7 +427,10 @@ mod tests {
         for x in [0.0, 0.3, 0.9, 1.0, 1.7] {
             for n in 0..7 {
                 let p = powint(x, n);
-                assert!((p - x.powi(n as i32)).abs() <= 4.0 * f64::EPSILON * p.abs(), "{x}^{n}");
+                assert!(
+                    (p - x.powi(n as i32)).abs() <= 4.0 * f64::EPSILON * p.abs(),
+                    "{x}^{n}"
+                );
             }
         }
     }

@@ -9,8 +9,8 @@ use crate::normal::{
 };
 use crate::spring::Ctx;
 use dashpot_sdk::{
-    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError,
-    LawParams, MaterialPair, Pair, ParamSpec, ParamValue, Params, Range,
+    BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History,
+    LawError, LawParams, MaterialPair, Pair, ParamSpec, ParamValue, Params, Range,
 };
 use std::marker::PhantomData;
 
@@ -82,7 +82,12 @@ impl NormalSpec for HookeSpec {
     type Model = Hooke;
     fn schema(damp: ParamSpec) -> Vec<ParamSpec> {
         vec![
-            ParamSpec::derived("k", "N/m", Range::positive(), "normal stiffness k (required): F = k δ"),
+            ParamSpec::derived(
+                "k",
+                "N/m",
+                Range::positive(),
+                "normal stiffness k (required): F = k δ",
+            ),
             damp,
             limit_spec(),
         ]
@@ -114,7 +119,12 @@ impl NormalSpec for HertzSpec {
     type Model = Hertz;
     fn schema(damp: ParamSpec) -> Vec<ParamSpec> {
         vec![
-            ParamSpec::derived("k", "N/m^2", Range::positive(), "normal stiffness k (required): F = k a δ"),
+            ParamSpec::derived(
+                "k",
+                "N/m^2",
+                Range::positive(),
+                "normal stiffness k (required): F = k a δ",
+            ),
             damp,
             limit_spec(),
         ]
@@ -234,17 +244,35 @@ pub trait DampingSpec: DampingModel {
 
 impl DampingSpec for Velocity {
     fn damp() -> ParamSpec {
-        ParamSpec::new("damp", "N*s/m", 0.0, Range::non_negative(), "normal damping η_n = damp")
+        ParamSpec::new(
+            "damp",
+            "N*s/m",
+            0.0,
+            Range::non_negative(),
+            "normal damping η_n = damp",
+        )
     }
 }
 impl DampingSpec for MassVelocity {
     fn damp() -> ParamSpec {
-        ParamSpec::new("damp", "1/s", 0.0, Range::non_negative(), "normal damping η_n = damp m")
+        ParamSpec::new(
+            "damp",
+            "1/s",
+            0.0,
+            Range::non_negative(),
+            "normal damping η_n = damp m",
+        )
     }
 }
 impl DampingSpec for Viscoelastic {
     fn damp() -> ParamSpec {
-        ParamSpec::new("damp", "1/(m*s)", 0.0, Range::non_negative(), "normal damping η_n = damp m a")
+        ParamSpec::new(
+            "damp",
+            "1/(m*s)",
+            0.0,
+            Range::non_negative(),
+            "normal damping η_n = damp m a",
+        )
     }
 }
 impl DampingSpec for Tsuji {
@@ -301,7 +329,10 @@ where
         S::schema(D::damp())
     }
     fn from_params(p: &Params) -> Result<Self, LawError> {
-        Ok(GranNormal::new(S::read(p, <Self as LawName>::NAME)?, p.get("damp")?))
+        Ok(GranNormal::new(
+            S::read(p, <Self as LawName>::NAME)?,
+            p.get("damp")?,
+        ))
     }
 }
 
@@ -342,7 +373,15 @@ impl<M: NormalModel, D: DampingModel> GranNormalBound<M, D> {
     /// The whole evaluation at contact `c` (whether it acts is the caller's).
     #[inline(always)]
     pub fn eval(&self, c: &Contact) -> NormalEval {
-        evaluate::<M, D>(&self.model, self.coef, self.limit, c.delta, c.rate, c.mass, c.radius)
+        evaluate::<M, D>(
+            &self.model,
+            self.coef,
+            self.limit,
+            c.delta,
+            c.rate,
+            c.mass,
+            c.radius,
+        )
     }
 
     /// Whether contact `c` acts with `history` as the last force call left it.
@@ -429,7 +468,11 @@ fn restitution_damp(target: &CalibrationTarget) -> Result<Option<Vec<ParamValue>
 /// The closed-form calibration of a law, if it has one.
 pub trait Calibrate {
     /// See [`ContactLaw::calibrate`].
-    fn closed_form(_t: &CalibrationTarget, _pair: &Pair, _fixed: &Params) -> Result<Option<Vec<ParamValue>>, LawError> {
+    fn closed_form(
+        _t: &CalibrationTarget,
+        _pair: &Pair,
+        _fixed: &Params,
+    ) -> Result<Option<Vec<ParamValue>>, LawError> {
         Ok(None)
     }
 }
@@ -439,7 +482,11 @@ impl<S> Calibrate for GranNormal<S, MassVelocity> {}
 impl<S> Calibrate for GranNormal<S, Viscoelastic> {}
 impl<S> Calibrate for GranNormal<S, Tsuji> {}
 impl<S> Calibrate for GranNormal<S, CoeffRestitution> {
-    fn closed_form(t: &CalibrationTarget, _pair: &Pair, _fixed: &Params) -> Result<Option<Vec<ParamValue>>, LawError> {
+    fn closed_form(
+        t: &CalibrationTarget,
+        _pair: &Pair,
+        _fixed: &Params,
+    ) -> Result<Option<Vec<ParamValue>>, LawError> {
         restitution_damp(t)
     }
 }

@@ -2,11 +2,11 @@
 //! `gran-twisting-marshall`, reading the normal law's context.
 
 use crate::rotation::{marshall_twist, rolling_sds, Sds, Twist};
-use crate::tangential::{Motion, Step};
-use crate::spring::{context_of, SpringStep};
+use crate::spring::{context_of, through_context, Ctx, ReadsContext, SpringStep};
+use crate::tangential::Motion;
 use crate::tangential_laws::need;
 use dashpot_sdk::{
-    BoundRolling, BoundTwisting, Energy, History, LawError, MaterialPair, Range, RollingContact, RollingLaw,
+    BoundRolling, BoundTwisting, History, LawError, MaterialPair, Range, RollingContact, RollingLaw,
     TwistingContact, TwistingLaw,
 };
 
@@ -37,7 +37,13 @@ dashpot_sdk::law_params! {
 }
 
 /// `k`, `gamma`, `mu` of an sds law, each required.
-fn sds(name: &str, k: Option<f64>, gamma: Option<f64>, mu: Option<f64>, units: [&str; 3]) -> Result<Sds, LawError> {
+fn sds(
+    name: &str,
+    k: Option<f64>,
+    gamma: Option<f64>,
+    mu: Option<f64>,
+    units: [&str; 3],
+) -> Result<Sds, LawError> {
     Ok(Sds {
         k: need(k, name, "k", units[0])?,
         gamma: need(gamma, name, "gamma", units[1])?,
@@ -51,7 +57,8 @@ const TWIST_UNITS: [&str; 3] = ["N*m/rad, > 0", "N*m*s/rad, >= 0", "m, >= 0"];
 impl RollingLaw for GranRollingSds {
     type Bound = Sds;
     const NAME: &'static str = "gran-rolling-sds";
-    const SUMMARY: &'static str = "LAMMPS rolling sds: F_r = −k ξ_r − γ v_roll, |F_r| ≤ μ F_c, torque R n̂ × F_r";
+    const SUMMARY: &'static str =
+        "LAMMPS rolling sds: F_r = −k ξ_r − γ v_roll, |F_r| ≤ μ F_c, torque R n̂ × F_r";
     const DOC: &'static str = concat!(
         "LAMMPS `rolling sds k γ μ` (Luding 2008; Wang et al. 2015): the rolling velocity \
         v_roll = R (ω_i − ω_j) × n̂ (m/s) advances a spring ξ_r (m): ξ_r is turned into the \
@@ -77,30 +84,41 @@ impl RollingLaw for GranRollingSds {
     }
 }
 
-/// One rolling step of contact `c`.
+impl ReadsContext<RollingContact> for Sds {
+    type Out = [f64; 3];
+    #[inline]
+    fn eval(&self, x: &Ctx, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], SpringStep) {
+        let m = Motion {
+            n: c.normal,
+            v: c.velocity,
+            dt: c.dt,
+        };
+        let s = rolling_sds(self, x.cap_force, &m, h);
+        (s.force, s.spring)
+    }
+}
+
+/// The context of rolling or twisting contact `c`.
 #[inline(always)]
-fn roll(s: &Sds, c: &RollingContact, h: &mut [f64]) -> Step {
-    let cap = context_of(c.normal_force, c.delta, c.radius).cap_force;
-    let m = Motion {
-        n: c.normal,
-        v: c.velocity,
-        dt: c.dt,
-    };
-    rolling_sds(s, cap, &m, h)
+fn rctx(c: &RollingContact) -> Ctx {
+    context_of(c.normal_force, c.delta, c.radius)
 }
 
-impl BoundRolling for Sds {
-    #[inline]
-    fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
-        roll(self, c, h).force
-    }
-
-    #[inline]
-    fn force_energy(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let s = roll(self, c, h);
-        (s.force, Some(s.spring.energy(c.dt)))
-    }
+/// The context of twisting contact `c`.
+#[inline(always)]
+fn tctx(c: &TwistingContact) -> Ctx {
+    context_of(c.normal_force, c.delta, c.radius)
 }
+
+through_context!(
+    BoundRolling,
+    Sds,
+    RollingContact,
+    [f64; 3],
+    force,
+    force_energy,
+    rctx
+);
 
 dashpot_sdk::law_params! {
     /// LAMMPS `twisting sds k γ μ`.
@@ -146,26 +164,23 @@ impl TwistingLaw for GranTwistingSds {
     }
 }
 
-impl TwistSdsBound {
-    #[inline(always)]
-    fn step(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
-        let cap = context_of(c.normal_force, c.delta, c.radius).cap_force;
-        self.0.step(cap, c.rate, c.dt, &mut h[0], self.0.k)
+impl ReadsContext<TwistingContact> for TwistSdsBound {
+    type Out = f64;
+    #[inline]
+    fn eval(&self, x: &Ctx, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
+        self.0.step(x.cap_force, c.rate, c.dt, &mut h[0], self.0.k)
     }
 }
 
-impl BoundTwisting for TwistSdsBound {
-    #[inline]
-    fn torque(&self, c: &TwistingContact, h: &mut [f64]) -> f64 {
-        self.step(c, h).0
-    }
-
-    #[inline]
-    fn torque_energy(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, Option<Energy>) {
-        let (m, s) = self.step(c, h);
-        (m, Some(s.energy(c.dt)))
-    }
-}
+through_context!(
+    BoundTwisting,
+    TwistSdsBound,
+    TwistingContact,
+    f64,
+    torque,
+    torque_energy,
+    tctx
+);
 
 dashpot_sdk::law_params! {
     /// LAMMPS `twisting marshall`, with the tangential model's constants.
@@ -226,11 +241,11 @@ impl TwistingLaw for GranTwistingMarshall {
     }
 }
 
-impl MarshallBound {
-    #[inline(always)]
-    fn step(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
-        let x = context_of(c.normal_force, c.delta, c.radius);
-        let t = marshall_twist(self.kt, self.xt, self.mu, &x);
+impl ReadsContext<TwistingContact> for MarshallBound {
+    type Out = f64;
+    #[inline]
+    fn eval(&self, x: &Ctx, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
+        let t = marshall_twist(self.kt, self.xt, self.mu, x);
         let k_before = 0.5 * self.kt * h[1] * h[1];
         let out = t.step(x.cap_force, c.rate, c.dt, &mut h[0], k_before);
         h[1] = x.contact_radius;
@@ -238,15 +253,12 @@ impl MarshallBound {
     }
 }
 
-impl BoundTwisting for MarshallBound {
-    #[inline]
-    fn torque(&self, c: &TwistingContact, h: &mut [f64]) -> f64 {
-        self.step(c, h).0
-    }
-
-    #[inline]
-    fn torque_energy(&self, c: &TwistingContact, h: &mut [f64]) -> (f64, Option<Energy>) {
-        let (m, s) = self.step(c, h);
-        (m, Some(s.energy(c.dt)))
-    }
-}
+through_context!(
+    BoundTwisting,
+    MarshallBound,
+    TwistingContact,
+    f64,
+    torque,
+    torque_energy,
+    tctx
+);

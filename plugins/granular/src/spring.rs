@@ -56,10 +56,20 @@ pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-/// The part of `v` in the plane normal to the unit vector `n`: v − (v·n) n.
+/// (10⁻¹³)²: a velocity whose normal part is below 10⁻¹³ of its length is tangent to rounding.
+const TANGENT_EPS2: f64 = 1e-26;
+
+/// The part of `v` in the plane normal to the unit vector `n`: v − (v·n) n, or `v` itself when
+/// it is already tangent to rounding (its normal part below 10⁻¹³ |v|), so that a host passing
+/// LAMMPS's own tangential velocity v_tr gets LAMMPS's bits.
 #[inline(always)]
 pub fn tangential(v: [f64; 3], n: [f64; 3]) -> [f64; 3] {
-    sub(v, scale(dot(v, n), n))
+    let vn = dot(v, n);
+    if vn * vn <= TANGENT_EPS2 * dot(v, v) {
+        v
+    } else {
+        sub(v, scale(vn, n))
+    }
 }
 
 /// `v` turned into the plane normal to `n` at its length (LAMMPS's `rotate_rescale_vec`): the
@@ -146,6 +156,36 @@ impl Ctx {
         }
     }
 }
+
+/// A bound law that reads its contact's normal context (tangential, rolling, twisting): its
+/// output with the context given explicitly. The sdk traits' methods call it with the context
+/// the host passes.
+pub trait ReadsContext<C> {
+    /// The output: a force (N) or a torque (N·m).
+    type Out: Copy;
+    /// The output on contact `c` under context `ctx`, its history `h` advanced, and the step as
+    /// its energy sees it.
+    fn eval(&self, ctx: &Ctx, c: &C, h: &mut [f64]) -> (Self::Out, SpringStep);
+}
+
+/// Implements a kind's sdk trait for a bound law through [`ReadsContext`], the context read
+/// from the contact by `$ctx`.
+macro_rules! through_context {
+    ($trait:ident, $ty:ty, $contact:ty, $out:ty, $call:ident, $energy_call:ident, $ctx:path) => {
+        impl $trait for $ty {
+            #[inline]
+            fn $call(&self, c: &$contact, h: &mut [f64]) -> $out {
+                self.eval(&$ctx(c), c, h).0
+            }
+            #[inline]
+            fn $energy_call(&self, c: &$contact, h: &mut [f64]) -> ($out, Option<dashpot_sdk::Energy>) {
+                let (o, s) = self.eval(&$ctx(c), c, h);
+                (o, Some(s.energy(c.dt)))
+            }
+        }
+    };
+}
+pub(crate) use through_context;
 
 /// The context of a tangential, rolling or twisting contact of normal force `normal_force` (N),
 /// overlap `delta` (m) and effective radius `radius` (m), as its host passes it.

@@ -42,19 +42,35 @@ pub struct Motion {
 
 /// LAMMPS `tangential linear_nohistory x_t μ` (classic `gran/hooke`): F_t = −min(μ F_c, η_t |v_t|)
 /// v_t/|v_t|, η_t = x_t η_n.
+/// No spring: the step's energy is the dashpot-or-cap's power F_t |v_t| (`SpringStep` with
+/// k = 0 and η = F_t/|v_t|).
 #[inline]
-pub fn linear_nohistory(xt: f64, mu: f64, ctx: &Ctx, n: [f64; 3], v: [f64; 3]) -> [f64; 3] {
-    let vtr = tangential(v, n);
+pub fn linear_nohistory(s: &Spring, ctx: &Ctx, m: &Motion) -> Step {
+    let vtr = tangential(m.v, m.n);
     let vrel = len(vtr);
-    let damp = xt * ctx.damping;
-    let fscrit = mu * ctx.cap_force;
+    let damp = s.xt * ctx.damping;
+    let fscrit = s.mu * ctx.cap_force;
     let fsmag = damp * vrel;
     let ft = if vrel != 0.0 {
         lmin(fscrit, fsmag) / vrel
     } else {
         0.0
     };
-    scale(-ft, vtr)
+    let f = scale(-ft, vtr);
+    Step {
+        force: f,
+        spring: SpringStep {
+            k_before: 0.0,
+            xi_before: [0.0; 3],
+            k: 0.0,
+            xi_start: [0.0; 3],
+            xi_after: [0.0; 3],
+            eta: ft,
+            v: vtr,
+            force: f,
+            slid: false,
+        },
+    }
 }
 
 /// The outcome of one step of a history spring: the force and the step as its energy sees it.
@@ -119,7 +135,12 @@ pub fn linear_history(s: &Spring, ctx: &Ctx, m: &Motion, h: &mut [f64]) -> Step 
 /// history is first scaled by a/a_last. Slot 3 holds a of this step for every variant (LAMMPS
 /// keeps it for the rescaling ones only; the others use it for their energy).
 #[inline]
-pub fn mindlin<const FORCE: bool, const RESCALE: bool>(s: &Spring, ctx: &Ctx, m: &Motion, h: &mut [f64]) -> Step {
+pub fn mindlin<const FORCE: bool, const RESCALE: bool>(
+    s: &Spring,
+    ctx: &Ctx,
+    m: &Motion,
+    h: &mut [f64],
+) -> Step {
     let (k, xt, mu, n, dt) = (s.k, s.xt, s.mu, m.n, m.dt);
     let vtr = tangential(m.v, n);
     let a = ctx.contact_radius;

@@ -1,11 +1,10 @@
 //! The tangential laws `gran-*`: LAMMPS's `linear_nohistory`, `linear_history`, the four
 //! `mindlin` variants and the classic history springs, reading the normal law's context.
 
-use crate::spring::{context_of, dot, Ctx};
+use crate::spring::{context_of, through_context, Ctx, ReadsContext, SpringStep};
 use crate::tangential::{classic, linear_history, linear_nohistory, mindlin, Motion, Spring, Step};
 use dashpot_sdk::{
-    BoundTangential, Energy, History, LawError, MaterialPair, Range, TangentialContact,
-    TangentialLaw,
+    BoundTangential, History, LawError, MaterialPair, Range, TangentialContact, TangentialLaw,
 };
 
 /// A required parameter of a law declared with `law_params!`: its value, or an error naming it.
@@ -23,25 +22,28 @@ fn ctx(c: &TangentialContact) -> Ctx {
     context_of(c.normal_force, c.delta, c.radius)
 }
 
-/// The force and energy of a step of a history spring.
+/// The motion of tangential contact `c`.
 #[inline(always)]
-fn with_energy(s: Step, dt: f64) -> ([f64; 3], Option<Energy>) {
-    (s.force, Some(s.spring.energy(dt)))
+fn motion(c: &TangentialContact) -> Motion {
+    Motion {
+        n: c.normal,
+        v: c.velocity,
+        dt: c.dt,
+    }
 }
 
-/// Implements a history spring's bound trait from its `step`.
+/// Implements `BoundTangential` through [`ReadsContext`].
 macro_rules! spring_bound {
     ($ty:ty) => {
-        impl BoundTangential for $ty {
-            #[inline]
-            fn force(&self, c: &TangentialContact, h: &mut [f64]) -> [f64; 3] {
-                self.step(c, h).force
-            }
-            #[inline]
-            fn force_energy(&self, c: &TangentialContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-                with_energy(self.step(c, h), c.dt)
-            }
-        }
+        through_context!(
+            BoundTangential,
+            $ty,
+            TangentialContact,
+            [f64; 3],
+            force,
+            force_energy,
+            ctx
+        );
     };
 }
 
@@ -99,7 +101,11 @@ impl TangentialLaw for GranLinearNoHistory {
     );
 
     fn check(&self) -> Result<(), LawError> {
-        self.bind(&MaterialPair { young: 1.0, shear: 1.0 }).map(|_| ())
+        self.bind(&MaterialPair {
+            young: 1.0,
+            shear: 1.0,
+        })
+        .map(|_| ())
     }
 
     fn bind(&self, _m: &MaterialPair) -> Result<LinearNoHistoryBound, LawError> {
@@ -110,17 +116,21 @@ impl TangentialLaw for GranLinearNoHistory {
     }
 }
 
-impl BoundTangential for LinearNoHistoryBound {
+impl ReadsContext<TangentialContact> for LinearNoHistoryBound {
+    type Out = [f64; 3];
     #[inline]
-    fn force(&self, c: &TangentialContact, _h: &mut [f64]) -> [f64; 3] {
-        linear_nohistory(self.xt, self.mu, &ctx(c), c.normal, c.velocity)
-    }
-    fn force_energy(&self, c: &TangentialContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let f = self.force(c, h);
-        let v = crate::spring::tangential(c.velocity, c.normal);
-        (f, Some(Energy { power: -dot(f, v), elastic: 0.0 }))
+    fn eval(&self, x: &Ctx, c: &TangentialContact, _h: &mut [f64]) -> ([f64; 3], SpringStep) {
+        let s = Spring {
+            k: 0.0,
+            xt: self.xt,
+            mu: self.mu,
+        };
+        let step = linear_nohistory(&s, x, &motion(c));
+        (step.force, step.spring)
     }
 }
+
+spring_bound!(LinearNoHistoryBound);
 
 /// The bound constants of a history spring law: stiffness (N/m, or N/m² for the a-scaled
 /// ones), x_t and μ.
@@ -156,38 +166,46 @@ pub mod kind {
 }
 
 impl<const KIND: u8> SpringBound<KIND> {
-    /// One step of the law on contact `c` with history `h`.
+    /// One step of the law on contact `c` with history `h` under context `x`.
     #[inline(always)]
-    fn step(&self, c: &TangentialContact, h: &mut [f64]) -> Step {
-        let x = ctx(c);
+    fn step(&self, x: &Ctx, c: &TangentialContact, h: &mut [f64]) -> Step {
         let s = Spring {
             k: self.kt,
             xt: self.xt,
             mu: self.mu,
         };
-        let m = Motion {
-            n: c.normal,
-            v: c.velocity,
-            dt: c.dt,
-        };
+        let m = motion(c);
         match KIND {
-            kind::LINEAR => linear_history(&s, &x, &m, h),
-            kind::MINDLIN => mindlin::<false, false>(&s, &x, &m, h),
-            kind::MINDLIN_RESCALE => mindlin::<false, true>(&s, &x, &m, h),
-            kind::MINDLIN_FORCE => mindlin::<true, false>(&s, &x, &m, h),
-            kind::MINDLIN_RESCALE_FORCE => mindlin::<true, true>(&s, &x, &m, h),
-            kind::CLASSIC_HOOKE => classic(&s, s.k, &x, &m, h, s.k),
+            kind::LINEAR => linear_history(&s, x, &m, h),
+            kind::MINDLIN => mindlin::<false, false>(&s, x, &m, h),
+            kind::MINDLIN_RESCALE => mindlin::<false, true>(&s, x, &m, h),
+            kind::MINDLIN_FORCE => mindlin::<true, false>(&s, x, &m, h),
+            kind::MINDLIN_RESCALE_FORCE => mindlin::<true, true>(&s, x, &m, h),
+            kind::CLASSIC_HOOKE => classic(&s, s.k, x, &m, h, s.k),
             _ => {
                 // the a-scaled classic springs keep a in slot 3 for their energy
                 let a = x.contact_radius;
                 let k_before = s.k * h[3];
                 let spring = Spring { k: s.k * a, ..s };
-                let k_reset = if KIND == kind::CLASSIC_HERTZ { spring.k } else { s.k };
-                let out = classic(&spring, k_reset, &x, &m, h, k_before);
+                let k_reset = if KIND == kind::CLASSIC_HERTZ {
+                    spring.k
+                } else {
+                    s.k
+                };
+                let out = classic(&spring, k_reset, x, &m, h, k_before);
                 h[3] = a;
                 out
             }
         }
+    }
+}
+
+impl<const KIND: u8> ReadsContext<TangentialContact> for SpringBound<KIND> {
+    type Out = [f64; 3];
+    #[inline]
+    fn eval(&self, x: &Ctx, c: &TangentialContact, h: &mut [f64]) -> ([f64; 3], SpringStep) {
+        let s = self.step(x, c, h);
+        (s.force, s.spring)
     }
 }
 
