@@ -11,7 +11,8 @@ use dashpot_granular::normal_laws::*;
 use dashpot_granular::spring::{cross, dot, scale, sub, Ctx, ReadsContext};
 use dashpot_granular::tangential_laws::*;
 use dashpot_sdk::{
-    BoundContact, Contact, ContactLaw, EndCriterion, MaterialPair, ParamValue, TangentialContact, TangentialLaw,
+    BoundContact, Contact, ContactLaw, EndCriterion, MaterialPair, ParamValue, TangentialContact,
+    TangentialLaw,
 };
 use std::f64::consts::PI;
 
@@ -33,7 +34,14 @@ fn mat() -> MaterialPair {
 /// returns to 0 (LAMMPS's end of a non-adhesive contact).
 fn head_on<L: ContactLaw>(l: &L, m: f64, r: f64, v0: f64) -> (f64, f64) {
     let b = compiled(l, &mat()).expect("bind");
-    let c = collide(&PairLaw::new(b, m, r), m, v0, EndCriterion::Overlap, &Options::default()).expect("collide");
+    let c = collide(
+        &PairLaw::new(b, m, r),
+        m,
+        v0,
+        EndCriterion::Overlap,
+        &Options::default(),
+    )
+    .expect("collide");
     (c.restitution, c.contact_time)
 }
 
@@ -41,14 +49,29 @@ fn head_on<L: ContactLaw>(l: &L, m: f64, r: f64, v0: f64) -> (f64, f64) {
 fn hooke_is_the_damped_linear_oscillator() {
     let (k, m, r) = (1e4, 1e-6, 3e-4);
     for (eta, l) in [
-        (2e-3, head_on(&law::<GranHookeVelocity>(&[("k", k), ("damp", 2e-3)]), m, r, 0.3)),
-        (m * 1500.0, head_on(&law::<GranHookeMassVelocity>(&[("k", k), ("damp", 1500.0)]), m, r, 0.3)),
+        (
+            2e-3,
+            head_on(&law::<GranHookeVelocity>(&[("k", k), ("damp", 2e-3)]), m, r, 0.3),
+        ),
+        (
+            m * 1500.0,
+            head_on(
+                &law::<GranHookeMassVelocity>(&[("k", k), ("damp", 1500.0)]),
+                m,
+                r,
+                0.3,
+            ),
+        ),
     ] {
         let w0 = (k / m).sqrt();
         let zeta = eta / (2.0 * (k * m).sqrt());
         let wd = w0 * (1.0 - zeta * zeta).sqrt();
         let (e, t) = l;
-        assert!((t - PI / wd).abs() < 1e-8 * t, "contact time {t} against {}", PI / wd);
+        assert!(
+            (t - PI / wd).abs() < 1e-8 * t,
+            "contact time {t} against {}",
+            PI / wd
+        );
         let e0 = (-zeta * PI / (1.0 - zeta * zeta).sqrt()).exp();
         assert!((e - e0).abs() < 1e-8, "restitution {e} against {e0}");
     }
@@ -60,9 +83,27 @@ fn coeff_restitution_realizes_its_restitution_at_every_speed() {
     for e in [0.3, 0.7, 0.95] {
         for v0 in [0.01, 0.3, 3.0] {
             let got = [
-                head_on(&law::<GranHookeCoeffRestitution>(&[("k", 1e4), ("damp", e)]), m, r, v0).0,
-                head_on(&law::<GranHertzCoeffRestitution>(&[("k", 1e8), ("damp", e)]), m, r, v0).0,
-                head_on(&law::<GranHertzMaterialCoeffRestitution>(&[("damp", e)]), m, r, v0).0,
+                head_on(
+                    &law::<GranHookeCoeffRestitution>(&[("k", 1e4), ("damp", e)]),
+                    m,
+                    r,
+                    v0,
+                )
+                .0,
+                head_on(
+                    &law::<GranHertzCoeffRestitution>(&[("k", 1e8), ("damp", e)]),
+                    m,
+                    r,
+                    v0,
+                )
+                .0,
+                head_on(
+                    &law::<GranHertzMaterialCoeffRestitution>(&[("damp", e)]),
+                    m,
+                    r,
+                    v0,
+                )
+                .0,
             ];
             for g in got {
                 assert!((g - e).abs() < 1e-7, "e = {e}, v0 = {v0}: {g}");
@@ -85,7 +126,9 @@ fn formed_force<M: NormalModel, D: DampingModel>(b: &GranNormalBound<M, D>, delt
 #[test]
 fn jkr_pulls_off_at_three_halves_pi_w_r_at_lammps_pulloff_distance() {
     let (gamma, r) = (0.05, 2.7e-4);
-    let b = law::<GranJkrVelocity>(&[("damp", 0.0), ("cohesion", gamma)]).bind(&mat()).unwrap();
+    let b = law::<GranJkrVelocity>(&[("damp", 0.0), ("cohesion", gamma)])
+        .bind(&mat())
+        .unwrap();
     let po = b.model.pulloff_distance(r);
     let w = 2.0 * gamma;
     let f_po = formed_force(&b, -po, r);
@@ -105,11 +148,32 @@ fn jkr_pulls_off_at_three_halves_pi_w_r_at_lammps_pulloff_distance() {
     assert_eq!(b.reach(&c, &[1.0]), po);
     let mut h = [1.0];
     assert!(b.force(c, &mut h) < 0.0 && h[0] == 1.0);
-    assert_eq!(b.force(Contact { delta: -1.001 * po, ..c }, &mut h), 0.0);
+    assert_eq!(
+        b.force(
+            Contact {
+                delta: -1.001 * po,
+                ..c
+            },
+            &mut h
+        ),
+        0.0
+    );
     assert_eq!(h[0], 0.0, "broken");
-    assert_eq!(b.force(Contact { delta: -0.5 * po, ..c }, &mut h), 0.0, "no force before touching again");
+    assert_eq!(
+        b.force(
+            Contact {
+                delta: -0.5 * po,
+                ..c
+            },
+            &mut h
+        ),
+        0.0,
+        "no force before touching again"
+    );
     // DMT: the elastic Hertz force less 4π γ R = 2π w R, from touch
-    let d = law::<GranDmtVelocity>(&[("damp", 0.0), ("cohesion", gamma)]).bind(&mat()).unwrap();
+    let d = law::<GranDmtVelocity>(&[("damp", 0.0), ("cohesion", gamma)])
+        .bind(&mat())
+        .unwrap();
     assert!((formed_force(&d, 1e-300, r) + 2.0 * PI * w * r).abs() < 1e-12);
 }
 
@@ -128,7 +192,16 @@ fn slide_to_roll<T: ReadsContext<TangentialContact, Out = [f64; 3]>>(
     let (mut lo, mut hi) = (0.0, 1e-5);
     for _ in 0..200 {
         let mid = 0.5 * (lo + hi);
-        let f = n(Contact { delta: mid, rate: 0.0, mass: m, radius: r }, &mut []).0;
+        let f = n(
+            Contact {
+                delta: mid,
+                rate: 0.0,
+                mass: m,
+                radius: r,
+            },
+            &mut [],
+        )
+        .0;
         if f < m * g {
             lo = mid;
         } else {
@@ -146,11 +219,24 @@ fn slide_to_roll<T: ReadsContext<TangentialContact, Out = [f64; 3]>>(
         }
         let nrm = [0.0, 0.0, 1.0];
         let delta = r - x[2];
-        let c = Contact { delta, rate: -v[2], mass: m, radius: r };
+        let c = Contact {
+            delta,
+            rate: -v[2],
+            mass: m,
+            radius: r,
+        };
         let (fn_, ctx) = n(c, &mut []);
         let vt = [v[0], v[1], 0.0];
         let vtr = sub(vt, cross(scale(r, w), nrm));
-        let tc = TangentialContact { normal: nrm, velocity: vtr, normal_force: fn_, delta, mass: m, radius: r, dt };
+        let tc = TangentialContact {
+            normal: nrm,
+            velocity: vtr,
+            normal_force: fn_,
+            delta,
+            mass: m,
+            radius: r,
+            dt,
+        };
         let (fs, _) = t.eval(&ctx, &tc, &mut h);
         f = [fs[0], fs[1], fn_ - m * g];
         tq = scale(-r, cross(nrm, fs));
@@ -168,7 +254,9 @@ fn a_sphere_launched_sliding_ends_rolling_at_five_sevenths() {
         young: 1e8 / (2.0 * 0.91),
         shear: 1e8 / (4.0 * 1.7 * 1.3),
     };
-    let b = law::<GranHertzMaterialViscoelastic>(&[("damp", 3e7)]).bind(&wall).unwrap();
+    let b = law::<GranHertzMaterialViscoelastic>(&[("damp", 3e7)])
+        .bind(&wall)
+        .unwrap();
     let normal = |c: Contact, h: &mut [f64]| {
         let f = b.force(c, h);
         (f, b.context(&c, h, f))
@@ -179,28 +267,52 @@ fn a_sphere_launched_sliding_ends_rolling_at_five_sevenths() {
         v
     };
     let laws: Vec<(&str, Box<dyn Fn() -> (f64, f64)>)> = vec![
-        ("gran-mindlin", Box::new(|| {
-            let t = GranMindlin::from_values(&p(None)).unwrap().bind(&wall).unwrap();
-            slide_to_roll(&normal, &t, GranMindlin::HISTORY.len())
-        })),
-        ("gran-linear-history", Box::new(|| {
-            let t = GranLinearHistory::from_values(&p(Some(500.0))).unwrap().bind(&wall).unwrap();
-            slide_to_roll(&normal, &t, 3)
-        })),
-        ("gran-mindlin-rescale-force", Box::new(|| {
-            let t = GranMindlinRescaleForce::from_values(&p(None)).unwrap().bind(&wall).unwrap();
-            slide_to_roll(&normal, &t, 4)
-        })),
-        ("gran-linear-history-classic", Box::new(|| {
-            let t = GranLinearHistoryClassic::from_values(&p(Some(500.0))).unwrap().bind(&wall).unwrap();
-            slide_to_roll(&normal, &t, 3)
-        })),
+        (
+            "gran-mindlin",
+            Box::new(|| {
+                let t = GranMindlin::from_values(&p(None)).unwrap().bind(&wall).unwrap();
+                slide_to_roll(&normal, &t, GranMindlin::HISTORY.len())
+            }),
+        ),
+        (
+            "gran-linear-history",
+            Box::new(|| {
+                let t = GranLinearHistory::from_values(&p(Some(500.0)))
+                    .unwrap()
+                    .bind(&wall)
+                    .unwrap();
+                slide_to_roll(&normal, &t, 3)
+            }),
+        ),
+        (
+            "gran-mindlin-rescale-force",
+            Box::new(|| {
+                let t = GranMindlinRescaleForce::from_values(&p(None))
+                    .unwrap()
+                    .bind(&wall)
+                    .unwrap();
+                slide_to_roll(&normal, &t, 4)
+            }),
+        ),
+        (
+            "gran-linear-history-classic",
+            Box::new(|| {
+                let t = GranLinearHistoryClassic::from_values(&p(Some(500.0)))
+                    .unwrap()
+                    .bind(&wall)
+                    .unwrap();
+                slide_to_roll(&normal, &t, 3)
+            }),
+        ),
     ];
     for (name, run) in laws {
         let (v, rw) = run();
         eprintln!("{name}: v/v0 = {v}, R ω/v0 = {rw}");
         assert!((v - 5.0 / 7.0).abs() < 2e-3, "{name}: v/v0 = {v}");
-        assert!((rw - v).abs() < 2e-3, "{name}: rolling without slip, R ω/v0 = {rw}");
+        assert!(
+            (rw - v).abs() < 2e-3,
+            "{name}: rolling without slip, R ω/v0 = {rw}"
+        );
     }
 }
 
@@ -220,7 +332,12 @@ where
     for _ in 0..2_000_000 {
         u -= 0.5 * dt * f / m;
         d += dt * u;
-        let c = Contact { delta: d, rate: u, mass: m, radius: r };
+        let c = Contact {
+            delta: d,
+            rate: u,
+            mass: m,
+            radius: r,
+        };
         let (fnew, e) = b.force_energy(c, &mut h);
         let e = e.expect("energy");
         if fnew != 0.0 || e.elastic != 0.0 {
@@ -234,17 +351,34 @@ where
         u -= 0.5 * dt * f / m;
     }
     let lost = 0.5 * m * (v0 * v0 - u * u);
-    assert!(last.is_some_and(|e: f64| e.abs() < 1e-3 * lost.max(1e-30) + 1e-18), "{}: elastic at the end {last:?}", L::NAME);
-    assert!((dissipated - lost).abs() < 2e-3 * 0.5 * m * v0 * v0, "{}: dissipated {dissipated}, lost {lost}", L::NAME);
+    assert!(
+        last.is_some_and(|e: f64| e.abs() < 1e-3 * lost.max(1e-30) + 1e-18),
+        "{}: elastic at the end {last:?}",
+        L::NAME
+    );
+    assert!(
+        (dissipated - lost).abs() < 2e-3 * 0.5 * m * v0 * v0,
+        "{}: dissipated {dissipated}, lost {lost}",
+        L::NAME
+    );
 }
 
 #[test]
 fn normal_laws_account_the_energy_the_bodies_lose() {
     energy_balance(&law::<GranHookeVelocity>(&[("k", 1e4), ("damp", 2e-3)]), 0.3);
     energy_balance(&law::<GranHertzTsuji>(&[("k", 1e8), ("damp", 0.5)]), 0.3);
-    energy_balance(&law::<GranHertzMaterialViscoelastic>(&[("damp", 3e7), ("limit_damping", 1.0)]), 0.3);
-    energy_balance(&law::<GranDmtViscoelastic>(&[("damp", 3e7), ("cohesion", 0.05)]), 0.3);
-    energy_balance(&law::<GranJkrMassVelocity>(&[("damp", 100.0), ("cohesion", 0.05)]), 0.3);
+    energy_balance(
+        &law::<GranHertzMaterialViscoelastic>(&[("damp", 3e7), ("limit_damping", 1.0)]),
+        0.3,
+    );
+    energy_balance(
+        &law::<GranDmtViscoelastic>(&[("damp", 3e7), ("cohesion", 0.05)]),
+        0.3,
+    );
+    energy_balance(
+        &law::<GranJkrMassVelocity>(&[("damp", 100.0), ("cohesion", 0.05)]),
+        0.3,
+    );
 }
 
 #[test]
@@ -264,7 +398,11 @@ fn a_stuck_linear_spring_dissipates_nothing_and_mindlin_reports_the_energy_its_g
         cap_force: 1.0,
         damping: 0.0,
     };
-    let p = [ParamValue::new("kt", 3e3), ParamValue::new("xt", 0.0), ParamValue::new("mu", 1.0)];
+    let p = [
+        ParamValue::new("kt", 3e3),
+        ParamValue::new("xt", 0.0),
+        ParamValue::new("mu", 1.0),
+    ];
     let lin = GranLinearHistory::from_values(&p).unwrap().bind(&mat()).unwrap();
     let min = GranMindlin::from_values(&p[1..]).unwrap().bind(&mat()).unwrap();
     let (mut hl, mut hm) = ([0.0; 3], [0.0; 4]);
