@@ -69,74 +69,65 @@ fn read_limit(p: &Params, law: &str) -> Result<bool, LawError> {
     }
 }
 
-/// `hooke k`: the stiffness is a parameter.
+/// A normal model whose stiffness is a parameter (`hooke k`, `hertz k`).
+pub trait GivenStiffness: NormalModel {
+    /// The unit of k.
+    const UNIT: &'static str;
+    /// The parameter's documentation.
+    const DOC: &'static str;
+    /// The model of stiffness `k`.
+    fn with_k(k: f64) -> Self;
+}
+
+impl GivenStiffness for Hooke {
+    const UNIT: &'static str = "N/m";
+    const DOC: &'static str = "normal stiffness k (required): F = k δ";
+    fn with_k(k: f64) -> Hooke {
+        Hooke { k }
+    }
+}
+
+impl GivenStiffness for Hertz {
+    const UNIT: &'static str = "N/m^2";
+    const DOC: &'static str = "normal stiffness k (required): F = k a δ";
+    fn with_k(k: f64) -> Hertz {
+        Hertz { k }
+    }
+}
+
+/// `hooke k` and `hertz k`: the stiffness and `limit_damping`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct HookeSpec {
-    /// k (N/m).
+pub struct StiffnessSpec<M> {
+    /// k (N/m for hooke, N/m² for hertz).
     pub k: f64,
     /// `limit_damping`.
     pub limit: bool,
+    model: PhantomData<M>,
 }
 
-impl NormalSpec for HookeSpec {
-    type Model = Hooke;
+/// `hooke k`.
+pub type HookeSpec = StiffnessSpec<Hooke>;
+/// `hertz k`.
+pub type HertzSpec = StiffnessSpec<Hertz>;
+
+impl<M: GivenStiffness> NormalSpec for StiffnessSpec<M> {
+    type Model = M;
     fn schema(damp: ParamSpec) -> Vec<ParamSpec> {
         vec![
-            ParamSpec::derived(
-                "k",
-                "N/m",
-                Range::positive(),
-                "normal stiffness k (required): F = k δ",
-            ),
+            ParamSpec::derived("k", M::UNIT, Range::positive(), M::DOC),
             damp,
             limit_spec(),
         ]
     }
     fn read(p: &Params, law: &str) -> Result<Self, LawError> {
-        Ok(HookeSpec {
-            k: required(p, law, "k", "N/m, > 0")?,
+        Ok(StiffnessSpec {
+            k: required(p, law, "k", &format!("{}, > 0", M::UNIT))?,
             limit: read_limit(p, law)?,
+            model: PhantomData,
         })
     }
-    fn bind(&self, _m: &MaterialPair) -> Hooke {
-        Hooke { k: self.k }
-    }
-    fn limit(&self) -> bool {
-        self.limit
-    }
-}
-
-/// `hertz k`: the stiffness (force/area) is a parameter.
-#[derive(Debug, Clone, PartialEq)]
-pub struct HertzSpec {
-    /// k (N/m²).
-    pub k: f64,
-    /// `limit_damping`.
-    pub limit: bool,
-}
-
-impl NormalSpec for HertzSpec {
-    type Model = Hertz;
-    fn schema(damp: ParamSpec) -> Vec<ParamSpec> {
-        vec![
-            ParamSpec::derived(
-                "k",
-                "N/m^2",
-                Range::positive(),
-                "normal stiffness k (required): F = k a δ",
-            ),
-            damp,
-            limit_spec(),
-        ]
-    }
-    fn read(p: &Params, law: &str) -> Result<Self, LawError> {
-        Ok(HertzSpec {
-            k: required(p, law, "k", "N/m^2, > 0")?,
-            limit: read_limit(p, law)?,
-        })
-    }
-    fn bind(&self, _m: &MaterialPair) -> Hertz {
-        Hertz { k: self.k }
+    fn bind(&self, _m: &MaterialPair) -> M {
+        M::with_k(self.k)
     }
     fn limit(&self) -> bool {
         self.limit
@@ -180,59 +171,66 @@ fn cohesion_spec() -> ParamSpec {
     )
 }
 
-/// `dmt E damp ν γ`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct DmtSpec {
-    /// γ (J/m²).
-    pub cohesion: f64,
+/// An adhesive normal model (`dmt`, `jkr`): bound to the materials and its surface energy.
+pub trait Adhesive: NormalModel {
+    /// The history the law keeps.
+    const HISTORY: &'static [History];
+    /// The model for materials `m` and surface energy `cohesion` (J/m²).
+    fn with(m: &MaterialPair, cohesion: f64) -> Self;
 }
 
-impl NormalSpec for DmtSpec {
-    type Model = Dmt;
-    fn schema(damp: ParamSpec) -> Vec<ParamSpec> {
-        vec![damp, cohesion_spec()]
-    }
-    fn read(p: &Params, law: &str) -> Result<Self, LawError> {
-        Ok(DmtSpec {
-            cohesion: required(p, law, "cohesion", "J/m^2, >= 0")?,
-        })
-    }
-    fn bind(&self, m: &MaterialPair) -> Dmt {
+impl Adhesive for Dmt {
+    const HISTORY: &'static [History] = &[];
+    fn with(m: &MaterialPair, cohesion: f64) -> Dmt {
         Dmt {
             k: FOURTHIRDS * m.young,
-            cohesion: self.cohesion,
+            cohesion,
         }
     }
 }
 
-/// `jkr E damp ν γ`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct JkrSpec {
-    /// γ (J/m²).
-    pub cohesion: f64,
-}
-
-impl NormalSpec for JkrSpec {
-    type Model = Jkr;
+impl Adhesive for Jkr {
     const HISTORY: &'static [History] = &[History::new(
         "touch",
         "1",
         "1 while the contact acts (from touch to the pull-off distance), else 0",
     )];
+    fn with(m: &MaterialPair, cohesion: f64) -> Jkr {
+        Jkr {
+            k: FOURTHIRDS * m.young,
+            emix: m.young,
+            cohesion,
+        }
+    }
+}
+
+/// `dmt E damp ν γ` and `jkr E damp ν γ`: the surface energy.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AdhesiveSpec<M> {
+    /// γ (J/m²).
+    pub cohesion: f64,
+    model: PhantomData<M>,
+}
+
+/// `dmt E damp ν γ`.
+pub type DmtSpec = AdhesiveSpec<Dmt>;
+/// `jkr E damp ν γ`.
+pub type JkrSpec = AdhesiveSpec<Jkr>;
+
+impl<M: Adhesive> NormalSpec for AdhesiveSpec<M> {
+    type Model = M;
+    const HISTORY: &'static [History] = M::HISTORY;
     fn schema(damp: ParamSpec) -> Vec<ParamSpec> {
         vec![damp, cohesion_spec()]
     }
     fn read(p: &Params, law: &str) -> Result<Self, LawError> {
-        Ok(JkrSpec {
+        Ok(AdhesiveSpec {
             cohesion: required(p, law, "cohesion", "J/m^2, >= 0")?,
+            model: PhantomData,
         })
     }
-    fn bind(&self, m: &MaterialPair) -> Jkr {
-        Jkr {
-            k: FOURTHIRDS * m.young,
-            emix: m.young,
-            cohesion: self.cohesion,
-        }
+    fn bind(&self, m: &MaterialPair) -> M {
+        M::with(m, self.cohesion)
     }
 }
 

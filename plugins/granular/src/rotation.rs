@@ -6,24 +6,19 @@
 //! the twist rate ω_t = (ω_i − ω_j)·n̂ (rad/s) advances an angle θ (rad); the law returns the
 //! torque M_t (N·m) about n̂ on i. Both are capped by the normal law's F_c (LAMMPS's `Fncrit`).
 
-use crate::spring::{add, dot, len, rotate_rescale, scale, vec3, Ctx, SpringStep};
-use crate::tangential::{Motion, Step, FRAME_EPS};
+use crate::spring::{add, len, scale, vec3, Ctx, SpringStep};
+use crate::tangential::{turn_advance, Motion};
 
 /// LAMMPS `rolling sds k γ μ`: ξ turned into the tangent plane when its normal part matters,
 /// ξ += v_roll dt, F = −k ξ − γ v_roll; past μ F_c, with ξ ≠ 0: ξ = −(μ F_c F/|F| + γ v)/k and
 /// F scaled to μ F_c; with ξ = 0, F = 0. History ξ (m), slots 0..3.
 /// `s` holds k (N/m), γ (N·s/m) and μ; `m` the normal, v_roll and dt; `cap` is F_c (N).
 #[inline]
-pub fn rolling_sds(s: &Sds, cap: f64, m: &Motion, h: &mut [f64]) -> Step {
+pub fn rolling_sds(s: &Sds, cap: f64, m: &Motion, h: &mut [f64]) -> SpringStep {
     let (k, gamma, mu, n, vrl, dt) = (s.k, s.gamma, s.mu, m.n, m.v, m.dt);
     let frcrit = mu * cap;
     let before = vec3(h);
-    let mut xi = before;
-    if dot(xi, n).abs() * k > FRAME_EPS * frcrit {
-        xi = rotate_rescale(xi, n);
-    }
-    let start = xi;
-    xi = add(xi, scale(dt, vrl));
+    let (start, mut xi) = turn_advance(before, n, k, frcrit, dt, vrl);
     let mut f = add(scale(-k, xi), scale(-gamma, vrl));
     let magfr = len(f);
     let slid = magfr > frcrit;
@@ -38,20 +33,7 @@ pub fn rolling_sds(s: &Sds, cap: f64, m: &Motion, h: &mut [f64]) -> Step {
         }
     }
     h[..3].copy_from_slice(&xi);
-    Step {
-        force: f,
-        spring: SpringStep {
-            k_before: k,
-            xi_before: before,
-            k,
-            xi_start: start,
-            xi_after: xi,
-            eta: gamma,
-            v: vrl,
-            force: f,
-            slid,
-        },
-    }
+    SpringStep::new([k, k], [before, start, xi], gamma, vrl, f, slid)
 }
 
 /// The constants of a spring–dashpot–slider law (`rolling sds`, `twisting sds`): stiffness,
@@ -107,17 +89,15 @@ impl Twist {
             *theta = (mtcrit * sign - self.damp * rate) / self.k;
             m = -mtcrit * sign;
         }
-        let spring = SpringStep {
-            k_before,
-            xi_before: [before, 0.0, 0.0],
-            k: self.k,
-            xi_start: [before, 0.0, 0.0],
-            xi_after: [*theta, 0.0, 0.0],
-            eta: self.damp,
-            v: [rate, 0.0, 0.0],
-            force: [m, 0.0, 0.0],
+        let xi = [[before, 0.0, 0.0], [before, 0.0, 0.0], [*theta, 0.0, 0.0]];
+        let spring = SpringStep::new(
+            [k_before, self.k],
+            xi,
+            self.damp,
+            [rate, 0.0, 0.0],
+            [m, 0.0, 0.0],
             slid,
-        };
+        );
         (m, spring)
     }
 }

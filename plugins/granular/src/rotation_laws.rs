@@ -3,8 +3,8 @@
 
 use crate::rotation::{marshall_twist, rolling_sds, Sds, Twist};
 use crate::spring::{context_of, through_context, Ctx, ReadsContext, SpringStep};
-use crate::tangential::Motion;
-use crate::tangential_laws::need;
+use crate::tangential::{Motion, Spring};
+use crate::tangential_laws::{need, spring_of};
 use dashpot_sdk::{
     BoundRolling, BoundTwisting, History, LawError, MaterialPair, Range, RollingContact, RollingLaw,
     TwistingContact, TwistingLaw,
@@ -23,20 +23,7 @@ macro_rules! rotation_common_doc {
     };
 }
 
-dashpot_sdk::law_params! {
-    /// LAMMPS `rolling sds k γ μ`.
-    #[derive(Debug, Clone)]
-    pub struct GranRollingSds {
-        /// rolling stiffness k_roll (required)
-        pub k: Option<f64> { unit: "N/m", range: Range::positive() },
-        /// rolling damping γ_roll (required)
-        pub gamma: Option<f64> { unit: "N*s/m", range: Range::non_negative() },
-        /// rolling friction coefficient μ_roll (required)
-        pub mu: Option<f64> { unit: "1", range: Range::non_negative() },
-    }
-}
-
-/// `k`, `gamma`, `mu` of an sds law, each required.
+/// `k`, `gamma`, `mu` of an sds law, each required (`units`: each one's unit and range).
 fn sds(
     name: &str,
     k: Option<f64>,
@@ -51,38 +38,91 @@ fn sds(
     })
 }
 
-const ROLL_UNITS: [&str; 3] = ["N/m, > 0", "N*s/m, >= 0", "1, >= 0"];
-const TWIST_UNITS: [&str; 3] = ["N*m/rad, > 0", "N*m*s/rad, >= 0", "m, >= 0"];
+/// Declares a spring–dashpot–slider law of LAMMPS (`rolling sds`, `twisting sds`): its
+/// parameters `k`, `gamma`, `mu` (each required, with its unit and doc), name, summary, doc,
+/// history, and its bound type made from the [`Sds`] constants by `$make`.
+macro_rules! sds_law {
+    ($(#[$m:meta])* $ty:ident: $trait:ident, $name:literal,
+     k: $ku:literal $kd:literal, gamma: $gu:literal $gd:literal, mu: $mu:literal $md:literal,
+     bound: $bound:ty = $make:expr, history: $history:expr, summary: $summary:literal, doc: $doc:literal) => {
+        dashpot_sdk::law_params! {
+            $(#[$m])*
+            #[derive(Debug, Clone)]
+            pub struct $ty {
+                #[doc = $kd]
+                pub k: Option<f64> { unit: $ku, range: Range::positive() },
+                #[doc = $gd]
+                pub gamma: Option<f64> { unit: $gu, range: Range::non_negative() },
+                #[doc = $md]
+                pub mu: Option<f64> { unit: $mu, range: Range::non_negative() },
+            }
+        }
 
-impl RollingLaw for GranRollingSds {
-    type Bound = Sds;
-    const NAME: &'static str = "gran-rolling-sds";
-    const SUMMARY: &'static str =
-        "LAMMPS rolling sds: F_r = −k ξ_r − γ v_roll, |F_r| ≤ μ F_c, torque R n̂ × F_r";
-    const DOC: &'static str = concat!(
-        "LAMMPS `rolling sds k γ μ` (Luding 2008; Wang et al. 2015): the rolling velocity \
+        impl $ty {
+            fn sds(&self) -> Result<Sds, LawError> {
+                let units = [concat!($ku, ", > 0"), concat!($gu, ", >= 0"), concat!($mu, ", >= 0")];
+                sds(<Self as $trait>::NAME, self.k, self.gamma, self.mu, units)
+            }
+        }
+
+        impl $trait for $ty {
+            type Bound = $bound;
+            const NAME: &'static str = $name;
+            const SUMMARY: &'static str = $summary;
+            const DOC: &'static str = concat!($doc, rotation_common_doc!());
+            const HISTORY: &'static [History] = &$history;
+
+            fn check(&self) -> Result<(), LawError> {
+                self.sds().map(|_| ())
+            }
+
+            fn bind(&self, _m: &MaterialPair) -> Result<$bound, LawError> {
+                self.sds().map($make)
+            }
+        }
+    };
+}
+
+sds_law!(
+    /// LAMMPS `rolling sds k γ μ`.
+    GranRollingSds: RollingLaw, "gran-rolling-sds",
+    k: "N/m" "rolling stiffness k_roll (required)",
+    gamma: "N*s/m" "rolling damping γ_roll (required)",
+    mu: "1" "rolling friction coefficient μ_roll (required)",
+    bound: Sds = |s| s,
+    history: [
+        History::new("xi_x", "m", "rolling displacement ξ_r, x component"),
+        History::new("xi_y", "m", "rolling displacement ξ_r, y component"),
+        History::new("xi_z", "m", "rolling displacement ξ_r, z component"),
+    ],
+    summary: "LAMMPS rolling sds: F_r = −k ξ_r − γ v_roll, |F_r| ≤ μ F_c, torque R n̂ × F_r",
+    doc: "LAMMPS `rolling sds k γ μ` (Luding 2008; Wang et al. 2015): the rolling velocity \
         v_roll = R (ω_i − ω_j) × n̂ (m/s) advances a spring ξ_r (m): ξ_r is turned into the \
         tangent plane at its length when |ξ_r·n̂| k > 10⁻¹⁰ μ F_c; ξ_r += v_roll dt; \
         F_r = −k ξ_r − γ v_roll; if |F_r| > μ F_c: with ξ_r ≠ 0, ξ_r = −(μ F_c F_r/|F_r| + \
         γ v_roll)/k and F_r scaled to μ F_c, with ξ_r = 0, F_r = 0. The torque on the particle \
         is R n̂ × F_r (N·m), on the partner its opposite; F_r is not applied to the centres. \
-        Parameters: k (N/m), gamma (N·s/m), mu.",
-        rotation_common_doc!()
-    );
-    const HISTORY: &'static [History] = &[
-        History::new("xi_x", "m", "rolling displacement ξ_r, x component"),
-        History::new("xi_y", "m", "rolling displacement ξ_r, y component"),
-        History::new("xi_z", "m", "rolling displacement ξ_r, z component"),
-    ];
+        Parameters: k (N/m), gamma (N·s/m), mu."
+);
 
-    fn check(&self) -> Result<(), LawError> {
-        sds(Self::NAME, self.k, self.gamma, self.mu, ROLL_UNITS).map(|_| ())
-    }
+sds_law!(
+    /// LAMMPS `twisting sds k γ μ`.
+    GranTwistingSds: TwistingLaw, "gran-twisting-sds",
+    k: "N*m/rad" "twisting stiffness k_twist (required)",
+    gamma: "N*m*s/rad" "twisting damping γ_twist (required)",
+    mu: "m" "twisting friction coefficient μ_twist (required): the critical torque is μ F_c",
+    bound: TwistSdsBound = |s| TwistSdsBound(Twist { k: s.k, damp: s.gamma, mu: s.mu }),
+    history: [History::new("theta", "rad", "twist angle θ")],
+    summary: "LAMMPS twisting sds: M = −k θ − γ ω_t, |M| ≤ μ F_c",
+    doc: "LAMMPS `twisting sds k γ μ` (Luding 2008): the twist rate ω_t = (ω_i − ω_j)·n̂ (rad/s) \
+        advances an angle θ (rad): θ += ω_t dt; M = −k θ − γ ω_t (N·m, about n̂ on the particle); \
+        if |M| > μ F_c: θ = (μ F_c sgn ω_t − γ ω_t)/k and M = −μ F_c sgn ω_t. History θ (rad). \
+        Parameters: k (N·m/rad), gamma (N·m·s/rad), mu (m)."
+);
 
-    fn bind(&self, _m: &MaterialPair) -> Result<Sds, LawError> {
-        sds(Self::NAME, self.k, self.gamma, self.mu, ROLL_UNITS)
-    }
-}
+/// `gran-twisting-sds` bound.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TwistSdsBound(pub Twist);
 
 impl ReadsContext<RollingContact> for Sds {
     type Out = [f64; 3];
@@ -94,7 +134,7 @@ impl ReadsContext<RollingContact> for Sds {
             dt: c.dt,
         };
         let s = rolling_sds(self, x.cap_force, &m, h);
-        (s.force, s.spring)
+        (s.force, s)
     }
 }
 
@@ -119,50 +159,6 @@ through_context!(
     force_energy,
     rctx
 );
-
-dashpot_sdk::law_params! {
-    /// LAMMPS `twisting sds k γ μ`.
-    #[derive(Debug, Clone)]
-    pub struct GranTwistingSds {
-        /// twisting stiffness k_twist (required)
-        pub k: Option<f64> { unit: "N*m/rad", range: Range::positive() },
-        /// twisting damping γ_twist (required)
-        pub gamma: Option<f64> { unit: "N*m*s/rad", range: Range::non_negative() },
-        /// twisting friction coefficient μ_twist (required): the critical torque is μ F_c
-        pub mu: Option<f64> { unit: "m", range: Range::non_negative() },
-    }
-}
-
-/// `gran-twisting-sds` bound.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TwistSdsBound(pub Twist);
-
-impl TwistingLaw for GranTwistingSds {
-    type Bound = TwistSdsBound;
-    const NAME: &'static str = "gran-twisting-sds";
-    const SUMMARY: &'static str = "LAMMPS twisting sds: M = −k θ − γ ω_t, |M| ≤ μ F_c";
-    const DOC: &'static str = concat!(
-        "LAMMPS `twisting sds k γ μ` (Luding 2008): the twist rate ω_t = (ω_i − ω_j)·n̂ (rad/s) \
-        advances an angle θ (rad): θ += ω_t dt; M = −k θ − γ ω_t (N·m, about n̂ on the particle); \
-        if |M| > μ F_c: θ = (μ F_c sgn ω_t − γ ω_t)/k and M = −μ F_c sgn ω_t. History θ (rad). \
-        Parameters: k (N·m/rad), gamma (N·m·s/rad), mu (m).",
-        rotation_common_doc!()
-    );
-    const HISTORY: &'static [History] = &[History::new("theta", "rad", "twist angle θ")];
-
-    fn check(&self) -> Result<(), LawError> {
-        sds(Self::NAME, self.k, self.gamma, self.mu, TWIST_UNITS).map(|_| ())
-    }
-
-    fn bind(&self, _m: &MaterialPair) -> Result<TwistSdsBound, LawError> {
-        let s = sds(Self::NAME, self.k, self.gamma, self.mu, TWIST_UNITS)?;
-        Ok(TwistSdsBound(Twist {
-            k: s.k,
-            damp: s.gamma,
-            mu: s.mu,
-        }))
-    }
-}
 
 impl ReadsContext<TwistingContact> for TwistSdsBound {
     type Out = f64;
@@ -197,14 +193,7 @@ dashpot_sdk::law_params! {
 
 /// `gran-twisting-marshall` bound: the tangential model's k_t, x_t and μ.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MarshallBound {
-    /// k_t.
-    pub kt: f64,
-    /// x_t.
-    pub xt: f64,
-    /// μ.
-    pub mu: f64,
-}
+pub struct MarshallBound(pub Spring);
 
 impl TwistingLaw for GranTwistingMarshall {
     type Bound = MarshallBound;
@@ -228,16 +217,11 @@ impl TwistingLaw for GranTwistingMarshall {
     ];
 
     fn check(&self) -> Result<(), LawError> {
-        need(self.xt, Self::NAME, "xt", "1, >= 0")?;
-        need(self.mu, Self::NAME, "mu", "1, >= 0").map(|_| ())
+        spring_of(Self::NAME, self.kt, Some(1.0), "", self.xt, self.mu).map(|_| ())
     }
 
     fn bind(&self, m: &MaterialPair) -> Result<MarshallBound, LawError> {
-        Ok(MarshallBound {
-            kt: self.kt.unwrap_or(8.0 * m.shear),
-            xt: need(self.xt, Self::NAME, "xt", "1, >= 0")?,
-            mu: need(self.mu, Self::NAME, "mu", "1, >= 0")?,
-        })
+        spring_of(Self::NAME, self.kt, Some(8.0 * m.shear), "", self.xt, self.mu).map(MarshallBound)
     }
 }
 
@@ -245,8 +229,9 @@ impl ReadsContext<TwistingContact> for MarshallBound {
     type Out = f64;
     #[inline]
     fn eval(&self, x: &Ctx, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
-        let t = marshall_twist(self.kt, self.xt, self.mu, x);
-        let k_before = 0.5 * self.kt * h[1] * h[1];
+        let s = &self.0;
+        let t = marshall_twist(s.k, s.xt, s.mu, x);
+        let k_before = 0.5 * s.k * h[1] * h[1];
         let out = t.step(x.cap_force, c.rate, c.dt, &mut h[0], k_before);
         h[1] = x.contact_radius;
         out

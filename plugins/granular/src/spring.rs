@@ -119,6 +119,31 @@ pub struct SpringStep {
 }
 
 impl SpringStep {
+    /// The step of stiffness `k` = [previous step's, this step's], springs `xi` = [the previous
+    /// step's, the start of this one, its end], dashpot `eta`, velocity `v`, returning `force`,
+    /// capped or not (`slid`).
+    #[inline(always)]
+    pub fn new(
+        k: [f64; 2],
+        xi: [[f64; 3]; 3],
+        eta: f64,
+        v: [f64; 3],
+        force: [f64; 3],
+        slid: bool,
+    ) -> SpringStep {
+        SpringStep {
+            k_before: k[0],
+            xi_before: xi[0],
+            k: k[1],
+            xi_start: xi[1],
+            xi_after: xi[2],
+            eta,
+            v,
+            force,
+            slid,
+        }
+    }
+
     /// The step's energy over `dt` (s): elastic k |ξ_after|²/2 (J); power (W) the energy taken
     /// from the bodies' motion and from the spring, per second: W/dt − (E_after − E_before)/dt,
     /// with W the work the bodies did on the contact. Stuck (ξ_after = ξ_start + v dt), that is

@@ -45,7 +45,7 @@ pub struct Motion {
 /// No spring: the step's energy is the dashpot-or-cap's power F_t |v_t| (`SpringStep` with
 /// k = 0 and η = F_t/|v_t|).
 #[inline]
-pub fn linear_nohistory(s: &Spring, ctx: &Ctx, m: &Motion) -> Step {
+pub fn linear_nohistory(s: &Spring, ctx: &Ctx, m: &Motion) -> SpringStep {
     let vtr = tangential(m.v, m.n);
     let vrel = len(vtr);
     let damp = s.xt * ctx.damping;
@@ -57,75 +57,79 @@ pub fn linear_nohistory(s: &Spring, ctx: &Ctx, m: &Motion) -> Step {
         0.0
     };
     let f = scale(-ft, vtr);
-    Step {
-        force: f,
-        spring: SpringStep {
-            k_before: 0.0,
-            xi_before: [0.0; 3],
-            k: 0.0,
-            xi_start: [0.0; 3],
-            xi_after: [0.0; 3],
-            eta: ft,
-            v: vtr,
-            force: f,
-            slid: false,
-        },
-    }
+    SpringStep::new([0.0, 0.0], [[0.0; 3], [0.0; 3], [0.0; 3]], ft, vtr, f, false)
 }
 
-/// The outcome of one step of a history spring: the force and the step as its energy sees it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Step {
-    /// The force on i (N).
-    pub force: [f64; 3],
-    /// The step for the energy accounting (displacement springs in m).
-    pub spring: SpringStep,
+/// What every history spring reads first: the tangential velocity v_t, the dashpot
+/// η_t = x_t η_n and the cap μ F_c (LAMMPS's operations).
+#[inline(always)]
+fn dashpot_and_cap(s: &Spring, ctx: &Ctx, m: &Motion) -> ([f64; 3], f64, f64) {
+    (tangential(m.v, m.n), s.xt * ctx.damping, ctx.cap_force * s.mu)
+}
+
+/// LAMMPS's frame update, then the advance: the spring `xi` turned into the tangent plane of
+/// `n` at its length when its normal part, as a force (stiffness `k`), exceeds 10⁻¹⁰ of `cap`,
+/// then advanced by `step` `v`: (the turned spring, the advanced one).
+#[inline(always)]
+pub(crate) fn turn_advance(
+    xi: [f64; 3],
+    n: [f64; 3],
+    k: f64,
+    cap: f64,
+    step: f64,
+    v: [f64; 3],
+) -> ([f64; 3], [f64; 3]) {
+    let start = if dot(xi, n).abs() * k > FRAME_EPS * cap {
+        rotate_rescale(xi, n)
+    } else {
+        xi
+    };
+    (start, add(start, scale(step, v)))
+}
+
+/// LAMMPS's Coulomb cap of a tangential force `f` at `cap`: past it the force is scaled to the
+/// cap and, if the spring held anything (`held`), the spring `xi` reset to the capped force plus
+/// the dashpot's share `eta` `v`, divided by −`k` (a displacement spring; `None`: a force
+/// history, kept as it is); a spring that held nothing gives no force. Returns the force, the
+/// spring and whether the cap acted.
+#[inline(always)]
+fn coulomb(
+    f: [f64; 3],
+    xi: [f64; 3],
+    held: bool,
+    cap: f64,
+    eta: f64,
+    v: [f64; 3],
+    k: Option<f64>,
+) -> ([f64; 3], [f64; 3], bool) {
+    let magfs = len(f);
+    if magfs <= cap {
+        return (f, xi, false);
+    }
+    if !held {
+        return ([0.0; 3], xi, true);
+    }
+    let inv = 1.0 / magfs;
+    let mut reset = add(scale(cap * inv, f), scale(eta, v));
+    if let Some(k) = k {
+        reset = scale(-1.0 / k, reset);
+    }
+    (scale(cap * inv, f), reset, true)
 }
 
 /// LAMMPS `tangential linear_history k_t x_t μ`: history ξ (m, slots 0..3). Turn ξ into the
 /// tangent plane (when its normal part matters), ξ += v_t dt, F = −k_t ξ − η_t v_t; if
 /// |F| > μ F_c and ξ ≠ 0: F scaled to μ F_c and ξ = −(F + η_t v_t)/k_t; if ξ = 0, F = 0.
 #[inline]
-pub fn linear_history(s: &Spring, ctx: &Ctx, m: &Motion, h: &mut [f64]) -> Step {
-    let (kt, xt, mu, n, dt) = (s.k, s.xt, s.mu, m.n, m.dt);
-    let vtr = tangential(m.v, n);
-    let damp = xt * ctx.damping;
-    let fscrit = ctx.cap_force * mu;
+pub fn linear_history(s: &Spring, ctx: &Ctx, m: &Motion, h: &mut [f64]) -> SpringStep {
+    let (kt, n, dt) = (s.k, m.n, m.dt);
+    let (vtr, damp, fscrit) = dashpot_and_cap(s, ctx, m);
     let before = vec3(h);
-    let mut xi = before;
-    if dot(xi, n).abs() * kt > FRAME_EPS * fscrit {
-        xi = rotate_rescale(xi, n);
-    }
-    let start = xi;
-    xi = add(xi, scale(dt, vtr));
-    let mut f = sub(scale(-kt, xi), scale(damp, vtr));
-    let magfs = len(f);
-    let slid = magfs > fscrit;
-    if slid {
-        if len(xi) != 0.0 {
-            let inv = 1.0 / magfs;
-            xi = add(scale(fscrit * inv, f), scale(damp, vtr));
-            xi = scale(-1.0 / kt, xi);
-            f = scale(fscrit * inv, f);
-        } else {
-            f = [0.0; 3];
-        }
-    }
+    let (start, xi) = turn_advance(before, n, kt, fscrit, dt, vtr);
+    let f = sub(scale(-kt, xi), scale(damp, vtr));
+    let (f, xi, slid) = coulomb(f, xi, len(xi) != 0.0, fscrit, damp, vtr, Some(kt));
     h[..3].copy_from_slice(&xi);
-    Step {
-        force: f,
-        spring: SpringStep {
-            k_before: kt,
-            xi_before: before,
-            k: kt,
-            xi_start: start,
-            xi_after: xi,
-            eta: damp,
-            v: vtr,
-            force: f,
-            slid,
-        },
-    }
+    SpringStep::new([kt, kt], [before, start, xi], damp, vtr, f, slid)
 }
 
 /// LAMMPS `tangential mindlin k x_t μ` and its variants: stiffness k a (k in N/m², a the
@@ -140,53 +144,31 @@ pub fn mindlin<const FORCE: bool, const RESCALE: bool>(
     ctx: &Ctx,
     m: &Motion,
     h: &mut [f64],
-) -> Step {
-    let (k, xt, mu, n, dt) = (s.k, s.xt, s.mu, m.n, m.dt);
-    let vtr = tangential(m.v, n);
+) -> SpringStep {
+    let (k, n, dt) = (s.k, m.n, m.dt);
+    let (vtr, damp, fscrit) = dashpot_and_cap(s, ctx, m);
     let a = ctx.contact_radius;
-    let damp = xt * ctx.damping;
-    let fscrit = ctx.cap_force * mu;
     let k_scaled = k * a;
     let (before, a_last) = (vec3(h), h[3]);
     let mut hist = before;
     if RESCALE && a < a_last {
         hist = scale(a / a_last, hist);
     }
-    let rsht = dot(hist, n);
-    let turn = if FORCE {
-        rsht.abs() > FRAME_EPS * fscrit
+    // a force history turns when its normal part exceeds 10⁻¹⁰ of the cap, and advances by
+    // −k a v_t dt
+    let (start, hist) = if FORCE {
+        turn_advance(hist, n, 1.0, fscrit, -k_scaled * dt, vtr)
     } else {
-        rsht.abs() * k_scaled > FRAME_EPS * fscrit
+        turn_advance(hist, n, k_scaled, fscrit, dt, vtr)
     };
-    if turn {
-        hist = rotate_rescale(hist, n);
-    }
-    let start = hist;
-    hist = if FORCE {
-        add(hist, scale(-k_scaled * dt, vtr))
-    } else {
-        add(hist, scale(dt, vtr))
-    };
-    let mut f = scale(-damp, vtr);
-    f = if FORCE {
+    let f = scale(-damp, vtr);
+    let f = if FORCE {
         add(f, hist)
     } else {
         sub(f, scale(k_scaled, hist))
     };
-    let magfs = len(f);
-    let slid = magfs > fscrit;
-    if slid {
-        if len(hist) != 0.0 {
-            let inv = 1.0 / magfs;
-            hist = add(scale(fscrit * inv, f), scale(damp, vtr));
-            if !FORCE {
-                hist = scale(-1.0 / k_scaled, hist);
-            }
-            f = scale(fscrit * inv, f);
-        } else {
-            f = [0.0; 3];
-        }
-    }
+    let k_reset = (!FORCE).then_some(k_scaled);
+    let (f, hist, slid) = coulomb(f, hist, len(hist) != 0.0, fscrit, damp, vtr, k_reset);
     h[..3].copy_from_slice(&hist);
     h[3] = a;
     // the force history as the displacement it stands for, ξ = −F_el/(k a)
@@ -200,20 +182,12 @@ pub fn mindlin<const FORCE: bool, const RESCALE: bool>(
             [0.0; 3]
         }
     };
-    Step {
-        force: f,
-        spring: SpringStep {
-            k_before,
-            xi_before: as_xi(before, k_before),
-            k: k_scaled,
-            xi_start: as_xi(start, k_scaled),
-            xi_after: as_xi(hist, k_scaled),
-            eta: damp,
-            v: vtr,
-            force: f,
-            slid,
-        },
-    }
+    let xi = [
+        as_xi(before, k_before),
+        as_xi(start, k_scaled),
+        as_xi(hist, k_scaled),
+    ];
+    SpringStep::new([k_before, k_scaled], xi, damp, vtr, f, slid)
 }
 
 /// The classic history springs: ξ += v_t dt first, then ξ is projected onto the tangent plane
@@ -223,41 +197,22 @@ pub fn mindlin<const FORCE: bool, const RESCALE: bool>(
 /// `hooke/history`, `hertz/history`): k_s = k_t a, k_r = k_t. The spring `s` has k = k_s;
 /// `k_before` is the spring stiffness of the previous step (for the energy only).
 #[inline]
-pub fn classic(s: &Spring, k_reset: f64, ctx: &Ctx, m: &Motion, h: &mut [f64], k_before: f64) -> Step {
-    let (k_spring, xt, mu, n, dt) = (s.k, s.xt, s.mu, m.n, m.dt);
-    let vtr = tangential(m.v, n);
-    let damp = xt * ctx.damping;
-    let fscrit = ctx.cap_force * mu;
+pub fn classic(s: &Spring, k_reset: f64, ctx: &Ctx, m: &Motion, h: &mut [f64], k_before: f64) -> SpringStep {
+    let (k_spring, n, dt) = (s.k, m.n, m.dt);
+    let (vtr, damp, fscrit) = dashpot_and_cap(s, ctx, m);
     let before = vec3(h);
-    let mut xi = add(before, scale(dt, vtr));
+    let xi = add(before, scale(dt, vtr));
     let shrmag = len(xi);
-    xi = sub(xi, scale(dot(xi, n), n));
-    let mut f = sub(scale(-k_spring, xi), scale(damp, vtr));
-    let magfs = len(f);
-    let slid = magfs > fscrit;
-    if slid {
-        if shrmag != 0.0 {
-            let inv = 1.0 / magfs;
-            xi = add(scale(fscrit * inv, f), scale(damp, vtr));
-            xi = scale(-1.0 / k_reset, xi);
-            f = scale(fscrit * inv, f);
-        } else {
-            f = [0.0; 3];
-        }
-    }
+    let xi = sub(xi, scale(dot(xi, n), n));
+    let f = sub(scale(-k_spring, xi), scale(damp, vtr));
+    let (f, xi, slid) = coulomb(f, xi, shrmag != 0.0, fscrit, damp, vtr, Some(k_reset));
     h[..3].copy_from_slice(&xi);
-    Step {
-        force: f,
-        spring: SpringStep {
-            k_before,
-            xi_before: before,
-            k: k_spring,
-            xi_start: sub(xi, scale(dt, vtr)),
-            xi_after: xi,
-            eta: damp,
-            v: vtr,
-            force: f,
-            slid,
-        },
-    }
+    SpringStep::new(
+        [k_before, k_spring],
+        [before, sub(xi, scale(dt, vtr)), xi],
+        damp,
+        vtr,
+        f,
+        slid,
+    )
 }

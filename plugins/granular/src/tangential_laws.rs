@@ -2,7 +2,7 @@
 //! `mindlin` variants and the classic history springs, reading the normal law's context.
 
 use crate::spring::{context_of, through_context, Ctx, ReadsContext, SpringStep};
-use crate::tangential::{classic, linear_history, linear_nohistory, mindlin, Motion, Spring, Step};
+use crate::tangential::{classic, linear_history, linear_nohistory, mindlin, Motion, Spring};
 use dashpot_sdk::{
     BoundTangential, History, LawError, MaterialPair, Range, TangentialContact, TangentialLaw,
 };
@@ -13,6 +13,23 @@ pub(crate) fn need(v: Option<f64>, law: &str, name: &str, what: &str) -> Result<
         LawError::invalid_parameter(format!(
             "law '{law}' needs '{name}' ({what}): LAMMPS has no default for it"
         ))
+    })
+}
+
+/// The constants of a law with a spring, a dashpot ratio and a friction coefficient: `kt`
+/// (`default` when absent; required when there is none), `xt` and `mu` (required).
+pub(crate) fn spring_of(
+    law: &str,
+    kt: Option<f64>,
+    default: Option<f64>,
+    unit: &str,
+    xt: Option<f64>,
+    mu: Option<f64>,
+) -> Result<Spring, LawError> {
+    Ok(Spring {
+        k: need(kt.or(default), law, "kt", unit)?,
+        xt: need(xt, law, "xt", "1, >= 0")?,
+        mu: need(mu, law, "mu", "1, >= 0")?,
     })
 }
 
@@ -78,14 +95,9 @@ dashpot_sdk::law_params! {
     }
 }
 
-/// `gran-linear-nohistory` bound.
-#[derive(Debug, Clone, Copy)]
-pub struct LinearNoHistoryBound {
-    /// x_t.
-    pub xt: f64,
-    /// μ.
-    pub mu: f64,
-}
+/// `gran-linear-nohistory` bound (no stiffness: k = 0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearNoHistoryBound(pub Spring);
 
 impl TangentialLaw for GranLinearNoHistory {
     type Bound = LinearNoHistoryBound;
@@ -109,10 +121,7 @@ impl TangentialLaw for GranLinearNoHistory {
     }
 
     fn bind(&self, _m: &MaterialPair) -> Result<LinearNoHistoryBound, LawError> {
-        Ok(LinearNoHistoryBound {
-            xt: need(self.xt, Self::NAME, "xt", "1, >= 0")?,
-            mu: need(self.mu, Self::NAME, "mu", "1, >= 0")?,
-        })
+        spring_of(Self::NAME, None, Some(0.0), "", self.xt, self.mu).map(LinearNoHistoryBound)
     }
 }
 
@@ -120,29 +129,16 @@ impl ReadsContext<TangentialContact> for LinearNoHistoryBound {
     type Out = [f64; 3];
     #[inline]
     fn eval(&self, x: &Ctx, c: &TangentialContact, _h: &mut [f64]) -> ([f64; 3], SpringStep) {
-        let s = Spring {
-            k: 0.0,
-            xt: self.xt,
-            mu: self.mu,
-        };
-        let step = linear_nohistory(&s, x, &motion(c));
-        (step.force, step.spring)
+        let step = linear_nohistory(&self.0, x, &motion(c));
+        (step.force, step)
     }
 }
 
 spring_bound!(LinearNoHistoryBound);
 
-/// The bound constants of a history spring law: stiffness (N/m, or N/m² for the a-scaled
-/// ones), x_t and μ.
+/// A history spring law bound: its stiffness (N/m, or N/m² for the a-scaled ones), x_t and μ.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SpringBound<const KIND: u8> {
-    /// Stiffness k_t.
-    pub kt: f64,
-    /// x_t.
-    pub xt: f64,
-    /// μ.
-    pub mu: f64,
-}
+pub struct SpringBound<const KIND: u8>(pub Spring);
 
 /// The kinds of [`SpringBound`].
 pub mod kind {
@@ -168,12 +164,8 @@ pub mod kind {
 impl<const KIND: u8> SpringBound<KIND> {
     /// One step of the law on contact `c` with history `h` under context `x`.
     #[inline(always)]
-    fn step(&self, x: &Ctx, c: &TangentialContact, h: &mut [f64]) -> Step {
-        let s = Spring {
-            k: self.kt,
-            xt: self.xt,
-            mu: self.mu,
-        };
+    fn step(&self, x: &Ctx, c: &TangentialContact, h: &mut [f64]) -> SpringStep {
+        let s = self.0;
         let m = motion(c);
         match KIND {
             kind::LINEAR => linear_history(&s, x, &m, h),
@@ -205,7 +197,7 @@ impl<const KIND: u8> ReadsContext<TangentialContact> for SpringBound<KIND> {
     #[inline]
     fn eval(&self, x: &Ctx, c: &TangentialContact, h: &mut [f64]) -> ([f64; 3], SpringStep) {
         let s = self.step(x, c, h);
-        (s.force, s.spring)
+        (s.force, s)
     }
 }
 
@@ -260,24 +252,13 @@ macro_rules! spring_law {
             const HISTORY: &'static [History] = &$history;
 
             fn check(&self) -> Result<(), LawError> {
-                if !$derived {
-                    need(self.kt, Self::NAME, "kt", $kunit)?;
-                }
-                need(self.xt, Self::NAME, "xt", "1, >= 0")?;
-                need(self.mu, Self::NAME, "mu", "1, >= 0").map(|_| ())
+                let derived = $derived.then_some(1.0);
+                spring_of(Self::NAME, self.kt, derived, $kunit, self.xt, self.mu).map(|_| ())
             }
 
             fn bind(&self, m: &MaterialPair) -> Result<Self::Bound, LawError> {
-                let kt = match self.kt {
-                    Some(k) => k,
-                    None if $derived => 8.0 * m.shear,
-                    None => need(None, Self::NAME, "kt", $kunit)?,
-                };
-                Ok(SpringBound {
-                    kt,
-                    xt: need(self.xt, Self::NAME, "xt", "1, >= 0")?,
-                    mu: need(self.mu, Self::NAME, "mu", "1, >= 0")?,
-                })
+                let derived = $derived.then_some(8.0 * m.shear);
+                spring_of(Self::NAME, self.kt, derived, $kunit, self.xt, self.mu).map(SpringBound)
             }
         }
     };

@@ -266,54 +266,41 @@ fn a_sphere_launched_sliding_ends_rolling_at_five_sevenths() {
         v.extend(kt.map(|k| ParamValue::new("kt", k)));
         v
     };
-    let laws: Vec<(&str, Box<dyn Fn() -> (f64, f64)>)> = vec![
-        (
-            "gran-mindlin",
-            Box::new(|| {
-                let t = GranMindlin::from_values(&p(None)).unwrap().bind(&wall).unwrap();
-                slide_to_roll(&normal, &t, GranMindlin::HISTORY.len())
-            }),
-        ),
-        (
-            "gran-linear-history",
-            Box::new(|| {
-                let t = GranLinearHistory::from_values(&p(Some(500.0)))
-                    .unwrap()
-                    .bind(&wall)
-                    .unwrap();
-                slide_to_roll(&normal, &t, 3)
-            }),
-        ),
-        (
-            "gran-mindlin-rescale-force",
-            Box::new(|| {
-                let t = GranMindlinRescaleForce::from_values(&p(None))
-                    .unwrap()
-                    .bind(&wall)
-                    .unwrap();
-                slide_to_roll(&normal, &t, 4)
-            }),
-        ),
-        (
-            "gran-linear-history-classic",
-            Box::new(|| {
-                let t = GranLinearHistoryClassic::from_values(&p(Some(500.0)))
-                    .unwrap()
-                    .bind(&wall)
-                    .unwrap();
-                slide_to_roll(&normal, &t, 3)
-            }),
-        ),
-    ];
-    for (name, run) in laws {
-        let (v, rw) = run();
+    let rolls = |name: &str, (v, rw): (f64, f64)| {
         eprintln!("{name}: v/v0 = {v}, R ω/v0 = {rw}");
         assert!((v - 5.0 / 7.0).abs() < 2e-3, "{name}: v/v0 = {v}");
         assert!(
             (rw - v).abs() < 2e-3,
             "{name}: rolling without slip, R ω/v0 = {rw}"
         );
-    }
+    };
+    rolls("gran-mindlin", roll_with::<GranMindlin>(&normal, &p(None), &wall));
+    rolls(
+        "gran-linear-history",
+        roll_with::<GranLinearHistory>(&normal, &p(Some(500.0)), &wall),
+    );
+    rolls(
+        "gran-mindlin-rescale-force",
+        roll_with::<GranMindlinRescaleForce>(&normal, &p(None), &wall),
+    );
+    rolls(
+        "gran-linear-history-classic",
+        roll_with::<GranLinearHistoryClassic>(&normal, &p(Some(500.0)), &wall),
+    );
+}
+
+/// [`slide_to_roll`] with the tangential law `T` of `params`, bound to `m`.
+fn roll_with<T>(
+    n: &impl Fn(Contact, &mut [f64]) -> (f64, Ctx),
+    params: &[ParamValue],
+    m: &MaterialPair,
+) -> (f64, f64)
+where
+    T: TangentialLaw,
+    T::Bound: ReadsContext<TangentialContact, Out = [f64; 3]>,
+{
+    let t = T::from_values(params).unwrap().bind(m).unwrap();
+    slide_to_roll(n, &t, T::HISTORY.len())
 }
 
 /// The energy a normal law reports over a collision integrated by velocity Verlet: the

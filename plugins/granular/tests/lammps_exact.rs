@@ -127,164 +127,95 @@ fn impact(tag: &str, coeff: &str, model: Model) -> Option<Outcome> {
     Run::impact("granular", &format!("* * {coeff}")).check(tag, model)
 }
 
-#[test]
-fn hooke_with_each_damping() {
-    let m = mat();
-    let k = ("k", 1e4);
-    type L = GranLinearHistory;
-    impact(
-        "hooke-velocity",
-        &format!("hooke 1e4 5e-4 damping velocity {LIN}"),
-        with::<GranHookeVelocity, _, _, L>(&[k, ("damp", 5e-4)], LIN_P, &m),
-    );
-    impact(
-        "hooke-mass_velocity",
-        &format!("hooke 1e4 300 damping mass_velocity {LIN}"),
-        with::<GranHookeMassVelocity, _, _, L>(&[k, ("damp", 300.0)], LIN_P, &m),
-    );
-    impact(
-        "hooke-viscoelastic",
-        &format!("hooke 1e4 1e7 damping viscoelastic {LIN}"),
-        with::<GranHookeViscoelastic, _, _, L>(&[k, ("damp", 1e7)], LIN_P, &m),
-    );
-    impact(
-        "hooke-tsuji",
-        &format!("hooke 1e4 0.7 damping tsuji {LIN}"),
-        with::<GranHookeTsuji, _, _, L>(&[k, ("damp", 0.7)], LIN_P, &m),
-    );
-    impact(
-        "hooke-coeff_restitution",
-        &format!("hooke 1e4 0.7 damping coeff_restitution {LIN}"),
-        with::<GranHookeCoeffRestitution, _, _, L>(&[k, ("damp", 0.7)], LIN_P, &m),
-    );
-    // limit_damping: a strongly damped rebound, clamped at zero force
-    impact(
-        "hooke-mass_velocity-limit",
-        &format!("hooke 1e4 2000 damping mass_velocity {LIN} limit_damping"),
-        with::<GranHookeMassVelocity, _, _, L>(&[k, ("damp", 2000.0), ("limit_damping", 1.0)], LIN_P, &m),
-    );
-}
-
-#[test]
-fn hertz_with_each_damping() {
-    let m = mat();
-    let k = ("k", 1e8);
-    type L = GranLinearHistory;
-    impact(
-        "hertz-velocity",
-        &format!("hertz 1e8 1e-3 damping velocity {LIN}"),
-        with::<GranHertzVelocity, _, _, L>(&[k, ("damp", 1e-3)], LIN_P, &m),
-    );
-    impact(
-        "hertz-mass_velocity",
-        &format!("hertz 1e8 300 damping mass_velocity {LIN}"),
-        with::<GranHertzMassVelocity, _, _, L>(&[k, ("damp", 300.0)], LIN_P, &m),
-    );
-    impact(
-        "hertz-viscoelastic",
-        &format!("hertz 1e8 3e7 damping viscoelastic {LIN}"),
-        with::<GranHertzViscoelastic, _, _, L>(&[k, ("damp", 3e7)], LIN_P, &m),
-    );
-    impact(
-        "hertz-tsuji",
-        &format!("hertz 1e8 0.7 damping tsuji {LIN}"),
-        with::<GranHertzTsuji, _, _, L>(&[k, ("damp", 0.7)], LIN_P, &m),
-    );
-    impact(
-        "hertz-coeff_restitution",
-        &format!("hertz 1e8 0.7 damping coeff_restitution {LIN}"),
-        with::<GranHertzCoeffRestitution, _, _, L>(&[k, ("damp", 0.7)], LIN_P, &m),
-    );
-    impact(
-        "hertz-viscoelastic-limit",
-        &format!("hertz 1e8 3e8 damping viscoelastic {LIN} limit_damping"),
-        with::<GranHertzViscoelastic, _, _, L>(&[k, ("damp", 3e8), ("limit_damping", 1.0)], LIN_P, &m),
-    );
-}
-
-#[test]
-fn hertz_material_with_each_damping() {
-    let m = mat();
-    type L = GranLinearHistory;
-    const HM: &str = "hertz/material 1e8";
-    const NU: &str = "0.3";
-    impact(
-        "hertz/material-velocity",
-        &format!("{HM} 1e-3 {NU} damping velocity {LIN}"),
-        with::<GranHertzMaterialVelocity, _, _, L>(&[("damp", 1e-3)], LIN_P, &m),
-    );
-    impact(
-        "hertz/material-mass_velocity",
-        &format!("{HM} 300 {NU} damping mass_velocity {LIN}"),
-        with::<GranHertzMaterialMassVelocity, _, _, L>(&[("damp", 300.0)], LIN_P, &m),
-    );
-    impact(
-        "hertz/material-viscoelastic",
-        &format!("{HM} 3e7 {NU} damping viscoelastic {LIN}"),
-        with::<GranHertzMaterialViscoelastic, _, _, L>(&[("damp", 3e7)], LIN_P, &m),
-    );
-    impact(
-        "hertz/material-tsuji",
-        &format!("{HM} 0.7 {NU} damping tsuji {LIN}"),
-        with::<GranHertzMaterialTsuji, _, _, L>(&[("damp", 0.7)], LIN_P, &m),
-    );
-    impact(
-        "hertz/material-coeff_restitution",
-        &format!("{HM} 0.7 {NU} damping coeff_restitution {LIN}"),
-        with::<GranHertzMaterialCoeffRestitution, _, _, L>(&[("damp", 0.7)], LIN_P, &m),
-    );
-    impact(
-        "hertz/material-limit",
-        &format!("{HM} 3e8 {NU} damping viscoelastic {LIN} limit_damping"),
-        with::<GranHertzMaterialViscoelastic, _, _, L>(&[("damp", 3e8), ("limit_damping", 1.0)], LIN_P, &m),
-    );
-}
-
-#[test]
-fn dmt_and_jkr_with_each_damping() {
-    let m = mat();
-    type L = GranLinearHistory;
-    let g = ("cohesion", 0.05);
-    for (model, tag) in [("dmt", "dmt"), ("jkr", "jkr")] {
-        let coeff = |d: &str, damp: &str| format!("{model} 1e8 {damp} 0.3 0.05 damping {d} {LIN}");
-        let (v, mv, ve) = (
-            coeff("velocity", "1e-3"),
-            coeff("mass_velocity", "300"),
-            coeff("viscoelastic", "3e7"),
-        );
-        if model == "dmt" {
-            impact(
-                &format!("{tag}-velocity"),
-                &v,
-                with::<GranDmtVelocity, _, _, L>(&[g, ("damp", 1e-3)], LIN_P, &m),
-            );
-            impact(
-                &format!("{tag}-mass_velocity"),
-                &mv,
-                with::<GranDmtMassVelocity, _, _, L>(&[g, ("damp", 300.0)], LIN_P, &m),
-            );
-            impact(
-                &format!("{tag}-viscoelastic"),
-                &ve,
-                with::<GranDmtViscoelastic, _, _, L>(&[g, ("damp", 3e7)], LIN_P, &m),
-            );
-        } else {
-            impact(
-                &format!("{tag}-velocity"),
-                &v,
-                with::<GranJkrVelocity, _, _, L>(&[g, ("damp", 1e-3)], LIN_P, &m),
-            );
-            impact(
-                &format!("{tag}-mass_velocity"),
-                &mv,
-                with::<GranJkrMassVelocity, _, _, L>(&[g, ("damp", 300.0)], LIN_P, &m),
-            );
-            impact(
-                &format!("{tag}-viscoelastic"),
-                &ve,
-                with::<GranJkrViscoelastic, _, _, L>(&[g, ("damp", 3e7)], LIN_P, &m),
-            );
+/// A test of the impacts of one normal model under each damping model LAMMPS accepts with it,
+/// with `gran-linear-history` friction: `$lammps` is the model's pair_coeff words with `{}` for
+/// `damp`, `$p` the law's other parameters; each case the law, LAMMPS's damping keyword, `damp`.
+macro_rules! each_damping {
+    ($test:ident, $lammps:literal, [$($p:expr),*], [$($law:ty: $d:literal $damp:literal),* $(,)?]) => {
+        #[test]
+        fn $test() {
+            let m = mat();
+            let base: Vec<(&str, f64)> = vec![$($p),*];
+            $(
+                let coeff = format!("{} damping {} {LIN}", format!($lammps, $damp), $d);
+                let tag = format!("{}-{}", stringify!($test), $d);
+                let mut p = base.clone();
+                p.push(("damp", $damp));
+                impact(&tag, &coeff, with::<$law, _, _, GranLinearHistory>(&p, LIN_P, &m));
+            )*
         }
+    };
+}
+
+each_damping!(hooke, "hooke 1e4 {}", [("k", 1e4)], [
+    GranHookeVelocity: "velocity" 5e-4,
+    GranHookeMassVelocity: "mass_velocity" 300.0,
+    GranHookeViscoelastic: "viscoelastic" 1e7,
+    GranHookeTsuji: "tsuji" 0.7,
+    GranHookeCoeffRestitution: "coeff_restitution" 0.7,
+]);
+
+each_damping!(hertz, "hertz 1e8 {}", [("k", 1e8)], [
+    GranHertzVelocity: "velocity" 1e-3,
+    GranHertzMassVelocity: "mass_velocity" 300.0,
+    GranHertzViscoelastic: "viscoelastic" 3e7,
+    GranHertzTsuji: "tsuji" 0.7,
+    GranHertzCoeffRestitution: "coeff_restitution" 0.7,
+]);
+
+each_damping!(hertz_material, "hertz/material 1e8 {} 0.3", [], [
+    GranHertzMaterialVelocity: "velocity" 1e-3,
+    GranHertzMaterialMassVelocity: "mass_velocity" 300.0,
+    GranHertzMaterialViscoelastic: "viscoelastic" 3e7,
+    GranHertzMaterialTsuji: "tsuji" 0.7,
+    GranHertzMaterialCoeffRestitution: "coeff_restitution" 0.7,
+]);
+
+each_damping!(dmt, "dmt 1e8 {} 0.3 0.05", [("cohesion", 0.05)], [
+    GranDmtVelocity: "velocity" 1e-3,
+    GranDmtMassVelocity: "mass_velocity" 300.0,
+    GranDmtViscoelastic: "viscoelastic" 3e7,
+]);
+
+each_damping!(jkr, "jkr 1e8 {} 0.3 0.05", [("cohesion", 0.05)], [
+    GranJkrVelocity: "velocity" 1e-3,
+    GranJkrMassVelocity: "mass_velocity" 300.0,
+    GranJkrViscoelastic: "viscoelastic" 3e7,
+]);
+
+#[test]
+fn limit_damping() {
+    // strongly damped rebounds, the attractive end of the force clamped at zero
+    let m = mat();
+    let lim = ("limit_damping", 1.0);
+    let cases = [
+        (
+            "hooke 1e4 2000 damping mass_velocity",
+            with::<GranHookeMassVelocity, _, _, GranLinearHistory>(
+                &[("k", 1e4), ("damp", 2000.0), lim],
+                LIN_P,
+                &m,
+            ),
+        ),
+        (
+            "hertz 1e8 3e8 damping viscoelastic",
+            with::<GranHertzViscoelastic, _, _, GranLinearHistory>(
+                &[("k", 1e8), ("damp", 3e8), lim],
+                LIN_P,
+                &m,
+            ),
+        ),
+        (
+            "hertz/material 1e8 3e8 0.3 damping viscoelastic",
+            with::<GranHertzMaterialViscoelastic, _, _, GranLinearHistory>(&[("damp", 3e8), lim], LIN_P, &m),
+        ),
+    ];
+    for (lammps, model) in cases {
+        impact(
+            &format!("{lammps} limit_damping"),
+            &format!("{lammps} {LIN} limit_damping"),
+            model,
+        );
     }
 }
 
@@ -376,18 +307,11 @@ fn mindlin_tangential_models() {
     );
 }
 
-/// The model of a classic pair style: normal law `N`, tangential law `T`, torque arms R.
-fn classic<N, M, D, T>(np: &[(&str, f64)], tp: &[(&str, f64)]) -> Model
-where
-    N: dashpot_sdk::ContactLaw<Bound = GranNormalBound<M, D>>,
-    M: dashpot_granular::normal::NormalModel,
-    D: dashpot_granular::normal::DampingModel,
-    T: dashpot_sdk::TangentialLaw,
-    T::Bound: dashpot_granular::spring::ReadsContext<dashpot_sdk::TangentialContact, Out = [f64; 3]>,
-{
+/// The model `m` with the torque arms of the classic pair styles (R, not R − δ/2).
+fn classic(m: Model) -> Model {
     Model {
         classic_arms: true,
-        ..with::<N, M, D, T>(np, tp, &mat())
+        ..m
     }
 }
 
@@ -398,10 +322,11 @@ fn classic_pair_styles() {
     let r = Run::impact("gran/hooke 1e4 NULL 300 NULL 0.3 1", "* *");
     r.check(
         "gran/hooke",
-        classic::<GranHookeMassVelocity, _, _, GranLinearNoHistory>(
+        classic(with::<GranHookeMassVelocity, _, _, GranLinearNoHistory>(
             &[("k", 1e4), ("damp", 300.0)],
             &[("xt", 0.5), ("mu", 0.3)],
-        ),
+            &mat(),
+        )),
     );
     // gran/hooke/history: the classic history spring
     let tp = [("kt", 3e3), ("xt", 200.0 / 300.0), ("mu", 0.3)];
@@ -415,10 +340,11 @@ fn classic_pair_styles() {
             Run::pressed("gran/hooke/history 1e4 3e3 300 200 0.3 1", "* *", 5e-3),
         ),
     ] {
-        let m = classic::<GranHookeMassVelocity, _, _, GranLinearHistoryClassic>(
+        let m = classic(with::<GranHookeMassVelocity, _, _, GranLinearHistoryClassic>(
             &[("k", 1e4), ("damp", 300.0)],
             &tp,
-        );
+            &mat(),
+        ));
         if let Some(o) = run.check(tag, m) {
             both(tag, "tangential", o.slid);
         }
@@ -452,7 +378,11 @@ fn classic_pair_styles() {
         } else {
             tp
         };
-        let m = classic::<GranHertzViscoelastic, _, _, GranMindlinClassic>(&np, &tp);
+        let m = classic(with::<GranHertzViscoelastic, _, _, GranMindlinClassic>(
+            &np,
+            &tp,
+            &mat(),
+        ));
         if let Some(o) = run.check(tag, m) {
             both(tag, "tangential", o.slid);
         }

@@ -56,7 +56,11 @@ pub struct Atom {
 pub fn run(venv: &Path, deck: &str, tag: &str, vars: &[(&str, String)]) -> Vec<Vec<Atom>> {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(format!("gran-lammps-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("scratch dir");
-    let dump = dir.join(format!("{}.dump", tag.replace('/', "_")));
+    let file: String = tag
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '_' })
+        .collect();
+    let dump = dir.join(format!("{file}.dump"));
     let deck_path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/decks")
         .join(deck);

@@ -45,53 +45,43 @@ where
     }
 }
 
-/// The tangential law `L` with `params`, bound to `m`.
-pub fn tangential<L>(params: &[(&str, f64)], m: &MaterialPair) -> Law<VectorFn<TangentialContact>>
-where
-    L: TangentialLaw,
-    L::Bound: ReadsContext<TangentialContact, Out = [f64; 3]>,
-{
-    let b = L::from_values(&values(params))
-        .expect("configure")
-        .bind(m)
-        .expect("bind");
-    Law {
-        f: Box::new(move |x, c, h| b.eval(x, c, h)),
-        slots: L::HISTORY.len(),
-    }
+/// Declares the constructor `$f` of a law of kind `$trait` read through its context: the law
+/// with `params`, bound to `m`.
+macro_rules! motion_law {
+    ($f:ident, $trait:ident, $contact:ty, $out:ty, $fn:ty) => {
+        #[doc = concat!("The ", stringify!($trait), " `L` with `params`, bound to `m`.")]
+        pub fn $f<L>(params: &[(&str, f64)], m: &MaterialPair) -> Law<$fn>
+        where
+            L: $trait,
+            L::Bound: ReadsContext<$contact, Out = $out>,
+        {
+            let b = L::from_values(&values(params))
+                .expect("configure")
+                .bind(m)
+                .expect("bind");
+            Law {
+                f: Box::new(move |x, c, h| b.eval(x, c, h)),
+                slots: L::HISTORY.len(),
+            }
+        }
+    };
 }
 
-/// The rolling law `L` with `params`, bound to `m`.
-pub fn rolling<L>(params: &[(&str, f64)], m: &MaterialPair) -> Law<VectorFn<RollingContact>>
-where
-    L: RollingLaw,
-    L::Bound: ReadsContext<RollingContact, Out = [f64; 3]>,
-{
-    let b = L::from_values(&values(params))
-        .expect("configure")
-        .bind(m)
-        .expect("bind");
-    Law {
-        f: Box::new(move |x, c, h| b.eval(x, c, h)),
-        slots: L::HISTORY.len(),
-    }
-}
-
-/// The twisting law `L` with `params`, bound to `m`.
-pub fn twisting<L>(params: &[(&str, f64)], m: &MaterialPair) -> Law<TwistFn>
-where
-    L: TwistingLaw,
-    L::Bound: ReadsContext<TwistingContact, Out = f64>,
-{
-    let b = L::from_values(&values(params))
-        .expect("configure")
-        .bind(m)
-        .expect("bind");
-    Law {
-        f: Box::new(move |x, c, h| b.eval(x, c, h)),
-        slots: L::HISTORY.len(),
-    }
-}
+motion_law!(
+    tangential,
+    TangentialLaw,
+    TangentialContact,
+    [f64; 3],
+    VectorFn<TangentialContact>
+);
+motion_law!(
+    rolling,
+    RollingLaw,
+    RollingContact,
+    [f64; 3],
+    VectorFn<RollingContact>
+);
+motion_law!(twisting, TwistingLaw, TwistingContact, f64, TwistFn);
 
 /// LAMMPS's materials of two spheres of one type (`E`, `ν`): E_eff = 1/((1 − ν²)/E +
 /// (1 − ν²)/E), G_eff = 1/(2(2 − ν)(1 + ν)/E + 2(2 − ν)(1 + ν)/E), LAMMPS's operations.
