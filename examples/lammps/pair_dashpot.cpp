@@ -96,6 +96,8 @@ void PairDashpot::settings(int narg, char **arg)
 void PairDashpot::apply_settings(const std::vector<std::string> &args)
 {
     settings_args = args;
+    // a history fix deleted by the deck (unfix): this pair_style starts afresh
+    if (fix_history && !modify->get_fix_by_id(fix_id)) fix_history = nullptr;
     wall_flag = 0;
     energy_flag = 0;
     default_spec = -1;
@@ -208,6 +210,11 @@ void PairDashpot::init_style()
             error->all(FLERR, "pair dashpot: cannot find this instance among the pair styles");
         id += "_" + std::to_string(k);
     }
+    if (fix_history && !modify->get_fix_by_id(fix_id))
+        error->all(FLERR,
+                   "pair dashpot: its history fix {} was deleted (unfix): the contacts' history is lost; give "
+                   "pair_style again to start from none",
+                   fix_id);
     if (layout.nvalues > 0 || energy_flag) {
         Fix *f = modify->get_fix_by_id(id);
         if (f && strcmp(f->style, "DASHPOT/HISTORY") != 0)
