@@ -190,3 +190,21 @@ fn lj_units_run_and_realize_the_restitution() {
         assert_same("realized", &d, &g, 1e-6, "dashpot hsd and granular coeff_restitution, lj units");
     }
 }
+
+/// Contacts of different pairs of types share a batch chunk, each model called on its own
+/// contacts with its own record width: a second long contact between two spheres of type 2,
+/// whose laws keep wider records (Coulomb spring, rolling and twisting), runs beside the first
+/// pair's; the first pair ends exactly as without it, on 1 and 2 ranks, newton off and on.
+#[test]
+fn contacts_of_different_models_share_chunks_without_mixing_their_records() {
+    let Some(v) = venv() else { return };
+    let alone = run_deck(&v, "in.twospheres", 1, &[]);
+    for (ranks, newton) in [(1, "off"), (2, "off"), (2, "on")] {
+        let vars = [("spectators", "1".to_string()), ("newton", newton.to_string())];
+        let beside = run_deck(&v, "in.twospheres", ranks, &vars);
+        eprintln!("with the second contact, {ranks} rank(s), newton {newton}: {beside:?}");
+        for k in ["x1", "y1", "z1", "vx1", "vy1", "vz1", "vx2", "vy2", "w1", "w3"] {
+            assert_same(k, &alone, &beside, 1e-12, &format!("{ranks} rank(s), newton {newton}"));
+        }
+    }
+}
