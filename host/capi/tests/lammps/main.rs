@@ -8,9 +8,9 @@
 //! cores); the 20,000-sphere benchmark is `examples/lammps/bench.sh`.
 
 mod families;
-mod types;
 #[path = "../../../../tests/lammps.rs"]
 mod lammps;
+mod types;
 
 use lammps::{lmp_command, succeeded};
 

@@ -65,7 +65,10 @@ fn pairs_of_types_take_their_own_laws_and_mix_unset_ones() {
     assert!((mixed - 0.45).abs() < 1e-3, "{mixed}");
     // the laws given once to pair_style, the materials per type: the same contact
     let plain = run_deck(&v, "in.collision", 1, &[("eps", "0.45".into())]);
-    assert!((num(&plain, "realized") - mixed).abs() < 1e-9, "{plain:?} vs {mixed}");
+    assert!(
+        (num(&plain, "realized") - mixed).abs() < 1e-9,
+        "{plain:?} vs {mixed}"
+    );
 }
 
 /// Bad input per pair of types stops LAMMPS with a message naming the word and the choices.
@@ -160,13 +163,25 @@ fn two_dashpot_sub_styles_of_hybrid_keep_their_own_history() {
         let hybrid = run_deck(&v, "in.twospheres", ranks, &[("hybrid", "1".into())]);
         eprintln!("hybrid on {ranks} rank(s): {hybrid:?}");
         for k in ["x1", "y1", "vx1", "vy1", "vz1", "vx2", "vy2", "w1", "w3"] {
-            assert_same(k, &plain, &hybrid, 1e-12, &format!("plain and hybrid on {ranks} rank(s)"));
+            assert_same(
+                k,
+                &plain,
+                &hybrid,
+                1e-12,
+                &format!("plain and hybrid on {ranks} rank(s)"),
+            );
         }
     }
     let plain = run_deck(&v, "in.sliding", 1, &[]);
     let hybrid = run_deck(&v, "in.sliding", 1, &[("hybrid", "1".into())]);
     for k in ["ratio", "roll", "wzz", "pzz"] {
-        assert_same(k, &plain, &hybrid, 1e-12, "zplane in the plain style and inside hybrid");
+        assert_same(
+            k,
+            &plain,
+            &hybrid,
+            1e-12,
+            "zplane in the plain style and inside hybrid",
+        );
     }
 }
 
@@ -177,17 +192,32 @@ fn two_dashpot_sub_styles_of_hybrid_keep_their_own_history() {
 fn lj_units_run_and_realize_the_restitution() {
     let Some(v) = venv() else { return };
     for eps in ["0.3", "0.8"] {
-        let d = run_deck(&v, "in.collision", 1, &[("units", "lj".into()), ("eps", eps.into())]);
+        let d = run_deck(
+            &v,
+            "in.collision",
+            1,
+            &[("units", "lj".into()), ("eps", eps.into())],
+        );
         let g = run_deck(
             &v,
             "in.collision",
             1,
-            &[("units", "lj".into()), ("eps", eps.into()), ("style", "coeffrest".into())],
+            &[
+                ("units", "lj".into()),
+                ("eps", eps.into()),
+                ("style", "coeffrest".into()),
+            ],
         );
         eprintln!("lj units, eps {eps}: dashpot {d:?}\n    granular {g:?}");
         let e: f64 = eps.parse().expect("eps");
         assert!((num(&d, "realized") - e).abs() < 1e-3, "{d:?}");
-        assert_same("realized", &d, &g, 1e-6, "dashpot hsd and granular coeff_restitution, lj units");
+        assert_same(
+            "realized",
+            &d,
+            &g,
+            1e-6,
+            "dashpot hsd and granular coeff_restitution, lj units",
+        );
     }
 }
 
@@ -204,7 +234,13 @@ fn contacts_of_different_models_share_chunks_without_mixing_their_records() {
         let beside = run_deck(&v, "in.twospheres", ranks, &vars);
         eprintln!("with the second contact, {ranks} rank(s), newton {newton}: {beside:?}");
         for k in ["x1", "y1", "z1", "vx1", "vy1", "vz1", "vx2", "vy2", "w1", "w3"] {
-            assert_same(k, &alone, &beside, 1e-12, &format!("{ranks} rank(s), newton {newton}"));
+            assert_same(
+                k,
+                &alone,
+                &beside,
+                1e-12,
+                &format!("{ranks} rank(s), newton {newton}"),
+            );
         }
     }
 }
