@@ -1,6 +1,8 @@
 /* The spec layer: see dashpot_spec.h. No LAMMPS header. */
 #include "dashpot_spec.h"
 
+#include "dashpot_translate.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -40,7 +42,7 @@ bool ContactSpec::same_laws(const ContactSpec &o) const
 {
     for (int f = 0; f < NFAMILY; f++)
         if (!(law[f] == o.law[f])) return false;
-    return arm == o.arm;
+    return arm == o.arm && granular == o.granular;
 }
 
 double parse_number(const std::string &word, const std::string &what)
@@ -165,6 +167,13 @@ static double mix_value(double a, double b, const std::string &law, const std::s
 
 ContactSpec mix_specs(const ContactSpec &a, const ContactSpec &b, int itype, int jtype, const ParamDefault &default_of)
 {
+    if (a.granular.present() != b.granular.present())
+        throw SpecError("cannot mix types " + std::to_string(itype) + " and " + std::to_string(jtype) +
+                        ": one's laws are in LAMMPS's granular syntax, the other's in dashpot's: give pair_coeff " +
+                        std::to_string(itype) + " " + std::to_string(jtype) + " explicitly");
+    if (a.granular.present())
+        return translate_granular(mix_granular(a.granular, b.granular, itype, jtype),
+                                  "mixing types " + std::to_string(itype) + " and " + std::to_string(jtype));
     ContactSpec m;
     m.syntax = a.syntax;
     m.arm = a.arm;

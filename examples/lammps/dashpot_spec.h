@@ -51,6 +51,25 @@ struct LawSpec {
  * point, r - delta/2 from each centre (pair_style granular). */
 enum class TorqueArm { RADIUS, CONTACT_POINT };
 
+/* One granular model as LAMMPS reads it. */
+struct GranularWords {
+    std::string normal;    // hooke, hertz, hertz/material, dmt, jkr
+    std::vector<double> ncoef;
+    std::string damping = "viscoelastic";    // velocity, mass_velocity, viscoelastic, tsuji, coeff_restitution
+    std::string tangential;                  // linear_nohistory, linear_history, mindlin, ... (classic: *_classic)
+    std::vector<double> tcoef;               // mindlin's kt may be NULL: NaN here
+    std::string rolling;                     // sds, or empty
+    std::vector<double> rcoef;
+    std::string twisting;    // marshall, sds, or empty
+    std::vector<double> wcoef;
+    bool limit_damping = false;
+    double cutoff = -1.0;    // pair_coeff's cutoff keyword (< 0: none)
+    bool classic = false;    // from a classic style's arguments (torques at a radius from the centres)
+    bool mixed = false;      // coefficients mixed from two types (LAMMPS's mixed_coefficients)
+    bool present() const { return !normal.empty(); }
+    bool operator==(const GranularWords &o) const;
+};
+
 /* Which syntax a spec was written in. */
 enum class Syntax { DASHPOT, GRANULAR, CLASSIC };
 
@@ -61,6 +80,7 @@ struct ContactSpec {
     double poisson = 0.0;         // nu, -1 < nu < 0.5
     Syntax syntax = Syntax::DASHPOT;
     TorqueArm arm = TorqueArm::RADIUS;
+    GranularWords granular;    // the granular or classic words it was translated from (mixing)
     /* the laws in order, "hsd eps=0.5 + mindlin mu=0.5" */
     std::string describe() const;
     /* the same laws and parameters (materials aside) */
@@ -103,6 +123,8 @@ using ParamDefault = std::function<double(const std::string &law, const std::str
  * standing for one not given), exact when they are equal; parameters of opposite signs cannot be
  * mixed (a SpecError asks for an explicit pair_coeff). The materials stay those of each type:
  * the caller binds the laws to both. */
+/* (Specs translated from granular or classic syntax mix as LAMMPS mixes the sub-models'
+ * coefficients, then are translated again: dashpot_translate.h.) */
 ContactSpec mix_specs(const ContactSpec &a, const ContactSpec &b, int itype, int jtype, const ParamDefault &default_of);
 
 }    // namespace dashpot_lmp

@@ -4,6 +4,7 @@
  * pair_dashpot_history.cpp: the history's layout, its copy into the fix, and single(). */
 #include "pair_dashpot.h"
 
+#include "dashpot_translate.h"
 #include "fix_dashpot_history.h"
 
 #include "atom.h"
@@ -29,8 +30,26 @@ using namespace dashpot_lmp;
 static constexpr double REACH_MARGIN = 1.5;
 static const std::vector<std::string> STYLE_OPTIONS = {"plugin_dir", "zplane", "energy"};
 
+/* The materials a spec in LAMMPS's syntax binds its laws to: those of its normal model
+ * (hertz/material, dmt, jkr; for a mixed pair, those giving LAMMPS's mixed modulus), else
+ * placeholders no gran-* law reads (hooke and hertz take their stiffness as a coefficient). */
+static void granular_material(const ContactSpec &spec, double &e, double &nu)
+{
+    e = spec.has_material ? spec.young : 1.0;
+    nu = spec.has_material ? spec.poisson : 0.3;
+}
+
+static bool is_plain_number(const std::string &w)
+{
+    const char *s = w.c_str();
+    char *end = nullptr;
+    std::strtod(s, &end);
+    return !w.empty() && end != s && *end == '\0';
+}
+
+
 PairDashpot::PairDashpot(LAMMPS *lmp) :
-    Pair(lmp), default_spec(-1), wall_flag(0), wall_z(0.0), energy_flag(0), coeff_spec(nullptr), coeff_e(nullptr),
+    Pair(lmp), default_spec(-1), cutoff_global(-1.0), wall_flag(0), wall_z(0.0), energy_flag(0), coeff_spec(nullptr), coeff_e(nullptr),
     coeff_nu(nullptr), freeze_group_bit(0), fix_history(nullptr), nwall_slots(0), slots_ncalls(-1), slots_nlocal(0),
     dirty(0)
 {
@@ -102,8 +121,20 @@ void PairDashpot::apply_settings(const std::vector<std::string> &args)
     energy_flag = 0;
     default_spec = -1;
     plugin_dirs.clear();
+    cutoff_global = -1.0;
     try {
-        Parsed p = parse_dashpot(args, 0, STYLE_OPTIONS, false, "pair_style dashpot");
+        // the classic styles' words (pair_style dashpot gran/hooke/history kn kt ...), the
+        // options (key=value) aside; or pair_style granular's optional global cutoff
+        std::vector<std::string> plain, options;
+        for (auto &a : args) {
+            const size_t eq = a.find('=');
+            bool option = false;
+            for (auto &k : STYLE_OPTIONS) option = option || (eq != std::string::npos && a.substr(0, eq) == k);
+            (option ? options : plain).push_back(a);
+        }
+        const bool classic = !plain.empty() && plain[0].rfind("gran/", 0) == 0;
+        const bool cutoff = plain.size() == 1 && !classic && is_plain_number(plain[0]);
+        Parsed p = parse_dashpot(classic || cutoff ? options : args, 0, STYLE_OPTIONS, false, "pair_style dashpot");
         for (auto &o : p.options) {
             if (o.first == "plugin_dir") {
                 plugin_dirs.push_back(o.second);
@@ -115,7 +146,16 @@ void PairDashpot::apply_settings(const std::vector<std::string> &args)
             }
         }
         models.open(plugin_dirs);
-        if (p.has_laws) default_spec = models.add_spec(p.spec, "pair_style dashpot");
+        if (classic) {
+            const std::string style = plain[0].substr(5), context = "pair_style dashpot " + plain[0];
+            GranularWords g = parse_classic(style, plain, 1, force->nktv2p, context);
+            default_spec = models.add_spec(translate_granular(g, context), context);
+        } else if (cutoff) {
+            cutoff_global = parse_number(plain[0], "pair_style dashpot: the global cutoff");
+            if (!(cutoff_global > 0.0)) throw SpecError("pair_style dashpot: the global cutoff must be > 0");
+        } else if (p.has_laws) {
+            default_spec = models.add_spec(p.spec, "pair_style dashpot");
+        }
     } catch (std::exception &e) {
         fail(e, true);
     }
@@ -151,17 +191,30 @@ void PairDashpot::set_coeff(int ilo, int ihi, int jlo, int jhi, const std::vecto
     int spec = -1;
     double e = 0.0, nu = 0.0;
     try {
-        Parsed p = parse_dashpot(words, 0, {}, true, context);
-        if (p.has_laws) spec = models.add_spec(p.spec, context);
-        if (p.spec.has_material) {
-            e = p.spec.young;
-            nu = p.spec.poisson;
+        const bool preset = default_spec >= 0 && models.spec(default_spec).granular.present();
+        if (preset && models.spec(default_spec).granular.classic && !words.empty())
+            throw SpecError(context + ": the classic styles take their coefficients from pair_style: pair_coeff I J "
+                            "takes no arguments");
+        if (words.empty()) {
+            if (!preset)
+                throw SpecError(context + ": expected [E nu] [LAWS], or pair_style granular's model (" +
+                                "'hertz/material E damp nu tangential ...')");
+        } else if (is_granular(words, 0)) {
+            spec = models.add_spec(translate_granular(parse_granular(words, 0, context), context), context);
+        } else {
+            Parsed p = parse_dashpot(words, 0, {}, true, context);
+            if (p.has_laws) spec = models.add_spec(p.spec, context);
+            if (p.spec.has_material) {
+                e = p.spec.young;
+                nu = p.spec.poisson;
+            }
+            if (!p.has_laws && default_spec < 0)
+                throw SpecError(context + ": no law for these types, and pair_style dashpot names none: give them "
+                                "here, as in 'pair_coeff I J E nu hsd eps=0.5 tangential mindlin mu=0.5' or "
+                                "'pair_coeff I J hertz/material E damp nu tangential mindlin NULL 1.0 0.5'");
+            if (!p.has_laws && !p.spec.has_material)
+                throw SpecError(context + ": expected E nu (Young's modulus and Poisson's ratio) and/or laws");
         }
-        if (!p.has_laws && default_spec < 0)
-            throw SpecError(context + ": no law for these types, and pair_style dashpot names none: give them here, "
-                            "as in 'pair_coeff I J E nu hsd eps=0.5 tangential mindlin mu=0.5'");
-        if (!p.has_laws && !p.spec.has_material)
-            throw SpecError(context + ": expected E nu (Young's modulus and Poisson's ratio) and/or laws");
     } catch (std::exception &ex) {
         fail(ex, true);
     }
@@ -291,7 +344,11 @@ void PairDashpot::bind_pair(int i, int j)
     if (setflag[a][b]) {
         s = spec_of(a, b);
         if (s < 0) throw SpecError(context + ": no law (pair_style dashpot LAW ... or pair_coeff I J E nu LAW ...)");
-        if (coeff_e[a][b] > 0.0) {
+        if (models.spec(s).granular.present()) {
+            granular_material(models.spec(s), ei, nui);
+            ej = ei;
+            nuj = nui;
+        } else if (coeff_e[a][b] > 0.0) {
             ei = ej = coeff_e[a][b];
             nui = nuj = coeff_nu[a][b];
         } else {
@@ -307,8 +364,14 @@ void PairDashpot::bind_pair(int i, int j)
                                                      return models.param_default(law, key);
                                                  }),
                                        "pair dashpot, mixing " + context);
-        type_material(i, ei, nui);
-        type_material(j, ej, nuj);
+        if (models.spec(s).granular.present()) {
+            granular_material(models.spec(s), ei, nui);
+            ej = ei;
+            nuj = nui;
+        } else {
+            type_material(i, ei, nui);
+            type_material(j, ej, nuj);
+        }
     }
     const int nt1 = atom->ntypes + 1;
     Materials mij, mji;
@@ -350,6 +413,12 @@ double PairDashpot::init_one(int i, int j)
             fail(e, true);
         }
     }
+    // pair_coeff's cutoff keyword, then pair_style's global cutoff, as pair_style granular
+    const double pair_cut = models.spec(models.model(model_of[kij]).spec).granular.cutoff;
+    if (pair_cut > 0.0)
+        cut = pair_cut;
+    else if (cutoff_global > 0.0)
+        cut = cutoff_global;
     key_cut[kij] = key_cut[kji] = cut;
     return cut;
 }

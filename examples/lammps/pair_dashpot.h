@@ -70,6 +70,7 @@ class PairDashpot : public Pair {
     std::vector<std::string> settings_args;    // pair_style's arguments, for restart files
     std::vector<std::string> plugin_dirs;
     int default_spec;     // the spec of pair_style's laws, -1: none
+    double cutoff_global;    // pair_style dashpot CUTOFF (as pair_style granular's), < 0: none
     int wall_flag;
     double wall_z;
     int energy_flag;      // the laws report power and elastic energy, kept per contact for single()
