@@ -79,7 +79,7 @@ static std::string join(const std::vector<std::string> &v)
 }
 
 Parsed parse_dashpot(const std::vector<std::string> &words, size_t first, const std::vector<std::string> &option_keys,
-                     bool materials, const std::string &context)
+                     bool materials, const std::string &context, const std::vector<std::string> &stop)
 {
     Parsed out;
     ContactSpec &spec = out.spec;
@@ -99,6 +99,9 @@ Parsed parse_dashpot(const std::vector<std::string> &words, size_t first, const 
     int family = -1;    // the family whose parameters follow; -1 before any law
     for (; i < n; i++) {
         const std::string &w = words[i];
+        bool stops = false;
+        for (auto &s : stop) stops = stops || w == s;
+        if (stops) break;
         const size_t eq = w.find('=');
         if (eq != std::string::npos && eq > 0) {
             const std::string key = w.substr(0, eq), value = w.substr(eq + 1);
@@ -150,8 +153,10 @@ Parsed parse_dashpot(const std::vector<std::string> &words, size_t first, const 
             continue;
         }
         throw SpecError(context + ": unexpected word '" + w + "' after law '" + spec.law[family].name +
-                        "': expected key=value, 'tangential LAW', 'rolling LAW' or 'twisting LAW'");
+                        "': expected key=value, 'tangential LAW', 'rolling LAW' or 'twisting LAW'" +
+                        (stop.empty() ? std::string() : ", or one of: " + join(stop)));
     }
+    out.end = i;
     return out;
 }
 

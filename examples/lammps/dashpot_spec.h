@@ -98,6 +98,7 @@ struct Parsed {
     ContactSpec spec;
     std::vector<std::pair<std::string, std::string>> options;
     bool has_laws = false;    // a normal law was given
+    size_t end = 0;           // the index of the first word not read (a stop word, or the end)
 };
 
 /* Reads a number the way a deck gives it (the whole word; finite). `what` names the argument in
@@ -109,9 +110,11 @@ double parse_number(const std::string &word, const std::string &what);
  * `materials`: the words may start with the two numbers E nu (pair_coeff); `context` names the
  * command in messages ("pair_style dashpot", "pair_coeff 1 2"). A family keyword must be
  * followed by a law name (a word that is neither key=value nor a family keyword) and appears
- * once. Words of the form key=value before any law, or with a key in option_keys, are options. */
+ * once. Words of the form key=value before any law, or with a key in option_keys, are options.
+ * A word of `stop` (where a law name or a family keyword could come) ends the parse (a wall
+ * fix's wall style: 'zplane', 'region', ...); Parsed::end is its index. */
 Parsed parse_dashpot(const std::vector<std::string> &words, size_t first, const std::vector<std::string> &option_keys,
-                     bool materials, const std::string &context);
+                     bool materials, const std::string &context, const std::vector<std::string> &stop = {});
 
 /* The default value of parameter `key` of law `law` (throws SpecError if the law has no such
  * parameter): the registry's schema, supplied by the caller. */

@@ -177,7 +177,8 @@ static std::vector<double> coefficients(const std::vector<std::string> &words, s
     return c;
 }
 
-GranularWords parse_granular(const std::vector<std::string> &words, size_t first, const std::string &context)
+GranularWords parse_granular(const std::vector<std::string> &words, size_t first, const std::string &context,
+                             const std::vector<std::string> &stop, size_t *end)
 {
     GranularWords g;
     if (first >= words.size()) throw SpecError(context + ": expected a normal model (" + names(NORMALS) + ")");
@@ -191,6 +192,9 @@ GranularWords parse_granular(const std::vector<std::string> &words, size_t first
     bool damping_given = false;
     for (i++; i < words.size(); i++) {
         const std::string &w = words[i];
+        bool stops = false;
+        for (auto &s : stop) stops = stops || w == s;
+        if (stops) break;
         auto next = [&](const char *what) -> const std::string & {
             if (i + 1 >= words.size()) throw SpecError(context + ": '" + w + "' must be followed by a " + what);
             return words[++i];
@@ -234,10 +238,12 @@ GranularWords parse_granular(const std::vector<std::string> &words, size_t first
         } else if (w == "heat") {
             throw SpecError(context + ": heat models are not carried by pair_style dashpot yet");
         } else {
-            throw SpecError(context + ": unknown keyword '" + w +
-                            "' (valid: damping, tangential, rolling, twisting, limit_damping, cutoff)");
+            std::string valid = "damping, tangential, rolling, twisting, limit_damping, cutoff";
+            for (auto &s : stop) valid += ", " + s;
+            throw SpecError(context + ": unknown keyword '" + w + "' (valid: " + valid + ")");
         }
     }
+    if (end) *end = i;
     if (g.tangential.empty())
         throw SpecError(context + ": a granular model needs a tangential model, as in pair_style granular (for "
                         "none: 'tangential linear_nohistory 0 0')");
@@ -256,12 +262,21 @@ GranularWords parse_granular(const std::vector<std::string> &words, size_t first
 }
 
 GranularWords parse_classic(const std::string &style, const std::vector<std::string> &words, size_t first,
-                            double nktv2p, const std::string &context)
+                            double nktv2p, const std::string &context, const std::vector<std::string> &stop,
+                            size_t *end)
 {
     if (style != "hooke" && style != "hooke/history" && style != "hertz/history")
         throw SpecError(context + ": unknown classic style 'gran/" + style +
                         "' (valid: gran/hooke, gran/hooke/history, gran/hertz/history)");
-    const size_t n = words.size() - first;
+    size_t last = first;    // the arguments run to a stop word (a wall fix's wall style) or the end
+    while (last < words.size()) {
+        bool stops = false;
+        for (auto &s : stop) stops = stops || words[last] == s;
+        if (stops) break;
+        last++;
+    }
+    if (end) *end = last;
+    const size_t n = last - first;
     if (n < 6 || n > 7 || (n == 7 && words[first + 6] != "limit_damping"))
         throw SpecError(context + ": gran/" + style + " takes kn kt gamman gammat xmu dampflag [limit_damping], got " +
                         std::to_string(n) + " arguments");
@@ -341,12 +356,12 @@ GranularWords mix_granular(const GranularWords &a, const GranularWords &b, int i
     return m;
 }
 
-ContactSpec translate_granular(const GranularWords &g, const std::string &context)
+ContactSpec translate_granular(const GranularWords &g, const std::string &context, bool wall)
 {
     if (!g.present()) throw SpecError(context + ": no granular model");
     ContactSpec s;
     s.syntax = g.classic ? Syntax::CLASSIC : Syntax::GRANULAR;
-    s.arm = g.classic ? TorqueArm::RADIUS : TorqueArm::CONTACT_POINT;
+    s.arm = g.classic || wall ? TorqueArm::RADIUS : TorqueArm::CONTACT_POINT;
     s.granular = g;
     LawSpec &n = s.law[NORMAL];
     n.name = normal_law_name(g.normal, g.damping);

@@ -39,15 +39,19 @@ const std::vector<TranslationRow> &translation_table();
  * followed by a number (or NULL) -- dashpot's own laws take key=value. */
 bool is_granular(const std::vector<std::string> &words, size_t first);
 
-/* Reads one granular model from words[first..]. `context` names the command in messages. */
-GranularWords parse_granular(const std::vector<std::string> &words, size_t first, const std::string &context);
+/* Reads one granular model from words[first..]. `context` names the command in messages. A
+ * word of `stop` where a keyword could come ends the model (a wall fix's wall style); `*end`
+ * (if given) receives the index of the first word not read. */
+GranularWords parse_granular(const std::vector<std::string> &words, size_t first, const std::string &context,
+                             const std::vector<std::string> &stop = {}, size_t *end = nullptr);
 
 /* The classic styles: `style` is hooke, hooke/history or hertz/history (gran/ stripped), the
  * arguments kn kt gamman gammat xmu dampflag [limit_damping] from words[first..]; kt NULL is
  * 2/7 kn, gammat NULL is gamman/2, dampflag 0 sets gammat to 0; hertz/history's kn and kt are
  * given in pressure units and divided by nktv2p (the deck's force->nktv2p), as LAMMPS does. */
 GranularWords parse_classic(const std::string &style, const std::vector<std::string> &words, size_t first,
-                            double nktv2p, const std::string &context);
+                            double nktv2p, const std::string &context, const std::vector<std::string> &stop = {},
+                            size_t *end = nullptr);
 
 /* The model of an unset pair I != J from those of I I and J J, as LAMMPS mixes them: the same
  * sub-models (else a SpecError naming both), the moduli by 1/E = (1 - nu1^2)/E1 +
@@ -59,8 +63,9 @@ GranularWords mix_granular(const GranularWords &a, const GranularWords &b, int i
  * material properties (hertz/material, dmt, jkr) gives the spec its materials (E, nu): for a
  * mixed model, the materials whose pair modulus is LAMMPS's mixed one, and mindlin's NULL kt is
  * then given explicitly, as LAMMPS computes it. The tangential force's torque acts at the
- * contact point (pair_style granular), or at a radius (classic styles). */
-ContactSpec translate_granular(const GranularWords &g, const std::string &context);
+ * contact point (pair_style granular's pairs), or at a radius (classic styles; and a wall's
+ * contacts, `wall`, as fix wall/gran applies them). */
+ContactSpec translate_granular(const GranularWords &g, const std::string &context, bool wall = false);
 
 /* The name of the gran-* normal law for a normal keyword and a damping keyword
  * ("hertz/material", "coeff_restitution" -> "gran-hertz-material-coeff-restitution"). */

@@ -1,8 +1,9 @@
-/* Unit test of the spec layer (dashpot_spec.cpp), with no LAMMPS: built and run by cargo test
+/* Unit test of the spec layer (dashpot_spec.cpp, dashpot_translate.cpp), with no LAMMPS: built and run by cargo test
  * (host/capi/tests/lammps/types.rs) as
- *   g++ -std=c++17 test_spec.cpp dashpot_spec.cpp -o test_spec && ./test_spec
+ *   g++ -std=c++17 test_spec.cpp dashpot_spec.cpp dashpot_translate.cpp -o test_spec && ./test_spec
  * Prints one line per failed check and exits non-zero if any failed. */
 #include "dashpot_spec.h"
+#include "dashpot_translate.h"
 
 #include <cmath>
 #include <cstdio>
@@ -147,11 +148,164 @@ static void mixing()
     CHECK(has(msg, "cannot mix parameter 'x' of law 'thing' for types 1 and 2 (-1 and 2)"));
 }
 
+
+static const Param *param(const LawSpec &l, const std::string &key)
+{
+    for (auto &p : l.params)
+        if (p.key == key) return &p;
+    return nullptr;
+}
+
+static bool param_is(const LawSpec &l, const std::string &key, double v)
+{
+    const Param *p = param(l, key);
+    bool ok = p && std::fabs(p->value - v) <= 1e-15 * std::fabs(v);
+    if (!ok) std::printf("  %s: %s is %s, expected %.17g\n", l.name.c_str(), key.c_str(), p ? std::to_string(p->value).c_str() : "absent", v);
+    return ok;
+}
+
+static ContactSpec granular(const std::string &line)
+{
+    return translate_granular(parse_granular(words(line), 0, "pair_coeff 1 1"), "pair_coeff 1 1");
+}
+
+static std::string granular_refusal(const std::string &line)
+{
+    try {
+        granular(line);
+    } catch (SpecError &e) {
+        return e.what();
+    }
+    return "";
+}
+
+static void granular_syntax()
+{
+    CHECK(is_granular(words("hertz/material 1e5 0.2 0.3"), 0));
+    CHECK(is_granular(words("jkr 1000 50 0.3 10"), 0));
+    CHECK(!is_granular(words("jkr w=0.5"), 0));
+    CHECK(!is_granular(words("hsd eps=0.5"), 0));
+    CHECK(!is_granular(words("1e7 0.3 hertz"), 0));
+
+    // in.pour.drum's type 1
+    ContactSpec s = granular("hertz/material 1e5 0.2 0.3 tangential mindlin NULL 1.0 0.5 damping tsuji");
+    CHECK(s.law[NORMAL].name == "gran-hertz-material-tsuji" && param_is(s.law[NORMAL], "damp", 0.2));
+    CHECK(s.law[NORMAL].params.size() == 1);
+    CHECK(s.has_material && s.young == 1e5 && s.poisson == 0.3);
+    CHECK(s.law[TANGENTIAL].name == "gran-mindlin" && !param(s.law[TANGENTIAL], "kt"));
+    CHECK(param_is(s.law[TANGENTIAL], "xt", 1.0) && param_is(s.law[TANGENTIAL], "mu", 0.5));
+    CHECK(s.arm == TorqueArm::CONTACT_POINT && !s.law[ROLLING].present() && !s.law[TWISTING].present());
+    CHECK(translate_granular(s.granular, "wall", true).arm == TorqueArm::RADIUS);
+
+    // in.pour.flatwall's types
+    s = granular("jkr 1000.0 50.0 0.3 10 tangential mindlin 800.0 1.0 0.5 rolling sds 500.0 200.0 0.5 twisting marshall");
+    CHECK(s.law[NORMAL].name == "gran-jkr-viscoelastic" && param_is(s.law[NORMAL], "damp", 50.0));
+    CHECK(param_is(s.law[NORMAL], "cohesion", 10.0) && s.young == 1000.0);
+    CHECK(param_is(s.law[TANGENTIAL], "kt", 800.0));
+    CHECK(s.law[ROLLING].name == "gran-rolling-sds" && param_is(s.law[ROLLING], "k", 500.0));
+    CHECK(param_is(s.law[ROLLING], "gamma", 200.0) && param_is(s.law[ROLLING], "mu", 0.5));
+    CHECK(s.law[TWISTING].name == "gran-twisting-marshall" && param_is(s.law[TWISTING], "kt", 800.0));
+    CHECK(param_is(s.law[TWISTING], "xt", 1.0) && param_is(s.law[TWISTING], "mu", 0.5));
+    s = granular("hertz 200.0 20.0 tangential linear_history 300.0 1.0 0.1 limit_damping cutoff 1.5");
+    CHECK(s.law[NORMAL].name == "gran-hertz-viscoelastic" && param_is(s.law[NORMAL], "k", 200.0));
+    CHECK(param_is(s.law[NORMAL], "damp", 20.0) && param_is(s.law[NORMAL], "limit_damping", 1.0) && !s.has_material);
+    CHECK(s.law[TANGENTIAL].name == "gran-linear-history" && param_is(s.law[TANGENTIAL], "kt", 300.0));
+    CHECK(s.granular.cutoff == 1.5);
+    s = granular("hooke 1e5 0.5 damping coeff_restitution tangential linear_nohistory 0 0");
+    CHECK(s.law[NORMAL].name == "gran-hooke-coeff-restitution" && s.law[TANGENTIAL].name == "gran-linear-nohistory");
+    CHECK(param_is(s.law[TANGENTIAL], "xt", 0.0) && !param(s.law[TANGENTIAL], "kt"));
+    s = granular("hertz/material 1e5 0.2 0.3 damping mass_velocity tangential mindlin_rescale/force 100 1 0.5");
+    CHECK(s.law[NORMAL].name == "gran-hertz-material-mass-velocity" && s.law[TANGENTIAL].name == "gran-mindlin-rescale-force");
+
+    // a wall fix's words: the model ends at its wall style
+    size_t end = 0;
+    std::vector<std::string> w = words("hertz/material 1e5 0.1 0.3 tangential linear_nohistory 0 0 zplane 0 NULL");
+    parse_granular(w, 0, "fix wall", {"xplane", "yplane", "zplane", "zcylinder", "region"}, &end);
+    CHECK(end == 8 && w[end] == "zplane");
+    Parsed p = parse_dashpot(words("hsd eps=0.5 tangential mindlin mu=0.3 region drum contacts"), 0, {}, false,
+                             "fix wall", {"region", "zplane"});
+    CHECK(p.end == 5 && p.spec.law[TANGENTIAL].name == "mindlin");
+
+    // the classic styles (examples/pour/in.pour: gran/hooke/history 2000.0 NULL 50.0 NULL 0.5 0)
+    GranularWords c = parse_classic("hooke/history", words("2000.0 NULL 50.0 NULL 0.5 0"), 0, 1.0, "pair_style");
+    s = translate_granular(c, "pair_style");
+    CHECK(s.law[NORMAL].name == "gran-hooke-mass-velocity" && param_is(s.law[NORMAL], "k", 2000.0));
+    CHECK(param_is(s.law[NORMAL], "damp", 50.0) && s.arm == TorqueArm::RADIUS);
+    CHECK(s.law[TANGENTIAL].name == "gran-linear-history-classic" && param_is(s.law[TANGENTIAL], "kt", 2000.0 * 2.0 / 7.0));
+    CHECK(param_is(s.law[TANGENTIAL], "xt", 0.0) && param_is(s.law[TANGENTIAL], "mu", 0.5));    // dampflag 0
+    c = parse_classic("hertz/history", words("4000.0 NULL 100.0 NULL 0.5 1 limit_damping"), 0, 2.0, "pair_style");
+    s = translate_granular(c, "pair_style");
+    CHECK(s.law[NORMAL].name == "gran-hertz-viscoelastic" && param_is(s.law[NORMAL], "k", 2000.0));
+    CHECK(param_is(s.law[NORMAL], "limit_damping", 1.0));
+    CHECK(s.law[TANGENTIAL].name == "gran-mindlin-classic" && param_is(s.law[TANGENTIAL], "kt", 4000.0 / 7.0));
+    CHECK(param_is(s.law[TANGENTIAL], "xt", 0.5));    // gammat NULL = gamman/2, over gamman
+    c = parse_classic("hooke", words("2000 1000 50 20 0.5 1"), 0, 1.0, "pair_style");
+    s = translate_granular(c, "pair_style");
+    CHECK(s.law[TANGENTIAL].name == "gran-linear-nohistory" && param_is(s.law[TANGENTIAL], "xt", 0.4));
+
+    // mixing two hertz/material types: LAMMPS's mixed modulus, mindlin's NULL kt made explicit
+    ContactSpec a = granular("hertz/material 1e5 0.2 0.3 tangential mindlin NULL 1.0 0.5");
+    ContactSpec b = granular("hertz/material 2e5 0.8 0.2 tangential mindlin NULL 0.5 0.3");
+    ContactSpec m = mix_specs(a, b, 1, 2, fake_default);
+    const double emix = 1.0 / ((1.0 - 0.09) / 1e5 + (1.0 - 0.04) / 2e5), nu = std::sqrt(0.3 * 0.2);
+    CHECK(std::fabs(m.young / (2.0 * (1.0 - nu * nu)) / emix - 1.0) < 1e-15 && std::fabs(m.poisson - nu) < 1e-16);
+    CHECK(param_is(m.law[NORMAL], "damp", std::sqrt(0.2 * 0.8)));
+    CHECK(param_is(m.law[TANGENTIAL], "kt", 2.0 * emix / ((2.0 - nu) * (1.0 + nu))));
+    CHECK(param_is(m.law[TANGENTIAL], "xt", std::sqrt(0.5)) && param_is(m.law[TANGENTIAL], "mu", std::sqrt(0.15)));
+    std::string msg;
+    try {
+        mix_specs(a, granular("hooke 1 1 tangential mindlin 1 1 0.5"), 1, 2, fake_default);
+    } catch (SpecError &e) {
+        msg = e.what();
+    }
+    CHECK(has(msg, "cannot mix the normal models of types 1 1 and 2 2 ('hertz/material' and 'hooke')"));
+    msg.clear();
+    try {
+        mix_specs(a, parse_dashpot(words("1e5 0.3 hsd"), 0, {}, true, "pair_coeff").spec, 1, 2, fake_default);
+    } catch (SpecError &e) {
+        msg = e.what();
+    }
+    CHECK(has(msg, "one's laws are in LAMMPS's granular syntax, the other's in dashpot's"));
+
+    // refusals name the word and the choices
+    CHECK(has(granular_refusal("hertz/material 1e5 0.2"), "normal model 'hertz/material' takes 3 coefficients, got 2"));
+    CHECK(has(granular_refusal("hertz/material 1e5 0.2 0.3"), "needs a tangential model"));
+    CHECK(has(granular_refusal("hooke 1 1 tangential mindlin NULL 1 0.5"),
+              "needs a normal model with material properties (hertz/material, dmt, jkr), not 'hooke'"));
+    CHECK(has(granular_refusal("hooke 1 NULL tangential linear_nohistory 0 0"), "NULL is allowed only for"));
+    CHECK(has(granular_refusal("hooke 1 1 damping bogus tangential linear_nohistory 0 0"),
+              "unknown damping model 'bogus' (valid: velocity, mass_velocity, viscoelastic, tsuji, coeff_restitution)"));
+    CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 sideways"), "unknown keyword 'sideways'"));
+    CHECK(has(granular_refusal("hooke 1 1 tangential mindlin_classics 1 1 0"), "unknown tangential model 'mindlin_classics'"));
+    CHECK(has(granular_refusal("jkr 1 1 0.3 1 tangential linear_nohistory 0 0 limit_damping"),
+              "limit_damping cannot be used with a cohesive normal model"));
+    CHECK(has(granular_refusal("dmt 1 1 0.3 1 tangential mindlin_rescale 1 1 0.5"), "cannot be used with a cohesive"));
+    CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 heat area 1"), "heat models are not carried"));
+    CHECK(has(granular_refusal("mdr 1 0.3 1 1 0.5 0.1 tangential linear_nohistory 0 0"), "out of the scope"));
+    CHECK(has(granular_refusal("hooke -1 1 tangential linear_nohistory 0 0"), "must be >= 0"));
+    msg.clear();
+    try {
+        parse_classic("hooke/history", words("2000 NULL 50 NULL 0.5"), 0, 1.0, "pair_style dashpot gran/hooke/history");
+    } catch (SpecError &e) {
+        msg = e.what();
+    }
+    CHECK(has(msg, "takes kn kt gamman gammat xmu dampflag [limit_damping], got 5 arguments"));
+    msg.clear();
+    try {
+        parse_classic("hooke/histories", words("2000 NULL 50 NULL 0.5 0"), 0, 1.0, "pair_style");
+    } catch (SpecError &e) {
+        msg = e.what();
+    }
+    CHECK(has(msg, "valid: gran/hooke, gran/hooke/history, gran/hertz/history"));
+    CHECK(translation_table().size() > 20);
+}
+
 int main()
 {
     dashpot_syntax();
     refusals();
     mixing();
+    granular_syntax();
     if (failures) {
         std::printf("%d check(s) failed\n", failures);
         return 1;

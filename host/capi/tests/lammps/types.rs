@@ -4,8 +4,10 @@
 use super::{assert_same, failing_deck, lammps_dir, lib_dir, num, run_deck, venv};
 use std::process::Command;
 
-/// The spec layer (`examples/lammps/dashpot_spec.cpp`: dashpot's syntax, the refusals, the
-/// mixing of two types) compiled alone with its unit test and run: no LAMMPS header is needed.
+/// The spec layer (`examples/lammps/dashpot_spec.cpp`, `dashpot_translate.cpp`: dashpot's
+/// syntax, LAMMPS's granular and classic syntaxes translated to the gran-* laws, the refusals,
+/// the mixing of two types) compiled alone with its unit test and run: no LAMMPS header is
+/// needed.
 #[test]
 fn the_spec_layer_passes_its_unit_test() {
     let dir = lib_dir().join("lammps-spec-test");
@@ -17,6 +19,7 @@ fn the_spec_layer_passes_its_unit_test() {
         .args(["-std=c++17", "-O1", "-Wall", "-Wextra", "-Werror"])
         .arg(src.join("test_spec.cpp"))
         .arg(src.join("dashpot_spec.cpp"))
+        .arg(src.join("dashpot_translate.cpp"))
         .arg("-o")
         .arg(&exe)
         .output()
