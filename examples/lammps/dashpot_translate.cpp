@@ -101,8 +101,10 @@ const std::vector<TranslationRow> &translation_table()
         {"normal", "hooke", "k damp", "gran-hooke-D", "k, damp", "exact"},
         {"normal", "hertz", "k damp", "gran-hertz-D", "k, damp", "exact"},
         {"normal", "hertz/material", "E damp nu", "gran-hertz-material-D", "damp (E, nu: the materials)", "exact"},
-        {"normal", "dmt", "E damp nu cohesion", "gran-dmt-D", "damp, cohesion (E, nu: the materials)", "exact"},
-        {"normal", "jkr", "E damp nu cohesion", "gran-jkr-D", "damp, cohesion (E, nu: the materials)", "exact"},
+        {"normal", "dmt", "E damp nu cohesion", "gran-dmt-D", "damp, cohesion (E, nu: the materials)",
+         "exact; D = tsuji, coeff_restitution refused (as LAMMPS)"},
+        {"normal", "jkr", "E damp nu cohesion", "gran-jkr-D", "damp, cohesion (E, nu: the materials)",
+         "exact; D = tsuji, coeff_restitution refused (as LAMMPS)"},
         {"normal", "mdr", "E nu Y gamma psi_b damp", "", "", "refused: out of scope"},
         {"damping", "velocity", "", "D = velocity", "", "exact"},
         {"damping", "mass_velocity", "", "D = mass-velocity", "", "exact"},
@@ -123,6 +125,8 @@ const std::vector<TranslationRow> &translation_table()
         {"heat", "area, radius, ...", "", "", "", "refused: heat conduction is not carried yet"},
         {"classic", "gran/hooke", "kn kt gamman gammat xmu dampflag",
          "gran-hooke-mass-velocity + gran-linear-nohistory", "k=kn damp=gamman; xt=gammat/gamman mu=xmu", "exact"},
+        {"tangential", "linear_history_classic, mindlin_classic", "kt xt mu", "gran-wall-history-classic",
+         "kt, xt, mu", "exact"},
         {"classic", "gran/hooke/history", "kn kt gamman gammat xmu dampflag",
          "gran-hooke-mass-velocity + gran-linear-history-classic", "k=kn damp=gamman; kt xt=gammat/gamman mu=xmu",
          "exact"},
@@ -255,6 +259,9 @@ GranularWords parse_granular(const std::vector<std::string> &words, size_t first
     if (cohesive(g.normal) && (g.tangential == "mindlin_rescale" || g.tangential == "mindlin_rescale/force"))
         throw SpecError(context + ": tangential '" + g.tangential + "' cannot be used with a cohesive normal model ('" +
                         g.normal + "'), as in pair_style granular");
+    if (cohesive(g.normal) && (g.damping == "tsuji" || g.damping == "coeff_restitution"))
+        throw SpecError(context + ": damping '" + g.damping + "' cannot be used with a cohesive normal model ('" +
+                        g.normal + "'), as in pair_style granular (valid: velocity, mass_velocity, viscoelastic)");
     if (cohesive(g.normal) && g.limit_damping)
         throw SpecError(context + ": limit_damping cannot be used with a cohesive normal model ('" + g.normal +
                         "'), as in pair_style granular");
@@ -387,7 +394,16 @@ ContactSpec translate_granular(const GranularWords &g, const std::string &contex
     }
     if (g.limit_damping) n.params.push_back({"limit_damping", 1.0});
     LawSpec &t = s.law[TANGENTIAL];
-    t.name = "gran-" + dashes(g.tangential);
+    // the classic pair styles' own springs; granular's *_classic sub-models (which the classic
+    // wall fixes use) are LAMMPS's other bookkeeping of them: one law
+    if (g.classic && !wall && g.tangential == "linear_history_classic")
+        t.name = "gran-linear-history-classic";
+    else if (g.classic && !wall && g.tangential == "mindlin_classic")
+        t.name = "gran-mindlin-classic";
+    else if (g.tangential == "linear_history_classic" || g.tangential == "mindlin_classic")
+        t.name = "gran-wall-history-classic";
+    else
+        t.name = "gran-" + dashes(g.tangential);
     double kt = std::numeric_limits<double>::quiet_NaN();
     double xt = 0.0, mu = 0.0;
     if (g.tangential == "linear_nohistory") {

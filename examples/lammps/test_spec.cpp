@@ -280,6 +280,14 @@ static void granular_syntax()
     CHECK(has(granular_refusal("jkr 1 1 0.3 1 tangential linear_nohistory 0 0 limit_damping"),
               "limit_damping cannot be used with a cohesive normal model"));
     CHECK(has(granular_refusal("dmt 1 1 0.3 1 tangential mindlin_rescale 1 1 0.5"), "cannot be used with a cohesive"));
+    CHECK(has(granular_refusal("jkr 1 1 0.3 1 damping tsuji tangential linear_nohistory 0 0"),
+              "damping 'tsuji' cannot be used with a cohesive normal model ('jkr')"));
+    // granular's *_classic sub-models (the classic walls' springs) and the classic pair styles'
+    CHECK(granular("hooke 1 1 tangential linear_history_classic 1 0 0.5").law[TANGENTIAL].name ==
+          "gran-wall-history-classic");
+    CHECK(translate_granular(parse_classic("hertz/history", words("1 NULL 1 NULL 0.5 1"), 0, 1.0, "fix"), "fix", true)
+              .law[TANGENTIAL]
+              .name == "gran-wall-history-classic");
     CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 heat area 1"), "heat models are not carried"));
     CHECK(has(granular_refusal("mdr 1 0.3 1 1 0.5 0.1 tangential linear_nohistory 0 0"), "out of the scope"));
     CHECK(has(granular_refusal("hooke -1 1 tangential linear_nohistory 0 0"), "must be >= 0"));
