@@ -126,12 +126,14 @@ inline bool ContactEngine::stage(int model, int a, int b, int slot, double nx, d
     c.rad[n] = reff;
     c.ra[n] = ra;
     c.rb[n] = rb;
-    c.rate[n] = -(dvx * nx + dvy * ny + dvz * nz);
+    const double vn = dvx * nx + dvy * ny + dvz * nz;
+    c.rate[n] = -vn;
     double *cn = c.norm + 3 * n;
     cn[0] = nx;
     cn[1] = ny;
     cn[2] = nz;
-    // the velocity of a's contact point relative to b's: dv - (ra wa + rb wb) x n
+    // the tangential velocity of a's contact point relative to b's, as LAMMPS's granular model
+    // computes it: (dv - (dv.n) n) - (ra wa + rb wb) x n
     double wx = ra * wa[0], wy = ra * wa[1], wz = ra * wa[2];
     if (wb) {
         wx += rb * wb[0];
@@ -139,9 +141,9 @@ inline bool ContactEngine::stage(int model, int a, int b, int slot, double nx, d
         wz += rb * wb[2];
     }
     double *cv = c.vel + 3 * n;
-    cv[0] = dvx - (wy * nz - wz * ny);
-    cv[1] = dvy - (wz * nx - wx * nz);
-    cv[2] = dvz - (wx * ny - wy * nx);
+    cv[0] = (dvx - vn * nx) - (wy * nz - wz * ny);
+    cv[1] = (dvy - vn * ny) - (wz * nx - wx * nz);
+    cv[2] = (dvz - vn * nz) - (wx * ny - wy * nx);
     if (fl.rolling || fl.twisting) {
         // the relative spin wa - wb: rolling velocity reff (wa - wb) x n, twisting rate
         // (wa - wb).n (LAMMPS pair granular's definitions)

@@ -160,12 +160,13 @@ double PairDashpot::single(int i, int j, int /*itype*/, int /*jtype*/, double rs
         rel[d] = w[a][d] - w[b][d];
         ws[d] = radius[a] * w[a][d] + radius[b] * w[b][d];
     }
-    double rate = -(dv[0] * nrm[0] + dv[1] * nrm[1] + dv[2] * nrm[2]);
+    const double vn = dv[0] * nrm[0] + dv[1] * nrm[1] + dv[2] * nrm[2];
+    double rate = -vn;
     double meff = rmass[a] * rmass[b] / (rmass[a] + rmass[b]);
     double reff = radius[a] * radius[b] / radsum;
     for (int d = 0; d < 3; d++) {
         const int e = (d + 1) % 3, g = (d + 2) % 3;
-        vel[d] = dv[d] - (ws[e] * nrm[g] - ws[g] * nrm[e]);
+        vel[d] = (dv[d] - vn * nrm[d]) - (ws[e] * nrm[g] - ws[g] * nrm[e]);
         vroll[d] = reff * (rel[e] * nrm[g] - rel[g] * nrm[e]);
     }
     double twist = rel[0] * nrm[0] + rel[1] * nrm[1] + rel[2] * nrm[2];
