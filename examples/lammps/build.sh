@@ -33,6 +33,7 @@ mkdir -p "$out"
 "${CXX:-g++}" -O3 -fno-semantic-interposition ${DASHPOT_CXXFLAGS:-} -std=c++17 -Wall -Wextra -fPIC -shared -DLAMMPS_SMALLBIG \
     -DDASHPOT_LAMMPS_VERSION="\"$lmpver\"" \
     -I"$lmpinc" -I"$mpiinc" -I"$root/host/capi/include" \
+    "$here/dashpot_spec.cpp" "$here/dashpot_translate.cpp" "$here/dashpot_models.cpp" "$here/dashpot_engine.cpp" \
     "$here/pair_dashpot.cpp" "$here/pair_dashpot_compute.cpp" "$here/pair_dashpot_history.cpp" \
     "$here/fix_dashpot_history.cpp" "$here/dashpot_plugin.cpp" \
     "$DASHPOT_CAPI_LIB" -Wl,--exclude-libs,ALL \
