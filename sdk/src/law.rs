@@ -9,7 +9,6 @@
 
 pub use crate::energy::{Energy, EnergyBatch};
 use crate::error::LawError;
-use crate::motion::{history_mut, BoundTangential};
 use crate::pair::{MaterialPair, Pair};
 use crate::params::{LawParams, ParamSpec, ParamValue, Params};
 use abi_stable::StableAbi;
@@ -249,8 +248,8 @@ impl NormalBatch<'_> {
     }
 
     /// The lengths of the batch's arrays, as the ABI checks them.
-    pub(crate) fn lengths(&self) -> crate::abi::BatchLengths<4> {
-        crate::abi::BatchLengths {
+    pub(crate) fn lengths(&self) -> crate::lengths::BatchLengths<4> {
+        crate::lengths::BatchLengths {
             call: "force_batch",
             inputs: "delta, rate, mass, radius",
             lens: [
@@ -382,6 +381,16 @@ pub trait BoundRestitution: Send + Sync + 'static {
     }
 }
 
+/// Contact `i`'s history slots of `h` (`slots` per contact; empty when there are none).
+#[inline(always)]
+pub(crate) fn history_mut(h: &mut [f64], slots: usize, i: usize) -> &mut [f64] {
+    if slots == 0 {
+        &mut []
+    } else {
+        &mut h[i * slots..(i + 1) * slots]
+    }
+}
+
 /// The description of a law of `kind` from its trait's constants and parameter struct.
 pub(crate) fn law_info<P: LawParams>(
     kind: LawKind,
@@ -444,7 +453,7 @@ macro_rules! law_trait {
             /// The law from named values, as a plugin creates it: validated against its schema,
             /// read as its struct, then checked together ([`Self::check`]).
             fn from_values(given: &[ParamValue]) -> Result<Self, LawError> {
-                crate::abi::kind::configure::<Self>(Self::NAME, given, Self::check)
+                crate::params::configure::<Self>(Self::NAME, given, Self::check)
             }
 
             /// The law's description, for registries.
@@ -497,13 +506,6 @@ law_trait!(
             Ok(None)
         }
     }
-);
-
-history_law!(
-    /// A configurable tangential (friction) law, composable at run time with any contact law.
-    /// Declare its parameters with [`law_params!`](crate::law_params), implement this, then
-    /// export with [`export_laws!`](crate::export_laws) under `tangential: [...]`.
-    TangentialLaw: BoundTangential, LawKind::Tangential
 );
 
 law_trait!(

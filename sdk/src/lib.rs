@@ -72,6 +72,7 @@ pub mod abi;
 mod energy;
 mod error;
 mod law;
+mod lengths;
 mod motion;
 mod pair;
 mod params;
@@ -83,9 +84,11 @@ pub mod simd;
 pub use error::{ErrorKind, LawError};
 pub use law::{
     BoundContact, BoundRestitution, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion,
-    Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw, TangentialLaw,
+    Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
 };
-pub use motion::{BoundTangential, TangentialBatch, TangentialContact, VectorBatch, VectorContact};
+pub use motion::{
+    BoundTangential, TangentialBatch, TangentialContact, TangentialLaw, VectorBatch, VectorContact,
+};
 pub use pair::{MaterialPair, Pair, Particle};
 #[doc(hidden)]
 pub use params::join_doc as __join_doc;

@@ -15,8 +15,10 @@ pub use super::guard::install_quiet_panic_hook;
 pub use super::kind::CreateFn;
 use super::kind::{new_law, Create, FfiLaw};
 use super::kinds::{FfiNormalBatch3, FfiTwistingBatch, FfiVectorBatch};
+use super::module::{PluginModule, PluginModuleRef};
 pub use super::restitution::CreateRestitution;
-use super::{FfiRestitutionLaw, PluginModule, PluginModuleRef, ABI_VERSION};
+use super::series::FfiRestitutionLaw;
+use super::version::ABI_VERSION;
 pub use abi_stable;
 use abi_stable::prefix_type::PrefixTypeTrait;
 
@@ -199,4 +201,17 @@ macro_rules! export_laws {
             };
         }
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn export_macro_uses_abi_stables_symbol_name() {
+        assert_eq!(
+            abi_stable::library::ROOT_MODULE_LOADER_NAME,
+            "_1as_0lib_1header_0root_bmodule_bloader"
+        );
+    }
 }

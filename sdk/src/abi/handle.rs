@@ -3,9 +3,10 @@
 //! the checked trampoline and turning its status into an error that names the contact; and
 //! [`BoundModel`], what every bound law of a kind offers a host.
 
+use super::fault::{BatchFault, BatchStatus};
 use super::guard::take_panic;
 use super::kind::{model_batch, EnergyOut, FfiLaw, FfiModel, Kind, KindBound, KindLaw};
-use super::{BatchFault, BatchStatus, Owned};
+use super::object::Owned;
 use crate::error::{ErrorKind, LawError};
 use crate::law::{Coefficient, LawInfo};
 use crate::pair::MaterialPair;
@@ -108,7 +109,7 @@ pub(crate) fn run<K: Kind>(
     K::check_lengths(name, slots, b)?;
     let n = K::len(b);
     if !energy.lengths_ok(n) {
-        return Err(super::host::length_error(
+        return Err(crate::lengths::length_error(
             &format!("{} batch", K::KIND.as_str()),
             format!("the energy outputs must have one value per contact ({n})"),
         ));
@@ -196,7 +197,7 @@ impl<K: Kind> ModelHandle<K> {
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
     pub fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
-        super::host::coefficients(unsafe { (self.ffi.vtable.coefficients)(self.ffi.obj, mass, radius) })
+        super::object::coefficients(unsafe { (self.ffi.vtable.coefficients)(self.ffi.obj, mass, radius) })
     }
 }
 

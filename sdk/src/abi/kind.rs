@@ -8,13 +8,14 @@
 //! (see `kinds`); law authors implement only the plain traits ([`ContactLaw`](crate::ContactLaw),
 //! [`RollingLaw`](crate::RollingLaw), ...).
 
+use super::fault::{BatchFault, BatchStatus};
 use super::ffi::{self, Coefficient};
 use super::guard::{drop_box, finish, guard, hot, take_panic};
-use super::{ffi_object, BatchFault, BatchStatus};
+use super::object::ffi_object;
 use crate::error::{ErrorKind, FfiError, LawError};
 use crate::law::LawKind;
 use crate::pair::MaterialPair;
-use crate::params::{LawParams, ParamValue, Params};
+use crate::params::{configure, LawParams, ParamValue};
 use abi_stable::{
     std_types::{RResult, RSlice, RStr, RVec},
     StableAbi,
@@ -256,18 +257,6 @@ impl<B: 'static> Entry<CreateFn<B>> {
             make: create::<K, T>,
         }
     }
-}
-
-/// Law `T` (named `name`) from parameters: validated against its schema, read as its struct,
-/// then checked together by `check`.
-pub(crate) fn configure<T: LawParams>(
-    name: &str,
-    given: &[ParamValue],
-    check: fn(&T) -> Result<(), LawError>,
-) -> Result<T, LawError> {
-    let law: T = Params::resolve(name, &T::schema(), given)?.parse()?;
-    check(&law)?;
-    Ok(law)
 }
 
 /// Creates law `T` of kind `K` from parameters.

@@ -85,7 +85,11 @@ impl Kind for Twisting {
             ),
             (_, BatchFault::NORMAL) => bad_vector("twisting", name, BatchFault::NORMAL, i, b.normal[i]),
             (_, BatchFault::RATE) => bad_input("twisting", name, BatchFault::RATE, i, b.rate[i]),
-            (_, field) => bad_input("twisting", name, field, i, b.input(field, i)),
+            (_, field) => {
+                let c = b.contact(i);
+                let v = motion_input(field, [c.normal_force, c.delta, c.mass, c.radius, c.dt]);
+                bad_input("twisting", name, field, i, v)
+            }
         }
     }
 }

@@ -2,7 +2,8 @@
 //! batch and one checked block loop; they differ only in their law traits.
 
 use super::*;
-use crate::law::{EnergyBatch, TangentialLaw};
+use crate::law::EnergyBatch;
+use crate::motion::TangentialLaw;
 use crate::motion::{BoundTangential, VectorBatch};
 use crate::rotation::{BoundRolling, RollingLaw};
 
@@ -134,7 +135,11 @@ fn fault_error(what: &str, name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: 
         }
         (_, BatchFault::NORMAL) => bad_vector(what, name, BatchFault::NORMAL, i, b.normal[i]),
         (_, BatchFault::VELOCITY) => bad_vector(what, name, BatchFault::VELOCITY, i, b.velocity[i]),
-        (_, field) => bad_input(what, name, field, i, b.input(field, i)),
+        (_, field) => {
+            let c = b.contact(i);
+            let v = motion_input(field, [c.normal_force, c.delta, c.mass, c.radius, c.dt]);
+            bad_input(what, name, field, i, v)
+        }
     }
 }
 

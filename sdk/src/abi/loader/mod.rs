@@ -1,14 +1,24 @@
-//! Host side: loading plugins, with their checks, and the safe handles a host calls.
+//! Host side: loading plugins, with their checks, and the series-aware handles a host calls.
 
 use super::checks::all_finite;
-use super::handle::run_v2;
+use super::fault::{bad_input, BatchFault};
+use super::ffi;
+use super::handle::{run_v2, BoundModel, LawHandle, ModelHandle};
 use super::kind::{EnergyOut, Kind, NewFn};
-use super::*;
-use super::{v1, v2, BoundModel, LawHandle, ModelHandle, Normal, NormalCall, Rolling, Tangential, Twisting};
+use super::kinds::{Normal, NormalCall, Rolling, Tangential, Twisting};
+use super::module::PluginModuleRef;
+use super::object::{coefficients, FfiObject, Owned};
+use super::series::{FfiBoundRestitution, FfiRestitutionLaw};
+use super::version::{abi_compatible, series, ABI_VERSION};
+use super::{v1, v2};
+use crate::error::FfiError;
 use crate::error::{ErrorKind, LawError};
 use crate::law::{CalibrationTarget, Coefficient, Contact, LawInfo, LawKind, NormalBatch};
+use crate::lengths::length_error;
 use crate::motion::TangentialBatch;
+use crate::pair::{MaterialPair, Pair};
 use crate::params::ParamValue;
+use abi_stable::std_types::{RResult, RSlice, RStr, RString, RVec};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
@@ -418,70 +428,4 @@ fn legacy_module<M: abi_stable::prefix_type::PrefixRefTrait + abi_stable::Stable
     }
     // SAFETY: the layout was checked just above, to the package version.
     unsafe { header.unchecked_layout::<M>() }.map_err(|e| load_error(path, e))
-}
-
-/// A plugin's coefficients as plain values.
-pub(crate) fn coefficients(
-    r: RResult<RVec<ffi::Coefficient>, FfiError>,
-) -> Result<Vec<Coefficient>, LawError> {
-    Ok(ffi::to_plain(r.into_result()?))
-}
-
-pub(crate) fn length_error(what: &str, detail: String) -> LawError {
-    LawError::new(
-        ErrorKind::Other,
-        format!("{what}: the batch's arrays disagree in length: {detail}"),
-    )
-}
-
-/// The lengths of the arrays of a batch for `call` ("force_batch", ...): its inputs (`inputs`
-/// names them, `lens` gives them), its output (`output`, of `n` values: the number of contacts)
-/// and its history (`slots` per contact, `history` values in all).
-pub(crate) struct BatchLengths<const N: usize> {
-    pub(crate) call: &'static str,
-    pub(crate) inputs: &'static str,
-    pub(crate) lens: [usize; N],
-    pub(crate) output: &'static str,
-    pub(crate) n: usize,
-    pub(crate) slots: usize,
-    pub(crate) history: usize,
-}
-
-impl<const N: usize> BatchLengths<N> {
-    /// Checks them for the `kind` law `name`, which keeps `slots` history values per contact:
-    /// every input one value per contact, the history `n × slots`.
-    pub(crate) fn check(&self, kind: &str, name: &str, slots: usize) -> Result<(), LawError> {
-        let n = self.n;
-        let call = || format!("{kind} {}", self.call);
-        if self.lens.iter().any(|&l| l != n) {
-            return Err(length_error(
-                &call(),
-                format!("{} {:?}, {} {n}", self.inputs, self.lens, self.output),
-            ));
-        }
-        if self.slots != slots || self.history != n * slots {
-            return Err(length_error(
-                &call(),
-                format!(
-                    "history has {} values for {n} contacts of {} slots (law '{name}' keeps {slots})",
-                    self.history, self.slots
-                ),
-            ));
-        }
-        Ok(())
-    }
-}
-
-pub(crate) fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> LawError {
-    let what = BatchFault::field_name(field);
-    let rule = match field {
-        BatchFault::MASS => "must be finite and > 0 (kg)",
-        BatchFault::RADIUS => "must be finite and > 0 (m)",
-        BatchFault::DT => "must be finite and ≥ 0 (s)",
-        _ => "must be finite",
-    };
-    LawError::new(
-        ErrorKind::NonFinite,
-        format!("{kind} law '{name}': input {what}[{index}] = {value} {rule}; refused before evaluation"),
-    )
 }
