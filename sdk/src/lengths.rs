@@ -21,6 +21,9 @@ pub(crate) struct BatchLengths<const N: usize> {
     pub(crate) n: usize,
     pub(crate) slots: usize,
     pub(crate) history: usize,
+    /// The length of the batch's normal contexts (sdk 0.4), which are optional: `n`, or 0 for
+    /// none (the defaults); 0 for a batch without them.
+    pub(crate) context: usize,
 }
 
 impl<const N: usize> BatchLengths<N> {
@@ -33,6 +36,15 @@ impl<const N: usize> BatchLengths<N> {
             return Err(length_error(
                 &call(),
                 format!("{} {:?}, {} {n}", self.inputs, self.lens, self.output),
+            ));
+        }
+        if self.context != 0 && self.context != n {
+            return Err(length_error(
+                &call(),
+                format!(
+                    "context has {} values for {n} contacts: give one per contact, or none for the defaults",
+                    self.context
+                ),
             ));
         }
         if self.slots != slots || self.history != n * slots {

@@ -69,6 +69,7 @@
 #![warn(missing_docs)]
 
 pub mod abi;
+mod context;
 mod energy;
 mod error;
 mod law;
@@ -81,6 +82,7 @@ mod rotation;
 #[cfg(target_arch = "x86_64")]
 pub mod simd;
 
+pub use context::NormalContext;
 pub use error::{ErrorKind, LawError};
 pub use law::{
     BoundContact, BoundRestitution, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion,

@@ -37,6 +37,12 @@ macro_rules! motion_kind {
             pub mass: f64,
             /// Effective radius R_eff (m).
             pub radius: f64,
+            /// What the contact's normal law reports (sdk 0.4): its contact radius a (m), the
+            /// force the caps scale with (N) and its damping coefficient (N·s/m). The normal
+            /// law's own for a law that declares `READS_CONTEXT`; else the default
+            /// [`NormalContext::hertzian`](crate::NormalContext::hertzian) of this contact's
+            /// `radius`, `delta` and `normal_force`.
+            pub context: crate::NormalContext,
             /// The time step (s) over which the history advances.
             pub dt: f64,
         }
@@ -58,6 +64,10 @@ macro_rules! motion_kind {
             pub mass: &'a [f64],
             /// Effective radii (m).
             pub radius: &'a [f64],
+            /// The normal law's contexts (sdk 0.4), one per contact, or none (empty): then each
+            /// contact's `context` is the default built from its own `radius`, `delta` and
+            /// `normal_force` ([`NormalContext::hertzian`](crate::NormalContext::hertzian)).
+            pub context: &'a [crate::NormalContext],
             /// History slots per contact.
             pub slots: usize,
             /// Per-contact history, read and updated in place.
@@ -84,6 +94,7 @@ macro_rules! motion_kind {
                     n: self.$out.len(),
                     slots: self.slots,
                     history: self.history.len(),
+                    context: self.context.len(),
                 }
             }
 
@@ -97,6 +108,10 @@ macro_rules! motion_kind {
                     delta: self.delta[i],
                     mass: self.mass[i],
                     radius: self.radius[i],
+                    context: match self.context.get(i) {
+                        Some(c) => *c,
+                        None => crate::NormalContext::hertzian(self.radius[i], self.delta[i], self.normal_force[i]),
+                    },
                     dt: self.dt,
                 }
             }

@@ -124,6 +124,7 @@ fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
                 delta: delta_s,
                 mass: &mass,
                 radius: &radius,
+                context: &[],
                 slots,
                 history: h,
                 force: f,

@@ -56,13 +56,18 @@ impl BatchFault {
     pub const REACH: u8 = 11;
     /// Output `torque` (sdk 0.3).
     pub const TORQUE: u8 = 12;
+    /// Output `context` of a normal law (sdk 0.4): a field not finite and ≥ 0.
+    pub const CONTEXT: u8 = 13;
+    /// Input `context` of a tangential, rolling, twisting or heat law (sdk 0.4): a field not
+    /// finite and ≥ 0.
+    pub const CONTEXT_INPUT: u8 = 14;
 
     /// Whether array `field` is an output (the force, torque, power, elastic energy or reach)
     /// rather than an input.
     pub fn is_output(field: u8) -> bool {
         matches!(
             field,
-            Self::OUTPUT | Self::POWER | Self::ELASTIC | Self::REACH | Self::TORQUE
+            Self::OUTPUT | Self::POWER | Self::ELASTIC | Self::REACH | Self::TORQUE | Self::CONTEXT
         )
     }
 
@@ -82,6 +87,7 @@ impl BatchFault {
             Self::ELASTIC => "elastic",
             Self::REACH => "reach",
             Self::TORQUE => "torque",
+            Self::CONTEXT | Self::CONTEXT_INPUT => "context",
             _ => "?",
         }
     }
@@ -95,6 +101,9 @@ pub(crate) fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: 
         BatchFault::MASS => "must be finite and > 0 (kg)",
         BatchFault::RADIUS => "must be finite and > 0 (m)",
         BatchFault::DT => "must be finite and ≥ 0 (s)",
+        BatchFault::CONTEXT_INPUT => {
+            "must have every field finite and ≥ 0 (contact radius m, cap force N, damping N·s/m)"
+        }
         _ => "must be finite",
     };
     LawError::new(

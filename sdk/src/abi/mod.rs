@@ -3,17 +3,18 @@
 //! # Layout
 //! A plugin exports one root module, [`PluginModule`], through abi_stable's `LibHeader`; the
 //! [`export_laws!`](crate::export_laws) macro writes it. It is an abi_stable *prefix type*, so
-//! that a later 0.3 release may append fields. sdk 0.1 and 0.2 plugins export the root modules
-//! of their series, which this host reads through frozen copies ([`v1`], [`v2`]).
+//! that a later 0.4 release may append fields. sdk 0.1, 0.2 and 0.3 plugins export the root
+//! modules of their series, which this host reads through frozen copies ([`v1`], [`v2`],
+//! [`v3`]).
 //!
 //! The host checks, in this order, before running any of the plugin's code:
 //! 1. the dashpot-sdk version the plugin was built against (its `LibHeader`, a static):
-//!    this host ([`ABI_VERSION`]) loads plugins of sdk 0.1, 0.2 and 0.3 and refuses any other
-//!    series (0.4, 1.x, ...) with both versions named;
-//! 2. abi_stable's layout check of every type reachable from the root module. A 0.1 or 0.2
-//!    plugin is checked against the frozen root module of its series ([`v1`], [`v2`]), and the
-//!    only difference it may report is the sdk's package version (0.1 or 0.2 vs 0.3) of types
-//!    whose layout is otherwise identical: anything else refuses the plugin.
+//!    this host ([`ABI_VERSION`]) loads plugins of sdk 0.1, 0.2, 0.3 and 0.4 and refuses any
+//!    other series (0.5, 1.x, ...) with both versions named;
+//! 2. abi_stable's layout check of every type reachable from the root module. A 0.1, 0.2 or 0.3
+//!    plugin is checked against the frozen root module of its series ([`v1`], [`v2`], [`v3`]),
+//!    and the only difference it may report is the sdk's package version (0.1, 0.2 or 0.3 vs
+//!    0.4) of types whose layout is otherwise identical: anything else refuses the plugin.
 //!
 //! Then it reads the list of laws. Libraries are never unloaded; every object is freed by the
 //! library that allocated it (through its vtable's `drop`).
@@ -31,7 +32,9 @@
 //!   law list, root module, contact and tangential vtables and batches), still spoken to the
 //!   plugins of those series;
 //! - [`kind`]: the one generic shape of every law kind (its traits, vtables, trampolines and
-//!   export entries), and [`kinds`]: its instances (normal, tangential, rolling, twisting);
+//!   export entries); [`v3`]: the frozen types of sdk 0.3 (its law list, root module and raw
+//!   batches, called through the generic vtables); [`kinds`]: the shape's instances (normal,
+//!   tangential, rolling, twisting), whose raw batches extend 0.3's;
 //! - `handle`: the generic host-side handles of a law of any kind;
 //! - `module`: the root module of this series; `restitution`: the plugin side of restitution
 //!   laws; `export`: the law tables of a plugin and the export macro;
@@ -39,7 +42,7 @@
 //!
 //! # What breaks the ABI
 //! Any change to a `#[repr(C)]` type of this crate, a vtable, or the meaning of a field. Such a
-//! change starts a new series (0.4 while the major is 0). Appending fields to
+//! change starts a new series (0.5 while the major is 0). Appending fields to
 //! [`PluginModule`] does not.
 //!
 //! # Panics and bad numbers
@@ -65,6 +68,7 @@ mod restitution;
 mod series;
 pub mod v1;
 pub mod v2;
+pub mod v3;
 mod version;
 
 pub use crate::error::FfiError;

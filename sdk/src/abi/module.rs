@@ -12,7 +12,7 @@ use abi_stable::{
 };
 
 root_module!(
-    /// The root module every sdk 0.3 plugin exports (an abi_stable prefix type: a later 0.3
+    /// The root module every sdk 0.4 plugin exports (an abi_stable prefix type: a later 0.4
     /// release may append fields after the last prefix field without breaking older plugins,
     /// whose missing fields then read as `None`).
     {
@@ -22,22 +22,22 @@ root_module!(
         pub new_contact: extern "C" fn(
             name: RStr<'_>,
             params: RSlice<'_, ParamValue>,
-        ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch3>, FfiError>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiNormalBatch4>, FfiError>,
         /// Creates tangential law `name`.
         pub new_tangential: extern "C" fn(
             name: RStr<'_>,
             params: RSlice<'_, ParamValue>,
-        ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch4>, FfiError>,
         /// Creates rolling law `name`.
         pub new_rolling: extern "C" fn(
             name: RStr<'_>,
             params: RSlice<'_, ParamValue>,
-        ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch>, FfiError>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiVectorBatch4>, FfiError>,
         /// Creates twisting law `name`.
         pub new_twisting: extern "C" fn(
             name: RStr<'_>,
             params: RSlice<'_, ParamValue>,
-        ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch>, FfiError>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch4>, FfiError>,
     }
 );
 

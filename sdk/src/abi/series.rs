@@ -67,6 +67,7 @@ macro_rules! frozen_law_info {
                     params: $crate::abi::ffi::to_plain(self.params),
                     end_criterion: self.end_criterion.into_option(),
                     history: history.into_iter().last().unwrap_or_default(),
+                    reads_context: false,
                 }
             }
         }

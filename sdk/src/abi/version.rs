@@ -18,12 +18,13 @@ pub(crate) fn series(v: &str) -> Option<(u64, u64)> {
 }
 
 /// Whether a plugin built against sdk `plugin` may be loaded by a host built against `host`:
-/// the same series (the major version, or the minor while the major is 0), or, for a 0.3 host,
-/// a plugin of sdk 0.1 or 0.2 (spoken to through the frozen [`v1`](super::v1) and [`v2`](super::v2) types).
+/// the same series (the major version, or the minor while the major is 0), or, for a 0.4 host,
+/// a plugin of sdk 0.1, 0.2 or 0.3 (spoken to through the frozen [`v1`](super::v1),
+/// [`v2`](super::v2) and [`v3`](super::v3) types).
 pub fn abi_compatible(host: &str, plugin: &str) -> bool {
     match (series(host), series(plugin)) {
         (Some(a), Some(b)) if a == b => true,
-        (Some((0, 3)), Some((0, 1) | (0, 2))) => true,
+        (Some((0, 4)), Some((0, 1) | (0, 2) | (0, 3))) => true,
         _ => false,
     }
 }
@@ -34,19 +35,20 @@ mod tests {
 
     #[test]
     fn abi_compatibility_rule() {
-        assert!(abi_compatible("0.3.0", "0.3.7"));
-        assert!(abi_compatible("0.3.7", "0.3.0"));
-        // a 0.3 host speaks 0.1 and 0.2 through the frozen v1 and v2 types; older hosts cannot
-        // speak 0.3
-        assert!(abi_compatible("0.3.0", "0.1.0"));
-        assert!(abi_compatible("0.3.0", "0.2.5"));
-        assert!(!abi_compatible("0.1.0", "0.3.0"));
-        assert!(!abi_compatible("0.2.0", "0.3.0"));
+        assert!(abi_compatible("0.4.0", "0.4.7"));
+        assert!(abi_compatible("0.4.7", "0.4.0"));
+        // a 0.4 host speaks 0.1, 0.2 and 0.3 through the frozen v1, v2 and v3 types; older
+        // hosts cannot speak 0.4
+        assert!(abi_compatible("0.4.0", "0.1.0"));
+        assert!(abi_compatible("0.4.0", "0.2.5"));
+        assert!(abi_compatible("0.4.0", "0.3.0"));
         assert!(!abi_compatible("0.3.0", "0.4.0"));
-        assert!(!abi_compatible("0.3.0", "0.0.9"));
-        assert!(!abi_compatible("0.3.0", "1.0.0"));
+        assert!(!abi_compatible("0.2.0", "0.4.0"));
+        assert!(!abi_compatible("0.4.0", "0.5.0"));
+        assert!(!abi_compatible("0.4.0", "0.0.9"));
+        assert!(!abi_compatible("0.4.0", "1.0.0"));
         assert!(abi_compatible("1.2.0", "1.0.3"));
         assert!(!abi_compatible("1.0.0", "2.0.0"));
-        assert!(!abi_compatible("0.2.0", "garbage"));
+        assert!(!abi_compatible("0.4.0", "garbage"));
     }
 }

@@ -1,16 +1,20 @@
-//! The law kinds of sdk 0.3 as instances of the one ABI shape of [`kind`](super::kind): normal
-//! (0.2's contact batch plus reach and energy), tangential and rolling (one vector batch: 0.2's
-//! tangential batch plus energy), and twisting. Each instance is its raw batch, the host's view
-//! of it, and the block loop that checks and evaluates it; everything else (vtables,
-//! trampolines, handles) is generic.
+//! The law kinds as instances of the one ABI shape of [`kind`](super::kind): normal (0.2's
+//! contact batch plus 0.3's reach and energy and 0.4's context outputs), tangential and rolling
+//! (one vector batch: 0.2's tangential batch plus 0.3's energy outputs and 0.4's context
+//! input), and twisting. Each instance is its raw batch (0.3's, which the frozen
+//! [`v3`](super::v3) module keeps, extended), the host's view of it, and the block loop that
+//! checks and evaluates it; everything else (vtables, trampolines, handles) is generic.
 
 use super::checks::*;
 use super::fault::bad_input;
 use super::fault::{BatchFault, BatchStatus};
 use super::kind::{blocks, check_energy, energy_out, kind_law, raw_out, slice, slice_mut, Kind, KindBound};
-use super::v2;
+use super::{v2, v3};
+use crate::context::NormalContext;
 use crate::error::{ErrorKind, LawError};
-use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, LawKind, NormalBatch};
+use crate::law::{
+    history_of, BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, LawKind, NormalBatch,
+};
 use crate::lengths::length_error;
 use crate::pair::MaterialPair;
 use abi_stable::StableAbi;
@@ -47,13 +51,14 @@ macro_rules! eval_block {
 
 /// The checked block loop of a raw motion batch `$r` (twisting, or a vector kind: its sdk batch
 /// `$batch`, whose motion input `$motion` and output `$out` are arrays of `$mty` and `$oty`),
-/// with the energy outputs `$power` and `$elastic` when either is wanted. `$check(lo, normal,
+/// with the energy outputs `$power` and `$elastic` when either is wanted and the normal
+/// contexts `$context` (null: none, the defaults). `$check(lo, normal,
 /// motion, normal_force, delta, mass, radius)` refuses a block's bad input, `$eval(block)` runs
 /// the law on it, `$eval_energy(block, energy)` runs it with its energy outputs (whether every
 /// contact reported one), and `$bad_out(outputs)` finds a non-finite output. Expands to the
 /// body of a `KindBound::run` (it returns the first fault).
 macro_rules! motion_run {
-    ($r:expr, $power:expr, $elastic:expr,
+    ($r:expr, $power:expr, $elastic:expr, $context:expr,
      $batch:ident { $motion:ident: $mty:ty => $out:ident: $oty:ty },
      $check:expr, $eval:expr, $eval_energy:expr, $bad_out:expr $(,)?) => {{
         let r = $r;
@@ -73,6 +78,7 @@ macro_rules! motion_run {
                 slice_mut(r.$out as *mut $oty, n),
             )
         };
+        let context = contexts($context, n);
         let mut scratch = Vec::new();
         let mut energy = unsafe { energy_out(n, $power, $elastic, &mut scratch) };
         let mut written = energy.is_some();
@@ -80,6 +86,7 @@ macro_rules! motion_run {
             let (nl, ml) = (&normal[lo..hi], &motion[lo..hi]);
             let (f, d, m, a) = (&fnorm[lo..hi], &delta[lo..hi], &mass[lo..hi], &radius[lo..hi]);
             ($check)(lo, nl, ml, f, d, m, a)?;
+            let x = context_block(context, lo, hi)?;
             let o = &mut out[lo..hi];
             let block = $batch {
                 dt: r.dt,
@@ -89,6 +96,7 @@ macro_rules! motion_run {
                 delta: d,
                 mass: m,
                 radius: a,
+                context: x,
                 slots,
                 history: &mut history[lo * slots..hi * slots],
                 $out: &mut *o,
@@ -109,9 +117,9 @@ mod twisting;
 mod vector;
 
 pub(crate) use normal::normal_non_finite;
-pub use normal::{FfiNormalBatch3, Normal, NormalCall};
-pub use twisting::{FfiTwistingBatch, Twisting};
-pub use vector::{FfiVectorBatch, Rolling, Tangential};
+pub use normal::{FfiNormalBatch4, Normal, NormalCall};
+pub use twisting::{FfiTwistingBatch4, Twisting};
+pub use vector::{FfiVectorBatch4, Rolling, Tangential};
 
 pub(super) fn non_finite_output(what: &str, name: &str, field: u8, i: usize, value: String) -> LawError {
     LawError::new(
@@ -126,6 +134,46 @@ pub(super) fn non_finite_output(what: &str, name: &str, field: u8, i: usize, val
             }
         ),
     )
+}
+
+/// The contexts of a raw batch of `n` contacts: none (empty) when `p` is null.
+///
+/// # Safety
+/// A non-null `p` is valid for `n` values.
+#[inline(always)]
+pub(super) unsafe fn contexts<'a>(p: *const NormalContext, n: usize) -> &'a [NormalContext] {
+    if p.is_null() {
+        &[]
+    } else {
+        unsafe { slice(p, n) }
+    }
+}
+
+/// The contexts of the block `lo..hi` of a batch whose contexts are `all` (none, or one per
+/// contact), checked: each field finite and ≥ 0, else the first bad contact.
+#[inline(always)]
+pub(super) fn context_block(
+    all: &[NormalContext],
+    lo: usize,
+    hi: usize,
+) -> Result<&[NormalContext], (usize, u8)> {
+    if all.is_empty() {
+        return Ok(&[]);
+    }
+    let x = &all[lo..hi];
+    match x.iter().position(|c| !c.is_valid()) {
+        Some(i) => Err((lo + i, BatchFault::CONTEXT_INPUT)),
+        None => Ok(x),
+    }
+}
+
+/// The raw pointer of a batch's contexts: null for none.
+pub(super) fn context_ptr(x: &[NormalContext]) -> *const NormalContext {
+    if x.is_empty() {
+        std::ptr::null()
+    } else {
+        x.as_ptr()
+    }
 }
 
 /// The first bad input of a block, from `(first bad index, array)` checks in order.
@@ -180,6 +228,18 @@ pub(super) fn motion_input(field: u8, [normal_force, delta, mass, radius, dt]: [
         BatchFault::RADIUS => radius,
         _ => dt,
     }
+}
+
+/// The error for the bad context of contact `i` of a batch whose contexts are `all`.
+pub(super) fn bad_context(what: &str, name: &str, i: usize, all: &[NormalContext]) -> LawError {
+    LawError::new(
+        ErrorKind::NonFinite,
+        format!(
+            "{what} law '{name}': input context[{i}] = {:?} must have every field finite and ≥ 0 \
+             (contact radius m, cap force N, damping N·s/m); refused before evaluation",
+            all.get(i).copied().unwrap_or_default()
+        ),
+    )
 }
 
 /// The error for the non-finite input `value` of array `field` of contact `i`.

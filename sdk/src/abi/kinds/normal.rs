@@ -1,34 +1,47 @@
-//! The normal kind: 0.2's contact batch plus reach and energy outputs, evaluated block by
-//! block (or, for a straight-line law without history, through the pipelined loop).
+//! The normal kind: 0.2's contact batch plus 0.3's reach and energy outputs and 0.4's normal
+//! contexts, evaluated block by block (or, for a straight-line law without history, through the
+//! pipelined loop).
 
 use super::pipelined::pipelined_blocks;
 use super::*;
 
-/// The normal kind of sdk 0.3.
+/// The normal kind.
 pub struct Normal;
 
-/// A raw 0.3 normal batch: 0.2's arrays, plus the optional outputs (null when not wanted).
+/// A raw 0.4 normal batch: 0.3's, plus the optional output of each contact's context (null
+/// when not wanted).
 #[repr(C)]
 #[derive(StableAbi, Debug, Clone, Copy)]
-pub struct FfiNormalBatch3 {
-    /// The 0.2 arrays.
-    pub base: v2::FfiNormalBatch,
-    /// Output: dissipated power per contact (W), or null.
-    pub power: *mut f64,
-    /// Output: elastic energy per contact (J), or null.
-    pub elastic: *mut f64,
-    /// Output: reach per contact (m, ≥ 0; the contact ends at δ < −reach), or null.
-    pub reach: *mut f64,
+pub struct FfiNormalBatch4 {
+    /// The 0.3 arrays and outputs.
+    pub base: v3::FfiNormalBatch3,
+    /// Output: each contact's normal context (`n` values), or null.
+    pub context: *mut NormalContext,
 }
 
-/// A normal batch as a host passes it to a 0.3 law: the forces, and optionally each contact's
-/// reach after the call.
+/// A normal batch as a host passes it to a law: the forces, and optionally each contact's
+/// reach and normal context after the call.
 #[derive(Debug)]
 pub struct NormalCall<'a> {
     /// The batch.
     pub batch: NormalBatch<'a>,
     /// Output: each contact's reach (m).
     pub reach: Option<&'a mut [f64]>,
+    /// Output (sdk 0.4): each contact's normal context (contact radius, cap force, damping),
+    /// what the contact's other laws read; a law of an older sdk gives the defaults
+    /// ([`NormalContext::default_for`]).
+    pub context: Option<&'a mut [NormalContext]>,
+}
+
+impl NormalCall<'_> {
+    /// A call of batch `b` without the optional outputs.
+    pub fn plain(b: NormalBatch<'_>) -> NormalCall<'_> {
+        NormalCall {
+            batch: b,
+            reach: None,
+            context: None,
+        }
+    }
 }
 
 /// The normal force (N) `value` of contact `c` is not finite.
@@ -44,7 +57,8 @@ pub(crate) fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError 
 }
 
 impl Kind for Normal {
-    type Ffi = FfiNormalBatch3;
+    type Ffi = FfiNormalBatch4;
+    type Ffi03 = v3::FfiNormalBatch3;
     type Batch<'a> = NormalCall<'a>;
     const KIND: LawKind = LawKind::Contact;
     fn len(b: &NormalCall<'_>) -> usize {
@@ -58,24 +72,46 @@ impl Kind for Normal {
                 format!("reach {}, force {n}", r.len()),
             ));
         }
+        if let Some(x) = c.context.as_ref().filter(|x| x.len() != n) {
+            return Err(length_error(
+                "contact force_batch",
+                format!("context {}, force {n}", x.len()),
+            ));
+        }
         c.batch.lengths().check("contact", name, slots)
     }
-    fn raw(c: &mut NormalCall<'_>, power: *mut f64, elastic: *mut f64) -> FfiNormalBatch3 {
+    fn raw(c: &mut NormalCall<'_>, power: *mut f64, elastic: *mut f64) -> FfiNormalBatch4 {
         let b = &mut c.batch;
-        FfiNormalBatch3 {
-            base: v2::FfiNormalBatch {
-                n: b.force.len(),
-                slots: b.slots,
-                delta: b.delta.as_ptr(),
-                rate: b.rate.as_ptr(),
-                mass: b.mass.as_ptr(),
-                radius: b.radius.as_ptr(),
-                history: b.history.as_mut_ptr(),
-                force: b.force.as_mut_ptr(),
+        FfiNormalBatch4 {
+            base: v3::FfiNormalBatch3 {
+                base: v2::FfiNormalBatch {
+                    n: b.force.len(),
+                    slots: b.slots,
+                    delta: b.delta.as_ptr(),
+                    rate: b.rate.as_ptr(),
+                    mass: b.mass.as_ptr(),
+                    radius: b.radius.as_ptr(),
+                    history: b.history.as_mut_ptr(),
+                    force: b.force.as_mut_ptr(),
+                },
+                power,
+                elastic,
+                reach: raw_out(&mut c.reach),
             },
-            power,
-            elastic,
-            reach: raw_out(&mut c.reach),
+            context: c
+                .context
+                .as_deref_mut()
+                .map_or(std::ptr::null_mut(), <[NormalContext]>::as_mut_ptr),
+        }
+    }
+    fn ffi03(b: &FfiNormalBatch4) -> &v3::FfiNormalBatch3 {
+        &b.base
+    }
+    fn older_defaults(c: &mut NormalCall<'_>) {
+        if let Some(x) = c.context.as_deref_mut() {
+            for (i, x) in x.iter_mut().enumerate() {
+                *x = NormalContext::default_for(&c.batch.contact(i), c.batch.force[i]);
+            }
         }
     }
     fn fault_error(name: &str, c: &NormalCall<'_>, st: BatchStatus, fault: BatchFault) -> LawError {
@@ -85,6 +121,16 @@ impl Kind for Normal {
         match (st, fault.field) {
             (BatchStatus::NonFiniteOutput, BatchFault::OUTPUT) => {
                 normal_non_finite(name, b.force[i], contact)
+            }
+            (BatchStatus::NonFiniteOutput, BatchFault::CONTEXT) => {
+                let x = c.context.as_ref().map(|x| x[i]).unwrap_or_default();
+                non_finite_output(
+                    "contact",
+                    name,
+                    BatchFault::CONTEXT,
+                    i,
+                    format!("{x:?} (at delta = {:e} m)", contact.delta),
+                )
             }
             (BatchStatus::NonFiniteOutput, f) => non_finite_output(
                 "contact",
@@ -103,14 +149,6 @@ impl Kind for Normal {
                 bad_input("contact", name, f, i, v)
             }
         }
-    }
-}
-
-fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
-    if slots == 0 {
-        &[]
-    } else {
-        &h[i * slots..(i + 1) * slots]
     }
 }
 
@@ -247,7 +285,8 @@ fn normal_blocks<B: BoundContact>(
 
 impl<B: BoundContact> KindBound<Normal> for B {
     #[inline(always)]
-    unsafe fn run(&self, b: &FfiNormalBatch3) -> Result<bool, (usize, u8)> {
+    unsafe fn run(&self, b4: &FfiNormalBatch4) -> Result<bool, (usize, u8)> {
+        let b = &b4.base;
         let (n, slots) = (b.base.n, b.base.slots);
         let (delta, rate, mass, radius, history, force) = unsafe {
             (
@@ -287,6 +326,13 @@ impl<B: BoundContact> KindBound<Normal> for B {
                 unsafe { *b.reach.add(i) = r };
             }
         }
+        if !b4.context.is_null() {
+            let out = unsafe { slice_mut(b4.context, n) };
+            self.context_batch(&batch, out);
+            if let Some(i) = out.iter().position(|x| !x.is_valid()) {
+                return Err((i, BatchFault::CONTEXT));
+            }
+        }
         Ok(written)
     }
     fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
@@ -294,7 +340,7 @@ impl<B: BoundContact> KindBound<Normal> for B {
     }
 }
 
-kind_law!(Normal, ContactLaw);
+kind_law!(Normal, ContactLaw, false);
 
 #[cfg(test)]
 mod tests {
@@ -333,6 +379,7 @@ mod tests {
                 force: &mut f,
             },
             reach: None,
+            context: None,
         };
         let e = m
             .batch(
