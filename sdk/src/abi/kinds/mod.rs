@@ -2,7 +2,7 @@
 //! contact batch plus 0.3's reach and energy and 0.4's context outputs), tangential and rolling
 //! (one vector batch: 0.2's tangential batch plus 0.3's energy outputs and 0.4's context
 //! input), and twisting. Each instance is its raw batch (0.3's, which the frozen
-//! [`v3`](super::v3) module keeps, extended), the host's view of it, and the block loop that
+//! [`v3`] module keeps, extended), the host's view of it, and the block loop that
 //! checks and evaluates it; everything else (vtables, trampolines, handles) is generic.
 
 use super::checks::*;
