@@ -19,7 +19,10 @@ fn materials() -> MaterialPair {
 
 /// Overlaps of `n` contacts over `steps` steps: loading, unloading into tension (through
 /// JKR's reach), reloading; masses, radii, and rates.
-fn cycle(n: usize, steps: usize) -> (Vec<f64>, Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>) {
+/// Masses, radii, and per step the overlaps and rates.
+type Cycle = (Vec<f64>, Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>);
+
+fn cycle(n: usize, steps: usize) -> Cycle {
     let mass: Vec<f64> = (0..n).map(|i| 1e-4 * (1.0 + 0.37 * i as f64)).collect();
     let radius: Vec<f64> = (0..n).map(|i| 1e-3 * (1.0 + 0.11 * i as f64)).collect();
     let (mut delta, mut rate) = (Vec::new(), Vec::new());
