@@ -19,7 +19,7 @@
 use super::state::VecD;
 use super::DemError;
 use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
-use dashpot_sdk::{NormalBatch, TangentialBatch};
+use dashpot_sdk::{NormalBatch, NormalContext, TangentialBatch};
 use std::ops::Range;
 
 mod edges;
@@ -114,6 +114,9 @@ pub struct ContactSet {
     pub froll: Vec<[f64; 3]>,
     /// Twisting torques about n̂ on i (N·m), on j their opposite.
     pub mtwist: Vec<f64>,
+    /// The normal law's contexts (sdk 0.4), one per contact while a tangential, rolling or
+    /// twisting law of the run reads them (see [`ContactSet::evaluate`]); empty otherwise.
+    pub context: Vec<NormalContext>,
     /// Whether the laws are asked for their energy outputs.
     pub energy: bool,
     /// The largest reach of the normal law (m; 0 for a law that is not adhesive): contacts are
@@ -195,7 +198,8 @@ pub const MIN_CHUNK: usize = 128;
 /// normal_force: SLICE, input: ARRAY, history / slots => output: ARRAY })`, on contacts
 /// `a..b` of contact set `set`: the step `dt` (s), the geometry every such law reads (unit
 /// normals, the normal forces (N) given, overlaps, masses, radii), the law's own input array,
-/// its history of `slots` values a contact and its output array. For the tangential and
+/// its history of `slots` values a contact and its output array, with the normal law's contexts
+/// of the contacts when the laws read them ([`contexts`]). For the tangential and
 /// rolling laws (`velocity: ARRAY => force: ARRAY`, [`dashpot_sdk::VectorBatch`]) and the
 /// twisting law (`rate: ARRAY => torque: ARRAY`, [`dashpot_sdk::TwistingBatch`]). A macro
 /// rather than a method: the batch borrows the set's arrays one by one, some shared and some
@@ -213,6 +217,7 @@ macro_rules! motion_batch {
             delta: &$set.delta[$a..$b],
             mass: &$set.mass[$a..$b],
             radius: &$set.radius[$a..$b],
+            context: contexts(&$set.context, $a..$b),
             slots: $slots,
             history: &mut $set.$history[$a * $slots..$b * $slots],
             $output: &mut $set.$outputs[$a..$b],
@@ -255,6 +260,18 @@ fn sum4(x: &[f64]) -> f64 {
     }
     let rest: f64 = quads.remainder().iter().sum();
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + rest
+}
+
+/// The normal contexts of contacts `r` of a set whose contexts are `all` ([`ContactSet::context`])
+/// for the laws of the contact's motion: those the normal law reported, or none (the defaults)
+/// when no law of the run reads them.
+#[inline]
+fn contexts(all: &[NormalContext], r: Range<usize>) -> &[NormalContext] {
+    if all.is_empty() {
+        &[]
+    } else {
+        &all[r]
+    }
 }
 
 impl ContactSet {
@@ -366,6 +383,12 @@ impl ContactSet {
         let (sn, st) = (self.slots_n, self.slots_t);
         // a law with history would see its history advanced by the extra calls: plain rule
         let edges = edge_means && sn == 0;
+        // the normal law's contexts only when a law of the contact's motion reads them
+        let reads = tangential.is_some_and(|t| t.reads_context())
+            || rotation.rolling.is_some_and(|l| l.reads_context())
+            || rotation.twisting.is_some_and(|l| l.reads_context());
+        self.context
+            .resize(if reads { n } else { 0 }, NormalContext::default());
         self.unreported = [false; 4];
         self.power_sum = [0.0; 4];
         let mut a = 0;
@@ -381,7 +404,12 @@ impl ContactSet {
                 history: &mut self.hist_n[a * sn..b * sn],
                 force: &mut *f,
             };
-            if self.energy || self.reach_bound > 0.0 {
+            if reads {
+                let out = family_out(self.energy, &mut self.power, &mut self.elastic, 0, a..b);
+                let reach = (self.reach_bound > 0.0).then(|| &mut self.reach[a..b]);
+                let written = normal.force_batch_context(nb, reach, &mut self.context[a..b], out)?;
+                self.unreported[0] |= self.energy && !written;
+            } else if self.energy || self.reach_bound > 0.0 {
                 let out = family_out(self.energy, &mut self.power, &mut self.elastic, 0, a..b);
                 let reach = (self.reach_bound > 0.0).then(|| &mut self.reach[a..b]);
                 let written = normal.force_batch_with(nb, reach, out)?;
