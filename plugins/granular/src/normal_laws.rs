@@ -391,11 +391,13 @@ impl<M: NormalModel, D: DampingModel> GranNormalBound<M, D> {
             None => c.delta > 0.0,
         }
     }
+}
 
+impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
     /// What the law tells the other laws of contact `c` after a force call that left `history`
     /// and returned `force`: the contact radius, LAMMPS's `Fncrit` and `damp_prefactor` (zero
     /// when the contact does not act).
-    pub fn context(&self, c: &Contact, history: &[f64], force: f64) -> Ctx {
+    fn context(&self, c: &Contact, history: &[f64], force: f64) -> Ctx {
         if !self.acting(c, history) {
             return Ctx::default();
         }
@@ -406,9 +408,7 @@ impl<M: NormalModel, D: DampingModel> GranNormalBound<M, D> {
             damping: e.damping,
         }
     }
-}
 
-impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
     #[inline]
     fn force(&self, c: Contact, history: &mut [f64]) -> f64 {
         if !self.touches(&c, history) {

@@ -229,6 +229,7 @@ fn slide_to_roll<T: ReadsContext<TangentialContact, Out = [f64; 3]>>(
         let vt = [v[0], v[1], 0.0];
         let vtr = sub(vt, cross(scale(r, w), nrm));
         let tc = TangentialContact {
+            context: ctx,
             normal: nrm,
             velocity: vtr,
             normal_force: fn_,
@@ -371,7 +372,13 @@ fn normal_laws_account_the_energy_the_bodies_lose() {
 #[test]
 fn a_stuck_linear_spring_dissipates_nothing_and_mindlin_reports_the_energy_its_growing_stiffness_adds() {
     let (n, dt) = ([0.0, 0.0, 1.0], 1e-7);
+    let ctx = |delta: f64| Ctx {
+        contact_radius: (3e-4 * delta).sqrt(),
+        cap_force: 1.0,
+        damping: 0.0,
+    };
     let tc = |delta: f64, vx: f64| TangentialContact {
+        context: ctx(delta),
         normal: n,
         velocity: [vx, 0.0, 0.0],
         normal_force: 1.0,
@@ -379,11 +386,6 @@ fn a_stuck_linear_spring_dissipates_nothing_and_mindlin_reports_the_energy_its_g
         mass: 1e-6,
         radius: 3e-4,
         dt,
-    };
-    let ctx = |delta: f64| Ctx {
-        contact_radius: (3e-4 * delta).sqrt(),
-        cap_force: 1.0,
-        damping: 0.0,
     };
     let p = [
         ParamValue::new("kt", 3e3),
