@@ -17,6 +17,7 @@
 
 #![warn(missing_docs)]
 
+pub mod calibrate;
 mod docs;
 pub mod normal;
 pub mod normal_laws;

@@ -2,6 +2,7 @@
 //! parameters and how it binds: [`NormalSpec`]) and damping model ([`DampingSpec`]); a macro
 //! names each of the 21 combinations LAMMPS accepts.
 
+use crate::calibrate::Calibrate;
 use crate::docs::*;
 use crate::normal::{
     evaluate, CoeffRestitution, DampingModel, Dmt, Hertz, Hooke, Jkr, MassVelocity, NormalEval, NormalModel,
@@ -390,11 +391,13 @@ impl<M: NormalModel, D: DampingModel> GranNormalBound<M, D> {
             None => c.delta > 0.0,
         }
     }
+}
 
+impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
     /// What the law tells the other laws of contact `c` after a force call that left `history`
     /// and returned `force`: the contact radius, LAMMPS's `Fncrit` and `damp_prefactor` (zero
     /// when the contact does not act).
-    pub fn context(&self, c: &Contact, history: &[f64], force: f64) -> Ctx {
+    fn context(&self, c: &Contact, history: &[f64], force: f64) -> Ctx {
         if !self.acting(c, history) {
             return Ctx::default();
         }
@@ -405,9 +408,7 @@ impl<M: NormalModel, D: DampingModel> GranNormalBound<M, D> {
             damping: e.damping,
         }
     }
-}
 
-impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
     #[inline]
     fn force(&self, c: Contact, history: &mut [f64]) -> f64 {
         if !self.touches(&c, history) {
@@ -452,40 +453,6 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
             power: (force - e.elastic) * c.rate,
             elastic: self.model.elastic_energy(e.contact_radius, c.delta, c.radius),
         })
-    }
-}
-
-/// The parameters of `gran-NORMAL-coeff-restitution` that realize a target restitution: damp = e.
-fn restitution_damp(target: &CalibrationTarget) -> Result<Option<Vec<ParamValue>>, LawError> {
-    if target.end != EndCriterion::Overlap || target.contact_time.is_some() {
-        return Ok(None);
-    }
-    Ok(Some(vec![ParamValue::new("damp", target.restitution)]))
-}
-
-/// The closed-form calibration of a law, if it has one.
-pub trait Calibrate {
-    /// See [`ContactLaw::calibrate`].
-    fn closed_form(
-        _t: &CalibrationTarget,
-        _pair: &Pair,
-        _fixed: &Params,
-    ) -> Result<Option<Vec<ParamValue>>, LawError> {
-        Ok(None)
-    }
-}
-
-impl<S> Calibrate for GranNormal<S, Velocity> {}
-impl<S> Calibrate for GranNormal<S, MassVelocity> {}
-impl<S> Calibrate for GranNormal<S, Viscoelastic> {}
-impl<S> Calibrate for GranNormal<S, Tsuji> {}
-impl<S> Calibrate for GranNormal<S, CoeffRestitution> {
-    fn closed_form(
-        t: &CalibrationTarget,
-        _pair: &Pair,
-        _fixed: &Params,
-    ) -> Result<Option<Vec<ParamValue>>, LawError> {
-        restitution_damp(t)
     }
 }
 

@@ -2,7 +2,7 @@
 //! `gran-twisting-marshall`, reading the normal law's context.
 
 use crate::rotation::{marshall_twist, rolling_sds, Sds, Twist};
-use crate::spring::{context_of, through_context, Ctx, ReadsContext, SpringStep};
+use crate::spring::{through_context, Ctx, ReadsContext, SpringStep};
 use crate::tangential::{Motion, Spring};
 use crate::tangential_laws::{need, spring_of};
 use dashpot_sdk::{
@@ -71,6 +71,7 @@ macro_rules! sds_law {
             const SUMMARY: &'static str = $summary;
             const DOC: &'static str = concat!($doc, rotation_common_doc!());
             const HISTORY: &'static [History] = &$history;
+            const READS_CONTEXT: bool = true;
 
             fn check(&self) -> Result<(), LawError> {
                 self.sds().map(|_| ())
@@ -138,27 +139,7 @@ impl ReadsContext<RollingContact> for Sds {
     }
 }
 
-/// The context of rolling or twisting contact `c`.
-#[inline(always)]
-fn rctx(c: &RollingContact) -> Ctx {
-    context_of(c.normal_force, c.delta, c.radius)
-}
-
-/// The context of twisting contact `c`.
-#[inline(always)]
-fn tctx(c: &TwistingContact) -> Ctx {
-    context_of(c.normal_force, c.delta, c.radius)
-}
-
-through_context!(
-    BoundRolling,
-    Sds,
-    RollingContact,
-    [f64; 3],
-    force,
-    force_energy,
-    rctx
-);
+through_context!(BoundRolling, Sds, RollingContact, [f64; 3], force, force_energy);
 
 impl ReadsContext<TwistingContact> for TwistSdsBound {
     type Out = f64;
@@ -174,8 +155,7 @@ through_context!(
     TwistingContact,
     f64,
     torque,
-    torque_energy,
-    tctx
+    torque_energy
 );
 
 dashpot_sdk::law_params! {
@@ -198,6 +178,7 @@ pub struct MarshallBound(pub Spring);
 impl TwistingLaw for GranTwistingMarshall {
     type Bound = MarshallBound;
     const NAME: &'static str = "gran-twisting-marshall";
+    const READS_CONTEXT: bool = true;
     const SUMMARY: &'static str =
         "LAMMPS twisting marshall: k = k_t a²/2, γ = x_t η_n a²/2, M_c = (2/3) μ a F_c from the tangential model";
     const DOC: &'static str = concat!(
@@ -244,6 +225,5 @@ through_context!(
     TwistingContact,
     f64,
     torque,
-    torque_energy,
-    tctx
+    torque_energy
 );

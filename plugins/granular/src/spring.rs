@@ -5,16 +5,8 @@
 use dashpot_sdk::Energy;
 
 /// What a contact's normal law tells its other laws (LAMMPS's `contact_radius`, `Fncrit` and
-/// `damp_prefactor`; the sdk 0.4 normal context).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Ctx {
-    /// Contact radius a (m).
-    pub contact_radius: f64,
-    /// The force the Coulomb caps scale with, F_c (N, ≥ 0).
-    pub cap_force: f64,
-    /// The normal damping prefactor η_n (N·s/m, ≥ 0).
-    pub damping: f64,
-}
+/// `damp_prefactor`): the sdk 0.4 normal context.
+pub type Ctx = dashpot_sdk::NormalContext;
 
 /// a · b.
 #[inline(always)]
@@ -170,18 +162,6 @@ impl SpringStep {
     }
 }
 
-impl Ctx {
-    /// The context of a contact whose normal law reports none (an sdk ≤ 0.3 law, or a host that
-    /// passes none): a = √(R max(δ, 0)), F_c = max(F_n, 0), η_n = 0 (m, N, N·s/m).
-    pub fn default_for(normal_force: f64, delta: f64, radius: f64) -> Ctx {
-        Ctx {
-            contact_radius: (radius * delta.max(0.0)).sqrt(),
-            cap_force: normal_force.max(0.0),
-            damping: 0.0,
-        }
-    }
-}
-
 /// A bound law that reads its contact's normal context (tangential, rolling, twisting): its
 /// output with the context given explicitly. The sdk traits' methods call it with the context
 /// the host passes.
@@ -193,28 +173,21 @@ pub trait ReadsContext<C> {
     fn eval(&self, ctx: &Ctx, c: &C, h: &mut [f64]) -> (Self::Out, SpringStep);
 }
 
-/// Implements a kind's sdk trait for a bound law through [`ReadsContext`], the context read
-/// from the contact by `$ctx`.
+/// Implements a kind's sdk trait for a bound law through [`ReadsContext`], with the context
+/// the host passes in the contact.
 macro_rules! through_context {
-    ($trait:ident, $ty:ty, $contact:ty, $out:ty, $call:ident, $energy_call:ident, $ctx:path) => {
+    ($trait:ident, $ty:ty, $contact:ty, $out:ty, $call:ident, $energy_call:ident) => {
         impl $trait for $ty {
             #[inline]
             fn $call(&self, c: &$contact, h: &mut [f64]) -> $out {
-                self.eval(&$ctx(c), c, h).0
+                self.eval(&c.context, c, h).0
             }
             #[inline]
             fn $energy_call(&self, c: &$contact, h: &mut [f64]) -> ($out, Option<dashpot_sdk::Energy>) {
-                let (o, s) = self.eval(&$ctx(c), c, h);
+                let (o, s) = self.eval(&c.context, c, h);
                 (o, Some(s.energy(c.dt)))
             }
         }
     };
 }
 pub(crate) use through_context;
-
-/// The context of a tangential, rolling or twisting contact of normal force `normal_force` (N),
-/// overlap `delta` (m) and effective radius `radius` (m), as its host passes it.
-#[inline(always)]
-pub fn context_of(normal_force: f64, delta: f64, radius: f64) -> Ctx {
-    Ctx::default_for(normal_force, delta, radius)
-}

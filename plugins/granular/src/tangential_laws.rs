@@ -1,7 +1,7 @@
 //! The tangential laws `gran-*`: LAMMPS's `linear_nohistory`, `linear_history`, the four
 //! `mindlin` variants and the classic history springs, reading the normal law's context.
 
-use crate::spring::{context_of, through_context, Ctx, ReadsContext, SpringStep};
+use crate::spring::{through_context, Ctx, ReadsContext, SpringStep};
 use crate::tangential::{classic, linear_history, linear_nohistory, mindlin, Motion, Spring};
 use dashpot_sdk::{
     BoundTangential, History, LawError, MaterialPair, Range, TangentialContact, TangentialLaw,
@@ -33,12 +33,6 @@ pub(crate) fn spring_of(
     })
 }
 
-/// The context of tangential contact `c`.
-#[inline(always)]
-fn ctx(c: &TangentialContact) -> Ctx {
-    context_of(c.normal_force, c.delta, c.radius)
-}
-
 /// The motion of tangential contact `c`.
 #[inline(always)]
 fn motion(c: &TangentialContact) -> Motion {
@@ -58,8 +52,7 @@ macro_rules! spring_bound {
             TangentialContact,
             [f64; 3],
             force,
-            force_energy,
-            ctx
+            force_energy
         );
     };
 }
@@ -102,6 +95,7 @@ pub struct LinearNoHistoryBound(pub Spring);
 impl TangentialLaw for GranLinearNoHistory {
     type Bound = LinearNoHistoryBound;
     const NAME: &'static str = "gran-linear-nohistory";
+    const READS_CONTEXT: bool = true;
     const SUMMARY: &'static str =
         "LAMMPS tangential linear_nohistory (classic gran/hooke): F_t = −min(μ F_c, x_t η_n |v_t|) v̂_t";
     const DOC: &'static str = concat!(
@@ -250,6 +244,7 @@ macro_rules! spring_law {
             const SUMMARY: &'static str = $summary;
             const DOC: &'static str = concat!($doc, tangential_common_doc!());
             const HISTORY: &'static [History] = &$history;
+            const READS_CONTEXT: bool = true;
 
             fn check(&self) -> Result<(), LawError> {
                 let derived = $derived.then_some(1.0);

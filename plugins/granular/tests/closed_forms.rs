@@ -11,7 +11,7 @@ use dashpot_granular::normal_laws::*;
 use dashpot_granular::spring::{cross, dot, scale, sub, Ctx, ReadsContext};
 use dashpot_granular::tangential_laws::*;
 use dashpot_sdk::{
-    BoundContact, Contact, ContactLaw, EndCriterion, MaterialPair, ParamValue, TangentialContact,
+    BoundContact, Contact, ContactLaw, EndCriterion, LawParams, MaterialPair, ParamValue, TangentialContact,
     TangentialLaw,
 };
 use std::f64::consts::PI;
@@ -229,6 +229,7 @@ fn slide_to_roll<T: ReadsContext<TangentialContact, Out = [f64; 3]>>(
         let vt = [v[0], v[1], 0.0];
         let vtr = sub(vt, cross(scale(r, w), nrm));
         let tc = TangentialContact {
+            context: ctx,
             normal: nrm,
             velocity: vtr,
             normal_force: fn_,
@@ -371,7 +372,13 @@ fn normal_laws_account_the_energy_the_bodies_lose() {
 #[test]
 fn a_stuck_linear_spring_dissipates_nothing_and_mindlin_reports_the_energy_its_growing_stiffness_adds() {
     let (n, dt) = ([0.0, 0.0, 1.0], 1e-7);
+    let ctx = |delta: f64| Ctx {
+        contact_radius: (3e-4 * delta).sqrt(),
+        cap_force: 1.0,
+        damping: 0.0,
+    };
     let tc = |delta: f64, vx: f64| TangentialContact {
+        context: ctx(delta),
         normal: n,
         velocity: [vx, 0.0, 0.0],
         normal_force: 1.0,
@@ -379,11 +386,6 @@ fn a_stuck_linear_spring_dissipates_nothing_and_mindlin_reports_the_energy_its_g
         mass: 1e-6,
         radius: 3e-4,
         dt,
-    };
-    let ctx = |delta: f64| Ctx {
-        contact_radius: (3e-4 * delta).sqrt(),
-        cap_force: 1.0,
-        damping: 0.0,
     };
     let p = [
         ParamValue::new("kt", 3e3),
@@ -412,4 +414,52 @@ fn a_stuck_linear_spring_dissipates_nothing_and_mindlin_reports_the_energy_its_g
     // power) and loses it as a shrinks: the law reports both
     assert!(neg > 900, "{neg} steps of negative power");
     assert!(work_m.abs() > 0.0);
+}
+
+/// Calibrates law `L` to restitution `e` (and contact time `tau`) with the values `fixed`, then
+/// collides it: the realized restitution and contact time.
+fn calibrated<L: ContactLaw>(e: f64, tau: Option<f64>, fixed: &[(&str, f64)], m: f64, r: f64) -> (f64, f64) {
+    let target = dashpot_sdk::CalibrationTarget {
+        restitution: e,
+        contact_time: tau,
+        impact_speed: None,
+        end: EndCriterion::Overlap,
+    };
+    let pair = dashpot_sdk::Pair::new(m, r, mat().young).unwrap();
+    let fixed: Vec<ParamValue> = fixed.iter().map(|(n, x)| ParamValue::new(n, *x)).collect();
+    let p = dashpot_sdk::Params::resolve(L::NAME, &L::schema(), &fixed).unwrap();
+    let mut found = L::calibrate(&target, &pair, &p).unwrap().expect("a closed form");
+    found.extend(fixed);
+    head_on(&L::from_values(&found).unwrap(), m, r, 0.4)
+}
+
+#[test]
+fn hookean_laws_calibrate_to_a_restitution_and_a_contact_time_in_closed_form() {
+    let (m, r, e, tau) = (1e-6, 3e-4, 0.55, 4e-5);
+    for (got_e, got_t) in [
+        calibrated::<GranHookeVelocity>(e, Some(tau), &[], m, r),
+        calibrated::<GranHookeMassVelocity>(e, Some(tau), &[], m, r),
+        calibrated::<GranHookeCoeffRestitution>(e, Some(tau), &[], m, r),
+    ] {
+        assert!(
+            (got_e - e).abs() < 1e-8 && (got_t - tau).abs() < 1e-8 * tau,
+            "{got_e} {got_t}"
+        );
+    }
+    // a given stiffness: the restitution alone
+    let (got_e, _) = calibrated::<GranHookeVelocity>(e, None, &[("k", 2e4)], m, r);
+    assert!((got_e - e).abs() < 1e-8, "{got_e}");
+    let (got_e, _) = calibrated::<GranHertzMaterialCoeffRestitution>(e, None, &[], m, r);
+    assert!((got_e - e).abs() < 1e-7, "{got_e}");
+    // no closed form for a Hertzian contact with velocity damping
+    let pair = dashpot_sdk::Pair::new(m, r, mat().young).unwrap();
+    let p = dashpot_sdk::Params::resolve("x", &GranHertzVelocity::schema(), &[ParamValue::new("k", 1e8)])
+        .unwrap();
+    let t = dashpot_sdk::CalibrationTarget {
+        restitution: e,
+        contact_time: None,
+        impact_speed: None,
+        end: EndCriterion::Overlap,
+    };
+    assert!(GranHertzVelocity::calibrate(&t, &pair, &p).unwrap().is_none());
 }

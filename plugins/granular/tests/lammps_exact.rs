@@ -488,3 +488,45 @@ fn walls_of_fix_wall_gran() {
         both("wall-hertz/history", "tangential", o.slid);
     }
 }
+
+/// LAMMPS's lj units (diameters 1 and 1.2, density 1, E = 1e5): the laws take the numbers as
+/// they are (their ranges are signs and bounds only), and equal LAMMPS's to the bit.
+#[test]
+fn lj_units() {
+    let m = pair_materials(1e5, 0.3);
+    let coeff = "* * hertz/material 1e5 0.6 0.3 damping coeff_restitution tangential mindlin NULL 1.0 0.4 \
+                 rolling sds 500 0.5 0.1 twisting marshall";
+    let mut run = Run::impact("granular", coeff);
+    for (k, v) in [
+        ("units", "lj"),
+        ("box", "10"),
+        ("d1", "1"),
+        ("rho1", "1"),
+        ("d2", "1.2"),
+        ("rho2", "0.8"),
+        ("x2", "1.06"),
+        ("y2", "0.3"),
+        ("z2", "0.1"),
+        ("w1x", "0.01"),
+        ("w1y", "-0.02"),
+        ("w1z", "0.3"),
+        ("w2x", "-0.05"),
+        ("w2y", "0.04"),
+        ("w2z", "-0.1"),
+    ] {
+        run.vars.push((k, v.into()));
+    }
+    run.dt = 1e-4;
+    let mindlin: &[(&str, f64)] = &[("xt", 1.0), ("mu", 0.4)];
+    let model = Model {
+        rolling: Some(rolling::<GranRollingSds>(
+            &[("k", 500.0), ("gamma", 0.5), ("mu", 0.1)],
+            &m,
+        )),
+        twisting: Some(twisting::<GranTwistingMarshall>(mindlin, &m)),
+        ..with::<GranHertzMaterialCoeffRestitution, _, _, GranMindlin>(&[("damp", 0.6)], mindlin, &m)
+    };
+    if let Some(o) = run.check("lj", model) {
+        both("lj", "tangential", o.slid);
+    }
+}

@@ -3,10 +3,14 @@
 //! naming them, and a collision through the plugin equal to the law linked in.
 
 use dashpot_core::collide::{collide, collide_named, Options, PairLaw};
-use dashpot_core::laws::compiled;
+use dashpot_core::laws::{compiled, compiled_tangential, EnergyOut};
 use dashpot_core::Registry;
-use dashpot_granular::normal_laws::GranHertzMaterialCoeffRestitution;
-use dashpot_sdk::{ContactLaw, EndCriterion, LawKind, Pair, ParamValue};
+use dashpot_granular::normal_laws::{GranHertzMaterialCoeffRestitution, GranJkrViscoelastic};
+use dashpot_granular::tangential_laws::GranMindlin;
+use dashpot_sdk::{
+    ContactLaw, EndCriterion, LawKind, MaterialPair, NormalBatch, NormalContext, Pair, ParamValue,
+    TangentialBatch, TangentialLaw,
+};
 use std::path::PathBuf;
 
 /// The plugin library this test build made (`target/<profile>/libdashpot_granular.so`).
@@ -157,4 +161,81 @@ fn a_collision_through_the_plugin_is_the_law_linked_in() {
     assert_eq!(c.restitution, d.restitution);
     assert_eq!(c.contact_time, d.contact_time);
     assert!((c.restitution - 0.6).abs() < 1e-7, "{}", c.restitution);
+}
+
+/// Six contacts of a JKR pair, in and beyond contact: overlaps (m) and rates (m/s).
+const DELTA: [f64; 6] = [1e-6, 3e-7, 0.0, -2e-8, -5e-8, 2e-6];
+const RATE: [f64; 6] = [0.1, -0.2, 0.05, -0.3, 0.0, 0.7];
+const MASS: [f64; 6] = [1e-6; 6];
+const RADIUS: [f64; 6] = [2.7e-4; 6];
+
+/// The forces and normal contexts of `l` on the six contacts, formed (JKR's `touch` = 1).
+fn normal_through<L: dashpot_core::laws::NormalLaw + ?Sized>(l: &L) -> ([f64; 6], [NormalContext; 6]) {
+    let (mut h, mut force, mut ctx) = ([1.0; 6], [0.0; 6], [NormalContext::default(); 6]);
+    let b = NormalBatch {
+        delta: &DELTA,
+        rate: &RATE,
+        mass: &MASS,
+        radius: &RADIUS,
+        slots: 1,
+        history: &mut h,
+        force: &mut force,
+    };
+    l.force_batch_context(b, None, &mut ctx, EnergyOut::none())
+        .unwrap();
+    (force, ctx)
+}
+
+/// The Mindlin forces and history of `l` on the six contacts under the contexts `ctx`.
+fn tangential_through<L: dashpot_core::laws::TangentialForce + ?Sized>(
+    l: &L,
+    fnorm: &[f64; 6],
+    ctx: &[NormalContext; 6],
+) -> ([[f64; 3]; 6], [f64; 24]) {
+    let (mut h, mut force) = ([0.0; 24], [[0.0; 3]; 6]);
+    let b = TangentialBatch {
+        dt: 1e-7,
+        normal: &[[0.0, 0.0, 1.0]; 6],
+        velocity: &[[0.3, -0.1, 0.0]; 6],
+        normal_force: fnorm,
+        delta: &DELTA,
+        mass: &MASS,
+        radius: &RADIUS,
+        context: ctx,
+        slots: 4,
+        history: &mut h,
+        force: &mut force,
+    };
+    l.force_batch(b).unwrap();
+    (force, h)
+}
+
+/// The normal contexts of JKR contacts through the plugin, and the Mindlin forces they give
+/// through the plugin, are those of the laws linked in, to the bit (sdk 0.4).
+#[test]
+fn contexts_travel_through_the_plugin_to_the_bit() {
+    let r = registry();
+    let m = MaterialPair::new(5e7, 2e7).unwrap();
+    let np = [ParamValue::new("damp", 3e7), ParamValue::new("cohesion", 0.05)];
+    let tp = [ParamValue::new("xt", 1.0), ParamValue::new("mu", 0.3)];
+    let plugin = r.contact("gran-jkr-viscoelastic", &np).unwrap().bind(&m).unwrap();
+    let linked = compiled(&GranJkrViscoelastic::from_values(&np).unwrap(), &m).unwrap();
+    let (fp, cp) = normal_through(&plugin);
+    assert_eq!((fp, cp), normal_through(&linked));
+    assert!(
+        cp.iter()
+            .all(|c| c.contact_radius > 0.0 && c.damping > 0.0 && c.cap_force > 0.0),
+        "{cp:?}"
+    );
+    let tplug = r.tangential("gran-mindlin", &tp).unwrap().bind(&m).unwrap();
+    let tlink = compiled_tangential(&GranMindlin::from_values(&tp).unwrap(), &m).unwrap();
+    let (a, b) = (
+        tangential_through(&tplug, &fp, &cp),
+        tangential_through(&tlink, &fp, &cp),
+    );
+    assert_eq!(a, b);
+    assert!(
+        GranMindlin::READS_CONTEXT && a.0.iter().all(|f| f[0] < 0.0),
+        "{a:?}"
+    );
 }

@@ -46,21 +46,32 @@ where
 }
 
 /// Declares the constructor `$f` of a law of kind `$trait` read through its context: the law
-/// with `params`, bound to `m`.
+/// with `params`, bound to `m`. Each call also goes through the sdk's trait (`$bound::$call`,
+/// the context in the contact, as a host passes it) and checks the same bits and history.
 macro_rules! motion_law {
-    ($f:ident, $trait:ident, $contact:ty, $out:ty, $fn:ty) => {
+    ($f:ident, $trait:ident, $bound:ident::$call:ident, $contact:ty, $out:ty, $fn:ty) => {
         #[doc = concat!("The ", stringify!($trait), " `L` with `params`, bound to `m`.")]
         pub fn $f<L>(params: &[(&str, f64)], m: &MaterialPair) -> Law<$fn>
         where
             L: $trait,
-            L::Bound: ReadsContext<$contact, Out = $out>,
+            L::Bound: ReadsContext<$contact, Out = $out> + dashpot_sdk::$bound,
         {
+            assert!(L::READS_CONTEXT, "{} reads the normal context", L::NAME);
             let b = L::from_values(&values(params))
                 .expect("configure")
                 .bind(m)
                 .expect("bind");
             Law {
-                f: Box::new(move |x, c, h| b.eval(x, c, h)),
+                f: Box::new(move |x, c, h| {
+                    let mut through_sdk = h.to_vec();
+                    let o = dashpot_sdk::$bound::$call(&b, c, &mut through_sdk);
+                    let out = b.eval(x, c, h);
+                    assert!(
+                        o == out.0 && through_sdk == h,
+                        "the sdk trait and the kernel differ"
+                    );
+                    out
+                }),
                 slots: L::HISTORY.len(),
             }
         }
@@ -70,6 +81,7 @@ macro_rules! motion_law {
 motion_law!(
     tangential,
     TangentialLaw,
+    BoundTangential::force,
     TangentialContact,
     [f64; 3],
     VectorFn<TangentialContact>
@@ -77,11 +89,19 @@ motion_law!(
 motion_law!(
     rolling,
     RollingLaw,
+    BoundRolling::force,
     RollingContact,
     [f64; 3],
     VectorFn<RollingContact>
 );
-motion_law!(twisting, TwistingLaw, TwistingContact, f64, TwistFn);
+motion_law!(
+    twisting,
+    TwistingLaw,
+    BoundTwisting::torque,
+    TwistingContact,
+    f64,
+    TwistFn
+);
 
 /// LAMMPS's materials of two spheres of one type (`E`, `ν`): E_eff = 1/((1 − ν²)/E +
 /// (1 − ν²)/E), G_eff = 1/(2(2 − ν)(1 + ν)/E + 2(2 − ν)(1 + ν)/E), LAMMPS's operations.
@@ -219,6 +239,7 @@ fn contact(
     }
     o.contact += 1;
     let tc = TangentialContact {
+        context: ctx,
         normal: n,
         velocity: vtr,
         normal_force: fn_,
@@ -251,6 +272,7 @@ fn contact(
     }
     if let Some(l) = &m.twisting {
         let wc = TwistingContact {
+            context: ctx,
             normal: n,
             rate: dot(relrot, n),
             normal_force: fn_,
