@@ -27,7 +27,10 @@
  * compute pair/local reads, per pair (single()): p1 the normal force, p2 |F_t|, p3 the power the
  * contact dissipates (all families), p4..p7 that power by family, p8 the elastic energy it
  * stores, p9 |F_roll|, p10 the twisting torque. p3..p8 are the laws' own outputs from the step's
- * batch calls, which energy=1 asks for (NaN without it). */
+ * batch calls, which energy=1 asks for (NaN without it). When every model is in LAMMPS's
+ * syntax (and energy=1 is not given), pair_style granular's columns instead: p1..p3 the
+ * tangential force on i, p4 its magnitude, p5..p7 the rolling force, p8 its magnitude, p9 the
+ * twisting torque, p10..p12 x_i - x_j. */
 #ifndef DASHPOT_PAIR_DASHPOT_H
 #define DASHPOT_PAIR_DASHPOT_H
 
@@ -71,6 +74,7 @@ class PairDashpot : public Pair {
     std::vector<std::string> plugin_dirs;
     int default_spec;     // the spec of pair_style's laws, -1: none
     double cutoff_global;    // pair_style dashpot CUTOFF (as pair_style granular's), < 0: none
+    int granular_single;     // single() fills pair_style granular's columns
     int wall_flag;
     double wall_z;
     int energy_flag;      // the laws report power and elastic energy, kept per contact for single()

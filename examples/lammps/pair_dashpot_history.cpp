@@ -199,6 +199,22 @@ double PairDashpot::single(int i, int j, int /*itype*/, int /*jtype*/, double rs
     } catch (std::exception &e) {
         fail(e, false);
     }
+    if (granular_single) {
+        // pair_style granular's columns, on atom i (the contact is computed from the atom of the
+        // lower tag: the tangential force changes sign from the other side; the rolling force
+        // and the twisting torque about the normal do not)
+        const double sign = a == i ? 1.0 : -1.0;
+        for (int d = 0; d < 3; d++) {
+            svector[d] = sign * ft[d];
+            svector[4 + d] = fr[d];
+            svector[9 + d] = x[i][d] - x[j][d];
+        }
+        svector[3] = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+        svector[7] = std::sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]);
+        svector[8] = mt;
+        fforce = fn / r;
+        return 0.0;
+    }
     svector[0] = fn;
     svector[1] = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
     const double *e = energy_flag && slot >= 0 ? &slot_energy[(size_t) slot * NENERGY] : nullptr;
