@@ -50,7 +50,7 @@ static bool is_plain_number(const std::string &w)
 
 PairDashpot::PairDashpot(LAMMPS *lmp) :
     Pair(lmp), default_spec(-1), cutoff_global(-1.0), granular_single(0), wall_flag(0), wall_z(0.0), energy_flag(0), coeff_spec(nullptr), coeff_e(nullptr),
-    coeff_nu(nullptr), freeze_group_bit(0), fix_history(nullptr), nwall_slots(0), slots_ncalls(-1), slots_nlocal(0),
+    coeff_nu(nullptr), freeze_group_bit(0), engine_ready(false), fix_history(nullptr), nwall_slots(0), slots_ncalls(-1), slots_nlocal(0),
     dirty(0)
 {
     single_enable = 1;
@@ -330,7 +330,9 @@ void PairDashpot::init_style()
     fl.rolling = models.any(dashpot_lmp::ROLLING);
     fl.twisting = models.any(dashpot_lmp::TWISTING);
     fl.energy = energy_flag;
-    engine.configure(&models, layout, fl);
+    fl.regions = true;
+    engine_flags = fl;
+    engine_ready = false;
 }
 
 /* Binds the laws of the pair of types (i, j) in both orders, and the wall's for i == j. */

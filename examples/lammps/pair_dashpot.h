@@ -65,6 +65,10 @@ class PairDashpot : public Pair {
      * and before a restart file is written. */
     void history_to_atoms();
 
+    /* Lays the history out in the order of the neighbour list just built (from the records the
+     * fix holds). Called by the fix after every list build. */
+    void layout_slots();
+
  private:
     using Family = dashpot_lmp::Family;
     static constexpr int NENERGY = dashpot_lmp::NFAMILY + 1;
@@ -94,6 +98,8 @@ class PairDashpot : public Pair {
 
     dashpot_lmp::Layout layout;
     dashpot_lmp::ContactEngine engine;
+    dashpot_lmp::EngineFlags engine_flags;
+    bool engine_ready;    // configured for the models init_one bound (at the first compute)
     class FixDashpotHistory *fix_history;
     std::string fix_id, dummy_id;
 
@@ -115,9 +121,8 @@ class PairDashpot : public Pair {
     void set_coeff(int ilo, int ihi, int jlo, int jhi, const std::vector<std::string> &words);
     int spec_of(int i, int j) const;
     void bind_pair(int i, int j);
-    void layout_slots();
-    void apply(dashpot_lmp::ContactEngine::Chunk &c, int n, bool wall);
-    void evaluate(dashpot_lmp::HistoryStore &store, bool wall);
+    void apply(dashpot_lmp::ContactEngine::Chunk &c, int n, bool wall, bool applied);
+    void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
     int find_slot(int i, int j) const;
     [[noreturn]] void fail(const std::exception &e, bool all);
 };
