@@ -373,9 +373,9 @@ void PairDashpot::bind_pair(int i, int j)
                                                  }),
                                        "pair dashpot, mixing " + context);
         if (models.spec(s).granular.present()) {
-            granular_material(models.spec(s), ei, nui);
-            ej = ei;
-            nuj = nui;
+            // LAMMPS's mixed modulus is the pair modulus of the two types' own materials
+            granular_material(models.spec(si), ei, nui);
+            granular_material(models.spec(sj), ej, nuj);
         } else {
             type_material(i, ei, nui);
             type_material(j, ej, nuj);
