@@ -62,7 +62,8 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
     // delta, rate, mass, rad, ra, rb, fn; norm, vel, ft, force, ta, tb (3 each); the families'
     // history; vroll, froll (3 each); twist, mtwist; reach; each family's power and elastic energy
     size_t per = 7 + 18 + lay.width[NORMAL] + lay.width[TANGENTIAL] + lay.width[ROLLING] + lay.width[TWISTING] +
-        (fl.rolling ? 6 : 0) + (fl.twisting ? 2 : 0) + (lay.adhesive ? 1 : 0) + (fl.energy ? 2 * NFAMILY : 0);
+        (fl.rolling ? 6 : 0) + (fl.twisting ? 2 : 0) + (lay.adhesive ? 1 : 0) + (fl.energy ? 2 * NFAMILY : 0) +
+        (fl.context ? 3 : 0);
     dstore.assign((size_t) C * per, 0.0);
     a = istore.data();
     b = a + C;
@@ -98,6 +99,7 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
         mtwist = take(1);
     }
     if (lay.adhesive) reach = take(1);
+    context = fl.context ? take(3) : nullptr;
     for (int f = 0; f < NFAMILY; f++) power[f] = elastic[f] = nullptr;
     if (fl.energy)
         for (int f = 0; f < NFAMILY; f++) {
@@ -111,6 +113,8 @@ void ContactEngine::configure(const ModelTable *m, const Layout &l, const Engine
     models = m;
     lay = l;
     fl = f;
+    fl.context = false;
+    for (int id = 0; id < models->nmodels(); id++) fl.context = fl.context || models->model(id).any_context;
     use_regions = fl.regions && models->nmodels() > 1 && models->nmodels() <= MAX_REGIONS;
     if (use_regions) {
         reg.resize(models->nmodels());
@@ -230,6 +234,20 @@ void ContactEngine::run_laws(Chunk &c, int lo, int m, const Model &md, double *c
     auto el = [&](int f) { return en ? c.elastic[f] + lo : nullptr; };
     auto wr = [&](int f) { return en ? &written[f] : nullptr; };
     double *hn = ns ? hist[NORMAL] : nullptr;
+    // sdk 0.4: the normal law also reports each contact's context, which the other families'
+    // laws that read it receive
+    double *ctx = md.any_context ? c.context + 3 * lo : nullptr;
+#if !DASHPOT_LMP_CONTEXT
+    (void) ctx;
+#else
+    if (ctx)
+        check_status(dashpot_contact_model_force_batch_context(md.normal, m, c.delta + lo, c.rate + lo, c.mass + lo,
+                                                               c.rad + lo, hn, m * ns, c.fn + lo,
+                                                               lay.adhesive ? reach : nullptr, pw(NORMAL), el(NORMAL),
+                                                               wr(NORMAL), ctx),
+                     "dashpot_contact_model_force_batch_context");
+    else
+#endif
     if (lay.adhesive || en)
         check_status(dashpot_contact_model_force_batch_energy(md.normal, m, c.delta + lo, c.rate + lo, c.mass + lo,
                                                               c.rad + lo, hn, m * ns, c.fn + lo,
@@ -242,6 +260,15 @@ void ContactEngine::run_laws(Chunk &c, int lo, int m, const Model &md, double *c
                      "dashpot_contact_model_force_batch");
     if (md.tangential) {
         double *ht = nt ? hist[TANGENTIAL] : nullptr;
+#if DASHPOT_LMP_CONTEXT
+        if (md.reads_context[TANGENTIAL])
+            check_status(dashpot_tangential_model_force_batch_context(
+                             md.tangential, m, dt, c.norm + 3 * lo, c.vel + 3 * lo, c.fn + lo, c.delta + lo,
+                             c.mass + lo, c.rad + lo, ctx, ht, m * nt, c.ft + 3 * lo, pw(TANGENTIAL), el(TANGENTIAL),
+                             wr(TANGENTIAL)),
+                         "dashpot_tangential_model_force_batch_context");
+        else
+#endif
         if (en)
             check_status(dashpot_tangential_model_force_batch_energy(
                              md.tangential, m, dt, c.norm + 3 * lo, c.vel + 3 * lo, c.fn + lo, c.delta + lo,
@@ -256,22 +283,46 @@ void ContactEngine::run_laws(Chunk &c, int lo, int m, const Model &md, double *c
     } else {
         std::fill(c.ft + 3 * lo, c.ft + 3 * (lo + m), 0.0);
     }
-    if (md.rolling)
-        check_status(dashpot_rolling_model_force_batch(md.rolling, m, dt, c.norm + 3 * lo, c.vroll + 3 * lo,
-                                                       c.fn + lo, c.delta + lo, c.mass + lo, c.rad + lo,
-                                                       nr ? hist[ROLLING] : nullptr, m * nr, c.froll + 3 * lo,
-                                                       pw(ROLLING), el(ROLLING), wr(ROLLING)),
-                     "dashpot_rolling_model_force_batch");
-    else if (c.froll)
+    if (md.rolling) {
+        double *hr = nr ? hist[ROLLING] : nullptr;
+#if DASHPOT_LMP_CONTEXT
+        if (md.reads_context[ROLLING])
+            check_status(dashpot_rolling_model_force_batch_context(md.rolling, m, dt, c.norm + 3 * lo,
+                                                                   c.vroll + 3 * lo, c.fn + lo, c.delta + lo,
+                                                                   c.mass + lo, c.rad + lo, ctx, hr, m * nr,
+                                                                   c.froll + 3 * lo, pw(ROLLING), el(ROLLING),
+                                                                   wr(ROLLING)),
+                         "dashpot_rolling_model_force_batch_context");
+        else
+#endif
+            check_status(dashpot_rolling_model_force_batch(md.rolling, m, dt, c.norm + 3 * lo, c.vroll + 3 * lo,
+                                                           c.fn + lo, c.delta + lo, c.mass + lo, c.rad + lo, hr,
+                                                           m * nr, c.froll + 3 * lo, pw(ROLLING), el(ROLLING),
+                                                           wr(ROLLING)),
+                         "dashpot_rolling_model_force_batch");
+    } else if (c.froll) {
         std::fill(c.froll + 3 * lo, c.froll + 3 * (lo + m), 0.0);
-    if (md.twisting)
-        check_status(dashpot_twisting_model_torque_batch(md.twisting, m, dt, c.norm + 3 * lo, c.twist + lo, c.fn + lo,
-                                                         c.delta + lo, c.mass + lo, c.rad + lo,
-                                                         nw ? hist[TWISTING] : nullptr, m * nw, c.mtwist + lo,
-                                                         pw(TWISTING), el(TWISTING), wr(TWISTING)),
-                     "dashpot_twisting_model_torque_batch");
-    else if (c.mtwist)
+    }
+    if (md.twisting) {
+        double *hw = nw ? hist[TWISTING] : nullptr;
+#if DASHPOT_LMP_CONTEXT
+        if (md.reads_context[TWISTING])
+            check_status(dashpot_twisting_model_torque_batch_context(md.twisting, m, dt, c.norm + 3 * lo,
+                                                                     c.twist + lo, c.fn + lo, c.delta + lo,
+                                                                     c.mass + lo, c.rad + lo, ctx, hw, m * nw,
+                                                                     c.mtwist + lo, pw(TWISTING), el(TWISTING),
+                                                                     wr(TWISTING)),
+                         "dashpot_twisting_model_torque_batch_context");
+        else
+#endif
+            check_status(dashpot_twisting_model_torque_batch(md.twisting, m, dt, c.norm + 3 * lo, c.twist + lo,
+                                                             c.fn + lo, c.delta + lo, c.mass + lo, c.rad + lo, hw,
+                                                             m * nw, c.mtwist + lo, pw(TWISTING), el(TWISTING),
+                                                             wr(TWISTING)),
+                         "dashpot_twisting_model_torque_batch");
+    } else if (c.mtwist) {
         std::fill(c.mtwist + lo, c.mtwist + lo + m, 0.0);
+    }
     if (en) {
         const bool present[NFAMILY] = {true, md.tangential != nullptr, md.rolling != nullptr, md.twisting != nullptr};
         for (int f = 0; f < NFAMILY; f++)

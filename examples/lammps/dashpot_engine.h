@@ -56,6 +56,7 @@ struct EngineFlags {
      * evaluates one chunk at a time: after stage() returns true, and at the end while size() > 0
      * (see evaluate()). */
     bool regions = false;
+    bool context = false;    // set by configure(): some model reads the normal context
 };
 
 /* Where evaluate() may add the forces and torques itself (instead of leaving them in the chunk's
@@ -81,6 +82,7 @@ class ContactEngine {
         double *hist[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};
         // outputs: the laws'
         double *fn = nullptr, *ft = nullptr, *froll = nullptr, *mtwist = nullptr, *reach = nullptr;
+        double *context = nullptr;    // sdk 0.4: each contact's normal context (3 values)
         double *power[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};      // energy: power (W)
         double *elastic[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};    // energy: elastic energy (J)
         // outputs: the force on a (b takes its opposite) and the torques on a and b
