@@ -51,11 +51,27 @@ struct EngineFlags {
     bool rolling = false;     // some model has a rolling law: stage the rolling velocity
     bool twisting = false;    // some model has a twisting law: stage the twisting rate
     bool energy = false;      // ask the laws for their power and elastic energy
+    /* Stage each model's contacts in a chunk of its own (up to MAX_REGIONS models; beyond, one
+     * chunk sorted by model): no sort, and every batch call on one model. The caller then
+     * evaluates one chunk at a time: after stage() returns true, and at the end while size() > 0
+     * (see evaluate()). */
+    bool regions = false;
+    bool context = false;    // set by configure(): some model reads the normal context
+};
+
+/* Where evaluate() may add the forces and torques itself (instead of leaving them in the chunk's
+ * force/ta/tb columns): LAMMPS's f and torque arrays, with newton's rule for pairs (a ghost atom
+ * takes its share only with newton on); wall contacts (b < 0) only act on a. */
+struct ApplyTarget {
+    double *f = nullptr, *torque = nullptr;    // 3 per atom, contiguous
+    int nlocal = 0;
+    bool newton = false;
 };
 
 class ContactEngine {
  public:
     static constexpr int CHUNK = 256;    // contacts per batch call: the columns stay in L2 cache
+    static constexpr int MAX_REGIONS = 16;
 
     struct Chunk {
         int *a = nullptr, *b = nullptr, *slot = nullptr, *model = nullptr;
@@ -66,6 +82,7 @@ class ContactEngine {
         double *hist[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};
         // outputs: the laws'
         double *fn = nullptr, *ft = nullptr, *froll = nullptr, *mtwist = nullptr, *reach = nullptr;
+        double *context = nullptr;    // sdk 0.4: each contact's normal context (3 values)
         double *power[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};      // energy: power (W)
         double *elastic[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};    // energy: elastic energy (J)
         // outputs: the force on a (b takes its opposite) and the torques on a and b
@@ -79,8 +96,26 @@ class ContactEngine {
     void configure(const ModelTable *models, const Layout &lay, const EngineFlags &fl);
     const EngineFlags &flags() const { return fl; }
 
-    int size() const { return n; }
-    void reset() { n = 0; mixed = false; }
+    /* The number of staged contacts evaluate() takes next (with regions: those of one model, the
+     * full one first); 0 when none is staged. */
+    int size() const
+    {
+        if (!use_regions) return n;
+        const int q = next_region();
+        return q < 0 ? 0 : reg_n[q];
+    }
+    /* Forgets the contacts evaluate() took (with regions: that model's only). */
+    void reset()
+    {
+        if (!use_regions) {
+            n = 0;
+            mixed = false;
+            return;
+        }
+        if (taken >= 0) reg_n[taken] = 0;
+        if (taken == full) full = -1;
+        taken = -1;
+    }
 
     /* Stages one contact; true when the chunk is full (evaluate, apply, reset before the next). */
     inline bool stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta, double ra,
@@ -91,9 +126,10 @@ class ContactEngine {
      * tangential -> rolling -> twisting, with each contact's record from `store` (written back
      * when `keep`: not in a run's setup, where the forces are recomputed at a state already
      * integrated and dt = 0); then the forces and torques. Returns the chunk holding the
-     * contacts and their outputs (sorted by model when the chunk mixed models). Throws
-     * SpecError with the library's message if a law fails. */
-    Chunk &evaluate(HistoryStore &store, double dt, bool keep);
+     * contacts and their outputs (sorted by model when the chunk mixed models). With `direct`,
+     * the forces and torques go straight to its arrays and the force, ta, tb columns are not
+     * written. Throws SpecError with the library's message if a law fails. */
+    Chunk &evaluate(HistoryStore &store, double dt, bool keep, const ApplyTarget *direct = nullptr);
 
  private:
     const ModelTable *models = nullptr;
@@ -103,20 +139,51 @@ class ContactEngine {
     int n = 0, model0 = -1;
     bool mixed = false;
     std::vector<int> count, next, place;
+    // regions: one staging chunk per model
+    bool use_regions = false;
+    std::vector<Chunk> reg;
+    std::vector<int> reg_n;
+    int full = -1, taken = -1;
+    int next_region() const
+    {
+        if (full >= 0) return full;
+        for (int q = 0; q < (int) reg_n.size(); q++)
+            if (reg_n[q] > 0) return q;
+        return -1;
+    }
+    inline void write(Chunk &c, int k, int model, int a, int b, int slot, double nx, double ny, double nz,
+                      double delta, double ra, double rb, double dvx, double dvy, double dvz, double meff,
+                      double reff, const double *wa, const double *wb) __attribute__((always_inline));
+    Chunk &evaluate_chunk(Chunk &c, int n, int model, HistoryStore &store, double dt, bool keep,
+                          const ApplyTarget *direct);
     void sort();
     void gather(Chunk &c, int lo, int m, const Model &md, const HistoryStore &store);
     void store_back(Chunk &c, int lo, int m, const Model &md, HistoryStore &store);
     void run_laws(Chunk &c, int lo, int m, const Model &md, double *const *hist, double *reach, double dt);
-    void torques(Chunk &c, int lo, int m, const Model &md);
+    void torques(Chunk &c, int lo, int m, const Model &md, const ApplyTarget *direct);
 };
 
 inline bool ContactEngine::stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta,
                                  double ra, double rb, double dvx, double dvy, double dvz, double meff, double reff,
                                  const double *wa, const double *wb)
 {
-    Chunk &c = stage_;
+    if (use_regions) {
+        int &k = reg_n[model];
+        write(reg[model], k, model, a, b, slot, nx, ny, nz, delta, ra, rb, dvx, dvy, dvz, meff, reff, wa, wb);
+        if (++k < CHUNK) return false;
+        full = model;
+        return true;
+    }
     if (n == 0) model0 = model;
     mixed |= model != model0;
+    write(stage_, n, model, a, b, slot, nx, ny, nz, delta, ra, rb, dvx, dvy, dvz, meff, reff, wa, wb);
+    return ++n == CHUNK;
+}
+
+inline void ContactEngine::write(Chunk &c, int n, int model, int a, int b, int slot, double nx, double ny, double nz,
+                                 double delta, double ra, double rb, double dvx, double dvy, double dvz, double meff,
+                                 double reff, const double *wa, const double *wb)
+{
     c.a[n] = a;
     c.b[n] = b;
     c.slot[n] = slot;
@@ -161,8 +228,8 @@ inline bool ContactEngine::stage(int model, int a, int b, int slot, double nx, d
         }
         if (fl.twisting) c.twist[n] = rx * nx + ry * ny + rz * nz;
     }
-    return ++n == CHUNK;
 }
+
 
 }    // namespace dashpot_lmp
 

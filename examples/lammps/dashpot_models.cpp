@@ -234,6 +234,16 @@ int ModelTable::bind(int s, const Materials &mat, const std::string &context)
         dashpot_twisting_model_free(md.twisting);
         throw;
     }
+#if DASHPOT_LMP_CONTEXT
+    int reads = 0;
+    if (md.tangential && dashpot_tangential_model_reads_context(md.tangential, &reads) == DASHPOT_OK)
+        md.reads_context[TANGENTIAL] = reads != 0;
+    if (md.rolling && dashpot_rolling_model_reads_context(md.rolling, &reads) == DASHPOT_OK)
+        md.reads_context[ROLLING] = reads != 0;
+    if (md.twisting && dashpot_twisting_model_reads_context(md.twisting, &reads) == DASHPOT_OK)
+        md.reads_context[TWISTING] = reads != 0;
+    md.any_context = md.reads_context[TANGENTIAL] || md.reads_context[ROLLING] || md.reads_context[TWISTING];
+#endif
     models.push_back(md);
     model_materials.push_back(mat);
     return (int) models.size() - 1;

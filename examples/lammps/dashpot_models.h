@@ -50,7 +50,18 @@ struct Model {
     int slots[NFAMILY] = {0, 0, 0, 0};
     bool adhesive = false;
     TorqueArm arm = TorqueArm::RADIUS;
+    /* sdk 0.4: the family's law reads the normal law's context (contact radius, cap force,
+     * damping), which the normal law then reports (any_context) */
+    bool reads_context[NFAMILY] = {false, false, false, false};
+    bool any_context = false;
 };
+
+/* Whether this build's C ABI carries sdk 0.4's normal context. */
+#ifdef DASHPOT_REACH_ENERGY_CONTEXT_OUTPUTS
+#define DASHPOT_LMP_CONTEXT 1
+#else
+#define DASHPOT_LMP_CONTEXT 0
+#endif
 
 class ModelTable {
  public:

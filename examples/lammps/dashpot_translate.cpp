@@ -377,16 +377,16 @@ ContactSpec translate_granular(const GranularWords &g, const std::string &contex
         const double e = g.ncoef[0], nu = g.ncoef[2];
         n.params.push_back({"damp", g.ncoef[1]});
         if (g.normal != "hertz/material") n.params.push_back({"cohesion", g.ncoef[3]});
-        s.has_material = true;
-        s.poisson = nu;
         if (g.mixed) {
-            // LAMMPS's mixed modulus e is already the pair's: the materials (E', nu) of two equal
-            // bodies whose pair modulus E'/(2 (1 - nu^2)) it is; mindlin's NULL stiffness is then
-            // 8 G with 1/G = 4 (2 - nu)(1 + nu)/e, as LAMMPS computes it from the mixed e and nu
-            s.young = 2.0 * (1.0 - nu * nu) * e;
+            // LAMMPS's mixed modulus e, 1/e = (1 - nu_i^2)/E_i + (1 - nu_j^2)/E_j, is the pair
+            // modulus of the two types' own materials, which the laws are bound to (the spec has
+            // none of its own); mindlin's NULL stiffness is then 8 G with 1/G = 4 (2 - nu)(1 + nu)/e
+            // and nu the geometric mean, as LAMMPS computes it, not the two materials' G
             kt_mixed = 2.0 * e / ((2.0 - nu) * (1.0 + nu));
         } else {
+            s.has_material = true;
             s.young = e;
+            s.poisson = nu;
         }
     } else {
         n.params.push_back({"k", g.ncoef[0]});

@@ -60,9 +60,10 @@ GranularWords parse_classic(const std::string &style, const std::vector<std::str
 GranularWords mix_granular(const GranularWords &a, const GranularWords &b, int itype, int jtype);
 
 /* The ContactSpec of the gran-* laws carrying model g between two particles. A model with
- * material properties (hertz/material, dmt, jkr) gives the spec its materials (E, nu): for a
- * mixed model, the materials whose pair modulus is LAMMPS's mixed one, and mindlin's NULL kt is
- * then given explicitly, as LAMMPS computes it. The tangential force's torque acts at the
+ * material properties (hertz/material, dmt, jkr) gives the spec its materials (E, nu); a mixed
+ * model has none (its laws are bound to the two types' own materials, whose pair modulus is
+ * LAMMPS's mixed one), and mindlin's NULL kt is then given explicitly, as LAMMPS computes it
+ * from the mixed modulus and Poisson's ratio. The tangential force's torque acts at the
  * contact point (pair_style granular's pairs), or at a radius (classic styles; and a wall's
  * contacts, `wall`, as fix wall/gran applies them). */
 ContactSpec translate_granular(const GranularWords &g, const std::string &context, bool wall = false);

@@ -72,21 +72,23 @@ void FixDashpotHistory::write_restart(FILE *fp)
     }
 }
 
-// Every list build, in a run's setup, in its steps and in a minimisation: the pair style's slots
-// (in the order of the old list) must be laid out again before its next compute.
+// Every list build, in a run's setup, in its steps and in a minimisation: the pair style lays its
+// slots out again in the order of the new list (here, as LAMMPS's fix neigh/history does, rather
+// than in the pair's compute).
 void FixDashpotHistory::setup_post_neighbor()
 {
-    rebuilt = 1;
+    post_neighbor();
 }
 
 void FixDashpotHistory::post_neighbor()
 {
     rebuilt = 1;
+    if (pair) pair->layout_slots();
 }
 
 void FixDashpotHistory::min_post_neighbor()
 {
-    rebuilt = 1;
+    post_neighbor();
 }
 
 double FixDashpotHistory::memory_usage()

@@ -49,15 +49,16 @@ static bool is_plain_number(const std::string &w)
 
 
 PairDashpot::PairDashpot(LAMMPS *lmp) :
-    Pair(lmp), default_spec(-1), cutoff_global(-1.0), wall_flag(0), wall_z(0.0), energy_flag(0), coeff_spec(nullptr), coeff_e(nullptr),
-    coeff_nu(nullptr), freeze_group_bit(0), fix_history(nullptr), nwall_slots(0), slots_ncalls(-1), slots_nlocal(0),
+    Pair(lmp), default_spec(-1), cutoff_global(-1.0), granular_single(0), wall_flag(0), wall_z(0.0), energy_flag(0), coeff_spec(nullptr), coeff_e(nullptr),
+    coeff_nu(nullptr), freeze_group_bit(0), engine_ready(false), fix_history(nullptr), nwall_slots(0), slots_ncalls(-1), slots_nlocal(0),
     dirty(0)
 {
     single_enable = 1;
     // svector: F_n, |F_t|; dissipated power: total, normal, tangential, rolling, twisting;
-    // elastic energy; |F_roll|; twisting torque
+    // elastic energy; |F_roll|; twisting torque (pair_style granular's 12 columns when every
+    // model is in LAMMPS's syntax: see single())
     single_extra = 10;
-    svector = new double[single_extra];
+    svector = new double[12];
     finitecutflag = 1;
     comm_forward = 0;
     no_virial_fdotr_compute = 1;    // the wall's reaction is not a pair force
@@ -320,11 +321,18 @@ void PairDashpot::init_style()
     model_of.assign((size_t) (nt + 1) * (nt + 1), -1);
     wall_model.assign(nt + 1, -1);
     key_cut.assign((size_t) (nt + 1) * (nt + 1), 0.0);
+    // a deck switched from pair_style granular keeps its compute pair/local columns: granular's
+    // layout when every model is in LAMMPS's syntax (and energy=1 is not asked for)
+    granular_single = !energy_flag;
+    for (int s = 0; s < models.nspecs(); s++) granular_single = granular_single && models.spec(s).granular.present();
+    single_extra = granular_single ? 12 : 10;
     EngineFlags fl;
     fl.rolling = models.any(dashpot_lmp::ROLLING);
     fl.twisting = models.any(dashpot_lmp::TWISTING);
     fl.energy = energy_flag;
-    engine.configure(&models, layout, fl);
+    fl.regions = true;
+    engine_flags = fl;
+    engine_ready = false;
 }
 
 /* Binds the laws of the pair of types (i, j) in both orders, and the wall's for i == j. */
@@ -365,9 +373,9 @@ void PairDashpot::bind_pair(int i, int j)
                                                  }),
                                        "pair dashpot, mixing " + context);
         if (models.spec(s).granular.present()) {
-            granular_material(models.spec(s), ei, nui);
-            ej = ei;
-            nuj = nui;
+            // LAMMPS's mixed modulus is the pair modulus of the two types' own materials
+            granular_material(models.spec(si), ei, nui);
+            granular_material(models.spec(sj), ej, nuj);
         } else {
             type_material(i, ei, nui);
             type_material(j, ej, nuj);

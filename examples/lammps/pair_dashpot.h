@@ -27,7 +27,10 @@
  * compute pair/local reads, per pair (single()): p1 the normal force, p2 |F_t|, p3 the power the
  * contact dissipates (all families), p4..p7 that power by family, p8 the elastic energy it
  * stores, p9 |F_roll|, p10 the twisting torque. p3..p8 are the laws' own outputs from the step's
- * batch calls, which energy=1 asks for (NaN without it). */
+ * batch calls, which energy=1 asks for (NaN without it). When every model is in LAMMPS's
+ * syntax (and energy=1 is not given), pair_style granular's columns instead: p1..p3 the
+ * tangential force on i, p4 its magnitude, p5..p7 the rolling force, p8 its magnitude, p9 the
+ * twisting torque, p10..p12 x_i - x_j. */
 #ifndef DASHPOT_PAIR_DASHPOT_H
 #define DASHPOT_PAIR_DASHPOT_H
 
@@ -62,6 +65,10 @@ class PairDashpot : public Pair {
      * and before a restart file is written. */
     void history_to_atoms();
 
+    /* Lays the history out in the order of the neighbour list just built (from the records the
+     * fix holds). Called by the fix after every list build. */
+    void layout_slots();
+
  private:
     using Family = dashpot_lmp::Family;
     static constexpr int NENERGY = dashpot_lmp::NFAMILY + 1;
@@ -71,6 +78,7 @@ class PairDashpot : public Pair {
     std::vector<std::string> plugin_dirs;
     int default_spec;     // the spec of pair_style's laws, -1: none
     double cutoff_global;    // pair_style dashpot CUTOFF (as pair_style granular's), < 0: none
+    int granular_single;     // single() fills pair_style granular's columns
     int wall_flag;
     double wall_z;
     int energy_flag;      // the laws report power and elastic energy, kept per contact for single()
@@ -90,6 +98,8 @@ class PairDashpot : public Pair {
 
     dashpot_lmp::Layout layout;
     dashpot_lmp::ContactEngine engine;
+    dashpot_lmp::EngineFlags engine_flags;
+    bool engine_ready;    // configured for the models init_one bound (at the first compute)
     class FixDashpotHistory *fix_history;
     std::string fix_id, dummy_id;
 
@@ -111,9 +121,8 @@ class PairDashpot : public Pair {
     void set_coeff(int ilo, int ihi, int jlo, int jhi, const std::vector<std::string> &words);
     int spec_of(int i, int j) const;
     void bind_pair(int i, int j);
-    void layout_slots();
-    void apply(dashpot_lmp::ContactEngine::Chunk &c, int n, bool wall);
-    void evaluate(dashpot_lmp::HistoryStore &store, bool wall);
+    void apply(dashpot_lmp::ContactEngine::Chunk &c, int n, bool wall, bool applied);
+    void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
     int find_slot(int i, int j) const;
     [[noreturn]] void fail(const std::exception &e, bool all);
 };

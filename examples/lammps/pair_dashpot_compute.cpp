@@ -17,9 +17,11 @@
 using namespace LAMMPS_NS;
 using namespace dashpot_lmp;
 
-/* Applies the forces and torques of the n contacts of chunk c (pairs, or wall contacts), tallies
- * the virial and keeps each pair's energy outputs for single(). */
-void PairDashpot::apply(ContactEngine::Chunk &c, int n, bool wall)
+/* What the step keeps of the n contacts of chunk c beyond their forces and torques (added by the
+ * engine to the atoms): the virial, each pair's energy outputs for single(), and the check that
+ * an adhesive contact stays within the neighbour cutoff. With `applied` false (the virial is
+ * tallied this step) the forces and torques are applied here, from the chunk's columns. */
+void PairDashpot::apply(ContactEngine::Chunk &c, int n, bool wall, bool applied)
 {
     double *f0 = atom->f[0], *t0 = atom->torque[0];    // contiguous: indexed from the first row
     const double *radius = atom->radius;
@@ -28,28 +30,22 @@ void PairDashpot::apply(ContactEngine::Chunk &c, int n, bool wall)
     const bool adh = layout.adhesive;
     for (int k = 0; k < n; k++) {
         const int a = c.a[k], b = c.b[k];
-        const double *F = c.force + 3 * k, *ta = c.ta + 3 * k, *tb = c.tb + 3 * k;
-        if (a < nlocal || newton_pair) {
-            double *fa = f0 + 3 * a, *qa = t0 + 3 * a;
-            fa[0] += F[0];
-            fa[1] += F[1];
-            fa[2] += F[2];
-            qa[0] += ta[0];
-            qa[1] += ta[1];
-            qa[2] += ta[2];
+        if (!applied) {
+            const double *F = c.force + 3 * k, *ta = c.ta + 3 * k, *tb = c.tb + 3 * k;
+            if (a < nlocal || newton_pair)
+                for (int d = 0; d < 3; d++) {
+                    f0[3 * a + d] += F[d];
+                    t0[3 * a + d] += ta[d];
+                }
+            if (!wall && (b < nlocal || newton_pair))
+                for (int d = 0; d < 3; d++) {
+                    f0[3 * b + d] -= F[d];
+                    t0[3 * b + d] += tb[d];
+                }
         }
         if (!wall) {
-            if (b < nlocal || newton_pair) {
-                double *fb = f0 + 3 * b, *qb = t0 + 3 * b;
-                fb[0] -= F[0];
-                fb[1] -= F[1];
-                fb[2] -= F[2];
-                qb[0] += tb[0];
-                qb[1] += tb[1];
-                qb[2] += tb[2];
-            }
-            const double *nv = c.norm + 3 * k;
             if (evflag) {
+                const double *F = c.force + 3 * k, *nv = c.norm + 3 * k;
                 const double r = radius[a] + radius[b] - c.delta[k];
                 ev_tally_xyz(a, b, nlocal, newton_pair, 0.0, 0.0, F[0], F[1], F[2], nv[0] * r, nv[1] * r, nv[2] * r);
             }
@@ -74,7 +70,7 @@ void PairDashpot::apply(ContactEngine::Chunk &c, int n, bool wall)
             // the wall's reaction, as a pair force between the particle and its contact point
             // on the wall, a distance r = radius - delta below its centre along n = +z
             const double r = radius[a] - c.delta[k];
-            const double v[6] = {0.0, 0.0, r * F[2], 0.0, 0.0, 0.0};
+            const double v[6] = {0.0, 0.0, r * c.force[3 * k + 2], 0.0, 0.0, 0.0};
             if (vflag_global)
                 for (int d = 0; d < 6; d++) virial[d] += v[d];
             if (vflag_atom)
@@ -87,23 +83,37 @@ void PairDashpot::apply(ContactEngine::Chunk &c, int n, bool wall)
  * run's setup the forces are recomputed at a state already integrated (after a restart, or
  * between runs): the laws get dt = 0, which gives the force of the stored springs, and the
  * history is not stored back (as pair granular does), or the springs would advance twice. */
-void PairDashpot::evaluate(HistoryStore &store, bool wall)
+void PairDashpot::evaluate(HistoryStore &store, bool wall, bool all)
 {
-    const int n = engine.size();
-    if (n == 0) return;
     const bool setup = update->setupflag;
-    try {
-        ContactEngine::Chunk &c = engine.evaluate(store, setup ? 0.0 : update->dt, !setup);
-        apply(c, n, wall);
-    } catch (std::exception &e) {
-        fail(e, false);
-    }
-    engine.reset();
+    // the forces and torques straight to the atoms, unless the virial needs them
+    const bool direct = !(evflag || (wall && vflag_either));
+    ApplyTarget target;
+    do {
+        const int n = engine.size();
+        if (n == 0) return;
+        target.f = atom->f[0];
+        target.torque = atom->torque[0];
+        target.nlocal = atom->nlocal;
+        target.newton = force->newton_pair;
+        try {
+            ContactEngine::Chunk &c =
+                engine.evaluate(store, setup ? 0.0 : update->dt, !setup, direct ? &target : nullptr);
+            if (!direct || layout.adhesive || energy_flag) apply(c, n, wall, direct);
+        } catch (std::exception &e) {
+            fail(e, false);
+        }
+        engine.reset();
+    } while (all);
 }
 
 void PairDashpot::compute(int eflag, int vflag)
 {
     ev_init(eflag, vflag);
+    if (!engine_ready) {
+        engine.configure(&models, layout, engine_flags);
+        engine_ready = true;
+    }
     double **x = atom->x, **v = atom->v, **omega = atom->omega;
     const double *radius = atom->radius, *rmass = atom->rmass;
     const int *type = atom->type, *mask = atom->mask;
@@ -135,7 +145,6 @@ void PairDashpot::compute(int eflag, int vflag)
     // 1. Walk the neighbour list once: contacts are staged and evaluated a chunk at a time;
     // history slots follow the list (slot k = the k-th pair), and a pair that has separated
     // (beyond the reach of an adhesive law's last call) has its history zeroed.
-    engine.reset();
     int k = 0;
     for (int ii = 0; ii < inum; ii++) {
         const int i = ilist[ii];
@@ -178,11 +187,11 @@ void PairDashpot::compute(int eflag, int vflag)
             if (engine.stage(mof[ta * nt1 + tb], a, b, k, dx * rinv, dy * rinv, dz * rinv, radsum - r, ra, rb,
                              va[0] - vb[0], va[1] - vb[1], va[2] - vb[2], meff, ra * rb / radsum, w0 + 3 * a,
                              w0 + 3 * b))
-                evaluate(ps, false);
+                evaluate(ps, false, false);
         }
     }
-    // the pairs' last chunk, not full: a chunk holds pairs or wall contacts, not both
-    evaluate(ps, false);
+    // the pairs' last chunks, not full: a chunk holds pairs or wall contacts, not both
+    evaluate(ps, false, true);
     if (wall_flag) {
         HistoryStore &ws = wall_slots;
         for (int i = 0; i < nlocal; i++) {
@@ -195,10 +204,10 @@ void PairDashpot::compute(int eflag, int vflag)
             }
             if (engine.stage(model, i, -1, i, 0.0, 0.0, 1.0, radius[i] - gap, radius[i], 0.0, v[i][0], v[i][1],
                              v[i][2], rmass[i], radius[i], omega[i], nullptr))
-                evaluate(ws, true);
+                evaluate(ws, true, false);
         }
-        // 2. The wall's last chunk, not full.
-        evaluate(ws, true);
+        // 2. The wall's last chunks, not full.
+        evaluate(ws, true, true);
     }
     dirty = 1;
 }

@@ -179,25 +179,84 @@ double PairDashpot::single(int i, int j, int /*itype*/, int /*jtype*/, double rs
     auto hist = [&](int f) { return md.slots[f] ? hm[f].data() : nullptr; };
     double fn = 0.0, ft[3] = {0, 0, 0}, fr[3] = {0, 0, 0}, mt = 0.0;
     try {
-        check_status(dashpot_contact_model_force_batch(md.normal, 1, &delta, &rate, &meff, &reff, hist(NORMAL),
-                                                       md.slots[NORMAL], &fn),
-                     "dashpot_contact_model_force_batch");
-        if (md.tangential)
-            check_status(dashpot_tangential_model_force_batch(md.tangential, 1, 0.0, nrm, vel, &fn, &delta, &meff,
-                                                              &reff, hist(TANGENTIAL), md.slots[TANGENTIAL], ft),
-                         "dashpot_tangential_model_force_batch");
-        if (md.rolling)
-            check_status(dashpot_rolling_model_force_batch(md.rolling, 1, 0.0, nrm, vroll, &fn, &delta, &meff, &reff,
-                                                           hist(ROLLING), md.slots[ROLLING], fr, nullptr, nullptr,
-                                                           nullptr),
-                         "dashpot_rolling_model_force_batch");
-        if (md.twisting)
-            check_status(dashpot_twisting_model_torque_batch(md.twisting, 1, 0.0, nrm, &twist, &fn, &delta, &meff,
-                                                             &reff, hist(TWISTING), md.slots[TWISTING], &mt, nullptr,
-                                                             nullptr, nullptr),
-                         "dashpot_twisting_model_torque_batch");
+        double ctx[3] = {0.0, 0.0, 0.0};
+#if DASHPOT_LMP_CONTEXT
+        const bool with_ctx = md.any_context;
+        double reach = 0.0;
+        if (with_ctx)
+            check_status(dashpot_contact_model_force_batch_context(md.normal, 1, &delta, &rate, &meff, &reff,
+                                                                   hist(NORMAL), md.slots[NORMAL], &fn, &reach,
+                                                                   nullptr, nullptr, nullptr, ctx),
+                         "dashpot_contact_model_force_batch_context");
+        else
+#else
+        (void) ctx;
+#endif
+            check_status(dashpot_contact_model_force_batch(md.normal, 1, &delta, &rate, &meff, &reff, hist(NORMAL),
+                                                           md.slots[NORMAL], &fn),
+                         "dashpot_contact_model_force_batch");
+        if (md.tangential) {
+#if DASHPOT_LMP_CONTEXT
+            if (with_ctx && md.reads_context[TANGENTIAL])
+                check_status(dashpot_tangential_model_force_batch_context(md.tangential, 1, 0.0, nrm, vel, &fn, &delta,
+                                                                          &meff, &reff, ctx, hist(TANGENTIAL),
+                                                                          md.slots[TANGENTIAL], ft, nullptr, nullptr,
+                                                                          nullptr),
+                             "dashpot_tangential_model_force_batch_context");
+            else
+#endif
+                check_status(dashpot_tangential_model_force_batch(md.tangential, 1, 0.0, nrm, vel, &fn, &delta, &meff,
+                                                                  &reff, hist(TANGENTIAL), md.slots[TANGENTIAL], ft),
+                             "dashpot_tangential_model_force_batch");
+        }
+        if (md.rolling) {
+#if DASHPOT_LMP_CONTEXT
+            if (with_ctx && md.reads_context[ROLLING])
+                check_status(dashpot_rolling_model_force_batch_context(md.rolling, 1, 0.0, nrm, vroll, &fn, &delta,
+                                                                       &meff, &reff, ctx, hist(ROLLING),
+                                                                       md.slots[ROLLING], fr, nullptr, nullptr,
+                                                                       nullptr),
+                             "dashpot_rolling_model_force_batch_context");
+            else
+#endif
+                check_status(dashpot_rolling_model_force_batch(md.rolling, 1, 0.0, nrm, vroll, &fn, &delta, &meff,
+                                                               &reff, hist(ROLLING), md.slots[ROLLING], fr, nullptr,
+                                                               nullptr, nullptr),
+                             "dashpot_rolling_model_force_batch");
+        }
+        if (md.twisting) {
+#if DASHPOT_LMP_CONTEXT
+            if (with_ctx && md.reads_context[TWISTING])
+                check_status(dashpot_twisting_model_torque_batch_context(md.twisting, 1, 0.0, nrm, &twist, &fn,
+                                                                         &delta, &meff, &reff, ctx, hist(TWISTING),
+                                                                         md.slots[TWISTING], &mt, nullptr, nullptr,
+                                                                         nullptr),
+                             "dashpot_twisting_model_torque_batch_context");
+            else
+#endif
+                check_status(dashpot_twisting_model_torque_batch(md.twisting, 1, 0.0, nrm, &twist, &fn, &delta,
+                                                                 &meff, &reff, hist(TWISTING), md.slots[TWISTING],
+                                                                 &mt, nullptr, nullptr, nullptr),
+                             "dashpot_twisting_model_torque_batch");
+        }
     } catch (std::exception &e) {
         fail(e, false);
+    }
+    if (granular_single) {
+        // pair_style granular's columns, on atom i (the contact is computed from the atom of the
+        // lower tag: the tangential force changes sign from the other side; the rolling force
+        // and the twisting torque about the normal do not)
+        const double sign = a == i ? 1.0 : -1.0;
+        for (int d = 0; d < 3; d++) {
+            svector[d] = sign * ft[d];
+            svector[4 + d] = fr[d];
+            svector[9 + d] = x[i][d] - x[j][d];
+        }
+        svector[3] = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+        svector[7] = std::sqrt(fr[0] * fr[0] + fr[1] * fr[1] + fr[2] * fr[2]);
+        svector[8] = mt;
+        fforce = fn / r;
+        return 0.0;
     }
     svector[0] = fn;
     svector[1] = std::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);

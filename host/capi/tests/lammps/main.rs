@@ -7,6 +7,7 @@
 //! developer machine and fail under `CI=true`. The runs are kept small (CI has 90 minutes on two
 //! cores); the 20,000-sphere benchmark is `examples/lammps/bench.sh`.
 
+mod decks;
 mod families;
 #[path = "../../../../tests/lammps.rs"]
 mod lammps;
