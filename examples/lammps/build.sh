@@ -36,6 +36,7 @@ mkdir -p "$out"
     "$here/dashpot_spec.cpp" "$here/dashpot_translate.cpp" "$here/dashpot_models.cpp" "$here/dashpot_engine.cpp" \
     "$here/pair_dashpot.cpp" "$here/pair_dashpot_compute.cpp" "$here/pair_dashpot_history.cpp" \
     "$here/fix_dashpot_history.cpp" "$here/dashpot_plugin.cpp" \
+    "$here/fix_wall_dashpot.cpp" "$here/fix_wall_dashpot_contacts.cpp" "$here/fix_wall_dashpot_region.cpp" \
     "$DASHPOT_CAPI_LIB" -Wl,--exclude-libs,ALL \
     -lpthread -ldl -lm -lgcc_s \
     -o "$out/dashpotplugin.so"
