@@ -79,8 +79,11 @@ FixWallDashpot::FixWallDashpot(LAMMPS *lmp, int narg, char **arg) :
 FixWallDashpot::~FixWallDashpot()
 {
     if (copymode) return;
-    atom->delete_callback(id, Atom::GROW);
-    atom->delete_callback(id, Atom::RESTART);
+    // not registered when a derived constructor failed (the fix is not in the list yet)
+    if (modify->get_fix_by_id(id) == this) {
+        atom->delete_callback(id, Atom::GROW);
+        atom->delete_callback(id, Atom::RESTART);
+    }
     if (array_atom) memory->destroy(array_atom);
 }
 
@@ -125,7 +128,9 @@ void FixWallDashpot::parse(int narg, char **arg)
     try {
         at = parse_models(words);
     } catch (std::exception &e) {
-        error->all(FLERR, "{}: {}", context, e.what());
+        const std::string what = e.what();
+        // the parsers' messages name the command already
+        error->all(FLERR, "{}", what.rfind(context, 0) == 0 ? what : context + ": " + what);
     }
     parse_wall(words, at);
 }
@@ -142,7 +147,8 @@ size_t FixWallDashpot::parse_models(const std::vector<std::string> &w)
     // a classic style: its name and six numbers (granular's 'hooke k damp' has two)
     size_t nums = 0;
     while (first + 1 + nums < w.size() && is_number_or_null(w[first + 1 + nums])) nums++;
-    const bool classic = first == 0 && (s == "hooke" || s == "hooke/history" || s == "hertz/history") && nums >= 6;
+    const bool classic =
+        first == 0 && nums > 0 && (s == "hooke/history" || s == "hertz/history" || (s == "hooke" && nums > 2));
     ContactSpec spec;
     if (classic) {
         GranularWords g = parse_classic(s, w, first + 1, force->nktv2p, context + " " + s, WALL_STYLES, &end);
