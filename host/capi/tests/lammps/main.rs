@@ -12,6 +12,7 @@ mod families;
 #[path = "../../../../tests/lammps.rs"]
 mod lammps;
 mod types;
+mod walls;
 
 use lammps::{lmp_command, succeeded};
 
