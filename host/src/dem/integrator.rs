@@ -27,6 +27,7 @@
 
 use super::cells::Neighbours;
 use super::contacts::{gather_chunk, nearest_first, parallel, Contacts};
+use super::species::SpeciesLaws;
 use super::state::{spin_len, to3, Body, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
@@ -54,7 +55,10 @@ pub struct Engine<const D: usize> {
     pub p: Particles<D>,
     /// The walls.
     pub walls: Vec<Wall<D>>,
-    laws: Laws,
+    laws: SpeciesLaws,
+    /// Each particle's species, in the engine's order (empty: every particle is of species 0,
+    /// the run has one).
+    species: Vec<u8>,
     cfg: EngineConfig<D>,
     /// The step and how it was chosen.
     pub step_choice: StepChoice,
@@ -125,21 +129,44 @@ pub struct Engine<const D: usize> {
 }
 
 impl<const D: usize> Engine<D> {
-    /// A run of `bodies` between `walls` under `laws`; the step is chosen (or checked) here and the
-    /// forces of the initial state evaluated.
+    /// A run of `bodies` between `walls` under `laws`, all of the material
+    /// [`EngineConfig::material`]; the step is chosen (or checked) here and the forces of the
+    /// initial state evaluated.
     pub fn new(
         cfg: EngineConfig<D>,
         bodies: &[Body<D>],
         walls: Vec<Wall<D>>,
         laws: Laws,
     ) -> Result<Engine<D>, DemError> {
+        let table = SpeciesLaws::single(laws, cfg.material);
+        Engine::with_species(cfg, bodies, &[], walls, table)
+    }
+
+    /// A run of `bodies` of the species `species` (one per body, indices into `laws.species`;
+    /// empty: every body of species 0) between `walls`, each contact under the laws of its
+    /// class in `laws` (see [`crate::dem::species`]); each particle's mass and moment of
+    /// inertia from its species' material ([`EngineConfig::material`] is not used). The step
+    /// is chosen (or checked) against every class, and the forces of the initial state
+    /// evaluated. A table of one species and one class of each kind runs exactly as
+    /// [`Engine::new`].
+    pub fn with_species(
+        cfg: EngineConfig<D>,
+        bodies: &[Body<D>],
+        species: &[u8],
+        walls: Vec<Wall<D>>,
+        laws: SpeciesLaws,
+    ) -> Result<Engine<D>, DemError> {
         if !(D == 2 || D == 3) {
             return Err(DemError::Invalid(format!("dimension = {D}: must be 2 or 3")));
         }
-        let mat = cfg.material;
-        mat.particle(1.0)
-            .validate()
-            .map_err(|e| DemError::Invalid(format!("material: {}", e.message)))?;
+        laws.check(walls.len(), species, bodies.len())?;
+        // (one species: no species array; several: one per particle)
+        let species: Vec<u8> = match (laws.species.len(), species.is_empty()) {
+            (1, _) => Vec::new(),
+            (_, true) => vec![0; bodies.len()],
+            (_, false) => species.to_vec(),
+        };
+        let materials: Vec<_> = laws.species.iter().map(|s| s.material).collect();
         for (k, b) in bodies.iter().enumerate() {
             if !(b.diameter.is_finite() && b.diameter > 0.0) {
                 return Err(DemError::Invalid(format!(
@@ -159,7 +186,7 @@ impl<const D: usize> Engine<D> {
                 )));
             }
         }
-        let law_reach = reach_bound(&laws, &mat, bodies)?;
+        let law_reach = reach_bound(&laws, bodies)?;
         for (k, w) in walls.iter().enumerate() {
             if !(w.normal.iter().all(|x| x.is_finite()) && (w.normal.norm() - 1.0).abs() < 1e-9) {
                 return Err(DemError::Invalid(format!(
@@ -170,7 +197,7 @@ impl<const D: usize> Engine<D> {
         if !cfg.gravity.iter().all(|x| x.is_finite()) {
             return Err(DemError::Invalid("gravity must be finite".into()));
         }
-        let p = Particles::new(bodies, &mat);
+        let p = Particles::of_species(bodies, &species, &materials);
         let dmin = p.radius.iter().cloned().fold(f64::INFINITY, f64::min) * 2.0;
         let dmax = p.radius.iter().cloned().fold(0.0, f64::max) * 2.0;
         let skin = cfg.skin.unwrap_or(0.3 * dmin);
@@ -204,7 +231,7 @@ impl<const D: usize> Engine<D> {
                     )));
                 }
                 let v = impact_speed(&cfg, &p, &walls);
-                let tau = collision_time(&laws, &mat, D, dmin, v).unwrap_or(f64::NAN);
+                let tau = collision_time(&laws, D, &p, &species, v).unwrap_or(f64::NAN);
                 if tau / dt < MIN_STEPS_PER_COLLISION {
                     return Err(DemError::Invalid(format!(
                         "dt = {dt:e} s is out of range: the contact time at the largest expected impact speed ({v:.3} m/s) is {tau:.4e} s, so the step resolves a collision in {:.2} steps, and the explicit step is unstable below {MIN_STEPS_PER_COLLISION} (a Hertz contact's deepest overlap); dt must be <= {:.4e} s (about {:.4e} s, 50 steps per collision, gives the restitution within 1e-3; a scene may give impact_speed if the impacts will be slower)",
@@ -227,7 +254,7 @@ impl<const D: usize> Engine<D> {
                 let tau = if bodies.is_empty() {
                     1.0
                 } else {
-                    collision_time(&laws, &mat, D, dmin, v)?
+                    collision_time(&laws, D, &p, &species, v)?
                 };
                 StepChoice {
                     dt: tau / cfg.steps_per_collision,
@@ -239,21 +266,8 @@ impl<const D: usize> Engine<D> {
         };
         let nw = walls.len();
         let energy = cfg.energy;
-        let rot = &laws.rotation;
-        let (pr, pw, wr, ww) = (
-            rot.pair_rolling.as_ref().map(|l| l.history_slots()),
-            rot.pair_twisting.as_ref().map(|l| l.history_slots()),
-            rot.wall_rolling.as_ref().map(|l| l.history_slots()),
-            rot.wall_twisting.as_ref().map(|l| l.history_slots()),
-        );
-        let (sn, st) = (
-            laws.pair.history_slots(),
-            laws.pair_tangential.as_ref().map_or(0, |t| t.history_slots()),
-        );
-        let (swn, swt) = (
-            laws.wall.history_slots(),
-            laws.wall_tangential.as_ref().map_or(0, |t| t.history_slots()),
-        );
+        let pair_slots: Vec<_> = laws.pair.iter().map(|l| l.slots()).collect();
+        let wall_slots: Vec<_> = laws.wall.iter().map(|l| l.slots()).collect();
         let mut e = Engine {
             vpred: p.vel.clone(),
             aold: vec![VecD::<D>::zeros(); p.len()],
@@ -262,6 +276,7 @@ impl<const D: usize> Engine<D> {
             p,
             walls,
             laws,
+            species,
             dt: step_choice.dt,
             step_choice,
             cfg,
@@ -270,12 +285,10 @@ impl<const D: usize> Engine<D> {
             nb: Neighbours::default(),
             skin,
             law_reach,
-            pairs: Contacts::new(sn, st)
-                .with_rotation(pr, pw)
+            pairs: Contacts::of_classes(pair_slots)
                 .with_energy(energy)
                 .with_reach(law_reach),
-            wall_contacts: Contacts::new(swn, swt)
-                .with_rotation(wr, ww)
+            wall_contacts: Contacts::of_classes(wall_slots)
                 .with_energy(energy)
                 .with_reach(law_reach),
             dissipated: [0.0; 4],
@@ -312,6 +325,17 @@ impl<const D: usize> Engine<D> {
         }
         e.leave_order();
         Ok(e)
+    }
+
+    /// Each particle's species in the engine's order (see [`Engine::user_index`]); empty in a
+    /// run of one species.
+    pub fn species(&self) -> &[u8] {
+        &self.species
+    }
+
+    /// The species and the laws of every class of contacts.
+    pub fn laws(&self) -> &SpeciesLaws {
+        &self.laws
     }
 
     /// The step (s).

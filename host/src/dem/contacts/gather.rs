@@ -6,7 +6,7 @@
 //! the rolling and twisting part when a scene has those laws): short loops with few live values
 //! and no calls, which the compiler keeps in registers.
 
-use super::{ContactSet, View, MAX_OVERLAP};
+use super::{ClassMap, ContactSet, View, MAX_OVERLAP};
 use crate::dem::cells::{Domain, Images, Neighbours};
 use crate::dem::state::{spin, to3, Vec3};
 use crate::dem::walls::WallState;
@@ -162,6 +162,7 @@ fn pair_geometry<const D: usize, const SORTED: bool>(
         radius,
         mass,
         uid,
+        ..
     } = *view;
     let PairsOut {
         i: oi,
@@ -246,6 +247,20 @@ impl ContactSet {
         }
         let images = dom.images();
         let count = touching(range, nb, &images, view, self.reach_bound, &mut cand);
+        self.cand = cand;
+        self.pairs_from_candidates(prev, count, &images, view)
+    }
+
+    /// Passes 2 and 3 of a pair gathering: the contacts of the first `count` candidates of
+    /// `self.cand` (in key order), their history carried over from `prev`.
+    fn pairs_from_candidates<const D: usize>(
+        &mut self,
+        prev: &ContactSet,
+        count: usize,
+        images: &Images<D>,
+        view: &View<'_, D>,
+    ) -> Result<(), DemError> {
+        let cand = std::mem::take(&mut self.cand);
         // pass 2, over the candidates: their geometry, one contact each (a candidate apart
         // by less than the reach of an adhesive law, not touching, is dropped by the merge
         // unless its contact still acts; without such a law every candidate touches)
@@ -267,9 +282,9 @@ impl ContactSet {
             sign: &mut self.sign,
         };
         let done = if sorted {
-            pair_geometry::<D, true>(&cand[..count], &images, view, out)
+            pair_geometry::<D, true>(&cand[..count], images, view, out)
         } else {
-            pair_geometry::<D, false>(&cand[..count], &images, view, out)
+            pair_geometry::<D, false>(&cand[..count], images, view, out)
         };
         if let Err(e) = done {
             self.cand = cand;
@@ -306,13 +321,50 @@ impl ContactSet {
         near: Option<&[u32]>,
         view: &View<'_, D>,
     ) -> Result<(), DemError> {
+        let count = self.wall_candidates(range, walls, near, view);
+        // pass 2: each picked particle's contacts, wall by wall (one not touching is kept only
+        // under an adhesive law, for the merge to decide)
+        let cand = std::mem::take(&mut self.cand);
+        self.size(count * walls.len());
+        let adhesive = self.reach_bound > 0.0;
+        let mut k = 0;
+        for &(ig, _) in &cand[..count] {
+            for (w, ws) in walls.iter().enumerate() {
+                match wall_contact(ws, ig as usize, view, adhesive) {
+                    Ok(None) => {}
+                    Ok(Some(c)) => {
+                        self.put_wall_contact(k, ig, w, &c);
+                        k += 1;
+                    }
+                    Err(e) => {
+                        self.cand = cand;
+                        return Err(e.naming(w));
+                    }
+                }
+            }
+        }
+        self.size(k);
+        self.cand = cand;
+        self.carry(prev, true);
+        Ok(())
+    }
+
+    /// Pass 1 of a wall gathering: the particles of `range` within reach of a wall (NaN kept)
+    /// written into `self.cand`, in order; their count returned. `near`, if given, holds the
+    /// only particles of `range` that can be (see [`ContactSet::gather_walls`]).
+    fn wall_candidates<const D: usize>(
+        &mut self,
+        range: Range<usize>,
+        walls: &[WallState<D>],
+        near: Option<&[u32]>,
+        view: &View<'_, D>,
+    ) -> usize {
         self.first = range.start;
-        let (base, pos, vpred, vel) = (view.base, view.pos, view.vpred, view.vel);
-        let (omega, radius, mass) = (view.omega, view.radius, view.mass);
+        let (base, pos, radius) = (view.base, view.pos, view.radius);
         // the chunk's particles, indexed from 0
         let local = range.start - base..range.end - base;
-        // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall
-        // over the particles, a loop without branches; pass 2 over the particles it picks
+        // the largest overlap of each particle with any wall (NaN kept), wall by wall over
+        // the particles, a loop without branches
         let mut cand = std::mem::take(&mut self.cand);
         if cand.len() < range.len() {
             cand.resize(range.len(), (0, 0));
@@ -347,50 +399,24 @@ impl ContactSet {
             }
             self.scratch = worst;
         }
-        // pass 2: each picked particle's contacts, wall by wall (one not touching is kept only
-        // under an adhesive law, for the merge to decide)
-        self.size(count * walls.len());
-        let adhesive = self.reach_bound > 0.0;
-        let mut k = 0;
-        for &(ig, _) in &cand[..count] {
-            let (ig, i) = (ig as usize, ig as usize - base);
-            for (w, ws) in walls.iter().enumerate() {
-                let delta = ws.overlap(&pos[i], radius[i]);
-                if delta <= 0.0 && !adhesive {
-                    continue;
-                }
-                if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
-                    self.cand = cand;
-                    return Err(DemError::Overlap {
-                        i: user(view.uid, base, ig),
-                        partner: format!("wall {w}"),
-                        delta,
-                        radius: radius[i],
-                    });
-                }
-                let nv = to3(&ws.normal);
-                let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
-                let dv = to3(&(vel[i] - ws.velocity));
-                let wi = spin::<D>(omega, i);
-                let v = dv - (wi * radius[i]).cross(&nv);
-                self.i[k] = ig as u32;
-                self.j[k] = w as u32;
-                self.delta[k] = delta;
-                self.rate[k] = rate;
-                self.mass[k] = mass[i];
-                self.radius[k] = radius[i];
-                self.normal[k] = [nv.x, nv.y, nv.z];
-                self.vrel[k] = [v.x, v.y, v.z];
-                if self.rotational() {
-                    self.vroll[k] = [wi.x, wi.y, wi.z];
-                }
-                k += 1;
-            }
-        }
-        self.size(k);
         self.cand = cand;
-        self.carry(prev, true);
-        Ok(())
+        count
+    }
+
+    /// Writes the contact `c` of particle `ig` with wall `w` as contact `k`.
+    #[inline(always)]
+    fn put_wall_contact(&mut self, k: usize, ig: u32, w: usize, c: &WallContact) {
+        self.i[k] = ig;
+        self.j[k] = w as u32;
+        self.delta[k] = c.delta;
+        self.rate[k] = c.rate;
+        self.mass[k] = c.mass;
+        self.radius[k] = c.radius;
+        self.normal[k] = c.normal;
+        self.vrel[k] = c.vrel;
+        if self.rotational() {
+            self.vroll[k] = c.spin;
+        }
     }
 
     /// The merge of a gathering: each contact's history carried over from `prev` (the same
@@ -513,4 +539,161 @@ impl ContactSet {
             }
         }
     }
+}
+
+/// A particle–wall contact's gathered values (see [`ContactSet`]).
+struct WallContact {
+    delta: f64,
+    rate: f64,
+    mass: f64,
+    radius: f64,
+    normal: [f64; 3],
+    vrel: [f64; 3],
+    /// The particle's spin (rad/s), for the rolling and twisting part of the merge.
+    spin: [f64; 3],
+}
+
+/// Why a wall contact is refused: the particle (the user's number), the overlap (m), the radius
+/// (m); [`WallRefusal::naming`] adds the wall.
+struct WallRefusal(usize, f64, f64);
+
+impl WallRefusal {
+    fn naming(self, w: usize) -> DemError {
+        DemError::Overlap {
+            i: self.0,
+            partner: format!("wall {w}"),
+            delta: self.1,
+            radius: self.2,
+        }
+    }
+}
+
+/// The contact of particle `ig` (of `view`) with the wall `ws`: `None` if apart (unless
+/// `adhesive`: an adhesive law's contact is kept for the merge to decide); an overlap beyond
+/// [`MAX_OVERLAP`] (or NaN) refused.
+#[inline(always)]
+fn wall_contact<const D: usize>(
+    ws: &WallState<D>,
+    ig: usize,
+    view: &View<'_, D>,
+    adhesive: bool,
+) -> Result<Option<WallContact>, WallRefusal> {
+    let i = ig - view.base;
+    let (x, r) = (&view.pos[i], view.radius[i]);
+    let delta = ws.overlap(x, r);
+    if delta <= 0.0 && !adhesive {
+        return Ok(None);
+    }
+    if delta.is_nan() || delta > MAX_OVERLAP * r {
+        return Err(WallRefusal(user(view.uid, view.base, ig), delta, r));
+    }
+    let nv = to3(&ws.normal);
+    let rate = -to3(&(view.vpred[i] - ws.velocity)).dot(&nv);
+    let dv = to3(&(view.vel[i] - ws.velocity));
+    let wi = spin::<D>(view.omega, i);
+    let v = dv - (wi * r).cross(&nv);
+    Ok(Some(WallContact {
+        delta,
+        rate,
+        mass: view.mass[i],
+        radius: r,
+        normal: [nv.x, nv.y, nv.z],
+        vrel: [v.x, v.y, v.z],
+        spin: [wi.x, wi.y, wi.z],
+    }))
+}
+
+/// The pair contacts of the particles of `range` sorted into their classes' sets `sets` (one
+/// per class of `map`, in class order), each set's history carried over from the same class's
+/// previous set in `prevs` (see [`ContactSet::gather_pairs`]). One class: that set gathers
+/// alone. Several: the candidates are found once, then sorted into the classes (each class's
+/// in key order), and each set takes its own.
+pub fn gather_pair_classes<const D: usize>(
+    sets: &mut [ContactSet],
+    prevs: &[ContactSet],
+    range: Range<usize>,
+    dom: &Domain<D>,
+    nb: &Neighbours<D>,
+    view: &View<'_, D>,
+    map: &ClassMap<'_>,
+) -> Result<(), DemError> {
+    if sets.len() == 1 {
+        return sets[0].gather_pairs(&prevs[0], range, dom, nb, view);
+    }
+    let mut split = std::mem::take(&mut sets[0].split);
+    let listed = nb.start[range.end] as usize - nb.start[range.start] as usize;
+    if split.len() < listed {
+        split.resize(listed, (0, 0));
+    }
+    let images = dom.images();
+    let count = touching(range.clone(), nb, &images, view, sets[0].reach_bound, &mut split);
+    for s in sets.iter_mut() {
+        s.first = range.start;
+        s.cand.clear();
+    }
+    let (base, n) = (view.base, map.species);
+    for &(i, j) in &split[..count] {
+        let (a, b) = (view.species[i as usize - base], view.species[j as usize - base]);
+        sets[map.pair[a as usize * n + b as usize] as usize]
+            .cand
+            .push((i, j));
+    }
+    sets[0].split = split;
+    for (s, p) in sets.iter_mut().zip(prevs) {
+        let k = s.cand.len();
+        s.pairs_from_candidates(p, k, &images, view)?;
+    }
+    Ok(())
+}
+
+/// The particle–wall contacts of the particles of `range` sorted into their classes' sets
+/// `sets` (see [`gather_pair_classes`] and [`ContactSet::gather_walls`]).
+pub fn gather_wall_classes<const D: usize>(
+    sets: &mut [ContactSet],
+    prevs: &[ContactSet],
+    range: Range<usize>,
+    walls: &[WallState<D>],
+    near: Option<&[u32]>,
+    view: &View<'_, D>,
+    map: &ClassMap<'_>,
+) -> Result<(), DemError> {
+    if sets.len() == 1 {
+        return sets[0].gather_walls(&prevs[0], range, walls, near, view);
+    }
+    let count = sets[0].wall_candidates(range.clone(), walls, near, view);
+    let cand = std::mem::take(&mut sets[0].cand);
+    for s in sets.iter_mut() {
+        s.first = range.start;
+        s.size(count * walls.len());
+    }
+    let adhesive = sets[0].reach_bound > 0.0;
+    let mut at = [0usize; 256];
+    let nw = map.walls;
+    let mut refused = None;
+    'all: for &(ig, _) in &cand[..count] {
+        let sp = view.species[ig as usize - view.base] as usize;
+        for (w, ws) in walls.iter().enumerate() {
+            match wall_contact(ws, ig as usize, view, adhesive) {
+                Ok(None) => {}
+                Ok(Some(c)) => {
+                    let cl = map.wall[sp * nw + w] as usize;
+                    sets[cl].put_wall_contact(at[cl], ig, w, &c);
+                    at[cl] += 1;
+                }
+                Err(e) => {
+                    refused = Some(e.naming(w));
+                    break 'all;
+                }
+            }
+        }
+    }
+    sets[0].cand = cand;
+    if let Some(e) = refused {
+        return Err(e);
+    }
+    for ((cl, s), p) in sets.iter_mut().enumerate().zip(prevs) {
+        s.size(at[cl]);
+        s.carry(p, true);
+    }
+    Ok(())
 }

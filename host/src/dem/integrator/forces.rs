@@ -26,6 +26,7 @@ impl<const D: usize> Engine<D> {
         let c = self.chunk;
         let chunks = n.div_ceil(c);
         self.overflow.resize_with(chunks, Overflow::default);
+        let (pc, wc) = (self.pairs.classes(), self.wall_contacts.classes());
         let (prev_p, next_p) = self.pairs.buffers(chunks);
         let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
         let p = &mut self.p;
@@ -38,12 +39,14 @@ impl<const D: usize> Engine<D> {
             radius: &p.radius,
             mass: &p.mass,
             uid: (!self.order.uid.is_empty()).then_some(&self.order.uid[..]),
+            species: &self.species,
         };
         let ctx = ChunkContext {
             dom: &self.cfg.domain,
             nb: &self.nb,
             walls: &ws,
             laws: &self.laws,
+            map: self.laws.class_map(self.walls.len()),
             dt: self.dt,
             edges: self.cfg.edge_means,
         };
@@ -57,11 +60,11 @@ impl<const D: usize> Engine<D> {
         // the first error in chunk order, whatever the threads did
         // the same chain of zips, by std's iterators or rayon's (method names given)
         macro_rules! tasks {
-            ($iter:ident, $iter_mut:ident, $chunks_mut:ident) => {
+            ($chunks:ident, $chunks_mut:ident, $iter_mut:ident) => {
                 prev_p
-                    .$iter()
-                    .zip(next_p.$iter_mut())
-                    .zip(prev_w.$iter().zip(next_w.$iter_mut()))
+                    .$chunks(pc)
+                    .zip(next_p.$chunks_mut(pc))
+                    .zip(prev_w.$chunks(wc).zip(next_w.$chunks_mut(wc)))
                     .zip(
                         force
                             .$chunks_mut(c)
@@ -74,9 +77,9 @@ impl<const D: usize> Engine<D> {
             };
         }
         let results: Vec<Result<(), DemError>> = if !self.parallel {
-            tasks!(iter, iter_mut, chunks_mut)
+            tasks!(chunks, chunks_mut, iter_mut)
         } else {
-            tasks!(par_iter, par_iter_mut, par_chunks_mut)
+            tasks!(par_chunks, par_chunks_mut, par_iter_mut)
         };
         self.finish_forces(results.into_iter().collect(), false)
     }
