@@ -106,3 +106,21 @@ impl<const D: usize> Wall<D> {
         }
     }
 }
+
+impl<const D: usize> Wall<D> {
+    /// A plane through `point` (at t = 0) with normal `normal` (normalised here; must be
+    /// non-zero), moving along its normal by `motion`.
+    pub fn plane(point: VecD<D>, normal: VecD<D>, motion: Motion) -> Wall<D> {
+        Wall {
+            point,
+            normal: normal.normalize(),
+            motion,
+        }
+    }
+
+    /// The wall in words, for messages.
+    pub fn describe(&self) -> String {
+        let v = |x: &VecD<D>| format!("{:?}", x.as_slice());
+        format!("plane through {} m, normal {}", v(&self.point), v(&self.normal))
+    }
+}
