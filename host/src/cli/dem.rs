@@ -439,10 +439,10 @@ fn print_check<const D: usize>(
         }
     }
     for c in &plan.pair {
-        println!("particle pairs {}: {}", c.label, c.laws.names());
+        println!("particle pairs {}: {}", c.label, c.laws.described());
     }
     for c in &plan.wall {
-        println!("wall pairs {}: {}", c.label, c.laws.names());
+        println!("wall pairs {}: {}", c.label, c.laws.described());
     }
     for (k, w) in walls.iter().enumerate() {
         println!("wall {k}: {w}");

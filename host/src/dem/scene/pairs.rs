@@ -112,6 +112,21 @@ impl LawChoice {
             .chain(self.twisting.as_ref())
     }
 
+    /// `"hsd (eps = 0.5) + mindlin (mu = 0.3)"`.
+    pub fn described(&self) -> String {
+        self.tables()
+            .map(|t| {
+                if t.params.is_empty() {
+                    t.name.clone()
+                } else {
+                    let p: Vec<String> = t.params.iter().map(|(k, v)| format!("{k} = {v}")).collect();
+                    format!("{} ({})", t.name, p.join(", "))
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(" + ")
+    }
+
     /// `"hsd + mindlin"`.
     pub fn names(&self) -> String {
         self.tables()
