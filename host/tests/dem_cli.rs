@@ -280,7 +280,7 @@ diameter = 0.002
         "species 'steel': 1 particles",
         "species 'rubber': 2 particles",
         "particle pairs rubber–rubber: kuwabara-kono",
-        "wall pairs steel–wall 0 ('floor'): hsd + mindlin",
+        "wall pairs steel–wall 0 ('floor'): hsd (eps = 0.5) + mindlin (mu = 0.3)",
         "wall pairs rubber–wall 0 ('floor'): hsd",
         "wall 0: plane through",
     ] {

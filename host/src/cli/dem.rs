@@ -357,6 +357,9 @@ pub fn final_json<const D: usize>(
     let on = e.config().energy;
     state["energy_initial"] = serde_json::json!(on.then_some(energy_initial));
     state["elastic"] = serde_json::json!(on.then(|| e.elastic().iter().sum::<f64>()));
+    // the work of moving walls on the particles: initial + wall_work = energy + elastic +
+    // dissipated
+    state["wall_work"] = serde_json::json!(on.then_some(e.wall_work));
     state["dissipated"] = if on {
         dissipated_json(e)
     } else {

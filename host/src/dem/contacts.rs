@@ -22,13 +22,14 @@ use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
 use dashpot_sdk::{NormalBatch, TangentialBatch};
 use std::ops::Range;
 
+mod classes;
 mod edges;
 mod gather;
 mod renumber;
 mod rotation;
 
+pub use classes::{gather_pair_classes, gather_wall_classes};
 use edges::{step_edge_means, Edges};
-pub use gather::{gather_pair_classes, gather_wall_classes};
 pub use rotation::Rotating;
 
 /// The particle state a gathering reads: particles `base..base + pos.len()`, each array

@@ -59,6 +59,13 @@ pub struct Engine<const D: usize> {
     /// Each particle's species, in the engine's order (empty: every particle is of species 0,
     /// the run has one).
     species: Vec<u8>,
+    /// The wall of each surface (see [`Engine::wall_states`]).
+    surface_wall: Vec<usize>,
+    /// The class of species `s` against surface `k`, `surface_class[s * surfaces + k]` (the
+    /// laws' wall classes, surface by surface; empty: one class).
+    surface_class: Vec<u8>,
+    /// Whether some wall moves (its work on the particles is then accounted).
+    walls_move: bool,
     cfg: EngineConfig<D>,
     /// The step and how it was chosen.
     pub step_choice: StepChoice,
@@ -112,6 +119,11 @@ pub struct Engine<const D: usize> {
     /// The families whose law did not report its energy at some step (their share in
     /// [`Engine::dissipated`] is then incomplete).
     pub unreported: [bool; 4],
+    /// The work the moving walls have done on the particles since the start (J): each wall
+    /// contact's force on its particle · the wall's velocity at the contact × dt, summed at
+    /// every step (with [`EngineConfig::energy`]; 0 while no wall moves). The books:
+    /// initial + wall work = kinetic + gravity + elastic + dissipated.
+    pub wall_work: f64,
     /// The engine's memory order (see [`Engine::user_index`]).
     order: order::Order<D>,
     /// Particles per chunk of contacts, the unit of parallel work ([`gather_chunk`] of the
@@ -188,12 +200,24 @@ impl<const D: usize> Engine<D> {
         }
         let law_reach = reach_bound(&laws, bodies)?;
         for (k, w) in walls.iter().enumerate() {
-            if !(w.normal.iter().all(|x| x.is_finite()) && (w.normal.norm() - 1.0).abs() < 1e-9) {
-                return Err(DemError::Invalid(format!(
-                    "wall {k}: normal must be a finite unit vector"
-                )));
-            }
+            w.validate()
+                .map_err(|m| DemError::Invalid(format!("wall {k}: {m}")))?;
         }
+        let surface_wall: Vec<usize> = walls
+            .iter()
+            .enumerate()
+            .flat_map(|(k, w)| std::iter::repeat_n(k, w.surface_count()))
+            .collect();
+        let surface_class: Vec<u8> = if laws.wall_class.is_empty() {
+            Vec::new()
+        } else {
+            let (n, nw) = (laws.species.len(), walls.len());
+            (0..n)
+                .flat_map(|s| surface_wall.iter().map(move |&w| (s, w)))
+                .map(|(s, w)| laws.wall_class[s * nw + w])
+                .collect()
+        };
+        let walls_move = walls.iter().any(Wall::moves);
         if !cfg.gravity.iter().all(|x| x.is_finite()) {
             return Err(DemError::Invalid("gravity must be finite".into()));
         }
@@ -277,6 +301,10 @@ impl<const D: usize> Engine<D> {
             walls,
             laws,
             species,
+            surface_wall,
+            surface_class,
+            walls_move,
+            wall_work: 0.0,
             dt: step_choice.dt,
             step_choice,
             cfg,
@@ -318,6 +346,7 @@ impl<const D: usize> Engine<D> {
         e.wall_contacts.clear_history();
         e.reset_wall_counters();
         e.dissipated = [0.0; 4];
+        e.wall_work = 0.0;
         e.pair_episodes = e.pairs.len() as u64;
         let g = e.cfg.gravity;
         for i in 0..e.p.len() {
@@ -384,9 +413,25 @@ impl<const D: usize> Engine<D> {
         self.wall_episodes.iter_mut().for_each(|v| *v = 0);
     }
 
-    /// The walls' planes now.
+    /// The walls' surfaces now (one per plane, cylinder or box seen from outside, one per face
+    /// of a box holding the particles; see [`Engine::surface_wall`]).
     pub fn wall_states(&self) -> Vec<WallState<D>> {
-        self.walls.iter().map(|w| w.at(self.t)).collect()
+        self.surfaces_at(self.t)
+    }
+
+    /// The walls' surfaces at time `t` (s).
+    pub(super) fn surfaces_at(&self, t: f64) -> Vec<WallState<D>> {
+        let mut out = Vec::with_capacity(self.surface_wall.len());
+        for w in &self.walls {
+            w.surfaces_into(t, &mut out);
+        }
+        out
+    }
+
+    /// The wall each surface of [`Engine::wall_states`] belongs to (the `j` of a wall contact
+    /// is its surface).
+    pub fn surface_wall(&self) -> &[usize] {
+        &self.surface_wall
     }
 
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach

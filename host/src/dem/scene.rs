@@ -55,6 +55,7 @@
 mod check;
 mod generate;
 mod pairs;
+mod walls;
 
 pub use generate::packing;
 pub use pairs::{ClassPlan, LawChoice, PairPlan, Partners};
@@ -62,8 +63,7 @@ pub use pairs::{ClassPlan, LawChoice, PairPlan, Partners};
 use super::cells::Domain;
 use super::integrator::{check_steps_per_collision, EngineConfig};
 use super::state::{Body, DiskMass, Material, Vec3, VecD};
-use super::walls::{Motion, Wall};
-use crate::piston::Piston;
+use super::walls::Wall;
 use dashpot_sdk::ParamValue;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -114,29 +114,6 @@ struct BoxTable {
     periodic: Option<Vec<bool>>,
     #[serde(default)]
     bounded: bool,
-}
-
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields, tag = "kind", rename_all = "kebab-case")]
-enum MotionTable {
-    Fixed,
-    Piston { amplitude: f64, frequency: f64 },
-    Sine { amplitude: f64, frequency: f64 },
-}
-
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct WallTable {
-    /// A name, for `[[pair]]` tables (`wall = "drum"`) and messages.
-    #[serde(default)]
-    name: Option<String>,
-    point: Vec<f64>,
-    normal: Vec<f64>,
-    #[serde(default)]
-    motion: Option<MotionTable>,
-    /// The wall's own material: a species' name or `{ young, poisson }` (else rigid).
-    #[serde(default)]
-    material: Option<pairs::WallMaterial>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -215,7 +192,7 @@ pub struct SceneFile {
     #[serde(default, rename = "box")]
     domain: Option<BoxTable>,
     #[serde(default)]
-    wall: Vec<WallTable>,
+    wall: Vec<walls::WallTable>,
     #[serde(default)]
     particle: Vec<ParticleTable>,
     #[serde(default)]
@@ -336,34 +313,12 @@ impl SceneFile {
                 bounded: b.bounded,
             };
         }
-        let mut walls = Vec::new();
-        for (k, w) in self.wall.iter().enumerate() {
-            let point = vector::<D>(&format!("wall[{k}].point"), &w.point)?;
-            let normal = vector::<D>(&format!("wall[{k}].normal"), &w.normal)?;
-            if normal.norm() == 0.0 {
-                return Err(bad(format!(
-                    "wall[{k}].normal = {:?} must be a non-zero vector",
-                    w.normal
-                )));
-            }
-            let motion = match &w.motion {
-                None | Some(MotionTable::Fixed) => Motion::Fixed,
-                Some(MotionTable::Piston { amplitude, frequency }) => {
-                    non_negative(&format!("wall[{k}].motion.amplitude"), "m", *amplitude)?;
-                    positive(&format!("wall[{k}].motion.frequency"), "Hz", *frequency)?;
-                    Motion::Piston(Piston::new(*amplitude, *frequency))
-                }
-                Some(MotionTable::Sine { amplitude, frequency }) => {
-                    non_negative(&format!("wall[{k}].motion.amplitude"), "m", *amplitude)?;
-                    positive(&format!("wall[{k}].motion.frequency"), "Hz", *frequency)?;
-                    Motion::Sine {
-                        amplitude: *amplitude,
-                        freq: *frequency,
-                    }
-                }
-            };
-            walls.push(Wall::plane(point, normal, motion));
-        }
+        let walls = self
+            .wall
+            .iter()
+            .enumerate()
+            .map(|(k, w)| w.wall::<D>(k))
+            .collect::<Result<Vec<Wall<D>>, _>>()?;
         let wall_names: Vec<Option<String>> = self.wall.iter().map(|w| w.name.clone()).collect();
         for (k, n) in wall_names.iter().enumerate() {
             if let Some(n) = n {
@@ -415,7 +370,7 @@ impl SceneFile {
         }
         if let Some(g) = &self.generate {
             for (k, t) in g.0.iter().enumerate() {
-                let (b, s) = generate::generate::<D>(t, k, g.0.len(), &kinds, named)?;
+                let (b, s) = generate::generate::<D>(t, k, g.0.len(), &kinds, named, (&walls, &wall_names))?;
                 bodies.extend(b);
                 species.extend(s);
             }

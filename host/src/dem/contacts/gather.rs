@@ -6,7 +6,7 @@
 //! the rolling and twisting part when a scene has those laws): short loops with few live values
 //! and no calls, which the compiler keeps in registers.
 
-use super::{ClassMap, ContactSet, View, MAX_OVERLAP};
+use super::{ContactSet, View, MAX_OVERLAP};
 use crate::dem::cells::{Domain, Images, Neighbours};
 use crate::dem::state::{spin, to3, Vec3};
 use crate::dem::walls::WallState;
@@ -72,7 +72,7 @@ fn carry_slots(hist: &mut [f64], old: &[f64], src: &[u32], slots: usize) {
 /// periodic boundary (most) take the plain difference of positions (see
 /// [`Neighbours::cross`]).
 #[inline(never)]
-fn touching<const D: usize>(
+pub(super) fn touching<const D: usize>(
     range: Range<usize>,
     nb: &Neighbours<D>,
     images: &Images<D>,
@@ -253,7 +253,7 @@ impl ContactSet {
 
     /// Passes 2 and 3 of a pair gathering: the contacts of the first `count` candidates of
     /// `self.cand` (in key order), their history carried over from `prev`.
-    fn pairs_from_candidates<const D: usize>(
+    pub(super) fn pairs_from_candidates<const D: usize>(
         &mut self,
         prev: &ContactSet,
         count: usize,
@@ -352,7 +352,7 @@ impl ContactSet {
     /// Pass 1 of a wall gathering: the particles of `range` within reach of a wall (NaN kept)
     /// written into `self.cand`, in order; their count returned. `near`, if given, holds the
     /// only particles of `range` that can be (see [`ContactSet::gather_walls`]).
-    fn wall_candidates<const D: usize>(
+    pub(super) fn wall_candidates<const D: usize>(
         &mut self,
         range: Range<usize>,
         walls: &[WallState<D>],
@@ -388,10 +388,7 @@ impl ContactSet {
             worst.clear();
             worst.resize(range.len(), f64::NEG_INFINITY);
             for ws in walls {
-                for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
-                    let d = ws.overlap(x, *r);
-                    *m = if d > *m || d.is_nan() { d } else { *m };
-                }
+                ws.overlaps_into(xs, rs, &mut worst);
             }
             for (k, m) in worst.iter().enumerate() {
                 cand[count] = ((range.start + k) as u32, 0);
@@ -405,7 +402,7 @@ impl ContactSet {
 
     /// Writes the contact `c` of particle `ig` with wall `w` as contact `k`.
     #[inline(always)]
-    fn put_wall_contact(&mut self, k: usize, ig: u32, w: usize, c: &WallContact) {
+    pub(super) fn put_wall_contact(&mut self, k: usize, ig: u32, w: usize, c: &WallContact) {
         self.i[k] = ig;
         self.j[k] = w as u32;
         self.delta[k] = c.delta;
@@ -425,7 +422,7 @@ impl ContactSet {
     /// (δ < 0; δ ≤ 0 against a `wall`) is kept only while its previous contact's reach covers
     /// it, and the kept contacts are moved up over the dropped ones. With a rolling or
     /// twisting law, `vroll` holds the relative spin on entry and gets the rolling velocity.
-    fn carry(&mut self, prev: &ContactSet, wall: bool) {
+    pub(super) fn carry(&mut self, prev: &ContactSet, wall: bool) {
         let mut owned = std::mem::take(&mut self.src);
         self.merge(prev, &mut owned);
         if self.reach_bound > 0.0 {
@@ -542,23 +539,24 @@ impl ContactSet {
 }
 
 /// A particle–wall contact's gathered values (see [`ContactSet`]).
-struct WallContact {
+pub(super) struct WallContact {
     delta: f64,
     rate: f64,
     mass: f64,
     radius: f64,
     normal: [f64; 3],
     vrel: [f64; 3],
-    /// The particle's spin (rad/s), for the rolling and twisting part of the merge.
+    /// The particle's spin relative to the wall's (rad/s), for the rolling and twisting part of
+    /// the merge.
     spin: [f64; 3],
 }
 
 /// Why a wall contact is refused: the particle (the user's number), the overlap (m), the radius
 /// (m); [`WallRefusal::naming`] adds the wall.
-struct WallRefusal(usize, f64, f64);
+pub(super) struct WallRefusal(usize, f64, f64);
 
 impl WallRefusal {
-    fn naming(self, w: usize) -> DemError {
+    pub(super) fn naming(self, w: usize) -> DemError {
         DemError::Overlap {
             i: self.0,
             partner: format!("wall {w}"),
@@ -572,7 +570,7 @@ impl WallRefusal {
 /// `adhesive`: an adhesive law's contact is kept for the merge to decide); an overlap beyond
 /// [`MAX_OVERLAP`] (or NaN) refused.
 #[inline(always)]
-fn wall_contact<const D: usize>(
+pub(super) fn wall_contact<const D: usize>(
     ws: &WallState<D>,
     ig: usize,
     view: &View<'_, D>,
@@ -587,11 +585,18 @@ fn wall_contact<const D: usize>(
     if delta.is_nan() || delta > MAX_OVERLAP * r {
         return Err(WallRefusal(user(view.uid, view.base, ig), delta, r));
     }
-    let nv = to3(&ws.normal);
-    let rate = -to3(&(view.vpred[i] - ws.velocity)).dot(&nv);
-    let dv = to3(&(view.vel[i] - ws.velocity));
+    let (n, vw) = ws.contact(x, r, delta);
+    let nv = to3(&n);
+    let rate = -to3(&(view.vpred[i] - vw)).dot(&nv);
+    let dv = to3(&(view.vel[i] - vw));
     let wi = spin::<D>(view.omega, i);
     let v = dv - (wi * r).cross(&nv);
+    // (the spin relative to a rotating wall's, for the rolling and twisting laws)
+    let wr = if ws.omega == Vec3::zeros() {
+        wi
+    } else {
+        wi - ws.omega
+    };
     Ok(Some(WallContact {
         delta,
         rate,
@@ -599,101 +604,6 @@ fn wall_contact<const D: usize>(
         radius: r,
         normal: [nv.x, nv.y, nv.z],
         vrel: [v.x, v.y, v.z],
-        spin: [wi.x, wi.y, wi.z],
+        spin: [wr.x, wr.y, wr.z],
     }))
-}
-
-/// The pair contacts of the particles of `range` sorted into their classes' sets `sets` (one
-/// per class of `map`, in class order), each set's history carried over from the same class's
-/// previous set in `prevs` (see [`ContactSet::gather_pairs`]). One class: that set gathers
-/// alone. Several: the candidates are found once, then sorted into the classes (each class's
-/// in key order), and each set takes its own.
-pub fn gather_pair_classes<const D: usize>(
-    sets: &mut [ContactSet],
-    prevs: &[ContactSet],
-    range: Range<usize>,
-    dom: &Domain<D>,
-    nb: &Neighbours<D>,
-    view: &View<'_, D>,
-    map: &ClassMap<'_>,
-) -> Result<(), DemError> {
-    if sets.len() == 1 {
-        return sets[0].gather_pairs(&prevs[0], range, dom, nb, view);
-    }
-    let mut split = std::mem::take(&mut sets[0].split);
-    let listed = nb.start[range.end] as usize - nb.start[range.start] as usize;
-    if split.len() < listed {
-        split.resize(listed, (0, 0));
-    }
-    let images = dom.images();
-    let count = touching(range.clone(), nb, &images, view, sets[0].reach_bound, &mut split);
-    for s in sets.iter_mut() {
-        s.first = range.start;
-        s.cand.clear();
-    }
-    let (base, n) = (view.base, map.species);
-    for &(i, j) in &split[..count] {
-        let (a, b) = (view.species[i as usize - base], view.species[j as usize - base]);
-        sets[map.pair[a as usize * n + b as usize] as usize]
-            .cand
-            .push((i, j));
-    }
-    sets[0].split = split;
-    for (s, p) in sets.iter_mut().zip(prevs) {
-        let k = s.cand.len();
-        s.pairs_from_candidates(p, k, &images, view)?;
-    }
-    Ok(())
-}
-
-/// The particle–wall contacts of the particles of `range` sorted into their classes' sets
-/// `sets` (see [`gather_pair_classes`] and [`ContactSet::gather_walls`]).
-pub fn gather_wall_classes<const D: usize>(
-    sets: &mut [ContactSet],
-    prevs: &[ContactSet],
-    range: Range<usize>,
-    walls: &[WallState<D>],
-    near: Option<&[u32]>,
-    view: &View<'_, D>,
-    map: &ClassMap<'_>,
-) -> Result<(), DemError> {
-    if sets.len() == 1 {
-        return sets[0].gather_walls(&prevs[0], range, walls, near, view);
-    }
-    let count = sets[0].wall_candidates(range.clone(), walls, near, view);
-    let cand = std::mem::take(&mut sets[0].cand);
-    for s in sets.iter_mut() {
-        s.first = range.start;
-        s.size(count * walls.len());
-    }
-    let adhesive = sets[0].reach_bound > 0.0;
-    let mut at = [0usize; 256];
-    let nw = map.walls;
-    let mut refused = None;
-    'all: for &(ig, _) in &cand[..count] {
-        let sp = view.species[ig as usize - view.base] as usize;
-        for (w, ws) in walls.iter().enumerate() {
-            match wall_contact(ws, ig as usize, view, adhesive) {
-                Ok(None) => {}
-                Ok(Some(c)) => {
-                    let cl = map.wall[sp * nw + w] as usize;
-                    sets[cl].put_wall_contact(at[cl], ig, w, &c);
-                    at[cl] += 1;
-                }
-                Err(e) => {
-                    refused = Some(e.naming(w));
-                    break 'all;
-                }
-            }
-        }
-    }
-    sets[0].cand = cand;
-    if let Some(e) = refused {
-        return Err(e);
-    }
-    for ((cl, s), p) in sets.iter_mut().enumerate().zip(prevs) {
-        s.size(at[cl]);
-        s.carry(p, true);
-    }
-    Ok(())
 }

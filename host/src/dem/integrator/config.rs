@@ -157,7 +157,12 @@ pub(super) fn impact_speed<const D: usize>(
     let vmax = (0..p.len())
         .map(|i| p.vel[i].norm() + p.angular_velocity(i).norm() * p.radius[i])
         .fold(0.0, f64::max);
-    let wmax = walls.iter().map(|w| w.motion.peak_speed()).fold(0.0, f64::max);
+    // (a rotating plane's speed: at the particles' farthest from its axis)
+    let reach = |c: &VecD<D>| p.pos.iter().map(|x| (x - c).norm()).fold(0.0, f64::max);
+    let wmax = walls
+        .iter()
+        .map(|w| w.peak_speed(w.spin.map_or(0.0, |s| reach(&s.center))))
+        .fold(0.0, f64::max);
     let g = cfg.gravity.norm();
     let mut extent = 0.0f64;
     if g > 0.0 {
@@ -166,7 +171,7 @@ pub(super) fn impact_speed<const D: usize>(
             .pos
             .iter()
             .map(|x| x.dot(&gh))
-            .chain(walls.iter().map(|w| w.point.dot(&gh)))
+            .chain(walls.iter().flat_map(|w| w.heights(&gh)))
             .collect();
         let (a, b) = hs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
             (a.min(h), b.max(h))

@@ -68,6 +68,7 @@
 
 use super::awake::{map_ranked, spin_until, OnDrop};
 use super::{add_shares, chunk_forces, kick_drift_chunk, ChunkContext, Engine, Overflow, Shared};
+use crate::dem::contacts::ClassMap;
 use crate::dem::contacts::{ContactSet, View};
 use crate::dem::state::spin_len;
 use crate::dem::DemError;
@@ -187,7 +188,7 @@ impl<const D: usize> Engine<D> {
         let dt = self.dt;
         let (h, g) = (0.5 * dt, self.cfg.gravity);
         let t_end = self.t + dt;
-        let ws: Vec<_> = self.walls.iter().map(|w| w.at(t_end)).collect();
+        let ws = self.surfaces_at(t_end);
         // one range per thread, each range run by the same thread at every step where it can
         // (its particles' state then stays in that core's cache: see the module doc); one
         // thread, one range
@@ -306,7 +307,12 @@ impl<const D: usize> Engine<D> {
             nb: &self.nb,
             walls: &ws,
             laws: &self.laws,
-            map: self.laws.class_map(self.walls.len()),
+            map: ClassMap {
+                species: self.laws.species.len(),
+                walls: ws.len(),
+                pair: &self.laws.pair_class,
+                wall: &self.surface_class,
+            },
             dt,
             edges: self.cfg.edge_means,
         };

@@ -1,10 +1,11 @@
 //! The random polydisperse packings of `[generate]` (or `[[generate]]`) tables, each of its
 //! species.
 
-use super::pairs::{species_index, Names};
+use super::pairs::{species_index, wall_index, Names, WallRefs};
 use super::{bad, non_negative, positive, vector, SceneError};
 use crate::dem::species::SpeciesInfo;
 use crate::dem::state::{Body, Vec3, VecD};
+use crate::dem::walls::{Shape, Wall};
 use serde::Deserialize;
 
 #[derive(Debug, Clone, Deserialize)]
@@ -34,6 +35,10 @@ pub(super) struct GenerateTable {
     species: Option<Names>,
     #[serde(default)]
     fraction: Option<Vec<f64>>,
+    /// Only the lattice's sites inside these walls (a plane's open side, a cylinder or a box
+    /// holding particles): a drum's fill.
+    #[serde(default)]
+    within: Option<WallRefs>,
 }
 
 /// `[generate]` (one table) or `[[generate]]` (several): read as what the file holds, each
@@ -130,14 +135,40 @@ pub fn packing<const D: usize>(
     speed: f64,
     seed: u64,
 ) -> Result<Vec<Body<D>>, SceneError> {
+    packing_within(count, dmin, dmax, lo, hi, speed, seed, &|_| true)
+}
+
+/// [`packing`] on the sites whose cell (lower corner, of side 1.05 `dmax`) `keep` takes, in
+/// the same order: a fill of a drum or any region inside walls. Errors if fewer than `count`
+/// sites are kept.
+#[allow(clippy::too_many_arguments)]
+pub fn packing_within<const D: usize>(
+    count: usize,
+    dmin: f64,
+    dmax: f64,
+    lo: VecD<D>,
+    hi: VecD<D>,
+    speed: f64,
+    seed: u64,
+    keep: &dyn Fn(&VecD<D>) -> bool,
+) -> Result<Vec<Body<D>>, SceneError> {
     let (sites, total) = sites::<D>(dmax, &lo, &hi)?;
-    if total < count {
-        return Err(bad(crowded(count, dmax, &lo, &hi, &sites, total)));
-    }
     let a = 1.05 * dmax;
+    let corner = |s: usize| {
+        let (mut c, mut r) = (VecD::<D>::zeros(), s);
+        for k in 0..D {
+            c[k] = lo[k] + (r % sites[k]) as f64 * a;
+            r /= sites[k];
+        }
+        c
+    };
+    let kept: Vec<usize> = (0..total).filter(|&s| keep(&corner(s))).collect();
+    if kept.len() < count {
+        return Err(bad(crowded(count, dmax, &lo, &hi, &sites, kept.len())));
+    }
     let mut rng = Rng(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x1234_5678);
     let mut out = Vec::with_capacity(count);
-    for s in 0..count {
+    for &s in &kept[..count] {
         let d = dmin + (dmax - dmin) * rng.next();
         let mut x = VecD::<D>::zeros();
         let mut r = s;
@@ -169,6 +200,7 @@ pub(super) fn generate<const D: usize>(
     of: usize,
     species: &[SpeciesInfo],
     named: bool,
+    walls: (&[Wall<D>], &[Option<String>]),
 ) -> Result<(Vec<Body<D>>, Vec<u8>), SceneError> {
     let key = if of > 1 {
         format!("generate[{k}]")
@@ -176,10 +208,13 @@ pub(super) fn generate<const D: usize>(
         "generate".to_string()
     };
     let at = |s: String| bad(s.replacen("generate", &key, 1));
-    generate_one::<D>(g).map_err(|e| at(e.0)).and_then(|bodies| {
-        let kinds = generated_species(g, bodies.len(), species, named, &key)?;
-        Ok((bodies, kinds))
-    })
+    let within = within_walls(g, walls, &key)?;
+    generate_one::<D>(g, &within)
+        .map_err(|e| at(e.0))
+        .and_then(|bodies| {
+            let kinds = generated_species(g, bodies.len(), species, named, &key)?;
+            Ok((bodies, kinds))
+        })
 }
 
 /// Each generated particle's species: the table's one species, or several drawn at random
@@ -243,8 +278,34 @@ fn generated_species(
         .collect())
 }
 
-/// The particles of one generate table.
-fn generate_one<const D: usize>(g: &GenerateTable) -> Result<Vec<Body<D>>, SceneError> {
+/// The walls of `within` (`walls`: the scene's walls and their names), each of a shape that
+/// holds particles on one side (a plane, a cylinder or a box holding them).
+fn within_walls<'w, const D: usize>(
+    g: &GenerateTable,
+    walls: (&'w [Wall<D>], &[Option<String>]),
+    key: &str,
+) -> Result<Vec<&'w Wall<D>>, SceneError> {
+    let refs = match &g.within {
+        None => return Ok(Vec::new()),
+        Some(WallRefs::One(r)) => vec![r.clone()],
+        Some(WallRefs::Many(v)) => v.clone(),
+    };
+    refs.iter()
+        .map(|r| {
+            let w = &walls.0[wall_index(walls.1, &format!("{key}.within"), r)?];
+            match w.shape {
+                Shape::Cylinder { inside: false, .. } | Shape::Box { inside: false, .. } => Err(bad(format!(
+                    "{key}.within names a wall the particles stay outside of ({}): give walls that hold them (a plane, a cylinder or a box with inside = true)",
+                    w.describe()
+                ))),
+                _ => Ok(w),
+            }
+        })
+        .collect()
+}
+
+/// The particles of one generate table, on the sites inside the walls `within`.
+fn generate_one<const D: usize>(g: &GenerateTable, within: &[&Wall<D>]) -> Result<Vec<Body<D>>, SceneError> {
     let (dmin, dmax) = match &g.diameter {
         Diameters::One(d) => (*d, *d),
         Diameters::Range(v) if v.len() == 2 => (v[0], v[1]),
@@ -274,5 +335,19 @@ fn generate_one<const D: usize>(g: &GenerateTable) -> Result<Vec<Body<D>>, Scene
             crowded(g.count, dmax, &lo, &hi, &sites, total)
         )));
     }
-    packing(g.count, dmin, dmax, lo, hi, g.speed, g.seed)
+    // a cell is inside the walls when its corners are (the walls' open sides are convex)
+    let a = 1.05 * dmax;
+    let surfaces: Vec<_> = within.iter().flat_map(|w| w.surfaces(0.0)).collect();
+    let keep = |c: &VecD<D>| {
+        (0..1usize << D).all(|m| {
+            let mut x = *c;
+            for k in 0..D {
+                if (m >> k) & 1 == 1 {
+                    x[k] += a;
+                }
+            }
+            surfaces.iter().all(|s| s.overlap(&x, 0.0) <= 0.0)
+        })
+    };
+    packing_within(g.count, dmin, dmax, lo, hi, g.speed, g.seed, &keep)
 }

@@ -542,7 +542,7 @@ fn partners_materials(species: &[SpeciesInfo], p: Partners) -> Result<MaterialPa
 }
 
 /// The index of the wall `r` among walls named `names`, for the key `key`.
-fn wall_index(names: &[Option<String>], key: &str, r: &WallRef) -> Result<usize, SceneError> {
+pub(super) fn wall_index(names: &[Option<String>], key: &str, r: &WallRef) -> Result<usize, SceneError> {
     match r {
         WallRef::Index(w) if *w < names.len() => Ok(*w),
         WallRef::Index(w) => Err(bad(format!(
