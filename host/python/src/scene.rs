@@ -269,10 +269,11 @@ impl Scene {
     /// The energies now (J): `translational`, `rotational`, `gravity`, `total` (their sum), the
     /// `elastic` energy stored in the contacts, and the energy each family of laws `dissipated`
     /// since the start (`normal`, `tangential`, `rolling`, `twisting`, `total`; `None` for a
-    /// law that does not report it), and `initial`, the total with the elastic at the start.
+    /// law that does not report it), `initial`, the total with the elastic at the start, and
+    /// `wall_work`, the work the moving walls did on the particles.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (en, elastic, dissipated, unreported, on) = on!(&self.e, e => (
-            e.energy(), e.elastic(), e.dissipated, e.unreported, e.config().energy
+        let (en, elastic, dissipated, unreported, on, work) = on!(&self.e, e => (
+            e.energy(), e.elastic(), e.dissipated, e.unreported, e.config().energy, e.wall_work
         ));
         let d = PyDict::new(py);
         d.set_item("translational", en.translational)?;
@@ -296,6 +297,7 @@ impl Scene {
             d.set_item("dissipated", py.None())?;
         }
         d.set_item("initial", on.then_some(self.energy_initial))?;
+        d.set_item("wall_work", on.then_some(work))?;
         Ok(d)
     }
 

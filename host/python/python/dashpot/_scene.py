@@ -279,7 +279,8 @@ class Scene:
         ``total``; the ``elastic`` energy stored in the contacts; what each family of laws
         ``dissipated`` since the start (``normal``, ``tangential``, ``rolling``, ``twisting``,
         ``total``; None for a law that does not report it); ``initial``, the total and the
-        elastic energy at the start. Their balance: initial ≈ total + elastic + dissipated."""
+        elastic energy at the start; ``wall_work``, the work moving walls did on the particles.
+        Their balance: initial + wall_work ≈ total + elastic + dissipated."""
         return self._inner.energy()
 
     def result(self) -> Dict[str, Any]:
