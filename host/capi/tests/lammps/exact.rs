@@ -14,9 +14,12 @@ use std::path::Path;
 
 const TOL: f64 = 1e-10;
 
+/// One step: the contact force and torque on sphere 1, and both centres.
+type Step = ([f64; 6], [f64; 3], [f64; 3]);
+
 /// Each step's contact force and torque on sphere 1, and both centres.
 struct Dump {
-    rows: BTreeMap<u64, ([f64; 6], [f64; 3], [f64; 3])>,
+    rows: BTreeMap<u64, Step>,
 }
 
 fn read_dump(path: &Path) -> Dump {
