@@ -363,3 +363,64 @@ fn mixed_pairs_and_two_ranks_match_pair_granular_newton_on_and_off() {
         }
     }
 }
+
+/// The thermo rows `in.exact -var local 1` prints: every 50 steps, the sums over the pairs of
+/// `compute pair/local p1 ... p12 force`.
+fn local_rows(stdout: &str) -> Vec<Vec<f64>> {
+    stdout
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("Step"))
+        .skip(1)
+        .take_while(|l| !l.starts_with("Loop time"))
+        .map(|l| {
+            l.split_whitespace()
+                .skip(1)
+                .filter_map(|t| t.parse().ok())
+                .collect()
+        })
+        .collect()
+}
+
+/// `compute pair/local` through single(): with LAMMPS's words, pair_style dashpot fills
+/// `granular`'s 12 columns (and the force) with granular's values, each column to 1e-10 of its
+/// largest over the run.
+#[test]
+fn single_fills_pair_granulars_pair_local_columns() {
+    let Some(v) = venv() else { return };
+    for coeff in [
+        "hertz/material 1e7 0.5 0.3 damping tsuji tangential mindlin NULL 1.0 0.3 rolling sds 1e3 0.05 0.1 twisting marshall",
+        "jkr 1e7 0.5 0.3 0.02 tangential linear_history 2e3 1.0 0.3 twisting sds 1e-4 1e-8 1e-4",
+    ] {
+        let rows: Vec<Vec<Vec<f64>>> = ["granular", "dashpot"]
+            .iter()
+            .map(|style| {
+                let vars = [
+                    ("style", style.to_string()),
+                    ("coeff", coeff.to_string()),
+                    ("case", "pressed".to_string()),
+                    ("n", "1000".to_string()),
+                    ("local", "1".to_string()),
+                    ("dump", lib_dir().join(format!("local.{style}")).display().to_string()),
+                ];
+                local_rows(&succeeded(&lmp(&v, "in.exact", 1, &vars), coeff))
+            })
+            .collect();
+        let (g, d) = (&rows[0], &rows[1]);
+        assert_eq!(g.len(), d.len(), "{coeff}: rows");
+        assert!(g.len() > 10 && g.iter().all(|r| r.len() == 13), "{coeff}: {g:?}");
+        let mut set = 0;
+        for c in 0..13 {
+            let largest = g.iter().map(|r| r[c].abs()).fold(0.0, f64::max);
+            set += usize::from(largest > 0.0);
+            for (a, b) in g.iter().zip(d) {
+                assert!(
+                    (a[c] - b[c]).abs() <= 1e-10 * largest,
+                    "{coeff}: column {}: granular {a:?}, dashpot {b:?}",
+                    c + 1
+                );
+            }
+        }
+        // the normal, damping and tangential columns at least (rolling ones with rolling)
+        assert!(set >= 8, "{coeff}: only {set} columns ever set");
+    }
+}

@@ -64,8 +64,13 @@ fn run_wall(
     gran: &str,
     dashpot: &str,
 ) -> (Vec<Row>, String) {
+    // a file per case, style, ranks and models: the tests run in parallel
+    let models = format!("{gran}|{dashpot}");
+    let tag = models.bytes().fold(0xcbf29ce484222325u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x100000001b3)
+    });
     let dump: PathBuf = lib_dir().join(format!(
-        "walls-{}-{style}-{ranks}.dump",
+        "walls-{}-{style}-{ranks}-{tag:x}.dump",
         case.name.replace(' ', "-")
     ));
     let _ = std::fs::remove_file(&dump);
