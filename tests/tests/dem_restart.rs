@@ -197,13 +197,19 @@ fn stop_and_resume<const D: usize>(text: &str, total: u64, stops: &[u64]) -> Vec
         write(&e, text, &path);
         e = resume::<D>(text, &path);
         assert_eq!(e.steps(), s);
-        assert!(state(&e) == at_stops[k], "stop {k} at step {s}: the resumed state differs");
+        assert!(
+            state(&e) == at_stops[k],
+            "stop {k} at step {s}: the resumed state differs"
+        );
         used.push(histories(&e));
     }
     e.advance(total - done).expect("steps");
     assert_eq!(e.steps(), straight.steps());
     assert_eq!(e.time().to_bits(), straight.time().to_bits());
-    assert!(state(&e) == state(&straight), "the resumed run ends elsewhere than the straight one");
+    assert!(
+        state(&e) == state(&straight),
+        "the resumed run ends elsewhere than the straight one"
+    );
     for i in 0..e.p.len() {
         assert_eq!(e.p.pos[i], straight.p.pos[i], "particle {i}");
     }
@@ -219,7 +225,10 @@ fn stopped_mid_contact_in_every_family_resumes_bit_for_bit() {
     // the stops fall in contacts: every family's history is in use at the later ones
     let last = used[used.len() - 1];
     for (k, family) in ["normal", "tangential", "rolling", "twisting"].iter().enumerate() {
-        assert!(last[k] > 0, "no {family} history in use at the last stop: {used:?}");
+        assert!(
+            last[k] > 0,
+            "no {family} history in use at the last stop: {used:?}"
+        );
     }
 }
 
@@ -262,7 +271,10 @@ fn truncated_corrupted_foreign_and_wrong_version_files_are_refused() {
     let dir = dir.path();
     for cut in [0, 5, HEADER_LEN - 1, HEADER_LEN, HEADER_LEN + 10, bytes.len() - 1] {
         let m = refusal(dir, &bytes[..cut]);
-        assert!(m.contains("truncated") || m.contains("not a dashpot checkpoint"), "cut at {cut}: {m}");
+        assert!(
+            m.contains("truncated") || m.contains("not a dashpot checkpoint"),
+            "cut at {cut}: {m}"
+        );
     }
     let mut longer = bytes.clone();
     longer.push(0);

@@ -1,7 +1,9 @@
 //! `dashpot dem --scene FILE.toml [--json] [--out DIR]`: a soft-sphere DEM run of a scene;
 //! `--checkpoint-every` and `--restart FILE` (see [`super::dem_checkpoint`]).
 
-use super::dem_checkpoint::{default_path, parse_scene, trajectory_frames, Checkpoints, Every, Interrupted, Resume};
+use super::dem_checkpoint::{
+    default_path, parse_scene, trajectory_frames, Checkpoints, Every, Interrupted, Resume,
+};
 use crate::dem::checkpoint::Checkpoint;
 use crate::dem::scene::SceneFile;
 use crate::dem::Engine;
@@ -289,7 +291,12 @@ fn run_dim<const D: usize>(
         0
     } as u64;
     // frames written so far: the start's and those whose steps have passed
-    let frames_done = |steps: u64| (steps * frames).checked_div(total_steps).map_or(0, |k| k.min(frames)) + 1;
+    let frames_done = |steps: u64| {
+        (steps * frames)
+            .checked_div(total_steps)
+            .map_or(0, |k| k.min(frames))
+            + 1
+    };
     let pb = crate::output::progress_bar(total_steps, "dem");
     pb.set_message("steps");
     let wall0 = std::time::Instant::now();
@@ -393,7 +400,11 @@ fn run_dim<const D: usize>(
             e.rebuilds()
         );
         if cks.written > 0 {
-            println!("checkpoints written: {} (the last to {})", cks.written, cks.path.display());
+            println!(
+                "checkpoints written: {} (the last to {})",
+                cks.written,
+                cks.path.display()
+            );
         }
         if let Some(dir) = &a.out {
             println!(

@@ -59,7 +59,7 @@ pub struct Header {
 #[derive(Debug, thiserror::Error)]
 pub enum CheckpointError {
     /// The file system refused.
-    #[error("{}: {source}", path.display())]
+    #[error("{}", path.display())]
     Io {
         /// The file.
         path: PathBuf,
@@ -139,7 +139,9 @@ pub fn read_raw(path: &Path) -> Result<(Header, Vec<u8>), CheckpointError> {
         source,
     })?;
     if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
-        return Err(refuse("not a dashpot checkpoint (its first bytes are not dashpot's)".into()));
+        return Err(refuse(
+            "not a dashpot checkpoint (its first bytes are not dashpot's)".into(),
+        ));
     }
     if bytes.len() < HEADER_LEN {
         return Err(refuse(format!(
@@ -175,20 +177,26 @@ pub fn read_raw(path: &Path) -> Result<(Header, Vec<u8>), CheckpointError> {
     }
     let payload = bytes[HEADER_LEN..].to_vec();
     if crc32fast::hash(&payload) != crc {
-        return Err(refuse("corrupted: its checksum does not match its contents".into()));
+        return Err(refuse(
+            "corrupted: its checksum does not match its contents".into(),
+        ));
     }
     if !(header.dimension == 2 || header.dimension == 3) {
-        return Err(refuse(format!("its dimension {} is not 2 or 3", header.dimension)));
+        return Err(refuse(format!(
+            "its dimension {} is not 2 or 3",
+            header.dimension
+        )));
     }
     Ok((header, payload))
 }
 
 /// Decodes the payload read by [`read_raw`] from `path`, of a run in `D` dimensions.
 pub fn decode<const D: usize>(path: &Path, payload: &[u8]) -> Result<Checkpoint<D>, CheckpointError> {
-    let (ck, rest) = postcard::take_from_bytes::<Checkpoint<D>>(payload).map_err(|e| CheckpointError::Refused {
-        path: path.to_path_buf(),
-        what: format!("its state cannot be decoded ({e})"),
-    })?;
+    let (ck, rest) =
+        postcard::take_from_bytes::<Checkpoint<D>>(payload).map_err(|e| CheckpointError::Refused {
+            path: path.to_path_buf(),
+            what: format!("its state cannot be decoded ({e})"),
+        })?;
     if !rest.is_empty() {
         return Err(CheckpointError::Refused {
             path: path.to_path_buf(),

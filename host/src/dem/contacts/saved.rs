@@ -77,11 +77,17 @@ impl ContactSet {
             ("twist", self.twist.len(), if rot { n } else { 0 }),
             ("froll", self.froll.len(), if rot { n } else { 0 }),
             ("mtwist", self.mtwist.len(), if rot { n } else { 0 }),
-            ("reach", self.reach.len(), if self.reach_bound > 0.0 { n } else { 0 }),
+            (
+                "reach",
+                self.reach.len(),
+                if self.reach_bound > 0.0 { n } else { 0 },
+            ),
         ];
         for (name, len, want) in lens {
             if len != want {
-                return Err(format!("{name} holds {len} values for {n} contacts (want {want})"));
+                return Err(format!(
+                    "{name} holds {len} values for {n} contacts (want {want})"
+                ));
             }
         }
         if !(self.sign.is_empty() || self.sign.len() == n) {
@@ -89,7 +95,10 @@ impl ContactSet {
         }
         for (k, v) in self.power.iter().chain(&self.elastic).enumerate() {
             if v.len() != if self.energy { n } else { 0 } {
-                return Err(format!("energy output {k} holds {} values for {n} contacts", v.len()));
+                return Err(format!(
+                    "energy output {k} holds {} values for {n} contacts",
+                    v.len()
+                ));
             }
         }
         let mut prev = None;

@@ -190,7 +190,11 @@ impl<const D: usize> Engine<D> {
         let mut reach = Vec::new();
         s.nb.chunk_reach(self.chunk, &mut reach);
         if s.moved.len() != reach.len() || reach.iter().any(|&r| r >= reach.len()) {
-            return Err(format!("{} displacement bounds for {} chunks", s.moved.len(), reach.len()));
+            return Err(format!(
+                "{} displacement bounds for {} chunks",
+                s.moved.len(),
+                reach.len()
+            ));
         }
         self.pairs
             .check_saved(&s.pairs, n, None)
