@@ -5,10 +5,9 @@
 //! Kept: the particles (positions, velocities, spins, the last forces and torques, in the
 //! user's order), the engine's own order and its per-particle arrays in it (the predictor's
 //! velocities and last accelerations, the species), the neighbour list as built (its anchors
-//! decide when it is rebuilt, and a rebuild wraps positions into a periodic box: rebuilt
-//! elsewhere, the positions would round differently), each chunk's displacement bound, every
-//! contact of the last evaluation with the history of each of its laws and the flags of its
-//! first and last steps, the time, the step count and the books (dissipated energy, the walls'
+//! decide when it is next rebuilt, and a rebuild wraps positions into a periodic box), each
+//! chunk's displacement bound, every contact of the last evaluation with the history of each
+//! of its laws and the flags of its first and last steps, the time, the step count and the books (dissipated energy, the walls'
 //! work, impulses and episodes). Not kept: what the scene gives (radii, masses, materials, the
 //! laws, the walls, the step, the configuration), scratch, and the measured costs that only
 //! decide how the steps are shared between threads (the same bits either way).
