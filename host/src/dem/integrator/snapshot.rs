@@ -8,9 +8,10 @@
 //! decide when it is next rebuilt, and a rebuild wraps positions into a periodic box), each
 //! chunk's displacement bound, every contact of the last evaluation with the history of each
 //! of its laws and the flags of its first and last steps, the time, the step count and the
-//! books (dissipated energy, the walls' work, impulses and episodes). Not kept: what the scene gives (radii, masses, materials, the
-//! laws, the walls, the step, the configuration), scratch, and the measured costs that only
-//! decide how the steps are shared between threads (the same bits either way).
+//! books (dissipated energy, the walls' work, impulses and episodes). Not kept: what the scene
+//! gives (radii, masses, materials, the laws, the walls, the step, the configuration),
+//! scratch, and the measured costs that only decide how the steps are shared between threads
+//! (the same bits either way).
 
 use super::Engine;
 use crate::dem::cells::Neighbours;
