@@ -4,6 +4,7 @@ pub mod args;
 pub mod bed;
 pub mod collide;
 pub mod dem;
+pub mod dem_checkpoint;
 pub mod grid;
 pub mod roll;
 pub mod sweep;
@@ -140,7 +141,15 @@ pub fn run() -> std::process::ExitCode {
         Err(e) => {
             eprintln!("error: {e:#}");
             let usage = e.chain().any(|c| c.is::<UsageError>());
-            std::process::ExitCode::from(if usage { 2 } else { 1 })
+            // (130: stopped by Ctrl-C, as a shell reports SIGINT, after writing a checkpoint)
+            let stopped = e.chain().any(|c| c.is::<dem_checkpoint::Interrupted>());
+            std::process::ExitCode::from(if stopped {
+                130
+            } else if usage {
+                2
+            } else {
+                1
+            })
         }
     }
 }
