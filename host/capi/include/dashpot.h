@@ -127,6 +127,10 @@ typedef enum DashpotLawKind {
    A twisting torque about the contact normal with per-contact history (sdk 0.3).
    */
   DASHPOT_TWISTING = 5,
+  /*
+   A heat flow (W) through the contact between two temperatures (sdk 0.4).
+   */
+  DASHPOT_HEAT = 6,
 } DashpotLawKind;
 
 /*
