@@ -22,11 +22,13 @@ use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
 use dashpot_sdk::{NormalBatch, NormalContext, TangentialBatch};
 use std::ops::Range;
 
+mod classes;
 mod edges;
 mod gather;
 mod renumber;
 mod rotation;
 
+pub use classes::{gather_pair_classes, gather_wall_classes};
 use edges::{step_edge_means, Edges};
 pub use rotation::Rotating;
 
@@ -54,6 +56,24 @@ pub struct View<'a, const D: usize> {
     /// contact is presented to the laws from the partner the user numbered first, so that
     /// the laws see the same contact (and keep the same history) whatever the order.
     pub uid: Option<&'a [u32]>,
+    /// Each particle's species (see [`super::species`]); empty when every particle is of
+    /// species 0.
+    pub species: &'a [u8],
+}
+
+/// How a chunk's contacts are sorted into their classes' sets ([`Contacts`]): the class of
+/// each pair of species and of each species against each wall (see
+/// [`super::species::SpeciesLaws`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ClassMap<'a> {
+    /// Species in the run.
+    pub species: usize,
+    /// Walls in the run.
+    pub walls: usize,
+    /// The class of the pair of species `(a, b)`: `pair[a * species + b]` (empty: one class).
+    pub pair: &'a [u8],
+    /// The class of species `s` against wall `w`: `wall[s * walls + w]` (empty: one class).
+    pub wall: &'a [u8],
 }
 
 /// One chunk of one kind of contacts (particle pairs, or particles against walls), structure
@@ -139,6 +159,9 @@ pub struct ContactSet {
     pub formed: usize,
     /// Scratch of the gathering: the candidate pairs (or particles, `j` unused, for walls).
     cand: Vec<(u32, u32)>,
+    /// Scratch of a gathering into several classes' sets: every class's candidates, before
+    /// they are sorted into their sets (kept by the chunk's first set).
+    split: Vec<(u32, u32)>,
     /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
     scratch: Vec<f64>,
     /// Scratch of the merge: each contact's index in the previous set.
@@ -455,41 +478,68 @@ impl ContactSet {
     }
 }
 
-/// One kind of contacts of a run, in chunks of particles ([`gather_chunk`], see the module doc),
-/// each double-buffered.
+/// The history slots per contact of one class of contacts' laws: normal, tangential, and the
+/// rolling and twisting laws' (`None`: no such law).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Slots {
+    /// Normal-law history slots.
+    pub n: usize,
+    /// Tangential-law history slots (0 without a tangential law).
+    pub t: usize,
+    /// Rolling-law history slots.
+    pub r: Option<usize>,
+    /// Twisting-law history slots.
+    pub w: Option<usize>,
+}
+
+/// One kind of contacts of a run (particle pairs, or particles against walls), in chunks of
+/// particles ([`gather_chunk`], see the module doc), each double-buffered, and within each
+/// chunk one set per *class* of contacts (a pair of species, or a species and a kind of wall,
+/// with the same laws: [`crate::dem::species::SpeciesLaws`]): chunk `k`'s set of class `c` is
+/// `chunks[k * classes + c]`. Each class has its own laws' history widths. A scene of one
+/// species has one class: one set per chunk.
 #[derive(Debug, Clone, Default)]
 pub struct Contacts {
-    /// The chunks of the last evaluation, in particle order.
+    /// The sets of the last evaluation, chunk by chunk in particle order, each chunk's classes
+    /// in order.
     pub chunks: Vec<ContactSet>,
-    /// The chunks being written.
+    /// The sets being written.
     spare: Vec<ContactSet>,
-    slots_n: usize,
-    slots_t: usize,
-    slots_r: Option<usize>,
-    slots_w: Option<usize>,
+    /// Each class's history slots (at least one class).
+    slots: Vec<Slots>,
     energy: bool,
     reach_bound: f64,
 }
 
 impl Contacts {
-    /// No contacts yet, for laws keeping `slots_n` and `slots_t` history values.
+    /// No contacts yet, of one class whose laws keep `slots_n` and `slots_t` history values.
     pub fn new(slots_n: usize, slots_t: usize) -> Contacts {
+        Contacts::of_classes(vec![Slots {
+            n: slots_n,
+            t: slots_t,
+            ..Slots::default()
+        }])
+    }
+
+    /// No contacts yet, of the classes whose laws keep `slots` history values (one entry per
+    /// class, at least one).
+    pub fn of_classes(slots: Vec<Slots>) -> Contacts {
+        assert!(!slots.is_empty(), "at least one class of contacts");
         Contacts {
-            slots_n,
-            slots_t,
+            slots,
             ..Default::default()
         }
     }
 
     /// The contacts of rolling and twisting laws of `slots_r` and `slots_w` history slots
-    /// (`None`: no such law).
+    /// (`None`: no such law), for a set of one class.
     pub fn with_rotation(mut self, slots_r: Option<usize>, slots_w: Option<usize>) -> Contacts {
-        self.slots_r = slots_r;
-        self.slots_w = slots_w;
+        self.slots[0].r = slots_r;
+        self.slots[0].w = slots_w;
         self
     }
 
-    /// The contacts of a normal law that reaches `bound` (m) beyond touching at most.
+    /// The contacts of normal laws that reach `bound` (m) beyond touching at most.
     pub fn with_reach(mut self, bound: f64) -> Contacts {
         self.reach_bound = bound;
         self
@@ -499,6 +549,16 @@ impl Contacts {
     pub fn with_energy(mut self, on: bool) -> Contacts {
         self.energy = on;
         self
+    }
+
+    /// Classes of contacts (sets per chunk).
+    pub fn classes(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// Each class's history slots.
+    pub fn slots(&self) -> &[Slots] {
+        &self.slots
     }
 
     /// Number of contacts.
@@ -535,27 +595,36 @@ impl Contacts {
         }
     }
 
-    /// The previous chunks and the spare ones to write, `chunks` of each (created as needed).
+    /// An empty set of class `class`.
+    fn make(&self, class: usize) -> ContactSet {
+        let s = self.slots[class];
+        ContactSet {
+            energy: self.energy,
+            reach_bound: self.reach_bound,
+            ..ContactSet::new(s.n, s.t).with_rotation(s.r, s.w)
+        }
+    }
+
+    /// The previous sets and the spare ones to write, of `chunks` chunks (each chunk's
+    /// [`Contacts::classes`] sets in a row; created as needed).
     pub fn buffers(&mut self, chunks: usize) -> (&[ContactSet], &mut [ContactSet]) {
-        let (sn, st, sr, sw, en) = (
-            self.slots_n,
-            self.slots_t,
-            self.slots_r,
-            self.slots_w,
-            self.energy,
-        );
-        let rb = self.reach_bound;
-        let make = || ContactSet {
-            energy: en,
-            reach_bound: rb,
-            ..ContactSet::new(sn, st).with_rotation(sr, sw)
-        };
-        self.chunks.resize_with(chunks, make);
-        self.spare.resize_with(chunks, make);
+        let nc = self.classes();
+        for v in [0, 1] {
+            let len = if v == 0 {
+                self.chunks.len()
+            } else {
+                self.spare.len()
+            };
+            let want = chunks * nc;
+            let made: Vec<ContactSet> = (len..want).map(|k| self.make(k % nc)).collect();
+            let sets = if v == 0 { &mut self.chunks } else { &mut self.spare };
+            sets.truncate(want);
+            sets.extend(made);
+        }
         (&self.chunks, &mut self.spare)
     }
 
-    /// The spare chunks, now written, become the current ones.
+    /// The spare sets, now written, become the current ones.
     pub fn swap(&mut self) {
         std::mem::swap(&mut self.chunks, &mut self.spare);
     }
