@@ -364,6 +364,13 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
                 entry.info.kind.as_str()
             );
         }
+        LawKind::Heat => {
+            bail!(
+                "'{name}' is a heat law: it conducts heat through a contact whose radius a contact law \
+                 reports; `dashpot eval` evaluates contact and restitution laws only (`dashpot law {name}` \
+                 describes it)"
+            );
+        }
         LawKind::Restitution => {
             if a.delta.is_some() || a.rate.is_some() {
                 bail!("'{name}' is a restitution law: give --speed, not --delta/--rate");
