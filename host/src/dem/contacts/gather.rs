@@ -120,15 +120,19 @@ fn touching_row<const D: usize, const IMAGE: bool>(
     count
 }
 
-/// The elastic energy (J) of the motion families' springs (tangential, rolling, twisting) that
-/// `prev`'s contacts not carried over held, added to `dropped` by family and listed in `ended`
-/// by contact: `src` lists the carried ones' indices in `prev`, in increasing order ([`NEW`]
+/// The elastic energy (J) of the motion families' springs (tangential, rolling, twisting; and
+/// the normal law's, when it is adhesive) that `prev`'s contacts not carried over held, added to
+/// `dropped` by family and listed in `ended` by contact: `src` lists the carried ones' indices in `prev`, in increasing order ([`NEW`]
 /// for the new ones).
 fn dropped_springs(prev: &ContactSet, src: &[u32], dropped: &mut [f64; 4], ended: &mut Vec<(u32, u32, f64)>) {
+    // an adhesive normal law's contact ends at its reach, beyond touching, holding what its
+    // adhesion hysteresis left in it; a contact of any other normal law ends at touch, where
+    // its last step's mean force has given its energy back
+    let from = if prev.reach_bound > 0.0 { 0 } else { 1 };
     let mut gone = |a: usize, b: usize| {
         for m in a..b.min(prev.len()) {
             let mut sum = 0.0;
-            for (k, d) in dropped.iter_mut().enumerate().skip(1) {
+            for (k, d) in dropped.iter_mut().enumerate().skip(from) {
                 if let Some(&e) = prev.elastic[k].get(m) {
                     *d += e;
                     sum += e;
