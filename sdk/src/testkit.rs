@@ -55,7 +55,8 @@
 
 use crate::{
     BoundContact, BoundRolling, BoundTangential, BoundTwisting, Contact, ContactLaw, Energy, LawInfo,
-    MaterialPair, ParamValue, Range, RollingLaw, TangentialLaw, TwistingContact, TwistingLaw, VectorContact,
+    MaterialPair, NormalContext, ParamValue, Range, RollingLaw, TangentialLaw, TwistingContact, TwistingLaw,
+    VectorContact,
 };
 use std::f64::consts::PI;
 
@@ -541,6 +542,7 @@ pub fn drive_vector(
             mass: s.mass,
             radius: s.radius,
             dt,
+            context: NormalContext::hertzian(s.radius, delta, fnorm),
         };
         let (f, e) = step(&c, &mut h);
         let dw =
@@ -578,6 +580,7 @@ pub fn drive_twisting(
             mass: s.mass,
             radius: s.radius,
             dt,
+            context: NormalContext::hertzian(s.radius, delta, fnorm),
         };
         let (m, e) = step(&c, &mut h);
         let dw = -0.5 * dt * (m_prev + m) * w;

@@ -2,7 +2,7 @@
 
 use dashpot_sdk::{
     BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError, MaterialPair,
-    Range,
+    NormalContext, Range,
 };
 use std::f64::consts::PI;
 
@@ -107,7 +107,12 @@ impl ContactLaw for Jkr {
         w = 0): nothing appears as the contact forms, it is negative in tension past touch, and at rupture \
         it holds W(a0/6^{2/3}) − W(a_t) > 0, the adhesion hysteresis of the cycle, which is lost with the \
         contact (a host books it dissipated); power = F_d δ̇ (W). Callers that end contacts at δ = 0 (end \
-        criterion 'overlap') see only its compressive part.";
+        criterion 'overlap') see only its compressive part. Context (what the contact's other laws read, \
+        sdk 0.4): the contact radius a above (positive past touching, until rupture; 0 when the contact is not \
+        formed), the cap force F_e + 3π w R = F_e + 2 F_po (N, with F_e the elastic force F(a) and F_po = \
+        (3/2)π w R the pull-off force: Thornton & Yin 1991, Powder Technol. 65, 153, so that friction keeps \
+        acting in tension; positive on the stable branch) and the damping coefficient α(ε) √((4/3) E a m) \
+        (N·s/m).";
     const END_CRITERION: EndCriterion = EndCriterion::Overlap;
     const HISTORY: &'static [History] = &[History::new(
         "formed",
@@ -146,6 +151,18 @@ impl BoundContact for JkrBound {
             0.0
         } else {
             -self.delta_c(c.radius)
+        }
+    }
+
+    fn context(&self, c: &Contact, history: &[f64], _force: f64) -> NormalContext {
+        if history[0] == 0.0 {
+            return NormalContext::default();
+        }
+        let a = self.contact_radius(c.radius, c.delta);
+        NormalContext {
+            contact_radius: a,
+            cap_force: (self.force_at(c.radius, a) + 3.0 * PI * self.w * c.radius).max(0.0),
+            damping: self.damping(a, c.mass),
         }
     }
 
