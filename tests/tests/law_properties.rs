@@ -485,12 +485,9 @@ impl Run {
                 residual / lost
             ));
         }
-        for k in 0..4 {
-            if !mirror[k] && self.dissipated[k] < -1e-9 * lost.abs() {
-                return Err(format!(
-                    "family {k} dissipated {:e} J < 0 ({:?})",
-                    self.dissipated[k], self
-                ));
+        for (k, (&d, &m)) in self.dissipated.iter().zip(&mirror).enumerate() {
+            if !m && d < -1e-9 * lost.abs() {
+                return Err(format!("family {k} dissipated {d:e} J < 0 ({self:?})"));
             }
         }
         Ok(())
