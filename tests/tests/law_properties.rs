@@ -8,6 +8,8 @@
 //!   cycles, a tangential or rolling law through a slip that turns, stops and reverses under a
 //!   breathing normal force, a twisting law likewise: never more energy given back than put in
 //!   (to the trapezoid's own error), the reported energy closing the work done;
+//!   a heat law (no mechanical work) obeys the second law instead: heat flows from the hotter
+//!   body to the colder, with a conductance finite and ≥ 0;
 //! - **through the two-body driver**: head-on impacts of every contact law (sphere–sphere and
 //!   sphere–wall) rebound with at most their impact speed; oblique and spinning impacts under
 //!   every tangential law leave the tangential and rotational motion with at most the energy it
@@ -24,12 +26,12 @@
 
 use dashpot::dem::scene::SceneFile;
 use dashpot::dem::{Engine, Laws};
-use dashpot::laws::{RollingResistance, TwistingResistance};
+use dashpot::laws::{HeatConduction, RollingResistance, TwistingResistance};
 use dashpot::{Registry, SearchPath};
 use dashpot_sdk::testkit::{self, Books, Motion, Rng, Scales};
 use dashpot_sdk::{
-    EndCriterion, LawInfo, LawKind, MaterialPair, NormalBatch, Pair, ParamValue, Particle, TangentialBatch,
-    TwistingBatch,
+    EndCriterion, HeatBatch, HeatFlow, LawInfo, LawKind, MaterialPair, NormalBatch, Pair, ParamValue,
+    Particle, TangentialBatch, TwistingBatch,
 };
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -185,6 +187,57 @@ fn along_a_path(reg: &Registry, info: &LawInfo, seed: u64) -> Result<(), TestCas
                 );
                 (t[0], reported(ok, p[0], e[0]))
             })
+        }
+        LawKind::Heat => {
+            // no mechanical work: the second law instead. Heat flows from the hotter body to the
+            // colder, never against the gradient; the conductance is finite and >= 0; equal
+            // temperatures exchange nothing
+            let b = made(made(reg.heat(name, &params))?.bind(&m))?;
+            let n = 16;
+            let (mut t, mut delta, mut radius, mut fnorm) = (vec![], vec![], vec![], vec![]);
+            for k in 0..n {
+                let ti = rng.between(200.0, 1500.0);
+                let tj = if k % 4 == 0 {
+                    ti
+                } else {
+                    rng.between(200.0, 1500.0)
+                };
+                let d = s.radius * rng.log_between(1e-6, 1e-2);
+                t.push([ti, tj]);
+                delta.push(d);
+                radius.push(s.radius);
+                fnorm.push(4.0 / 3.0 * m.young * (s.radius * d).sqrt() * d);
+            }
+            let mut history = vec![0.0; n * slots];
+            let mut flow = vec![HeatFlow::default(); n];
+            b.heat_batch(HeatBatch {
+                dt: 1e-6,
+                temperature: &t,
+                normal_force: &fnorm,
+                delta: &delta,
+                radius: &radius,
+                context: &[],
+                slots,
+                history: &mut history,
+                flow: &mut flow,
+            })
+            .map_err(|e| TestCaseError::fail(format!("{}: {e}", what())))?;
+            for (k, (f, tk)) in flow.iter().zip(&t).enumerate() {
+                let gradient = tk[1] - tk[0];
+                prop_assert!(
+                    f.conductance.is_finite() && f.conductance >= 0.0,
+                    "{}: contact {k}: conductance {} W/K",
+                    what(),
+                    f.conductance
+                );
+                prop_assert!(
+                    f.heat * gradient >= 0.0 && (gradient != 0.0 || f.heat == 0.0),
+                    "{}: contact {k}: Q = {} W into i against T_j - T_i = {gradient} K",
+                    what(),
+                    f.heat
+                );
+            }
+            return Ok(());
         }
         LawKind::Restitution => {
             // r(v) of a random pair at random speeds: in [0, 1]
