@@ -32,6 +32,9 @@ pub struct DemArgs {
     /// contact time, the particle count and size range. Exits non-zero if a check fails.
     #[arg(long, requires = "scene")]
     pub check: bool,
+    /// The limits of a long run (`--max-hours`).
+    #[command(flatten)]
+    pub limits: crate::cli::budget::LimitArgs,
 }
 
 /// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws (the same
@@ -78,6 +81,8 @@ pub struct DemBedArgs {
 
 /// Runs `dashpot dem`.
 pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
+    let started = std::time::Instant::now();
+    crate::budget::check_max_hours(a.limits.max_hours)?;
     let Some(path) = &a.scene else {
         if a.check {
             // (clap lets `requires = "scene"` pass when --scene conflicts with a given --bed)
@@ -92,8 +97,8 @@ pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
         std::fs::read_to_string(path).with_context(|| format!("reading --scene {}", path.display()))?;
     let file = SceneFile::parse(&text).with_context(|| format!("in {}", path.display()))?;
     match file.dimension()? {
-        2 => run_dim::<2>(reg, a, path, &file),
-        _ => run_dim::<3>(reg, a, path, &file),
+        2 => run_dim::<2>(reg, a, path, &file, started),
+        _ => run_dim::<3>(reg, a, path, &file, started),
     }
 }
 
@@ -142,11 +147,12 @@ fn run_dim<const D: usize>(
     a: &DemArgs,
     path: &std::path::Path,
     file: &SceneFile,
+    started: std::time::Instant,
 ) -> Result<()> {
     let scene = file
         .scene::<D>()
         .with_context(|| format!("in {}", path.display()))?;
-    let (mut e, energy_initial) = scene_engine(reg, file, &scene)?;
+    let (mut e, energy_initial, fp) = scene_engine_sized(reg, file, &scene)?;
     let c = e.step_choice;
     let line = if c.given {
         format!(
@@ -162,16 +168,39 @@ fn run_dim<const D: usize>(
             c.dt, c.collision_time, scene.config.steps_per_collision, file.law.name, c.impact_speed
         )
     };
+    // steps past any machine's reach are refused before the first (and under --check)
+    let total_steps = crate::cli::budget::check_run_steps(&e, scene.duration)?;
+    crate::cli::budget::check_least_hours(total_steps, e.p.len(), a.limits.max_hours)?;
+    let frames = if a.out.is_some() {
+        scene.snapshots.max(1)
+    } else {
+        0
+    } as u64;
     if a.check {
-        return print_check(&e, path, &file.law.name, a.json);
+        let setup = started.elapsed().as_secs_f64();
+        let est = crate::cli::budget::estimate(
+            &mut e,
+            fp,
+            scene.duration,
+            setup,
+            frames,
+            std::time::Duration::from_secs(1),
+        )?;
+        crate::budget::check_hours(
+            &format!("the run of {total_steps} steps of {} particles", e.p.len()),
+            est.total_seconds(),
+            "estimated from a timed sample of its steps",
+            a.limits.max_hours,
+        )?;
+        return print_check(&e, path, &file.law.name, a.json, &est);
     }
     eprintln!("{line}");
     if let Some(w) = c.warning() {
         eprintln!("warning: {w}");
     }
-    // (an estimate: the run steps while t + dt/2 < duration, one step fewer whenever the
-    // fraction of duration / dt is below 1/2; the last frame is written at the end regardless)
-    let total_steps = (scene.duration / c.dt).ceil() as u64;
+    // (total_steps is an estimate: the run steps while t + dt/2 < duration, one step fewer
+    // whenever the fraction of duration / dt is below 1/2; the last frame is written at the end
+    // regardless)
     // frame k: the trajectory's frame and with --png its picture
     let frame = |e: &Engine<D>, w: &mut crate::output::AtomicFile, k: u64| -> Result<()> {
         crate::dem::xyz::write_frame(e, w)?;
@@ -185,27 +214,24 @@ fn run_dim<const D: usize>(
         std::fs::create_dir_all(dir).with_context(|| format!("creating --out {}", dir.display()))?;
         let p = dir.join("trajectory.xyz");
         // (it appears at its name when the run has ended well: a failed run leaves none)
-        let mut w =
-            crate::output::AtomicFile::create(&p).with_context(|| format!("creating {}", p.display()))?;
+        let mut w = crate::output::AtomicFile::create(&p)?;
         frame(&e, &mut w, 0)?;
         traj = Some(w);
     }
-    let frames = if a.out.is_some() {
-        scene.snapshots.max(1)
-    } else {
-        0
-    } as u64;
-    let pb = crate::output::progress_bar(total_steps, "dem");
-    pb.set_message("steps");
+    let pb = crate::progress::Progress::new(total_steps, "dem", "steps", a.json);
     let wall0 = std::time::Instant::now();
-    let every = (total_steps / 200).max(1);
-    // the steps to the next progress tick, frame or the end, as one block
+    // blocks of steps of about progress::TICK each (the bar moves, Ctrl-C is seen, the pace is
+    // judged against --max-hours), cut at the frames; a run's bits do not depend on its blocks
+    let pace = std::cell::RefCell::new(crate::progress::Pace::new());
+    let mut limit = crate::cli::budget::PaceLimit::new(a.limits.max_hours);
+    crate::progress::stop::install();
+    let last_stop = std::cell::Cell::new(0u64);
     let next_frame = std::cell::Cell::new(1u64);
     let framing = traj.is_some() && frames > 0;
     e.run_with_stops(
         scene.duration,
         &mut |s| {
-            let next_tick = (s / every + 1) * every;
+            let next_tick = s.saturating_add(pace.borrow().block());
             if framing {
                 next_tick.min((next_frame.get() * total_steps).div_ceil(frames))
             } else {
@@ -213,9 +239,15 @@ fn run_dim<const D: usize>(
             }
         },
         &mut |e| -> Result<()> {
-            if e.steps() % every == 0 {
-                pb.set_position(e.steps());
+            pace.borrow_mut().done(e.steps() - last_stop.replace(e.steps()));
+            pb.set(e.steps());
+            if crate::progress::stop::requested() {
+                return Err(crate::progress::Interrupted {
+                    at: format!("at step {} of {total_steps}, t = {:.6e} s", e.steps(), e.time()),
+                }
+                .into());
             }
+            limit.check(e.steps(), total_steps, wall0.elapsed().as_secs_f64())?;
             if let Some(w) = traj.as_mut() {
                 let k = next_frame.get();
                 if frames > 0 && e.steps() * frames >= k * total_steps {
@@ -231,10 +263,10 @@ fn run_dim<const D: usize>(
     if let (Some(w), true) = (traj.as_mut(), framing && next_frame.get() <= frames) {
         frame(&e, w, next_frame.get())?;
     }
-    pb.finish_and_clear();
+    pb.finish();
     let wall = wall0.elapsed().as_secs_f64();
     if let Some(w) = traj {
-        w.commit().context("writing the trajectory")?;
+        w.commit()?;
     }
     let state = final_json(reg, file, &e, energy_initial, wall)?;
     if let Some(dir) = &a.out {
@@ -298,6 +330,16 @@ pub fn scene_engine<const D: usize>(
     file: &SceneFile,
     scene: &crate::dem::scene::Scene<D>,
 ) -> Result<(Engine<D>, f64)> {
+    scene_engine_sized(reg, file, scene).map(|(e, en, _)| (e, en))
+}
+
+/// [`scene_engine`], and the run's memory footprint, checked against the memory available
+/// before the engine is built (a run that cannot fit is refused, naming what it needs).
+pub fn scene_engine_sized<const D: usize>(
+    reg: &Registry,
+    file: &SceneFile,
+    scene: &crate::dem::scene::Scene<D>,
+) -> Result<(Engine<D>, f64, crate::dem::footprint::Footprint)> {
     let normal = file.law.param_values();
     let tang = file
         .tangential
@@ -321,9 +363,11 @@ pub fn scene_engine<const D: usize>(
             &scene.config.material,
         )
         .context("[rolling] / [twisting]")?;
+    let fp = crate::cli::budget::scene_footprint(file, scene, &laws);
+    crate::cli::budget::check_scene_memory(file, scene, &laws)?;
     let e = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)?;
     let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
-    Ok((e, energy_initial))
+    Ok((e, energy_initial, fp))
 }
 
 /// What `dashpot dem --json` prints after a run of `file` on `e` (made by [`scene_engine`],
@@ -369,7 +413,13 @@ pub fn final_json<const D: usize>(
 }
 
 /// `dem --scene FILE --check`: what the run would start with (the checks have passed).
-fn print_check<const D: usize>(e: &Engine<D>, path: &std::path::Path, law: &str, json: bool) -> Result<()> {
+fn print_check<const D: usize>(
+    e: &Engine<D>,
+    path: &std::path::Path,
+    law: &str,
+    json: bool,
+    est: &crate::cli::budget::RunEstimate,
+) -> Result<()> {
     let c = e.step_choice;
     if let Some(w) = c.warning() {
         eprintln!("warning: {w}");
@@ -391,11 +441,16 @@ fn print_check<const D: usize>(e: &Engine<D>, path: &std::path::Path, law: &str,
             "diameter_min": dmin,
             "diameter_max": dmax,
             "walls": e.walls.len(),
+            "estimate": est.json(),
         });
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
-    println!("{}: every check passed (not run)", path.display());
+    println!(
+        "{}: every check passed (not run): a timed sample of {} steps, nothing written",
+        path.display(),
+        est.sample_steps
+    );
     println!(
         "dt = {:.4e} s{}; contact time {:.4e} s at {:.3} m/s (law '{law}'), {:.1} steps per collision",
         c.dt,
@@ -410,6 +465,7 @@ fn print_check<const D: usize>(e: &Engine<D>, path: &std::path::Path, law: &str,
         D,
         e.walls.len()
     );
+    est.lines().iter().for_each(|l| println!("{l}"));
     Ok(())
 }
 

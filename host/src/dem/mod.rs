@@ -19,6 +19,7 @@
 
 pub mod cells;
 pub mod contacts;
+pub mod footprint;
 pub mod integrator;
 pub mod observables;
 pub mod scene;

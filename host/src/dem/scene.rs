@@ -251,6 +251,11 @@ impl SceneFile {
         crate::config::from_toml(text).map_err(bad)
     }
 
+    /// The particles listed one by one (`[[particle]]` tables).
+    pub fn particle_tables(&self) -> usize {
+        self.particle.len()
+    }
+
     /// The dimension (2 or 3).
     pub fn dimension(&self) -> Result<usize, SceneError> {
         match self.dimension {
@@ -398,6 +403,20 @@ impl SceneFile {
             return Err(bad(
                 "no particles: give [[particle]] entries or a [generate] table".into(),
             ));
+        }
+        // (a diameter so small its mass or moment of inertia is 0 in f64, e.g. 1e-320 m)
+        if let Some((k, b)) = bodies.iter().enumerate().find(|(_, b)| {
+            let (m, i) = material.mass_inertia(D, b.diameter);
+            let normal = |x: f64| x.is_finite() && x >= f64::MIN_POSITIVE;
+            !(normal(m) && normal(i) && normal(0.5 * b.diameter))
+        }) {
+            return Err(bad(format!(
+                "particle {k}: diameter = {:e} m is out of range: its mass and moment of inertia at density {} kg/m³ are not finite normal numbers in f64 (between {:e} and {:e}): give the diameters in metres",
+                b.diameter,
+                material.density,
+                f64::MIN_POSITIVE,
+                f64::MAX
+            )));
         }
         let problems = check::start_problems(&bodies, &walls, &config.domain, self.allow_initial_overlap);
         if !problems.is_empty() {
@@ -581,5 +600,7 @@ fn generate<const D: usize>(g: &GenerateTable) -> Result<Vec<Body<D>>, SceneErro
             crowded(g.count, dmax, &lo, &hi, &sites, total)
         )));
     }
+    // (before they are made: a count past the machine is refused, not an allocation failure)
+    super::footprint::check_count("generate.count", g.count, D).map_err(|e| bad(e.0))?;
     packing(g.count, dmin, dmax, lo, hi, g.speed, g.seed)
 }
