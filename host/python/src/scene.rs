@@ -322,7 +322,9 @@ impl Scene {
                     budget: Duration,
                 ) -> anyhow::Result<serde_json::Value> {
                     let scene = file.scene::<D>()?;
-                    let (mut e, _, fp) = dashpot::cli::dem::scene_engine_sized(reg, file, &scene)?;
+                    let (mut e, _, mut fp) = dashpot::cli::dem::scene_engine_sized(reg, file, &scene)?;
+                    // (result() builds the final document only when asked: counted apart)
+                    fp.final_json = false;
                     let setup = started.elapsed().as_secs_f64();
                     let est = dashpot::cli::budget::estimate(&mut e, fp, scene.duration, setup, 0, budget)?;
                     Ok(est.json())

@@ -31,9 +31,10 @@ impl Default for LimitArgs {
 /// parsed table (measured).
 pub const TABLE_BYTES: f64 = 400.0;
 
-/// The footprint of the run of `scene` (from `file`) under `laws`: the engine's, the scene's
-/// bodies and tables kept beside it, and the final state as JSON at the end.
-pub fn scene_footprint<const D: usize>(file: &SceneFile, scene: &Scene<D>, laws: &Laws) -> Footprint {
+/// The footprint of the run of `scene` under `laws`: the engine's (its packed share from the
+/// scene's gravity and duration, its skin), and the final state as JSON at the end; the
+/// scene's bodies and tables are resident already (the footprint's baseline).
+pub fn scene_footprint<const D: usize>(scene: &Scene<D>, laws: &Laws) -> Footprint {
     let d = scene.bodies.iter().map(|b| b.diameter);
     let (dmin, dmax) = (d.clone().fold(f64::INFINITY, f64::min), d.fold(0.0, f64::max));
     let mut fp = Footprint::of(&scene.config, laws, scene.bodies.len(), scene.walls.len()).with_skin(
@@ -41,7 +42,8 @@ pub fn scene_footprint<const D: usize>(file: &SceneFile, scene: &Scene<D>, laws:
         dmax,
         scene.config.skin,
     );
-    fp.kept = kept(file.particle_tables() as f64, scene.bodies.len() as f64, D);
+    fp.packed = crate::dem::footprint::packed_share(&scene.bodies, &scene.config.gravity, scene.duration);
+    // (the scene's bodies and tables are resident already: part of the baseline)
     fp.final_json = true;
     fp
 }
@@ -64,17 +66,18 @@ pub fn check_scene_memory<const D: usize>(
     scene: &Scene<D>,
     laws: &Laws,
 ) -> Result<(), Refused> {
-    let fp = scene_footprint(file, scene, laws);
+    let fp = scene_footprint(scene, laws);
     let mem = Memory::now();
     let n = fp.particles as f64;
     let tables = file.particle_tables() as f64;
+    // (a run of m particles: the engine's and, beyond those made already, their bodies)
+    let made = kept(tables, n, D);
     let most = largest_fitting(mem.available as f64, |m| {
         let f = Footprint {
             particles: m as usize,
-            kept: kept(tables * m / n.max(1.0), m, D),
             ..fp.clone()
         };
-        f.need().more()
+        f.need().more() + kept(tables * m / n.max(1.0), m, D) - made
     });
     check_memory_against(
         &format!("the run of {} {D}D particles", fp.particles),
@@ -122,8 +125,12 @@ pub fn check_least_hours(steps: u64, particles: usize, max_hours: f64) -> Result
     )
 }
 
+/// The fewest steps a timed sample takes after its first block (a pile of a million particles
+/// takes a few tenths of a second a step: a second would time two steps).
+pub const SAMPLE_STEPS: u64 = 6;
+
 /// Seconds per particle to build and write the final state as JSON (measured).
-pub const FINAL_JSON_SECONDS_PER_PARTICLE: f64 = 2.0e-6;
+pub const FINAL_JSON_SECONDS_PER_PARTICLE: f64 = 1.2e-5;
 
 /// What `--check` estimates of a run: its steps, its peak memory and its wall time.
 #[derive(Debug, Clone)]
@@ -148,8 +155,11 @@ pub struct RunEstimate {
     pub frames: u64,
     /// Wall time to write one frame (s).
     pub frame_seconds: f64,
-    /// Wall time of the final state (s), estimated.
+    /// Wall time of the final state (s), estimated, if the run writes it (`--out`).
     pub final_seconds: f64,
+    /// What the final state as JSON would add, if the run did not count it: its memory (bytes)
+    /// and its wall time (s) (`--json` prints it).
+    pub json_extra: (f64, f64),
 }
 
 impl RunEstimate {
@@ -184,12 +194,14 @@ impl RunEstimate {
             "frames": self.frames,
             "seconds_per_frame": self.frame_seconds,
             "final_seconds": self.final_seconds,
+            "memory_bytes_with_json": self.memory.total() + self.json_extra.0,
+            "wall_seconds_with_json": self.total_seconds() + self.json_extra.1,
         })
     }
 
     /// The estimate as lines of text.
     pub fn lines(&self) -> Vec<String> {
-        vec![
+        let mut v = vec![
             format!("steps: {} of {:.4e} s", self.steps, self.dt),
             format!(
                 "peak memory: about {} ({} held before the run; {}); {} available ({}); {} resident now",
@@ -212,13 +224,23 @@ impl RunEstimate {
                     String::new()
                 }
             ),
-        ]
+        ];
+        if self.json_extra.0 > 0.0 {
+            v.push(format!(
+                "with --json: the final state adds about {} and {} at the end",
+                budget::bytes(self.json_extra.0),
+                budget::seconds(self.json_extra.1)
+            ));
+        }
+        v
     }
 }
 
-/// The timed sample: blocks of 1, 2, 4, ... steps of `e` until `budget` of wall time has passed
-/// or `steps` steps are done; the time per step of the blocks making the sample's second half
-/// (the first steps pay for warming caches and the engine's learning of its pace).
+/// The timed sample: blocks of steps of `e` as the run makes them ([`crate::progress::Pace`]:
+/// what a call of the engine costs beyond its steps is then the run's) until `budget` of wall
+/// time has passed and [`SAMPLE_STEPS`] steps after the first block, or `steps` steps are done;
+/// the time per step of the blocks making the sample's second half (the first steps pay for
+/// warming caches and the engine's learning of its pace).
 fn sample_steps<const D: usize>(
     e: &mut Engine<D>,
     steps: u64,
@@ -226,14 +248,15 @@ fn sample_steps<const D: usize>(
 ) -> Result<(u64, f64), crate::dem::DemError> {
     let clock = Instant::now();
     let mut blocks: Vec<(u64, f64)> = Vec::new();
-    let (mut done, mut k) = (0u64, 1u64);
-    while done < steps && clock.elapsed() < budget {
-        let k_now = k.min(steps - done);
+    let mut pace = crate::progress::Pace::new();
+    let mut done = 0u64;
+    while done < steps && (clock.elapsed() < budget || done < 1 + SAMPLE_STEPS) {
+        let k = pace.block().min(steps - done);
         let t = Instant::now();
-        e.advance(k_now)?;
-        blocks.push((k_now, t.elapsed().as_secs_f64()));
-        done += k_now;
-        k *= 2;
+        e.advance(k)?;
+        pace.done(k);
+        blocks.push((k, t.elapsed().as_secs_f64()));
+        done += k;
     }
     let total: f64 = blocks.iter().map(|b| b.1).sum();
     let (mut n, mut t) = (0u64, 0.0);
@@ -268,7 +291,9 @@ pub fn estimate<const D: usize>(
         0.0
     };
     let (sample, step_seconds) = sample_steps(e, steps, budget)?;
+    let json_seconds = FINAL_JSON_SECONDS_PER_PARTICLE * e.p.len() as f64;
     fp.listed = Some(e.listed_pairs());
+    fp.sampled = Some(e.pairs.len());
     Ok(RunEstimate {
         steps,
         dt: e.dt(),
@@ -280,7 +305,12 @@ pub fn estimate<const D: usize>(
         step_seconds,
         frames,
         frame_seconds,
-        final_seconds: FINAL_JSON_SECONDS_PER_PARTICLE * e.p.len() as f64,
+        final_seconds: if fp.final_json { json_seconds } else { 0.0 },
+        json_extra: if fp.final_json {
+            (0.0, 0.0)
+        } else {
+            (fp.final_json_bytes(), json_seconds)
+        },
     })
 }
 

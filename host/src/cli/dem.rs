@@ -178,13 +178,16 @@ fn run_dim<const D: usize>(
     } as u64;
     if a.check {
         let setup = started.elapsed().as_secs_f64();
+        let mut fp = fp;
+        // (--json here is the check's own output; the run's final document is counted apart)
+        fp.final_json = a.out.is_some();
         let est = crate::cli::budget::estimate(
             &mut e,
             fp,
             scene.duration,
             setup,
             frames,
-            std::time::Duration::from_secs(1),
+            std::time::Duration::from_secs(2),
         )?;
         crate::budget::check_hours(
             &format!("the run of {total_steps} steps of {} particles", e.p.len()),
@@ -268,15 +271,20 @@ fn run_dim<const D: usize>(
     if let Some(w) = traj {
         w.commit()?;
     }
-    let state = final_json(reg, file, &e, energy_initial, wall)?;
-    if let Some(dir) = &a.out {
+    // (the final state as JSON only where it goes: a large pile's costs more than its engine)
+    let state = if a.json || a.out.is_some() {
+        Some(final_json(reg, file, &e, energy_initial, wall)?)
+    } else {
+        None
+    };
+    if let (Some(dir), Some(state)) = (&a.out, &state) {
         crate::output::write_atomic(
             &dir.join("final.json"),
-            serde_json::to_string_pretty(&state)?.as_bytes(),
+            serde_json::to_string_pretty(state)?.as_bytes(),
         )?;
     }
-    if a.json {
-        println!("{}", serde_json::to_string_pretty(&state)?);
+    if let (true, Some(state)) = (a.json, &state) {
+        println!("{}", serde_json::to_string_pretty(state)?);
     } else {
         let en = e.energy();
         println!(
@@ -363,7 +371,7 @@ pub fn scene_engine_sized<const D: usize>(
             &scene.config.material,
         )
         .context("[rolling] / [twisting]")?;
-    let fp = crate::cli::budget::scene_footprint(file, scene, &laws);
+    let fp = crate::cli::budget::scene_footprint(scene, &laws);
     crate::cli::budget::check_scene_memory(file, scene, &laws)?;
     let e = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)?;
     let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();

@@ -5,10 +5,13 @@
 //! the gathering's scratch), what the caller keeps beside it (the scene's bodies, a scene file's
 //! particle tables, the final state as JSON) and the process itself. Sizes are taken from the
 //! engine's own types ([`std::mem::size_of`]) and the laws' own history widths, so the estimate
-//! follows the configuration (dimension, laws, energy accounting, reordering); the contact count
-//! is that of a dense pile (coordination 6 in 3D, 4 in 2D, the isostatic packings a pile settles
-//! into) or the count listed now, whichever is larger. Measured against the peak resident memory
-//! of real runs in docs/dem.md ("Before a run").
+//! follows the configuration (dimension, laws, energy accounting, reordering).
+//!
+//! The contacts at the peak are those of a dense pile (coordination 6 in 3D, 4 in 2D: the
+//! isostatic packings a pile settles into) times the share of the pile that has packed by the end
+//! of the run ([`packed_share`]: under gravity, a loose pile packs from the floor up), or the
+//! contacts counted on a sample of the run's own steps, whichever is larger. Measured against the
+//! peak resident memory of real runs in docs/dem.md ("Before a run").
 
 use super::contacts::{gather_chunk, nearest_first};
 use super::integrator::EngineConfig;
@@ -37,6 +40,11 @@ pub struct Footprint {
     pub reordered: bool,
     /// Pairs in the neighbour list now, if a list was built.
     pub listed: Option<usize>,
+    /// Pair contacts counted on a sample of the run's steps, if one was run.
+    pub sampled: Option<usize>,
+    /// The share of a dense pile's contacts the run reaches at its peak, in [0, 1]
+    /// ([`packed_share`]; 1: dense).
+    pub packed: f64,
     /// How much further the neighbour list reaches than with the default skin: the volume
     /// ratio ((d_max + skin) / (d_max + 0.3 d_min))^D (1 at the default skin).
     pub reach_ratio: f64,
@@ -57,7 +65,7 @@ pub const LISTED_PER_PARTICLE: [f64; 2] = [5.5, 3.2];
 
 /// Bytes of the final state as JSON per particle (the serde_json tree of `dem --json`, and its
 /// text), measured.
-pub const FINAL_JSON_PER_PARTICLE: [f64; 2] = [1400.0, 1250.0];
+pub const FINAL_JSON_PER_PARTICLE: [f64; 2] = [2250.0, 1900.0];
 
 /// The allocator's share beyond the bytes asked for: the contact arrays grow by doubling, in
 /// blocks of tens of kilobytes per chunk of particles (measured).
@@ -103,6 +111,8 @@ impl Footprint {
             energy: cfg.energy,
             reordered,
             listed: None,
+            sampled: None,
+            packed: 1.0,
             reach_ratio: 1.0,
             kept: 0.0,
             final_json: false,
@@ -144,18 +154,18 @@ impl Footprint {
         0.5 * n * (n - 1.0).max(0.0)
     }
 
-    /// Pair contacts at the run's peak: a dense pile's, or the pairs listed now if more.
+    /// Pair contacts at the run's peak: the packed share of a dense pile's, or those counted
+    /// on a sample if more.
     pub fn pair_contacts(&self) -> f64 {
-        let dense = PAIRS_PER_PARTICLE[of3(self.dim)] * self.particles as f64;
-        dense
-            .max(self.listed.unwrap_or(0) as f64 * 0.55)
-            .min(self.all_pairs())
+        let dense = PAIRS_PER_PARTICLE[of3(self.dim)] * self.particles as f64 * self.packed;
+        dense.max(self.sampled.unwrap_or(0) as f64).min(self.all_pairs())
     }
 
-    /// Neighbour-list pairs at the run's peak: a dense pile's (scaled by the skin's reach), or
-    /// the pairs listed now if more; at most every pair.
+    /// Neighbour-list pairs at the run's peak: the packed share of a dense pile's (scaled by the
+    /// skin's reach), or the pairs listed now if more; at most every pair.
     pub fn listed_pairs(&self) -> f64 {
-        let dense = LISTED_PER_PARTICLE[of3(self.dim)] * self.particles as f64 * self.reach_ratio;
+        let dense =
+            LISTED_PER_PARTICLE[of3(self.dim)] * self.particles as f64 * self.reach_ratio * self.packed;
         dense.max(self.listed.unwrap_or(0) as f64).min(self.all_pairs())
     }
 
@@ -186,10 +196,57 @@ impl Footprint {
             SLACK * (pair * self.pair_contacts() + wall * self.wall_contacts() + scratch),
         );
         if self.final_json {
-            need.add("final state as JSON", FINAL_JSON_PER_PARTICLE[of3(self.dim)] * n);
+            need.add("final state as JSON", self.final_json_bytes());
         }
         need
     }
+
+    /// The final state as JSON (bytes): what `--json` or `--out` adds at the end of a run.
+    pub fn final_json_bytes(&self) -> f64 {
+        FINAL_JSON_PER_PARTICLE[of3(self.dim)] * self.particles as f64
+    }
+}
+
+/// The densest random packing's solid fraction: of spheres (3D), of disks (2D).
+pub const DENSE_FRACTION: [f64; 2] = [0.64, 0.82];
+
+/// The share of a dense pile's contacts a run of `duration` (s) reaches, for `bodies` under
+/// `gravity` (m/s²): a loose pile packs from the floor up, each particle once it has fallen its
+/// share of the pile's settling (the pile's height times one less its solid fraction over a
+/// dense packing's), so by time t the share of the pile below g t² / 2 of settling has packed:
+/// min(1, (t / t_pack)²), t_pack the time to fall the whole settling. Without gravity, or for a
+/// pile already dense, 1 (nothing says it stays loose).
+pub fn packed_share<const D: usize>(bodies: &[Body<D>], gravity: &VecD<D>, duration: f64) -> f64 {
+    let g = gravity.norm();
+    if bodies.is_empty() || g.is_nan() || g <= 0.0 {
+        return 1.0;
+    }
+    let down = gravity / g;
+    let dmax = bodies.iter().map(|b| b.diameter).fold(0.0, f64::max);
+    // the bounding box of the centres, widened by the largest diameter
+    let mut lo = VecD::<D>::repeat(f64::INFINITY);
+    let mut hi = VecD::<D>::repeat(f64::NEG_INFINITY);
+    for b in bodies {
+        lo = lo.inf(&b.position);
+        hi = hi.sup(&b.position);
+    }
+    let span = (hi - lo).add_scalar(dmax);
+    let ball = |d: f64| {
+        if D == 3 {
+            std::f64::consts::PI / 6.0 * d.powi(3)
+        } else {
+            std::f64::consts::PI / 4.0 * d * d
+        }
+    };
+    let solid: f64 = bodies.iter().map(|b| ball(b.diameter)).sum();
+    let fraction = solid / span.iter().product::<f64>();
+    let height: f64 = span.iter().zip(down.iter()).map(|(s, u)| s * u.abs()).sum();
+    let settle = (1.0 - fraction / DENSE_FRACTION[of3(D)]).max(0.0) * height;
+    if !(settle > 0.0 && settle.is_finite()) {
+        return 1.0;
+    }
+    let t_pack = (2.0 * settle / g).sqrt();
+    (duration / t_pack).powi(2).min(1.0)
 }
 
 /// Refuses `count` particles (`key` names the setting, e.g. `generate.count`) in dimension
@@ -265,6 +322,8 @@ mod tests {
             energy: false,
             reordered: false,
             listed: None,
+            sampled: None,
+            packed: 1.0,
             reach_ratio: 1.0,
             kept: 0.0,
             final_json: false,
