@@ -33,7 +33,13 @@ pub struct BedEstimate {
     pub available: Memory,
     /// Simulated time of the sample (s) and its wall time (s).
     pub sample: (f64, f64),
-    /// Wall time to build a run (s), measured.
+    /// Wall time per simulated second of the measured periods, if they run otherwise than the
+    /// transient (the DEM bed steps one step at a time there, to sample its observables).
+    pub measured_pace: Option<f64>,
+    /// The transient's share of the simulated time.
+    pub transient_share: f64,
+    /// Wall time to set a run up (s), measured: building it (twice on the DEM engine, which
+    /// builds one to print the step first).
     pub setup_seconds: f64,
 }
 
@@ -43,7 +49,9 @@ impl BedEstimate {
     pub fn total_seconds(&self) -> f64 {
         let waves = self.seeds.div_ceil(self.at_once.max(1)) as f64;
         let pace = self.sample.1 / self.sample.0.max(1e-300);
-        self.setup_seconds + waves * self.simulated * pace
+        let measured = self.measured_pace.unwrap_or(pace);
+        let (t, m) = (self.transient_share, 1.0 - self.transient_share);
+        self.setup_seconds + waves * self.simulated * (t * pace + m * measured)
     }
 
     /// As JSON.
@@ -135,6 +143,8 @@ pub fn estimate(reg: &Registry, spec: &BedSpec) -> Result<BedEstimate> {
                 } else {
                     (bed.now() - t0, w0.elapsed().as_secs_f64())
                 },
+                measured_pace: None,
+                transient_share: spec.transient / (spec.transient + spec.cycles),
                 setup_seconds: setup,
             })
         }
@@ -145,24 +155,32 @@ pub fn estimate(reg: &Registry, spec: &BedSpec) -> Result<BedEstimate> {
             let mut e = dem.engine(laws)?;
             let setup = clock.elapsed().as_secs_f64();
             let steps = budget::check_steps("the DEM bed", e.dt(), simulated, disks, "")?;
-            let w0 = Instant::now();
-            let (mut done, mut k) = (0u64, 1u64);
-            let mut half = (0u64, w0);
-            while done < steps && w0.elapsed() < SAMPLE {
-                let k_now = k.min(steps - done);
-                e.advance(k_now)?;
-                done += k_now;
-                if w0.elapsed() < SAMPLE / 2 {
-                    half = (done, Instant::now());
+            // the transient in blocks (as the run steps it), then single steps (as the measured
+            // periods step, sampling the observables), each for half the sample
+            let half = SAMPLE / 2;
+            let transient = ((spec.transient * period / e.dt()) as u64).min(steps);
+            let (blocks, single) = {
+                let w0 = Instant::now();
+                let (mut done, mut k) = (0u64, 1u64);
+                while done < transient && w0.elapsed() < half {
+                    let k_now = k.min(transient - done);
+                    e.advance(k_now)?;
+                    done += k_now;
+                    k *= 2;
                 }
-                k *= 2;
-            }
-            let (n, w) = if done > half.0 {
-                (done - half.0, half.1.elapsed().as_secs_f64())
-            } else {
-                (done, w0.elapsed().as_secs_f64())
+                let blocks = (done, w0.elapsed().as_secs_f64());
+                let w1 = Instant::now();
+                let mut one = 0u64;
+                while done + one < steps && (w1.elapsed() < half || one == 0) {
+                    e.step()?;
+                    let _ = e.temperature();
+                    one += 1;
+                }
+                (blocks, (one, w1.elapsed().as_secs_f64()))
             };
+            let dt = e.dt();
             fp.listed = Some(e.listed_pairs());
+            fp.sampled = Some(e.pairs.len());
             let one = fp.need();
             let mut memory = Need::new();
             memory.holding(one.resident);
@@ -175,8 +193,15 @@ pub fn estimate(reg: &Registry, spec: &BedSpec) -> Result<BedEstimate> {
                 steps: Some(steps),
                 memory,
                 available: Memory::now(),
-                sample: (n as f64 * e.dt(), w),
-                setup_seconds: setup,
+                // (no transient: the measured periods' pace for both)
+                sample: if blocks.0 > 0 {
+                    (blocks.0 as f64 * dt, blocks.1)
+                } else {
+                    (single.0 as f64 * dt, single.1)
+                },
+                measured_pace: (single.0 > 0).then(|| single.1 / (single.0 as f64 * dt)),
+                transient_share: spec.transient / (spec.transient + spec.cycles),
+                setup_seconds: 2.0 * setup,
             })
         }
     }
