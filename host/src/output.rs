@@ -13,7 +13,8 @@ use std::path::Path;
 /// replaced. A symbolic link is followed: its target is what is written.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let mut f = AtomicFile::create(path)?;
-    f.write_all(bytes).map_err(|e| f.failed(e))?;
+    // (its writes name the path already)
+    f.write_all(bytes)?;
     f.commit()
 }
 

@@ -354,6 +354,8 @@ fn failed_writes_are_errors_naming_the_path() {
             &args,
             Want::Refused(&["cannot write /dev/full", "No space left on device"]),
         );
+        let (_, _, err, _) = run(&args, &[]);
+        assert_eq!(err.matches("/dev/full").count(), 1, "the path named once: {err}");
         assert!(is_device(), "{args:?} replaced /dev/full");
     }
     // a device that takes the bytes is written in place, and stays a device
