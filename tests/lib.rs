@@ -177,6 +177,17 @@ pub fn registry_03() -> Registry {
     registry_of_groups(&[&SEED_PLUGINS, &SDK02_PLUGINS, &SDK03_PLUGINS])
 }
 
+/// A registry of every plugin of the workspace and the context fixture (sdk 0.4's
+/// `context-probe` normal law and the laws that echo the context they receive).
+pub fn registry_with_context_fixture() -> Registry {
+    registry_of_groups(&[
+        &SEED_PLUGINS,
+        &SDK02_PLUGINS,
+        &SDK03_PLUGINS,
+        &["dashpot_fixture_context"],
+    ])
+}
+
 /// A registry of the seed laws and those of sdk 0.2.
 pub fn full_registry() -> Registry {
     registry_of_groups(&[&SEED_PLUGINS, &SDK02_PLUGINS])
@@ -280,12 +291,12 @@ pub fn wrong_abi_plugin() -> PathBuf {
     )
 }
 
-/// The `constant` plugin rebuilt against a dashpot-sdk that claims the next series, 0.4.0 (a
+/// The `constant` plugin rebuilt against a dashpot-sdk that claims the next series, 0.5.0 (a
 /// series this host does not speak).
 pub fn next_series_plugin() -> PathBuf {
     rebuilt_constant(
         "next_series_constant",
-        &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.4.0")],
+        &[("DASHPOT_SDK_FAKE_ABI_VERSION", "0.5.0")],
         &[],
     )
 }
@@ -376,6 +387,29 @@ pub const SDK_0_2: OldSdk = OldSdk {
     commit: "ffb1e69f6adcad922353a3f797794e36c0815fcc",
     packages: &["dashpot-hsd", "dashpot-mindlin", "dashpot-thornton"],
     libs: &["dashpot_hsd", "dashpot_mindlin", "dashpot_thornton"],
+};
+
+/// dashpot-sdk 0.3.0: the last commit before sdk 0.4 (normal laws with and without history, an
+/// adhesive one with its reach, a tangential, a rolling and a twisting law).
+pub const SDK_0_3: OldSdk = OldSdk {
+    series: "0.3",
+    commit: "ba5111dae4f99edd44647b5a23b264716ae5b0b4",
+    packages: &[
+        "dashpot-hsd",
+        "dashpot-thornton",
+        "dashpot-jkr",
+        "dashpot-mindlin",
+        "dashpot-rolling-sds",
+        "dashpot-twisting-sds",
+    ],
+    libs: &[
+        "dashpot_hsd",
+        "dashpot_thornton",
+        "dashpot_jkr",
+        "dashpot_mindlin",
+        "dashpot_rolling_sds",
+        "dashpot_twisting_sds",
+    ],
 };
 
 /// The commit of this repository whose tree is dashpot-sdk 0.1.0.
@@ -481,7 +515,8 @@ pub fn old_sdk_registry(sdk: &OldSdk, profile: &str) -> Option<Registry> {
     // every plugin was built against that sdk and is spoken to as one of its series
     let series = match sdk.series {
         "0.1" => dashpot::laws::SdkSeries::V0_1,
-        _ => dashpot::laws::SdkSeries::V0_2,
+        "0.2" => dashpot::laws::SdkSeries::V0_2,
+        _ => dashpot::laws::SdkSeries::V0_3,
     };
     for p in &reg.plugins {
         let version = format!("{}.", sdk.series);
@@ -504,4 +539,9 @@ pub fn sdk01_registry(profile: &str) -> Option<Registry> {
 /// A registry holding HSD, Mindlin and Thornton as built from the sdk 0.2 sources.
 pub fn sdk02_registry(profile: &str) -> Option<Registry> {
     old_sdk_registry(&SDK_0_2, profile)
+}
+
+/// A registry holding the laws of [`SDK_0_3`] as built from the sdk 0.3 sources.
+pub fn sdk03_registry(profile: &str) -> Option<Registry> {
+    old_sdk_registry(&SDK_0_3, profile)
 }

@@ -101,6 +101,15 @@ module dashpot
       integer(c_int) :: history_slots_i
     end function
 
+    ! dashpot_KIND_model_reads_context (sdk 0.4): reads = 1 when the law reads the normal
+    ! law's context (then pass it the contexts of dashpot_contact_model_force_batch_context)
+    function reads_context_i(model, reads) bind(c)
+      import :: c_ptr, c_int
+      type(c_ptr), value :: model
+      integer(c_int), intent(out) :: reads
+      integer(c_int) :: reads_context_i
+    end function
+
     ! dashpot_KIND_bind (to a pair)
     function bind_pair_i(law, pair, bound) bind(c)
       import :: c_ptr, c_int, dashpot_pair_t
@@ -124,6 +133,23 @@ module dashpot
       real(c_double), intent(out) :: out(*), power(*), elastic(*)
       integer(c_int), intent(out) :: energy_written
       integer(c_int) :: energy_batch_i
+    end function
+
+    ! the sdk 0.4 form of the batch above, with each contact's normal context context(3, n)
+    ! (contact radius, cap force, damping: from dashpot_contact_model_force_batch_context), or
+    ! c_null_ptr for the defaults
+    function context_batch_i(model, n, dt, normal, velocity, normal_force, delta, mass, radius, context, &
+      history, n_history, out, power, elastic, energy_written) bind(c)
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), value :: dt
+      real(c_double), intent(in) :: normal(*), velocity(*), normal_force(*), delta(*), mass(*), radius(*)
+      type(c_ptr), value :: context
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: out(*), power(*), elastic(*)
+      integer(c_int), intent(out) :: energy_written
+      integer(c_int) :: context_batch_i
     end function
   end interface
 
@@ -161,6 +187,15 @@ module dashpot
   procedure(history_slots_i), bind(c, name='dashpot_twisting_model_history_slots') :: &
     dashpot_twisting_model_history_slots
 
+  procedure(reads_context_i), bind(c, name='dashpot_contact_model_reads_context') :: &
+    dashpot_contact_model_reads_context
+  procedure(reads_context_i), bind(c, name='dashpot_tangential_model_reads_context') :: &
+    dashpot_tangential_model_reads_context
+  procedure(reads_context_i), bind(c, name='dashpot_rolling_model_reads_context') :: &
+    dashpot_rolling_model_reads_context
+  procedure(reads_context_i), bind(c, name='dashpot_twisting_model_reads_context') :: &
+    dashpot_twisting_model_reads_context
+
   procedure(bind_pair_i), bind(c, name='dashpot_contact_bind') :: dashpot_contact_bind
   procedure(bind_pair_i), bind(c, name='dashpot_restitution_bind') :: dashpot_restitution_bind
 
@@ -168,6 +203,12 @@ module dashpot
     dashpot_tangential_model_force_batch_energy
   procedure(energy_batch_i), bind(c, name='dashpot_rolling_model_force_batch') :: dashpot_rolling_model_force_batch
   procedure(energy_batch_i), bind(c, name='dashpot_twisting_model_torque_batch') :: dashpot_twisting_model_torque_batch
+  procedure(context_batch_i), bind(c, name='dashpot_tangential_model_force_batch_context') :: &
+    dashpot_tangential_model_force_batch_context
+  procedure(context_batch_i), bind(c, name='dashpot_rolling_model_force_batch_context') :: &
+    dashpot_rolling_model_force_batch_context
+  procedure(context_batch_i), bind(c, name='dashpot_twisting_model_torque_batch_context') :: &
+    dashpot_twisting_model_torque_batch_context
 
   ! ---- the functions of one kind each ----
   interface
@@ -375,6 +416,20 @@ module dashpot
       real(c_double), intent(out) :: force(*), reach(*), power(*), elastic(*)
       integer(c_int), intent(out) :: energy_written
       integer(c_int) :: dashpot_contact_model_force_batch_energy
+    end function
+
+    ! the sdk 0.4 form: also each contact's normal context, context(3, n) (contact radius, cap
+    ! force, damping), for the laws of the contact that read it
+    function dashpot_contact_model_force_batch_context(model, n, delta, rate, mass, radius, history, n_history, &
+      force, reach, power, elastic, energy_written, context) bind(c, name='dashpot_contact_model_force_batch_context')
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), intent(in) :: delta(*), rate(*), mass(*), radius(*)
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: force(*), reach(*), power(*), elastic(*), context(*)
+      integer(c_int), intent(out) :: energy_written
+      integer(c_int) :: dashpot_contact_model_force_batch_context
     end function
 
     function dashpot_c_strlen(s) bind(c, name='strlen')

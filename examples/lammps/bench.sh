@@ -1,5 +1,10 @@
 #!/usr/bin/env bash
-# Benchmark: the settling pile of in.pile (20,000 spheres by default) on 1 and 2 MPI ranks,
+# Benchmark: LAMMPS's own granular decks switched by one word (BENCH_DECK=flatwall, drum, chute,
+# pour2d: the setups of examples/granular/in.pour.flatwall, in.pour.drum, examples/pour/in.pour
+# and in.pour.2d, at LAMMPS's sizes unless BENCH_N/BENCH_NSTEPS say otherwise), each run with
+# pair_style granular (or gran/*) and with pair_style dashpot on the same deck, the walls
+# LAMMPS's own unless BENCH_WALLS=dashpot; or the settling pile of in.pile (20,000 spheres by
+# default) on 1 and 2 MPI ranks,
 # with Mindlin friction and history (BENCH_FRICTION=mindlin, the default) or without (none);
 # or the polydisperse frictional pour of in.pour (BENCH_DECK=pour, 2,000 spheres, fix pour, in a
 # box BENCH_L = 0.08 m wide, whose pile stays below the region fix pour inserts into: both
@@ -39,14 +44,29 @@ cd "$work"
 # prints "cpu_seconds particle_steps_per_s pair_seconds loop_seconds"
 run() {
     local ranks="$1" style="$2" log="$work/$2.$1.log"
-    if [ "$deck" = pour ]; then
+    local file="in.$deck"
+    case "$deck" in
+        flatwall | drum | chute) file="in.pour.$deck" ;;
+        pour2d) file="in.pour.2d" ;;
+    esac
+    if [ "$deck" = flatwall ]; then
+        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-1500}" -var nsteps "${BENCH_NSTEPS:-5000}"
+    elif [ "$deck" = drum ]; then
+        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-2000}" -var fill "${BENCH_FILL:-2000}" \
+            -var spin "${BENCH_NSTEPS:-3000}"
+    elif [ "$deck" = chute ]; then
+        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-3000}" -var pour "${BENCH_NSTEPS:-25000}" \
+            -var flow "${BENCH_NSTEPS:-25000}"
+    elif [ "$deck" = pour2d ]; then
+        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-1000}" -var nsteps "${BENCH_NSTEPS:-25000}"
+    elif [ "$deck" = pour ]; then
         set -- -var n "${BENCH_N:-2000}" -var L "${BENCH_L:-0.08}" -var tpour "${BENCH_TPOUR:-0.8}" \
             -var tsettle "${BENCH_TSETTLE:-0.2}" \
             -var rolling "$rolling" -var kr "${BENCH_KR:-1e4}" -var gr "${BENCH_GR:-0.1}" -var mur "${BENCH_MUR:-1.0}"
     else
         set -- -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" -var d2 "$d2" -var friction "$friction"
     fi
-    "$venv/bin/mpirun" -np "$ranks" "$venv/bin/lmp" -log none -in "$here/in.$deck" \
+    "$venv/bin/mpirun" -np "$ranks" "$venv/bin/lmp" -log none -in "$here/$file" \
         -var style "$style" -var wall fix "$@" \
         -var plugin "$plugin" -var plugin_dir "$root/target/release" >"$log" 2>&1 ||
         { cat "$log" >&2; exit 1; }
@@ -71,24 +91,29 @@ run() {
         { echo "$style on $ranks rank(s): no loop time" >&2; exit 1; }
 }
 
+case "$deck" in
+    flatwall | drum | chute | pour2d)
+        echo "LAMMPS's $deck deck: granular against dashpot (walls ${BENCH_WALLS:-gran}), $repeats pairs; $(nproc) cores" ;;
+esac
 if [ "$deck" = pour ]; then
     echo "polydisperse pour: ${BENCH_N:-2000} spheres, rolling $rolling, $repeats pairs; $(nproc) cores"
-else
+elif [ "$deck" = pile ]; then
     echo "settling pile: $((nx * nx * nz)) spheres (d2 = $d2 m, friction $friction), $nsteps steps, $repeats pairs; $(nproc) cores"
 fi
 median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
 printf "%-6s %-10s %10s %16s %10s %10s\n" ranks style cpu_s particle-steps/s pair_s loop_s
 for ranks in ${BENCH_RANKS:-1 2}; do
-    ratios="" cpu_g="" cpu_d=""
+    ratios="" pratios="" cpu_g="" cpu_d=""
     for _ in $(seq "$repeats"); do
         for style in granular dashpot; do
             read -r cpu ps pair loop < <(run "$ranks" "$style")
             printf "%-6s %-10s %10.4g %16.4g %10.4g %10.4g\n" "$ranks" "$style" "$cpu" "$ps" "$pair" "$loop"
-            if [ "$style" = granular ]; then g=$cpu; cpu_g="$cpu_g $cpu"; else cpu_d="$cpu_d $cpu"; fi
+            if [ "$style" = granular ]; then g=$cpu; gp=$pair; cpu_g="$cpu_g $cpu"; else cpu_d="$cpu_d $cpu"; fi
         done
         ratios="$ratios $(awk -v g="$g" -v d="$cpu" 'BEGIN { print g / d }')"
+        pratios="$pratios $(awk -v g="$gp" -v d="$pair" 'BEGIN { print (d > 0 ? g / d : 0) }')"
     done
     mg=$(echo $cpu_g | tr ' ' '\n' | median) md=$(echo $cpu_d | tr ' ' '\n' | median)
-    mr=$(echo $ratios | tr ' ' '\n' | median)
-    printf "RATIO ranks=%s CPU seconds: granular %s, dashpot %s (medians); granular/dashpot pair ratios:%s; median %.2fx\n" "$ranks" "$mg" "$md" "$ratios" "$mr"
+    mr=$(echo $ratios | tr ' ' '\n' | median) mp=$(echo $pratios | tr ' ' '\n' | median)
+    printf "RATIO ranks=%s CPU seconds: granular %s, dashpot %s (medians); granular/dashpot pair ratios:%s; median %.2fx; Pair time ratios:%s; median %.2fx\n" "$ranks" "$mg" "$md" "$ratios" "$mr" "$pratios" "$mp"
 done

@@ -30,11 +30,16 @@ if [ -z "${DASHPOT_CAPI_LIB:-}" ]; then
     DASHPOT_CAPI_LIB="$root/target/release/libdashpot_capi.a"
 fi
 mkdir -p "$out"
+# every source of the plugin: the .cpp files here but the spec layer's unit test (test_spec.cpp,
+# built alone by cargo test)
+sources=()
+for f in "$here"/*.cpp; do
+    [ "$(basename "$f")" = test_spec.cpp ] || sources+=("$f")
+done
 "${CXX:-g++}" -O3 -fno-semantic-interposition ${DASHPOT_CXXFLAGS:-} -std=c++17 -Wall -Wextra -fPIC -shared -DLAMMPS_SMALLBIG \
     -DDASHPOT_LAMMPS_VERSION="\"$lmpver\"" \
     -I"$lmpinc" -I"$mpiinc" -I"$root/host/capi/include" \
-    "$here/pair_dashpot.cpp" "$here/pair_dashpot_compute.cpp" "$here/pair_dashpot_history.cpp" \
-    "$here/fix_dashpot_history.cpp" "$here/dashpot_plugin.cpp" \
+    "${sources[@]}" \
     "$DASHPOT_CAPI_LIB" -Wl,--exclude-libs,ALL \
     -lpthread -ldl -lm -lgcc_s \
     -o "$out/dashpotplugin.so"

@@ -4,37 +4,34 @@
 #include "pair_dashpot.h"
 
 #include "atom.h"
+#include "comm.h"
 #include "error.h"
-#include "force.h"
-#include "memory.h"
 
-#include <cstring>
+#include <mpi.h>
+
+#include <algorithm>
 
 using namespace LAMMPS_NS;
 
 FixDashpotHistory::FixDashpotHistory(LAMMPS *lmp, int narg, char **arg) :
-    Fix(lmp, narg, arg), stale(0), rebuilt(1), nvalues(0), maxpartner(0), npartner(nullptr), partner(nullptr),
-    values(nullptr)
+    Fix(lmp, narg, arg), pair(nullptr), rebuilt(1), nvalues(0)
 {
-    if (narg != 5) error->all(FLERR, "fix DASHPOT/HISTORY: expected NVALUES MAXPARTNERS (created by pair dashpot)");
+    if (narg != 4) error->all(FLERR, "fix DASHPOT/HISTORY: expected NVALUES (created by pair dashpot)");
     nvalues = utils::inumeric(FLERR, arg[3], false, lmp);
-    maxpartner = utils::inumeric(FLERR, arg[4], false, lmp);
-    if (nvalues < 0 || maxpartner < 1) error->all(FLERR, "fix DASHPOT/HISTORY: bad NVALUES or MAXPARTNERS");
+    if (nvalues < 0) error->all(FLERR, "fix DASHPOT/HISTORY: NVALUES = {} must be >= 0", nvalues);
     restart_peratom = 1;
+    restart_global = 1;    // write_restart() refreshes the records before they are packed
     create_attribute = 1;
+    maxexchange_dynamic = 1;
     grow_arrays(atom->nmax);
     atom->add_callback(Atom::GROW);
     atom->add_callback(Atom::RESTART);
-    for (int i = 0; i < atom->nmax; i++) npartner[i] = 0;
 }
 
 FixDashpotHistory::~FixDashpotHistory()
 {
     atom->delete_callback(id, Atom::GROW);
     atom->delete_callback(id, Atom::RESTART);
-    memory->destroy(npartner);
-    memory->destroy(partner);
-    memory->destroy(values);
 }
 
 int FixDashpotHistory::setmask()
@@ -43,101 +40,112 @@ int FixDashpotHistory::setmask()
         FixConst::MIN_POST_NEIGHBOR;
 }
 
-void FixDashpotHistory::pull_from_pair()
+void FixDashpotHistory::refresh()
 {
-    stale = 0;
-    auto *pair = dynamic_cast<PairDashpot *>(force->pair_match("dashpot", 1));
     if (pair) pair->history_to_atoms();
 }
 
-void FixDashpotHistory::setup_pre_exchange()
+// Atoms may leave this rank, be sorted, created or deleted next: the records take the pair
+// style's current history first (every rank together: with newton on this communicates).
+void FixDashpotHistory::pre_exchange()
 {
     refresh();
 }
 
-// Before an exchange the records are left stale: whatever moves an atom (pack_exchange,
-// copy_arrays) or brings one (unpack_exchange) refreshes them first, and when nothing has moved,
-// the pair style lays its next slots out from its last ones (a list build on one rank without a
-// sort, most of them: no round trip through every atom's records).
-void FixDashpotHistory::pre_exchange() {}
+void FixDashpotHistory::min_pre_exchange()
+{
+    refresh();
+}
 
-void FixDashpotHistory::min_pre_exchange() {}
-
+// between runs atoms may be created, deleted, read or written
 void FixDashpotHistory::post_run()
 {
     refresh();
 }
 
-// Every list build, in a run's setup, in its steps and in a minimisation: the pair style's slots
-// (in the order of the old list) must be laid out again before its next compute.
+void FixDashpotHistory::write_restart(FILE *fp)
+{
+    refresh();
+    if (comm->me == 0) {
+        int size = 0;
+        fwrite(&size, sizeof(int), 1, fp);
+    }
+}
+
+// Every list build, in a run's setup, in its steps and in a minimisation: the pair style lays its
+// slots out again in the order of the new list (here, as LAMMPS's fix neigh/history does, rather
+// than in the pair's compute).
 void FixDashpotHistory::setup_post_neighbor()
 {
-    rebuilt = 1;
+    post_neighbor();
 }
 
 void FixDashpotHistory::post_neighbor()
 {
     rebuilt = 1;
+    if (pair) pair->layout_slots();
 }
 
 void FixDashpotHistory::min_post_neighbor()
 {
-    rebuilt = 1;
+    post_neighbor();
 }
 
 double FixDashpotHistory::memory_usage()
 {
-    double n = atom->nmax;
-    return n * (sizeof(int) + maxpartner * (sizeof(tagint) + nvalues * sizeof(double)));
+    double bytes = 0.0;
+    for (size_t i = 0; i < partner.size(); i++)
+        bytes += partner[i].capacity() * sizeof(tagint) + values[i].capacity() * sizeof(double);
+    return bytes + partner.size() * 2 * sizeof(std::vector<double>);
 }
 
 void FixDashpotHistory::grow_arrays(int nmax)
 {
-    memory->grow(npartner, nmax, "dashpot/history:npartner");
-    memory->grow(partner, nmax, maxpartner, "dashpot/history:partner");
-    memory->grow(values, nmax, maxpartner * (nvalues > 0 ? nvalues : 1), "dashpot/history:values");
+    if ((int) partner.size() < nmax) {
+        partner.resize(nmax);
+        values.resize(nmax);
+    }
 }
 
 void FixDashpotHistory::copy_arrays(int i, int j, int /*delflag*/)
 {
-    refresh();
-    npartner[j] = npartner[i];
-    for (int k = 0; k < npartner[i]; k++) partner[j][k] = partner[i][k];
-    std::memcpy(values[j], values[i], sizeof(double) * npartner[i] * nvalues);
+    partner[j] = partner[i];
+    values[j] = values[i];
 }
 
 void FixDashpotHistory::set_arrays(int i)
 {
-    npartner[i] = 0;
+    partner[i].clear();
+    values[i].clear();
 }
 
 int FixDashpotHistory::pack_exchange(int i, double *buf)
 {
-    refresh();
     int m = 0;
-    buf[m++] = npartner[i];
-    for (int k = 0; k < npartner[i]; k++) {
+    const int np = (int) partner[i].size();
+    buf[m++] = np;
+    for (int k = 0; k < np; k++) {
         buf[m++] = ubuf(partner[i][k]).d;
-        for (int v = 0; v < nvalues; v++) buf[m++] = values[i][k * nvalues + v];
+        for (int v = 0; v < nvalues; v++) buf[m++] = values[i][(size_t) k * nvalues + v];
     }
     return m;
 }
 
 int FixDashpotHistory::unpack_exchange(int i, double *buf)
 {
-    refresh();    // the records, not the pair style's slots, now hold this atom's contacts
     int m = 0;
-    npartner[i] = (int) buf[m++];
-    for (int k = 0; k < npartner[i]; k++) {
+    const int np = (int) buf[m++];
+    partner[i].resize(np);
+    values[i].resize((size_t) np * nvalues);
+    for (int k = 0; k < np; k++) {
         partner[i][k] = (tagint) ubuf(buf[m++]).i;
-        for (int v = 0; v < nvalues; v++) values[i][k * nvalues + v] = buf[m++];
+        for (int v = 0; v < nvalues; v++) values[i][(size_t) k * nvalues + v] = buf[m++];
     }
     return m;
 }
 
 int FixDashpotHistory::pack_restart(int i, double *buf)
 {
-    refresh();
     // buf[0] is the record's length, counting itself (the Atom::RESTART convention)
     int m = pack_exchange(i, buf + 1) + 1;
     buf[0] = m;
@@ -154,34 +162,72 @@ void FixDashpotHistory::unpack_restart(int nlocal, int nth)
 
 int FixDashpotHistory::size_restart(int i)
 {
-    refresh();
-    return 2 + npartner[i] * (1 + nvalues);
+    return 2 + (int) partner[i].size() * (1 + nvalues);
 }
 
 int FixDashpotHistory::maxsize_restart()
 {
-    return 2 + maxpartner * (1 + nvalues);
+    int mine = 0, all = 0;
+    for (int i = 0; i < atom->nlocal; i++) mine = std::max(mine, (int) partner[i].size());
+    MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MAX, world);
+    return 2 + all * (1 + nvalues);
+}
+
+// newton on: the records of ghost atoms, sent to their owners, which append them
+int FixDashpotHistory::pack_reverse_comm_size(int n, int first)
+{
+    int m = 0;
+    for (int i = first; i < first + n; i++) m += 1 + (int) partner[i].size() * (1 + nvalues);
+    return m;
+}
+
+int FixDashpotHistory::pack_reverse_comm(int n, int first, double *buf)
+{
+    int m = 0;
+    for (int i = first; i < first + n; i++) m += pack_exchange(i, buf + m);
+    return m;
+}
+
+void FixDashpotHistory::unpack_reverse_comm(int n, int *list, double *buf)
+{
+    int m = 0;
+    for (int q = 0; q < n; q++) {
+        const int j = list[q];
+        const int np = (int) buf[m++];
+        for (int k = 0; k < np; k++) {
+            partner[j].push_back((tagint) ubuf(buf[m++]).i);
+            values[j].insert(values[j].end(), buf + m, buf + m + nvalues);
+            m += nvalues;
+        }
+    }
 }
 
 const double *FixDashpotHistory::find(int i, tagint p) const
 {
-    for (int k = 0; k < npartner[i]; k++)
-        if (partner[i][k] == p) return &values[i][k * nvalues];
+    const std::vector<tagint> &pt = partner[i];
+    for (size_t k = 0; k < pt.size(); k++)
+        if (pt[k] == p) return &values[i][k * nvalues];
     return nullptr;
 }
 
 void FixDashpotHistory::clear(int n)
 {
-    for (int i = 0; i < n; i++) npartner[i] = 0;
+    if ((int) partner.size() < n) grow_arrays(n);
+    for (int i = 0; i < n; i++) {
+        partner[i].clear();
+        values[i].clear();
+    }
 }
 
-bool FixDashpotHistory::add(int i, tagint p, const double *v)
+void FixDashpotHistory::add(int i, tagint p, const double *record)
 {
-    int k = npartner[i];
-    if (k >= maxpartner) return false;
-    partner[i][k] = p;
-    double *dst = &values[i][k * nvalues];
-    for (int s = 0; s < nvalues; s++) dst[s] = v[s];    // a few values: no memcpy call
-    npartner[i] = k + 1;
-    return true;
+    partner[i].push_back(p);
+    values[i].insert(values[i].end(), record, record + nvalues);
+}
+
+void FixDashpotHistory::update_maxexchange()
+{
+    size_t most = 0;
+    for (int i = 0; i < atom->nlocal; i++) most = std::max(most, partner[i].size());
+    maxexchange = 1 + (int) most * (1 + nvalues);
 }

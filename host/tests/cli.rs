@@ -326,7 +326,10 @@ fn sweep_and_calibrate() {
         comments[0].starts_with("# law: hsd (contact): eps = 0.54 (default)"),
         "{text}"
     );
-    assert!(comments[1].contains("libdashpot_hsd.so") && comments[1].contains("dashpot 0.3.0"));
+    assert!(
+        comments[1].contains("libdashpot_hsd.so")
+            && comments[1].contains(&format!("dashpot {}", env!("CARGO_PKG_VERSION")))
+    );
     let csv = rows.join("\n");
     assert_eq!(csv.lines().count(), 7);
     assert!(csv.starts_with("law,eps,v0_m_per_s,end,restitution,contact_time_s"));

@@ -218,3 +218,91 @@ fn bad_scenes_name_the_key_and_the_value() {
         .collect();
     assert!(left.is_empty(), "a failed run left {left:?}");
 }
+
+/// Two species with laws of their own per pair: `--check` names the species (with their
+/// particles and materials), every class of contacts with its laws and the walls; the run's
+/// JSON names each particle's species and lists the classes.
+#[test]
+fn check_and_json_report_species_pairs_and_walls() {
+    let text = r#"
+dimension = 2
+gravity = [0.0, -9.81]
+duration = 0.002
+[law]
+name = "hsd"
+params = { eps = 0.9 }
+[[species]]
+name = "steel"
+young = 2.0e8
+poisson = 0.3
+density = 7800.0
+[[species]]
+name = "rubber"
+young = 1.0e7
+poisson = 0.45
+density = 1100.0
+[[pair]]
+species = "rubber"
+[pair.law]
+name = "kuwabara-kono"
+params = { A = 2e-6 }
+[[pair]]
+species = "steel"
+wall = "floor"
+[pair.law]
+name = "hsd"
+params = { eps = 0.5 }
+[pair.tangential]
+name = "mindlin"
+params = { mu = 0.3 }
+[[wall]]
+name = "floor"
+point = [0.0, 0.0]
+normal = [0.0, 1.0]
+material = "steel"
+[[particle]]
+species = "steel"
+position = [0.0, 0.0011]
+diameter = 0.002
+[[particle]]
+species = "rubber"
+position = [0.01, 0.0011]
+diameter = 0.002
+[[particle]]
+species = "rubber"
+position = [0.01, 0.0032]
+diameter = 0.002
+"#;
+    let p = scene("species.toml", text);
+    let out = common::succeeds(&["dem", "--scene", p.to_str().unwrap(), "--check"]);
+    let said = String::from_utf8_lossy(&out.stdout).to_string();
+    for needle in [
+        "species 'steel': 1 particles",
+        "species 'rubber': 2 particles",
+        "particle pairs rubber–rubber: kuwabara-kono",
+        "wall pairs steel–wall 0 ('floor'): hsd (eps = 0.5) + mindlin (mu = 0.3)",
+        "wall pairs rubber–wall 0 ('floor'): hsd",
+        "wall 0: plane through",
+    ] {
+        assert!(said.contains(needle), "'{needle}' not in:\n{said}");
+    }
+    let v = ok_json(&["dem", "--scene", p.to_str().unwrap(), "--json"]);
+    let species: Vec<&str> = v["particles"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| q["species"].as_str().unwrap())
+        .collect();
+    assert_eq!(species, ["steel", "rubber", "rubber"]);
+    assert_eq!(v["law"], "hsd");
+    assert_eq!(v["pairs"]["species"][1]["name"], "rubber");
+    let walls = v["pairs"]["wall_pairs"].as_array().unwrap();
+    assert_eq!(walls.len(), 2, "{walls:?}");
+    // without the default law, the pair that has none is refused before the first step
+    let bare = text.replacen("[law]\nname = \"hsd\"\nparams = { eps = 0.9 }\n", "", 1);
+    let p = scene("species-bare.toml", &bare);
+    fails(
+        &["dem", "--scene", p.to_str().unwrap()],
+        &["no law for the pair (steel, rubber)", "[[pair]]"],
+    );
+}

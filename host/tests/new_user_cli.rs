@@ -135,7 +135,7 @@ fn a_sphere_placed_inside_a_wall_is_refused_naming_the_wall() {
             "1 particle(s) overlap a wall at the start",
             "1.5000e-3 m",
             "particle 1 at [0.05, 0.0, -0.0005] m",
-            "wall 0 (through [0.0, 0.0, 0.0] m, normal [0.0, 0.0, 1.0])",
+            "wall 0 (plane through [0.0, 0.0, 0.0] m, normal [0.0, 0.0, 1.0])",
             "behind the wall",
             "allow_initial_overlap = true",
         ],

@@ -250,7 +250,7 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     assert_eq!(p["plugin"]["file"], s(&shadow));
     assert_eq!(p["plugin"]["name"], "dashpot-fixture-shadow-hsd");
     assert_eq!(p["plugin"]["version"], "0.3.1");
-    assert_eq!(p["plugin"]["sdk_version"], "0.3.0");
+    assert_eq!(p["plugin"]["sdk_version"], env!("CARGO_PKG_VERSION"));
     assert_eq!(p["shadows"][0], s(&builtin));
     assert_eq!(p["dashpot_version"], env!("CARGO_PKG_VERSION"));
     assert!(
@@ -270,7 +270,7 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
     assert_eq!(p["param_sources"]["k"], "derived from the pair");
     assert_eq!(p["plugin"]["file"], s(&plugin_dir().join("libdashpot_lsd.so")));
     assert_eq!(p["plugin"]["name"], "dashpot-lsd");
-    assert_eq!(p["host_sdk_version"], "0.3.0");
+    assert_eq!(p["host_sdk_version"], env!("CARGO_PKG_VERSION"));
     assert!(p["shadows"].as_array().unwrap().is_empty());
     let v = json(&dashpot(&sh("collide --law hsd --v0 1 --json")));
     assert_eq!(v["params"]["eps"], 0.54);
@@ -287,7 +287,10 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
         out.contains(&format!(
             "plugin: {} (dashpot-lsd ",
             plugin_dir().join("libdashpot_lsd.so").display()
-        )) && out.contains("built against dashpot-sdk 0.3.0); dashpot 0.3.0"),
+        )) && out.contains(&format!(
+            "built against dashpot-sdk {v}); dashpot {v}",
+            v = env!("CARGO_PKG_VERSION")
+        )),
         "{out}"
     );
     // eval, calibrate and the bed too
@@ -325,7 +328,7 @@ fn every_result_names_its_plugin_file_versions_and_all_parameters() {
         assert!(
             p["plugin"]["file"].as_str().unwrap().ends_with(".so")
                 && p["params"].as_object().is_some_and(|m| !m.is_empty())
-                && p["dashpot_version"] == "0.3.0",
+                && p["dashpot_version"] == env!("CARGO_PKG_VERSION"),
             "{args:?}: {v}"
         );
     }

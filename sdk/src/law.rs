@@ -7,9 +7,9 @@
 //! twisting laws, a [`Pair`] for restitution laws), so that the hot path is a pure function of
 //! the contact state with every constant precomputed.
 
+use crate::context::NormalContext;
 pub use crate::energy::{Energy, EnergyBatch};
 use crate::error::LawError;
-use crate::motion::{history_mut, BoundTangential};
 use crate::pair::{MaterialPair, Pair};
 use crate::params::{LawParams, ParamSpec, ParamValue, Params};
 use abi_stable::StableAbi;
@@ -85,6 +85,10 @@ pub struct LawInfo {
     pub end_criterion: Option<EndCriterion>,
     /// The per-contact history slots the law keeps (f64 each; empty for a memoryless law).
     pub history: Vec<HistorySlot>,
+    /// For a tangential, rolling, twisting or heat law: whether it reads the normal law's
+    /// [`NormalContext`] (sdk 0.4), which a host then computes and passes; false for every law
+    /// of an older sdk.
+    pub reads_context: bool,
 }
 
 /// One per-contact history slot, as published by a law (the caller stores the value).
@@ -249,8 +253,8 @@ impl NormalBatch<'_> {
     }
 
     /// The lengths of the batch's arrays, as the ABI checks them.
-    pub(crate) fn lengths(&self) -> crate::abi::BatchLengths<4> {
-        crate::abi::BatchLengths {
+    pub(crate) fn lengths(&self) -> crate::lengths::BatchLengths<4> {
+        crate::lengths::BatchLengths {
             call: "force_batch",
             inputs: "delta, rate, mass, radius",
             lens: [
@@ -263,6 +267,7 @@ impl NormalBatch<'_> {
             n: self.force.len(),
             slots: self.slots,
             history: self.history.len(),
+            context: 0,
         }
     }
 
@@ -275,6 +280,15 @@ impl NormalBatch<'_> {
             mass: self.mass[i],
             radius: self.radius[i],
         }
+    }
+}
+
+impl NormalContext {
+    /// The default context ([`NormalContext::hertzian`]) of normal contact `c`, on which the
+    /// law's force is `force` (N).
+    #[inline(always)]
+    pub fn default_for(c: &Contact, force: f64) -> NormalContext {
+        NormalContext::hertzian(c.radius, c.delta, force)
     }
 }
 
@@ -342,6 +356,27 @@ pub trait BoundContact: Send + Sync + 'static {
         0.0
     }
 
+    /// What the law tells the contact's other laws (tangential, rolling, twisting, heat) about
+    /// contact `c` after a force call that returned `force` (N) and left `history` (sdk 0.4):
+    /// its contact radius (m), the force their caps scale with (N) and its normal damping
+    /// coefficient (N·s/m), each finite and ≥ 0 ([`NormalContext`]). The default,
+    /// [`NormalContext::default_for`], is the Hertzian radius √(R max(δ, 0)), max(F, 0) and no
+    /// damping: a law whose contact disc, cap or damping differ (an adhesive law, a plastic
+    /// law, a law with a viscous dashpot) overrides it. Hosts ask for it only when one of the
+    /// contact's other laws reads it.
+    fn context(&self, c: &Contact, _history: &[f64], force: f64) -> NormalContext {
+        NormalContext::default_for(c, force)
+    }
+
+    /// [`BoundContact::context`] for every contact of a batch just evaluated (its forces and
+    /// histories as the force call left them), into `out` (one per contact). Override only if a
+    /// hand-vectorised form is faster than this loop.
+    fn context_batch(&self, b: &NormalBatch<'_>, out: &mut [NormalContext]) {
+        for (i, o) in out.iter_mut().enumerate() {
+            *o = self.context(&b.contact(i), history_of(b.history, b.slots, i), b.force[i]);
+        }
+    }
+
     /// The energy of contact `c` after a force call that returned `force` (N) and left
     /// `history` (sdk 0.3); `None` (the default) when the law does not account for it.
     fn energy(&self, _c: &Contact, _history: &[f64], _force: f64) -> Option<Energy> {
@@ -382,12 +417,35 @@ pub trait BoundRestitution: Send + Sync + 'static {
     }
 }
 
-/// The description of a law of `kind` from its trait's constants and parameter struct.
+/// Contact `i`'s history slots of `h` (`slots` per contact; empty when there are none).
+#[inline(always)]
+pub(crate) fn history_mut(h: &mut [f64], slots: usize, i: usize) -> &mut [f64] {
+    if slots == 0 {
+        &mut []
+    } else {
+        &mut h[i * slots..(i + 1) * slots]
+    }
+}
+
+/// Contact `i`'s history slots of `h` (`slots` per contact; empty when there are none), read
+/// only.
+#[inline(always)]
+pub(crate) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
+    if slots == 0 {
+        &[]
+    } else {
+        &h[i * slots..(i + 1) * slots]
+    }
+}
+
+/// The description of a law of `kind` from its trait's constants and parameter struct
+/// (`reads_context`: whether it reads the normal law's context).
 pub(crate) fn law_info<P: LawParams>(
     kind: LawKind,
     [name, summary, doc]: [&str; 3],
     end_criterion: Option<EndCriterion>,
     history: &[History],
+    reads_context: bool,
 ) -> LawInfo {
     LawInfo {
         name: name.into(),
@@ -404,6 +462,7 @@ pub(crate) fn law_info<P: LawParams>(
                 doc: h.doc.into(),
             })
             .collect(),
+        reads_context,
     }
 }
 
@@ -414,7 +473,7 @@ macro_rules! law_trait {
     (
         $(#[$doc:meta])*
         $trait:ident: $bound:ident, $kind:expr, bind($arg:ident: $bind_ty:ty),
-        end: $end:expr, history: $history:expr,
+        end: $end:expr, history: $history:expr, reads_context: $reads:expr,
         { $($items:tt)* }
     ) => {
         $(#[$doc])*
@@ -444,12 +503,12 @@ macro_rules! law_trait {
             /// The law from named values, as a plugin creates it: validated against its schema,
             /// read as its struct, then checked together ([`Self::check`]).
             fn from_values(given: &[ParamValue]) -> Result<Self, LawError> {
-                crate::abi::kind::configure::<Self>(Self::NAME, given, Self::check)
+                crate::params::configure::<Self>(Self::NAME, given, Self::check)
             }
 
             /// The law's description, for registries.
             fn info() -> LawInfo {
-                law_info::<Self>($kind, [Self::NAME, Self::SUMMARY, Self::DOC], $end, $history)
+                law_info::<Self>($kind, [Self::NAME, Self::SUMMARY, Self::DOC], $end, $history, $reads)
             }
         }
     };
@@ -457,17 +516,25 @@ macro_rules! law_trait {
 pub(crate) use law_trait;
 
 /// Declares a law kind bound to a material pair that keeps per-contact history (none by
-/// default): tangential, rolling and twisting laws.
+/// default) and may read the normal law's context: tangential, rolling, twisting and heat
+/// laws.
 macro_rules! history_law {
     ($(#[$doc:meta])* $trait:ident: $bound:ident, $kind:expr) => {
         law_trait!(
             $(#[$doc])*
             $trait: $bound, $kind, bind(materials: MaterialPair),
-            end: None, history: Self::HISTORY,
+            end: None, history: Self::HISTORY, reads_context: Self::READS_CONTEXT,
             {
                 /// The per-contact history the law keeps (a spring: its three displacement
                 /// components; none by default).
                 const HISTORY: &'static [History] = &[];
+
+                /// Whether the law reads its contacts' `context`, what the normal law reports
+                /// ([`NormalContext`](crate::NormalContext): contact radius, cap force, normal
+                /// damping; sdk 0.4). Hosts compute the normal law's contexts and pass them only
+                /// for a law that declares it; a law that does not (the default) sees the
+                /// default context of its contact ([`NormalContext::hertzian`](crate::NormalContext::hertzian)).
+                const READS_CONTEXT: bool = false;
             }
         );
     };
@@ -479,7 +546,7 @@ law_trait!(
     /// [`law_params!`](crate::law_params), implement this, then export with
     /// [`export_laws!`](crate::export_laws).
     ContactLaw: BoundContact, LawKind::Contact, bind(materials: MaterialPair),
-    end: Some(Self::END_CRITERION), history: Self::HISTORY,
+    end: Some(Self::END_CRITERION), history: Self::HISTORY, reads_context: false,
     {
         /// The end-of-contact criterion the law's calibration (its `eps`, say) refers to.
         const END_CRITERION: EndCriterion;
@@ -499,18 +566,11 @@ law_trait!(
     }
 );
 
-history_law!(
-    /// A configurable tangential (friction) law, composable at run time with any contact law.
-    /// Declare its parameters with [`law_params!`](crate::law_params), implement this, then
-    /// export with [`export_laws!`](crate::export_laws) under `tangential: [...]`.
-    TangentialLaw: BoundTangential, LawKind::Tangential
-);
-
 law_trait!(
     /// A configurable restitution law. Declare its parameters with
     /// [`law_params!`](crate::law_params), implement this, then export with
     /// [`export_laws!`](crate::export_laws) under `restitution: [...]`.
     RestitutionLaw: BoundRestitution, LawKind::Restitution, bind(pair: Pair),
-    end: None, history: &[],
+    end: None, history: &[], reads_context: false,
     {}
 );

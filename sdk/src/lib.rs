@@ -15,6 +15,13 @@
 //!   rate (ω_i − ω_j)·n̂ (rad/s), with its own history ([`TwistingLaw`]);
 //! - a **restitution law**: the coefficient of restitution r(v) at normal impact speed v (m/s).
 //!
+//! sdk 0.4 couples the kinds of one contact: a contact law reports, per contact, a
+//! [`NormalContext`] (its contact radius a, m; the force the caps of the other laws scale with,
+//! N; its normal damping coefficient, N·s/m: [`BoundContact::context`], by default the Hertzian
+//! a = √(R max(δ, 0)), max(F, 0) and 0), and a tangential, rolling or twisting law that declares
+//! `READS_CONTEXT` receives it in its contact's `context` field; hosts compute the contexts only
+//! for such laws.
+//!
 //! sdk 0.3 also lets a contact law be **adhesive**: its force may be tensile, and it declares its
 //! reach ([`BoundContact::reach`], m): the contact lasts until δ < −reach, so callers keep it (and
 //! its history) beyond touching. And every kind may report the **energy** of each contact
@@ -37,8 +44,8 @@
 //! [`RollingLaw`], [`TwistingLaw`] or [`RestitutionLaw`] and calls [`export_laws!`] once; it
 //! sees plain Rust types only (`String`, `Vec`, `Option`). The [`abi`] module defines the stable
 //! binary interface (abi_stable, one generic shape per law kind, and the stable mirrors of the
-//! plain types) and the host-side loader with its checks; a host of sdk 0.3 still loads plugins
-//! built against sdk 0.1 and 0.2.
+//! plain types) and the host-side loader with its checks; a host of sdk 0.4 still loads plugins
+//! built against sdk 0.1, 0.2 and 0.3.
 //!
 //! ```
 //! use dashpot_sdk::*;
@@ -69,9 +76,11 @@
 #![warn(missing_docs)]
 
 pub mod abi;
+mod context;
 mod energy;
 mod error;
 mod law;
+mod lengths;
 mod motion;
 mod pair;
 mod params;
@@ -80,12 +89,15 @@ mod rotation;
 #[cfg(target_arch = "x86_64")]
 pub mod simd;
 
+pub use context::NormalContext;
 pub use error::{ErrorKind, LawError};
 pub use law::{
     BoundContact, BoundRestitution, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion,
-    Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw, TangentialLaw,
+    Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,
 };
-pub use motion::{BoundTangential, TangentialBatch, TangentialContact, VectorBatch, VectorContact};
+pub use motion::{
+    BoundTangential, TangentialBatch, TangentialContact, TangentialLaw, VectorBatch, VectorContact,
+};
 pub use pair::{MaterialPair, Pair, Particle};
 #[doc(hidden)]
 pub use params::join_doc as __join_doc;

@@ -6,7 +6,11 @@
 //! (`vector_law!`). The tangential kind is declared here, rolling and twisting in the
 //! `rotation` module.
 
-use crate::law::{Energy, EnergyBatch};
+use crate::energy::{Energy, EnergyBatch};
+use crate::law::{history_law, history_mut, law_info, law_trait, History, LawInfo, LawKind};
+use crate::pair::MaterialPair;
+use crate::params::{LawParams, ParamValue};
+use crate::LawError;
 
 /// Declares the contact and batch types of a kind whose law sees a contact's normal, one
 /// relative motion (`$motion`), the normal force, overlap, effective mass and radius and the
@@ -33,6 +37,12 @@ macro_rules! motion_kind {
             pub mass: f64,
             /// Effective radius R_eff (m).
             pub radius: f64,
+            /// What the contact's normal law reports (sdk 0.4): its contact radius a (m), the
+            /// force the caps scale with (N) and its damping coefficient (N·s/m). The normal
+            /// law's own for a law that declares `READS_CONTEXT`; else the default
+            /// [`NormalContext::hertzian`](crate::NormalContext::hertzian) of this contact's
+            /// `radius`, `delta` and `normal_force`.
+            pub context: crate::NormalContext,
             /// The time step (s) over which the history advances.
             pub dt: f64,
         }
@@ -54,6 +64,10 @@ macro_rules! motion_kind {
             pub mass: &'a [f64],
             /// Effective radii (m).
             pub radius: &'a [f64],
+            /// The normal law's contexts (sdk 0.4), one per contact, or none (empty): then each
+            /// contact's `context` is the default built from its own `radius`, `delta` and
+            /// `normal_force` ([`NormalContext::hertzian`](crate::NormalContext::hertzian)).
+            pub context: &'a [crate::NormalContext],
             /// History slots per contact.
             pub slots: usize,
             /// Per-contact history, read and updated in place.
@@ -64,8 +78,8 @@ macro_rules! motion_kind {
 
         impl $batch<'_> {
             /// The lengths of the batch's arrays, as the ABI checks them.
-            pub(crate) fn lengths(&self) -> crate::abi::BatchLengths<6> {
-                crate::abi::BatchLengths {
+            pub(crate) fn lengths(&self) -> crate::lengths::BatchLengths<6> {
+                crate::lengths::BatchLengths {
                     call: concat!(stringify!($out), "_batch"),
                     inputs: concat!("normal, ", stringify!($motion), ", normal_force, delta, mass, radius"),
                     lens: [
@@ -80,19 +94,7 @@ macro_rules! motion_kind {
                     n: self.$out.len(),
                     slots: self.slots,
                     history: self.history.len(),
-                }
-            }
-
-            /// Contact `i`'s value of the scalar input the ABI's fault code `field` names: its
-            /// normal force, overlap, mass or radius, else the step.
-            pub(crate) fn input(&self, field: u8, i: usize) -> f64 {
-                use crate::abi::BatchFault;
-                match field {
-                    BatchFault::NORMAL_FORCE => self.normal_force[i],
-                    BatchFault::DELTA => self.delta[i],
-                    BatchFault::MASS => self.mass[i],
-                    BatchFault::RADIUS => self.radius[i],
-                    _ => self.dt,
+                    context: self.context.len(),
                 }
             }
 
@@ -106,6 +108,10 @@ macro_rules! motion_kind {
                     delta: self.delta[i],
                     mass: self.mass[i],
                     radius: self.radius[i],
+                    context: match self.context.get(i) {
+                        Some(c) => *c,
+                        None => crate::NormalContext::hertzian(self.radius[i], self.delta[i], self.normal_force[i]),
+                    },
                     dt: self.dt,
                 }
             }
@@ -219,16 +225,6 @@ motion_kind!(
     force: [f64; 3]
 );
 
-/// Contact `i`'s history slots of `h` (`slots` per contact; empty when there are none).
-#[inline(always)]
-pub(crate) fn history_mut(h: &mut [f64], slots: usize, i: usize) -> &mut [f64] {
-    if slots == 0 {
-        &mut []
-    } else {
-        &mut h[i * slots..(i + 1) * slots]
-    }
-}
-
 /// Declares a vector kind (tangential, rolling): its names of [`VectorContact`] and
 /// [`VectorBatch`], and its bound-law trait, whose output is the force `$what` on each contact
 /// (`motion_law_methods!`), with the further items `$($more)*`.
@@ -273,4 +269,11 @@ vector_law!(
     /// the history (for a spring: its displacement, rotated into the current tangent plane) by
     /// `dt`.
     BoundTangential: "tangential force (N)" {}
+);
+
+history_law!(
+    /// A configurable tangential (friction) law, composable at run time with any contact law.
+    /// Declare its parameters with [`law_params!`](crate::law_params), implement this, then
+    /// export with [`export_laws!`](crate::export_laws) under `tangential: [...]`.
+    TangentialLaw: BoundTangential, LawKind::Tangential
 );

@@ -250,6 +250,18 @@ impl Params {
     }
 }
 
+/// Law `T` (named `name`) from named values: validated against its schema, read as its struct,
+/// then checked together by `check`.
+pub(crate) fn configure<T: LawParams>(
+    name: &str,
+    given: &[ParamValue],
+    check: fn(&T) -> Result<(), LawError>,
+) -> Result<T, LawError> {
+    let law: T = Params::resolve(name, &T::schema(), given)?.parse()?;
+    check(&law)?;
+    Ok(law)
+}
+
 /// A law's parameters as a plain Rust struct: its schema, and how to read it from validated
 /// [`Params`]. Declare one with [`law_params!`](crate::law_params), which writes the struct and
 /// this implementation from one list (name, type, unit, default, range and doc of each field),

@@ -16,10 +16,11 @@
 //! radius and the time step.
 
 use crate::error::LawError;
+use crate::law::history_mut;
 use crate::law::{
     history_law, law_info, law_trait, Coefficient, Energy, EnergyBatch, History, LawInfo, LawKind,
 };
-use crate::motion::{history_mut, motion_kind, motion_law_methods, vector_law};
+use crate::motion::{motion_kind, motion_law_methods, vector_law};
 use crate::pair::MaterialPair;
 use crate::params::{LawParams, ParamValue};
 

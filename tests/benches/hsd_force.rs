@@ -221,6 +221,7 @@ fn tangential_range(
             delta: &c.delta[range.clone()],
             mass: &c.mass[range.clone()],
             radius: &c.radius[range],
+            context: &[],
             slots: hist.len() / out.len(),
             history: hist,
             force: out,

@@ -76,7 +76,8 @@ fn run(text: &str) -> Run {
     let reg = registry_03();
     let table =
         |t: &Option<dashpot::dem::scene::LawTable>| t.as_ref().map(|t| (t.name.clone(), t.param_values()));
-    let n = (file.law.name.clone(), file.law.param_values());
+    let law = file.law.as_ref().expect("a [law] table");
+    let n = (law.name.clone(), law.param_values());
     let (t, r, w) = (
         table(&file.tangential),
         table(&file.rolling),

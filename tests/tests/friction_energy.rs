@@ -109,6 +109,7 @@ fn impact(law: &dyn BoundTangential, offset: f64, spin: f64, dt: f64, alpha: f64
             delta,
             mass: 0.5 * m,
             radius: 0.5 * r,
+            context: Default::default(),
             dt,
         };
         let (ft, e) = law.force_energy(&c, &mut h);
@@ -191,6 +192,7 @@ fn a_stuck_spring_under_a_changing_stiffness_closes_its_balance_to_first_order_i
                 delta,
                 mass: 1e-3,
                 radius: 2.5e-3,
+                context: Default::default(),
                 dt,
             };
             let (f, e) = law.force_energy(&c, &mut h);

@@ -1,11 +1,11 @@
 //! Backward compatibility with sdk 0.2: HSD, Mindlin and Thornton built against dashpot-sdk
 //! 0.2.0, from this repository's own sources at the last 0.2 commit (not a copy in the tree),
-//! load in the 0.3 host and give the same bits, forces and history alike, as the same laws
-//! built against 0.3, over load–unload sequences that exercise their history (Thornton's largest
+//! load in the 0.4 host and give the same bits, forces and history alike, as the same laws
+//! built against 0.4, over load–unload sequences that exercise their history (Thornton's largest
 //! overlap, Mindlin's spring through stick and slip).
 
 use dashpot_sdk::{LawKind, MaterialPair, NormalBatch, ParamValue, TangentialBatch};
-use dashpot_tests::{assert_same_bits, full_registry, memoryless_batch, next_series_plugin, sdk02_registry};
+use dashpot_tests::{assert_same_bits, full_registry, memoryless_batch, sdk02_registry};
 
 fn materials() -> MaterialPair {
     MaterialPair::new(7.0e10, 2.7e10).unwrap()
@@ -124,6 +124,7 @@ fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
                 delta: delta_s,
                 mass: &mass,
                 radius: &radius,
+                context: &[],
                 slots,
                 history: h,
                 force: f,
@@ -147,7 +148,7 @@ fn sdk02_plugins_load_as_02_and_give_bit_identical_normal_forces_and_history() {
 }
 
 /// A 0.2 law through the 0.3 calls: reach 0 and energy reported as not available, forces as
-/// before; the 0.3 build of the same law reports its energy.
+/// before; the 0.4 build of the same law reports its energy.
 #[test]
 fn old_plugins_have_reach_zero_and_no_energy() {
     let Some(old) = sdk02_registry("debug") else {
@@ -175,23 +176,6 @@ fn old_plugins_have_reach_zero_and_no_energy() {
         out.push((written, f, e));
     }
     assert!(!out[0].0, "a 0.2 law reports energy as not available");
-    assert!(out[1].0 && out[1].2[0] > 0.0, "the 0.3 build reports it");
+    assert!(out[1].0 && out[1].2[0] > 0.0, "the 0.4 build reports it");
     assert_eq!(out[0].1.map(f64::to_bits), out[1].1.map(f64::to_bits));
-}
-
-/// A plugin of a series this host does not speak (0.4) is refused, both versions named.
-#[test]
-fn the_next_series_is_refused_naming_both_versions() {
-    let e = dashpot_sdk::abi::LoadedPlugin::load(&next_series_plugin()).unwrap_err();
-    assert_eq!(e.kind, dashpot_sdk::ErrorKind::Load);
-    assert!(
-        e.message.contains("built against dashpot-sdk 0.4.0")
-            && e.message.contains(&format!(
-                "this host uses dashpot-sdk {}",
-                dashpot_sdk::abi::ABI_VERSION
-            ))
-            && e.message.contains("loads plugins of sdk 0.1, 0.2 and 0.3 only"),
-        "{}",
-        e.message
-    );
 }

@@ -125,6 +125,7 @@ fn run(
             delta,
             mass: s.m,
             radius: s.r,
+            context: Default::default(),
             dt,
         };
         let f_t = law.force(&c, &mut h);
@@ -378,6 +379,7 @@ fn contact(normal: [f64; 3], velocity: [f64; 3], delta: f64, dt: f64) -> Tangent
         delta,
         mass: 0.01,
         radius: 0.01,
+        context: Default::default(),
         dt,
     }
 }

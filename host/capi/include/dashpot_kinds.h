@@ -32,6 +32,10 @@
  *   dashpot_KIND_model_free(model) frees it (null is ignored).
  *   dashpot_KIND_model_history_slots(model, &slots): the number of history values (doubles)
  *     the law keeps per contact (0 for a memoryless law). Errors: DASHPOT_ERR_NULL_POINTER.
+ *   dashpot_KIND_model_reads_context(model, &reads) (sdk 0.4): reads = 1 when the law reads
+ *     the normal law's context (then compute the contexts with
+ *     dashpot_contact_model_force_batch_context and pass them to the law's _context batch);
+ *     0 for every law of an older sdk and for contact laws. Errors: DASHPOT_ERR_NULL_POINTER.
  *
  * DASHPOT_PAIR_FUNCTIONS(KIND, Law, Bound): the sdk 0.1 binding to one pair (DashpotPair:
  * effective mass, radius and modulus):
@@ -61,6 +65,15 @@
  *     acts (m: it ends once delta < -reach; 0 for a non-adhesive law), out_power[i] the
  *     dissipated power (W), out_elastic[i] the stored elastic energy (J); *out_energy_written
  *     (may be null) whether the law reported the energy.
+ *   dashpot_contact_model_force_batch_context: OUTPUTS DASHPOT_REACH_ENERGY_CONTEXT_OUTPUTS,
+ *     those of _energy (each null or n values) and sdk 0.4's out_context, 3n values (required
+ *     when n > 0): out_context[3i..3i+3] = the normal context of contact i, what the contact's
+ *     other laws read: its contact radius a (m, >= 0; JKR's own a, positive past touching until
+ *     rupture), the force their Coulomb-type caps scale with (N, >= 0; max(F, 0) for most laws)
+ *     and the normal damping coefficient (N s/m, >= 0: the law's dissipative force is minus it
+ *     times the normal relative velocity). A law of an older sdk, or one that reports none of
+ *     its own, gives a = sqrt(radius max(delta, 0)), max(F, 0) and 0. A non-finite or negative
+ *     field is refused with DASHPOT_ERR_NON_FINITE.
  * Every input is checked inside the plugin, fused with the computation: a NaN or infinite
  * overlap or rate, or a mass or radius not finite and > 0, is refused with
  * DASHPOT_ERR_NON_FINITE naming the array, the index and the value; so is a non-finite force.
@@ -90,6 +103,14 @@
  * *out_energy_written (may be null) 1 when the law reported them (a law of an older sdk does
  * not). Every input is checked inside the plugin (a non-finite vector, normal force or dt too);
  * errors, ownership and thread safety as for a contact batch.
+ *
+ * DASHPOT_MOTION_BATCH_CONTEXT(NAME, Model, INPUT, OUT, OUTPUTS): the sdk 0.4 form of the batch
+ * calls above (dashpot_tangential_model_force_batch_context,
+ * dashpot_rolling_model_force_batch_context, dashpot_twisting_model_torque_batch_context), with
+ * the energy outputs and one more input after radius: context, null (every contact gets the
+ * default context, as in the calls above) or 3n values, context[3i..3i+3] the normal context of
+ * contact i as dashpot_contact_model_force_batch_context wrote it (contact radius m, cap force
+ * N, damping N s/m; each finite and >= 0, else DASHPOT_ERR_NON_FINITE naming the contact).
  */
 #define DASHPOT_LAW_FUNCTIONS(KIND, Law)                                                             \
     enum DashpotStatus dashpot_##KIND##_new(const struct DashpotRegistry *registry, const char *name, \
@@ -103,10 +124,12 @@
                                                        const struct DashpotMaterials *materials,     \
                                                        struct Model **out_model);                    \
     void dashpot_##KIND##_model_free(struct Model *model);                                           \
-    enum DashpotStatus dashpot_##KIND##_model_history_slots(const struct Model *model, size_t *out_slots);
+    enum DashpotStatus dashpot_##KIND##_model_history_slots(const struct Model *model, size_t *out_slots); \
+    enum DashpotStatus dashpot_##KIND##_model_reads_context(const struct Model *model, int *out_reads);
 
 #define DASHPOT_ENERGY_OUTPUTS , double *out_power, double *out_elastic, int *out_energy_written
 #define DASHPOT_REACH_ENERGY_OUTPUTS , double *out_reach DASHPOT_ENERGY_OUTPUTS
+#define DASHPOT_REACH_ENERGY_CONTEXT_OUTPUTS DASHPOT_REACH_ENERGY_OUTPUTS, double *out_context
 
 #define DASHPOT_CONTACT_BATCH(NAME, OUTPUTS)                                                         \
     enum DashpotStatus NAME(const struct DashpotContactModel *model, size_t n, const double *delta,   \
@@ -118,6 +141,12 @@
                             const double *INPUT, const double *normal_force, const double *delta,   \
                             const double *mass, const double *radius, double *history,              \
                             size_t n_history, double *OUT OUTPUTS);
+
+#define DASHPOT_MOTION_BATCH_CONTEXT(NAME, Model, INPUT, OUT, OUTPUTS)                              \
+    enum DashpotStatus NAME(const struct Model *model, size_t n, double dt, const double *normal,     \
+                            const double *INPUT, const double *normal_force, const double *delta,   \
+                            const double *mass, const double *radius, const double *context,        \
+                            double *history, size_t n_history, double *OUT OUTPUTS);
 
 #define DASHPOT_PAIR_FUNCTIONS(KIND, Law, Bound)                                                     \
     enum DashpotStatus dashpot_##KIND##_bind(const struct Law *law, const struct DashpotPair *pair,  \
@@ -144,12 +173,20 @@ DASHPOT_PAIR_FUNCTIONS(restitution, DashpotRestitutionLaw, DashpotBoundRestituti
 
 DASHPOT_CONTACT_BATCH(dashpot_contact_model_force_batch, )
 DASHPOT_CONTACT_BATCH(dashpot_contact_model_force_batch_energy, DASHPOT_REACH_ENERGY_OUTPUTS)
+DASHPOT_CONTACT_BATCH(dashpot_contact_model_force_batch_context, DASHPOT_REACH_ENERGY_CONTEXT_OUTPUTS)
 
 DASHPOT_MOTION_BATCH(dashpot_tangential_model_force_batch, DashpotTangentialModel, velocity, out_force, )
 DASHPOT_MOTION_BATCH(dashpot_tangential_model_force_batch_energy, DashpotTangentialModel, velocity, out_force,
                      DASHPOT_ENERGY_OUTPUTS)
 DASHPOT_MOTION_BATCH(dashpot_rolling_model_force_batch, DashpotRollingModel, velocity, out_force, DASHPOT_ENERGY_OUTPUTS)
 DASHPOT_MOTION_BATCH(dashpot_twisting_model_torque_batch, DashpotTwistingModel, rate, out_torque, DASHPOT_ENERGY_OUTPUTS)
+
+DASHPOT_MOTION_BATCH_CONTEXT(dashpot_tangential_model_force_batch_context, DashpotTangentialModel, velocity,
+                             out_force, DASHPOT_ENERGY_OUTPUTS)
+DASHPOT_MOTION_BATCH_CONTEXT(dashpot_rolling_model_force_batch_context, DashpotRollingModel, velocity, out_force,
+                             DASHPOT_ENERGY_OUTPUTS)
+DASHPOT_MOTION_BATCH_CONTEXT(dashpot_twisting_model_torque_batch_context, DashpotTwistingModel, rate, out_torque,
+                             DASHPOT_ENERGY_OUTPUTS)
 
 #ifdef __cplusplus
 }  /* extern "C" */

@@ -1,5 +1,6 @@
-//! Contact laws bound to materials (sdk 0.2, 0.3): per-contact geometry and history in the batch
-//! call, and sdk 0.3's reach and energy outputs. (Creating, binding and freeing: `kinds.rs`.)
+//! Contact laws bound to materials (sdk 0.2-0.4): per-contact geometry and history in the batch
+//! call, sdk 0.3's reach and energy outputs, and sdk 0.4's normal contexts (what the contact's
+//! other laws read). (Creating, binding and freeing: `kinds.rs`.)
 //!
 //! Sign convention as for the pair-bound functions: δ ≥ 0 is the overlap (m), δ̇ its rate
 //! (m/s, positive while approaching), the force (N) is positive when repulsive, and a law
@@ -12,7 +13,7 @@
 //! trial evaluation (an integrator stage) pass a scratch copy.
 
 use crate::error::{arg, guard, slice, slice_mut, DashpotStatus};
-use crate::handle::{energy, history_width, optional, report_written};
+use crate::handle::{contexts_out, energy, history_width, optional, report_written};
 use crate::kinds::DashpotContactModel;
 use dashpot_sdk::NormalBatch;
 use std::ffi::c_int;
@@ -32,6 +33,7 @@ unsafe fn batch(
     out_force: *mut f64,
     [out_reach, out_power, out_elastic]: [*mut f64; 3],
     out_energy_written: *mut c_int,
+    out_context: Option<*mut f64>,
 ) -> DashpotStatus {
     guard(|| {
         let m = unsafe { arg(model, "model") }?;
@@ -46,29 +48,37 @@ unsafe fn batch(
             force: unsafe { slice_mut(out_force, n, "out_force") }?,
         };
         let reach = unsafe { optional(out_reach, n, "out_reach") }?;
-        let written = m
-            .model
-            .force_batch_with(b, reach, unsafe { energy(out_power, out_elastic, n) }?)?;
+        let energy = unsafe { energy(out_power, out_elastic, n) }?;
+        let written = match out_context {
+            Some(p) => {
+                let context = unsafe { contexts_out(p, n) }?;
+                m.model.force_batch_context(b, reach, context, energy)?
+            }
+            None => m.model.force_batch_with(b, reach, energy)?,
+        };
         unsafe { report_written(out_energy_written, written) };
         Ok(())
     })
 }
 
-/// The reach and energy outputs of a contact batch: those given, or none (null).
+/// The reach, energy and context outputs of a contact batch: those given, or none (null).
 macro_rules! contact_outputs {
     () => {
-        ([std::ptr::null_mut(); 3], std::ptr::null_mut())
+        ([std::ptr::null_mut(); 3], std::ptr::null_mut(), None)
     };
     ($reach:ident, $power:ident, $elastic:ident, $written:ident) => {
-        ([$reach, $power, $elastic], $written)
+        ([$reach, $power, $elastic], $written, None)
+    };
+    ($reach:ident, $power:ident, $elastic:ident, $written:ident, $context:ident) => {
+        ([$reach, $power, $elastic], $written, Some($context))
     };
 }
 
-/// `dashpot_contact_model_force_batch` and its sdk 0.3 form with the reach and energy outputs,
-/// from one parameter list: the header's `DASHPOT_CONTACT_BATCH`, whose comment is their
-/// contract.
+/// `dashpot_contact_model_force_batch`, its sdk 0.3 form with the reach and energy outputs and
+/// its sdk 0.4 form with the contexts too, from one parameter list: the header's
+/// `DASHPOT_CONTACT_BATCH`, whose comment is their contract.
 macro_rules! contact_batch_functions {
-    ($($name:ident($($reach:ident, $power:ident, $elastic:ident, $written:ident)?);)*) => {$(
+    ($($name:ident($($reach:ident, $power:ident, $elastic:ident, $written:ident $(, $context:ident)?)?);)*) => {$(
         /// A contact batch: `DASHPOT_CONTACT_BATCH` in dashpot.h.
         ///
         /// # Safety
@@ -86,11 +96,11 @@ macro_rules! contact_batch_functions {
             history: *mut f64,
             n_history: usize,
             out_force: *mut f64,
-            $($reach: *mut f64, $power: *mut f64, $elastic: *mut f64, $written: *mut c_int,)?
+            $($reach: *mut f64, $power: *mut f64, $elastic: *mut f64, $written: *mut c_int, $($context: *mut f64,)?)?
         ) -> DashpotStatus {
-            let (outs, written) = contact_outputs!($($reach, $power, $elastic, $written)?);
+            let (outs, written, context) = contact_outputs!($($reach, $power, $elastic, $written $(, $context)?)?);
             let inputs = [delta, rate, mass, radius];
-            unsafe { batch(stringify!($name), model, n, inputs, history, n_history, out_force, outs, written) }
+            unsafe { batch(stringify!($name), model, n, inputs, history, n_history, out_force, outs, written, context) }
         }
     )*};
 }
@@ -98,4 +108,5 @@ macro_rules! contact_batch_functions {
 contact_batch_functions! {
     dashpot_contact_model_force_batch();
     dashpot_contact_model_force_batch_energy(out_reach, out_power, out_elastic, out_energy_written);
+    dashpot_contact_model_force_batch_context(out_reach, out_power, out_elastic, out_energy_written, out_context);
 }

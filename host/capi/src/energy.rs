@@ -17,7 +17,10 @@
 //! on j the opposite; F_r itself is not applied to the centres), or the torque about n̂ on i
 //! (N·m; on j the opposite). Energy outputs, where given (non-null): each contact's dissipated
 //! power (W, ≥ 0) and stored elastic energy (J); `*out_energy_written` says whether the law
-//! reported them (a law of an older sdk does not).
+//! reported them (a law of an older sdk does not). The `_context` forms (sdk 0.4) also take the
+//! normal law's context of each contact (3 values: contact radius m, cap force N, damping
+//! N·s/m; from `dashpot_contact_model_force_batch_context`), or null for the defaults; a host
+//! asks `dashpot_KIND_model_reads_context` whether the law reads it.
 
 use crate::handle::{motion_batch_functions, EnergyBatch, Raw};
 use crate::kinds::{DashpotRollingModel, DashpotTangentialModel, DashpotTwistingModel};
@@ -42,7 +45,7 @@ impl EnergyBatch for DashpotTwistingModel {
     const WIDTH: usize = 1;
     fn run(&self, b: Raw<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         let [normal_force, delta, mass, radius] = b.scalars;
-        let (dt, normal, slots) = (b.dt, b.normal, b.slots);
+        let (dt, normal, context, slots) = (b.dt, b.normal, b.context, b.slots);
         let (rate, history, torque) = (b.input, b.history, b.out);
         let twisting = TwistingBatch {
             dt,
@@ -52,6 +55,7 @@ impl EnergyBatch for DashpotTwistingModel {
             delta,
             mass,
             radius,
+            context,
             slots,
             history,
             torque,
@@ -66,4 +70,10 @@ motion_batch_functions! {
         dashpot_tangential_model_force_batch_energy(velocity, out_force, out_power, out_elastic, out_energy_written);
     DashpotRollingModel: dashpot_rolling_model_force_batch(velocity, out_force, out_power, out_elastic, out_energy_written);
     DashpotTwistingModel: dashpot_twisting_model_torque_batch(rate, out_torque, out_power, out_elastic, out_energy_written);
+    DashpotTangentialModel:
+        dashpot_tangential_model_force_batch_context(velocity, out_force [context], out_power, out_elastic, out_energy_written);
+    DashpotRollingModel:
+        dashpot_rolling_model_force_batch_context(velocity, out_force [context], out_power, out_elastic, out_energy_written);
+    DashpotTwistingModel:
+        dashpot_twisting_model_torque_batch_context(rate, out_torque [context], out_power, out_elastic, out_energy_written);
 }

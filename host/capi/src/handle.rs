@@ -14,7 +14,7 @@ use crate::materials::DashpotMaterials;
 use crate::pair::DashpotPair;
 use crate::registry::{params, DashpotRegistry};
 use dashpot_sdk::abi::EnergyOut;
-use dashpot_sdk::{LawError, MaterialPair, Pair, ParamValue};
+use dashpot_sdk::{LawError, MaterialPair, NormalContext, Pair, ParamValue};
 use std::ffi::{c_char, c_int};
 
 /// A law handle made by name from the registry.
@@ -28,10 +28,12 @@ pub(crate) trait BindMaterials {
     fn bind_materials(&self, materials: &MaterialPair) -> Result<Self::Model, CError>;
 }
 
-/// A bound model: its history width and its law's name (for messages).
+/// A bound model: its history width, its law's name (for messages) and whether it reads the
+/// normal law's context (sdk 0.4).
 pub(crate) trait Model {
     fn slots(&self) -> usize;
     fn law_name(&self) -> &str;
+    fn reads_context(&self) -> bool;
 }
 
 /// A law bound to one pair (effective mass, radius and modulus).
@@ -126,6 +128,14 @@ pub(crate) unsafe fn history_slots<M: Model>(model: *const M, out_slots: *mut us
     crate::error::output!(arg model => out_slots = model.slots())
 }
 
+/// The body of every `*_model_reads_context`.
+///
+/// # Safety
+/// Non-null pointers must be valid.
+pub(crate) unsafe fn reads_context<M: Model>(model: *const M, out_reads: *mut c_int) -> DashpotStatus {
+    crate::error::output!(arg model => out_reads = c_int::from(model.reads_context()))
+}
+
 /// The body of every `*_bind` (to a pair).
 ///
 /// # Safety
@@ -205,10 +215,10 @@ macro_rules! law_functions {
     )*};
 }
 
-/// `dashpot_<kind>_bind_materials`, `_model_free` and `_model_history_slots` for each law type
-/// (the header's `DASHPOT_MODEL_FUNCTIONS`).
+/// `dashpot_<kind>_bind_materials`, `_model_free`, `_model_history_slots` and
+/// `_model_reads_context` for each law type (the header's `DASHPOT_MODEL_FUNCTIONS`).
 macro_rules! model_functions {
-    ($($law:ty => $model:ty: $bind:ident, $free:ident, $slots:ident;)*) => {$(
+    ($($law:ty => $model:ty: $bind:ident, $free:ident, $slots:ident, $reads:ident;)*) => {$(
         $crate::handle::bind_function!(
             $bind($law, materials: $crate::materials::DashpotMaterials, out_model: $model) => bind_materials
         );
@@ -222,6 +232,16 @@ macro_rules! model_functions {
         #[no_mangle]
         pub unsafe extern "C" fn $slots(model: *const $model, out_slots: *mut usize) -> $crate::error::DashpotStatus {
             unsafe { $crate::handle::history_slots(model, out_slots) }
+        }
+
+        /// Whether the law reads the normal law's context (sdk 0.4): `DASHPOT_MODEL_FUNCTIONS`
+        /// in dashpot.h.
+        ///
+        /// # Safety
+        /// Non-null pointers must be valid.
+        #[no_mangle]
+        pub unsafe extern "C" fn $reads(model: *const $model, out_reads: *mut std::ffi::c_int) -> $crate::error::DashpotStatus {
+            unsafe { $crate::handle::reads_context(model, out_reads) }
         }
     )*};
 }
@@ -307,6 +327,30 @@ pub(crate) unsafe fn energy<'a>(
     })
 }
 
+/// The normal contexts a batch is given (sdk 0.4): null for none (every contact's default), or
+/// `n` contexts of 3 values each (contact radius m, cap force N, damping N·s/m).
+///
+/// # Safety
+/// A non-null `p` must point to 3n valid values for `'a`.
+pub(crate) unsafe fn contexts<'a>(p: *const f64, n: usize) -> Result<&'a [NormalContext], CError> {
+    if p.is_null() {
+        return Ok(&[]);
+    }
+    let v = unsafe { slice(p, triple_len(n)?, "context") }?;
+    // SAFETY: NormalContext is three f64 (repr(C)): the alignment of f64, no padding.
+    Ok(unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<NormalContext>(), n) })
+}
+
+/// The output of `n` normal contexts (sdk 0.4), 3 values each.
+///
+/// # Safety
+/// A non-null `p` must point to 3n writable values for `'a`, not aliasing other arguments.
+pub(crate) unsafe fn contexts_out<'a>(p: *mut f64, n: usize) -> Result<&'a mut [NormalContext], CError> {
+    let v = unsafe { slice_mut(p, triple_len(n)?, "out_context") }?;
+    // SAFETY: as `contexts`, with the unique borrow of the values moved into the result.
+    Ok(unsafe { std::slice::from_raw_parts_mut(v.as_mut_ptr().cast::<NormalContext>(), n) })
+}
+
 /// Writes whether the law reported its energy, if the caller asked (`p` non-null).
 ///
 /// # Safety
@@ -326,6 +370,7 @@ pub(crate) trait VectorBatch<'a>: Sized {
         normal: &'a [[f64; 3]],
         velocity: &'a [[f64; 3]],
         scalars: [&'a [f64]; 4],
+        context: &'a [NormalContext],
         slots: usize,
         history: &'a mut [f64],
         force: &'a mut [[f64; 3]],
@@ -340,11 +385,12 @@ macro_rules! vector_batch {
                 normal: &'a [[f64; 3]],
                 velocity: &'a [[f64; 3]],
                 [normal_force, delta, mass, radius]: [&'a [f64]; 4],
+                context: &'a [NormalContext],
                 slots: usize,
                 history: &'a mut [f64],
                 force: &'a mut [[f64; 3]],
             ) -> Self {
-                dashpot_sdk::$batch { dt, normal, velocity, normal_force, delta, mass, radius, slots, history, force }
+                dashpot_sdk::$batch { dt, normal, velocity, normal_force, delta, mass, radius, context, slots, history, force }
             }
         }
     )*};
@@ -371,6 +417,7 @@ pub(crate) struct Raw<'a> {
     pub normal: &'a [[f64; 3]],
     pub input: &'a [f64],
     pub scalars: [&'a [f64]; 4],
+    pub context: &'a [NormalContext],
     pub slots: usize,
     pub history: &'a mut [f64],
     pub out: &'a mut [f64],
@@ -385,6 +432,7 @@ impl<'a> Raw<'a> {
             self.normal,
             velocity,
             self.scalars,
+            self.context,
             self.slots,
             self.history,
             triples_mut(self.out),
@@ -419,6 +467,7 @@ pub(crate) unsafe fn energy_batch<M: EnergyBatch>(
     normal: *const f64,
     input: *const f64,
     [normal_force, delta, mass, radius]: [*const f64; 4],
+    context: *const f64,
     history: *mut f64,
     n_history: usize,
     out: *mut f64,
@@ -437,6 +486,7 @@ pub(crate) unsafe fn energy_batch<M: EnergyBatch>(
             unsafe { slice(mass, n, "mass") }?,
             unsafe { slice(radius, n, "radius") }?,
         ];
+        let context = unsafe { contexts(context, n) }?;
         let history = unsafe { slice_mut(history, n_history, "history") }?;
         let out = unsafe { slice_mut(out, w, out_name) }?;
         let e = unsafe { energy(power, elastic, n) }?;
@@ -445,6 +495,7 @@ pub(crate) unsafe fn energy_batch<M: EnergyBatch>(
             normal,
             input,
             scalars,
+            context,
             slots,
             history,
             out,
@@ -465,11 +516,22 @@ macro_rules! energy_outputs {
     };
 }
 
+/// The normal contexts of a batch: those given, or none (null).
+macro_rules! context_input {
+    () => {
+        std::ptr::null()
+    };
+    ($context:ident) => {
+        $context
+    };
+}
+
 /// The batches of the tangential, rolling and twisting kinds, one line per function, with the
-/// sdk 0.3 energy outputs where the line names them (the header's `DASHPOT_MOTION_BATCH`).
+/// sdk 0.4 normal contexts (`[context]`, after the radii) and the sdk 0.3 energy outputs where
+/// the line names them (the header's `DASHPOT_MOTION_BATCH` and `DASHPOT_MOTION_BATCH_CONTEXT`).
 macro_rules! motion_batch_functions {
-    ($($model:ty: $name:ident($input:ident, $out:ident $(, $power:ident, $elastic:ident, $written:ident)?);)*) => {$(
-        /// A batch call: `DASHPOT_MOTION_BATCH` in dashpot.h.
+    ($($model:ty: $name:ident($input:ident, $out:ident $([$context:ident])? $(, $power:ident, $elastic:ident, $written:ident)?);)*) => {$(
+        /// A batch call: `DASHPOT_MOTION_BATCH` or `DASHPOT_MOTION_BATCH_CONTEXT` in dashpot.h.
         ///
         /// # Safety
         /// Non-null arrays must hold the lengths the header states; outputs must not overlap
@@ -486,6 +548,7 @@ macro_rules! motion_batch_functions {
             delta: *const f64,
             mass: *const f64,
             radius: *const f64,
+            $($context: *const f64,)?
             history: *mut f64,
             n_history: usize,
             $out: *mut f64,
@@ -493,15 +556,16 @@ macro_rules! motion_batch_functions {
         ) -> $crate::error::DashpotStatus {
             let names = [stringify!($input), stringify!($out)];
             let scalars = [normal_force, delta, mass, radius];
+            let context = $crate::handle::context_input!($($context)?);
             let (energy, written) = $crate::handle::energy_outputs!($($power, $elastic, $written)?);
             unsafe {
                 $crate::handle::energy_batch(
-                    stringify!($name), names, model, n, dt, normal, $input, scalars, history, n_history, $out,
-                    energy, written,
+                    stringify!($name), names, model, n, dt, normal, $input, scalars, context, history, n_history,
+                    $out, energy, written,
                 )
             }
         }
     )*};
 }
 
-pub(crate) use {energy_outputs, motion_batch_functions};
+pub(crate) use {context_input, energy_outputs, motion_batch_functions};

@@ -90,6 +90,9 @@ macro_rules! material_kind {
             fn law_name(&self) -> &str {
                 self.model.name()
             }
+            fn reads_context(&self) -> bool {
+                self.model.reads_context()
+            }
         }
     )*};
 }
@@ -154,13 +157,17 @@ law_functions! {
 
 model_functions! {
     DashpotContactLaw => DashpotContactModel:
-        dashpot_contact_bind_materials, dashpot_contact_model_free, dashpot_contact_model_history_slots;
+        dashpot_contact_bind_materials, dashpot_contact_model_free, dashpot_contact_model_history_slots,
+        dashpot_contact_model_reads_context;
     DashpotTangentialLaw => DashpotTangentialModel:
-        dashpot_tangential_bind_materials, dashpot_tangential_model_free, dashpot_tangential_model_history_slots;
+        dashpot_tangential_bind_materials, dashpot_tangential_model_free, dashpot_tangential_model_history_slots,
+        dashpot_tangential_model_reads_context;
     DashpotRollingLaw => DashpotRollingModel:
-        dashpot_rolling_bind_materials, dashpot_rolling_model_free, dashpot_rolling_model_history_slots;
+        dashpot_rolling_bind_materials, dashpot_rolling_model_free, dashpot_rolling_model_history_slots,
+        dashpot_rolling_model_reads_context;
     DashpotTwistingLaw => DashpotTwistingModel:
-        dashpot_twisting_bind_materials, dashpot_twisting_model_free, dashpot_twisting_model_history_slots;
+        dashpot_twisting_bind_materials, dashpot_twisting_model_free, dashpot_twisting_model_history_slots,
+        dashpot_twisting_model_reads_context;
 }
 
 pair_functions! {

@@ -15,8 +15,8 @@ use dashpot_sdk::abi::StaticModel;
 /// call.
 pub use dashpot_sdk::abi::{EnergyOut, Normal, NormalCall, Rolling, Tangential, Twisting};
 use dashpot_sdk::{
-    BoundRestitution, Contact, ContactLaw, LawError, MaterialPair, NormalBatch, RollingBatch, RollingLaw,
-    TangentialBatch, TangentialLaw, TwistingBatch,
+    BoundRestitution, Contact, ContactLaw, LawError, MaterialPair, NormalBatch, NormalContext, RollingBatch,
+    RollingLaw, TangentialBatch, TangentialLaw, TwistingBatch,
 };
 
 pub use dashpot_sdk::abi::SdkSeries;
@@ -51,7 +51,38 @@ pub trait NormalLaw: BoundModel<Normal> {
         reach: Option<&mut [f64]>,
         energy: EnergyOut<'_>,
     ) -> Result<bool, LawError> {
-        self.batch(NormalCall { batch: b, reach }, energy)
+        let context = None;
+        self.batch(
+            NormalCall {
+                batch: b,
+                reach,
+                context,
+            },
+            energy,
+        )
+    }
+
+    /// [`NormalLaw::force_batch_with`] with each contact's normal context (sdk 0.4: contact
+    /// radius, cap force, damping; what the contact's other laws read) written to `context`, one
+    /// per contact. A law of a plugin older than sdk 0.4, or one that keeps the default, gives
+    /// [`NormalContext::default_for`] (the Hertzian radius, max(F, 0), no damping).
+    #[inline]
+    fn force_batch_context(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        context: &mut [NormalContext],
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        let context = Some(context);
+        self.batch(
+            NormalCall {
+                batch: b,
+                reach,
+                context,
+            },
+            energy,
+        )
     }
 
     /// The normal force (N) on one contact, history updated in place.

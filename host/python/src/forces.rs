@@ -7,7 +7,7 @@
 use super::*;
 use crate::rotation::{BoundRolling, BoundTangential, BoundTwisting};
 use dashpot::laws::{EnergyOut, NormalLaw};
-use dashpot_sdk::{Contact, NormalBatch};
+use dashpot_sdk::{Contact, NormalBatch, NormalContext};
 use numpy::{IntoPyArray, PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1};
 
 /// A new float64 array of one value per contact.
@@ -162,6 +162,27 @@ impl Energies {
     }
 }
 
+/// The normal contexts of `n` contacts in a flat array of 3 `n` values (contact radius, cap
+/// force, damping per contact).
+pub(crate) fn contexts(x: &[f64], n: usize) -> PyResult<&[NormalContext]> {
+    if x.len() != 3 * n {
+        return Err(PyValueError::new_err(format!(
+            "context has {} values, {} for {n} contacts (contact radius, cap force, damping per contact)",
+            x.len(),
+            3 * n
+        )));
+    }
+    // SAFETY: NormalContext is three f64 (repr(C)): the alignment of f64, no padding.
+    Ok(unsafe { std::slice::from_raw_parts(x.as_ptr().cast::<NormalContext>(), n) })
+}
+
+/// As [`contexts`], to be written.
+pub(crate) fn contexts_mut(x: &mut [f64], n: usize) -> PyResult<&mut [NormalContext]> {
+    contexts(x, n)?;
+    // SAFETY: as `contexts`, with the unique borrow of `x` moved into the result.
+    Ok(unsafe { std::slice::from_raw_parts_mut(x.as_mut_ptr().cast::<NormalContext>(), n) })
+}
+
 /// δ, δ̇, m, r of N contacts as Python passes them: a tuple of four float64 arrays.
 pub(crate) type Contacts<'py> = (
     PyReadonlyArray1<'py, f64>,
@@ -195,6 +216,12 @@ macro_rules! bound_class {
                 &self.name
             }
 
+            /// Whether the law reads the normal law's context (sdk 0.4).
+            #[getter]
+            fn reads_context(&self) -> bool {
+                self.law.reads_context()
+            }
+
             $($methods)*
         }
     };
@@ -211,7 +238,9 @@ bound_class!(
     /// caller's array for the forces. With `energy`, returns `(force, power, elastic, reach)`:
     /// the dissipated power (W) and elastic energy (J) of each contact (`None` for a law that
     /// does not report them) and its reach (m: the contact lasts while δ > −reach).
-    #[pyo3(signature = (contacts, history=None, out=None, energy=false))]
+    /// With `context` (a float64 array of 3 N values), each contact's normal context (sdk 0.4:
+    /// contact radius m, cap force N, damping N·s/m) is written into it.
+    #[pyo3(signature = (contacts, history=None, out=None, energy=false, context=None))]
     fn force<'py>(
         &self,
         py: Python<'py>,
@@ -219,11 +248,20 @@ bound_class!(
         mut history: Option<PyReadwriteArray1<'py, f64>>,
         out: Option<Array<'py>>,
         energy: bool,
+        mut context: Option<PyReadwriteArray1<'py, f64>>,
     ) -> PyResult<PyObject> {
         let c = contact_slices([&contacts.0, &contacts.1, &contacts.2, &contacts.3])?;
         let (n, slots) = (c[0].len(), self.law.history_slots());
         let hist = history_slice(history.as_mut(), n, slots, &self.name)?;
         let law = &self.law;
+        if let Some(x) = context.as_mut() {
+            let x = contexts_mut(x.as_slice_mut()?, n)?;
+            let mut f = vec![0.0; n];
+            let b = normal_batch(c, slots, hist, &mut f);
+            py.allow_threads(|| law.force_batch_context(b, None, x, EnergyOut::none()))
+                .map_err(law_err)?;
+            return Ok(f.into_pyarray(py).into_any().unbind());
+        }
         if energy {
             let (mut f, mut reach, mut en) = (vec![0.0; n], vec![0.0; n], Energies::new(true, n));
             let b = normal_batch(c, slots, hist, &mut f);

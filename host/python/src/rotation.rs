@@ -5,16 +5,18 @@
 //! energy outputs of sdk 0.3 when asked.
 
 use super::*;
-use crate::forces::{contact_slices, history_slice, vectors, vectors_mut, Energies};
+use crate::forces::{contact_slices, contexts, history_slice, vectors, vectors_mut, Energies};
 use dashpot::laws::{EnergyOut, RollingResistance, TangentialForce, TwistingResistance};
-use dashpot_sdk::{RollingBatch, TangentialBatch, TwistingBatch};
+use dashpot_sdk::{NormalContext, RollingBatch, TangentialBatch, TwistingBatch};
 use numpy::{PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadwriteArray1};
 
-/// What every kind's batch shares: the step, n̂, then F_n, δ, m, R, and the history.
+/// What every kind's batch shares: the step, n̂, then F_n, δ, m, R, the normal contexts (none:
+/// the defaults), and the history.
 pub(crate) struct Common<'a> {
     dt: f64,
     normal: &'a [[f64; 3]],
     scalars: [&'a [f64]; 4],
+    context: &'a [NormalContext],
     slots: usize,
     history: &'a mut [f64],
 }
@@ -53,9 +55,9 @@ macro_rules! vector_kind {
             const WIDTH: usize = 3;
             #[rustfmt::skip]
             fn call(law: &Self::Law, c: Common<'_>, own: &[f64], out: &mut [f64], e: EnergyOut<'_>) -> Result<bool, LawError> {
-                let Common { dt, normal, scalars: [normal_force, delta, mass, radius], slots, history } = c;
+                let Common { dt, normal, scalars: [normal_force, delta, mass, radius], context, slots, history } = c;
                 let (velocity, force) = (as_vectors(own), vectors_mut(out));
-                law.$call($batch { dt, normal, velocity, normal_force, delta, mass, radius, slots, history, force }, e)
+                law.$call($batch { dt, normal, velocity, normal_force, delta, mass, radius, context, slots, history, force }, e)
             }
         }
     };
@@ -82,8 +84,8 @@ impl Kind for Twisting {
     const WIDTH: usize = 1;
     #[rustfmt::skip]
     fn call(law: &Self::Law, c: Common<'_>, rate: &[f64], torque: &mut [f64], e: EnergyOut<'_>) -> Result<bool, LawError> {
-        let Common { dt, normal, scalars: [normal_force, delta, mass, radius], slots, history } = c;
-        law.torque_batch(TwistingBatch { dt, normal, rate, normal_force, delta, mass, radius, slots, history, torque }, e)
+        let Common { dt, normal, scalars: [normal_force, delta, mass, radius], context, slots, history } = c;
+        law.torque_batch(TwistingBatch { dt, normal, rate, normal_force, delta, mass, radius, context, slots, history, torque }, e)
     }
 }
 
@@ -102,6 +104,7 @@ pub(crate) struct Arrays<'py> {
     pub(crate) delta: PyReadonlyArray1<'py, f64>,
     pub(crate) mass: PyReadonlyArray1<'py, f64>,
     pub(crate) radius: PyReadonlyArray1<'py, f64>,
+    pub(crate) context: Option<PyReadonlyArray1<'py, f64>>,
     pub(crate) history: PyReadwriteArray1<'py, f64>,
 }
 
@@ -128,11 +131,16 @@ pub(crate) fn call<'py, K: Kind>(
             K::WIDTH
         )));
     }
+    let context = match a.context.as_ref() {
+        Some(x) => contexts(x.as_slice()?, n)?,
+        None => &[],
+    };
     let history = history_slice(Some(&mut a.history), n, slots, name)?;
     let c = Common {
         dt: a.dt,
         normal,
         scalars,
+        context,
         slots,
         history,
     };
@@ -159,8 +167,9 @@ macro_rules! bound_kind {
     ($(#[$doc:meta])* $class:ident, $kind:ty, $method:ident, $own:ident) => {
         crate::forces::bound_class!($(#[$doc])* $class, <$kind as Kind>::Law, {
             /// One batch (see the module's docs and the Python wrapper's): the flat arrays of
-            /// N contacts, history advanced by `dt` (s) in place.
-            #[pyo3(signature = (dt, normal, $own, normal_force, delta, mass, radius, history, energy=false))]
+            /// N contacts, history advanced by `dt` (s) in place; `context`, when given, the
+            /// normal law's contexts (3 N values: contact radius, cap force, damping).
+            #[pyo3(signature = (dt, normal, $own, normal_force, delta, mass, radius, history, energy=false, context=None))]
             #[allow(clippy::too_many_arguments)]
             fn $method<'py>(
                 &self,
@@ -174,8 +183,9 @@ macro_rules! bound_kind {
                 radius: PyReadonlyArray1<'py, f64>,
                 history: PyReadwriteArray1<'py, f64>,
                 energy: bool,
+                context: Option<PyReadonlyArray1<'py, f64>>,
             ) -> PyResult<PyObject> {
-                let a = Arrays { dt, normal, own: $own, normal_force, delta, mass, radius, history };
+                let a = Arrays { dt, normal, own: $own, normal_force, delta, mass, radius, context, history };
                 call::<$kind>(py, &*self.law, &self.name, self.law.history_slots(), a, energy)
             }
         });

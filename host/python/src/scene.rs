@@ -36,6 +36,8 @@ const BLOCK: Duration = Duration::from_millis(50);
 pub(crate) struct Scene {
     e: Dim,
     file: SceneFile,
+    /// The species and the laws of every class of contacts.
+    plan: dashpot::dem::scene::PairPlan,
     /// The scene file's text (what `dashpot dem --scene` would read).
     text: String,
     /// The scene's `duration` (s).
@@ -57,18 +59,19 @@ impl Scene {
             .map_err(|e| PyValueError::new_err(format!("{source}: {e}")))?;
         let reg = registry(py)?;
         let scene_err = |e: dashpot::dem::scene::SceneError| PyValueError::new_err(format!("{source}: {e}"));
-        let (e, energy_initial, duration) = if dim == 2 {
+        let (e, energy_initial, duration, plan) = if dim == 2 {
             let s = file.scene::<2>().map_err(scene_err)?;
             let (e, en) = scene_engine(&reg, &file, &s).map_err(run_err)?;
-            (Dim::Two(e), en, s.duration)
+            (Dim::Two(e), en, s.duration, s.plan)
         } else {
             let s = file.scene::<3>().map_err(scene_err)?;
             let (e, en) = scene_engine(&reg, &file, &s).map_err(run_err)?;
-            (Dim::Three(e), en, s.duration)
+            (Dim::Three(e), en, s.duration, s.plan)
         };
         Ok(Scene {
             e,
             file,
+            plan,
             text,
             duration,
             energy_initial,
@@ -180,6 +183,15 @@ impl Scene {
         on!(&self.e, e => e.p.len())
     }
 
+    /// Each particle's species by name, in the particles' order (empty names without species).
+    fn particle_species(&self) -> Vec<String> {
+        let kinds = on!(&self.e, e => e.particle_species());
+        kinds
+            .into_iter()
+            .map(|s| self.plan.species[s as usize].name.clone())
+            .collect()
+    }
+
     /// Simulated time (s).
     #[getter]
     fn time(&self) -> f64 {
@@ -268,10 +280,11 @@ impl Scene {
     /// The energies now (J): `translational`, `rotational`, `gravity`, `total` (their sum), the
     /// `elastic` energy stored in the contacts, and the energy each family of laws `dissipated`
     /// since the start (`normal`, `tangential`, `rolling`, `twisting`, `total`; `None` for a
-    /// law that does not report it), and `initial`, the total with the elastic at the start.
+    /// law that does not report it), `initial`, the total with the elastic at the start, and
+    /// `wall_work`, the work the moving walls did on the particles.
     fn energy<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let (en, elastic, dissipated, unreported, on) = on!(&self.e, e => (
-            e.energy(), e.elastic(), e.dissipated, e.unreported, e.config().energy
+        let (en, elastic, dissipated, unreported, on, work) = on!(&self.e, e => (
+            e.energy(), e.elastic(), e.dissipated, e.unreported, e.config().energy, e.wall_work
         ));
         let d = PyDict::new(py);
         d.set_item("translational", en.translational)?;
@@ -295,6 +308,7 @@ impl Scene {
             d.set_item("dissipated", py.None())?;
         }
         d.set_item("initial", on.then_some(self.energy_initial))?;
+        d.set_item("wall_work", on.then_some(work))?;
         Ok(d)
     }
 
@@ -342,8 +356,9 @@ impl Scene {
     /// text; `wall_seconds` is the time spent stepping here.
     fn result(&self, py: Python<'_>) -> PyResult<String> {
         let reg = registry(py)?;
-        let v = on!(&self.e, e => final_json(&reg, &self.file, e, self.energy_initial, self.wall))
-            .map_err(run_err)?;
+        let v =
+            on!(&self.e, e => final_json(&reg, &self.file, &self.plan, e, self.energy_initial, self.wall))
+                .map_err(run_err)?;
         Ok(v.to_string())
     }
 }

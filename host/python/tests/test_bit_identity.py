@@ -20,6 +20,12 @@ CONTACT_LAWS = [
     ("jkr", {"w": 0.1}),
     ("dmt", {"w": 0.1}),
 ]
+# LAMMPS's sub-models (plugin dashpot_granular): every normal x damping law LAMMPS accepts
+GRAN_DAMP = {"velocity": 0.5, "mass-velocity": 100.0, "viscoelastic": 1e5, "tsuji": 0.5, "coeff-restitution": 0.5}
+GRAN_NORMAL = {"hooke": {"k": 1e6}, "hertz": {"k": 1e9}, "hertz-material": {}, "dmt": {"cohesion": 0.1},
+               "jkr": {"cohesion": 0.1}}
+CONTACT_LAWS += [(f"gran-{n}-{d}", {**p, "damp": v}) for n, p in GRAN_NORMAL.items() for d, v in GRAN_DAMP.items()
+                 if not (n in ("dmt", "jkr") and d in ("tsuji", "coeff-restitution"))]
 
 
 def test_every_shipped_contact_law_is_tested_here():

@@ -200,3 +200,38 @@ def test_every_kind_refuses_what_its_arrays_cannot_be():
     w = dashpot.TwistingLaw("twisting-sds").bind(**MCC)
     with pytest.raises(ValueError, match="rate has 1 values, normal_force 2"):
         w.torque(1e-6, n, [1.0], [1.0, 1.0], [1e-5] * 2, [M_PAIR] * 2, [R_PAIR] * 2, np.zeros((2, 1)))
+
+
+def test_jkr_tells_the_laws_of_its_contact_its_own_contact_radius():
+    w, r = 0.1, R_PAIR
+    e = MCC["young"] / (2.0 * (1.0 - MCC["poisson"] ** 2))
+    delta_c = -0.75 * (np.pi**2 * w**2 * r / e**2) ** (1.0 / 3.0)
+    jkr = dashpot.ContactLaw("jkr", w=w).bind(**MCC)
+    m, rr = np.full(2, M_PAIR), np.full(2, r)
+    h = np.zeros((2, jkr.history_slots))
+    jkr.force_context([1e-9, 1e-9], [0.0, 0.0], m, rr, history=h)
+    # past touching, before rupture: a solves δ = a²/R − √(2π w a/E) and stays positive
+    d = np.array([0.5 * delta_c, 0.9 * delta_c])
+    f, x = jkr.force_context(d, [0.0, 0.0], m, rr, history=h)
+    a = x[:, 0]
+    assert x.shape == (2, 3) and np.all(a > 0.0) and np.all(x[:, 1] > 0.0) and np.all(x[:, 2] == 0.0)
+    assert np.allclose(a * a / r - np.sqrt(2 * np.pi * w * a / e), d, rtol=0.0, atol=1e-9 * abs(delta_c))
+    # a law that reports no context of its own gives the default: √(R δ), max(F, 0), 0
+    hsd = dashpot.ContactLaw("hsd", eps=0.5).bind(**MCC)
+    dd = np.array([1e-6, -1e-7])
+    f, x = hsd.force_context(dd, [0.1, 0.1], m, rr)
+    assert np.array_equal(x, np.column_stack([np.sqrt(rr * np.maximum(dd, 0.0)), np.maximum(f, 0.0), np.zeros(2)]))
+    # mindlin does not read the context: giving it one changes nothing
+    t = dashpot.TangentialLaw("mindlin", mu=0.3).bind(**MCC)
+    assert not t.reads_context and not jkr.reads_context
+    n, v = [[0.0, 0.0, 1.0]] * 2, [[1e-3, 0.0, 0.0]] * 2
+    h1, h2 = np.zeros((2, t.history_slots)), np.zeros((2, t.history_slots))
+    f1 = t.force(1e-6, n, v, [10.0, 5.0], [1e-5, 1e-5], m, rr, h1)
+    f2 = t.force(1e-6, n, v, [10.0, 5.0], [1e-5, 1e-5], m, rr, h2, context=x)
+    assert np.array_equal(f1, f2) and np.array_equal(h1, h2)
+    with pytest.raises(ValueError, match="context has shape"):
+        t.force(1e-6, n, v, [10.0, 5.0], [1e-5, 1e-5], m, rr, h1, context=np.zeros((1, 3)))
+    bad = x.copy()
+    bad[1, 0] = np.nan
+    with pytest.raises(ValueError, match=r"input context\[1\]"):
+        t.force(1e-6, n, v, [10.0, 5.0], [1e-5, 1e-5], m, rr, h1, context=bad)

@@ -152,3 +152,53 @@ def _bad_file(tmp_path):
     p = tmp_path / "bad.toml"
     p.write_text(PILE.read_text().replace("young = 1.0e7", "youngg = 1.0e7"))
     return p
+
+
+def species_scene(**over):
+    """Eight spheres of two species (glass and rubber) with their own laws per pair: HSD between
+    glass beads, Kuwabara–Kono between rubber ones and for the mixed pairs the top-level law;
+    rubber on the floor with friction."""
+    kw = dict(dimension=3, positions=X, velocities=V, angular_velocities=W, diameters=D,
+              species=[{"name": "glass", "young": 6e7, "poisson": 0.25, "density": 2500.0},
+                       {"name": "rubber", "young": 1e7, "poisson": 0.45, "density": 1100.0}],
+              particle_species=["glass", "rubber"] * 4,
+              law=dashpot.ContactLaw("hsd", eps=0.8),
+              pairs=[{"species": ["glass", "glass"], "law": dashpot.ContactLaw("hsd", eps=0.5)},
+                     {"species": "rubber", "law": {"name": "kuwabara-kono", "params": {"A": 2e-6}}},
+                     {"species": "rubber", "wall": "floor", "law": "hsd",
+                      "tangential": dashpot.TangentialLaw("mindlin", mu=0.6)}],
+              gravity=[0.0, 0.0, -9.81], duration=0.004,
+              walls=[{"name": "floor", "point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}])
+    kw.update(over)
+    return dashpot.Scene(**kw)
+
+
+def test_species_and_pair_laws_from_keywords_are_the_scene_file_to_the_bit(tmp_path):
+    sim = species_scene()
+    assert sim.species == ["glass", "rubber"] * 4
+    p = tmp_path / "species.toml"
+    p.write_text(sim.to_toml())
+    assert "[[species]]" in p.read_text() and "[[pair]]" in p.read_text()
+    ref = cli("dem", "--scene", p, "--json")
+    got = sim.run().result()
+    same(ref, got)
+    assert [q["species"] for q in got["particles"]] == ["glass", "rubber"] * 4
+    names = {c["pairs"]: c["law"] for c in got["pairs"]["particle_pairs"]}
+    assert names == {"glass–glass": "hsd", "rubber–rubber": "kuwabara-kono", "glass–rubber": "hsd"}
+    walls = {c["pairs"]: (c["law"], c["tangential"]) for c in got["pairs"]["wall_pairs"]}
+    assert walls["rubber–wall 0 ('floor')"] == ("hsd", "mindlin") and walls["glass–wall 0 ('floor')"] == ("hsd", None)
+    # the masses follow each particle's species
+    m = sim.masses
+    assert m[0] == pytest.approx(2500.0 * np.pi / 6 * 0.002**3, rel=1e-12)
+    assert m[1] == pytest.approx(1100.0 * np.pi / 6 * 0.002**3, rel=1e-12)
+
+
+def test_species_refusals_name_the_pair_and_the_key():
+    with pytest.raises(ValueError, match="no law for the pair \\(glass, rubber\\)"):
+        species_scene(law=None)
+    with pytest.raises(ValueError, match="particle_species has 3 names"):
+        species_scene(particle_species=["glass"] * 3)
+    with pytest.raises(ValueError, match="rubbr.*did you mean `rubber`"):
+        species_scene(particle_species=["glass", "rubbr"] * 4)
+    with pytest.raises(ValueError, match="young.*and species both given"):
+        species_scene(young=1e7)

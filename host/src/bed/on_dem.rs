@@ -169,11 +169,11 @@ impl DemBed {
             periodic: [true, false],
             bounded: true,
         };
-        let piston = Wall {
-            point: VecD::<2>::new(0.0, 0.0),
-            normal: VecD::<2>::new(0.0, 1.0),
-            motion: Motion::Piston(Piston::new(b.amplitude, b.freq)),
-        };
+        let piston = Wall::plane(
+            VecD::<2>::new(0.0, 0.0),
+            VecD::<2>::new(0.0, 1.0),
+            Motion::Piston(Piston::new(b.amplitude, b.freq)),
+        );
         let lid_wall = Wall::fixed(VecD::<2>::new(0.0, lid), VecD::<2>::new(0.0, -1.0));
         Engine::new(cfg, &bodies, vec![piston, lid_wall], laws)
     }

@@ -5,8 +5,9 @@
 use crate::budget::{self, check_memory_against, largest_fitting, Memory, Need, Refused};
 use crate::dem::footprint::Footprint;
 use crate::dem::scene::{Scene, SceneFile};
+use crate::dem::species::SpeciesLaws;
 use crate::dem::state::Body;
-use crate::dem::{Engine, Laws};
+use crate::dem::Engine;
 use clap::Args;
 use std::time::{Duration, Instant};
 
@@ -34,10 +35,10 @@ pub const TABLE_BYTES: f64 = 400.0;
 /// The footprint of the run of `scene` under `laws`: the engine's (its packed share from the
 /// scene's gravity and duration, its skin), and the final state as JSON at the end; the
 /// scene's bodies and tables are resident already (the footprint's baseline).
-pub fn scene_footprint<const D: usize>(scene: &Scene<D>, laws: &Laws) -> Footprint {
+pub fn scene_footprint<const D: usize>(scene: &Scene<D>, laws: &SpeciesLaws) -> Footprint {
     let d = scene.bodies.iter().map(|b| b.diameter);
     let (dmin, dmax) = (d.clone().fold(f64::INFINITY, f64::min), d.fold(0.0, f64::max));
-    let mut fp = Footprint::of(&scene.config, laws, scene.bodies.len(), scene.walls.len()).with_skin(
+    let mut fp = Footprint::of_species(&scene.config, laws, scene.bodies.len(), scene.walls.len()).with_skin(
         dmin,
         dmax,
         scene.config.skin,
@@ -64,7 +65,7 @@ fn kept(tables: f64, bodies: f64, dim: usize) -> f64 {
 pub fn check_scene_memory<const D: usize>(
     file: &SceneFile,
     scene: &Scene<D>,
-    laws: &Laws,
+    laws: &SpeciesLaws,
 ) -> Result<(), Refused> {
     let fp = scene_footprint(scene, laws);
     let mem = Memory::now();

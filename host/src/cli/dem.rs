@@ -1,7 +1,7 @@
 //! `dashpot dem --scene FILE.toml [--json] [--out DIR]`: a soft-sphere DEM run of a scene.
 
 use crate::dem::scene::SceneFile;
-use crate::dem::{Engine, Laws};
+use crate::dem::Engine;
 use crate::registry::Registry;
 use anyhow::{Context, Result};
 use clap::Args;
@@ -165,7 +165,7 @@ fn run_dim<const D: usize>(
     } else {
         format!(
             "dt = {:.4e} s = contact time {:.4e} s / {} (law '{}', smallest particle, impact speed {:.3} m/s)",
-            c.dt, c.collision_time, scene.config.steps_per_collision, file.law.name, c.impact_speed
+            c.dt, c.collision_time, scene.config.steps_per_collision, scene.plan.law_names(), c.impact_speed
         )
     };
     // steps past any machine's reach are refused before the first (and under --check)
@@ -195,7 +195,7 @@ fn run_dim<const D: usize>(
             "estimated from a timed sample of its steps",
             a.limits.max_hours,
         )?;
-        return print_check(&e, path, &file.law.name, a.json, &est);
+        return print_check(&e, path, &scene, a.json, &est);
     }
     eprintln!("{line}");
     if let Some(w) = c.warning() {
@@ -208,7 +208,7 @@ fn run_dim<const D: usize>(
     let frame = |e: &Engine<D>, w: &mut crate::output::AtomicFile, k: u64| -> Result<()> {
         crate::dem::xyz::write_frame(e, w)?;
         if let (true, Some(dir)) = (a.png, &a.out) {
-            frame_png(e, dir, k, &file.law.name)?;
+            frame_png(e, dir, k, &scene.plan.law_names())?;
         }
         Ok(())
     };
@@ -273,7 +273,7 @@ fn run_dim<const D: usize>(
     }
     // (the final state as JSON only where it goes: a large pile's costs more than its engine)
     let state = if a.json || a.out.is_some() {
-        Some(final_json(reg, file, &e, energy_initial, wall)?)
+        Some(final_json(reg, file, &scene.plan, &e, energy_initial, wall)?)
     } else {
         None
     };
@@ -287,16 +287,7 @@ fn run_dim<const D: usize>(
         println!("{}", serde_json::to_string_pretty(state)?);
     } else {
         let en = e.energy();
-        println!(
-            "{} {}D particles, law {}{}",
-            e.p.len(),
-            D,
-            file.law.name,
-            [&file.tangential, &file.rolling, &file.twisting]
-                .iter()
-                .filter_map(|t| t.as_ref().map(|t| format!(" + {}", t.name)))
-                .collect::<String>()
-        );
+        println!("{} {}D particles, {}", e.p.len(), D, laws_line(&scene.plan));
         println!(
             "t = {:.6e} s after {} steps of {:.4e} s ({wall:.2} s wall, {:.3e} particle-steps/s)",
             e.time(),
@@ -329,10 +320,11 @@ fn run_dim<const D: usize>(
     Ok(())
 }
 
-/// The engine of a scene as `dashpot dem` runs it: the laws of `file` (`[law]`, `[tangential]`,
-/// `[rolling]`, `[twisting]`) from `reg`, bound to the scene's material, energy accounting as
-/// the scene says (on unless `energy = false`);
-/// and the energy at the start (J: kinetic, gravity and elastic), which `dem --json` reports.
+/// The engine of a scene as `dashpot dem` runs it: the laws of every class of contacts (the
+/// scene's `[law]`, `[tangential]`, `[rolling]`, `[twisting]` and `[[pair]]` tables) from
+/// `reg`, bound to their materials, energy accounting as the scene says (on unless
+/// `energy = false`); and the energy at the start (J: kinetic, gravity and elastic), which
+/// `dem --json` reports.
 pub fn scene_engine<const D: usize>(
     reg: &Registry,
     file: &SceneFile,
@@ -348,34 +340,34 @@ pub fn scene_engine_sized<const D: usize>(
     file: &SceneFile,
     scene: &crate::dem::scene::Scene<D>,
 ) -> Result<(Engine<D>, f64, crate::dem::footprint::Footprint)> {
-    let normal = file.law.param_values();
-    let tang = file
-        .tangential
-        .as_ref()
-        .map(|t| (t.name.as_str(), t.param_values()));
-    let laws = Laws::from_registry(
-        reg,
-        (&file.law.name, &normal),
-        tang.as_ref().map(|(n, p)| (*n, p.as_slice())),
-        &scene.config.material,
-    )
-    .context("[law] / [tangential]")?;
-    let table =
-        |t: &Option<crate::dem::scene::LawTable>| t.as_ref().map(|t| (t.name.clone(), t.param_values()));
-    let (roll, twist) = (table(&file.rolling), table(&file.twisting));
-    let laws = laws
-        .with_rotation(
-            reg,
-            roll.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
-            twist.as_ref().map(|(n, p)| (n.as_str(), p.as_slice())),
-            &scene.config.material,
-        )
-        .context("[rolling] / [twisting]")?;
+    let laws = scene.plan.bind(reg)?;
     let fp = crate::cli::budget::scene_footprint(scene, &laws);
     crate::cli::budget::check_scene_memory(file, scene, &laws)?;
-    let e = Engine::new(scene.config.clone(), &scene.bodies, scene.walls.clone(), laws)?;
+    let e = Engine::with_species(
+        scene.config.clone(),
+        &scene.bodies,
+        &scene.species,
+        scene.walls.clone(),
+        laws,
+    )?;
     let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
     Ok((e, energy_initial, fp))
+}
+
+/// The laws of a run in one line: `law hsd + mindlin`, or with several classes
+/// `laws by pair: powder–powder jkr; powder–beads hsd; ...`.
+fn laws_line(plan: &crate::dem::scene::PairPlan) -> String {
+    if plan.pair.len() == 1 && plan.wall.len() <= 1 && plan.wall.iter().all(|w| w.laws == plan.pair[0].laws) {
+        return format!("law {}", plan.pair[0].laws.names());
+    }
+    let each = plan
+        .pair
+        .iter()
+        .chain(&plan.wall)
+        .map(|c| format!("{} {}", c.label, c.laws.names()))
+        .collect::<Vec<_>>()
+        .join("; ");
+    format!("laws by pair: {each}")
 }
 
 /// What `dashpot dem --json` prints after a run of `file` on `e` (made by [`scene_engine`],
@@ -384,24 +376,31 @@ pub fn scene_engine_sized<const D: usize>(
 pub fn final_json<const D: usize>(
     reg: &Registry,
     file: &SceneFile,
+    plan: &crate::dem::scene::PairPlan,
     e: &Engine<D>,
     energy_initial: f64,
     wall: f64,
 ) -> Result<serde_json::Value> {
     let mut state = e.state_json();
-    state["law"] = serde_json::json!(file.law.name);
+    state["law"] = serde_json::json!(file.law.as_ref().map(|t| t.name.clone()));
     state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
     state["rolling"] = serde_json::json!(file.rolling.as_ref().map(|t| t.name.clone()));
     state["twisting"] = serde_json::json!(file.twisting.as_ref().map(|t| t.name.clone()));
-    let tables = [
-        Some(&file.law),
-        file.tangential.as_ref(),
-        file.rolling.as_ref(),
-        file.twisting.as_ref(),
-    ];
-    let provenance = tables
+    if plan.named || plan.pair.len() > 1 || plan.wall.len() > 1 {
+        // the species and every class of contacts with its laws; each particle's species
+        state["pairs"] = plan.json();
+        if plan.named {
+            let names = e.particle_species();
+            if let Some(parts) = state["particles"].as_array_mut() {
+                for (p, s) in parts.iter_mut().zip(names) {
+                    p["species"] = serde_json::json!(plan.species[s as usize].name);
+                }
+            }
+        }
+    }
+    let provenance = plan
+        .tables()
         .into_iter()
-        .flatten()
         .map(|t| crate::output::Provenance::of(reg, &t.name, &t.param_values()).map(|p| p.json()))
         .collect::<Result<Vec<_>, _>>()?;
     state["provenance"] = serde_json::json!(provenance);
@@ -409,6 +408,9 @@ pub fn final_json<const D: usize>(
     let on = e.config().energy;
     state["energy_initial"] = serde_json::json!(on.then_some(energy_initial));
     state["elastic"] = serde_json::json!(on.then(|| e.elastic().iter().sum::<f64>()));
+    // the work of moving walls on the particles: initial + wall_work = energy + elastic +
+    // dissipated
+    state["wall_work"] = serde_json::json!(on.then_some(e.wall_work));
     state["dissipated"] = if on {
         dissipated_json(e)
     } else {
@@ -420,11 +422,13 @@ pub fn final_json<const D: usize>(
     Ok(state)
 }
 
-/// `dem --scene FILE --check`: what the run would start with (the checks have passed).
+/// `dem --scene FILE --check`: what the run would start with (the checks have passed): the
+/// step, the particles, the species, every class of contacts with its laws, the walls; and
+/// the estimate of the run (steps, peak memory, wall time).
 fn print_check<const D: usize>(
     e: &Engine<D>,
     path: &std::path::Path,
-    law: &str,
+    scene: &crate::dem::scene::Scene<D>,
     json: bool,
     est: &crate::cli::budget::RunEstimate,
 ) -> Result<()> {
@@ -432,10 +436,17 @@ fn print_check<const D: usize>(
     if let Some(w) = c.warning() {
         eprintln!("warning: {w}");
     }
+    let plan = &scene.plan;
+    let law = plan.law_names();
     let d = |f: fn(f64, f64) -> f64, start: f64| 2.0 * e.p.radius.iter().cloned().fold(start, f);
     let (dmin, dmax) = (d(f64::min, f64::INFINITY), d(f64::max, 0.0));
+    let mut count = vec![0usize; plan.species.len()];
+    for &s in &scene.species {
+        count[s as usize] += 1;
+    }
+    let walls: Vec<String> = scene.walls.iter().map(|w| w.describe()).collect();
     if json {
-        let v = serde_json::json!({
+        let mut v = serde_json::json!({
             "scene": path.display().to_string(),
             "checks": "passed",
             "dimension": D,
@@ -449,8 +460,14 @@ fn print_check<const D: usize>(
             "diameter_min": dmin,
             "diameter_max": dmax,
             "walls": e.walls.len(),
+            "wall_shapes": walls,
             "estimate": est.json(),
         });
+        let mut pairs = plan.json();
+        for (s, n) in pairs["species"].as_array_mut().into_iter().flatten().zip(&count) {
+            s["particles"] = serde_json::json!(n);
+        }
+        v["pairs"] = pairs;
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
@@ -473,6 +490,24 @@ fn print_check<const D: usize>(
         D,
         e.walls.len()
     );
+    if plan.named {
+        for (s, n) in plan.species.iter().zip(&count) {
+            let m = &s.material;
+            println!(
+                "species '{}': {n} particles, E = {:e} Pa, nu = {}, rho = {} kg/m^3",
+                s.name, m.young, m.poisson, m.density
+            );
+        }
+    }
+    for c in &plan.pair {
+        println!("particle pairs {}: {}", c.label, c.laws.described());
+    }
+    for c in &plan.wall {
+        println!("wall pairs {}: {}", c.label, c.laws.described());
+    }
+    for (k, w) in walls.iter().enumerate() {
+        println!("wall {k}: {w}");
+    }
     est.lines().iter().for_each(|l| println!("{l}"));
     Ok(())
 }

@@ -141,9 +141,8 @@ pub struct Neighbours<const D: usize> {
     /// The particles that may touch a wall before the next build, sorted
     /// ([`Neighbours::find_wall_candidates`]).
     pub wall_cand: Vec<u32>,
-    /// Each wall's offset along its normal (point · normal, m) when they were found; empty
-    /// until then.
-    pub wall_offset: Vec<f64>,
+    /// The walls' surfaces when they were found; empty until then.
+    pub wall_then: Vec<WallState<D>>,
 }
 
 /// Particles per parallel task.
@@ -157,7 +156,7 @@ impl<const D: usize> Neighbours<D> {
         self.skin = skin;
         self.builds += 1;
         self.wall_cand.clear();
-        self.wall_offset.clear();
+        self.wall_then.clear();
         self.anchor.clear();
         self.anchor.extend_from_slice(pos);
         if n == 0 {
@@ -324,10 +323,10 @@ impl<const D: usize> Neighbours<D> {
         }
     }
 
-    /// After a build: the particles that may touch one of `walls` (their planes now) before the
-    /// next build, for laws acting up to `reach` (m) beyond touching. While the list is valid a
-    /// particle moves by less than half the skin from its anchor, and [`Neighbours::
-    /// wall_candidates`] allows a wall half the skin along its normal: a particle whose gap
+    /// After a build: the particles that may touch one of `walls` (their surfaces now) before
+    /// the next build, for laws acting up to `reach` (m) beyond touching. While the list is
+    /// valid a particle moves by less than half the skin from its anchor, and [`Neighbours::
+    /// wall_candidates`] allows a surface half the skin of motion: a particle whose gap
     /// to every wall is wider than the skin plus `reach` (with 1 % to spare, and a millionth
     /// of its radius for round-off) cannot come within `reach` of one before the next build.
     pub fn find_wall_candidates(&mut self, walls: &[WallState<D>], radius: &[f64], reach: f64) {
@@ -347,22 +346,23 @@ impl<const D: usize> Neighbours<D> {
                 })
                 .map(|(i, _)| i as u32),
         );
-        self.wall_offset.clear();
-        self.wall_offset.extend(walls.iter().map(WallState::offset));
+        self.wall_then.clear();
+        self.wall_then.extend_from_slice(walls);
     }
 
     /// The wall candidates among the particles `range` ([`Neighbours::find_wall_candidates`]),
     /// or `None` if there are none to go by: not found since the build, other walls, or a wall
-    /// moved by more than half the skin along its normal since (then every particle is looked
-    /// at, with the same result).
+    /// moved by more than half the skin since (a plane along its normal, a cylinder across its
+    /// axis, a box by its centre; or a wall turned: see [`WallState::moved_since`]), when every
+    /// particle is looked at, with the same result.
     pub fn wall_candidates(&self, range: Range<usize>, walls: &[WallState<D>]) -> Option<&[u32]> {
-        if self.wall_offset.len() != walls.len() || walls.is_empty() {
+        if self.wall_then.len() != walls.len() || walls.is_empty() {
             return None;
         }
         let fixed = walls
             .iter()
-            .zip(&self.wall_offset)
-            .all(|(w, &o)| (w.offset() - o).abs() <= 0.5 * self.skin);
+            .zip(&self.wall_then)
+            .all(|(w, then)| w.moved_since(then) <= 0.5 * self.skin);
         if !fixed {
             return None;
         }

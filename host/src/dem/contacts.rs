@@ -19,14 +19,16 @@
 use super::state::VecD;
 use super::DemError;
 use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
-use dashpot_sdk::{NormalBatch, TangentialBatch};
+use dashpot_sdk::{NormalBatch, NormalContext, TangentialBatch};
 use std::ops::Range;
 
+mod classes;
 mod edges;
 mod gather;
 mod renumber;
 mod rotation;
 
+pub use classes::{gather_pair_classes, gather_wall_classes};
 use edges::{step_edge_means, Edges};
 pub use rotation::Rotating;
 
@@ -54,6 +56,24 @@ pub struct View<'a, const D: usize> {
     /// contact is presented to the laws from the partner the user numbered first, so that
     /// the laws see the same contact (and keep the same history) whatever the order.
     pub uid: Option<&'a [u32]>,
+    /// Each particle's species (see [`super::species`]); empty when every particle is of
+    /// species 0.
+    pub species: &'a [u8],
+}
+
+/// How a chunk's contacts are sorted into their classes' sets ([`Contacts`]): the class of
+/// each pair of species and of each species against each wall (see
+/// [`super::species::SpeciesLaws`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ClassMap<'a> {
+    /// Species in the run.
+    pub species: usize,
+    /// Walls in the run.
+    pub walls: usize,
+    /// The class of the pair of species `(a, b)`: `pair[a * species + b]` (empty: one class).
+    pub pair: &'a [u8],
+    /// The class of species `s` against wall `w`: `wall[s * walls + w]` (empty: one class).
+    pub wall: &'a [u8],
 }
 
 /// One chunk of one kind of contacts (particle pairs, or particles against walls), structure
@@ -114,6 +134,9 @@ pub struct ContactSet {
     pub froll: Vec<[f64; 3]>,
     /// Twisting torques about n̂ on i (N·m), on j their opposite.
     pub mtwist: Vec<f64>,
+    /// The normal law's contexts (sdk 0.4), one per contact while a tangential, rolling or
+    /// twisting law of the run reads them (see [`ContactSet::evaluate`]); empty otherwise.
+    pub context: Vec<NormalContext>,
     /// Whether the laws are asked for their energy outputs.
     pub energy: bool,
     /// The largest reach of the normal law (m; 0 for a law that is not adhesive): contacts are
@@ -136,6 +159,9 @@ pub struct ContactSet {
     pub formed: usize,
     /// Scratch of the gathering: the candidate pairs (or particles, `j` unused, for walls).
     cand: Vec<(u32, u32)>,
+    /// Scratch of a gathering into several classes' sets: every class's candidates, before
+    /// they are sorted into their sets (kept by the chunk's first set).
+    split: Vec<(u32, u32)>,
     /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
     scratch: Vec<f64>,
     /// Scratch of the merge: each contact's index in the previous set.
@@ -195,7 +221,8 @@ pub const MIN_CHUNK: usize = 128;
 /// normal_force: SLICE, input: ARRAY, history / slots => output: ARRAY })`, on contacts
 /// `a..b` of contact set `set`: the step `dt` (s), the geometry every such law reads (unit
 /// normals, the normal forces (N) given, overlaps, masses, radii), the law's own input array,
-/// its history of `slots` values a contact and its output array. For the tangential and
+/// its history of `slots` values a contact and its output array, with the normal law's contexts
+/// of the contacts when the laws read them ([`contexts`]). For the tangential and
 /// rolling laws (`velocity: ARRAY => force: ARRAY`, [`dashpot_sdk::VectorBatch`]) and the
 /// twisting law (`rate: ARRAY => torque: ARRAY`, [`dashpot_sdk::TwistingBatch`]). A macro
 /// rather than a method: the batch borrows the set's arrays one by one, some shared and some
@@ -213,6 +240,7 @@ macro_rules! motion_batch {
             delta: &$set.delta[$a..$b],
             mass: &$set.mass[$a..$b],
             radius: &$set.radius[$a..$b],
+            context: contexts(&$set.context, $a..$b),
             slots: $slots,
             history: &mut $set.$history[$a * $slots..$b * $slots],
             $output: &mut $set.$outputs[$a..$b],
@@ -255,6 +283,18 @@ fn sum4(x: &[f64]) -> f64 {
     }
     let rest: f64 = quads.remainder().iter().sum();
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + rest
+}
+
+/// The normal contexts of contacts `r` of a set whose contexts are `all` ([`ContactSet::context`])
+/// for the laws of the contact's motion: those the normal law reported, or none (the defaults)
+/// when no law of the run reads them.
+#[inline]
+fn contexts(all: &[NormalContext], r: Range<usize>) -> &[NormalContext] {
+    if all.is_empty() {
+        &[]
+    } else {
+        &all[r]
+    }
 }
 
 impl ContactSet {
@@ -366,6 +406,12 @@ impl ContactSet {
         let (sn, st) = (self.slots_n, self.slots_t);
         // a law with history would see its history advanced by the extra calls: plain rule
         let edges = edge_means && sn == 0;
+        // the normal law's contexts only when a law of the contact's motion reads them
+        let reads = tangential.is_some_and(|t| t.reads_context())
+            || rotation.rolling.is_some_and(|l| l.reads_context())
+            || rotation.twisting.is_some_and(|l| l.reads_context());
+        self.context
+            .resize(if reads { n } else { 0 }, NormalContext::default());
         self.unreported = [false; 4];
         self.power_sum = [0.0; 4];
         let mut a = 0;
@@ -381,7 +427,12 @@ impl ContactSet {
                 history: &mut self.hist_n[a * sn..b * sn],
                 force: &mut *f,
             };
-            if self.energy || self.reach_bound > 0.0 {
+            if reads {
+                let out = family_out(self.energy, &mut self.power, &mut self.elastic, 0, a..b);
+                let reach = (self.reach_bound > 0.0).then(|| &mut self.reach[a..b]);
+                let written = normal.force_batch_context(nb, reach, &mut self.context[a..b], out)?;
+                self.unreported[0] |= self.energy && !written;
+            } else if self.energy || self.reach_bound > 0.0 {
                 let out = family_out(self.energy, &mut self.power, &mut self.elastic, 0, a..b);
                 let reach = (self.reach_bound > 0.0).then(|| &mut self.reach[a..b]);
                 let written = normal.force_batch_with(nb, reach, out)?;
@@ -427,41 +478,68 @@ impl ContactSet {
     }
 }
 
-/// One kind of contacts of a run, in chunks of particles ([`gather_chunk`], see the module doc),
-/// each double-buffered.
+/// The history slots per contact of one class of contacts' laws: normal, tangential, and the
+/// rolling and twisting laws' (`None`: no such law).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Slots {
+    /// Normal-law history slots.
+    pub n: usize,
+    /// Tangential-law history slots (0 without a tangential law).
+    pub t: usize,
+    /// Rolling-law history slots.
+    pub r: Option<usize>,
+    /// Twisting-law history slots.
+    pub w: Option<usize>,
+}
+
+/// One kind of contacts of a run (particle pairs, or particles against walls), in chunks of
+/// particles ([`gather_chunk`], see the module doc), each double-buffered, and within each
+/// chunk one set per *class* of contacts (a pair of species, or a species and a kind of wall,
+/// with the same laws: [`crate::dem::species::SpeciesLaws`]): chunk `k`'s set of class `c` is
+/// `chunks[k * classes + c]`. Each class has its own laws' history widths. A scene of one
+/// species has one class: one set per chunk.
 #[derive(Debug, Clone, Default)]
 pub struct Contacts {
-    /// The chunks of the last evaluation, in particle order.
+    /// The sets of the last evaluation, chunk by chunk in particle order, each chunk's classes
+    /// in order.
     pub chunks: Vec<ContactSet>,
-    /// The chunks being written.
+    /// The sets being written.
     spare: Vec<ContactSet>,
-    slots_n: usize,
-    slots_t: usize,
-    slots_r: Option<usize>,
-    slots_w: Option<usize>,
+    /// Each class's history slots (at least one class).
+    slots: Vec<Slots>,
     energy: bool,
     reach_bound: f64,
 }
 
 impl Contacts {
-    /// No contacts yet, for laws keeping `slots_n` and `slots_t` history values.
+    /// No contacts yet, of one class whose laws keep `slots_n` and `slots_t` history values.
     pub fn new(slots_n: usize, slots_t: usize) -> Contacts {
+        Contacts::of_classes(vec![Slots {
+            n: slots_n,
+            t: slots_t,
+            ..Slots::default()
+        }])
+    }
+
+    /// No contacts yet, of the classes whose laws keep `slots` history values (one entry per
+    /// class, at least one).
+    pub fn of_classes(slots: Vec<Slots>) -> Contacts {
+        assert!(!slots.is_empty(), "at least one class of contacts");
         Contacts {
-            slots_n,
-            slots_t,
+            slots,
             ..Default::default()
         }
     }
 
     /// The contacts of rolling and twisting laws of `slots_r` and `slots_w` history slots
-    /// (`None`: no such law).
+    /// (`None`: no such law), for a set of one class.
     pub fn with_rotation(mut self, slots_r: Option<usize>, slots_w: Option<usize>) -> Contacts {
-        self.slots_r = slots_r;
-        self.slots_w = slots_w;
+        self.slots[0].r = slots_r;
+        self.slots[0].w = slots_w;
         self
     }
 
-    /// The contacts of a normal law that reaches `bound` (m) beyond touching at most.
+    /// The contacts of normal laws that reach `bound` (m) beyond touching at most.
     pub fn with_reach(mut self, bound: f64) -> Contacts {
         self.reach_bound = bound;
         self
@@ -471,6 +549,16 @@ impl Contacts {
     pub fn with_energy(mut self, on: bool) -> Contacts {
         self.energy = on;
         self
+    }
+
+    /// Classes of contacts (sets per chunk).
+    pub fn classes(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// Each class's history slots.
+    pub fn slots(&self) -> &[Slots] {
+        &self.slots
     }
 
     /// Number of contacts.
@@ -507,27 +595,36 @@ impl Contacts {
         }
     }
 
-    /// The previous chunks and the spare ones to write, `chunks` of each (created as needed).
+    /// An empty set of class `class`.
+    fn make(&self, class: usize) -> ContactSet {
+        let s = self.slots[class];
+        ContactSet {
+            energy: self.energy,
+            reach_bound: self.reach_bound,
+            ..ContactSet::new(s.n, s.t).with_rotation(s.r, s.w)
+        }
+    }
+
+    /// The previous sets and the spare ones to write, of `chunks` chunks (each chunk's
+    /// [`Contacts::classes`] sets in a row; created as needed).
     pub fn buffers(&mut self, chunks: usize) -> (&[ContactSet], &mut [ContactSet]) {
-        let (sn, st, sr, sw, en) = (
-            self.slots_n,
-            self.slots_t,
-            self.slots_r,
-            self.slots_w,
-            self.energy,
-        );
-        let rb = self.reach_bound;
-        let make = || ContactSet {
-            energy: en,
-            reach_bound: rb,
-            ..ContactSet::new(sn, st).with_rotation(sr, sw)
-        };
-        self.chunks.resize_with(chunks, make);
-        self.spare.resize_with(chunks, make);
+        let nc = self.classes();
+        for v in [0, 1] {
+            let len = if v == 0 {
+                self.chunks.len()
+            } else {
+                self.spare.len()
+            };
+            let want = chunks * nc;
+            let made: Vec<ContactSet> = (len..want).map(|k| self.make(k % nc)).collect();
+            let sets = if v == 0 { &mut self.chunks } else { &mut self.spare };
+            sets.truncate(want);
+            sets.extend(made);
+        }
         (&self.chunks, &mut self.spare)
     }
 
-    /// The spare chunks, now written, become the current ones.
+    /// The spare sets, now written, become the current ones.
     pub fn swap(&mut self) {
         std::mem::swap(&mut self.chunks, &mut self.spare);
     }

@@ -15,6 +15,7 @@
 
 use super::contacts::{gather_chunk, nearest_first};
 use super::integrator::EngineConfig;
+use super::species::{LawSet, SpeciesLaws};
 use super::state::{spin_len, Body, VecD};
 use super::Laws;
 use crate::budget::{check_memory_against, largest_fitting, rss, Memory, Need, Refused};
@@ -89,6 +90,59 @@ impl Footprint {
         walls: usize,
     ) -> Footprint {
         let r = &laws.rotation;
+        let slots = [
+            Some(laws.pair.history_slots()),
+            laws.pair_tangential.as_ref().map(|l| l.history_slots()),
+            r.pair_rolling.as_ref().map(|l| l.history_slots()),
+            r.pair_twisting.as_ref().map(|l| l.history_slots()),
+        ];
+        let wall_slots = [
+            Some(laws.wall.history_slots()),
+            laws.wall_tangential.as_ref().map(|l| l.history_slots()),
+            r.wall_rolling.as_ref().map(|l| l.history_slots()),
+            r.wall_twisting.as_ref().map(|l| l.history_slots()),
+        ];
+        Footprint::with_slots(cfg, slots, wall_slots, particles, walls)
+    }
+
+    /// [`Footprint::of`] a run of several species: each family's history as wide as its widest
+    /// class (every contact is of one class; the widest bounds them all).
+    pub fn of_species<const D: usize>(
+        cfg: &EngineConfig<D>,
+        laws: &SpeciesLaws,
+        particles: usize,
+        walls: usize,
+    ) -> Footprint {
+        let widest = |sets: &[LawSet]| {
+            let mut w: [Option<usize>; 4] = [None; 4];
+            for s in sets {
+                let one = [
+                    Some(s.normal.history_slots()),
+                    s.tangential.as_ref().map(|l| l.history_slots()),
+                    s.rolling.as_ref().map(|l| l.history_slots()),
+                    s.twisting.as_ref().map(|l| l.history_slots()),
+                ];
+                for (a, b) in w.iter_mut().zip(one) {
+                    *a = match (*a, b) {
+                        (Some(x), Some(y)) => Some(x.max(y)),
+                        (x, y) => x.or(y),
+                    };
+                }
+            }
+            w
+        };
+        Footprint::with_slots(cfg, widest(&laws.pair), widest(&laws.wall), particles, walls)
+    }
+
+    /// The footprint of contacts of `slots` history slots per family (normal, tangential,
+    /// rolling, twisting; none: no such law), `wall_slots` against walls.
+    fn with_slots<const D: usize>(
+        cfg: &EngineConfig<D>,
+        slots: [Option<usize>; 4],
+        wall_slots: [Option<usize>; 4],
+        particles: usize,
+        walls: usize,
+    ) -> Footprint {
         let chunk = gather_chunk(particles, D);
         let reordered =
             cfg.sort_from != usize::MAX && (particles >= cfg.sort_from || (D == 3 && nearest_first(chunk)));
@@ -96,18 +150,8 @@ impl Footprint {
             particles,
             dim: D,
             walls,
-            slots: [
-                Some(laws.pair.history_slots()),
-                laws.pair_tangential.as_ref().map(|l| l.history_slots()),
-                r.pair_rolling.as_ref().map(|l| l.history_slots()),
-                r.pair_twisting.as_ref().map(|l| l.history_slots()),
-            ],
-            wall_slots: [
-                Some(laws.wall.history_slots()),
-                laws.wall_tangential.as_ref().map(|l| l.history_slots()),
-                r.wall_rolling.as_ref().map(|l| l.history_slots()),
-                r.wall_twisting.as_ref().map(|l| l.history_slots()),
-            ],
+            slots,
+            wall_slots,
             energy: cfg.energy,
             reordered,
             listed: None,

@@ -27,6 +27,7 @@
 
 use super::cells::Neighbours;
 use super::contacts::{gather_chunk, nearest_first, parallel, Contacts};
+use super::species::SpeciesLaws;
 use super::state::{spin_len, to3, Body, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
 use super::{DemError, Laws};
@@ -54,7 +55,17 @@ pub struct Engine<const D: usize> {
     pub p: Particles<D>,
     /// The walls.
     pub walls: Vec<Wall<D>>,
-    laws: Laws,
+    laws: SpeciesLaws,
+    /// Each particle's species, in the engine's order (empty: every particle is of species 0,
+    /// the run has one).
+    species: Vec<u8>,
+    /// The wall of each surface (see [`Engine::wall_states`]).
+    surface_wall: Vec<usize>,
+    /// The class of species `s` against surface `k`, `surface_class[s * surfaces + k]` (the
+    /// laws' wall classes, surface by surface; empty: one class).
+    surface_class: Vec<u8>,
+    /// Whether some wall moves (its work on the particles is then accounted).
+    walls_move: bool,
     cfg: EngineConfig<D>,
     /// The step and how it was chosen.
     pub step_choice: StepChoice,
@@ -108,6 +119,11 @@ pub struct Engine<const D: usize> {
     /// The families whose law did not report its energy at some step (their share in
     /// [`Engine::dissipated`] is then incomplete).
     pub unreported: [bool; 4],
+    /// The work the moving walls have done on the particles since the start (J): each wall
+    /// contact's force on its particle · the wall's velocity at the contact × dt, summed at
+    /// every step (with [`EngineConfig::energy`]; 0 while no wall moves). The books:
+    /// initial + wall work = kinetic + gravity + elastic + dissipated.
+    pub wall_work: f64,
     /// The engine's memory order (see [`Engine::user_index`]).
     order: order::Order<D>,
     /// Particles per chunk of contacts, the unit of parallel work ([`gather_chunk`] of the
@@ -125,21 +141,44 @@ pub struct Engine<const D: usize> {
 }
 
 impl<const D: usize> Engine<D> {
-    /// A run of `bodies` between `walls` under `laws`; the step is chosen (or checked) here and the
-    /// forces of the initial state evaluated.
+    /// A run of `bodies` between `walls` under `laws`, all of the material
+    /// [`EngineConfig::material`]; the step is chosen (or checked) here and the forces of the
+    /// initial state evaluated.
     pub fn new(
         cfg: EngineConfig<D>,
         bodies: &[Body<D>],
         walls: Vec<Wall<D>>,
         laws: Laws,
     ) -> Result<Engine<D>, DemError> {
+        let table = SpeciesLaws::single(laws, cfg.material);
+        Engine::with_species(cfg, bodies, &[], walls, table)
+    }
+
+    /// A run of `bodies` of the species `species` (one per body, indices into `laws.species`;
+    /// empty: every body of species 0) between `walls`, each contact under the laws of its
+    /// class in `laws` (see [`crate::dem::species`]); each particle's mass and moment of
+    /// inertia from its species' material ([`EngineConfig::material`] is not used). The step
+    /// is chosen (or checked) against every class, and the forces of the initial state
+    /// evaluated. A table of one species and one class of each kind runs exactly as
+    /// [`Engine::new`].
+    pub fn with_species(
+        cfg: EngineConfig<D>,
+        bodies: &[Body<D>],
+        species: &[u8],
+        walls: Vec<Wall<D>>,
+        laws: SpeciesLaws,
+    ) -> Result<Engine<D>, DemError> {
         if !(D == 2 || D == 3) {
             return Err(DemError::Invalid(format!("dimension = {D}: must be 2 or 3")));
         }
-        let mat = cfg.material;
-        mat.particle(1.0)
-            .validate()
-            .map_err(|e| DemError::Invalid(format!("material: {}", e.message)))?;
+        laws.check(walls.len(), species, bodies.len())?;
+        // (one species: no species array; several: one per particle)
+        let species: Vec<u8> = match (laws.species.len(), species.is_empty()) {
+            (1, _) => Vec::new(),
+            (_, true) => vec![0; bodies.len()],
+            (_, false) => species.to_vec(),
+        };
+        let materials: Vec<_> = laws.species.iter().map(|s| s.material).collect();
         for (k, b) in bodies.iter().enumerate() {
             if !(b.diameter.is_finite() && b.diameter > 0.0) {
                 return Err(DemError::Invalid(format!(
@@ -159,18 +198,30 @@ impl<const D: usize> Engine<D> {
                 )));
             }
         }
-        let law_reach = reach_bound(&laws, &mat, bodies)?;
+        let law_reach = reach_bound(&laws, bodies)?;
         for (k, w) in walls.iter().enumerate() {
-            if !(w.normal.iter().all(|x| x.is_finite()) && (w.normal.norm() - 1.0).abs() < 1e-9) {
-                return Err(DemError::Invalid(format!(
-                    "wall {k}: normal must be a finite unit vector"
-                )));
-            }
+            w.validate()
+                .map_err(|m| DemError::Invalid(format!("wall {k}: {m}")))?;
         }
+        let surface_wall: Vec<usize> = walls
+            .iter()
+            .enumerate()
+            .flat_map(|(k, w)| std::iter::repeat_n(k, w.surface_count()))
+            .collect();
+        let surface_class: Vec<u8> = if laws.wall_class.is_empty() {
+            Vec::new()
+        } else {
+            let (n, nw) = (laws.species.len(), walls.len());
+            (0..n)
+                .flat_map(|s| surface_wall.iter().map(move |&w| (s, w)))
+                .map(|(s, w)| laws.wall_class[s * nw + w])
+                .collect()
+        };
+        let walls_move = walls.iter().any(Wall::moves);
         if !cfg.gravity.iter().all(|x| x.is_finite()) {
             return Err(DemError::Invalid("gravity must be finite".into()));
         }
-        let p = Particles::new(bodies, &mat);
+        let p = Particles::of_species(bodies, &species, &materials);
         let dmin = p.radius.iter().cloned().fold(f64::INFINITY, f64::min) * 2.0;
         let dmax = p.radius.iter().cloned().fold(0.0, f64::max) * 2.0;
         let skin = cfg.skin.unwrap_or(0.3 * dmin);
@@ -204,7 +255,7 @@ impl<const D: usize> Engine<D> {
                     )));
                 }
                 let v = impact_speed(&cfg, &p, &walls);
-                let tau = collision_time(&laws, &mat, D, dmin, v).unwrap_or(f64::NAN);
+                let tau = collision_time(&laws, D, &p, &species, v).unwrap_or(f64::NAN);
                 if tau / dt < MIN_STEPS_PER_COLLISION {
                     return Err(DemError::Invalid(format!(
                         "dt = {dt:e} s is out of range: the contact time at the largest expected impact speed ({v:.3} m/s) is {tau:.4e} s, so the step resolves a collision in {:.2} steps, and the explicit step is unstable below {MIN_STEPS_PER_COLLISION} (a Hertz contact's deepest overlap); dt must be <= {:.4e} s (about {:.4e} s, 50 steps per collision, gives the restitution within 1e-3; a scene may give impact_speed if the impacts will be slower)",
@@ -227,7 +278,7 @@ impl<const D: usize> Engine<D> {
                 let tau = if bodies.is_empty() {
                     1.0
                 } else {
-                    collision_time(&laws, &mat, D, dmin, v)?
+                    collision_time(&laws, D, &p, &species, v)?
                 };
                 StepChoice {
                     dt: tau / cfg.steps_per_collision,
@@ -239,21 +290,8 @@ impl<const D: usize> Engine<D> {
         };
         let nw = walls.len();
         let energy = cfg.energy;
-        let rot = &laws.rotation;
-        let (pr, pw, wr, ww) = (
-            rot.pair_rolling.as_ref().map(|l| l.history_slots()),
-            rot.pair_twisting.as_ref().map(|l| l.history_slots()),
-            rot.wall_rolling.as_ref().map(|l| l.history_slots()),
-            rot.wall_twisting.as_ref().map(|l| l.history_slots()),
-        );
-        let (sn, st) = (
-            laws.pair.history_slots(),
-            laws.pair_tangential.as_ref().map_or(0, |t| t.history_slots()),
-        );
-        let (swn, swt) = (
-            laws.wall.history_slots(),
-            laws.wall_tangential.as_ref().map_or(0, |t| t.history_slots()),
-        );
+        let pair_slots: Vec<_> = laws.pair.iter().map(|l| l.slots()).collect();
+        let wall_slots: Vec<_> = laws.wall.iter().map(|l| l.slots()).collect();
         let mut e = Engine {
             vpred: p.vel.clone(),
             aold: vec![VecD::<D>::zeros(); p.len()],
@@ -262,6 +300,11 @@ impl<const D: usize> Engine<D> {
             p,
             walls,
             laws,
+            species,
+            surface_wall,
+            surface_class,
+            walls_move,
+            wall_work: 0.0,
             dt: step_choice.dt,
             step_choice,
             cfg,
@@ -270,12 +313,10 @@ impl<const D: usize> Engine<D> {
             nb: Neighbours::default(),
             skin,
             law_reach,
-            pairs: Contacts::new(sn, st)
-                .with_rotation(pr, pw)
+            pairs: Contacts::of_classes(pair_slots)
                 .with_energy(energy)
                 .with_reach(law_reach),
-            wall_contacts: Contacts::new(swn, swt)
-                .with_rotation(wr, ww)
+            wall_contacts: Contacts::of_classes(wall_slots)
                 .with_energy(energy)
                 .with_reach(law_reach),
             dissipated: [0.0; 4],
@@ -305,6 +346,7 @@ impl<const D: usize> Engine<D> {
         e.wall_contacts.clear_history();
         e.reset_wall_counters();
         e.dissipated = [0.0; 4];
+        e.wall_work = 0.0;
         e.pair_episodes = e.pairs.len() as u64;
         let g = e.cfg.gravity;
         for i in 0..e.p.len() {
@@ -312,6 +354,17 @@ impl<const D: usize> Engine<D> {
         }
         e.leave_order();
         Ok(e)
+    }
+
+    /// Each particle's species in the engine's order (see [`Engine::user_index`]); empty in a
+    /// run of one species.
+    pub fn species(&self) -> &[u8] {
+        &self.species
+    }
+
+    /// The species and the laws of every class of contacts.
+    pub fn laws(&self) -> &SpeciesLaws {
+        &self.laws
     }
 
     /// The step (s).
@@ -360,9 +413,25 @@ impl<const D: usize> Engine<D> {
         self.wall_episodes.iter_mut().for_each(|v| *v = 0);
     }
 
-    /// The walls' planes now.
+    /// The walls' surfaces now (one per plane, cylinder or box seen from outside, one per face
+    /// of a box holding the particles; see [`Engine::surface_wall`]).
     pub fn wall_states(&self) -> Vec<WallState<D>> {
-        self.walls.iter().map(|w| w.at(self.t)).collect()
+        self.surfaces_at(self.t)
+    }
+
+    /// The walls' surfaces at time `t` (s).
+    pub(super) fn surfaces_at(&self, t: f64) -> Vec<WallState<D>> {
+        let mut out = Vec::with_capacity(self.surface_wall.len());
+        for w in &self.walls {
+            w.surfaces_into(t, &mut out);
+        }
+        out
+    }
+
+    /// The wall each surface of [`Engine::wall_states`] belongs to (the `j` of a wall contact
+    /// is its surface).
+    pub fn surface_wall(&self) -> &[usize] {
+        &self.surface_wall
     }
 
     /// Rebuilds the neighbour list (wrapping positions into the box), with the chunks' reach

@@ -23,12 +23,14 @@ pub mod footprint;
 pub mod integrator;
 pub mod observables;
 pub mod scene;
+pub mod species;
 pub mod state;
 pub mod walls;
 pub mod xyz;
 
 pub use cells::Domain;
 pub use integrator::{Engine, EngineConfig};
+pub use species::{LawSet, SpeciesInfo, SpeciesLaws};
 pub use state::{Body, DiskMass, Material, Vec3, VecD};
 pub use walls::{Motion, Wall};
 

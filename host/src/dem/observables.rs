@@ -83,6 +83,15 @@ impl<const D: usize> Engine<D> {
         e
     }
 
+    /// Each particle's species (indices into the run's species), in the user's numbering.
+    pub fn particle_species(&self) -> Vec<u8> {
+        let mut out = vec![0u8; self.p.len()];
+        for (k, &s) in self.species().iter().enumerate() {
+            out[self.user_index(k)] = s;
+        }
+        out
+    }
+
     /// Contacts now (particle pairs + particle–wall).
     pub fn contacts(&self) -> usize {
         self.pairs.len() + self.wall_contacts.len()

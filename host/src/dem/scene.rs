@@ -53,12 +53,17 @@
 //! ```
 
 mod check;
+mod generate;
+mod pairs;
+mod walls;
+
+pub use generate::packing;
+pub use pairs::{ClassPlan, LawChoice, PairPlan, Partners};
 
 use super::cells::Domain;
 use super::integrator::{check_steps_per_collision, EngineConfig};
 use super::state::{Body, DiskMass, Material, Vec3, VecD};
-use super::walls::{Motion, Wall};
-use crate::piston::Piston;
+use super::walls::Wall;
 use dashpot_sdk::ParamValue;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -68,12 +73,12 @@ use std::collections::BTreeMap;
 #[error("scene: {0}")]
 pub struct SceneError(pub String);
 
-fn bad(msg: String) -> SceneError {
+pub(crate) fn bad(msg: String) -> SceneError {
     SceneError(msg)
 }
 
 /// A law table: `name` and `params`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct LawTable {
     /// The law's name.
@@ -112,23 +117,6 @@ struct BoxTable {
 }
 
 #[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields, tag = "kind", rename_all = "kebab-case")]
-enum MotionTable {
-    Fixed,
-    Piston { amplitude: f64, frequency: f64 },
-    Sine { amplitude: f64, frequency: f64 },
-}
-
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct WallTable {
-    point: Vec<f64>,
-    normal: Vec<f64>,
-    #[serde(default)]
-    motion: Option<MotionTable>,
-}
-
-#[derive(Debug, Clone, Deserialize)]
 #[serde(
     untagged,
     expecting = "a number (2D: rad/s about z) or an array [x, y, z] of numbers (3D, rad/s)"
@@ -147,33 +135,9 @@ struct ParticleTable {
     #[serde(default)]
     angular_velocity: Option<Spin>,
     diameter: f64,
-}
-
-#[derive(Debug, Clone, Deserialize)]
-#[serde(
-    untagged,
-    expecting = "a number (m) or an array [min, max] of two numbers (m)"
-)]
-enum Diameters {
-    One(f64),
-    Range(Vec<f64>),
-}
-
-#[derive(Debug, Clone, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct GenerateTable {
-    count: usize,
-    diameter: Diameters,
-    lo: Vec<f64>,
-    hi: Vec<f64>,
+    /// The particle's species (a `[[species]]` name).
     #[serde(default)]
-    speed: f64,
-    #[serde(default = "one")]
-    seed: u64,
-}
-
-fn one() -> u64 {
-    1
+    species: Option<String>,
 }
 
 /// The scene file as written.
@@ -204,8 +168,10 @@ pub struct SceneFile {
     /// rolling cost about as much as the rest of a step.
     #[serde(default = "accounting_on")]
     energy: bool,
-    /// The normal law.
-    pub law: LawTable,
+    /// The normal law: of every pair not named by a `[[pair]]` table (required unless every
+    /// pair is).
+    #[serde(default)]
+    pub law: Option<LawTable>,
     /// The tangential law, if any.
     #[serde(default)]
     pub tangential: Option<LawTable>,
@@ -215,15 +181,22 @@ pub struct SceneFile {
     /// The twisting-resistance law, if any.
     #[serde(default)]
     pub twisting: Option<LawTable>,
-    material: MaterialTable,
+    #[serde(default)]
+    material: Option<MaterialTable>,
+    /// The species, each of its material (instead of `[material]`).
+    #[serde(default)]
+    species: Vec<pairs::SpeciesTable>,
+    /// The laws of pairs of species, and of species against walls.
+    #[serde(default)]
+    pair: Vec<pairs::PairTable>,
     #[serde(default, rename = "box")]
     domain: Option<BoxTable>,
     #[serde(default)]
-    wall: Vec<WallTable>,
+    wall: Vec<walls::WallTable>,
     #[serde(default)]
     particle: Vec<ParticleTable>,
     #[serde(default)]
-    generate: Option<GenerateTable>,
+    generate: Option<generate::Generates>,
 }
 
 /// A scene of dimension `D`, checked.
@@ -237,8 +210,12 @@ pub struct Scene<const D: usize> {
     pub snapshots: usize,
     /// The particles.
     pub bodies: Vec<Body<D>>,
+    /// Each particle's species (indices into `plan.species`).
+    pub species: Vec<u8>,
     /// The walls.
     pub walls: Vec<Wall<D>>,
+    /// The species and the laws of every class of contacts, by name (see [`PairPlan::bind`]).
+    pub plan: PairPlan,
 }
 
 fn accounting_on() -> bool {
@@ -274,18 +251,24 @@ impl SceneFile {
                 self.dimension
             )));
         }
-        let m = &self.material;
-        let material = Material {
-            young: m.young,
-            poisson: m.poisson,
-            density: m.density,
-            disk_mass: m.disk_mass.unwrap_or(DiskMass::Sphere),
+        let material = match &self.material {
+            Some(m) => {
+                let material = Material {
+                    young: m.young,
+                    poisson: m.poisson,
+                    density: m.density,
+                    disk_mass: m.disk_mass.unwrap_or(DiskMass::Sphere),
+                };
+                material
+                    .particle(1.0)
+                    .validate()
+                    .map_err(|e| bad(format!("[material]: {}", e.message)))?;
+                Some(material)
+            }
+            None => None,
         };
-        material
-            .particle(1.0)
-            .validate()
-            .map_err(|e| bad(format!("[material]: {}", e.message)))?;
-        let mut config = EngineConfig::<D>::new(material);
+        let (kinds, named) = pairs::species_of(&self.species, material)?;
+        let mut config = EngineConfig::<D>::new(kinds[0].material);
         config.energy = self.energy;
         if let Some(g) = &self.gravity {
             config.gravity = vector::<D>("gravity", g)?;
@@ -335,40 +318,34 @@ impl SceneFile {
                 bounded: b.bounded,
             };
         }
-        let mut walls = Vec::new();
-        for (k, w) in self.wall.iter().enumerate() {
-            let point = vector::<D>(&format!("wall[{k}].point"), &w.point)?;
-            let normal = vector::<D>(&format!("wall[{k}].normal"), &w.normal)?;
-            if normal.norm() == 0.0 {
-                return Err(bad(format!(
-                    "wall[{k}].normal = {:?} must be a non-zero vector",
-                    w.normal
-                )));
+        let walls = self
+            .wall
+            .iter()
+            .enumerate()
+            .map(|(k, w)| w.wall::<D>(k))
+            .collect::<Result<Vec<Wall<D>>, _>>()?;
+        let wall_names: Vec<Option<String>> = self.wall.iter().map(|w| w.name.clone()).collect();
+        for (k, n) in wall_names.iter().enumerate() {
+            if let Some(n) = n {
+                if wall_names[..k].iter().any(|m| m.as_ref() == Some(n)) {
+                    return Err(bad(format!(
+                        "wall[{k}].name = {n:?} is given twice: each wall needs its own name"
+                    )));
+                }
             }
-            let motion = match &w.motion {
-                None | Some(MotionTable::Fixed) => Motion::Fixed,
-                Some(MotionTable::Piston { amplitude, frequency }) => {
-                    non_negative(&format!("wall[{k}].motion.amplitude"), "m", *amplitude)?;
-                    positive(&format!("wall[{k}].motion.frequency"), "Hz", *frequency)?;
-                    Motion::Piston(Piston::new(*amplitude, *frequency))
-                }
-                Some(MotionTable::Sine { amplitude, frequency }) => {
-                    non_negative(&format!("wall[{k}].motion.amplitude"), "m", *amplitude)?;
-                    positive(&format!("wall[{k}].motion.frequency"), "Hz", *frequency)?;
-                    Motion::Sine {
-                        amplitude: *amplitude,
-                        freq: *frequency,
-                    }
-                }
-            };
-            walls.push(Wall {
-                point,
-                normal: normal.normalize(),
-                motion,
-            });
         }
         let mut bodies = Vec::with_capacity(self.particle.len());
+        let mut species = Vec::with_capacity(self.particle.len());
         for (k, p) in self.particle.iter().enumerate() {
+            species.push(match &p.species {
+                Some(name) => pairs::species_index(&kinds, named, &format!("particle[{k}].species"), name)?,
+                None if kinds.len() > 1 => {
+                    return Err(bad(format!(
+                        "particle[{k}].species is missing: with several [[species]] give each particle's"
+                    )))
+                }
+                None => 0,
+            });
             let position = vector::<D>(&format!("particle[{k}].position"), &p.position)?;
             let velocity = match &p.velocity {
                 Some(v) => vector::<D>(&format!("particle[{k}].velocity"), v)?,
@@ -397,7 +374,11 @@ impl SceneFile {
             });
         }
         if let Some(g) = &self.generate {
-            bodies.extend(generate::<D>(g)?);
+            for (k, t) in g.0.iter().enumerate() {
+                let (b, s) = generate::generate::<D>(t, k, g.0.len(), &kinds, named, (&walls, &wall_names))?;
+                bodies.extend(b);
+                species.extend(s);
+            }
         }
         if bodies.is_empty() {
             return Err(bad(
@@ -405,15 +386,16 @@ impl SceneFile {
             ));
         }
         // (a diameter so small its mass or moment of inertia is 0 in f64, e.g. 1e-320 m)
-        if let Some((k, b)) = bodies.iter().enumerate().find(|(_, b)| {
-            let (m, i) = material.mass_inertia(D, b.diameter);
+        let material_of = |k: usize| kinds[species.get(k).map_or(0, |&s| s as usize)].material;
+        if let Some((k, b)) = bodies.iter().enumerate().find(|(k, b)| {
+            let (m, i) = material_of(*k).mass_inertia(D, b.diameter);
             let normal = |x: f64| x.is_finite() && x >= f64::MIN_POSITIVE;
             !(normal(m) && normal(i) && normal(0.5 * b.diameter))
         }) {
             return Err(bad(format!(
                 "particle {k}: diameter = {:e} m is out of range: its mass and moment of inertia at density {} kg/m³ are not finite normal numbers in f64 (between {:e} and {:e}): give the diameters in metres",
                 b.diameter,
-                material.density,
+                material_of(k).density,
                 f64::MIN_POSITIVE,
                 f64::MAX
             )));
@@ -422,12 +404,28 @@ impl SceneFile {
         if !problems.is_empty() {
             return Err(bad(problems.join("\nscene: ")));
         }
+        let mut count = vec![0usize; kinds.len()];
+        for &s in &species {
+            count[s as usize] += 1;
+        }
+        let given = pairs::Given {
+            law: self.law.as_ref(),
+            tangential: self.tangential.as_ref(),
+            rolling: self.rolling.as_ref(),
+            twisting: self.twisting.as_ref(),
+            wall_names,
+            wall_materials: self.wall.iter().map(|w| w.material.clone()).collect(),
+            count,
+        };
+        let plan = pairs::plan(kinds, named, &self.pair, &given)?;
         Ok(Scene {
             config,
             duration: self.duration,
             snapshots: self.snapshots.unwrap_or(0),
             bodies,
+            species,
             walls,
+            plan,
         })
     }
 }
@@ -440,7 +438,7 @@ fn finite(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
     }
 }
 
-fn positive(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
+pub(super) fn positive(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {
@@ -450,7 +448,7 @@ fn positive(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
     }
 }
 
-fn non_negative(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
+pub(super) fn non_negative(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
     if v.is_finite() && v >= 0.0 {
         Ok(v)
     } else {
@@ -460,7 +458,7 @@ fn non_negative(key: &str, unit: &str, v: f64) -> Result<f64, SceneError> {
     }
 }
 
-fn vector<const D: usize>(key: &str, v: &[f64]) -> Result<VecD<D>, SceneError> {
+pub(super) fn vector<const D: usize>(key: &str, v: &[f64]) -> Result<VecD<D>, SceneError> {
     if v.len() != D {
         return Err(bad(format!(
             "{key} = {v:?} has {} components: dimension {D} needs {D}",
@@ -473,134 +471,4 @@ fn vector<const D: usize>(key: &str, v: &[f64]) -> Result<VecD<D>, SceneError> {
         )));
     }
     Ok(VecD::<D>::from_iterator(v.iter().cloned()))
-}
-
-/// A small deterministic generator (SplitMix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
-/// The sites of [`packing`]'s lattice (spacing 1.05 `dmax`, m) in the region `[lo, hi]` (m)
-/// along each axis, and their number.
-fn sites<const D: usize>(dmax: f64, lo: &VecD<D>, hi: &VecD<D>) -> Result<([usize; D], usize), SceneError> {
-    let a = 1.05 * dmax;
-    let mut sites = [0usize; D];
-    let mut total = 1usize;
-    for k in 0..D {
-        if hi[k] <= lo[k] || !(hi[k] - lo[k]).is_finite() {
-            return Err(bad(format!(
-                "hi[{k}] = {} m must exceed lo[{k}] = {} m (the region filled is lo..hi)",
-                hi[k], lo[k]
-            )));
-        }
-        sites[k] = ((hi[k] - lo[k]) / a).floor().max(0.0) as usize;
-        total = total.saturating_mul(sites[k]);
-    }
-    Ok((sites, total))
-}
-
-/// Why `count` particles of largest diameter `dmax` (m) do not fit in `[lo, hi]` (m), whose
-/// lattice has `sites` along each axis, `total` in all.
-fn crowded<const D: usize>(
-    count: usize,
-    dmax: f64,
-    lo: &VecD<D>,
-    hi: &VecD<D>,
-    sites: &[usize; D],
-    total: usize,
-) -> String {
-    format!(
-        "count = {count} particles cannot fit: the region lo = {:?} .. hi = {:?} m holds at most {total} ({} sites of {:.4e} m, 1.05 times the largest diameter {dmax} m)",
-        lo.as_slice(),
-        hi.as_slice(),
-        sites.map(|s| s.to_string()).join(" x "),
-        1.05 * dmax
-    )
-}
-
-/// `count` particles of diameters uniform in `[dmin, dmax]` (m) in the region `[lo, hi]`: one per
-/// site of a square (cubic) lattice of spacing 1.05 dmax, filled row by row from `lo`, each
-/// jittered at random within its site (no two overlap), with random velocities of magnitude
-/// `speed` (m/s). Errors if the region holds fewer than `count` sites.
-pub fn packing<const D: usize>(
-    count: usize,
-    dmin: f64,
-    dmax: f64,
-    lo: VecD<D>,
-    hi: VecD<D>,
-    speed: f64,
-    seed: u64,
-) -> Result<Vec<Body<D>>, SceneError> {
-    let (sites, total) = sites::<D>(dmax, &lo, &hi)?;
-    if total < count {
-        return Err(bad(crowded(count, dmax, &lo, &hi, &sites, total)));
-    }
-    let a = 1.05 * dmax;
-    let mut rng = Rng(seed.wrapping_mul(0x2545_F491_4F6C_DD1D) ^ 0x1234_5678);
-    let mut out = Vec::with_capacity(count);
-    for s in 0..count {
-        let d = dmin + (dmax - dmin) * rng.next();
-        let mut x = VecD::<D>::zeros();
-        let mut r = s;
-        for k in 0..D {
-            let q = r % sites[k];
-            r /= sites[k];
-            let room = a - d;
-            x[k] = lo[k] + q as f64 * a + 0.5 * d + room * rng.next();
-        }
-        let mut v = VecD::<D>::from_iterator((0..D).map(|_| rng.next() - 0.5));
-        if v.norm() > 0.0 {
-            v *= speed / v.norm();
-        }
-        out.push(Body {
-            position: x,
-            velocity: v,
-            angular_velocity: Vec3::zeros(),
-            diameter: d,
-        });
-    }
-    Ok(out)
-}
-
-fn generate<const D: usize>(g: &GenerateTable) -> Result<Vec<Body<D>>, SceneError> {
-    let (dmin, dmax) = match &g.diameter {
-        Diameters::One(d) => (*d, *d),
-        Diameters::Range(v) if v.len() == 2 => (v[0], v[1]),
-        Diameters::Range(v) => {
-            return Err(bad(format!(
-                "generate.diameter = {v:?}: give one number or [min, max]"
-            )))
-        }
-    };
-    positive("generate.diameter (min)", "m", dmin)?;
-    positive("generate.diameter (max)", "m", dmax)?;
-    if dmax < dmin {
-        return Err(bad(format!(
-            "generate.diameter = [{dmin}, {dmax}]: max must be >= min"
-        )));
-    }
-    if g.count == 0 {
-        return Err(bad("generate.count = 0 is out of range: it must be >= 1".into()));
-    }
-    non_negative("generate.speed", "m/s", g.speed)?;
-    let lo = vector::<D>("generate.lo", &g.lo)?;
-    let hi = vector::<D>("generate.hi", &g.hi)?;
-    let (sites, total) = sites::<D>(dmax, &lo, &hi).map_err(|e| bad(format!("generate: {}", e.0)))?;
-    if total < g.count {
-        return Err(bad(format!(
-            "generate: {}; lower generate.count to {total} or less, enlarge generate.lo/hi, or give a smaller generate.diameter",
-            crowded(g.count, dmax, &lo, &hi, &sites, total)
-        )));
-    }
-    // (before they are made: a count past the machine is refused, not an allocation failure)
-    super::footprint::check_count("generate.count", g.count, D).map_err(|e| bad(e.0))?;
-    packing(g.count, dmin, dmax, lo, hi, g.speed, g.seed)
 }

@@ -112,6 +112,12 @@ pub struct Particles<const D: usize> {
 impl<const D: usize> Particles<D> {
     /// The particles of `bodies`, of material `mat`.
     pub fn new(bodies: &[Body<D>], mat: &Material) -> Particles<D> {
+        Particles::of_species(bodies, &[], std::slice::from_ref(mat))
+    }
+
+    /// The particles of `bodies`, each of the material `materials[species[k]]` (`species`
+    /// empty: every particle of `materials[0]`).
+    pub fn of_species(bodies: &[Body<D>], species: &[u8], materials: &[Material]) -> Particles<D> {
         let n = bodies.len();
         let mut p = Particles {
             pos: Vec::with_capacity(n),
@@ -123,7 +129,8 @@ impl<const D: usize> Particles<D> {
             force: vec![VecD::<D>::zeros(); n],
             torque: vec![0.0; n * spin_len(D)],
         };
-        for b in bodies {
+        for (k, b) in bodies.iter().enumerate() {
+            let mat = &materials[species.get(k).map_or(0, |&s| s as usize)];
             let (m, i) = mat.mass_inertia(D, b.diameter);
             p.pos.push(b.position);
             p.vel.push(b.velocity);

@@ -59,15 +59,12 @@ impl Scene {
                 (y0, y1) = (y0.min(dom.lo[ay]), y1.max(dom.hi[ay]));
             }
         }
-        let states = e.wall_states();
-        for w in &states {
-            // a wall across the view: include its point
-            (x0, x1, y0, y1) = (
-                x0.min(w.point[ax]),
-                x1.max(w.point[ax]),
-                y0.min(w.point[ay]),
-                y1.max(w.point[ay]),
-            );
+        // (each wall's outline: the points the view must hold, then its segments)
+        let t = e.time();
+        for w in &e.walls {
+            for (x, y) in w.outline(t, ax, ay, 0.0).0 {
+                (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+            }
         }
         if !(x0.is_finite() && y0.is_finite()) {
             (x0, x1, y0, y1) = (-1.0, 1.0, -1.0, 1.0);
@@ -75,16 +72,10 @@ impl Scene {
         let pad = 2.0 * rmax.max(1e-12);
         let (x0, x1, y0, y1) = (x0 - pad, x1 + pad, y0 - pad, y1 + pad);
         let diag = ((x1 - x0).powi(2) + (y1 - y0).powi(2)).sqrt();
-        let walls = states
+        let walls = e
+            .walls
             .iter()
-            .filter_map(|w| {
-                let (nx, ny) = (w.normal[ax], w.normal[ay]);
-                let n = (nx * nx + ny * ny).sqrt();
-                // (a wall facing out of the picture's plane is not drawn)
-                let (tx, ty) = (-ny / n, nx / n);
-                let (px, py) = (w.point[ax], w.point[ay]);
-                (n >= 0.5).then_some([(px - tx * diag, py - ty * diag), (px + tx * diag, py + ty * diag)])
-            })
+            .flat_map(|w| w.outline(t, ax, ay, diag).1)
             .collect();
         Scene {
             disks,

@@ -188,6 +188,7 @@ mod tests {
                         force: &mut f,
                     },
                     reach: None,
+                    context: None,
                 };
                 let out = if energy {
                     EnergyOut {

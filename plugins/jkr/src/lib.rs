@@ -2,7 +2,7 @@
 
 use dashpot_sdk::{
     BoundContact, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History, LawError, MaterialPair,
-    Range,
+    NormalContext, Range,
 };
 use std::f64::consts::PI;
 
@@ -104,7 +104,12 @@ impl ContactLaw for Jkr {
         Energy: elastic = W(a) − W(a0/6^{2/3}) (J), the work the contact gives back when unloaded \
         quasi-statically to rupture, with W(a) = 8E a⁵/(15R²) − (4/3)(E c/R) a^{7/2} + E c² a²/2, \
         c = √(2π w/E) (Hertz's (2/5) K δ^{5/2} at w = 0); power = F_d δ̇ (W). Callers that end contacts at δ = 0 \
-        (end criterion 'overlap') see only its compressive part.";
+        (end criterion 'overlap') see only its compressive part. Context (what the contact's other laws read, \
+        sdk 0.4): the contact radius a above (positive past touching, until rupture; 0 when the contact is not \
+        formed), the cap force F_e + 3π w R = F_e + 2 F_po (N, with F_e the elastic force F(a) and F_po = \
+        (3/2)π w R the pull-off force: Thornton & Yin 1991, Powder Technol. 65, 153, so that friction keeps \
+        acting in tension; positive on the stable branch) and the damping coefficient α(ε) √((4/3) E a m) \
+        (N·s/m).";
     const END_CRITERION: EndCriterion = EndCriterion::Overlap;
     const HISTORY: &'static [History] = &[History::new(
         "formed",
@@ -143,6 +148,18 @@ impl BoundContact for JkrBound {
             0.0
         } else {
             -self.delta_c(c.radius)
+        }
+    }
+
+    fn context(&self, c: &Contact, history: &[f64], _force: f64) -> NormalContext {
+        if history[0] == 0.0 {
+            return NormalContext::default();
+        }
+        let a = self.contact_radius(c.radius, c.delta);
+        NormalContext {
+            contact_radius: a,
+            cap_force: (self.force_at(c.radius, a) + 3.0 * PI * self.w * c.radius).max(0.0),
+            damping: self.damping(a, c.mass),
         }
     }
 

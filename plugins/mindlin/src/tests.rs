@@ -41,6 +41,7 @@ fn batch_is_the_per_contact_form_bit_for_bit() {
                 delta: if i % 11 == 0 { -1e-6 } else { 1e-5 * rnd() },
                 mass: 1e-4 * (0.5 + rnd()),
                 radius: 1e-3 * (0.5 + rnd()),
+                context: Default::default(),
                 dt: 1e-6,
             });
             for _ in 0..3 {

@@ -308,6 +308,7 @@ mod tests {
                     delta: 1e-5,
                     mass: 1e-3,
                     radius: 2e-3,
+                    context: Default::default(),
                     dt: 1e-4,
                 })
                 .collect();

@@ -74,6 +74,7 @@ struct Columns {
     delta: Vec<f64>,
     mass: Vec<f64>,
     radius: Vec<f64>,
+    context: Vec<dashpot_sdk::NormalContext>,
     dt: f64,
 }
 
@@ -87,6 +88,7 @@ impl Columns {
             delta: column(|c| c.delta),
             mass: column(|c| c.mass),
             radius: column(|c| c.radius),
+            context: contacts.iter().map(|c| c.context).collect(),
             dt: contacts[0].dt,
         }
     }
@@ -105,6 +107,7 @@ impl Columns {
             delta: &self.delta,
             mass: &self.mass,
             radius: &self.radius,
+            context: &self.context,
             slots,
             history,
             force,

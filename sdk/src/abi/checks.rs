@@ -3,7 +3,7 @@
 //! enough to hide behind the law's arithmetic, the exact searches that name the culprit when
 //! they say no, and the run-time choice of the AVX2 build of the block loops.
 
-use super::BatchFault;
+use super::fault::BatchFault;
 
 /// Whether every value is finite (vectorises with plain SSE2: v − v is NaN exactly when v is not
 /// finite).

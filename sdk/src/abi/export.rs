@@ -14,9 +14,11 @@ use super::guard::guard;
 pub use super::guard::install_quiet_panic_hook;
 pub use super::kind::CreateFn;
 use super::kind::{new_law, Create, FfiLaw};
-use super::kinds::{FfiNormalBatch3, FfiTwistingBatch, FfiVectorBatch};
+use super::kinds::{FfiNormalBatch4, FfiTwistingBatch4, FfiVectorBatch4};
+use super::module::{PluginModule, PluginModuleRef};
 pub use super::restitution::CreateRestitution;
-use super::{FfiRestitutionLaw, PluginModule, PluginModuleRef, ABI_VERSION};
+use super::series::FfiRestitutionLaw;
+use super::version::ABI_VERSION;
 pub use abi_stable;
 use abi_stable::prefix_type::PrefixTypeTrait;
 
@@ -54,15 +56,15 @@ pub trait Tables: 'static {
     /// Every law's description, in the order of the macro's groups.
     const INFO: &'static [fn() -> LawInfo];
     /// The contact laws.
-    const CONTACT: &'static [Entry<CreateFn<FfiNormalBatch3>>];
+    const CONTACT: &'static [Entry<CreateFn<FfiNormalBatch4>>];
     /// The contact laws' closed-form calibrations.
     const CALIBRATE: &'static [Entry<CalibrateFn>];
     /// The tangential laws.
-    const TANGENTIAL: &'static [Entry<CreateFn<FfiVectorBatch>>];
+    const TANGENTIAL: &'static [Entry<CreateFn<FfiVectorBatch4>>];
     /// The rolling laws.
-    const ROLLING: &'static [Entry<CreateFn<FfiVectorBatch>>];
+    const ROLLING: &'static [Entry<CreateFn<FfiVectorBatch4>>];
     /// The twisting laws.
-    const TWISTING: &'static [Entry<CreateFn<FfiTwistingBatch>>];
+    const TWISTING: &'static [Entry<CreateFn<FfiTwistingBatch4>>];
     /// The restitution laws.
     const RESTITUTION: &'static [Entry<CreateRestitution>];
 }
@@ -75,10 +77,10 @@ pub fn root_module<T: Tables>() -> PluginModuleRef {
         version: RStr::from_str(T::VERSION),
         sdk_version: RStr::from_str(ABI_VERSION),
         laws: laws::<T>,
-        new_contact: new_kind::<T, FfiLaw<FfiNormalBatch3>, Contact>,
-        new_tangential: new_kind::<T, FfiLaw<FfiVectorBatch>, TangentialTable>,
-        new_rolling: new_kind::<T, FfiLaw<FfiVectorBatch>, RollingTable>,
-        new_twisting: new_kind::<T, FfiLaw<FfiTwistingBatch>, TwistingTable>,
+        new_contact: new_kind::<T, FfiLaw<FfiNormalBatch4>, Contact>,
+        new_tangential: new_kind::<T, FfiLaw<FfiVectorBatch4>, TangentialTable>,
+        new_rolling: new_kind::<T, FfiLaw<FfiVectorBatch4>, RollingTable>,
+        new_twisting: new_kind::<T, FfiLaw<FfiTwistingBatch4>, TwistingTable>,
         new_restitution: new_kind::<T, FfiRestitutionLaw, RestitutionTable>,
         calibrate: calibrate::<T>,
     }
@@ -108,10 +110,10 @@ macro_rules! table {
         }
     };
 }
-table!(Contact, Contact, FfiLaw<FfiNormalBatch3>, CONTACT);
-table!(TangentialTable, Tangential, FfiLaw<FfiVectorBatch>, TANGENTIAL);
-table!(RollingTable, Rolling, FfiLaw<FfiVectorBatch>, ROLLING);
-table!(TwistingTable, Twisting, FfiLaw<FfiTwistingBatch>, TWISTING);
+table!(Contact, Contact, FfiLaw<FfiNormalBatch4>, CONTACT);
+table!(TangentialTable, Tangential, FfiLaw<FfiVectorBatch4>, TANGENTIAL);
+table!(RollingTable, Rolling, FfiLaw<FfiVectorBatch4>, ROLLING);
+table!(TwistingTable, Twisting, FfiLaw<FfiTwistingBatch4>, TWISTING);
 table!(RestitutionTable, Restitution, FfiRestitutionLaw, RESTITUTION);
 
 /// The root module's constructor of the laws of table `K` of plugin `T`.
@@ -145,15 +147,16 @@ extern "C" fn calibrate<T: Tables>(
 /// dashpot_sdk::export_laws!(tangential: [MyFriction]);
 /// dashpot_sdk::export_laws!(rolling: [MyRolling], twisting: [MyTwisting]);
 /// dashpot_sdk::export_laws!(contact: [A, B], restitution: [C], tangential: [D]);
+/// dashpot_sdk::export_laws!(contact: [A], tangential: [D], twisting: [E]);
 /// ```
 #[macro_export]
 macro_rules! export_laws {
     (
-        $(contact: [$($c:ty),* $(,)?])? $(,)?
-        $(restitution: [$($r:ty),* $(,)?])? $(,)?
-        $(tangential: [$($t:ty),* $(,)?])? $(,)?
-        $(rolling: [$($ro:ty),* $(,)?])? $(,)?
-        $(twisting: [$($tw:ty),* $(,)?])? $(,)?
+        $(contact: [$($c:ty),* $(,)?] $(,)?)?
+        $(restitution: [$($r:ty),* $(,)?] $(,)?)?
+        $(tangential: [$($t:ty),* $(,)?] $(,)?)?
+        $(rolling: [$($ro:ty),* $(,)?] $(,)?)?
+        $(twisting: [$($tw:ty),* $(,)?] $(,)?)?
     ) => {
         #[doc(hidden)]
         mod __dashpot_export {
@@ -175,14 +178,14 @@ macro_rules! export_laws {
                     $($(<$ro as $crate::RollingLaw>::info,)*)?
                     $($(<$tw as $crate::TwistingLaw>::info,)*)?
                 ];
-                const CONTACT: &'static [Entry<p::CreateFn<kinds::FfiNormalBatch3>>] =
+                const CONTACT: &'static [Entry<p::CreateFn<kinds::FfiNormalBatch4>>] =
                     &[$($(Entry::of::<Normal, $c>()),*)?];
                 const CALIBRATE: &'static [Entry<p::CalibrateFn>] = &[$($(Entry::calibration::<$c>()),*)?];
-                const TANGENTIAL: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
+                const TANGENTIAL: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch4>>] =
                     &[$($(Entry::of::<Tangential, $t>()),*)?];
-                const ROLLING: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch>>] =
+                const ROLLING: &'static [Entry<p::CreateFn<kinds::FfiVectorBatch4>>] =
                     &[$($(Entry::of::<Rolling, $ro>()),*)?];
-                const TWISTING: &'static [Entry<p::CreateFn<kinds::FfiTwistingBatch>>] =
+                const TWISTING: &'static [Entry<p::CreateFn<kinds::FfiTwistingBatch4>>] =
                     &[$($(Entry::of::<Twisting, $tw>()),*)?];
                 const RESTITUTION: &'static [Entry<p::CreateRestitution>] =
                     &[$($(Entry::restitution::<$r>()),*)?];
@@ -199,4 +202,17 @@ macro_rules! export_laws {
             };
         }
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn export_macro_uses_abi_stables_symbol_name() {
+        assert_eq!(
+            abi_stable::library::ROOT_MODULE_LOADER_NAME,
+            "_1as_0lib_1header_0root_bmodule_bloader"
+        );
+    }
 }

@@ -94,7 +94,7 @@ macro_rules! mirror {
 }
 
 mirror! {
-    /// The mirror of [`crate::LawInfo`] (sdk 0.3).
+    /// The mirror of [`crate::LawInfo`] (sdk 0.4).
     LawInfo {
         /// Name.
         name: RString,
@@ -110,6 +110,8 @@ mirror! {
         end_criterion: ROption<EndCriterion>,
         /// Per-contact history slots.
         history: RVec<HistorySlot>,
+        /// Whether the law reads the normal law's context (sdk 0.4).
+        reads_context: bool,
     }
 }
 
@@ -212,6 +214,7 @@ mod tests {
                 unit: "m".into(),
                 doc: "h".into(),
             }],
+            reads_context: true,
         };
         assert_eq!(crate::LawInfo::from(LawInfo::from(&info)), info);
         let t = crate::CalibrationTarget {

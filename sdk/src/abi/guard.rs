@@ -2,7 +2,7 @@
 //! [`ErrorKind::Panic`] error (or, on the hot path, a status whose message the host fetches with
 //! `take_panic`), never an unwind into the host.
 
-use super::{BatchFault, BatchStatus};
+use super::fault::{BatchFault, BatchStatus};
 use crate::error::{ErrorKind, FfiError, LawError};
 use abi_stable::std_types::{RResult, RString};
 use std::cell::RefCell;

@@ -1,11 +1,12 @@
-//! Host side of the generic shape: the safe handles of a law of any 0.3 kind, from a plugin
-//! ([`LawHandle`], [`ModelHandle`]) or compiled into the host ([`StaticModel`]), each calling
-//! the checked trampoline and turning its status into an error that names the contact; and
-//! [`BoundModel`], what every bound law of a kind offers a host.
+//! Host side of the generic shape: the safe handles of a law of any kind, from a plugin of sdk
+//! 0.3 or 0.4 ([`LawHandle`], [`ModelHandle`]) or compiled into the host ([`StaticModel`]), each
+//! calling the checked trampoline and turning its status into an error that names the contact;
+//! and [`BoundModel`], what every bound law of a kind offers a host.
 
+use super::fault::{BatchFault, BatchStatus};
 use super::guard::take_panic;
 use super::kind::{model_batch, EnergyOut, FfiLaw, FfiModel, Kind, KindBound, KindLaw};
-use super::{BatchFault, BatchStatus, Owned};
+use super::object::{FfiObject, Owned};
 use crate::error::{ErrorKind, LawError};
 use crate::law::{Coefficient, LawInfo};
 use crate::pair::MaterialPair;
@@ -19,6 +20,11 @@ pub trait BoundModel<K: Kind>: Send + Sync {
     fn name(&self) -> &str;
     /// History slots per contact (0 for a memoryless law).
     fn history_slots(&self) -> usize;
+    /// Whether the law reads the normal law's context (sdk 0.4; see `READS_CONTEXT`): a host
+    /// then computes the contexts and passes them in the batch. False by default.
+    fn reads_context(&self) -> bool {
+        false
+    }
     /// Evaluates every contact of `b`, with the energy outputs `energy` asks for: `Ok(true)`
     /// when they were written, `Ok(false)` when the law does not account for energy (or none
     /// was asked for). A non-finite input or output is an error naming the contact.
@@ -39,6 +45,9 @@ macro_rules! bound_model {
             }
             fn history_slots(&self) -> usize {
                 <$t>::history_slots(self)
+            }
+            fn reads_context(&self) -> bool {
+                <$t>::reads_context(self)
             }
             #[inline]
             fn batch(&self, b: <$k as Kind>::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
@@ -64,6 +73,9 @@ macro_rules! forward {
             }
             fn history_slots(&self) -> usize {
                 (**self).history_slots()
+            }
+            fn reads_context(&self) -> bool {
+                (**self).reads_context()
             }
             #[inline]
             fn batch(&self, b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
@@ -108,7 +120,7 @@ pub(crate) fn run<K: Kind>(
     K::check_lengths(name, slots, b)?;
     let n = K::len(b);
     if !energy.lengths_ok(n) {
-        return Err(super::host::length_error(
+        return Err(crate::lengths::length_error(
             &format!("{} batch", K::KIND.as_str()),
             format!("the energy outputs must have one value per contact ({n})"),
         ));
@@ -133,15 +145,34 @@ pub(crate) fn run<K: Kind>(
     }
 }
 
-/// A configured law of kind `K` from a plugin.
+/// A plugin object of kind `K` in the ABI of its series: 0.4's (`K::Ffi`), or 0.3's
+/// (`K::Ffi03`, the part of 0.4's raw batch that 0.3 plugins read).
+enum Series<K: Kind, O: FfiObject, O3: FfiObject> {
+    V4(Owned<O>),
+    V3(Owned<O3>, std::marker::PhantomData<fn() -> K>),
+}
+
+/// A configured law of kind `K` from a plugin of sdk 0.3 or 0.4.
 pub struct LawHandle<K: Kind> {
-    ffi: Owned<FfiLaw<K::Ffi>>,
+    ffi: Series<K, FfiLaw<K::Ffi>, FfiLaw<K::Ffi03>>,
     info: LawInfo,
 }
 
 impl<K: Kind> LawHandle<K> {
+    /// A law of an sdk 0.4 plugin.
     pub(crate) fn new(ffi: Owned<FfiLaw<K::Ffi>>, info: LawInfo) -> Self {
-        LawHandle { ffi, info }
+        LawHandle {
+            ffi: Series::V4(ffi),
+            info,
+        }
+    }
+
+    /// A law of an sdk 0.3 plugin.
+    pub(crate) fn new_v3(ffi: Owned<FfiLaw<K::Ffi03>>, info: LawInfo) -> Self {
+        LawHandle {
+            ffi: Series::V3(ffi, std::marker::PhantomData),
+            info,
+        }
     }
 
     /// The law's description.
@@ -152,10 +183,15 @@ impl<K: Kind> LawHandle<K> {
     /// Binds the law to a pair of materials (validated first).
     pub fn bind(&self, materials: &MaterialPair) -> Result<ModelHandle<K>, LawError> {
         materials.validate()?;
+        let ffi = match &self.ffi {
+            Series::V4(l) => Series::V4(Owned::take(unsafe { (l.vtable.bind)(l.obj, materials) })?),
+            Series::V3(l, k) => Series::V3(Owned::take(unsafe { (l.vtable.bind)(l.obj, materials) })?, *k),
+        };
         Ok(ModelHandle {
-            ffi: Owned::take(unsafe { (self.ffi.vtable.bind)(self.ffi.obj, materials) })?,
+            ffi,
             name: self.info.name.to_string(),
             slots: self.info.history.len(),
+            reads_context: self.info.reads_context,
         })
     }
 }
@@ -163,9 +199,10 @@ impl<K: Kind> LawHandle<K> {
 /// A law of kind `K` bound to a pair of materials: the hot path, every input and output
 /// checked.
 pub struct ModelHandle<K: Kind> {
-    ffi: Owned<FfiModel<K::Ffi>>,
+    ffi: Series<K, FfiModel<K::Ffi>, FfiModel<K::Ffi03>>,
     name: String,
     slots: usize,
+    reads_context: bool,
 }
 
 impl<K: Kind> ModelHandle<K> {
@@ -179,24 +216,46 @@ impl<K: Kind> ModelHandle<K> {
         self.slots
     }
 
+    /// Whether the law reads the normal law's context.
+    pub fn reads_context(&self) -> bool {
+        self.reads_context
+    }
+
     /// Evaluates every contact of `b`, with the energy outputs `energy` asks for: `Ok(true)`
     /// when they were written, `Ok(false)` when the law does not account for energy (or none
-    /// was asked for).
+    /// was asked for). A law of sdk 0.3 is called with the 0.3 part of the raw batch, and what
+    /// it leaves unwritten gets this sdk's defaults ([`Kind::older_defaults`]).
     pub fn batch(&self, mut b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
-        let m = &self.ffi;
-        run::<K>(
-            &self.name,
-            self.slots,
-            &mut b,
-            energy,
-            m.vtable.take_panic,
-            |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, ffi, fault, written) },
-        )
+        match &self.ffi {
+            Series::V4(m) => run::<K>(
+                &self.name,
+                self.slots,
+                &mut b,
+                energy,
+                m.vtable.take_panic,
+                |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, ffi, fault, written) },
+            ),
+            Series::V3(m, _) => {
+                let written = run::<K>(
+                    &self.name,
+                    self.slots,
+                    &mut b,
+                    energy,
+                    m.vtable.take_panic,
+                    |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, K::ffi03(ffi), fault, written) },
+                )?;
+                K::older_defaults(&mut b);
+                Ok(written)
+            }
+        }
     }
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).
     pub fn coefficients(&self, mass: f64, radius: f64) -> Result<Vec<Coefficient>, LawError> {
-        super::host::coefficients(unsafe { (self.ffi.vtable.coefficients)(self.ffi.obj, mass, radius) })
+        super::object::coefficients(match &self.ffi {
+            Series::V4(m) => unsafe { (m.vtable.coefficients)(m.obj, mass, radius) },
+            Series::V3(m, _) => unsafe { (m.vtable.coefficients)(m.obj, mass, radius) },
+        })
     }
 }
 
@@ -206,6 +265,7 @@ pub struct StaticModel<K: Kind, B> {
     law: B,
     name: String,
     slots: usize,
+    reads_context: bool,
     kind: std::marker::PhantomData<fn() -> K>,
 }
 
@@ -217,6 +277,7 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
             law: law.kind_bind(materials)?,
             name: L::NAME.to_string(),
             slots: L::SLOTS,
+            reads_context: L::READS_CONTEXT,
             kind: std::marker::PhantomData,
         })
     }
@@ -228,6 +289,7 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
             law,
             name: name.to_string(),
             slots,
+            reads_context: false,
             kind: std::marker::PhantomData,
         }
     }
@@ -240,6 +302,11 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
     /// History slots per contact.
     pub fn history_slots(&self) -> usize {
         self.slots
+    }
+
+    /// Whether the law reads the normal law's context.
+    pub fn reads_context(&self) -> bool {
+        self.reads_context
     }
 
     /// The bound law.

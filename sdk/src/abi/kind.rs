@@ -1,4 +1,4 @@
-//! One ABI shape for every law kind of sdk 0.3: a configured law ([`FfiLaw`]) binds to a
+//! One ABI shape for every law kind (sdk 0.3 and later): a configured law ([`FfiLaw`]) binds to a
 //! material pair, giving a model ([`FfiModel`]) whose one hot-path entry evaluates a batch of
 //! the kind's raw arrays (`K::Ffi`), with the same panic guard, fused input and output checks,
 //! AVX2 dispatch and optional energy outputs for every kind. A kind is a [`Kind`]: its raw batch
@@ -8,13 +8,14 @@
 //! (see `kinds`); law authors implement only the plain traits ([`ContactLaw`](crate::ContactLaw),
 //! [`RollingLaw`](crate::RollingLaw), ...).
 
+use super::fault::{BatchFault, BatchStatus};
 use super::ffi::{self, Coefficient};
 use super::guard::{drop_box, finish, guard, hot, take_panic};
-use super::{ffi_object, BatchFault, BatchStatus};
+use super::object::ffi_object;
 use crate::error::{ErrorKind, FfiError, LawError};
 use crate::law::LawKind;
 use crate::pair::MaterialPair;
-use crate::params::{LawParams, ParamValue, Params};
+use crate::params::{configure, LawParams, ParamValue};
 use abi_stable::{
     std_types::{RResult, RSlice, RStr, RVec},
     StableAbi,
@@ -92,6 +93,10 @@ pub(crate) fn raw_out(o: &mut Option<&mut [f64]>) -> *mut f64 {
 pub trait Kind: 'static {
     /// The raw batch (`#[repr(C)]`, pointers).
     type Ffi: StableAbi + 'static;
+    /// The kind's raw batch in sdk 0.3, which [`Kind::Ffi`] extends (its first field): what a
+    /// law of a 0.3 plugin is called with. A kind new in sdk 0.4 (heat) has none: it names its
+    /// own raw batch here, never used (no 0.3 plugin exports such a law).
+    type Ffi03: StableAbi + 'static;
     /// The batch as a host passes it (slices).
     type Batch<'a>;
     /// Which kind (named in messages by [`LawKind::as_str`]).
@@ -103,6 +108,12 @@ pub trait Kind: 'static {
     fn check_lengths(name: &str, slots: usize, b: &Self::Batch<'_>) -> Result<(), LawError>;
     /// The raw view of a batch (with the energy outputs, null when not wanted).
     fn raw(b: &mut Self::Batch<'_>, power: *mut f64, elastic: *mut f64) -> Self::Ffi;
+    /// The sdk 0.3 part of a raw batch.
+    fn ffi03(b: &Self::Ffi) -> &Self::Ffi03;
+    /// Writes, after a law of an older sdk has evaluated batch `b`, what that law leaves
+    /// unwritten as this sdk's defaults (the normal kind: each contact's context, when asked
+    /// for); nothing by default.
+    fn older_defaults(_b: &mut Self::Batch<'_>) {}
     /// The error for a bad input or output found by the plugin (`status` not `Ok`/`Panic`).
     fn fault_error(name: &str, b: &Self::Batch<'_>, status: BatchStatus, fault: BatchFault) -> LawError;
 }
@@ -128,6 +139,8 @@ pub trait KindLaw<K: Kind>: LawParams + Send + Sync + 'static {
     const NAME: &'static str;
     /// History slots per contact.
     const SLOTS: usize;
+    /// Whether it reads the normal law's context (sdk 0.4).
+    const READS_CONTEXT: bool;
     /// Its description.
     fn kind_info() -> crate::LawInfo;
     /// Checks its parameters together.
@@ -136,13 +149,15 @@ pub trait KindLaw<K: Kind>: LawParams + Send + Sync + 'static {
     fn kind_bind(&self, m: &MaterialPair) -> Result<Self::Bound, LawError>;
 }
 
-/// Implements [`KindLaw`] of kind `$kind` for every law of trait `$law`.
+/// Implements [`KindLaw`] of kind `$kind` for every law of trait `$law` (which reads the
+/// normal context when `$reads`, an expression of the law `T`).
 macro_rules! kind_law {
-    ($kind:ty, $law:ident) => {
+    ($kind:ty, $law:ident, $reads:expr) => {
         impl<T: $law> $crate::abi::kind::KindLaw<$kind> for T {
             type Bound = T::Bound;
             const NAME: &'static str = T::NAME;
             const SLOTS: usize = T::HISTORY.len();
+            const READS_CONTEXT: bool = $reads;
             fn kind_info() -> $crate::LawInfo {
                 T::info()
             }
@@ -256,18 +271,6 @@ impl<B: 'static> Entry<CreateFn<B>> {
             make: create::<K, T>,
         }
     }
-}
-
-/// Law `T` (named `name`) from parameters: validated against its schema, read as its struct,
-/// then checked together by `check`.
-pub(crate) fn configure<T: LawParams>(
-    name: &str,
-    given: &[ParamValue],
-    check: fn(&T) -> Result<(), LawError>,
-) -> Result<T, LawError> {
-    let law: T = Params::resolve(name, &T::schema(), given)?.parse()?;
-    check(&law)?;
-    Ok(law)
 }
 
 /// Creates law `T` of kind `K` from parameters.

@@ -3,12 +3,14 @@
 
 use super::checks::{first_non_finite, CHECK_BLOCK};
 use super::guard::{drop_box, guard, hot, take_panic};
-use super::kind::{configure, Create, Entry};
-use super::{v1, BoundRestitutionVTable, FfiBoundRestitution, FfiRestitutionLaw, RestitutionLawVTable};
+use super::kind::{Create, Entry};
+use super::series::{
+    BoundRestitutionVTable, CallStatus, FfiBoundRestitution, FfiRestitutionLaw, RestitutionLawVTable,
+};
 use crate::error::{FfiError, LawError};
 use crate::law::{BoundRestitution, RestitutionLaw};
 use crate::pair::Pair;
-use crate::params::ParamValue;
+use crate::params::{configure, ParamValue};
 use abi_stable::std_types::RResult;
 use std::ffi::c_void;
 
@@ -52,10 +54,10 @@ unsafe extern "C" fn bound_restitution<B: BoundRestitution>(
     obj: *const c_void,
     speed: f64,
     out: *mut f64,
-) -> v1::CallStatus {
+) -> CallStatus {
     match hot(|| unsafe { *out = (*(obj as *const B)).restitution(speed) }) {
-        Some(()) => v1::CallStatus::Ok,
-        None => v1::CallStatus::Panic,
+        Some(()) => CallStatus::Ok,
+        None => CallStatus::Panic,
     }
 }
 
@@ -65,9 +67,9 @@ unsafe extern "C" fn bound_restitution_batch<B: BoundRestitution>(
     out: *mut f64,
     n: usize,
     first_bad: *mut usize,
-) -> v1::CallStatus {
+) -> CallStatus {
     if n == 0 {
-        return v1::CallStatus::Ok;
+        return CallStatus::Ok;
     }
     let res = hot(|| unsafe {
         let (v, o) = (
@@ -84,13 +86,13 @@ unsafe extern "C" fn bound_restitution_batch<B: BoundRestitution>(
         None
     });
     match res {
-        None => v1::CallStatus::Panic,
-        Some(None) => v1::CallStatus::Ok,
+        None => CallStatus::Panic,
+        Some(None) => CallStatus::Ok,
         Some(Some(i)) => {
             if !first_bad.is_null() {
                 unsafe { *first_bad = i };
             }
-            v1::CallStatus::NonFinite
+            CallStatus::NonFinite
         }
     }
 }

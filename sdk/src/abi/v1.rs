@@ -4,7 +4,9 @@
 //! with the one recorded in every 0.1 plugin.
 
 use super::ffi::Coefficient;
-use super::{ffi_object, frozen_law_info};
+use super::object::ffi_object;
+pub use super::series::CallStatus;
+use super::series::{frozen_law_info, root_module};
 use crate::error::FfiError;
 use crate::law::EndCriterion;
 use crate::pair::Pair;
@@ -21,18 +23,6 @@ frozen_law_info!(
         Restitution = 2: "A restitution coefficient r(v)."
     ]
 );
-
-/// Outcome of a 0.1 hot-path call (also used by restitution laws, unchanged in 0.2).
-#[repr(u8)]
-#[derive(StableAbi, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum CallStatus {
-    /// The output was written.
-    Ok = 0,
-    /// The law panicked; the message is available from the vtable's `take_panic`.
-    Panic = 1,
-    /// A batch output is NaN or infinite; its index was written to `first_bad`.
-    NonFinite = 2,
-}
 
 ffi_object!(law
     /// The functions of a configured 0.1 contact law.
@@ -66,7 +56,7 @@ ffi_object!(model
     FfiBoundContact
 );
 
-super::root_module!(
+root_module!(
     /// The root module of an sdk 0.1 plugin, exactly as 0.1 declared it (abi_stable refuses to
     /// read a library whose prefix type has fewer fields than the host's, so 0.1 plugins are
     /// read through this frozen copy).

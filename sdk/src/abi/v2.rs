@@ -5,8 +5,10 @@
 //! Their layout must never change: abi_stable compares it, field by field, with the one recorded
 //! in every 0.2 plugin.
 
+use super::fault::{BatchFault, BatchStatus};
 use super::ffi::ParamValue;
-use super::{ffi_object, frozen_law_info, BatchFault, BatchStatus};
+use super::object::ffi_object;
+use super::series::{frozen_law_info, root_module};
 use crate::error::FfiError;
 use crate::law::EndCriterion;
 use crate::pair::MaterialPair;
@@ -26,7 +28,7 @@ frozen_law_info!(
     history
 );
 
-super::root_module!(
+root_module!(
     /// The root module of an sdk 0.2 plugin, exactly as 0.2 declared it (with its law list in the
     /// 0.2 description).
     {

@@ -95,6 +95,11 @@ static void expect_true(int line, const char *what, int cond) {
         CHECK((slots) == (want));                                                                            \
         EXPECT(dashpot_##KIND##_model_history_slots(NULL, &(slots)), DASHPOT_ERR_NULL_POINTER, "model");    \
         EXPECT(dashpot_##KIND##_model_history_slots(model, NULL), DASHPOT_ERR_NULL_POINTER, "out_slots");   \
+        int reads_ = -1;                                                                                    \
+        EXPECT(dashpot_##KIND##_model_reads_context(model, &reads_), DASHPOT_OK, NULL);                     \
+        CHECK(reads_ == 0);                                                                                  \
+        EXPECT(dashpot_##KIND##_model_reads_context(NULL, &reads_), DASHPOT_ERR_NULL_POINTER, "model");     \
+        EXPECT(dashpot_##KIND##_model_reads_context(model, NULL), DASHPOT_ERR_NULL_POINTER, "out_reads");   \
     } while (0)
 
 /* The functions of DASHPOT_LAW_FUNCTIONS and DASHPOT_MODEL_FUNCTIONS for law `name` of KIND
@@ -582,6 +587,57 @@ int main(int argc, char **argv) {
         CHECK(jh[0] == 1.0 && jf[0] < 0.0 && fabs(jreach[0] / delta_c - 1.0) < 1e-12 && written == 1);
         EXPECT(dashpot_contact_model_force_batch_energy(NULL, 1, jd, jr, jmass, jrad, jh, 1, jf, NULL, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "model");
         EXPECT(dashpot_contact_model_force_batch_energy(jm, 1, jd, jr, jmass, jrad, jh, 0, jf, NULL, NULL, NULL, NULL), DASHPOT_ERR_BAD_LENGTH, "n_history = 0");
+
+        /* sdk 0.4: JKR's normal context, its own contact radius a: delta = a^2/R - sqrt(2 pi w a/E),
+           positive past touching; then laws that echo the context they receive get exactly it */
+        double jx[3] = {-1, -1, -1};
+        jd[0] = -0.5 * delta_c;
+        EXPECT(dashpot_contact_model_force_batch_context(jm, 1, jd, jr, jmass, jrad, jh, 1, jf, jreach, jp, je, &written, jx), DASHPOT_OK, NULL);
+        CHECK(jh[0] == 1.0 && jx[0] > 0.0 && jx[1] > 0.0 && jx[2] == 0.0);
+        CHECK(fabs(jx[0] * jx[0] / 2.5e-3 - sqrt(2.0 * M_PI * 0.1 * jx[0] / e_eff) - jd[0]) <= 1e-9 * delta_c);
+        EXPECT(dashpot_contact_model_force_batch_context(jm, 1, jd, jr, jmass, jrad, jh, 1, jf, NULL, NULL, NULL, NULL, jx), DASHPOT_OK, NULL);
+        EXPECT(dashpot_contact_model_force_batch_context(NULL, 1, jd, jr, jmass, jrad, jh, 1, jf, NULL, NULL, NULL, NULL, jx), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_contact_model_force_batch_context(jm, 1, jd, jr, jmass, jrad, jh, 1, jf, NULL, NULL, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "out_context");
+        EXPECT(dashpot_contact_model_force_batch_context(jm, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL, NULL, NULL, NULL, NULL, NULL), DASHPOT_OK, NULL);
+        int reads = -1;
+        DashpotTangentialLaw *el = NULL;
+        DashpotTangentialModel *em = NULL;
+        EXPECT(dashpot_tangential_new(reg, "context-echo", NULL, NULL, 0, &el), DASHPOT_OK, NULL);
+        EXPECT(dashpot_tangential_bind_materials(el, &mat, &em), DASHPOT_OK, NULL);
+        EXPECT(dashpot_tangential_model_reads_context(em, &reads), DASHPOT_OK, NULL);
+        CHECK(reads == 1);
+        double ef[3] = {0, 0, 0};
+        EXPECT(dashpot_tangential_model_force_batch_context(em, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, jx, NULL, 0, ef, NULL, NULL, NULL), DASHPOT_OK, NULL);
+        CHECK(ef[0] == jx[0] && ef[1] == jx[1] && ef[2] == jx[2]);
+        /* no context: each contact's default, sqrt(R delta), max(F, 0), 0 */
+        EXPECT(dashpot_tangential_model_force_batch_context(em, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, NULL, NULL, 0, ef, NULL, NULL, NULL), DASHPOT_OK, NULL);
+        CHECK(ef[0] == sqrt(rrd[0] * rdl[0]) && ef[1] == rfn[0] && ef[2] == 0.0);
+        double badx[3] = {1.0, NAN, 0.0};
+        EXPECT(dashpot_tangential_model_force_batch_context(em, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, badx, NULL, 0, ef, NULL, NULL, NULL), DASHPOT_ERR_NON_FINITE, "context[0]");
+        EXPECT(dashpot_tangential_model_force_batch_context(NULL, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, jx, NULL, 0, ef, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "model");
+        dashpot_tangential_model_free(em);
+        dashpot_tangential_free(el);
+        DashpotRollingLaw *erl = NULL;
+        DashpotRollingModel *erm = NULL;
+        EXPECT(dashpot_rolling_new(reg, "context-echo-rolling", NULL, NULL, 0, &erl), DASHPOT_OK, NULL);
+        EXPECT(dashpot_rolling_bind_materials(erl, &mat, &erm), DASHPOT_OK, NULL);
+        EXPECT(dashpot_rolling_model_reads_context(erm, &reads), DASHPOT_OK, NULL);
+        CHECK(reads == 1);
+        EXPECT(dashpot_rolling_model_force_batch_context(erm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, jx, NULL, 0, ef, NULL, NULL, &written), DASHPOT_OK, NULL);
+        CHECK(ef[0] == jx[0] && ef[1] == jx[1] && ef[2] == jx[2] && written == 0);
+        EXPECT(dashpot_rolling_model_force_batch_context(erm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, badx, NULL, 0, ef, NULL, NULL, NULL), DASHPOT_ERR_NON_FINITE, "context[0]");
+        dashpot_rolling_model_free(erm);
+        dashpot_rolling_free(erl);
+        DashpotTwistingLaw *ewl = NULL;
+        DashpotTwistingModel *ewm = NULL;
+        EXPECT(dashpot_twisting_new(reg, "context-echo-twisting", NULL, NULL, 0, &ewl), DASHPOT_OK, NULL);
+        EXPECT(dashpot_twisting_bind_materials(ewl, &mat, &ewm), DASHPOT_OK, NULL);
+        double et[1] = {0};
+        EXPECT(dashpot_twisting_model_torque_batch_context(ewm, 1, 1e-4, rn, wrate, rfn, rdl, rms, rrd, jx, NULL, 0, et, NULL, NULL, NULL), DASHPOT_OK, NULL);
+        CHECK(et[0] == jx[0]);
+        EXPECT(dashpot_twisting_model_torque_batch_context(ewm, 1, 1e-4, rn, wrate, rfn, rdl, rms, rrd, jx, NULL, 0, NULL, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "out_torque");
+        dashpot_twisting_model_free(ewm);
+        dashpot_twisting_free(ewl);
         dashpot_contact_model_free(jm);
         dashpot_contact_free(jkr);
         dashpot_rolling_free(NULL);

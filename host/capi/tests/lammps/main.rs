@@ -7,9 +7,12 @@
 //! developer machine and fail under `CI=true`. The runs are kept small (CI has 90 minutes on two
 //! cores); the 20,000-sphere benchmark is `examples/lammps/bench.sh`.
 
+mod decks;
 mod families;
 #[path = "../../../../tests/lammps.rs"]
 mod lammps;
+mod types;
+mod walls;
 
 use lammps::{lmp_command, succeeded};
 
@@ -199,7 +202,7 @@ fn lammps_builtin_styles_beside_pair_dashpot() {
 fn settling_pile_runs_on_two_mpi_ranks() {
     let Some(v) = venv() else { return };
     for (ranks, wall) in [(2, "pair"), (1, "fix")] {
-        let r = run_deck(
+        let (r, out) = run_deck_output(
             &v,
             "in.pile",
             ranks,
@@ -212,6 +215,7 @@ fn settling_pile_runs_on_two_mpi_ranks() {
             ],
         );
         eprintln!("pile on {ranks} rank(s), wall={wall}: {r:?}");
+        assert!(!out.contains("Communication cutoff is 0.0"), "{out}");
         assert_eq!(num(&r, "atoms"), 216.0, "{r:?}");
         let radius = 0.005;
         // the lowest centre stays above the floor by a radius less a small overlap
@@ -399,8 +403,8 @@ fn polydisperse_pour_runs_on_two_ranks() {
     assert!(num(&r, "ke_per_atom") < 1e-7, "settled: {r:?}");
 }
 
-/// Bad tangential input stops LAMMPS with a clear message: an unknown law, a missing name, a
-/// history law under `newton on`.
+/// Bad tangential input stops LAMMPS with a clear message: an unknown law, a law of another
+/// kind; and a history law under `newton on` runs as under `newton off` (the wall's spring).
 #[test]
 fn pair_dashpot_reports_tangential_errors() {
     let Some(v) = venv() else { return };
@@ -411,8 +415,11 @@ fn pair_dashpot_reports_tangential_errors() {
         text.contains("pair dashpot") && text.contains("contact law"),
         "{text}"
     );
-    let text = failing_deck(&v, "in.sliding", &[("newton", "on")]);
-    assert!(text.contains("requires newton off"), "{text}");
+    let off = run_deck(&v, "in.sliding", 1, &[]);
+    let on = run_deck(&v, "in.sliding", 1, &[("newton", "on".into())]);
+    for k in ["ratio", "roll", "wzz"] {
+        assert_same(k, &off, &on, 1e-12, "newton off and on");
+    }
 }
 
 /// The same contact stopped mid-way, written to a restart file, cleared and read back: the

@@ -17,7 +17,7 @@
 
 use super::two_body::{collide, CollideError, Options, PairLaw};
 use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
-use dashpot_sdk::{EndCriterion, LawError, NormalBatch, TangentialBatch};
+use dashpot_sdk::{EndCriterion, LawError, NormalBatch, NormalContext, TangentialBatch};
 use nalgebra::Vector3;
 
 /// A solid body: mass (kg), radius (m) and moment of inertia about a diameter (kg·m²).
@@ -242,20 +242,23 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
             (ez, r1 + r2 - (x1 - x2).z)
         };
         let rate = -(v1h - v2h).dot(&n);
-        let (mut fn_, mut reach) = ([0.0], [0.0]);
-        normal.force_batch_with(
-            NormalBatch {
-                delta: &[delta],
-                rate: &[rate],
-                mass: &[m_eff],
-                radius: &[r_eff],
-                slots: sn,
-                history: &mut hn,
-                force: &mut fn_,
-            },
-            Some(&mut reach),
-            EnergyOut::none(),
-        )?;
+        let (mut fn_, mut reach, mut context) = ([0.0], [0.0], [NormalContext::default()]);
+        let nb = NormalBatch {
+            delta: &[delta],
+            rate: &[rate],
+            mass: &[m_eff],
+            radius: &[r_eff],
+            slots: sn,
+            history: &mut hn,
+            force: &mut fn_,
+        };
+        // the normal law's context only for a tangential law that reads it
+        let reads = tangential.is_some_and(|t| t.reads_context());
+        if reads {
+            normal.force_batch_context(nb, Some(&mut reach), &mut context, EnergyOut::none())?;
+        } else {
+            normal.force_batch_with(nb, Some(&mut reach), EnergyOut::none())?;
+        }
         let fnv = fn_[0];
         max_overlap = max_overlap.max(delta);
         if rate < 0.0 {
@@ -276,6 +279,7 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
                 delta: &[delta],
                 mass: &[m_eff],
                 radius: &[r_eff],
+                context: if reads { &context } else { &[] },
                 slots: st,
                 history: &mut ht,
                 force: &mut out,

@@ -15,7 +15,7 @@
 //! the step.
 
 use crate::laws::{EnergyOut, NormalLaw, RollingResistance, TangentialForce};
-use dashpot_sdk::{LawError, NormalBatch, RollingBatch, TangentialBatch};
+use dashpot_sdk::{LawError, NormalBatch, NormalContext, RollingBatch, TangentialBatch};
 use nalgebra::Vector3;
 
 /// The rolling sphere and its launch.
@@ -180,6 +180,8 @@ where
     let mut samples = Vec::new();
     let mut max_slip = 0.0f64;
     let gvec = Vector3::new(0.0, 0.0, -g);
+    // the normal law's context only when the tangential or rolling law reads it
+    let reads = tangential.reads_context() || rolling.reads_context();
     for step in 1..=max_steps {
         let vh = v + (f / m + gvec) * (0.5 * dt);
         let wh = w + tq * (0.5 * dt / inertia);
@@ -187,8 +189,8 @@ where
         t += dt;
         let delta = r - x.z;
         let rate = -vh.z;
-        let mut fnv = [0.0];
-        normal.force_batch(NormalBatch {
+        let (mut fnv, mut context) = ([0.0], [NormalContext::default()]);
+        let nb = NormalBatch {
             delta: &[delta],
             rate: &[rate],
             mass: &[m],
@@ -196,7 +198,12 @@ where
             slots: sn,
             history: &mut hn,
             force: &mut fnv,
-        })?;
+        };
+        if reads {
+            normal.force_batch_context(nb, None, &mut context, EnergyOut::none())?;
+        } else {
+            normal.force_batch(nb)?;
+        }
         let c = -r * n;
         let slip = vh + wh.cross(&c);
         max_slip = max_slip.max(slip.norm());
@@ -209,6 +216,7 @@ where
             delta: &[delta],
             mass: &[m],
             radius: &[r],
+            context: if reads { &context } else { &[] },
             slots: st,
             history: &mut ht,
             force: &mut ft,

@@ -55,7 +55,7 @@ __all__ = [
     "Scene",
 ]
 
-__version__ = "0.3.0"
+__version__ = "0.4.0"
 
 
 def _plugin_dirs() -> List[str]:

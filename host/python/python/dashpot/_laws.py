@@ -105,6 +105,9 @@ class _Bound:
 
     name = Native[str]("The law's name.")
     history_slots = Native[int]("History values the law keeps per contact (0 for a memoryless law).")
+    reads_context = Native[bool]("Whether the law reads the normal law's context (sdk 0.4): then pass it the "
+                                 "contexts of ``BoundContactLaw.force_context`` (tangential, rolling, "
+                                 "twisting laws).")
 
     def __init__(self, inner: Any) -> None:
         self._inner = inner
@@ -147,6 +150,37 @@ class BoundContactLaw(_Bound):
                                  None, True)
 
 
+    def force_context(self, delta: Any, rate: Any, mass: Any, radius: Any,
+                      history: Optional[Array] = None) -> Tuple[Array, Array]:
+        """As ``force``, with each contact's normal context (sdk 0.4): ``(force, context)``,
+        ``context`` of shape (N, 3), per contact the contact radius a (m; JKR's own, positive past
+        touching until rupture), the force the caps of the contact's other laws scale with (N)
+        and the normal damping coefficient (N·s/m). A law that reports none of its own gives
+        a = √(R max(δ, 0)), max(F, 0) and 0. Pass it to the tangential, rolling and twisting laws
+        that read it (``reads_context``)."""
+        d = _f64("delta", delta)
+        n = d.shape[0]
+        h = None if history is None else _history(history)
+        context = _np.empty((n, 3))
+        f = self._inner.force((d, _f64("rate", rate, n), _f64("mass", mass, n), _f64("radius", radius, n)), h,
+                              None, False, context.reshape(-1))
+        return f, context
+
+
+def _contexts(context: Any, n: int) -> Optional[Array]:
+    """The normal contexts of N contacts, shape (N, 3), flattened; ``None`` for the defaults."""
+    if context is None:
+        return None
+    try:
+        a = _np.ascontiguousarray(context, dtype=_np.float64)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"context: cannot be read as float64 numbers ({e})") from None
+    if a.shape != (n, 3):
+        raise ValueError(f"context has shape {a.shape}: it must be ({n}, 3), one (contact radius, cap force, "
+                         "damping) per contact")
+    return a.reshape(-1)
+
+
 class ContactLaw(_Law[BoundContactLaw]):
     """Contact (normal) law ``name`` (see ``laws()``) with its parameters as keywords, checked
     by the law: ``ContactLaw("hsd", eps=0.3)``."""
@@ -161,12 +195,13 @@ class _BoundVector(_Bound):
     _velocity = "velocity"
 
     def force(self, dt: float, normal: Any, velocity: Any, normal_force: Any, delta: Any, mass: Any,
-              radius: Any, history: Array, energy: bool = False) -> Any:
+              radius: Any, history: Array, energy: bool = False, context: Any = None) -> Any:
         fn = _f64("normal_force", normal_force)
         n = fn.shape[0]
         r = self._inner.force(float(dt), _vectors("normal", normal, n), _vectors(self._velocity, velocity, n), fn,
                               _f64("delta", delta, n, "normal_force"), _f64("mass", mass, n, "normal_force"),
-                              _f64("radius", radius, n, "normal_force"), _history(history), bool(energy))
+                              _f64("radius", radius, n, "normal_force"), _history(history), bool(energy),
+                              _contexts(context, n))
         if energy:
             f, (p, e) = r
             return f.reshape(n, 3), p, e
@@ -177,7 +212,7 @@ class BoundTangentialLaw(_BoundVector):
     """A tangential (friction) law bound to a pair of materials (see ``TangentialLaw.bind``)."""
 
     def force(self, dt: float, normal: Any, velocity: Any, normal_force: Any, delta: Any, mass: Any,
-              radius: Any, history: Array, energy: bool = False) -> Any:
+              radius: Any, history: Array, energy: bool = False, context: Any = None) -> Any:
         """Tangential forces (N) on N contacts, shape (N, 3), over a step ``dt`` (s): unit
         normals ``normal`` (N, 3) from the partner to the particle, contact-point relative
         velocities ``velocity`` (N, 3, m/s), normal forces ``normal_force`` (N), overlaps
@@ -185,8 +220,10 @@ class BoundTangentialLaw(_BoundVector):
         shape (N, history_slots), zeros at first touch, is advanced in place. With
         ``energy=True``, returns ``(force, power, elastic)``: also the power each contact
         dissipates (W) and the elastic energy it stores (J), each (N,), ``None`` for a law that
-        does not report them."""
-        return super().force(dt, normal, velocity, normal_force, delta, mass, radius, history, energy)
+        does not report them. ``context`` (N, 3): the normal law's contexts
+        (``BoundContactLaw.force_context``), for a law that reads them (``reads_context``);
+        ``None``, each contact's default."""
+        return super().force(dt, normal, velocity, normal_force, delta, mass, radius, history, energy, context)
 
 
 class BoundRollingLaw(_BoundVector):
@@ -195,31 +232,34 @@ class BoundRollingLaw(_BoundVector):
     _velocity = "velocity (rolling)"
 
     def force(self, dt: float, normal: Any, velocity: Any, normal_force: Any, delta: Any, mass: Any,
-              radius: Any, history: Array, energy: bool = False) -> Any:
+              radius: Any, history: Array, energy: bool = False, context: Any = None) -> Any:
         """Rolling-resistance forces F_r (N) on N contacts, shape (N, 3), over a step ``dt``
         (s); the torque on the particle is R n̂ × F_r. Inputs: unit normals ``normal`` (N, 3)
         from the partner to the particle, rolling velocities ``velocity`` = R (ω_i − ω_j) × n̂
         (N, 3, m/s), normal forces (N), overlaps (m), effective masses (kg) and radii R (m);
         ``history`` (N, history_slots), zeros at first touch, advanced in place. With
-        ``energy=True``, returns ``(force, power, elastic)`` as ``BoundTangentialLaw.force``."""
-        return super().force(dt, normal, velocity, normal_force, delta, mass, radius, history, energy)
+        ``energy=True``, returns ``(force, power, elastic)`` as ``BoundTangentialLaw.force``;
+        ``context`` as there."""
+        return super().force(dt, normal, velocity, normal_force, delta, mass, radius, history, energy, context)
 
 
 class BoundTwistingLaw(_Bound):
     """A twisting-resistance law bound to a pair of materials (see ``TwistingLaw.bind``)."""
 
     def torque(self, dt: float, normal: Any, rate: Any, normal_force: Any, delta: Any, mass: Any,
-               radius: Any, history: Array, energy: bool = False) -> Any:
+               radius: Any, history: Array, energy: bool = False, context: Any = None) -> Any:
         """Twisting torques M (N·m, about n̂, on the particle) on N contacts, shape (N,), over a
         step ``dt`` (s): unit normals ``normal`` (N, 3), twisting rates ``rate`` = (ω_i − ω_j)·n̂
         (N, rad/s), normal forces (N), overlaps (m), effective masses (kg) and radii (m);
         ``history`` (N, history_slots), zeros at first touch, advanced in place. With
-        ``energy=True``, returns ``(torque, power, elastic)``."""
+        ``energy=True``, returns ``(torque, power, elastic)``; ``context`` as for
+        ``BoundTangentialLaw.force``."""
         fn = _f64("normal_force", normal_force)
         n = fn.shape[0]
         r = self._inner.torque(float(dt), _vectors("normal", normal, n), _f64("rate", rate, n, "normal_force"), fn,
                                _f64("delta", delta, n, "normal_force"), _f64("mass", mass, n, "normal_force"),
-                               _f64("radius", radius, n, "normal_force"), _history(history), bool(energy))
+                               _f64("radius", radius, n, "normal_force"), _history(history), bool(energy),
+                               _contexts(context, n))
         if energy:
             t, (p, e) = r
             return t, p, e

@@ -61,6 +61,11 @@ class Scene:
     contact law, ``tangential``, ``rolling``, ``twisting`` optional laws (each a name, a law
     object or ``{"name", "params"}``); the material ``young`` (Pa), ``poisson``, ``density``
     (kg/m³), ``disk_mass`` (2D: ``"sphere"`` or ``"disk"``); ``gravity`` (m/s², D values);
+    ``species``, a list of ``{"name", "young", "poisson", "density"}`` (instead of ``young``,
+    ``poisson``, ``density``), with ``particle_species`` (one name per particle, or one for
+    all) and ``pairs``, a list of ``{"species": [a, b], "law", "tangential", "rolling",
+    "twisting"}`` (or ``{"species": a, "wall": K, ...}``) giving the laws of pairs of species
+    (the top-level laws are the default of every pair not named; see docs/dem.md);
     ``duration`` (s), the scene's end time (what ``run()`` without an argument runs to); ``dt``
     (s), ``steps_per_collision``, ``impact_speed`` (m/s), ``skin`` (m) for the step and the
     neighbour list; ``box`` ``{"lo", "hi", "periodic", "bounded"}``; ``walls``, a list of
@@ -77,23 +82,39 @@ class Scene:
     ``run`` steps."""
 
     def __init__(self, dimension: int = 3, *, positions: Any = None, diameters: Any = None,
-                 velocities: Any = None, angular_velocities: Any = None, law: LawSpec,
-                 tangential: Optional[LawSpec] = None, rolling: Optional[LawSpec] = None,
-                 twisting: Optional[LawSpec] = None, young: float, poisson: float, density: float,
-                 disk_mass: Optional[str] = None, gravity: Optional[Sequence[float]] = None,
+                 velocities: Any = None, angular_velocities: Any = None,
+                 law: Optional[LawSpec] = None, tangential: Optional[LawSpec] = None,
+                 rolling: Optional[LawSpec] = None, twisting: Optional[LawSpec] = None,
+                 young: Optional[float] = None, poisson: Optional[float] = None,
+                 density: Optional[float] = None, disk_mass: Optional[str] = None,
+                 species: Optional[Sequence[Mapping[str, Any]]] = None,
+                 pairs: Optional[Sequence[Mapping[str, Any]]] = None,
+                 particle_species: Any = None, gravity: Optional[Sequence[float]] = None,
                  duration: Optional[float] = None, dt: Optional[float] = None,
                  steps_per_collision: Optional[float] = None, impact_speed: Optional[float] = None,
                  skin: Optional[float] = None, box: Optional[Mapping[str, Any]] = None,
                  walls: Optional[Sequence[Mapping[str, Any]]] = None,
-                 generate: Optional[Mapping[str, Any]] = None,
+                 generate: Union[None, Mapping[str, Any], Sequence[Mapping[str, Any]]] = None,
                  allow_initial_overlap: bool = False, energy: bool = True) -> None:
-        spec: Dict[str, Any] = {"dimension": int(dimension), "law": _law_table("law", law),
-                                "material": {"young": young, "poisson": poisson, "density": density}}
-        if disk_mass is not None:
-            spec["material"]["disk_mass"] = disk_mass
-        for key, law_spec in [("tangential", tangential), ("rolling", rolling), ("twisting", twisting)]:
+        spec: Dict[str, Any] = {"dimension": int(dimension)}
+        material = {k: v for k, v in [("young", young), ("poisson", poisson), ("density", density),
+                                      ("disk_mass", disk_mass)] if v is not None}
+        if species is None:
+            if any(v is None for v in (young, poisson, density)):
+                raise ValueError("young, poisson, density: give the particles' material (Pa, ratio, kg/m³), "
+                                 "or species=[{'name', 'young', 'poisson', 'density'}, ...]")
+            spec["material"] = material
+        else:
+            if material:
+                raise ValueError(f"{', '.join(material)} and species both given: with species, each species "
+                                 "gives its own material")
+            spec["species"] = [dict(sp) for sp in species]
+        for key, law_spec in [("law", law), ("tangential", tangential), ("rolling", rolling),
+                              ("twisting", twisting)]:
             if law_spec is not None:
                 spec[key] = _law_table(key, law_spec)
+        if pairs:
+            spec["pair"] = [self._pair_table(k, p) for k, p in enumerate(pairs)]
         given_duration = duration is not None
         # (the scene file needs a duration; without one, run() needs its own)
         spec["duration"] = duration if given_duration else 1.0
@@ -102,19 +123,32 @@ class Scene:
             if value is not None:
                 spec[key] = value
         if walls:
-            spec["wall"] = list(walls)
+            spec["wall"] = [dict(w) for w in walls]
         if allow_initial_overlap:
             spec["allow_initial_overlap"] = True
         if not energy:
             spec["energy"] = False
-        spec["particle"] = self._particles(int(dimension), positions, diameters, velocities, angular_velocities)
+        spec["particle"] = self._particles(int(dimension), positions, diameters, velocities, angular_velocities,
+                                           particle_species)
         self._bind(_dashpot.Scene.from_spec(spec), duration if given_duration else None)
 
     @staticmethod
+    def _pair_table(k: int, p: Mapping[str, Any]) -> Dict[str, Any]:
+        """A ``[[pair]]`` table: ``species`` (one name or two), optional ``wall`` (an index or a
+        name, or a list), and law specs ``law``, ``tangential``, ``rolling``, ``twisting``."""
+        out: Dict[str, Any] = {}
+        for key, value in p.items():
+            if key in ("law", "tangential", "rolling", "twisting"):
+                out[key] = _law_table(f"pairs[{k}].{key}", value)
+            else:
+                out[key] = value
+        return out
+
+    @staticmethod
     def _particles(dim: int, positions: Any, diameters: Any, velocities: Any,
-                   angular_velocities: Any) -> List[Dict[str, Any]]:
+                   angular_velocities: Any, species: Any = None) -> List[Dict[str, Any]]:
         if positions is None:
-            if diameters is not None or velocities is not None:
+            if diameters is not None or velocities is not None or species is not None:
                 raise ValueError("positions: give the particles' positions (N, D) with their diameters")
             return []
         x = _rows("positions", positions, None, dim)
@@ -125,6 +159,12 @@ class Scene:
         v = None if velocities is None else _rows("velocities", velocities, n, dim)
         w = None if angular_velocities is None else _rows(
             "angular_velocities", angular_velocities, n, None if dim == 2 else 3)
+        if species is None or isinstance(species, str):
+            names = None if species is None else [species] * n
+        else:
+            names = [str(x) for x in species]
+            if len(names) != n:
+                raise ValueError(f"particle_species has {len(names)} names: {n} expected (one per particle)")
         out = []
         for i in range(n):
             p: Dict[str, Any] = {"position": x[i].tolist(), "diameter": float(d[i])}
@@ -132,6 +172,8 @@ class Scene:
                 p["velocity"] = v[i].tolist()
             if w is not None:
                 p["angular_velocity"] = w[i].tolist()
+            if names is not None:
+                p["species"] = names[i]
             out.append(p)
         return out
 
@@ -163,6 +205,11 @@ class Scene:
     radii = View("Radii (m), shape (N,).")
     masses = View("Masses (kg), shape (N,).")
     inertia = View("Moments of inertia (kg·m²), shape (N,).")
+
+    @property
+    def species(self) -> List[str]:
+        """Each particle's species, by name (empty names in a scene without species)."""
+        return list(self._inner.particle_species())
 
     def to_toml(self, duration: Optional[float] = None) -> str:
         """The scene as a scene file (for ``dashpot dem --scene``), with ``duration`` (s) if
@@ -243,7 +290,8 @@ class Scene:
         ``total``; the ``elastic`` energy stored in the contacts; what each family of laws
         ``dissipated`` since the start (``normal``, ``tangential``, ``rolling``, ``twisting``,
         ``total``; None for a law that does not report it); ``initial``, the total and the
-        elastic energy at the start. Their balance: initial ≈ total + elastic + dissipated."""
+        elastic energy at the start; ``wall_work``, the work moving walls did on the particles.
+        Their balance: initial + wall_work ≈ total + elastic + dissipated."""
         return self._inner.energy()
 
     def result(self) -> Dict[str, Any]:

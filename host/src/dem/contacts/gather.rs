@@ -72,7 +72,7 @@ fn carry_slots(hist: &mut [f64], old: &[f64], src: &[u32], slots: usize) {
 /// periodic boundary (most) take the plain difference of positions (see
 /// [`Neighbours::cross`]).
 #[inline(never)]
-fn touching<const D: usize>(
+pub(super) fn touching<const D: usize>(
     range: Range<usize>,
     nb: &Neighbours<D>,
     images: &Images<D>,
@@ -162,6 +162,7 @@ fn pair_geometry<const D: usize, const SORTED: bool>(
         radius,
         mass,
         uid,
+        ..
     } = *view;
     let PairsOut {
         i: oi,
@@ -246,6 +247,20 @@ impl ContactSet {
         }
         let images = dom.images();
         let count = touching(range, nb, &images, view, self.reach_bound, &mut cand);
+        self.cand = cand;
+        self.pairs_from_candidates(prev, count, &images, view)
+    }
+
+    /// Passes 2 and 3 of a pair gathering: the contacts of the first `count` candidates of
+    /// `self.cand` (in key order), their history carried over from `prev`.
+    pub(super) fn pairs_from_candidates<const D: usize>(
+        &mut self,
+        prev: &ContactSet,
+        count: usize,
+        images: &Images<D>,
+        view: &View<'_, D>,
+    ) -> Result<(), DemError> {
+        let cand = std::mem::take(&mut self.cand);
         // pass 2, over the candidates: their geometry, one contact each (a candidate apart
         // by less than the reach of an adhesive law, not touching, is dropped by the merge
         // unless its contact still acts; without such a law every candidate touches)
@@ -267,9 +282,9 @@ impl ContactSet {
             sign: &mut self.sign,
         };
         let done = if sorted {
-            pair_geometry::<D, true>(&cand[..count], &images, view, out)
+            pair_geometry::<D, true>(&cand[..count], images, view, out)
         } else {
-            pair_geometry::<D, false>(&cand[..count], &images, view, out)
+            pair_geometry::<D, false>(&cand[..count], images, view, out)
         };
         if let Err(e) = done {
             self.cand = cand;
@@ -306,13 +321,50 @@ impl ContactSet {
         near: Option<&[u32]>,
         view: &View<'_, D>,
     ) -> Result<(), DemError> {
+        let count = self.wall_candidates(range, walls, near, view);
+        // pass 2: each picked particle's contacts, wall by wall (one not touching is kept only
+        // under an adhesive law, for the merge to decide)
+        let cand = std::mem::take(&mut self.cand);
+        self.size(count * walls.len());
+        let adhesive = self.reach_bound > 0.0;
+        let mut k = 0;
+        for &(ig, _) in &cand[..count] {
+            for (w, ws) in walls.iter().enumerate() {
+                match wall_contact(ws, ig as usize, view, adhesive) {
+                    Ok(None) => {}
+                    Ok(Some(c)) => {
+                        self.put_wall_contact(k, ig, w, &c);
+                        k += 1;
+                    }
+                    Err(e) => {
+                        self.cand = cand;
+                        return Err(e.naming(w));
+                    }
+                }
+            }
+        }
+        self.size(k);
+        self.cand = cand;
+        self.carry(prev, true);
+        Ok(())
+    }
+
+    /// Pass 1 of a wall gathering: the particles of `range` within reach of a wall (NaN kept)
+    /// written into `self.cand`, in order; their count returned. `near`, if given, holds the
+    /// only particles of `range` that can be (see [`ContactSet::gather_walls`]).
+    pub(super) fn wall_candidates<const D: usize>(
+        &mut self,
+        range: Range<usize>,
+        walls: &[WallState<D>],
+        near: Option<&[u32]>,
+        view: &View<'_, D>,
+    ) -> usize {
         self.first = range.start;
-        let (base, pos, vpred, vel) = (view.base, view.pos, view.vpred, view.vel);
-        let (omega, radius, mass) = (view.omega, view.radius, view.mass);
+        let (base, pos, radius) = (view.base, view.pos, view.radius);
         // the chunk's particles, indexed from 0
         let local = range.start - base..range.end - base;
-        // pass 1: the largest overlap of each particle with any wall (NaN kept), wall by wall
-        // over the particles, a loop without branches; pass 2 over the particles it picks
+        // the largest overlap of each particle with any wall (NaN kept), wall by wall over
+        // the particles, a loop without branches
         let mut cand = std::mem::take(&mut self.cand);
         if cand.len() < range.len() {
             cand.resize(range.len(), (0, 0));
@@ -336,10 +388,7 @@ impl ContactSet {
             worst.clear();
             worst.resize(range.len(), f64::NEG_INFINITY);
             for ws in walls {
-                for ((m, x), r) in worst.iter_mut().zip(xs).zip(rs) {
-                    let d = ws.overlap(x, *r);
-                    *m = if d > *m || d.is_nan() { d } else { *m };
-                }
+                ws.overlaps_into(xs, rs, &mut worst);
             }
             for (k, m) in worst.iter().enumerate() {
                 cand[count] = ((range.start + k) as u32, 0);
@@ -347,50 +396,24 @@ impl ContactSet {
             }
             self.scratch = worst;
         }
-        // pass 2: each picked particle's contacts, wall by wall (one not touching is kept only
-        // under an adhesive law, for the merge to decide)
-        self.size(count * walls.len());
-        let adhesive = self.reach_bound > 0.0;
-        let mut k = 0;
-        for &(ig, _) in &cand[..count] {
-            let (ig, i) = (ig as usize, ig as usize - base);
-            for (w, ws) in walls.iter().enumerate() {
-                let delta = ws.overlap(&pos[i], radius[i]);
-                if delta <= 0.0 && !adhesive {
-                    continue;
-                }
-                if delta.is_nan() || delta > MAX_OVERLAP * radius[i] {
-                    self.cand = cand;
-                    return Err(DemError::Overlap {
-                        i: user(view.uid, base, ig),
-                        partner: format!("wall {w}"),
-                        delta,
-                        radius: radius[i],
-                    });
-                }
-                let nv = to3(&ws.normal);
-                let rate = -to3(&(vpred[i] - ws.velocity)).dot(&nv);
-                let dv = to3(&(vel[i] - ws.velocity));
-                let wi = spin::<D>(omega, i);
-                let v = dv - (wi * radius[i]).cross(&nv);
-                self.i[k] = ig as u32;
-                self.j[k] = w as u32;
-                self.delta[k] = delta;
-                self.rate[k] = rate;
-                self.mass[k] = mass[i];
-                self.radius[k] = radius[i];
-                self.normal[k] = [nv.x, nv.y, nv.z];
-                self.vrel[k] = [v.x, v.y, v.z];
-                if self.rotational() {
-                    self.vroll[k] = [wi.x, wi.y, wi.z];
-                }
-                k += 1;
-            }
-        }
-        self.size(k);
         self.cand = cand;
-        self.carry(prev, true);
-        Ok(())
+        count
+    }
+
+    /// Writes the contact `c` of particle `ig` with wall `w` as contact `k`.
+    #[inline(always)]
+    pub(super) fn put_wall_contact(&mut self, k: usize, ig: u32, w: usize, c: &WallContact) {
+        self.i[k] = ig;
+        self.j[k] = w as u32;
+        self.delta[k] = c.delta;
+        self.rate[k] = c.rate;
+        self.mass[k] = c.mass;
+        self.radius[k] = c.radius;
+        self.normal[k] = c.normal;
+        self.vrel[k] = c.vrel;
+        if self.rotational() {
+            self.vroll[k] = c.spin;
+        }
     }
 
     /// The merge of a gathering: each contact's history carried over from `prev` (the same
@@ -399,7 +422,7 @@ impl ContactSet {
     /// (δ < 0; δ ≤ 0 against a `wall`) is kept only while its previous contact's reach covers
     /// it, and the kept contacts are moved up over the dropped ones. With a rolling or
     /// twisting law, `vroll` holds the relative spin on entry and gets the rolling velocity.
-    fn carry(&mut self, prev: &ContactSet, wall: bool) {
+    pub(super) fn carry(&mut self, prev: &ContactSet, wall: bool) {
         let mut owned = std::mem::take(&mut self.src);
         self.merge(prev, &mut owned);
         if self.reach_bound > 0.0 {
@@ -513,4 +536,74 @@ impl ContactSet {
             }
         }
     }
+}
+
+/// A particle–wall contact's gathered values (see [`ContactSet`]).
+pub(super) struct WallContact {
+    delta: f64,
+    rate: f64,
+    mass: f64,
+    radius: f64,
+    normal: [f64; 3],
+    vrel: [f64; 3],
+    /// The particle's spin relative to the wall's (rad/s), for the rolling and twisting part of
+    /// the merge.
+    spin: [f64; 3],
+}
+
+/// Why a wall contact is refused: the particle (the user's number), the overlap (m), the radius
+/// (m); [`WallRefusal::naming`] adds the wall.
+pub(super) struct WallRefusal(usize, f64, f64);
+
+impl WallRefusal {
+    pub(super) fn naming(self, w: usize) -> DemError {
+        DemError::Overlap {
+            i: self.0,
+            partner: format!("wall {w}"),
+            delta: self.1,
+            radius: self.2,
+        }
+    }
+}
+
+/// The contact of particle `ig` (of `view`) with the wall `ws`: `None` if apart (unless
+/// `adhesive`: an adhesive law's contact is kept for the merge to decide); an overlap beyond
+/// [`MAX_OVERLAP`] (or NaN) refused.
+#[inline(always)]
+pub(super) fn wall_contact<const D: usize>(
+    ws: &WallState<D>,
+    ig: usize,
+    view: &View<'_, D>,
+    adhesive: bool,
+) -> Result<Option<WallContact>, WallRefusal> {
+    let i = ig - view.base;
+    let (x, r) = (&view.pos[i], view.radius[i]);
+    let delta = ws.overlap(x, r);
+    if delta <= 0.0 && !adhesive {
+        return Ok(None);
+    }
+    if delta.is_nan() || delta > MAX_OVERLAP * r {
+        return Err(WallRefusal(user(view.uid, view.base, ig), delta, r));
+    }
+    let (n, vw) = ws.contact(x, r, delta);
+    let nv = to3(&n);
+    let rate = -to3(&(view.vpred[i] - vw)).dot(&nv);
+    let dv = to3(&(view.vel[i] - vw));
+    let wi = spin::<D>(view.omega, i);
+    let v = dv - (wi * r).cross(&nv);
+    // (the spin relative to a rotating wall's, for the rolling and twisting laws)
+    let wr = if ws.omega == Vec3::zeros() {
+        wi
+    } else {
+        wi - ws.omega
+    };
+    Ok(Some(WallContact {
+        delta,
+        rate,
+        mass: view.mass[i],
+        radius: r,
+        normal: [nv.x, nv.y, nv.z],
+        vrel: [v.x, v.y, v.z],
+        spin: [wr.x, wr.y, wr.z],
+    }))
 }

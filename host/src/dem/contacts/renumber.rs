@@ -14,7 +14,8 @@ impl Contacts {
     /// i, then each particle's few partners sorted: linear in the contacts.
     pub fn renumber(&mut self, new_of: &[u32], pairs: bool, chunk: usize) {
         let n = new_of.len();
-        let chunks = self.chunks.len();
+        let nc = self.classes();
+        let chunks = self.chunks.len() / nc;
         if chunks == 0 {
             return;
         }
@@ -49,18 +50,36 @@ impl Contacts {
             recs[start[k] as usize..start[k + 1] as usize].sort_unstable_by_key(|r| r.0);
         }
         let _ = self.buffers(chunks);
+        // (a contact keeps its class: the set of its class in its new chunk)
+        let (mut count, mut at) = (vec![0usize; nc], vec![0usize; nc]);
         for c in 0..chunks {
             let (a, b) = (c * chunk, ((c + 1) * chunk).min(n));
             let (lo, hi) = (start[a] as usize, start[b] as usize);
-            let dst = &mut self.spare[c];
-            dst.first = a;
-            dst.sign.clear();
-            dst.size(hi - lo);
+            count.iter_mut().for_each(|k| *k = 0);
+            for &(_, sc, _) in &recs[lo..hi] {
+                count[sc as usize % nc] += 1;
+            }
+            for (cl, &k) in count.iter().enumerate() {
+                let dst = &mut self.spare[c * nc + cl];
+                dst.first = a;
+                dst.sign.clear();
+                dst.size(k);
+            }
+            at.iter_mut().for_each(|k| *k = 0);
             for row in a..b {
                 let (r0, r1) = (start[row] as usize, start[row + 1] as usize);
-                for (q, &(j, sc, m)) in recs[r0..r1].iter().enumerate() {
+                for &(j, sc, m) in &recs[r0..r1] {
+                    let cl = sc as usize % nc;
                     let src = &self.chunks[sc as usize];
-                    move_history(dst, r0 + q - lo, row as u32, j, src, m as usize);
+                    move_history(
+                        &mut self.spare[c * nc + cl],
+                        at[cl],
+                        row as u32,
+                        j,
+                        src,
+                        m as usize,
+                    );
+                    at[cl] += 1;
                 }
             }
         }

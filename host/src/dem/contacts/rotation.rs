@@ -1,7 +1,7 @@
 //! The rolling and twisting part of a contact set (sdk 0.3): each contact's rolling velocity
 //! and twisting rate, their laws' histories carried over, and the laws' calls.
 
-use super::{family_out, motion_batch, ContactSet};
+use super::{contexts, family_out, motion_batch, ContactSet};
 use crate::dem::DemError;
 use crate::laws::{RollingResistance, TwistingResistance};
 use dashpot_sdk::{RollingBatch, TwistingBatch};

@@ -4,9 +4,11 @@
 use crate::collide::{collide, Options, PairLaw};
 use crate::dem::cells::Domain;
 use crate::dem::contacts::SERIAL_BELOW;
+use crate::dem::species::SpeciesLaws;
 use crate::dem::state::{Body, Material, Particles, VecD};
 use crate::dem::walls::Wall;
-use crate::dem::{DemError, Laws};
+use crate::dem::DemError;
+use crate::laws::NormalLaw;
 use dashpot_sdk::EndCriterion;
 use rayon::prelude::*;
 
@@ -155,7 +157,12 @@ pub(super) fn impact_speed<const D: usize>(
     let vmax = (0..p.len())
         .map(|i| p.vel[i].norm() + p.angular_velocity(i).norm() * p.radius[i])
         .fold(0.0, f64::max);
-    let wmax = walls.iter().map(|w| w.motion.peak_speed()).fold(0.0, f64::max);
+    // (a rotating plane's speed: at the particles' farthest from its axis)
+    let reach = |c: &VecD<D>| p.pos.iter().map(|x| (x - c).norm()).fold(0.0, f64::max);
+    let wmax = walls
+        .iter()
+        .map(|w| w.peak_speed(w.spin.map_or(0.0, |s| reach(&s.center))))
+        .fold(0.0, f64::max);
     let g = cfg.gravity.norm();
     let mut extent = 0.0f64;
     if g > 0.0 {
@@ -164,7 +171,7 @@ pub(super) fn impact_speed<const D: usize>(
             .pos
             .iter()
             .map(|x| x.dot(&gh))
-            .chain(walls.iter().map(|w| w.point.dot(&gh)))
+            .chain(walls.iter().flat_map(|w| w.heights(&gh)))
             .collect();
         let (a, b) = hs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &h| {
             (a.min(h), b.max(h))
@@ -176,19 +183,61 @@ pub(super) fn impact_speed<const D: usize>(
     (2.0 * vmax + 2.0 * wmax + (2.0 * g * extent).sqrt()).max(0.01)
 }
 
-/// The shortest contact time (s) at impact speed `v` (m/s): particles of diameter `d` (m) against
-/// each other and against a wall, by the two-body driver with the run's own laws.
-pub(super) fn collision_time(
-    laws: &Laws,
-    mat: &Material,
+/// The shortest contact time (s) at impact speed `v` (m/s), by the two-body driver with the
+/// run's own laws: for each pair of species present, their smallest particles against each
+/// other (two of one species: the smallest against an equal one), and each species' smallest
+/// particle against each class of walls it can meet (every wall class of the table when it
+/// has one class, even without walls).
+pub(super) fn collision_time<const D: usize>(
+    laws: &SpeciesLaws,
     dim: usize,
-    d: f64,
+    p: &Particles<D>,
+    species: &[u8],
     v: f64,
 ) -> Result<f64, DemError> {
-    let (m, _) = mat.mass_inertia(dim, d);
-    let r = 0.5 * d;
+    let n = laws.species.len();
+    // each species' smallest diameter (m), from its radii as the engine keeps them
+    let mut rmin = vec![f64::INFINITY; n];
+    for (k, &r) in p.radius.iter().enumerate() {
+        let s = species.get(k).map_or(0, |&s| s as usize);
+        rmin[s] = rmin[s].min(r);
+    }
+    let present: Vec<usize> = (0..n).filter(|&s| rmin[s].is_finite()).collect();
+    let of = |s: usize| {
+        let d = rmin[s] * 2.0;
+        let (m, _) = laws.species[s].material.mass_inertia(dim, d);
+        (m, 0.5 * d)
+    };
+    let mut runs: Vec<(&dyn NormalLaw, f64, f64)> = Vec::new();
+    for (x, &a) in present.iter().enumerate() {
+        for &b in &present[x..] {
+            let law = &*laws.pair[laws.pair_class(a as u8, b as u8)].normal;
+            let ((ma, ra), (mb, rb)) = (of(a), of(b));
+            if a == b {
+                runs.push((law, 0.5 * ma, 0.5 * ra));
+            } else {
+                runs.push((law, ma * mb / (ma + mb), ra * rb / (ra + rb)));
+            }
+        }
+    }
+    let walls = if laws.wall_class.is_empty() {
+        1
+    } else {
+        laws.wall_class.len() / n
+    };
+    for &s in &present {
+        let (m, r) = of(s);
+        let mut seen = Vec::new();
+        for w in 0..walls {
+            let c = laws.wall_class(s as u8, w, walls);
+            if !seen.contains(&c) {
+                seen.push(c);
+                runs.push((&*laws.wall[c].normal, m, r));
+            }
+        }
+    }
     let mut tau = f64::INFINITY;
-    for (law, mass, radius) in [(&*laws.pair, 0.5 * m, 0.5 * r), (&*laws.wall, m, r)] {
+    for (law, mass, radius) in runs {
         let c = collide(
             &PairLaw::new(law, mass, radius),
             mass,
@@ -205,17 +254,38 @@ pub(super) fn collision_time(
 /// The largest reach (m) of the run's normal laws: how far beyond touching an adhesive law
 /// (JKR) keeps a contact, from a contact formed at touch between the largest particles (the
 /// reach grows with the radius), with a margin of 1.5; 0 for laws that are not adhesive.
-pub(super) fn reach_bound<const D: usize>(
-    laws: &Laws,
-    mat: &Material,
-    bodies: &[Body<D>],
-) -> Result<f64, DemError> {
+pub(super) fn reach_bound<const D: usize>(laws: &SpeciesLaws, bodies: &[Body<D>]) -> Result<f64, DemError> {
     let Some(d) = bodies.iter().map(|b| b.diameter).reduce(f64::max) else {
         return Ok(0.0);
     };
-    let p = mat.particle(d);
+    // each class's law, with the material of a species it acts on (its mass hardly matters)
+    let n = laws.species.len();
+    let walls = laws.wall_class.len() / n;
+    let first_of = |class: usize, pairs: bool| -> usize {
+        (0..n)
+            .find(|&a| {
+                if pairs {
+                    (0..n).any(|b| laws.pair_class(a as u8, b as u8) == class)
+                } else {
+                    (0..walls.max(1)).any(|w| laws.wall_class(a as u8, w, walls) == class)
+                }
+            })
+            .unwrap_or(0)
+    };
+    let classes = laws
+        .pair
+        .iter()
+        .enumerate()
+        .map(|(c, l)| (&l.normal, first_of(c, true)))
+        .chain(
+            laws.wall
+                .iter()
+                .enumerate()
+                .map(|(c, l)| (&l.normal, first_of(c, false))),
+        );
     let mut bound = 0.0f64;
-    for law in [&laws.pair, &laws.wall] {
+    for (law, s) in classes {
+        let p = laws.species[s].material.particle(d);
         let mut h = vec![0.0; law.history_slots()];
         let (mut f, mut reach) = ([0.0], [0.0]);
         law.force_batch_with(

@@ -2,6 +2,7 @@
 //! gathered and their laws called in parallel, then the serial end of a step's evaluation.
 
 use super::{add_shares, chunk_forces, ChunkContext, ChunkTask, Engine, Overflow};
+use crate::dem::contacts::ClassMap;
 use crate::dem::contacts::View;
 use crate::dem::state::{from3, spin_len, Vec3};
 use crate::dem::DemError;
@@ -26,6 +27,7 @@ impl<const D: usize> Engine<D> {
         let c = self.chunk;
         let chunks = n.div_ceil(c);
         self.overflow.resize_with(chunks, Overflow::default);
+        let (pc, wc) = (self.pairs.classes(), self.wall_contacts.classes());
         let (prev_p, next_p) = self.pairs.buffers(chunks);
         let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
         let p = &mut self.p;
@@ -38,12 +40,19 @@ impl<const D: usize> Engine<D> {
             radius: &p.radius,
             mass: &p.mass,
             uid: (!self.order.uid.is_empty()).then_some(&self.order.uid[..]),
+            species: &self.species,
         };
         let ctx = ChunkContext {
             dom: &self.cfg.domain,
             nb: &self.nb,
             walls: &ws,
             laws: &self.laws,
+            map: ClassMap {
+                species: self.laws.species.len(),
+                walls: ws.len(),
+                pair: &self.laws.pair_class,
+                wall: &self.surface_class,
+            },
             dt: self.dt,
             edges: self.cfg.edge_means,
         };
@@ -57,11 +66,11 @@ impl<const D: usize> Engine<D> {
         // the first error in chunk order, whatever the threads did
         // the same chain of zips, by std's iterators or rayon's (method names given)
         macro_rules! tasks {
-            ($iter:ident, $iter_mut:ident, $chunks_mut:ident) => {
+            ($chunks:ident, $chunks_mut:ident, $iter_mut:ident) => {
                 prev_p
-                    .$iter()
-                    .zip(next_p.$iter_mut())
-                    .zip(prev_w.$iter().zip(next_w.$iter_mut()))
+                    .$chunks(pc)
+                    .zip(next_p.$chunks_mut(pc))
+                    .zip(prev_w.$chunks(wc).zip(next_w.$chunks_mut(wc)))
                     .zip(
                         force
                             .$chunks_mut(c)
@@ -74,9 +83,9 @@ impl<const D: usize> Engine<D> {
             };
         }
         let results: Vec<Result<(), DemError>> = if !self.parallel {
-            tasks!(iter, iter_mut, chunks_mut)
+            tasks!(chunks, chunks_mut, iter_mut)
         } else {
-            tasks!(par_iter, par_iter_mut, par_chunks_mut)
+            tasks!(par_chunks, par_chunks_mut, par_iter_mut)
         };
         self.finish_forces(results.into_iter().collect(), false)
     }
@@ -116,18 +125,55 @@ impl<const D: usize> Engine<D> {
             for m in 0..w.len() {
                 let nv = Vec3::from(w.normal[m]);
                 let fi = nv * w.fnorm[m] + Vec3::from(w.ftan[m]);
-                let k = w.j[m] as usize;
+                let k = self.surface_wall[w.j[m] as usize];
                 self.wall_impulse[k] -= from3::<D>(&fi) * self.dt;
                 if w.fresh[m] {
                     self.wall_episodes[k] += 1;
                 }
             }
         }
+        if self.cfg.energy && self.walls_move {
+            self.account_wall_work();
+        }
         self.pair_episodes += self.pairs.formed() as u64;
         if self.cfg.energy {
             self.account_energy();
         }
         Ok(())
+    }
+
+    /// Adds the work of the moving walls over the step to [`Engine::wall_work`]: each wall
+    /// contact's force on its particle (normal and tangential) · the wall's velocity at the
+    /// contact point (the velocity its laws saw), and its rolling and twisting torques on the
+    /// particle · the wall's angular velocity (those laws resist the spin relative to the
+    /// wall's: what they do not dissipate of the wall's turn goes into the particle), × dt,
+    /// chunk by chunk in order.
+    fn account_wall_work(&mut self) {
+        let ws = self.surfaces_at(self.t);
+        let p = &self.p;
+        let mut work = 0.0;
+        for w in &self.wall_contacts.chunks {
+            for m in 0..w.len() {
+                let s = &ws[w.j[m] as usize];
+                let i = w.i[m] as usize;
+                let nv = Vec3::from(w.normal[m]);
+                let n = from3::<D>(&nv);
+                let (_, vw) = s.contact(&p.pos[i], p.radius[i], w.delta[m]);
+                let f = n * w.fnorm[m] + from3::<D>(&Vec3::from(w.ftan[m]));
+                work += f.dot(&vw);
+                if w.rotational() && s.omega != Vec3::zeros() {
+                    let mut t = Vec3::zeros();
+                    if w.slots_r.is_some() {
+                        t += nv.cross(&Vec3::from(w.froll[m])) * w.radius[m];
+                    }
+                    if w.slots_w.is_some() {
+                        t += nv * w.mtwist[m];
+                    }
+                    work += t.dot(&s.omega);
+                }
+            }
+        }
+        self.wall_work += work * self.dt;
     }
 
     /// Adds the step's dissipation (each contact's power × dt) to [`Engine::dissipated`], chunk

@@ -2,10 +2,11 @@
 //! and the scatter of their forces, over ranges of particles that threads take in turn.
 
 use crate::dem::cells::{Domain, Neighbours};
-use crate::dem::contacts::{ContactSet, Rotating, View};
+use crate::dem::contacts::{gather_pair_classes, gather_wall_classes, ClassMap, ContactSet, Rotating, View};
+use crate::dem::species::{LawSet, SpeciesLaws};
 use crate::dem::state::{from3, set_spin, spin, spin_len, Vec3, VecD};
 use crate::dem::walls::WallState;
-use crate::dem::{DemError, Laws};
+use crate::dem::DemError;
 
 /// The first half-kick and the drift of one particle, with its acceleration `a` (m/s²) and
 /// angular acceleration `al` (rad/s²); `vp` gets the second-order predicted velocity at the end
@@ -51,15 +52,15 @@ pub(super) fn end_kick<const D: usize>(
     *sw += *w;
 }
 
-/// One chunk's task in [`Engine::forces`]: chunk index, (previous, next) pair contacts,
-/// (previous, next) wall contacts, the chunk's forces and torques, its overflow.
+/// One chunk's task in [`Engine::forces`]: chunk index, (previous, next) pair contact sets,
+/// (previous, next) wall contact sets (one per class each), the chunk's forces and torques, its overflow.
 pub(super) type ChunkTask<'a, const D: usize> = (
     usize,
     (
         (
             (
-                (&'a ContactSet, &'a mut ContactSet),
-                (&'a ContactSet, &'a mut ContactSet),
+                (&'a [ContactSet], &'a mut [ContactSet]),
+                (&'a [ContactSet], &'a mut [ContactSet]),
             ),
             (&'a mut [VecD<D>], &'a mut [f64]),
         ),
@@ -68,16 +69,17 @@ pub(super) type ChunkTask<'a, const D: usize> = (
 );
 
 /// Sums the forces and torques of one chunk's pair contacts `pairs` and wall contacts `walls`
-/// into the chunk's `own` particles (`f`, `tq`: particles `pairs.first..`, torques as
-/// [`Particles::torque`]), zeroed first; `radius` holds the radii from the chunk's first particle
-/// on (to its farthest partner). A pair partner beyond the chunk but within `f` (the later
-/// chunks of a range that sums each particle's shares nearest chunk first, see
-/// `Engine::nearest_first`) gets its force and torque there; one beyond `f` through
-/// `overflow` (force on i, torque on j; chunks of `chunk` particles).
+/// (their classes' sets, in class order) into the chunk's `own` particles (`f`, `tq`:
+/// particles from the chunk's first on, torques as [`Particles::torque`]), zeroed first;
+/// `radius` holds the radii from the chunk's first particle on (to its farthest partner). A
+/// pair partner beyond the chunk but within `f` (the later chunks of a range that sums each
+/// particle's shares nearest chunk first, see `Engine::nearest_first`) gets its force and
+/// torque there; one beyond `f` through `overflow` (force on i, torque on j; chunks of `chunk`
+/// particles). The classes' sets are summed one after the other, pair sets then wall sets.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn scatter_chunk<const D: usize>(
-    pairs: &ContactSet,
-    walls: &ContactSet,
+    pairs: &[ContactSet],
+    walls: &[ContactSet],
     radius: &[f64],
     f: &mut [VecD<D>],
     tq: &mut [f64],
@@ -88,6 +90,32 @@ pub(super) fn scatter_chunk<const D: usize>(
     f[..own].iter_mut().for_each(|v| *v = VecD::<D>::zeros());
     tq[..own * spin_len(D)].iter_mut().for_each(|v| *v = 0.0);
     overflow.clear();
+    for set in pairs {
+        scatter_pairs(set, radius, f, tq, chunk, overflow);
+    }
+    for set in walls {
+        scatter_walls(set, radius, f, tq);
+    }
+    // (the rolling and twisting torques after the forces: every pair set's, then every wall
+    // set's)
+    for set in pairs.iter().filter(|s| s.rotational()) {
+        scatter_rotation(Some(set), None, tq, chunk, overflow);
+    }
+    for set in walls.iter().filter(|s| s.rotational()) {
+        scatter_rotation(None, Some(set), tq, chunk, overflow);
+    }
+}
+
+/// The pair contacts' forces and torques of one class's set (see [`scatter_chunk`]).
+#[inline(always)]
+fn scatter_pairs<const D: usize>(
+    pairs: &ContactSet,
+    radius: &[f64],
+    f: &mut [VecD<D>],
+    tq: &mut [f64],
+    chunk: usize,
+    overflow: &mut Overflow<D>,
+) {
     let (first, len) = (pairs.first, f.len());
     let signed = !pairs.sign.is_empty();
     for m in 0..pairs.len() {
@@ -112,15 +140,18 @@ pub(super) fn scatter_chunk<const D: usize>(
             overflow.push(later(jl, chunk), (j as u32, fi, tj));
         }
     }
+}
+
+/// The wall contacts' forces and torques of one class's set (see [`scatter_chunk`]).
+#[inline(always)]
+fn scatter_walls<const D: usize>(walls: &ContactSet, radius: &[f64], f: &mut [VecD<D>], tq: &mut [f64]) {
+    let first = walls.first;
     for m in 0..walls.len() {
         let i = walls.i[m] as usize - first;
         let nv = Vec3::from(walls.normal[m]);
         let ft = Vec3::from(walls.ftan[m]);
         f[i] += from3::<D>(&(nv * walls.fnorm[m] + ft));
         add_spin::<D>(tq, i, &-(nv.cross(&ft) * radius[i]));
-    }
-    if pairs.rotational() || walls.rotational() {
-        scatter_rotation(pairs, walls, tq, chunk, overflow);
     }
 }
 
@@ -140,13 +171,12 @@ fn later(jl: usize, chunk: usize) -> usize {
 /// chunk, with no force).
 #[cold]
 fn scatter_rotation<const D: usize>(
-    pairs: &ContactSet,
-    walls: &ContactSet,
+    pairs: Option<&ContactSet>,
+    walls: Option<&ContactSet>,
     tq: &mut [f64],
     chunk: usize,
     overflow: &mut Overflow<D>,
 ) {
-    let first = pairs.first;
     let len = tq.len() / spin_len(D);
     let torque = |s: &ContactSet, m: usize| {
         let nv = Vec3::from(s.normal[m]);
@@ -159,7 +189,8 @@ fn scatter_rotation<const D: usize>(
         }
         t
     };
-    if pairs.rotational() {
+    if let Some(pairs) = pairs {
+        let first = pairs.first;
         for m in 0..pairs.len() {
             let t = torque(pairs, m) * pairs.sign.get(m).copied().unwrap_or(1.0);
             let (i, j) = (pairs.i[m] as usize - first, pairs.j[m] as usize);
@@ -172,7 +203,8 @@ fn scatter_rotation<const D: usize>(
             }
         }
     }
-    if walls.rotational() {
+    if let Some(walls) = walls {
+        let first = walls.first;
         for m in 0..walls.len() {
             let t = torque(walls, m);
             add_spin::<D>(tq, walls.i[m] as usize - first, &t);
@@ -244,66 +276,63 @@ pub(super) fn add_shares<const D: usize>(
 }
 
 /// What every chunk's force evaluation shares: the box, the neighbour list, the walls' states,
-/// the laws, the step (s) and whether contacts' first and last steps take mean forces.
+/// the laws and how contacts are sorted into their classes, the step (s) and whether contacts'
+/// first and last steps take mean forces.
 pub(super) struct ChunkContext<'a, const D: usize> {
     pub(super) dom: &'a Domain<D>,
     pub(super) nb: &'a Neighbours<D>,
     pub(super) walls: &'a [WallState<D>],
-    pub(super) laws: &'a Laws,
+    pub(super) laws: &'a SpeciesLaws,
+    pub(super) map: ClassMap<'a>,
     pub(super) dt: f64,
     pub(super) edges: bool,
 }
 
 /// The forces of the chunk of particles `range`: its pair and wall contacts gathered from
-/// `view` (history from the chunk's previous sets `pairs.0` and `walls.0` into the new ones
-/// `pairs.1` and `walls.1`), the laws called on them, and the forces and torques summed into
-/// `f` and `tq` from the chunk's first particle (see [`scatter_chunk`], which fills `overflow`;
-/// chunks of `chunk` particles).
+/// `view` into their classes' sets (history from the chunk's previous sets `pairs.0` and
+/// `walls.0` into the new ones `pairs.1` and `walls.1`, one set per class each), each class's
+/// laws called on its own, and the forces and torques summed into `f` and `tq` from the
+/// chunk's first particle (see [`scatter_chunk`], which fills `overflow`; chunks of `chunk`
+/// particles).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn chunk_forces<const D: usize>(
     ctx: &ChunkContext<'_, D>,
     range: std::ops::Range<usize>,
     view: &View<'_, D>,
-    pairs: (&ContactSet, &mut ContactSet),
-    walls: (&ContactSet, &mut ContactSet),
+    pairs: (&[ContactSet], &mut [ContactSet]),
+    walls: (&[ContactSet], &mut [ContactSet]),
     f: &mut [VecD<D>],
     tq: &mut [f64],
     chunk: usize,
     overflow: &mut Overflow<D>,
 ) -> Result<(), DemError> {
     let ((pp, np), (pw, nw)) = (pairs, walls);
-    np.gather_pairs(pp, range.clone(), ctx.dom, ctx.nb, view)?;
+    gather_pair_classes(np, pp, range.clone(), ctx.dom, ctx.nb, view, &ctx.map)?;
     let near = ctx.nb.wall_candidates(range.clone(), ctx.walls);
-    nw.gather_walls(pw, range.clone(), ctx.walls, near, view)?;
-    let laws = ctx.laws;
-    let rot = &laws.rotation;
-    let (pr, wr) = (
-        Rotating {
-            rolling: rot.pair_rolling.as_deref(),
-            twisting: rot.pair_twisting.as_deref(),
-        },
-        Rotating {
-            rolling: rot.wall_rolling.as_deref(),
-            twisting: rot.wall_twisting.as_deref(),
-        },
-    );
-    np.evaluate(
-        &*laws.pair,
-        laws.pair_tangential.as_deref(),
-        pr,
-        ctx.dt,
-        ctx.edges,
-    )?;
-    nw.evaluate(
-        &*laws.wall,
-        laws.wall_tangential.as_deref(),
-        wr,
-        ctx.dt,
-        ctx.edges,
-    )?;
+    gather_wall_classes(nw, pw, range.clone(), ctx.walls, near, view, &ctx.map)?;
+    for (set, laws) in np.iter_mut().zip(&ctx.laws.pair) {
+        evaluate(set, laws, ctx)?;
+    }
+    for (set, laws) in nw.iter_mut().zip(&ctx.laws.wall) {
+        evaluate(set, laws, ctx)?;
+    }
     let radius = &view.radius[range.start - view.base..];
     scatter_chunk(np, nw, radius, f, tq, range.len(), chunk, overflow);
     Ok(())
+}
+
+/// One class's contacts `set` through its laws `laws`.
+#[inline]
+fn evaluate<const D: usize>(
+    set: &mut ContactSet,
+    laws: &LawSet,
+    ctx: &ChunkContext<'_, D>,
+) -> Result<(), DemError> {
+    let rot = Rotating {
+        rolling: laws.rolling.as_deref(),
+        twisting: laws.twisting.as_deref(),
+    };
+    set.evaluate(&*laws.normal, laws.tangential.as_deref(), rot, ctx.dt, ctx.edges)
 }
 
 /// The arrays the kick loops read, whole or one chunk's part.

@@ -188,6 +188,9 @@ impl<const D: usize> Engine<D> {
         gather(&mut self.inv_mass, &perm, 1);
         gather(&mut self.inv_inertia, &perm, 1);
         gather(&mut self.order.uid, &perm, 1);
+        if !self.species.is_empty() {
+            gather(&mut self.species, &perm, 1);
+        }
         let mut new_of = vec![0u32; n];
         for (k, &o) in perm.iter().enumerate() {
             new_of[o as usize] = k as u32;

@@ -68,6 +68,7 @@
 
 use super::awake::{map_ranked, spin_until, OnDrop};
 use super::{add_shares, chunk_forces, kick_drift_chunk, ChunkContext, Engine, Overflow, Shared};
+use crate::dem::contacts::ClassMap;
 use crate::dem::contacts::{ContactSet, View};
 use crate::dem::state::spin_len;
 use crate::dem::DemError;
@@ -149,7 +150,8 @@ pub(super) struct Pass {
     pub result: Result<(), DemError>,
 }
 
-/// One range's share of the chunk-owned data: new pair and wall contact sets of its chunks.
+/// One range's share of the chunk-owned data: new pair and wall contact sets of its chunks
+/// (each chunk's classes in a row).
 type RangeItems<'a> = (usize, (&'a mut [ContactSet], &'a mut [ContactSet]));
 
 /// How fast the chunks' measured costs follow each step's times (see [`learn_costs`]).
@@ -186,7 +188,7 @@ impl<const D: usize> Engine<D> {
         let dt = self.dt;
         let (h, g) = (0.5 * dt, self.cfg.gravity);
         let t_end = self.t + dt;
-        let ws: Vec<_> = self.walls.iter().map(|w| w.at(t_end)).collect();
+        let ws = self.surfaces_at(t_end);
         // one range per thread, each range run by the same thread at every step where it can
         // (its particles' state then stays in that core's cache: see the module doc); one
         // thread, one range
@@ -203,7 +205,14 @@ impl<const D: usize> Engine<D> {
         if tasks > 1 {
             // cut where the work is even: a chunk's work is counted as its particles, its listed
             // pairs and its contacts of the last step (weights ~ their costs in a step)
-            let (start, pairs, walls) = (&self.nb.start, &self.pairs.chunks, &self.wall_contacts.chunks);
+            let (start, pairs, walls) = (&self.nb.start, &self.pairs, &self.wall_contacts);
+            // (a chunk's contacts: those of its sets, one per class)
+            let held = |c: &crate::dem::contacts::Contacts, k: usize| -> usize {
+                let nc = c.classes();
+                c.chunks
+                    .get(k * nc..(k + 1) * nc)
+                    .map_or(0, |s| s.iter().map(ContactSet::len).sum())
+            };
             self.cost.resize(chunks, 0.0);
             let measured = self.cost.iter().all(|&t| t > 0.0);
             prefix.reserve(chunks + 1);
@@ -217,7 +226,7 @@ impl<const D: usize> Engine<D> {
                 } else {
                     let r = k * c..((k + 1) * c).min(n);
                     let listed = (start[r.end] - start[r.start]) as usize;
-                    let touching = pairs.get(k).map_or(0, |s| s.len()) + walls.get(k).map_or(0, |s| s.len());
+                    let touching = held(pairs, k) + held(walls, k);
                     (4 * r.len() + listed + 16 * touching) as f64
                 };
                 prefix.push(prefix[k] + w);
@@ -244,6 +253,7 @@ impl<const D: usize> Engine<D> {
             (&one_cut, &one_head)
         };
         self.overflow.resize_with(chunks, Overflow::default);
+        let (pc, wc) = (self.pairs.classes(), self.wall_contacts.classes());
         let (prev_p, next_p) = self.pairs.buffers(chunks);
         let (prev_w, next_w) = self.wall_contacts.buffers(chunks);
         let p = &mut self.p;
@@ -297,9 +307,16 @@ impl<const D: usize> Engine<D> {
             nb: &self.nb,
             walls: &ws,
             laws: &self.laws,
+            map: ClassMap {
+                species: self.laws.species.len(),
+                walls: ws.len(),
+                pair: &self.laws.pair_class,
+                wall: &self.surface_class,
+            },
             dt,
             edges: self.cfg.edge_means,
         };
+        let species = &self.species[..];
         let (reach, back) = (&self.reach, &self.back);
         let uid = (!self.order.uid.is_empty()).then_some(&self.order.uid[..]);
         let nearest_first = self.nearest_first;
@@ -307,7 +324,7 @@ impl<const D: usize> Engine<D> {
         // partners have drifted (nearest first, the shares of its partners in later chunks of
         // the range are added at once, else they all wait for the end)
         let forces =
-            |k: usize, end: usize, np: &mut ContactSet, nw: &mut ContactSet| -> Result<(), DemError> {
+            |k: usize, end: usize, np: &mut [ContactSet], nw: &mut [ContactSet]| -> Result<(), DemError> {
                 let r = particles(k);
                 let w = r.start..particles(reach[k]).end;
                 let sink = r.start..if nearest_first {
@@ -327,14 +344,15 @@ impl<const D: usize> Engine<D> {
                         omega: omega.get(spins(&w)),
                         radius: &radius[w.clone()],
                         mass: &mass[w.clone()],
-                        uid: uid.map(|u| &u[w]),
+                        uid: uid.map(|u| &u[w.clone()]),
+                        species: species.get(w).unwrap_or(&[]),
                     };
                     chunk_forces(
                         &ctx,
                         r.clone(),
                         &view,
-                        (&prev_p[k], np),
-                        (&prev_w[k], nw),
+                        (&prev_p[k * pc..(k + 1) * pc], np),
+                        (&prev_w[k * wc..(k + 1) * wc], nw),
                         force.get_mut(sink.clone()),
                         torque.get_mut(spins(&sink)),
                         c,
@@ -454,7 +472,8 @@ impl<const D: usize> Engine<D> {
                 }
                 for k in (k..due).rev() {
                     let clock = (tasks > 1).then(Instant::now);
-                    if let Err(e) = forces(k, b, &mut np[k - a], &mut nw[k - a]) {
+                    let (q, u) = ((k - a) * pc, (k - a) * wc);
+                    if let Err(e) = forces(k, b, &mut np[q..q + pc], &mut nw[u..u + wc]) {
                         first_err = Err(e);
                     }
                     if let Some(t) = clock {
@@ -503,9 +522,10 @@ impl<const D: usize> Engine<D> {
         };
         let (mut sum, mut result) = (0.0, Ok(()));
         if tasks > 1 {
-            let ranges: Vec<RangeItems<'_>> = cut(next_p, cuts)
+            let scaled = |n: usize| cuts.iter().map(|&k| k * n).collect::<Vec<usize>>();
+            let ranges: Vec<RangeItems<'_>> = cut(next_p, &scaled(pc))
                 .into_iter()
-                .zip(cut(next_w, cuts))
+                .zip(cut(next_w, &scaled(wc)))
                 .enumerate()
                 .collect();
             for (x, res) in map_ranked(ranges, sweep) {

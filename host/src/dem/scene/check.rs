@@ -128,20 +128,21 @@ fn wall_overlaps<const D: usize>(
     let mut count = 0usize;
     let mut worst: Option<(usize, usize, f64)> = None;
     for (w, wall) in walls.iter().enumerate() {
-        let s = wall.at(0.0);
-        for (i, b) in bodies.iter().enumerate() {
-            let r = 0.5 * b.diameter;
-            let delta = s.overlap(&b.position, r);
-            if refused(delta, r, allow_overlap) {
-                count += 1;
-                if worst.is_none_or(|(_, _, d)| delta > d) {
-                    worst = Some((i, w, delta));
+        for s in wall.surfaces(0.0) {
+            for (i, b) in bodies.iter().enumerate() {
+                let r = 0.5 * b.diameter;
+                let delta = s.overlap(&b.position, r);
+                if refused(delta, r, allow_overlap) {
+                    count += 1;
+                    if worst.is_none_or(|(_, _, d)| delta > d) {
+                        worst = Some((i, w, delta));
+                    }
                 }
             }
         }
     }
     let (i, w, delta) = worst?;
-    let (b, s) = (&bodies[i], walls[w].at(0.0));
+    let b = &bodies[i];
     let r = 0.5 * b.diameter;
     let behind = if delta > r {
         " (its centre is behind the wall, inside the solid side)"
@@ -149,15 +150,14 @@ fn wall_overlaps<const D: usize>(
         ""
     };
     Some(format!(
-        "{count} particle(s) overlap a wall at the start, before the run: the largest overlap is {delta:.4e} m ({:.0} % of the radius {r:.4e} m), particle {i} at {} m (diameter {} m) and wall {w} (through {} m, normal {}){behind}; {}",
+        "{count} particle(s) overlap a wall at the start, before the run: the largest overlap is {delta:.4e} m ({:.0} % of the radius {r:.4e} m), particle {i} at {} m (diameter {} m) and wall {w} ({}){behind}; {}",
         100.0 * delta / r,
         at(&b.position),
         b.diameter,
-        at(&s.point),
-        at(&s.normal),
+        walls[w].describe(),
         overlap_advice(
             allow_overlap,
-            "move the particle to the side the normal points to, its centre at least its radius from the plane"
+            "move the particle to the wall's open side (a plane's: where its normal points), its centre at least its radius from the wall"
         )
     ))
 }

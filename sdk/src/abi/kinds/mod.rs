@@ -1,15 +1,21 @@
-//! The law kinds of sdk 0.3 as instances of the one ABI shape of [`kind`](super::kind): normal
-//! (0.2's contact batch plus reach and energy), tangential and rolling (one vector batch: 0.2's
-//! tangential batch plus energy), and twisting. Each instance is its raw batch, the host's view
-//! of it, and the block loop that checks and evaluates it; everything else (vtables,
-//! trampolines, handles) is generic.
+//! The law kinds as instances of the one ABI shape of [`kind`](super::kind): normal (0.2's
+//! contact batch plus 0.3's reach and energy and 0.4's context outputs), tangential and rolling
+//! (one vector batch: 0.2's tangential batch plus 0.3's energy outputs and 0.4's context
+//! input), and twisting. Each instance is its raw batch (0.3's, which the frozen
+//! [`v3`] module keeps, extended), the host's view of it, and the block loop that
+//! checks and evaluates it; everything else (vtables, trampolines, handles) is generic.
 
 use super::checks::*;
-use super::host::{bad_input, length_error};
+use super::fault::bad_input;
+use super::fault::{BatchFault, BatchStatus};
 use super::kind::{blocks, check_energy, energy_out, kind_law, raw_out, slice, slice_mut, Kind, KindBound};
-use super::{v2, BatchFault, BatchStatus};
+use super::{v2, v3};
+use crate::context::NormalContext;
 use crate::error::{ErrorKind, LawError};
-use crate::law::{BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, LawKind, NormalBatch};
+use crate::law::{
+    history_of, BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, LawKind, NormalBatch,
+};
+use crate::lengths::length_error;
 use crate::pair::MaterialPair;
 use abi_stable::StableAbi;
 
@@ -45,13 +51,14 @@ macro_rules! eval_block {
 
 /// The checked block loop of a raw motion batch `$r` (twisting, or a vector kind: its sdk batch
 /// `$batch`, whose motion input `$motion` and output `$out` are arrays of `$mty` and `$oty`),
-/// with the energy outputs `$power` and `$elastic` when either is wanted. `$check(lo, normal,
+/// with the energy outputs `$power` and `$elastic` when either is wanted and the normal
+/// contexts `$context` (null: none, the defaults). `$check(lo, normal,
 /// motion, normal_force, delta, mass, radius)` refuses a block's bad input, `$eval(block)` runs
 /// the law on it, `$eval_energy(block, energy)` runs it with its energy outputs (whether every
 /// contact reported one), and `$bad_out(outputs)` finds a non-finite output. Expands to the
 /// body of a `KindBound::run` (it returns the first fault).
 macro_rules! motion_run {
-    ($r:expr, $power:expr, $elastic:expr,
+    ($r:expr, $power:expr, $elastic:expr, $context:expr,
      $batch:ident { $motion:ident: $mty:ty => $out:ident: $oty:ty },
      $check:expr, $eval:expr, $eval_energy:expr, $bad_out:expr $(,)?) => {{
         let r = $r;
@@ -71,6 +78,7 @@ macro_rules! motion_run {
                 slice_mut(r.$out as *mut $oty, n),
             )
         };
+        let context = contexts($context, n);
         let mut scratch = Vec::new();
         let mut energy = unsafe { energy_out(n, $power, $elastic, &mut scratch) };
         let mut written = energy.is_some();
@@ -78,6 +86,7 @@ macro_rules! motion_run {
             let (nl, ml) = (&normal[lo..hi], &motion[lo..hi]);
             let (f, d, m, a) = (&fnorm[lo..hi], &delta[lo..hi], &mass[lo..hi], &radius[lo..hi]);
             ($check)(lo, nl, ml, f, d, m, a)?;
+            let x = context_block(context, lo, hi)?;
             let o = &mut out[lo..hi];
             let block = $batch {
                 dt: r.dt,
@@ -87,6 +96,7 @@ macro_rules! motion_run {
                 delta: d,
                 mass: m,
                 radius: a,
+                context: x,
                 slots,
                 history: &mut history[lo * slots..hi * slots],
                 $out: &mut *o,
@@ -101,14 +111,15 @@ macro_rules! motion_run {
     }};
 }
 
+mod normal;
 mod pipelined;
 mod twisting;
 mod vector;
 
-use pipelined::pipelined_blocks;
-
-pub use twisting::{FfiTwistingBatch, Twisting};
-pub use vector::{FfiVectorBatch, Rolling, Tangential};
+pub(crate) use normal::normal_non_finite;
+pub use normal::{FfiNormalBatch4, Normal, NormalCall};
+pub use twisting::{FfiTwistingBatch4, Twisting};
+pub use vector::{FfiVectorBatch4, Rolling, Tangential};
 
 pub(super) fn non_finite_output(what: &str, name: &str, field: u8, i: usize, value: String) -> LawError {
     LawError::new(
@@ -123,6 +134,46 @@ pub(super) fn non_finite_output(what: &str, name: &str, field: u8, i: usize, val
             }
         ),
     )
+}
+
+/// The contexts of a raw batch of `n` contacts: none (empty) when `p` is null.
+///
+/// # Safety
+/// A non-null `p` is valid for `n` values.
+#[inline(always)]
+pub(super) unsafe fn contexts<'a>(p: *const NormalContext, n: usize) -> &'a [NormalContext] {
+    if p.is_null() {
+        &[]
+    } else {
+        unsafe { slice(p, n) }
+    }
+}
+
+/// The contexts of the block `lo..hi` of a batch whose contexts are `all` (none, or one per
+/// contact), checked: each field finite and ≥ 0, else the first bad contact.
+#[inline(always)]
+pub(super) fn context_block(
+    all: &[NormalContext],
+    lo: usize,
+    hi: usize,
+) -> Result<&[NormalContext], (usize, u8)> {
+    if all.is_empty() {
+        return Ok(&[]);
+    }
+    let x = &all[lo..hi];
+    match x.iter().position(|c| !c.is_valid()) {
+        Some(i) => Err((lo + i, BatchFault::CONTEXT_INPUT)),
+        None => Ok(x),
+    }
+}
+
+/// The raw pointer of a batch's contexts: null for none.
+pub(super) fn context_ptr(x: &[NormalContext]) -> *const NormalContext {
+    if x.is_empty() {
+        std::ptr::null()
+    } else {
+        x.as_ptr()
+    }
 }
 
 /// The first bad input of a block, from `(first bad index, array)` checks in order.
@@ -166,6 +217,31 @@ pub(super) fn first_bad_motion(
     )
 }
 
+/// The value of the scalar input of a motion contact (tangential, rolling, twisting) that the
+/// fault code `field` names: its normal force (N), overlap (m), mass (kg) or radius (m), else
+/// the step (s).
+pub(super) fn motion_input(field: u8, [normal_force, delta, mass, radius, dt]: [f64; 5]) -> f64 {
+    match field {
+        BatchFault::NORMAL_FORCE => normal_force,
+        BatchFault::DELTA => delta,
+        BatchFault::MASS => mass,
+        BatchFault::RADIUS => radius,
+        _ => dt,
+    }
+}
+
+/// The error for the bad context of contact `i` of a batch whose contexts are `all`.
+pub(super) fn bad_context(what: &str, name: &str, i: usize, all: &[NormalContext]) -> LawError {
+    LawError::new(
+        ErrorKind::NonFinite,
+        format!(
+            "{what} law '{name}': input context[{i}] = {:?} must have every field finite and ≥ 0 \
+             (contact radius m, cap force N, damping N·s/m); refused before evaluation",
+            all.get(i).copied().unwrap_or_default()
+        ),
+    )
+}
+
 /// The error for the non-finite input `value` of array `field` of contact `i`.
 pub(super) fn bad_vector(what: &str, name: &str, field: u8, i: usize, value: [f64; 3]) -> LawError {
     LawError::new(
@@ -175,354 +251,4 @@ pub(super) fn bad_vector(what: &str, name: &str, field: u8, i: usize, value: [f6
             BatchFault::field_name(field)
         ),
     )
-}
-
-// ---- normal ----
-
-/// The normal kind of sdk 0.3.
-pub struct Normal;
-
-/// A raw 0.3 normal batch: 0.2's arrays, plus the optional outputs (null when not wanted).
-#[repr(C)]
-#[derive(StableAbi, Debug, Clone, Copy)]
-pub struct FfiNormalBatch3 {
-    /// The 0.2 arrays.
-    pub base: v2::FfiNormalBatch,
-    /// Output: dissipated power per contact (W), or null.
-    pub power: *mut f64,
-    /// Output: elastic energy per contact (J), or null.
-    pub elastic: *mut f64,
-    /// Output: reach per contact (m, ≥ 0; the contact ends at δ < −reach), or null.
-    pub reach: *mut f64,
-}
-
-/// A normal batch as a host passes it to a 0.3 law: the forces, and optionally each contact's
-/// reach after the call.
-#[derive(Debug)]
-pub struct NormalCall<'a> {
-    /// The batch.
-    pub batch: NormalBatch<'a>,
-    /// Output: each contact's reach (m).
-    pub reach: Option<&'a mut [f64]>,
-}
-
-/// The normal force (N) `value` of contact `c` is not finite.
-pub(crate) fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError {
-    LawError::new(
-        ErrorKind::NonFinite,
-        format!(
-            "contact law '{name}' returned force {value} at delta = {:e} m, rate = {:e} m/s \
-             (effective mass {:e} kg, radius {:e} m)",
-            c.delta, c.rate, c.mass, c.radius
-        ),
-    )
-}
-
-impl Kind for Normal {
-    type Ffi = FfiNormalBatch3;
-    type Batch<'a> = NormalCall<'a>;
-    const KIND: LawKind = LawKind::Contact;
-    fn len(b: &NormalCall<'_>) -> usize {
-        b.batch.force.len()
-    }
-    fn check_lengths(name: &str, slots: usize, c: &NormalCall<'_>) -> Result<(), LawError> {
-        let n = c.batch.force.len();
-        if let Some(r) = c.reach.as_ref().filter(|r| r.len() != n) {
-            return Err(length_error(
-                "contact force_batch",
-                format!("reach {}, force {n}", r.len()),
-            ));
-        }
-        c.batch.lengths().check("contact", name, slots)
-    }
-    fn raw(c: &mut NormalCall<'_>, power: *mut f64, elastic: *mut f64) -> FfiNormalBatch3 {
-        let b = &mut c.batch;
-        FfiNormalBatch3 {
-            base: v2::FfiNormalBatch {
-                n: b.force.len(),
-                slots: b.slots,
-                delta: b.delta.as_ptr(),
-                rate: b.rate.as_ptr(),
-                mass: b.mass.as_ptr(),
-                radius: b.radius.as_ptr(),
-                history: b.history.as_mut_ptr(),
-                force: b.force.as_mut_ptr(),
-            },
-            power,
-            elastic,
-            reach: raw_out(&mut c.reach),
-        }
-    }
-    fn fault_error(name: &str, c: &NormalCall<'_>, st: BatchStatus, fault: BatchFault) -> LawError {
-        let b = &c.batch;
-        let i = fault.index.min(b.force.len().saturating_sub(1));
-        let contact = b.contact(i);
-        match (st, fault.field) {
-            (BatchStatus::NonFiniteOutput, BatchFault::OUTPUT) => {
-                normal_non_finite(name, b.force[i], contact)
-            }
-            (BatchStatus::NonFiniteOutput, f) => non_finite_output(
-                "contact",
-                name,
-                f,
-                i,
-                format!("(at delta = {:e} m)", contact.delta),
-            ),
-            (_, f) => {
-                let v = match f {
-                    BatchFault::DELTA => contact.delta,
-                    BatchFault::RATE => contact.rate,
-                    BatchFault::MASS => contact.mass,
-                    _ => contact.radius,
-                };
-                bad_input("contact", name, f, i, v)
-            }
-        }
-    }
-}
-
-pub(super) fn history_of(h: &[f64], slots: usize, i: usize) -> &[f64] {
-    if slots == 0 {
-        &[]
-    } else {
-        &h[i * slots..(i + 1) * slots]
-    }
-}
-
-/// Batches of at most this many contacts (a collision's integrator evaluates two to five states
-/// at a time) skip the block loop's setup for vector code.
-const FEW: usize = 8;
-
-/// A batch of at most [`FEW`] contacts, as one block of the block loop (its inputs, then the
-/// law, then its energy, then its forces), the law called contact by contact: the vector loop
-/// of a law over a few contacts costs more to set up (alias checks, remainders) than it saves.
-#[inline(always)]
-fn few_contacts<B: BoundContact>(
-    law: &B,
-    b: NormalBatch<'_>,
-    mut energy: Option<(&mut [f64], &mut [f64])>,
-) -> Result<bool, (usize, u8)> {
-    let (slots, n) = (b.slots, b.force.len());
-    let (d, r, m, a) = (&b.delta[..n], &b.rate[..n], &b.mass[..n], &b.radius[..n]);
-    let mut ok = true;
-    for i in 0..n {
-        ok &= contact_ok(d[i], r[i], m[i], a[i]);
-    }
-    if !ok {
-        if let Some(fault) = check_normal_inputs(d, r, m, a) {
-            return Err(fault);
-        }
-    }
-    let (mut written, mut finite) = (energy.is_some(), true);
-    for i in 0..n {
-        let k = i + 1;
-        let one = NormalBatch {
-            delta: &d[i..k],
-            rate: &r[i..k],
-            mass: &m[i..k],
-            radius: &a[i..k],
-            slots,
-            history: &mut b.history[i * slots..k * slots],
-            force: &mut b.force[i..k],
-        };
-        written &= match energy.as_mut() {
-            None => {
-                law.force_batch(one);
-                false
-            }
-            Some((p, e)) => law.force_batch_energy(
-                one,
-                EnergyBatch {
-                    power: &mut p[i..k],
-                    elastic: &mut e[i..k],
-                },
-            ),
-        };
-        finite &= is_finite(b.force[i]);
-    }
-    if let Some((p, e)) = energy.as_ref() {
-        if written {
-            check_energy(0, &p[..n], &e[..n])?;
-        }
-    }
-    if !finite {
-        if let Some(i) = first_non_finite(b.force) {
-            return Err((i, BatchFault::OUTPUT));
-        }
-    }
-    Ok(written)
-}
-
-/// The block loop of a normal batch: check a block's inputs, run the law on it (with its
-/// energy outputs when `energy` is given), check its outputs. Returns whether every contact
-/// reported its energy, or the first bad contact and what is wrong with it. The full blocks of
-/// a straight-line law without history go through [`pipelined_blocks`].
-#[inline(always)]
-fn normal_blocks<B: BoundContact>(
-    law: &B,
-    b: NormalBatch<'_>,
-    mut energy: Option<(&mut [f64], &mut [f64])>,
-) -> Result<bool, (usize, u8)> {
-    let (slots, n) = (b.slots, b.force.len());
-    if n <= FEW {
-        return few_contacts(law, b, energy);
-    }
-    let mut written = energy.is_some();
-    let full = if B::STRAIGHT_LINE && slots == 0 {
-        n - n % CHECK_BLOCK
-    } else {
-        0
-    };
-    if full > 0 {
-        let (d, r, m, a) = (
-            &b.delta[..full],
-            &b.rate[..full],
-            &b.mass[..full],
-            &b.radius[..full],
-        );
-        let f = &mut b.force[..full];
-        // one copy of the loop without energy outputs, one with them (a branch inside the loop
-        // let the compiler hoist the first contact out of a step and split its vectors)
-        written &= match energy.as_mut() {
-            None => pipelined_blocks(law, (d, r, m, a), f, None)?,
-            Some((p, e)) => pipelined_blocks(law, (d, r, m, a), f, Some((&mut p[..full], &mut e[..full])))?,
-        };
-    }
-    blocks!(full => n, |lo, hi| {
-        let (d, r, m, a) = (
-            &b.delta[lo..hi],
-            &b.rate[lo..hi],
-            &b.mass[lo..hi],
-            &b.radius[lo..hi],
-        );
-        if !normal_inputs_ok(d, r, m, a) {
-            if let Some((i, f)) = check_normal_inputs(d, r, m, a) {
-                return Err((lo + i, f));
-            }
-        }
-        let o = &mut b.force[lo..hi];
-        let block = NormalBatch {
-            delta: d,
-            rate: r,
-            mass: m,
-            radius: a,
-            slots,
-            history: &mut b.history[lo * slots..hi * slots],
-            force: &mut *o,
-        };
-        written &= eval_block!(energy, lo, hi, block, |b| law.force_batch(b), |b, e| law
-            .force_batch_energy(b, e));
-        match first_non_finite(o) {
-            Some(i) => Err((lo + i, BatchFault::OUTPUT)),
-            None => Ok(()),
-        }
-    });
-    Ok(written)
-}
-
-impl<B: BoundContact> KindBound<Normal> for B {
-    #[inline(always)]
-    unsafe fn run(&self, b: &FfiNormalBatch3) -> Result<bool, (usize, u8)> {
-        let (n, slots) = (b.base.n, b.base.slots);
-        let (delta, rate, mass, radius, history, force) = unsafe {
-            (
-                slice(b.base.delta, n),
-                slice(b.base.rate, n),
-                slice(b.base.mass, n),
-                slice(b.base.radius, n),
-                slice_mut(b.base.history, n * slots),
-                slice_mut(b.base.force, n),
-            )
-        };
-        let batch = NormalBatch {
-            delta,
-            rate,
-            mass,
-            radius,
-            slots,
-            history,
-            force,
-        };
-        let mut scratch = Vec::new();
-        let written = normal_blocks(
-            self,
-            NormalBatch {
-                history: &mut *batch.history,
-                force: &mut *batch.force,
-                ..batch
-            },
-            unsafe { energy_out(n, b.power, b.elastic, &mut scratch) },
-        )?;
-        if !b.reach.is_null() {
-            for i in 0..n {
-                let r = self.reach(&batch.contact(i), history_of(batch.history, slots, i));
-                if !(0.0..f64::INFINITY).contains(&r) {
-                    return Err((i, BatchFault::REACH));
-                }
-                unsafe { *b.reach.add(i) = r };
-            }
-        }
-        Ok(written)
-    }
-    fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
-        self.coefficients(mass, radius)
-    }
-}
-
-kind_law!(Normal, ContactLaw);
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::abi::{EnergyOut, StaticModel};
-    use crate::Energy;
-
-    /// F = 1 N, with a NaN power.
-    struct NanPower;
-
-    impl BoundContact for NanPower {
-        fn force(&self, _c: Contact, _h: &mut [f64]) -> f64 {
-            1.0
-        }
-        fn energy(&self, _c: &Contact, _h: &[f64], _f: f64) -> Option<Energy> {
-            Some(Energy {
-                power: f64::NAN,
-                elastic: 0.0,
-            })
-        }
-    }
-
-    /// A non-finite energy output is reported as an output of the law, not as a bad input.
-    #[test]
-    fn a_nan_power_is_the_laws_output() {
-        let m = StaticModel::<Normal, NanPower>::of_bound("nan-power", 0, NanPower);
-        let (mut f, mut p) = ([0.0; 2], [0.0; 2]);
-        let call = NormalCall {
-            batch: NormalBatch {
-                delta: &[1e-6; 2],
-                rate: &[0.0; 2],
-                mass: &[1e-3; 2],
-                radius: &[1e-3; 2],
-                slots: 0,
-                history: &mut [],
-                force: &mut f,
-            },
-            reach: None,
-        };
-        let e = m
-            .batch(
-                call,
-                EnergyOut {
-                    power: Some(&mut p),
-                    elastic: None,
-                },
-            )
-            .unwrap_err();
-        assert_eq!(e.kind, ErrorKind::NonFinite);
-        assert!(
-            e.message.contains("returned a non-finite power on contact 0"),
-            "{}",
-            e.message
-        );
-    }
 }

@@ -4,8 +4,8 @@
 
 use super::super::checks::first_non_finite;
 use super::super::checks::{FiniteLanes, NormalLanes, CHECK_BLOCK, LANES};
+use super::super::fault::BatchFault;
 use super::super::kind::check_energy;
-use super::super::BatchFault;
 use crate::law::{BoundContact, EnergyBatch, NormalBatch};
 
 /// The blocks of a straight-line law without history, a whole number of them, pipelined: the
@@ -107,7 +107,7 @@ pub(super) fn pipelined_blocks<B: BoundContact>(
 
 #[cfg(test)]
 mod tests {
-    use super::super::{FfiNormalBatch3, Normal, NormalCall};
+    use super::super::normal::{FfiNormalBatch4, Normal, NormalCall};
     use super::*;
     use crate::abi::guard::take_panic;
     use crate::abi::kind::{model_batch, Kind, KindBound};
@@ -184,7 +184,7 @@ mod tests {
     /// The first fault of the batch `raw` through the law `Probe<S>`: through the trampoline
     /// (the AVX2 build when the CPU has it) when `dispatched`, else through the baseline build.
     fn probe<const S: bool>(
-        raw: &FfiNormalBatch3,
+        raw: &FfiNormalBatch4,
         dispatched: bool,
         energy: bool,
         trial: usize,
@@ -260,6 +260,7 @@ mod tests {
                         force: &mut f,
                     },
                     reach: None,
+                    context: None,
                 };
                 let (pp, ep) = if energy {
                     (p.as_mut_ptr(), e.as_mut_ptr())

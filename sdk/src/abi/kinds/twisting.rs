@@ -3,44 +3,23 @@
 use super::*;
 use crate::rotation::{BoundTwisting, TwistingBatch, TwistingLaw};
 
-/// A raw twisting batch: `normal` is `n` `[x, y, z]` triples, the rest `n` values, `history`
-/// `n × slots`; `power` and `elastic` optional outputs (null when not wanted).
+/// A raw 0.4 twisting batch: 0.3's, plus the normal law's contexts (null: none, the
+/// defaults).
 #[repr(C)]
 #[derive(StableAbi, Debug, Clone, Copy)]
-pub struct FfiTwistingBatch {
-    /// Number of contacts.
-    pub n: usize,
-    /// History slots per contact.
-    pub slots: usize,
-    /// Time step (s).
-    pub dt: f64,
-    /// Unit normals (3n values).
-    pub normal: *const f64,
-    /// Relative twisting rates (rad/s).
-    pub rate: *const f64,
-    /// Normal forces (N).
-    pub normal_force: *const f64,
-    /// Overlaps (m).
-    pub delta: *const f64,
-    /// Effective masses (kg).
-    pub mass: *const f64,
-    /// Effective radii (m).
-    pub radius: *const f64,
-    /// Per-contact history, updated in place.
-    pub history: *mut f64,
-    /// Output: twisting torques about n̂ (N·m).
-    pub torque: *mut f64,
-    /// Output: dissipated power per contact (W), or null.
-    pub power: *mut f64,
-    /// Output: elastic energy per contact (J), or null.
-    pub elastic: *mut f64,
+pub struct FfiTwistingBatch4 {
+    /// The 0.3 arrays and outputs.
+    pub base: v3::FfiTwistingBatch,
+    /// Input: each contact's normal context (`n` values), or null.
+    pub context: *const NormalContext,
 }
 
-/// The twisting kind of sdk 0.3.
+/// The twisting kind.
 pub struct Twisting;
 
 impl Kind for Twisting {
-    type Ffi = FfiTwistingBatch;
+    type Ffi = FfiTwistingBatch4;
+    type Ffi03 = v3::FfiTwistingBatch;
     type Batch<'a> = TwistingBatch<'a>;
     const KIND: LawKind = LawKind::Twisting;
     fn len(b: &TwistingBatch<'_>) -> usize {
@@ -49,8 +28,8 @@ impl Kind for Twisting {
     fn check_lengths(name: &str, slots: usize, b: &TwistingBatch<'_>) -> Result<(), LawError> {
         b.lengths().check("twisting", name, slots)
     }
-    fn raw(b: &mut TwistingBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiTwistingBatch {
-        FfiTwistingBatch {
+    fn raw(b: &mut TwistingBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiTwistingBatch4 {
+        let base = v3::FfiTwistingBatch {
             n: b.torque.len(),
             slots: b.slots,
             dt: b.dt,
@@ -64,7 +43,14 @@ impl Kind for Twisting {
             torque: b.torque.as_mut_ptr(),
             power,
             elastic,
+        };
+        FfiTwistingBatch4 {
+            base,
+            context: context_ptr(b.context),
         }
+    }
+    fn ffi03(b: &FfiTwistingBatch4) -> &v3::FfiTwistingBatch {
+        &b.base
     }
     fn fault_error(name: &str, b: &TwistingBatch<'_>, st: BatchStatus, f: BatchFault) -> LawError {
         let i = f.index.min(b.torque.len().saturating_sub(1));
@@ -85,18 +71,25 @@ impl Kind for Twisting {
             ),
             (_, BatchFault::NORMAL) => bad_vector("twisting", name, BatchFault::NORMAL, i, b.normal[i]),
             (_, BatchFault::RATE) => bad_input("twisting", name, BatchFault::RATE, i, b.rate[i]),
-            (_, field) => bad_input("twisting", name, field, i, b.input(field, i)),
+            (_, BatchFault::CONTEXT_INPUT) => bad_context("twisting", name, i, b.context),
+            (_, field) => {
+                let c = b.contact(i);
+                let v = motion_input(field, [c.normal_force, c.delta, c.mass, c.radius, c.dt]);
+                bad_input("twisting", name, field, i, v)
+            }
         }
     }
 }
 
 impl<B: BoundTwisting> KindBound<Twisting> for B {
     #[inline(always)]
-    unsafe fn run(&self, b: &FfiTwistingBatch) -> Result<bool, (usize, u8)> {
+    unsafe fn run(&self, b4: &FfiTwistingBatch4) -> Result<bool, (usize, u8)> {
+        let b = &b4.base;
         motion_run!(
             b,
             b.power,
             b.elastic,
+            b4.context,
             TwistingBatch { rate: f64 => torque: f64 },
             |lo, nl: &[[f64; 3]], ml: &[f64], f: &[f64], d: &[f64], m: &[f64], a: &[f64]| {
                 first_bad_motion(lo, nl.as_flattened(), (first_non_finite(ml), BatchFault::RATE), f, d, m, a)
@@ -111,4 +104,4 @@ impl<B: BoundTwisting> KindBound<Twisting> for B {
     }
 }
 
-kind_law!(Twisting, TwistingLaw);
+kind_law!(Twisting, TwistingLaw, T::READS_CONTEXT);

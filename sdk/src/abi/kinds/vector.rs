@@ -2,22 +2,20 @@
 //! batch and one checked block loop; they differ only in their law traits.
 
 use super::*;
-use crate::law::{EnergyBatch, TangentialLaw};
+use crate::law::EnergyBatch;
+use crate::motion::TangentialLaw;
 use crate::motion::{BoundTangential, VectorBatch};
 use crate::rotation::{BoundRolling, RollingLaw};
 
-/// A raw batch of a vector kind (tangential, rolling): 0.2's tangential arrays (vectors are `n`
-/// `[x, y, z]` triples, `history` is `n × slots`), plus the optional energy outputs (null when
-/// not wanted).
+/// A raw 0.4 batch of a vector kind (tangential, rolling): 0.3's, plus the normal law's
+/// contexts (null: none, the defaults).
 #[repr(C)]
 #[derive(StableAbi, Debug, Clone, Copy)]
-pub struct FfiVectorBatch {
-    /// The 0.2 arrays.
-    pub base: v2::FfiTangentialBatch,
-    /// Output: dissipated power per contact (W), or null.
-    pub power: *mut f64,
-    /// Output: elastic energy per contact (J), or null.
-    pub elastic: *mut f64,
+pub struct FfiVectorBatch4 {
+    /// The 0.3 arrays and outputs.
+    pub base: v3::FfiVectorBatch,
+    /// Input: each contact's normal context (`n` values), or null.
+    pub context: *const NormalContext,
 }
 
 /// A bound law of a vector kind: its batch call and its energy.
@@ -33,7 +31,8 @@ macro_rules! vector_kind {
         pub struct $kind;
 
         impl Kind for $kind {
-            type Ffi = FfiVectorBatch;
+            type Ffi = FfiVectorBatch4;
+            type Ffi03 = v3::FfiVectorBatch;
             type Batch<'a> = VectorBatch<'a>;
             const KIND: LawKind = $law_kind;
             fn len(b: &VectorBatch<'_>) -> usize {
@@ -42,12 +41,18 @@ macro_rules! vector_kind {
             fn check_lengths(name: &str, slots: usize, b: &VectorBatch<'_>) -> Result<(), LawError> {
                 b.lengths().check(Self::KIND.as_str(), name, slots)
             }
-            fn raw(b: &mut VectorBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiVectorBatch {
-                FfiVectorBatch {
-                    base: raw_base(b),
-                    power,
-                    elastic,
+            fn raw(b: &mut VectorBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiVectorBatch4 {
+                FfiVectorBatch4 {
+                    base: v3::FfiVectorBatch {
+                        base: raw_base(b),
+                        power,
+                        elastic,
+                    },
+                    context: context_ptr(b.context),
                 }
+            }
+            fn ffi03(b: &FfiVectorBatch4) -> &v3::FfiVectorBatch {
+                &b.base
             }
             fn fault_error(name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: BatchFault) -> LawError {
                 fault_error(Self::KIND.as_str(), name, b, st, f)
@@ -67,7 +72,7 @@ macro_rules! vector_kind {
 
         impl<B: $bound> KindBound<$kind> for B {
             #[inline(always)]
-            unsafe fn run(&self, b: &FfiVectorBatch) -> Result<bool, (usize, u8)> {
+            unsafe fn run(&self, b: &FfiVectorBatch4) -> Result<bool, (usize, u8)> {
                 unsafe { run(&Bound::<$kind, B>(self, std::marker::PhantomData), b) }
             }
             #[allow(clippy::redundant_closure_call)]
@@ -76,7 +81,7 @@ macro_rules! vector_kind {
             }
         }
 
-        kind_law!($kind, $law);
+        kind_law!($kind, $law, T::READS_CONTEXT);
     };
 }
 
@@ -84,7 +89,7 @@ macro_rules! vector_kind {
 struct Bound<'a, K, B>(&'a B, std::marker::PhantomData<K>);
 
 vector_kind!(
-    /// The tangential kind of sdk 0.3.
+    /// The tangential kind.
     Tangential,
     LawKind::Tangential,
     BoundTangential,
@@ -93,7 +98,7 @@ vector_kind!(
 );
 
 vector_kind!(
-    /// The rolling kind of sdk 0.3.
+    /// The rolling kind.
     Rolling,
     LawKind::Rolling,
     BoundRolling,
@@ -134,7 +139,12 @@ fn fault_error(what: &str, name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: 
         }
         (_, BatchFault::NORMAL) => bad_vector(what, name, BatchFault::NORMAL, i, b.normal[i]),
         (_, BatchFault::VELOCITY) => bad_vector(what, name, BatchFault::VELOCITY, i, b.velocity[i]),
-        (_, field) => bad_input(what, name, field, i, b.input(field, i)),
+        (_, BatchFault::CONTEXT_INPUT) => bad_context(what, name, i, b.context),
+        (_, field) => {
+            let c = b.contact(i);
+            let v = motion_input(field, [c.normal_force, c.delta, c.mass, c.radius, c.dt]);
+            bad_input(what, name, field, i, v)
+        }
     }
 }
 
@@ -143,11 +153,13 @@ fn fault_error(what: &str, name: &str, b: &VectorBatch<'_>, st: BatchStatus, f: 
 /// # Safety
 /// The batch's pointers are valid for its lengths.
 #[inline(always)]
-unsafe fn run<L: VectorLaw>(law: &L, b: &FfiVectorBatch) -> Result<bool, (usize, u8)> {
+unsafe fn run<L: VectorLaw>(law: &L, b4: &FfiVectorBatch4) -> Result<bool, (usize, u8)> {
+    let b = &b4.base;
     motion_run!(
         &b.base,
         b.power,
         b.elastic,
+        b4.context,
         VectorBatch { velocity: [f64; 3] => force: [f64; 3] },
         |lo, nl: &[[f64; 3]], vl: &[[f64; 3]], f: &[f64], d: &[f64], m: &[f64], a: &[f64]| {
             let (nl, vl) = (nl.as_flattened(), vl.as_flattened());

@@ -1,14 +1,24 @@
-//! Host side: loading plugins, with their checks, and the safe handles a host calls.
+//! Host side: loading plugins, with their checks, and the series-aware handles a host calls.
 
 use super::checks::all_finite;
-use super::handle::run_v2;
+use super::fault::{bad_input, BatchFault};
+use super::ffi;
+use super::handle::{run_v2, BoundModel, LawHandle, ModelHandle};
 use super::kind::{EnergyOut, Kind, NewFn};
-use super::*;
-use super::{v1, v2, BoundModel, LawHandle, ModelHandle, Normal, NormalCall, Rolling, Tangential, Twisting};
+use super::kinds::{Normal, NormalCall, Rolling, Tangential, Twisting};
+use super::module::PluginModuleRef;
+use super::object::{coefficients, FfiObject, Owned};
+use super::series::{FfiBoundRestitution, FfiRestitutionLaw};
+use super::version::{abi_compatible, series, ABI_VERSION};
+use super::{v1, v2, v3};
+use crate::error::FfiError;
 use crate::error::{ErrorKind, LawError};
 use crate::law::{CalibrationTarget, Coefficient, Contact, LawInfo, LawKind, NormalBatch};
+use crate::lengths::length_error;
 use crate::motion::TangentialBatch;
+use crate::pair::{MaterialPair, Pair};
 use crate::params::ParamValue;
+use abi_stable::std_types::{RResult, RSlice, RStr, RString, RVec};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
 
@@ -34,6 +44,7 @@ macro_rules! model_handle {
             inner: ModelInner,
             name: String,
             slots: usize,
+            reads_context: bool,
         }
 
         impl $handle {
@@ -43,6 +54,7 @@ macro_rules! model_handle {
                     inner,
                     name: info.name.to_string(),
                     slots: info.history.len(),
+                    reads_context: info.reads_context,
                 }
             }
 
@@ -54,6 +66,11 @@ macro_rules! model_handle {
             /// History slots per contact.
             pub fn history_slots(&self) -> usize {
                 self.slots
+            }
+
+            /// Whether the law reads the normal law's context (sdk 0.4).
+            pub fn reads_context(&self) -> bool {
+                self.reads_context
             }
         }
 
@@ -71,6 +88,9 @@ pub use restitution::{BoundRestitutionHandle, RestitutionLawHandle};
 use tangential::TangentialInner;
 pub use tangential::{TangentialLawHandle, TangentialModelHandle};
 
+/// The root-module entry of an sdk 0.3 plugin that creates a law of kind `K` by name.
+type Entry03<K> = fn(v3::PluginModuleRef) -> NewFn<<K as Kind>::Ffi03>;
+
 /// The sdk series a plugin was built against.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SdkSeries {
@@ -80,8 +100,11 @@ pub enum SdkSeries {
     /// sdk 0.2: material binding, per-contact geometry and history, tangential laws (its law
     /// list read through [`v2`]).
     V0_2,
-    /// sdk 0.3: adhesive contact laws with a reach, rolling and twisting laws, energy outputs.
+    /// sdk 0.3: adhesive contact laws with a reach, rolling and twisting laws, energy outputs
+    /// (its law list read through [`v3`]).
     V0_3,
+    /// sdk 0.4: the normal context (what a normal law tells the other laws of its contact).
+    V0_4,
 }
 
 /// A loaded plugin library. Libraries stay loaded for the life of the process.
@@ -107,7 +130,8 @@ pub struct LoadedPlugin {
 enum Module {
     V1(v1::PluginModuleRef),
     V2(v2::PluginModuleRef),
-    V3(PluginModuleRef),
+    V3(v3::PluginModuleRef),
+    V4(PluginModuleRef),
 }
 
 /// The entry points every series shares (same types in every root module).
@@ -117,6 +141,7 @@ macro_rules! shared {
             Module::V1(m) => m.$field(),
             Module::V2(m) => m.$field(),
             Module::V3(m) => m.$field(),
+            Module::V4(m) => m.$field(),
         }
     };
 }
@@ -215,20 +240,21 @@ impl LoadedPlugin {
                 path,
                 format!(
                     "it was built against dashpot-sdk {plugin_sdk}, but this host uses dashpot-sdk \
-                     {ABI_VERSION}, which loads plugins of sdk 0.1, 0.2 and 0.3 only; the ABI versions \
+                     {ABI_VERSION}, which loads plugins of sdk 0.1, 0.2, 0.3 and 0.4 only; the ABI versions \
                      are incompatible. Rebuild the plugin against dashpot-sdk {ABI_VERSION}."
                 ),
             ));
         }
         let plugin_series = series(&plugin_sdk);
         let module = match plugin_series {
-            // abi_stable would refuse every type of a 0.1 or 0.2 plugin for its package version
-            // alone (they are different semver series from 0.3). Run its full layout comparison
-            // against the frozen root module of the plugin's series and accept exactly that
-            // difference: every field of every type must still match.
+            // abi_stable would refuse every type of a 0.1, 0.2 or 0.3 plugin for its package
+            // version alone (they are different semver series from 0.4). Run its full layout
+            // comparison against the frozen root module of the plugin's series and accept exactly
+            // that difference: every field of every type must still match.
             Some((0, 1)) => Module::V1(legacy_module::<v1::PluginModuleRef>(path, &plugin_sdk, header)?),
             Some((0, 2)) => Module::V2(legacy_module::<v2::PluginModuleRef>(path, &plugin_sdk, header)?),
-            _ => Module::V3(
+            Some((0, 3)) => Module::V3(legacy_module::<v3::PluginModuleRef>(path, &plugin_sdk, header)?),
+            _ => Module::V4(
                 header
                     .init_root_module::<PluginModuleRef>()
                     .map_err(|e| match e {
@@ -259,8 +285,15 @@ impl LoadedPlugin {
                 (SdkSeries::V0_2, laws, m.name(), m.version(), m.sdk_version())
             }
             Module::V3(m) => {
-                let laws = ffi::to_plain(read(path, (m.laws())())?);
+                let laws = read(path, (m.laws())())?
+                    .into_iter()
+                    .map(v3::LawInfo::upgrade)
+                    .collect();
                 (SdkSeries::V0_3, laws, m.name(), m.version(), m.sdk_version())
+            }
+            Module::V4(m) => {
+                let laws = ffi::to_plain(read(path, (m.laws())())?);
+                (SdkSeries::V0_4, laws, m.name(), m.version(), m.sdk_version())
             }
         };
         Ok(LoadedPlugin {
@@ -287,9 +320,12 @@ impl LoadedPlugin {
                 let f = m.new_contact2().ok_or_else(|| missing(name, "new_contact2"))?;
                 ContactInner::V2(call(f, name, params)?)
             }
-            Module::V3(m) => {
-                ContactInner::V3(LawHandle::new(call(m.new_contact(), name, params)?, info.clone()))
-            }
+            Module::V3(_) | Module::V4(_) => ContactInner::V3(self.new_kind::<Normal>(
+                name,
+                params,
+                |m| m.new_contact(),
+                Some(|m| m.new_contact()),
+            )?),
         };
         Ok(ContactLawHandle {
             inner,
@@ -298,37 +334,50 @@ impl LoadedPlugin {
         })
     }
 
-    /// Creates a law of a kind of sdk 0.3 through its root-module entry `entry`; an error for
-    /// a plugin of an older sdk, which has no such kind.
+    /// Creates a law of a kind of the generic shape through its root-module entry: `entry` in
+    /// a plugin of sdk 0.4, `entry03` in one of sdk 0.3 (`None`: a kind new in 0.4); an error
+    /// for a plugin of an older sdk, which has no such kind.
     fn new_kind<K: Kind>(
         &self,
         name: &str,
         params: &[ParamValue],
         entry: fn(PluginModuleRef) -> NewFn<K::Ffi>,
+        entry03: Option<Entry03<K>>,
     ) -> Result<LawHandle<K>, LawError> {
         let info = self.expect(name, K::KIND)?;
-        let Module::V3(m) = self.module else {
-            return Err(missing(name, "of sdk 0.3 (the plugin is older)"));
-        };
-        Ok(LawHandle::new(call(entry(m), name, params)?, info))
+        match (self.module, entry03) {
+            (Module::V4(m), _) => Ok(LawHandle::new(call(entry(m), name, params)?, info)),
+            (Module::V3(m), Some(entry03)) => Ok(LawHandle::new_v3(call(entry03(m), name, params)?, info)),
+            _ => Err(missing(
+                name,
+                &format!(
+                    "of {} laws (the plugin's sdk {} is older)",
+                    K::KIND.as_str(),
+                    self.sdk_version
+                ),
+            )),
+        }
     }
 
-    /// Creates rolling law `name` from `params` (sdk 0.3 plugins).
+    /// Creates rolling law `name` from `params` (sdk 0.3 and later).
     pub fn new_rolling(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Rolling>, LawError> {
-        self.new_kind::<Rolling>(name, params, |m| m.new_rolling())
+        self.new_kind::<Rolling>(name, params, |m| m.new_rolling(), Some(|m| m.new_rolling()))
     }
 
-    /// Creates twisting law `name` from `params` (sdk 0.3 plugins).
+    /// Creates twisting law `name` from `params` (sdk 0.3 and later).
     pub fn new_twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
-        self.new_kind::<Twisting>(name, params, |m| m.new_twisting())
+        self.new_kind::<Twisting>(name, params, |m| m.new_twisting(), Some(|m| m.new_twisting()))
     }
 
     /// Creates tangential law `name` from `params`.
     pub fn new_tangential(&self, name: &str, params: &[ParamValue]) -> Result<TangentialLawHandle, LawError> {
         let inner = match self.module {
-            Module::V3(_) => {
-                TangentialInner::V3(self.new_kind::<Tangential>(name, params, |m| m.new_tangential())?)
-            }
+            Module::V3(_) | Module::V4(_) => TangentialInner::V3(self.new_kind::<Tangential>(
+                name,
+                params,
+                |m| m.new_tangential(),
+                Some(|m| m.new_tangential()),
+            )?),
             Module::V2(m) => {
                 let info = self.expect(name, LawKind::Tangential)?;
                 let f = m
@@ -418,70 +467,4 @@ fn legacy_module<M: abi_stable::prefix_type::PrefixRefTrait + abi_stable::Stable
     }
     // SAFETY: the layout was checked just above, to the package version.
     unsafe { header.unchecked_layout::<M>() }.map_err(|e| load_error(path, e))
-}
-
-/// A plugin's coefficients as plain values.
-pub(crate) fn coefficients(
-    r: RResult<RVec<ffi::Coefficient>, FfiError>,
-) -> Result<Vec<Coefficient>, LawError> {
-    Ok(ffi::to_plain(r.into_result()?))
-}
-
-pub(crate) fn length_error(what: &str, detail: String) -> LawError {
-    LawError::new(
-        ErrorKind::Other,
-        format!("{what}: the batch's arrays disagree in length: {detail}"),
-    )
-}
-
-/// The lengths of the arrays of a batch for `call` ("force_batch", ...): its inputs (`inputs`
-/// names them, `lens` gives them), its output (`output`, of `n` values: the number of contacts)
-/// and its history (`slots` per contact, `history` values in all).
-pub(crate) struct BatchLengths<const N: usize> {
-    pub(crate) call: &'static str,
-    pub(crate) inputs: &'static str,
-    pub(crate) lens: [usize; N],
-    pub(crate) output: &'static str,
-    pub(crate) n: usize,
-    pub(crate) slots: usize,
-    pub(crate) history: usize,
-}
-
-impl<const N: usize> BatchLengths<N> {
-    /// Checks them for the `kind` law `name`, which keeps `slots` history values per contact:
-    /// every input one value per contact, the history `n × slots`.
-    pub(crate) fn check(&self, kind: &str, name: &str, slots: usize) -> Result<(), LawError> {
-        let n = self.n;
-        let call = || format!("{kind} {}", self.call);
-        if self.lens.iter().any(|&l| l != n) {
-            return Err(length_error(
-                &call(),
-                format!("{} {:?}, {} {n}", self.inputs, self.lens, self.output),
-            ));
-        }
-        if self.slots != slots || self.history != n * slots {
-            return Err(length_error(
-                &call(),
-                format!(
-                    "history has {} values for {n} contacts of {} slots (law '{name}' keeps {slots})",
-                    self.history, self.slots
-                ),
-            ));
-        }
-        Ok(())
-    }
-}
-
-pub(crate) fn bad_input(kind: &str, name: &str, field: u8, index: usize, value: f64) -> LawError {
-    let what = BatchFault::field_name(field);
-    let rule = match field {
-        BatchFault::MASS => "must be finite and > 0 (kg)",
-        BatchFault::RADIUS => "must be finite and > 0 (m)",
-        BatchFault::DT => "must be finite and ≥ 0 (s)",
-        _ => "must be finite",
-    };
-    LawError::new(
-        ErrorKind::NonFinite,
-        format!("{kind} law '{name}': input {what}[{index}] = {value} {rule}; refused before evaluation"),
-    )
 }

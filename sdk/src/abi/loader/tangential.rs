@@ -59,7 +59,7 @@ impl TangentialModelHandle {
                 &mut b,
                 energy,
                 m.vtable.take_panic,
-                |ffi, fault| unsafe { (m.vtable.force_batch)(m.obj, &ffi.base, fault) },
+                |ffi, fault| unsafe { (m.vtable.force_batch)(m.obj, &ffi.base.base, fault) },
             )
             .map(|_| false),
         }

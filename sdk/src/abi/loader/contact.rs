@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::abi::kinds::normal_non_finite;
+use crate::context::NormalContext;
 
 /// A 0.1 contact law and the pairs it has been bound to (one per distinct effective mass and
 /// radius: sdk 0.1 had no per-contact geometry).
@@ -117,7 +118,41 @@ impl ContactModelHandle {
         reach: Option<&mut [f64]>,
         energy: EnergyOut<'_>,
     ) -> Result<bool, LawError> {
-        let mut call = NormalCall { batch: b, reach };
+        let context = None;
+        self.call(
+            NormalCall {
+                batch: b,
+                reach,
+                context,
+            },
+            energy,
+        )
+    }
+
+    /// As [`ContactModelHandle::force_batch_with`], with each contact's normal context (sdk
+    /// 0.4: what the contact's other laws read) written to `context`, one per contact. A law of
+    /// a plugin older than sdk 0.4 gives the defaults ([`NormalContext::default_for`]).
+    pub fn force_batch_context(
+        &self,
+        b: NormalBatch<'_>,
+        reach: Option<&mut [f64]>,
+        context: &mut [NormalContext],
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        let context = Some(context);
+        self.call(
+            NormalCall {
+                batch: b,
+                reach,
+                context,
+            },
+            energy,
+        )
+    }
+
+    /// A call of the normal kind (its batch, reach and contexts), through the ABI of the law's
+    /// series; what a law of an older series leaves unwritten gets this sdk's defaults.
+    fn call(&self, mut call: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         match &self.inner {
             ModelInner::V3(m) => m.batch(call, energy),
             ModelInner::V2(m) => {
@@ -127,8 +162,9 @@ impl ContactModelHandle {
                     &mut call,
                     energy,
                     m.vtable.take_panic,
-                    |ffi, fault| unsafe { (m.vtable.force_batch)(m.obj, &ffi.base, fault) },
+                    |ffi, fault| unsafe { (m.vtable.force_batch)(m.obj, &ffi.base.base, fault) },
                 )?;
+                Normal::older_defaults(&mut call);
                 no_reach(call.reach)
             }
             ModelInner::V1 { law, young } => {
@@ -139,21 +175,16 @@ impl ContactModelHandle {
                         "the energy outputs must have one value per contact".into(),
                     ));
                 }
-                self.force_batch_v1(law, *young, call.batch)?;
+                self.force_batch_v1(law, *young, &mut call.batch)?;
+                Normal::older_defaults(&mut call);
                 no_reach(call.reach)
             }
         }
     }
 
-    /// [`ContactModelHandle::force_batch_with`] on a call of the normal kind (its batch and reach).
-    #[inline]
-    fn call(&self, c: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
-        self.force_batch_with(c.batch, c.reach, energy)
-    }
-
     /// A 0.1 law: inputs checked here (0.1 plugins do not), then one 0.1 batch call per run of
     /// contacts with the same geometry.
-    fn force_batch_v1(&self, law: &V1Law, young: f64, b: NormalBatch<'_>) -> Result<(), LawError> {
+    fn force_batch_v1(&self, law: &V1Law, young: f64, b: &mut NormalBatch<'_>) -> Result<(), LawError> {
         let n = b.force.len();
         for i in 0..n {
             let checks = [

@@ -1,0 +1,236 @@
+/* The contact engine shared by pair_style dashpot and the wall fixes: contacts are staged a
+ * chunk at a time in structure-of-arrays columns (in cache), evaluated by one batch call per
+ * family and bound model present in the chunk (a counting sort when a chunk mixes models), and
+ * their forces and torques computed with the model's conventions; the caller applies them to
+ * its atoms. The history lives in a HistoryStore the caller owns (the pair style's slots in
+ * neighbour-list order, a wall fix's per-atom slots); the engine reads each contact's record
+ * from it and writes it back. No LAMMPS header.
+ *
+ * Use:
+ *   engine.configure(&models, layout, flags);       // once per run (after the models are bound)
+ *   for each contact: engine.stage(...);            // returns true when the chunk is full:
+ *       Chunk &c = engine.evaluate(store, dt, keep); // then apply c's outputs, engine.reset()
+ *   ...and once more for the last, partial chunk.
+ * Geometry, per contact: a and b the two bodies' indices (the caller's; b < 0 for a wall), n the
+ * unit normal from b to a, delta the overlap (> 0 in contact), the distances ra, rb from each
+ * centre to the contact point used for the relative velocity (the radii; 0 for a wall), dv =
+ * v_a - v_b at the centres, wa, wb the spins (wb null for a wall that does not spin; a moving or
+ * rotating wall passes the velocity of its contact point in dv and its spin in wb), the
+ * effective mass and radius, the history slot in the store and the bound model's id. */
+#ifndef DASHPOT_ENGINE_H
+#define DASHPOT_ENGINE_H
+
+#include "dashpot_models.h"
+
+#include <vector>
+
+namespace dashpot_lmp {
+
+/* Per-contact history records, owned by the caller: record k holds each family's values at
+ * k * width[f] of that family's array, the reach of an adhesive law's last call, and whether
+ * the record may be non-zero (`touched`: the contact was evaluated since it was zeroed). */
+struct HistoryStore {
+    std::vector<double> fam[NFAMILY];
+    std::vector<double> reach;
+    std::vector<unsigned char> touched;
+    Layout layout;
+    size_t size() const { return touched.size(); }
+    /* n zeroed records of the layout */
+    void assign(size_t n, const Layout &lay);
+    /* record k's contact ended: zero */
+    void zero(size_t k);
+    /* record k as a flat array of layout.nvalues values (families in order, then the reach) */
+    void get(size_t k, double *record) const;
+    void set(size_t k, const double *record);
+    /* whether record k holds any non-zero value (a zero record is the same as none) */
+    bool nonzero(size_t k) const;
+};
+
+/* Which optional inputs and outputs the engine carries. */
+struct EngineFlags {
+    bool rolling = false;     // some model has a rolling law: stage the rolling velocity
+    bool twisting = false;    // some model has a twisting law: stage the twisting rate
+    bool energy = false;      // ask the laws for their power and elastic energy
+    /* Stage each model's contacts in a chunk of its own (up to MAX_REGIONS models; beyond, one
+     * chunk sorted by model): no sort, and every batch call on one model. The caller then
+     * evaluates one chunk at a time: after stage() returns true, and at the end while size() > 0
+     * (see evaluate()). */
+    bool regions = false;
+    bool context = false;    // set by configure(): some model reads the normal context
+};
+
+/* Where evaluate() may add the forces and torques itself (instead of leaving them in the chunk's
+ * force/ta/tb columns): LAMMPS's f and torque arrays, with newton's rule for pairs (a ghost atom
+ * takes its share only with newton on); wall contacts (b < 0) only act on a. */
+struct ApplyTarget {
+    double *f = nullptr, *torque = nullptr;    // 3 per atom, contiguous
+    int nlocal = 0;
+    bool newton = false;
+};
+
+class ContactEngine {
+ public:
+    static constexpr int CHUNK = 256;    // contacts per batch call: the columns stay in L2 cache
+    static constexpr int MAX_REGIONS = 16;
+
+    struct Chunk {
+        int *a = nullptr, *b = nullptr, *slot = nullptr, *model = nullptr;
+        double *delta = nullptr, *rate = nullptr, *mass = nullptr, *rad = nullptr;
+        double *ra = nullptr, *rb = nullptr;    // the radii (the torque arms' base)
+        double *norm = nullptr, *vel = nullptr;
+        double *vroll = nullptr, *twist = nullptr;
+        double *hist[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};
+        // outputs: the laws'
+        double *fn = nullptr, *ft = nullptr, *froll = nullptr, *mtwist = nullptr, *reach = nullptr;
+        double *context = nullptr;    // sdk 0.4: each contact's normal context (3 values)
+        double *power[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};      // energy: power (W)
+        double *elastic[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};    // energy: elastic energy (J)
+        // outputs: the force on a (b takes its opposite) and the torques on a and b
+        double *force = nullptr, *ta = nullptr, *tb = nullptr;
+        std::vector<int> istore;
+        std::vector<double> dstore;
+        void reserve(const Layout &lay, const EngineFlags &fl);
+    };
+
+    /* The models, the record layout of the store and the flags: columns sized once. */
+    void configure(const ModelTable *models, const Layout &lay, const EngineFlags &fl);
+    const EngineFlags &flags() const { return fl; }
+
+    /* The number of staged contacts evaluate() takes next (with regions: those of one model, the
+     * full one first); 0 when none is staged. */
+    int size() const
+    {
+        if (!use_regions) return n;
+        const int q = next_region();
+        return q < 0 ? 0 : reg_n[q];
+    }
+    /* Forgets the contacts evaluate() took (with regions: that model's only). */
+    void reset()
+    {
+        if (!use_regions) {
+            n = 0;
+            mixed = false;
+            return;
+        }
+        if (taken >= 0) reg_n[taken] = 0;
+        if (taken == full) full = -1;
+        taken = -1;
+    }
+
+    /* Stages one contact; true when the chunk is full (evaluate, apply, reset before the next). */
+    inline bool stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta, double ra,
+                      double rb, double dvx, double dvy, double dvz, double meff, double reff, const double *wa,
+                      const double *wb) __attribute__((always_inline));
+
+    /* Evaluates the staged contacts: every family's batch call per model, in the order normal ->
+     * tangential -> rolling -> twisting, with each contact's record from `store` (written back
+     * when `keep`: not in a run's setup, where the forces are recomputed at a state already
+     * integrated and dt = 0); then the forces and torques. Returns the chunk holding the
+     * contacts and their outputs (sorted by model when the chunk mixed models). With `direct`,
+     * the forces and torques go straight to its arrays and the force, ta, tb columns are not
+     * written. Throws SpecError with the library's message if a law fails. */
+    Chunk &evaluate(HistoryStore &store, double dt, bool keep, const ApplyTarget *direct = nullptr);
+
+ private:
+    const ModelTable *models = nullptr;
+    Layout lay;
+    EngineFlags fl;
+    Chunk stage_, sorted;
+    int n = 0, model0 = -1;
+    bool mixed = false;
+    std::vector<int> count, next, place;
+    // regions: one staging chunk per model
+    bool use_regions = false;
+    std::vector<Chunk> reg;
+    std::vector<int> reg_n;
+    int full = -1, taken = -1;
+    int next_region() const
+    {
+        if (full >= 0) return full;
+        for (int q = 0; q < (int) reg_n.size(); q++)
+            if (reg_n[q] > 0) return q;
+        return -1;
+    }
+    inline void write(Chunk &c, int k, int model, int a, int b, int slot, double nx, double ny, double nz,
+                      double delta, double ra, double rb, double dvx, double dvy, double dvz, double meff,
+                      double reff, const double *wa, const double *wb) __attribute__((always_inline));
+    Chunk &evaluate_chunk(Chunk &c, int n, int model, HistoryStore &store, double dt, bool keep,
+                          const ApplyTarget *direct);
+    void sort();
+    void gather(Chunk &c, int lo, int m, const Model &md, const HistoryStore &store);
+    void store_back(Chunk &c, int lo, int m, const Model &md, HistoryStore &store);
+    void run_laws(Chunk &c, int lo, int m, const Model &md, double *const *hist, double *reach, double dt);
+    void torques(Chunk &c, int lo, int m, const Model &md, const ApplyTarget *direct);
+};
+
+inline bool ContactEngine::stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta,
+                                 double ra, double rb, double dvx, double dvy, double dvz, double meff, double reff,
+                                 const double *wa, const double *wb)
+{
+    if (use_regions) {
+        int &k = reg_n[model];
+        write(reg[model], k, model, a, b, slot, nx, ny, nz, delta, ra, rb, dvx, dvy, dvz, meff, reff, wa, wb);
+        if (++k < CHUNK) return false;
+        full = model;
+        return true;
+    }
+    if (n == 0) model0 = model;
+    mixed |= model != model0;
+    write(stage_, n, model, a, b, slot, nx, ny, nz, delta, ra, rb, dvx, dvy, dvz, meff, reff, wa, wb);
+    return ++n == CHUNK;
+}
+
+inline void ContactEngine::write(Chunk &c, int n, int model, int a, int b, int slot, double nx, double ny, double nz,
+                                 double delta, double ra, double rb, double dvx, double dvy, double dvz, double meff,
+                                 double reff, const double *wa, const double *wb)
+{
+    c.a[n] = a;
+    c.b[n] = b;
+    c.slot[n] = slot;
+    c.model[n] = model;
+    c.delta[n] = delta;
+    c.mass[n] = meff;
+    c.rad[n] = reff;
+    c.ra[n] = ra;
+    c.rb[n] = rb;
+    const double vn = dvx * nx + dvy * ny + dvz * nz;
+    c.rate[n] = -vn;
+    double *cn = c.norm + 3 * n;
+    cn[0] = nx;
+    cn[1] = ny;
+    cn[2] = nz;
+    // the tangential velocity of a's contact point relative to b's, as LAMMPS's granular model
+    // computes it: (dv - (dv.n) n) - (ra wa + rb wb) x n
+    double wx = ra * wa[0], wy = ra * wa[1], wz = ra * wa[2];
+    if (wb) {
+        wx += rb * wb[0];
+        wy += rb * wb[1];
+        wz += rb * wb[2];
+    }
+    double *cv = c.vel + 3 * n;
+    cv[0] = (dvx - vn * nx) - (wy * nz - wz * ny);
+    cv[1] = (dvy - vn * ny) - (wz * nx - wx * nz);
+    cv[2] = (dvz - vn * nz) - (wx * ny - wy * nx);
+    if (fl.rolling || fl.twisting) {
+        // the relative spin wa - wb: rolling velocity reff (wa - wb) x n, twisting rate
+        // (wa - wb).n (LAMMPS pair granular's definitions)
+        double rx = wa[0], ry = wa[1], rz = wa[2];
+        if (wb) {
+            rx -= wb[0];
+            ry -= wb[1];
+            rz -= wb[2];
+        }
+        if (fl.rolling) {
+            double *vr = c.vroll + 3 * n;
+            vr[0] = reff * (ry * nz - rz * ny);
+            vr[1] = reff * (rz * nx - rx * nz);
+            vr[2] = reff * (rx * ny - ry * nx);
+        }
+        if (fl.twisting) c.twist[n] = rx * nx + ry * ny + rz * nz;
+    }
+}
+
+
+}    // namespace dashpot_lmp
+
+#endif
