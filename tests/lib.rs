@@ -150,6 +150,13 @@ pub const SDK03_PLUGINS: [&str; 6] = [
     "dashpot_twisting_marshall",
 ];
 
+/// The heat laws of sdk 0.4, by library name.
+pub const HEAT_PLUGINS: [&str; 3] = [
+    "dashpot_heat_radius",
+    "dashpot_heat_area",
+    "dashpot_heat_radius_corrected",
+];
+
 /// A registry of exactly the plugin libraries `files`, nothing else.
 pub fn registry_of(files: Vec<PathBuf>) -> Registry {
     let sp = SearchPath {
@@ -186,6 +193,11 @@ pub fn registry_with_context_fixture() -> Registry {
         &SDK03_PLUGINS,
         &["dashpot_fixture_context"],
     ])
+}
+
+/// A registry of every plugin of the workspace, the heat laws of sdk 0.4 included.
+pub fn registry_04() -> Registry {
+    registry_of_groups(&[&SEED_PLUGINS, &SDK02_PLUGINS, &SDK03_PLUGINS, &HEAT_PLUGINS])
 }
 
 /// A registry of the seed laws and those of sdk 0.2.

@@ -151,7 +151,34 @@ module dashpot
       integer(c_int), intent(out) :: energy_written
       integer(c_int) :: context_batch_i
     end function
+
+    ! dashpot_heat_model_heat_batch (sdk 0.4): temperature(2, n) = [T_i, T_j] (K); normal_force,
+    ! delta, radius (n); context(3, n) or c_null_ptr; out_heat(n) the heat flow into i (W; give
+    ! -out_heat to j), out_conductance(n) (W/K) or c_null_ptr
+    function heat_batch_i(model, n, dt, temperature, normal_force, delta, radius, context, history, &
+      n_history, out_heat, out_conductance) bind(c)
+      import :: c_ptr, c_double, c_size_t, c_int
+      type(c_ptr), value :: model
+      integer(c_size_t), value :: n, n_history
+      real(c_double), value :: dt
+      real(c_double), intent(in) :: temperature(*), normal_force(*), delta(*), radius(*)
+      type(c_ptr), value :: context
+      real(c_double), intent(inout) :: history(*)
+      real(c_double), intent(out) :: out_heat(*)
+      type(c_ptr), value :: out_conductance
+      integer(c_int) :: heat_batch_i
+    end function
   end interface
+
+  procedure(heat_batch_i), bind(c, name='dashpot_heat_model_heat_batch') :: dashpot_heat_model_heat_batch
+  procedure(law_new_i), bind(c, name='dashpot_heat_new') :: dashpot_heat_new
+  procedure(handle_free_i), bind(c, name='dashpot_heat_free') :: dashpot_heat_free
+  procedure(handle_free_i), bind(c, name='dashpot_heat_model_free') :: dashpot_heat_model_free
+  procedure(bind_materials_i), bind(c, name='dashpot_heat_bind_materials') :: dashpot_heat_bind_materials
+  procedure(history_slots_i), bind(c, name='dashpot_heat_model_history_slots') :: &
+    dashpot_heat_model_history_slots
+  procedure(reads_context_i), bind(c, name='dashpot_heat_model_reads_context') :: &
+    dashpot_heat_model_reads_context
 
   procedure(law_new_i), bind(c, name='dashpot_contact_new') :: dashpot_contact_new
   procedure(law_new_i), bind(c, name='dashpot_tangential_new') :: dashpot_tangential_new

@@ -121,14 +121,21 @@ void ModelTable::probe(SpecLaws &l, const std::string &context)
     l.slots[TWISTING] = slots_of<DashpotTwistingLaw, DashpotTwistingModel>(
         l.twisting, m, dashpot_twisting_bind_materials, dashpot_twisting_model_history_slots,
         dashpot_twisting_model_free, context + ": twisting law '" + l.spec.law[TWISTING].name + "'");
-    // adhesive: a positive reach at a touch of a unit-radius contact (any units: only the sign
-    // is read)
+    // adhesive: a positive reach once a unit-radius contact has formed (any units: only the
+    // sign is read). Probed at touching and at two overlaps: a law may count a contact as formed
+    // only past touching (LAMMPS's JKR forms at delta > 0, dashpot's jkr at delta >= 0).
     DashpotContactModel *cm = nullptr;
     check_status(dashpot_contact_bind_materials(l.normal, &m, &cm), context + ": binding the normal law");
-    std::vector<double> h(l.slots[NORMAL] > 0 ? l.slots[NORMAL] : 1, 0.0);
-    double delta = 0.0, rate = 0.0, mass = 1.0, radius = 1.0, f = 0.0, reach = 0.0;
-    int st = dashpot_contact_model_force_batch_energy(cm, 1, &delta, &rate, &mass, &radius, h.data(), l.slots[NORMAL],
-                                                      &f, &reach, nullptr, nullptr, nullptr);
+    double reach = 0.0;
+    int st = 0;
+    for (double delta : {0.0, 1e-9, 1e-2}) {
+        std::vector<double> h(l.slots[NORMAL] > 0 ? l.slots[NORMAL] : 1, 0.0);
+        double rate = 0.0, mass = 1.0, radius = 1.0, f = 0.0, r = 0.0;
+        st = dashpot_contact_model_force_batch_energy(cm, 1, &delta, &rate, &mass, &radius, h.data(), l.slots[NORMAL],
+                                                      &f, &r, nullptr, nullptr, nullptr);
+        if (st != 0) break;
+        reach = std::max(reach, r);
+    }
     dashpot_contact_model_free(cm);
     check_status(st, context + ": probing the normal law's reach");
     l.adhesive = reach > 0.0;

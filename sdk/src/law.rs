@@ -29,11 +29,14 @@ pub enum LawKind {
     Rolling = 4,
     /// A twisting torque (N·m) about the contact normal, with per-contact history (sdk 0.3).
     Twisting = 5,
+    /// A heat flow (W) through the contact between two temperatures, with per-contact history
+    /// (sdk 0.4).
+    Heat = 6,
 }
 
 impl LawKind {
-    /// `"contact"`, `"restitution"`, `"tangential"`, `"rolling"` or `"twisting"` (its name in
-    /// JSON too).
+    /// `"contact"`, `"restitution"`, `"tangential"`, `"rolling"`, `"twisting"` or `"heat"` (its
+    /// name in JSON too).
     pub const fn as_str(self) -> &'static str {
         match self {
             LawKind::Contact => "contact",
@@ -41,6 +44,7 @@ impl LawKind {
             LawKind::Tangential => "tangential",
             LawKind::Rolling => "rolling",
             LawKind::Twisting => "twisting",
+            LawKind::Heat => "heat",
         }
     }
 }

@@ -13,6 +13,9 @@
 //!   R_eff n̂ × F_r (see [`RollingLaw`] for the conventions);
 //! - a **twisting law** (sdk 0.3): a twisting torque (N·m) about the normal from the twisting
 //!   rate (ω_i − ω_j)·n̂ (rad/s), with its own history ([`TwistingLaw`]);
+//! - a **heat law** (sdk 0.4): the heat flow Q (W) into the particle through the contact, and
+//!   its conductance H (W/K), from the two temperatures (K) and the normal law's contact radius
+//!   ([`HeatLaw`]; Q_ji = −Q_ij exactly, the host integrates the temperatures);
 //! - a **restitution law**: the coefficient of restitution r(v) at normal impact speed v (m/s).
 //!
 //! sdk 0.4 couples the kinds of one contact: a contact law reports, per contact, a
@@ -41,7 +44,7 @@
 //! materials, not per pair of sizes.
 //!
 //! A plugin is a `cdylib` crate that implements [`ContactLaw`], [`TangentialLaw`],
-//! [`RollingLaw`], [`TwistingLaw`] or [`RestitutionLaw`] and calls [`export_laws!`] once; it
+//! [`RollingLaw`], [`TwistingLaw`], [`HeatLaw`] or [`RestitutionLaw`] and calls [`export_laws!`] once; it
 //! sees plain Rust types only (`String`, `Vec`, `Option`). The [`abi`] module defines the stable
 //! binary interface (abi_stable, one generic shape per law kind, and the stable mirrors of the
 //! plain types) and the host-side loader with its checks; a host of sdk 0.4 still loads plugins
@@ -79,6 +82,7 @@ pub mod abi;
 mod context;
 mod energy;
 mod error;
+mod heat;
 mod law;
 mod lengths;
 mod motion;
@@ -91,6 +95,7 @@ pub mod simd;
 
 pub use context::NormalContext;
 pub use error::{ErrorKind, LawError};
+pub use heat::{BoundHeat, HeatBatch, HeatContact, HeatFlow, HeatLaw};
 pub use law::{
     BoundContact, BoundRestitution, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion,
     Energy, EnergyBatch, History, HistorySlot, LawInfo, LawKind, NormalBatch, RestitutionLaw,

@@ -127,6 +127,10 @@ typedef enum DashpotLawKind {
    A twisting torque about the contact normal with per-contact history (sdk 0.3).
    */
   DASHPOT_TWISTING = 5,
+  /*
+   A heat flow (W) through the contact between two temperatures (sdk 0.4).
+   */
+  DASHPOT_HEAT = 6,
 } DashpotLawKind;
 
 /*
@@ -166,6 +170,16 @@ typedef struct DashpotContactLaw DashpotContactLaw;
  A contact law bound to a pair of materials (opaque): the hot path of a polydisperse DEM code.
  */
 typedef struct DashpotContactModel DashpotContactModel;
+
+/*
+ A configured heat-conduction law (opaque; sdk 0.4).
+ */
+typedef struct DashpotHeatLaw DashpotHeatLaw;
+
+/*
+ A heat-conduction law bound to a pair of materials (opaque; sdk 0.4).
+ */
+typedef struct DashpotHeatModel DashpotHeatModel;
 
 /*
  Loaded plugins and their laws (opaque).
@@ -458,6 +472,31 @@ const char *dashpot_last_error(void);
  thread-safe.
  */
 const char *dashpot_status_name(int status);
+
+/*
+ The heat flow through each of `n` contacts: `out_heat[i]` (W) into particle i, and
+ `out_conductance[i]` (W/K) if `out_conductance` is not null. `temperature` holds `2 n`
+ values `[T_i, T_j]` (K); `normal_force` (N), `delta` (m) and `radius` (m) `n` each;
+ `context` `3 n` values or null (the defaults); `history` `n_history = n × slots` values,
+ updated in place. A non-finite temperature, force or overlap, a radius ≤ 0 or a bad context
+ gives `DASHPOT_ERR_NON_FINITE` naming the contact, before the law runs.
+
+ # Safety
+ Non-null arrays must hold the lengths stated; outputs must not overlap each other or the
+ inputs.
+ */
+enum DashpotStatus dashpot_heat_model_heat_batch(const struct DashpotHeatModel *model,
+                                                 size_t n,
+                                                 double dt,
+                                                 const double *temperature,
+                                                 const double *normal_force,
+                                                 const double *delta,
+                                                 const double *radius,
+                                                 const double *context,
+                                                 double *history,
+                                                 size_t n_history,
+                                                 double *out_heat,
+                                                 double *out_conductance);
 
 /*
  The materials of two spheres of Young's moduli `young1`, `young2` (Pa) and Poisson's ratios

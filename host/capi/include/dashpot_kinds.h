@@ -162,11 +162,13 @@ DASHPOT_LAW_FUNCTIONS(tangential, DashpotTangentialLaw)
 DASHPOT_LAW_FUNCTIONS(restitution, DashpotRestitutionLaw)
 DASHPOT_LAW_FUNCTIONS(rolling, DashpotRollingLaw)
 DASHPOT_LAW_FUNCTIONS(twisting, DashpotTwistingLaw)
+DASHPOT_LAW_FUNCTIONS(heat, DashpotHeatLaw)
 
 DASHPOT_MODEL_FUNCTIONS(contact, DashpotContactLaw, DashpotContactModel)
 DASHPOT_MODEL_FUNCTIONS(tangential, DashpotTangentialLaw, DashpotTangentialModel)
 DASHPOT_MODEL_FUNCTIONS(rolling, DashpotRollingLaw, DashpotRollingModel)
 DASHPOT_MODEL_FUNCTIONS(twisting, DashpotTwistingLaw, DashpotTwistingModel)
+DASHPOT_MODEL_FUNCTIONS(heat, DashpotHeatLaw, DashpotHeatModel)
 
 DASHPOT_PAIR_FUNCTIONS(contact, DashpotContactLaw, DashpotBoundContact)
 DASHPOT_PAIR_FUNCTIONS(restitution, DashpotRestitutionLaw, DashpotBoundRestitution)

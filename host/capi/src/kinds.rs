@@ -5,7 +5,7 @@
 use crate::error::{CError, DashpotStatus::*};
 use crate::handle::{law_functions, model_functions, pair_functions, BindMaterials, BindPair, Model, NewLaw};
 use dashpot_sdk::abi::{
-    BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LawHandle, ModelHandle,
+    BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, Heat, LawHandle, ModelHandle,
     RestitutionLawHandle, Rolling, TangentialLawHandle, TangentialModelHandle, Twisting,
 };
 use dashpot_sdk::{MaterialPair, Pair, ParamValue};
@@ -57,6 +57,16 @@ pub struct DashpotTwistingModel {
     pub(crate) model: ModelHandle<Twisting>,
 }
 
+/// A configured heat-conduction law (opaque; sdk 0.4).
+pub struct DashpotHeatLaw {
+    pub(crate) law: LawHandle<Heat>,
+}
+
+/// A heat-conduction law bound to a pair of materials (opaque; sdk 0.4).
+pub struct DashpotHeatModel {
+    pub(crate) model: ModelHandle<Heat>,
+}
+
 /// A configured restitution law r(v) (opaque).
 pub struct DashpotRestitutionLaw {
     pub(crate) law: RestitutionLawHandle,
@@ -102,6 +112,7 @@ material_kind! {
     DashpotTangentialLaw = tangential => DashpotTangentialModel;
     DashpotRollingLaw = rolling => DashpotRollingModel;
     DashpotTwistingLaw = twisting => DashpotTwistingModel;
+    DashpotHeatLaw = heat => DashpotHeatModel;
 }
 
 impl NewLaw for DashpotRestitutionLaw {
@@ -153,6 +164,7 @@ law_functions! {
     DashpotRestitutionLaw: dashpot_restitution_new, dashpot_restitution_free;
     DashpotRollingLaw: dashpot_rolling_new, dashpot_rolling_free;
     DashpotTwistingLaw: dashpot_twisting_new, dashpot_twisting_free;
+    DashpotHeatLaw: dashpot_heat_new, dashpot_heat_free;
 }
 
 model_functions! {
@@ -168,6 +180,9 @@ model_functions! {
     DashpotTwistingLaw => DashpotTwistingModel:
         dashpot_twisting_bind_materials, dashpot_twisting_model_free, dashpot_twisting_model_history_slots,
         dashpot_twisting_model_reads_context;
+    DashpotHeatLaw => DashpotHeatModel:
+        dashpot_heat_bind_materials, dashpot_heat_model_free, dashpot_heat_model_history_slots,
+        dashpot_heat_model_reads_context;
 }
 
 pair_functions! {

@@ -17,7 +17,7 @@
 //! - Handles are opaque. Each `*_new`/`*_open`/`*_bind` has a matching `*_free`, which accepts
 //!   null. Handles are independent: a law or a bound law may outlive the registry that made it
 //!   (plugin libraries are never unloaded).
-//! - Every kind of law (contact, tangential, restitution, rolling, twisting) has the same
+//! - Every kind of law (contact, tangential, restitution, rolling, twisting, heat) has the same
 //!   `new`/`free`/binding functions, generated from one shape per step (`handle.rs`, listed per
 //!   kind in `kinds.rs`) and declared in the header by the `DASHPOT_LAW_FUNCTIONS`,
 //!   `DASHPOT_MODEL_FUNCTIONS` and `DASHPOT_PAIR_FUNCTIONS` macros. The batch calls of the
@@ -41,6 +41,7 @@ pub mod contact_model;
 pub mod energy;
 pub mod error;
 mod handle;
+pub mod heat;
 pub mod kinds;
 pub mod materials;
 pub mod pair;
@@ -53,6 +54,7 @@ pub use contact::*;
 pub use contact_model::*;
 pub use energy::*;
 pub use error::*;
+pub use heat::*;
 pub use kinds::*;
 pub use materials::*;
 pub use pair::*;
@@ -72,4 +74,5 @@ const _: () = {
     shareable::<DashpotTangentialModel>();
     shareable::<DashpotRestitutionLaw>();
     shareable::<DashpotBoundRestitution>();
+    shareable::<DashpotHeatModel>();
 };

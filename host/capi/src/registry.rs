@@ -21,6 +21,8 @@ pub enum DashpotLawKind {
     DASHPOT_ROLLING = 4,
     /// A twisting torque about the contact normal with per-contact history (sdk 0.3).
     DASHPOT_TWISTING = 5,
+    /// A heat flow (W) through the contact between two temperatures (sdk 0.4).
+    DASHPOT_HEAT = 6,
 }
 
 /// When a two-body contact is over (realized restitution depends on it).
@@ -162,6 +164,7 @@ impl DashpotRegistry {
                 LawKind::Tangential => DashpotLawKind::DASHPOT_TANGENTIAL,
                 LawKind::Rolling => DashpotLawKind::DASHPOT_ROLLING,
                 LawKind::Twisting => DashpotLawKind::DASHPOT_TWISTING,
+                LawKind::Heat => DashpotLawKind::DASHPOT_HEAT,
             },
             summary: s.summary.as_ptr(),
             doc: s.doc.as_ptr(),

@@ -1,7 +1,8 @@
 //! The law-facing traits every driver uses: the only module that names ABI handles.
 //!
 //! A driver is generic over [`NormalLaw`] (and [`TangentialForce`], [`RollingResistance`],
-//! [`TwistingResistance`] where it has friction and rotation), so the same driver code runs a
+//! [`TwistingResistance`] where it has friction and rotation, [`HeatConduction`] where it
+//! conducts heat), so the same driver code runs a
 //! plugin's handle or a law compiled into the program (benchmark baselines, tests) through the
 //! very same checked trampoline. Each of these traits is the sdk's [`BoundModel`] of its kind
 //! with the kind's own calls.
@@ -13,10 +14,10 @@ pub use dashpot_sdk::abi::BoundModel;
 use dashpot_sdk::abi::StaticModel;
 /// The law kinds, as the sdk's generic handles name them, and the energy outputs of a batch
 /// call.
-pub use dashpot_sdk::abi::{EnergyOut, Normal, NormalCall, Rolling, Tangential, Twisting};
+pub use dashpot_sdk::abi::{EnergyOut, Heat, Normal, NormalCall, Rolling, Tangential, Twisting};
 use dashpot_sdk::{
-    BoundRestitution, Contact, ContactLaw, LawError, MaterialPair, NormalBatch, NormalContext, RollingBatch,
-    RollingLaw, TangentialBatch, TangentialLaw, TwistingBatch,
+    BoundRestitution, Contact, ContactLaw, HeatBatch, HeatLaw, LawError, MaterialPair, NormalBatch,
+    NormalContext, RollingBatch, RollingLaw, TangentialBatch, TangentialLaw, TwistingBatch,
 };
 
 pub use dashpot_sdk::abi::SdkSeries;
@@ -137,6 +138,19 @@ pub trait TwistingResistance: BoundModel<Twisting> {
 
 impl<M: BoundModel<Twisting> + ?Sized> TwistingResistance for M {}
 
+/// A heat-conduction law bound to a pair of materials (sdk 0.4).
+pub trait HeatConduction: BoundModel<Heat> {
+    /// Evaluates every contact of `b`: each contact's heat flow into particle i (W) and
+    /// conductance (W/K) into `b.flow`, history advanced by `b.dt`. The caller adds the heat to
+    /// i and its negative to j (Q_ji = −Q_ij exactly).
+    #[inline]
+    fn heat_batch(&self, b: HeatBatch<'_>) -> Result<(), LawError> {
+        self.batch(b, EnergyOut::none()).map(|_| ())
+    }
+}
+
+impl<M: BoundModel<Heat> + ?Sized> HeatConduction for M {}
+
 /// A contact law compiled into the program, bound to `materials` (benchmark baselines and
 /// tests), called through the very trampoline a plugin exports.
 pub fn compiled<L: ContactLaw>(
@@ -159,6 +173,14 @@ pub fn compiled_rolling<L: RollingLaw>(
     law: &L,
     materials: &MaterialPair,
 ) -> Result<StaticModel<Rolling, L::Bound>, LawError> {
+    StaticModel::bind(law, materials)
+}
+
+/// A heat-conduction law compiled into the program, bound to `materials`.
+pub fn compiled_heat<L: HeatLaw>(
+    law: &L,
+    materials: &MaterialPair,
+) -> Result<StaticModel<Heat, L::Bound>, LawError> {
     StaticModel::bind(law, materials)
 }
 

@@ -1,7 +1,8 @@
 //! Finding plugin libraries and selecting laws by name.
 
 use crate::laws::{
-    ContactLawHandle, LawHandle, LoadedPlugin, RestitutionLawHandle, Rolling, TangentialLawHandle, Twisting,
+    ContactLawHandle, Heat, LawHandle, LoadedPlugin, RestitutionLawHandle, Rolling, TangentialLawHandle,
+    Twisting,
 };
 use dashpot_sdk::{CalibrationTarget, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
 use std::collections::HashSet;
@@ -350,6 +351,11 @@ impl Registry {
     /// Creates twisting law `name` from `params`.
     pub fn twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
         self.create(name, params, LawKind::Twisting, LoadedPlugin::new_twisting)
+    }
+
+    /// Creates heat law `name` from `params` (sdk 0.4).
+    pub fn heat(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Heat>, LawError> {
+        self.create(name, params, LawKind::Heat, LoadedPlugin::new_heat)
     }
 
     /// Creates restitution law `name` from `params`.

@@ -5,6 +5,7 @@
 //! caller's `out`.
 
 use super::*;
+use crate::heat::BoundHeat;
 use crate::rotation::{BoundRolling, BoundTangential, BoundTwisting};
 use dashpot::laws::{EnergyOut, NormalLaw};
 use dashpot_sdk::{Contact, NormalBatch, NormalContext};
@@ -389,6 +390,7 @@ binder!(bind_contact, BoundContact, contact);
 binder!(bind_tangential, BoundTangential, tangential);
 binder!(bind_rolling, BoundRolling, rolling);
 binder!(bind_twisting, BoundTwisting, twisting);
+binder!(bind_heat, BoundHeat, heat);
 
 /// r(v) of restitution law `name` with `params`, bound to a particle (diameter m, density
 /// kg/m³, Young's modulus Pa, Poisson's ratio) against an identical one or a wall, at the
@@ -422,10 +424,12 @@ pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<BoundTangential>()?;
     m.add_class::<BoundRolling>()?;
     m.add_class::<BoundTwisting>()?;
+    m.add_class::<BoundHeat>()?;
     m.add_function(wrap_pyfunction!(bind_contact, m)?)?;
     m.add_function(wrap_pyfunction!(bind_tangential, m)?)?;
     m.add_function(wrap_pyfunction!(bind_rolling, m)?)?;
     m.add_function(wrap_pyfunction!(bind_twisting, m)?)?;
+    m.add_function(wrap_pyfunction!(bind_heat, m)?)?;
     m.add_function(wrap_pyfunction!(restitution, m)?)?;
     Ok(())
 }

@@ -4,7 +4,8 @@
 //! sweeps, beds and DEM scenes of the host crate without the GIL, stops a long run on Ctrl-C,
 //! and turns every refusal into a Python exception naming the value.
 //!
-//! - [`forces`] — contact, tangential, rolling and twisting laws on numpy arrays;
+//! - [`forces`] — contact, tangential, rolling and twisting laws on numpy arrays; [`heat`] —
+//!   heat laws (sdk 0.4);
 //! - [`runs`] — `collide` and `sweep` (the two-body driver);
 //! - [`fit`] — `calibrate`;
 //! - [`bed`] — the vibrated bed, as `dashpot bed --json`;
@@ -24,6 +25,7 @@ use std::sync::{OnceLock, RwLock, RwLockReadGuard, TryLockError};
 mod bed;
 mod fit;
 mod forces;
+mod heat;
 mod interrupt;
 mod rotation;
 mod runs;

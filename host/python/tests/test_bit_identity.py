@@ -30,7 +30,7 @@ CONTACT_LAWS += [(f"gran-{n}-{d}", {**p, "damp": v}) for n, p in GRAN_NORMAL.ite
 
 def test_every_shipped_contact_law_is_tested_here():
     shipped = {l["name"] for l in dashpot.laws()
-               if l["kind"] == "contact" and l["plugin"]["name"] != "dashpot-fixture-faulty"}
+               if l["kind"] == "contact" and not l["plugin"]["name"].startswith("dashpot-fixture-")}
     assert shipped == {n for n, _ in CONTACT_LAWS}
 
 

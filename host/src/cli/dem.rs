@@ -1,5 +1,10 @@
-//! `dashpot dem --scene FILE.toml [--json] [--out DIR]`: a soft-sphere DEM run of a scene.
+//! `dashpot dem --scene FILE.toml [--json] [--out DIR]`: a soft-sphere DEM run of a scene;
+//! `--checkpoint-every` and `--restart FILE` (see [`super::dem_checkpoint`]).
 
+use super::dem_checkpoint::{
+    default_path, parse_scene, trajectory_frames, Checkpoints, Every, Interrupted, Resume,
+};
+use crate::dem::checkpoint::Checkpoint;
 use crate::dem::scene::SceneFile;
 use crate::dem::Engine;
 use crate::registry::Registry;
@@ -11,7 +16,7 @@ use std::path::PathBuf;
 #[derive(Args, Debug)]
 pub struct DemArgs {
     /// The scene (TOML; see `examples/dem/` and the `dem::scene` docs).
-    #[arg(long, required_unless_present = "bed", conflicts_with = "bed")]
+    #[arg(long, required_unless_present_any = ["bed", "restart"], conflicts_with = "bed")]
     pub scene: Option<PathBuf>,
     /// McNamara & Falcon's vibrated bed on the DEM engine instead of a scene.
     #[command(flatten)]
@@ -35,6 +40,21 @@ pub struct DemArgs {
     /// The limits of a long run (`--max-hours`).
     #[command(flatten)]
     pub limits: crate::cli::budget::LimitArgs,
+    /// Write a checkpoint (the whole state, to resume with --restart) every STEPS steps (e.g.
+    /// 5000) or every so much wall-clock time (90s, 10min, 2h). Ctrl-C (or SIGTERM) writes one
+    /// in any case: the step under way ends, the checkpoint is written, and the run stops
+    /// (exit status 130) saying where it is.
+    #[arg(long, value_name = "STEPS|TIME", allow_hyphen_values = true, conflicts_with_all = ["bed", "check"])]
+    pub checkpoint_every: Option<Every>,
+    /// The checkpoint file, replaced at each checkpoint (default: the --restart file, else
+    /// DIR/checkpoint.dpck with --out DIR, else SCENE.dpck in the current directory).
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["bed", "check"])]
+    pub checkpoint: Option<PathBuf>,
+    /// Resume the run a checkpoint was written by: it ends bit for bit as the run would have
+    /// without the stop. The checkpoint holds its scene (--scene, if given, must be the same);
+    /// its laws are loaded again and must be the same plugins' versions.
+    #[arg(long, value_name = "CHECKPOINT", conflicts_with_all = ["bed", "check"])]
+    pub restart: Option<PathBuf>,
 }
 
 /// `dashpot dem --bed ...`: the vibrated bed of McNamara & Falcon with contact laws (the same
@@ -81,8 +101,14 @@ pub struct DemBedArgs {
 
 /// Runs `dashpot dem`.
 pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
-    let started = std::time::Instant::now();
     crate::budget::check_max_hours(a.limits.max_hours)?;
+    if let Some(r) = &a.restart {
+        let r = Resume::read(r)?;
+        return match r.header.dimension {
+            2 => resume_dim::<2>(reg, a, r),
+            _ => resume_dim::<3>(reg, a, r),
+        };
+    }
     let Some(path) = &a.scene else {
         if a.check {
             // (clap lets `requires = "scene"` pass when --scene conflicts with a given --bed)
@@ -95,11 +121,35 @@ pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
     };
     let text =
         std::fs::read_to_string(path).with_context(|| format!("reading --scene {}", path.display()))?;
-    let file = SceneFile::parse(&text).with_context(|| format!("in {}", path.display()))?;
+    let file = parse_scene(&text, path)?;
     match file.dimension()? {
-        2 => run_dim::<2>(reg, a, path, &file, started),
-        _ => run_dim::<3>(reg, a, path, &file, started),
+        2 => run_dim::<2>(reg, a, path, &text, &file, None),
+        _ => run_dim::<3>(reg, a, path, &text, &file, None),
     }
+}
+
+/// `dem --restart FILE` of a run in `D` dimensions: the checkpoint's scene (or `--scene`,
+/// which must be the same), run from the checkpoint's state on.
+fn resume_dim<const D: usize>(reg: &Registry, a: &DemArgs, r: Resume) -> Result<()> {
+    let given = match &a.scene {
+        Some(p) => Some((
+            std::fs::read_to_string(p).with_context(|| format!("reading --scene {}", p.display()))?,
+            p.clone(),
+        )),
+        None => None,
+    };
+    let ck = r.decode::<D>(given.as_ref().map(|(t, p)| (t.as_str(), p.as_path())))?;
+    let path = given.map_or_else(|| r.path.clone(), |(_, p)| p);
+    let text = ck.scene.clone();
+    let file = parse_scene(&text, &path)?;
+    if file.dimension()? != D {
+        anyhow::bail!(
+            "{}: its header says {D} dimensions, its scene {}: it cannot be resumed from",
+            r.path.display(),
+            file.dimension()?
+        );
+    }
+    run_dim::<D>(reg, a, &path, &text, &file, Some((r, ck)))
 }
 
 /// `dem --bed` is `bed --engine dem` with the same values: the same experiment, checked and run
@@ -146,13 +196,16 @@ fn run_dim<const D: usize>(
     reg: &Registry,
     a: &DemArgs,
     path: &std::path::Path,
+    text: &str,
     file: &SceneFile,
-    started: std::time::Instant,
+    resume: Option<(Resume, Checkpoint<D>)>,
 ) -> Result<()> {
     let scene = file
         .scene::<D>()
         .with_context(|| format!("in {}", path.display()))?;
-    let (mut e, energy_initial, fp) = scene_engine_sized(reg, file, &scene)?;
+    // (the setup --check times: the scene's particles, the engine)
+    let started = std::time::Instant::now();
+    let (mut e, mut energy_initial, fp) = scene_engine_sized(reg, file, &scene)?;
     let c = e.step_choice;
     let line = if c.given {
         format!(
@@ -201,9 +254,37 @@ fn run_dim<const D: usize>(
     if let Some(w) = c.warning() {
         eprintln!("warning: {w}");
     }
-    // (total_steps is an estimate: the run steps while t + dt/2 < duration, one step fewer
-    // whenever the fraction of duration / dt is below 1/2; the last frame is written at the end
-    // regardless)
+    let ck_path = a
+        .checkpoint
+        .clone()
+        .unwrap_or_else(|| default_path(a.restart.as_deref(), a.out.as_deref(), a.scene.as_deref()));
+    let mut cks = Checkpoints::new(reg, &scene.plan, D as u32, text, ck_path, a.checkpoint_every)?;
+    // trajectory frames the checkpoint's run had written
+    let mut resumed_frames = None;
+    if let Some((r, ck)) = resume {
+        energy_initial = ck.energy_initial;
+        resumed_frames = Some(ck.frames);
+        r.restore(ck, cks.hash(), &mut e)?;
+        eprintln!(
+            "resumed from {} at t = {:.6e} s, step {}",
+            r.path.display(),
+            e.time(),
+            e.steps()
+        );
+    }
+    cks.start(energy_initial, e.steps());
+    eprintln!(
+        "checkpoints: {}{} (Ctrl-C writes one and stops)",
+        cks.path.display(),
+        match a.checkpoint_every {
+            Some(Every::Steps(n)) => format!(" every {n} steps"),
+            Some(Every::Wall(d)) => format!(" every {:.0} s of wall-clock time", d.as_secs_f64()),
+            None => String::new(),
+        }
+    );
+    // (an estimate: the run steps while t + dt/2 < duration, one step fewer whenever the
+    // fraction of duration / dt is below 1/2; the last frame is written at the end regardless)
+    let total_steps = (scene.duration / c.dt).ceil() as u64;
     // frame k: the trajectory's frame and with --png its picture
     let frame = |e: &Engine<D>, w: &mut crate::output::AtomicFile, k: u64| -> Result<()> {
         crate::dem::xyz::write_frame(e, w)?;
@@ -217,40 +298,69 @@ fn run_dim<const D: usize>(
         std::fs::create_dir_all(dir).with_context(|| format!("creating --out {}", dir.display()))?;
         let p = dir.join("trajectory.xyz");
         // (it appears at its name when the run has ended well: a failed run leaves none)
-        let mut w = crate::output::AtomicFile::create(&p)?;
-        frame(&e, &mut w, 0)?;
+        let mut w =
+            crate::output::AtomicFile::create(&p).with_context(|| format!("creating {}", p.display()))?;
+        match resumed_frames {
+            None => frame(&e, &mut w, 0)?,
+            Some(k) => {
+                // the frames of the run before the checkpoint, if the trajectory holds them
+                let before = std::fs::read_to_string(&p).ok();
+                match before.filter(|t| trajectory_frames(t, e.p.len()) == k) {
+                    Some(t) => std::io::Write::write_all(&mut w, t.as_bytes())?,
+                    None => eprintln!(
+                        "warning: {} does not hold the {k} frames written before the checkpoint: it is replaced by the frames from t = {:.6e} s on",
+                        p.display(),
+                        e.time()
+                    ),
+                }
+            }
+        }
         traj = Some(w);
     }
-    let pb = crate::progress::Progress::new(total_steps, "dem", "steps", a.json);
+    let frames = if a.out.is_some() {
+        scene.snapshots.max(1)
+    } else {
+        0
+    } as u64;
+    // frames written so far: the start's and those whose steps have passed
+    let frames_done = |steps: u64| {
+        (steps * frames)
+            .checked_div(total_steps)
+            .map_or(0, |k| k.min(frames))
+            + 1
+    };
+    let pb = crate::output::progress_bar(total_steps, "dem");
+    pb.set_message("steps");
     let wall0 = std::time::Instant::now();
     // blocks of steps of about progress::TICK each (the bar moves, Ctrl-C is seen, the pace is
-    // judged against --max-hours), cut at the frames; a run's bits do not depend on its blocks
+    // judged against --max-hours), cut at the frames and checkpoints; a run's bits do not
+    // depend on its blocks
     let pace = std::cell::RefCell::new(crate::progress::Pace::new());
     let mut limit = crate::cli::budget::PaceLimit::new(a.limits.max_hours);
-    crate::progress::stop::install();
-    let last_stop = std::cell::Cell::new(0u64);
-    let next_frame = std::cell::Cell::new(1u64);
+    let last_stop = std::cell::Cell::new(e.steps());
+    let first_step = e.steps();
+    let next_frame = std::cell::Cell::new(frames_done(e.steps()));
     let framing = traj.is_some() && frames > 0;
-    e.run_with_stops(
+    let cks = std::cell::RefCell::new(cks);
+    let ran = e.run_with_stops(
         scene.duration,
         &mut |s| {
             let next_tick = s.saturating_add(pace.borrow().block());
+            let next = next_tick.min(cks.borrow().next_stop(s));
             if framing {
-                next_tick.min((next_frame.get() * total_steps).div_ceil(frames))
+                next.min((next_frame.get() * total_steps).div_ceil(frames))
             } else {
-                next_tick
+                next
             }
         },
         &mut |e| -> Result<()> {
             pace.borrow_mut().done(e.steps() - last_stop.replace(e.steps()));
-            pb.set(e.steps());
-            if crate::progress::stop::requested() {
-                return Err(crate::progress::Interrupted {
-                    at: format!("at step {} of {total_steps}, t = {:.6e} s", e.steps(), e.time()),
-                }
-                .into());
-            }
-            limit.check(e.steps(), total_steps, wall0.elapsed().as_secs_f64())?;
+            pb.set_position(e.steps());
+            limit.check(
+                e.steps() - first_step,
+                total_steps.saturating_sub(first_step),
+                wall0.elapsed().as_secs_f64(),
+            )?;
             if let Some(w) = traj.as_mut() {
                 let k = next_frame.get();
                 if frames > 0 && e.steps() * frames >= k * total_steps {
@@ -258,10 +368,36 @@ fn run_dim<const D: usize>(
                     next_frame.set(k + 1);
                 }
             }
+            let mut ck = cks.borrow_mut();
+            if ck.interrupted() {
+                ck.write(e, next_frame.get())?;
+                return Err(Interrupted(format!(
+                    "interrupted at t = {:.6e} s, step {}: the checkpoint {} holds the run; resume it with `dashpot dem --restart {}`",
+                    e.time(),
+                    e.steps(),
+                    ck.path.display(),
+                    ck.path.display()
+                ))
+                .into());
+            }
+            if ck.due(e.steps()) {
+                ck.write(e, next_frame.get())?;
+            }
             Ok(())
         },
-    )
-    .with_context(|| format!("at t = {:.6e} s, step {}", e.time(), e.steps()))?;
+    );
+    if let Err(err) = ran {
+        if err.is::<Interrupted>() {
+            pb.finish_and_clear();
+            // the frames up to the checkpoint, which the resumed run goes on from
+            if let Some(w) = traj {
+                w.commit().context("writing the trajectory")?;
+            }
+            return Err(err);
+        }
+        return Err(err.context(format!("at t = {:.6e} s, step {}", e.time(), e.steps())));
+    }
+    let cks = cks.into_inner();
     // the last frame, if the run ended short of the step it was placed at
     if let (Some(w), true) = (traj.as_mut(), framing && next_frame.get() <= frames) {
         frame(&e, w, next_frame.get())?;
@@ -309,6 +445,13 @@ fn run_dim<const D: usize>(
             e.wall_contacts.len(),
             e.rebuilds()
         );
+        if cks.written > 0 {
+            println!(
+                "checkpoints written: {} (the last to {})",
+                cks.written,
+                cks.path.display()
+            );
+        }
         if let Some(dir) = &a.out {
             println!(
                 "wrote {} and {}",

@@ -5,6 +5,7 @@ pub mod bed;
 pub mod budget;
 pub mod collide;
 pub mod dem;
+pub mod dem_checkpoint;
 pub mod grid;
 pub mod roll;
 pub mod sweep;
@@ -144,7 +145,10 @@ pub fn run() -> std::process::ExitCode {
         Ok(Err(e)) => {
             let _ = writeln!(std::io::stderr(), "error: {e:#}");
             let usage = e.chain().any(|c| c.is::<UsageError>());
-            let stopped = e.chain().any(|c| c.is::<crate::progress::Interrupted>());
+            // (130: stopped by Ctrl-C, as a shell reports SIGINT; a DEM run writes a checkpoint)
+            let stopped = e
+                .chain()
+                .any(|c| c.is::<crate::progress::Interrupted>() || c.is::<dem_checkpoint::Interrupted>());
             ExitCode::from(if usage {
                 2
             } else if stopped {
@@ -370,6 +374,13 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
                 "'{name}' is a {} law: it acts together with a contact law on a contact's \
                  rotation; `dashpot eval` evaluates contact and restitution laws only",
                 entry.info.kind.as_str()
+            );
+        }
+        LawKind::Heat => {
+            bail!(
+                "'{name}' is a heat law: it conducts heat through a contact whose radius a contact law \
+                 reports; `dashpot eval` evaluates contact and restitution laws only (`dashpot law {name}` \
+                 describes it)"
             );
         }
         LawKind::Restitution => {

@@ -119,7 +119,7 @@ fn round_far(q: f64) -> f64 {
 }
 
 /// The neighbour list (see the module doc).
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct Neighbours<const D: usize> {
     /// Row starts, `n + 1` entries.
     pub start: Vec<u32>,

@@ -27,6 +27,7 @@ mod edges;
 mod gather;
 mod renumber;
 mod rotation;
+mod saved;
 
 pub use classes::{gather_pair_classes, gather_wall_classes};
 use edges::{step_edge_means, Edges};
@@ -78,7 +79,7 @@ pub struct ClassMap<'a> {
 
 /// One chunk of one kind of contacts (particle pairs, or particles against walls), structure
 /// of arrays.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, serde::Serialize, serde::Deserialize)]
 pub struct ContactSet {
     /// First partner: a particle.
     pub i: Vec<u32>,
@@ -136,6 +137,7 @@ pub struct ContactSet {
     pub mtwist: Vec<f64>,
     /// The normal law's contexts (sdk 0.4), one per contact while a tangential, rolling or
     /// twisting law of the run reads them (see [`ContactSet::evaluate`]); empty otherwise.
+    #[serde(skip)]
     pub context: Vec<NormalContext>,
     /// Whether the laws are asked for their energy outputs.
     pub energy: bool,
@@ -158,13 +160,17 @@ pub struct ContactSet {
     /// Contacts of this set that were not in the previous one (first touches this step).
     pub formed: usize,
     /// Scratch of the gathering: the candidate pairs (or particles, `j` unused, for walls).
+    #[serde(skip)]
     cand: Vec<(u32, u32)>,
     /// Scratch of a gathering into several classes' sets: every class's candidates, before
     /// they are sorted into their sets (kept by the chunk's first set).
+    #[serde(skip)]
     split: Vec<(u32, u32)>,
     /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
+    #[serde(skip)]
     scratch: Vec<f64>,
     /// Scratch of the merge: each contact's index in the previous set.
+    #[serde(skip)]
     src: Vec<u32>,
 }
 

@@ -39,11 +39,13 @@ mod forces;
 mod kernels;
 mod order;
 mod pipeline;
+mod snapshot;
 
 pub use config::*;
 use config::{collision_time, impact_speed, reach_bound};
 use kernels::*;
 pub use order::SORT_PERIOD;
+pub use snapshot::EngineState;
 
 /// A soft-sphere DEM run.
 pub struct Engine<const D: usize> {

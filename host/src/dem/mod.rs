@@ -10,7 +10,8 @@
 //! - [`state`]: the particles (structure of arrays), the 2D mass convention ([`DiskMass`]);
 //! - [`cells`]: the domain (periodic axes) and the neighbour list (cells + skin);
 //! - [`contacts`]: contacts gathered into arrays, history carried over by key;
-//! - [`walls`]: flat walls and their motion;
+//! - [`walls`]: walls and their motion;
+//! - [`checkpoint`]: checkpoint files (the whole state, to resume a run bit for bit);
 //! - [`integrator`]: the engine and its step (velocity Verlet with a predicted velocity for the
 //!   rate-dependent forces), the choice of the time step;
 //! - [`observables`]: energies, contacts, wall impulses;
@@ -18,6 +19,7 @@
 //! - [`bed`]: McNamara & Falcon's vibrated bed on this engine.
 
 pub mod cells;
+pub mod checkpoint;
 pub mod contacts;
 pub mod footprint;
 pub mod integrator;

@@ -126,7 +126,7 @@ pub struct Wall<const D: usize> {
 }
 
 /// What kind of surface a [`WallState`] is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Surface {
     /// A plane ([`WallState::point`], [`WallState::normal`]).
     Plane,
@@ -140,7 +140,7 @@ pub enum Surface {
 }
 
 /// One surface of a wall at one instant (see the module doc).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct WallState<const D: usize> {
     /// What it is.
     pub kind: Surface,

@@ -14,7 +14,7 @@ use super::guard::guard;
 pub use super::guard::install_quiet_panic_hook;
 pub use super::kind::CreateFn;
 use super::kind::{new_law, Create, FfiLaw};
-use super::kinds::{FfiNormalBatch4, FfiTwistingBatch4, FfiVectorBatch4};
+use super::kinds::{FfiHeatBatch, FfiNormalBatch4, FfiTwistingBatch4, FfiVectorBatch4};
 use super::module::{PluginModule, PluginModuleRef};
 pub use super::restitution::CreateRestitution;
 use super::series::FfiRestitutionLaw;
@@ -65,6 +65,8 @@ pub trait Tables: 'static {
     const ROLLING: &'static [Entry<CreateFn<FfiVectorBatch4>>];
     /// The twisting laws.
     const TWISTING: &'static [Entry<CreateFn<FfiTwistingBatch4>>];
+    /// The heat laws.
+    const HEAT: &'static [Entry<CreateFn<FfiHeatBatch>>];
     /// The restitution laws.
     const RESTITUTION: &'static [Entry<CreateRestitution>];
 }
@@ -81,6 +83,7 @@ pub fn root_module<T: Tables>() -> PluginModuleRef {
         new_tangential: new_kind::<T, FfiLaw<FfiVectorBatch4>, TangentialTable>,
         new_rolling: new_kind::<T, FfiLaw<FfiVectorBatch4>, RollingTable>,
         new_twisting: new_kind::<T, FfiLaw<FfiTwistingBatch4>, TwistingTable>,
+        new_heat: new_kind::<T, FfiLaw<FfiHeatBatch>, HeatTable>,
         new_restitution: new_kind::<T, FfiRestitutionLaw, RestitutionTable>,
         calibrate: calibrate::<T>,
     }
@@ -114,6 +117,7 @@ table!(Contact, Contact, FfiLaw<FfiNormalBatch4>, CONTACT);
 table!(TangentialTable, Tangential, FfiLaw<FfiVectorBatch4>, TANGENTIAL);
 table!(RollingTable, Rolling, FfiLaw<FfiVectorBatch4>, ROLLING);
 table!(TwistingTable, Twisting, FfiLaw<FfiTwistingBatch4>, TWISTING);
+table!(HeatTable, Heat, FfiLaw<FfiHeatBatch>, HEAT);
 table!(RestitutionTable, Restitution, FfiRestitutionLaw, RESTITUTION);
 
 /// The root module's constructor of the laws of table `K` of plugin `T`.
@@ -139,7 +143,8 @@ extern "C" fn calibrate<T: Tables>(
 }
 
 /// Exports laws from a plugin crate (`crate-type = ["cdylib"]`). Use once per crate, naming
-/// the laws of each kind it exports (any of the five groups, in this order):
+/// the laws of each kind it exports (any of the six groups, in this order, separated by
+/// commas):
 ///
 /// ```text
 /// dashpot_sdk::export_laws!(contact: [MyLaw]);
@@ -148,6 +153,8 @@ extern "C" fn calibrate<T: Tables>(
 /// dashpot_sdk::export_laws!(rolling: [MyRolling], twisting: [MyTwisting]);
 /// dashpot_sdk::export_laws!(contact: [A, B], restitution: [C], tangential: [D]);
 /// dashpot_sdk::export_laws!(contact: [A], tangential: [D], twisting: [E]);
+/// dashpot_sdk::export_laws!(heat: [MyConduction]);
+/// dashpot_sdk::export_laws!(contact: [A], heat: [F, G]);
 /// ```
 #[macro_export]
 macro_rules! export_laws {
@@ -157,13 +164,14 @@ macro_rules! export_laws {
         $(tangential: [$($t:ty),* $(,)?] $(,)?)?
         $(rolling: [$($ro:ty),* $(,)?] $(,)?)?
         $(twisting: [$($tw:ty),* $(,)?] $(,)?)?
+        $(heat: [$($h:ty),* $(,)?] $(,)?)?
     ) => {
         #[doc(hidden)]
         mod __dashpot_export {
             #[allow(unused_imports)]
             use super::*;
             use $crate::abi::__private::{self as p, abi_stable::library::{CheckTypeLayout, LibHeader, RootModuleResult}};
-            use $crate::abi::{kind::Entry, kinds, Normal, PluginModuleRef, Rolling, Tangential, Twisting};
+            use $crate::abi::{kind::Entry, kinds, Heat, Normal, PluginModuleRef, Rolling, Tangential, Twisting};
 
             /// This crate's laws.
             pub struct Plugin;
@@ -177,6 +185,7 @@ macro_rules! export_laws {
                     $($(<$t as $crate::TangentialLaw>::info,)*)?
                     $($(<$ro as $crate::RollingLaw>::info,)*)?
                     $($(<$tw as $crate::TwistingLaw>::info,)*)?
+                    $($(<$h as $crate::HeatLaw>::info,)*)?
                 ];
                 const CONTACT: &'static [Entry<p::CreateFn<kinds::FfiNormalBatch4>>] =
                     &[$($(Entry::of::<Normal, $c>()),*)?];
@@ -187,6 +196,8 @@ macro_rules! export_laws {
                     &[$($(Entry::of::<Rolling, $ro>()),*)?];
                 const TWISTING: &'static [Entry<p::CreateFn<kinds::FfiTwistingBatch4>>] =
                     &[$($(Entry::of::<Twisting, $tw>()),*)?];
+                const HEAT: &'static [Entry<p::CreateFn<kinds::FfiHeatBatch>>] =
+                    &[$($(Entry::of::<Heat, $h>()),*)?];
                 const RESTITUTION: &'static [Entry<p::CreateRestitution>] =
                     &[$($(Entry::restitution::<$r>()),*)?];
             }

@@ -61,13 +61,26 @@ impl BatchFault {
     /// Input `context` of a tangential, rolling, twisting or heat law (sdk 0.4): a field not
     /// finite and ≥ 0.
     pub const CONTEXT_INPUT: u8 = 14;
+    /// Input `temperature` of a heat law (sdk 0.4).
+    pub const TEMPERATURE: u8 = 15;
+    /// Output `heat` of a heat law (sdk 0.4): not finite.
+    pub const HEAT: u8 = 16;
+    /// Output `conductance` of a heat law (sdk 0.4): not finite and ≥ 0.
+    pub const CONDUCTANCE: u8 = 17;
 
     /// Whether array `field` is an output (the force, torque, power, elastic energy or reach)
     /// rather than an input.
     pub fn is_output(field: u8) -> bool {
         matches!(
             field,
-            Self::OUTPUT | Self::POWER | Self::ELASTIC | Self::REACH | Self::TORQUE | Self::CONTEXT
+            Self::OUTPUT
+                | Self::POWER
+                | Self::ELASTIC
+                | Self::REACH
+                | Self::TORQUE
+                | Self::CONTEXT
+                | Self::HEAT
+                | Self::CONDUCTANCE
         )
     }
 
@@ -88,6 +101,9 @@ impl BatchFault {
             Self::REACH => "reach",
             Self::TORQUE => "torque",
             Self::CONTEXT | Self::CONTEXT_INPUT => "context",
+            Self::TEMPERATURE => "temperature",
+            Self::HEAT => "heat",
+            Self::CONDUCTANCE => "conductance",
             _ => "?",
         }
     }

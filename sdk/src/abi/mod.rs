@@ -34,7 +34,7 @@
 //! - [`kind`]: the one generic shape of every law kind (its traits, vtables, trampolines and
 //!   export entries); [`v3`]: the frozen types of sdk 0.3 (its law list, root module and raw
 //!   batches, called through the generic vtables); [`kinds`]: the shape's instances (normal,
-//!   tangential, rolling, twisting), whose raw batches extend 0.3's;
+//!   tangential, rolling, twisting, whose raw batches extend 0.3's; heat, new in 0.4);
 //! - `handle`: the generic host-side handles of a law of any kind;
 //! - `module`: the root module of this series; `restitution`: the plugin side of restitution
 //!   laws; `export`: the law tables of a plugin and the export macro;
@@ -77,7 +77,7 @@ pub use export as __private;
 pub use fault::{BatchFault, BatchStatus};
 pub use handle::{BoundModel, LawHandle, ModelHandle, StaticModel};
 pub use kind::EnergyOut;
-pub use kinds::{Normal, NormalCall, Rolling, Tangential, Twisting};
+pub use kinds::{Heat, Normal, NormalCall, Rolling, Tangential, Twisting};
 pub use loader::{
     BoundRestitutionHandle, ContactLawHandle, ContactModelHandle, LoadedPlugin, RestitutionLawHandle,
     SdkSeries, TangentialLawHandle, TangentialModelHandle,

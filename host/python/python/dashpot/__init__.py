@@ -30,8 +30,9 @@ from typing import List
 
 from . import _dashpot
 from ._dashpot import PluginError
-from ._laws import (BoundContactLaw, BoundRollingLaw, BoundTangentialLaw, BoundTwistingLaw, ContactLaw,
-                    RestitutionLaw, RollingLaw, TangentialLaw, TwistingLaw, laws, load_plugin)
+from ._laws import (BoundContactLaw, BoundHeatLaw, BoundRollingLaw, BoundTangentialLaw, BoundTwistingLaw,
+                    ContactLaw, HeatLaw, RestitutionLaw, RollingLaw, TangentialLaw, TwistingLaw, laws,
+                    load_plugin)
 from ._runs import bed, calibrate, collide, sweep
 from ._scene import Scene
 
@@ -47,6 +48,8 @@ __all__ = [
     "BoundRollingLaw",
     "TwistingLaw",
     "BoundTwistingLaw",
+    "HeatLaw",
+    "BoundHeatLaw",
     "RestitutionLaw",
     "collide",
     "sweep",

@@ -1,5 +1,5 @@
-"""The laws on numpy arrays: contact (normal), tangential, rolling, twisting and restitution
-laws, chosen by name, with their parameters as keywords, bound to a pair of materials."""
+"""The laws on numpy arrays: contact (normal), tangential, rolling, twisting, heat and
+restitution laws, chosen by name, with their parameters as keywords, bound to a pair of materials."""
 
 from __future__ import annotations
 
@@ -266,6 +266,32 @@ class BoundTwistingLaw(_Bound):
         return r
 
 
+class BoundHeatLaw(_Bound):
+    """A heat-conduction law bound to a pair of materials (see ``HeatLaw.bind``; sdk 0.4)."""
+
+    def heat(self, temperature: Any, normal_force: Any, delta: Any, radius: Any,
+             history: Optional[Array] = None, context: Any = None, dt: float = 0.0) -> Tuple[Array, Array]:
+        """``(heat, conductance)`` of N contacts, each shape (N,): the heat flow Q into particle
+        i (W; its partner receives exactly −Q) and the conductance H (W/K). ``temperature`` is
+        (N, 2), ``[T_i, T_j]`` per contact (K; a wall's temperature as T_j); normal forces (N),
+        overlaps δ (m) and effective radii R_eff (m, R_i against a flat wall) N each.
+        ``context``, the normal law's contexts (``BoundContactLaw.force_context``, (N, 3)),
+        gives its contact radius a (JKR's own); without it a = √(R_eff max(δ, 0)). A law with
+        history needs ``history`` (N, history_slots), advanced in place over ``dt`` (s).
+        Integrate as LAMMPS's ``fix heat/flow``: T += dt Q / (m c)."""
+        fn = _f64("normal_force", normal_force)
+        n = fn.shape[0]
+        try:
+            t = _np.ascontiguousarray(temperature, dtype=_np.float64)
+        except (TypeError, ValueError) as e:
+            raise ValueError(f"temperature: cannot be read as float64 numbers ({e})") from None
+        if t.shape != (n, 2):
+            raise ValueError(f"temperature has shape {t.shape}: it must be ({n}, 2), [T_i, T_j] per contact")
+        h = _history(history) if history is not None else _np.zeros(0)
+        return self._inner.heat(float(dt), t.reshape(-1), fn, _f64("delta", delta, n, "normal_force"),
+                                _f64("radius", radius, n, "normal_force"), h, _contexts(context, n))
+
+
 class TangentialLaw(_Law[BoundTangentialLaw]):
     """Tangential (friction) law ``name`` (e.g. ``"mindlin"``) with its parameters as keywords."""
 
@@ -285,6 +311,14 @@ class TwistingLaw(_Law[BoundTwistingLaw]):
 
     _bind = staticmethod(_dashpot.bind_twisting)
     _bound = BoundTwistingLaw
+
+
+class HeatLaw(_Law[BoundHeatLaw]):
+    """Heat-conduction law ``name`` (e.g. ``"heat-radius"``, ``k=2.0``) with its parameters as
+    keywords (sdk 0.4)."""
+
+    _bind = staticmethod(_dashpot.bind_heat)
+    _bound = BoundHeatLaw
 
 
 class RestitutionLaw(_Named):

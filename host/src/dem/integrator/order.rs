@@ -65,7 +65,7 @@ pub(super) struct Order<const D: usize> {
     spins: [Vec<f64>; 2],
     /// Radii, masses, moments of inertia: fixed, so only swapped, never permuted at a
     /// crossing.
-    fixed: [Vec<f64>; 3],
+    pub(super) fixed: [Vec<f64>; 3],
 }
 
 impl<const D: usize> Engine<D> {

@@ -1,7 +1,7 @@
 //! The law kinds as instances of the one ABI shape of [`kind`](super::kind): normal (0.2's
 //! contact batch plus 0.3's reach and energy and 0.4's context outputs), tangential and rolling
 //! (one vector batch: 0.2's tangential batch plus 0.3's energy outputs and 0.4's context
-//! input), and twisting. Each instance is its raw batch (0.3's, which the frozen
+//! input), twisting, and heat (new in 0.4). Each instance is its raw batch (0.3's, which the frozen
 //! [`v3`] module keeps, extended), the host's view of it, and the block loop that
 //! checks and evaluates it; everything else (vtables, trampolines, handles) is generic.
 
@@ -111,11 +111,13 @@ macro_rules! motion_run {
     }};
 }
 
+mod heat;
 mod normal;
 mod pipelined;
 mod twisting;
 mod vector;
 
+pub use heat::{FfiHeatBatch, Heat};
 pub(crate) use normal::normal_non_finite;
 pub use normal::{FfiNormalBatch4, Normal, NormalCall};
 pub use twisting::{FfiTwistingBatch4, Twisting};

@@ -5,7 +5,7 @@ use super::fault::{bad_input, BatchFault};
 use super::ffi;
 use super::handle::{run_v2, BoundModel, LawHandle, ModelHandle};
 use super::kind::{EnergyOut, Kind, NewFn};
-use super::kinds::{Normal, NormalCall, Rolling, Tangential, Twisting};
+use super::kinds::{Heat, Normal, NormalCall, Rolling, Tangential, Twisting};
 use super::module::PluginModuleRef;
 use super::object::{coefficients, FfiObject, Owned};
 use super::series::{FfiBoundRestitution, FfiRestitutionLaw};
@@ -367,6 +367,11 @@ impl LoadedPlugin {
     /// Creates twisting law `name` from `params` (sdk 0.3 and later).
     pub fn new_twisting(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Twisting>, LawError> {
         self.new_kind::<Twisting>(name, params, |m| m.new_twisting(), Some(|m| m.new_twisting()))
+    }
+
+    /// Creates heat law `name` from `params` (sdk 0.4 and later).
+    pub fn new_heat(&self, name: &str, params: &[ParamValue]) -> Result<LawHandle<Heat>, LawError> {
+        self.new_kind::<Heat>(name, params, |m| m.new_heat(), None)
     }
 
     /// Creates tangential law `name` from `params`.

@@ -1,0 +1,181 @@
+//! The heat kind (new in sdk 0.4: no plugin of an older sdk exports one).
+
+use super::*;
+use crate::heat::{BoundHeat, HeatBatch, HeatFlow, HeatLaw};
+
+/// A raw heat batch (sdk 0.4): `n` contacts, structure of arrays.
+#[repr(C)]
+#[derive(StableAbi, Debug, Clone, Copy)]
+pub struct FfiHeatBatch {
+    /// Number of contacts.
+    pub n: usize,
+    /// History slots per contact.
+    pub slots: usize,
+    /// Time step (s).
+    pub dt: f64,
+    /// Temperatures `[T_i, T_j]` (K), `2 n` values.
+    pub temperature: *const f64,
+    /// Normal forces (N), `n` values.
+    pub normal_force: *const f64,
+    /// Overlaps (m), `n` values.
+    pub delta: *const f64,
+    /// Effective radii (m), `n` values.
+    pub radius: *const f64,
+    /// Each contact's normal context (`n` values), or null (the defaults).
+    pub context: *const NormalContext,
+    /// History, `n × slots` values, read and updated in place.
+    pub history: *mut f64,
+    /// Output: heat flow into particle i (W) and conductance (W/K), `n` values.
+    pub flow: *mut HeatFlow,
+}
+
+/// The heat kind.
+pub struct Heat;
+
+impl Kind for Heat {
+    type Ffi = FfiHeatBatch;
+    // new in 0.4: its own batch stands in for the 0.3 one it never had
+    type Ffi03 = FfiHeatBatch;
+    type Batch<'a> = HeatBatch<'a>;
+    const KIND: LawKind = LawKind::Heat;
+    fn len(b: &HeatBatch<'_>) -> usize {
+        b.flow.len()
+    }
+    fn check_lengths(name: &str, slots: usize, b: &HeatBatch<'_>) -> Result<(), LawError> {
+        b.lengths().check("heat", name, slots)
+    }
+    fn raw(b: &mut HeatBatch<'_>, _power: *mut f64, _elastic: *mut f64) -> FfiHeatBatch {
+        FfiHeatBatch {
+            n: b.flow.len(),
+            slots: b.slots,
+            dt: b.dt,
+            temperature: b.temperature.as_ptr() as *const f64,
+            normal_force: b.normal_force.as_ptr(),
+            delta: b.delta.as_ptr(),
+            radius: b.radius.as_ptr(),
+            context: context_ptr(b.context),
+            history: b.history.as_mut_ptr(),
+            flow: b.flow.as_mut_ptr(),
+        }
+    }
+    fn ffi03(b: &FfiHeatBatch) -> &FfiHeatBatch {
+        b
+    }
+    fn fault_error(name: &str, b: &HeatBatch<'_>, st: BatchStatus, f: BatchFault) -> LawError {
+        let i = f.index.min(b.flow.len().saturating_sub(1));
+        match (st, f.field) {
+            (BatchStatus::NonFiniteOutput, field) => LawError::new(
+                ErrorKind::NonFinite,
+                format!(
+                    "heat law '{name}' returned {} on contact {i} (heat {:e} W, conductance {:e} W/K; \
+                     temperatures {:?} K, normal force {:e} N): the heat must be finite and the \
+                     conductance finite and ≥ 0",
+                    if field == BatchFault::CONDUCTANCE {
+                        "a bad conductance"
+                    } else {
+                        "a non-finite heat flow"
+                    },
+                    b.flow[i].heat,
+                    b.flow[i].conductance,
+                    b.temperature[i],
+                    b.normal_force[i]
+                ),
+            ),
+            (_, BatchFault::TEMPERATURE) => LawError::new(
+                ErrorKind::NonFinite,
+                format!(
+                    "heat law '{name}': input temperature[{i}] = {:?} must be finite (K); refused \
+                     before evaluation",
+                    b.temperature[i]
+                ),
+            ),
+            (_, BatchFault::CONTEXT_INPUT) => bad_context("heat", name, i, b.context),
+            (_, field) => {
+                let c = b.contact(i);
+                let v = motion_input(field, [c.normal_force, c.delta, 1.0, c.radius, c.dt]);
+                bad_input("heat", name, field, i, v)
+            }
+        }
+    }
+}
+
+/// The first contact of `flow` whose heat is not finite, or whose conductance is not finite
+/// and ≥ 0, with the array at fault.
+#[inline(always)]
+fn bad_flow(flow: &[HeatFlow]) -> Option<(usize, u8)> {
+    let ok = flow.iter().fold(true, |ok, f| {
+        ok & is_finite(f.heat) & (0.0..f64::INFINITY).contains(&f.conductance)
+    });
+    if ok {
+        return None;
+    }
+    flow.iter().enumerate().find_map(|(i, f)| {
+        if !is_finite(f.heat) {
+            Some((i, BatchFault::HEAT))
+        } else if !(0.0..f64::INFINITY).contains(&f.conductance) {
+            Some((i, BatchFault::CONDUCTANCE))
+        } else {
+            None
+        }
+    })
+}
+
+impl<B: BoundHeat> KindBound<Heat> for B {
+    #[inline(always)]
+    unsafe fn run(&self, r: &FfiHeatBatch) -> Result<bool, (usize, u8)> {
+        if !(r.dt >= 0.0 && r.dt < f64::INFINITY) {
+            return Err((0, BatchFault::DT));
+        }
+        let (n, slots) = (r.n, r.slots);
+        let (temperature, fnorm, delta, radius, history, flow) = unsafe {
+            (
+                slice(r.temperature as *const [f64; 2], n),
+                slice(r.normal_force, n),
+                slice(r.delta, n),
+                slice(r.radius, n),
+                slice_mut(r.history, n * slots),
+                slice_mut(r.flow, n),
+            )
+        };
+        let context = unsafe { contexts(r.context, n) };
+        blocks!(n, |lo, hi| {
+            let t = &temperature[lo..hi];
+            let (f, d, a) = (&fnorm[lo..hi], &delta[lo..hi], &radius[lo..hi]);
+            first_bad(
+                lo,
+                [
+                    (
+                        first_non_finite(t.as_flattened()).map(|i| i / 2),
+                        BatchFault::TEMPERATURE,
+                    ),
+                    (first_non_finite(f), BatchFault::NORMAL_FORCE),
+                    (first_non_finite(d), BatchFault::DELTA),
+                    (first_non_positive(a), BatchFault::RADIUS),
+                ],
+            )?;
+            let x = context_block(context, lo, hi)?;
+            let o = &mut flow[lo..hi];
+            self.heat_batch(HeatBatch {
+                dt: r.dt,
+                temperature: t,
+                normal_force: f,
+                delta: d,
+                radius: a,
+                context: x,
+                slots,
+                history: &mut history[lo * slots..hi * slots],
+                flow: &mut *o,
+            });
+            match bad_flow(o) {
+                Some((i, field)) => Err((lo + i, field)),
+                None => Ok(()),
+            }
+        });
+        Ok(false)
+    }
+    fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
+        self.coefficients(mass, radius)
+    }
+}
+
+kind_law!(Heat, HeatLaw, T::READS_CONTEXT);
