@@ -55,8 +55,10 @@ void FixWallDashpotRegion::init()
 
 void FixWallDashpotRegion::update_contacts(int i, int nc)
 {
-    const double radius = atom->radius[i];
     const int nold = ncontact[i];
+    // most atoms of a region's fix touch none of its surfaces, now or at the last step
+    if (nc == 0 && nold == 0) return;
+    const double radius = atom->radius[i];
     slot_of.assign(nc, -1);
     alive.assign(nper, 0);
     int *keys = key.data() + (size_t) i * nper;

@@ -92,6 +92,8 @@ pub mod physics;
 mod rotation;
 #[cfg(target_arch = "x86_64")]
 pub mod simd;
+#[cfg(feature = "testkit")]
+pub mod testkit;
 
 pub use context::NormalContext;
 pub use error::{ErrorKind, LawError};

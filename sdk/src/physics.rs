@@ -52,9 +52,10 @@ mod tests {
     }
 }
 
-/// The spring–dashpot–slider of a twisting law: stiffness (N·m/rad), damping (N·m·s/rad) and
-/// critical torque (N·m). Used by the `twisting-sds` and `twisting-marshall` laws (the latter's constants depend on
-/// the contact radius).
+/// The spring–dashpot–slider of a twisting law with LAMMPS's reset (`twisting sds`, `twisting
+/// marshall`): stiffness (N·m/rad), damping (N·m·s/rad) and critical torque (N·m). For laws that
+/// mirror LAMMPS: its reset θ = (M_c sgn ω − γ ω)/k stores the dashpot's share in the spring;
+/// dashpot's own twisting laws take the passive [`Slider`].
 #[derive(Debug, Clone, Copy)]
 pub struct TwistSpring {
     /// Stiffness k (N·m/rad), > 0.
@@ -121,20 +122,37 @@ pub fn tangential_part(v: [f64; 3], n: [f64; 3]) -> [f64; 3] {
     [v[0] - vn * n[0], v[1] - vn * n[1], v[2] - vn * n[2]]
 }
 
+/// The spring `xi` turned into the tangent plane of unit normal `n`, keeping its length (the
+/// contact frame turned since the spring was stored): ξ − (ξ·n̂) n̂ rescaled to |ξ|; `xi` itself
+/// when it lies in the plane, 0 when it lies along n̂.
+#[inline(always)]
+pub fn turn_into_plane(xi: [f64; 3], n: [f64; 3]) -> [f64; 3] {
+    let xn = dot(xi, n);
+    if xn == 0.0 {
+        return xi;
+    }
+    let len2 = dot(xi, xi);
+    let p = [xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]];
+    let plen2 = dot(p, p);
+    let s = if plen2 > 0.0 { (len2 / plen2).sqrt() } else { 0.0 };
+    [p[0] * s, p[1] * s, p[2] * s]
+}
+
 /// The dot product of two 3-vectors.
 #[inline(always)]
 pub fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-/// One step of a tangential spring–dashpot with a Coulomb slider (the bookkeeping of Luding
-/// 2008 and LAMMPS `pair granular`), for a spring of stiffness `kt` (N/m), a dashpot `eta`
-/// (N·s/m) and a friction coefficient `mu`, on contact `c` whose history `h[..3]` is the spring
+/// One step of a tangential spring–dashpot with a Coulomb slider with the bookkeeping of Luding
+/// 2008 and LAMMPS `pair granular` (for laws that mirror LAMMPS; dashpot's own laws take the
+/// passive [`Slider`]: this reset stores the dashpot's share in the spring, which can then push
+/// along the slip and give the motion more energy than it took), for a spring of stiffness `kt`
+/// (N/m), a dashpot `eta` (N·s/m) and a friction coefficient `mu`, on contact `c` whose history `h[..3]` is the spring
 /// displacement ξ (m). Returns the tangential force (N). If δ ≤ 0 the force is 0 and ξ = 0;
 /// otherwise (1) rotate ξ into the tangent plane keeping its length, (2) v_t = v − (v·n̂) n̂,
 /// (3) ξ += v_t dt, (4) F_t = −k_t ξ − η_t v_t, (5) if |F_t| > μ max(F_n, 0) scale F_t to
-/// μ max(F_n, 0) and reset ξ = −(F_t + η_t v_t)/k_t (0 when k_t = 0). Used by the
-/// `linear-history` (constant k_t) and `mindlin` (k_t = 8 G a) laws.
+/// μ max(F_n, 0) and reset ξ = −(F_t + η_t v_t)/k_t (0 when k_t = 0).
 #[inline(always)]
 pub fn spring_friction(kt: f64, eta: f64, mu: f64, c: &crate::TangentialContact, h: &mut [f64]) -> [f64; 3] {
     spring_friction_step(kt, eta, mu, c, h).0
@@ -156,16 +174,7 @@ fn spring_friction_step(
         return ([0.0; 3], true, before);
     }
     let n = c.normal;
-    let mut xi = [h[0], h[1], h[2]];
-    // Rotate into the current tangent plane, keeping the length.
-    let xn = dot(xi, n);
-    if xn != 0.0 {
-        let len2 = dot(xi, xi);
-        let p = [xi[0] - xn * n[0], xi[1] - xn * n[1], xi[2] - xn * n[2]];
-        let plen2 = dot(p, p);
-        let s = if plen2 > 0.0 { (len2 / plen2).sqrt() } else { 0.0 };
-        xi = [p[0] * s, p[1] * s, p[2] * s];
-    }
+    let mut xi = turn_into_plane([h[0], h[1], h[2]], n);
     // Tangential relative velocity, advance, trial force.
     let vt = tangential_part(c.velocity, n);
     let turned = xi;
@@ -214,8 +223,9 @@ pub fn spring_friction_energy(
     (f, e)
 }
 
-/// One step of a spring–dashpot–slider (a tangential, rolling or twisting spring capped by
-/// Coulomb, its spring reset to the capped force) as its energy accounting sees it, from both
+/// One step of a spring–dashpot–slider with LAMMPS's reset (a tangential, rolling or twisting
+/// spring capped by Coulomb, its spring reset to the capped force) as its energy accounting sees
+/// it (for laws that mirror LAMMPS; [`Slider::energy`] is dashpot's own, exact), from both
 /// ends: the stiffness after the step and one step before, the dashpot, and the spring the step
 /// started from. Units: N/m, N·s/m and m for a displacement spring; N·m/rad, N·m·s/rad and rad
 /// for a twist.
@@ -294,3 +304,10 @@ impl SliderStep {
         crate::Energy { power, elastic }
     }
 }
+
+mod slider;
+pub use slider::{slider_friction, Slid, Slider};
+
+/// [`Slider`] on four contacts at once in AVX2 registers (x86-64).
+#[cfg(target_arch = "x86_64")]
+pub mod lanes;

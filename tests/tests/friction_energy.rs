@@ -77,7 +77,7 @@ fn impact(law: &dyn BoundTangential, offset: f64, spin: f64, dt: f64, alpha: f64
         0.5 * m * (dot(v[0], v[0]) + dot(v[1], v[1])) + 0.5 * inertia * (dot(w[0], w[0]) + dot(w[1], w[1]))
     };
     let e0 = ke(&v, &w);
-    let (mut h, mut force, mut torque) = ([0.0; 4], [[0.0; 3]; 2], [[0.0; 3]; 2]);
+    let (mut h, mut force, mut torque) = ([0.0; 7], [[0.0; 3]; 2], [[0.0; 3]; 2]);
     let mut b = Balance {
         lost: 0.0,
         dissipated: 0.0,
@@ -173,7 +173,7 @@ fn a_stuck_spring_under_a_changing_stiffness_closes_its_balance_to_first_order_i
         let (period, d0, speed) = (1e-3, 1e-4, 1e-3);
         let w = 2.0 * std::f64::consts::PI / period;
         let steps = (period / dt).round() as usize;
-        let (mut h, mut f_prev, mut work, mut sum) = ([0.0; 4], [0.0; 3], 0.0, 0.0);
+        let (mut h, mut f_prev, mut work, mut sum) = ([0.0; 7], [0.0; 3], 0.0, 0.0);
         let mut last = Energy::default();
         for i in 1..=steps {
             let (t, tm) = (i as f64 * dt, (i as f64 - 0.5) * dt);

@@ -9,6 +9,9 @@ use dashpot::laws::HeatConduction;
 use dashpot_sdk::{HeatBatch, HeatFlow};
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1, PyReadwriteArray1};
 
+/// Two arrays of N values: the heat flows (W) and the conductances (W/K).
+type Flows<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
 bound_class!(
     /// A heat-conduction law bound to a pair of materials (sdk 0.4).
     BoundHeat,
@@ -29,7 +32,7 @@ bound_class!(
         radius: PyReadonlyArray1<'py, f64>,
         mut history: PyReadwriteArray1<'py, f64>,
         context: Option<PyReadonlyArray1<'py, f64>>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>)> {
+    ) -> PyResult<Flows<'py>> {
         let (normal_force, delta, radius) = (normal_force.as_slice()?, delta.as_slice()?, radius.as_slice()?);
         let n = normal_force.len();
         let t = temperature.as_slice()?;

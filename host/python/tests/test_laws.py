@@ -141,8 +141,8 @@ def test_the_energy_outputs_of_hsd_are_its_elastic_potential_and_damping_power()
 
 def test_rolling_sds_is_a_spring_below_its_cap_and_slides_at_it():
     law = dashpot.RollingLaw("rolling-sds", k=1000.0, gamma=0.0, mu=0.1).bind(**MCC)
-    assert law.history_slots == 3
-    h = np.zeros((1, 3))
+    assert law.history_slots == 6  # ξ, and the dashpot's share of the last force
+    h = np.zeros((1, 6))
     n = [[0.0, 0.0, 1.0]]
     args = ([10.0], [1e-5], [M_PAIR], [R_PAIR])
     f, power, elastic = law.force(1e-6, n, [[1e-3, 0.0, 0.0]], *args, history=h, energy=True)

@@ -155,6 +155,13 @@ pub struct ContactSet {
     /// The contacts' dissipated power summed by family at the last evaluation (W; with
     /// `energy`), block by block as the laws wrote it (while it is in cache).
     pub power_sum: [f64; 4],
+    /// The elastic energy the tangential, rolling and twisting springs of the previous step's
+    /// contacts that ended held, and an adhesive normal law's (J, by family), with `energy`:
+    /// dissipated at the gathering that dropped them (the contact that held it is gone).
+    pub dropped: [f64; 4],
+    /// The contacts of the previous step that ended holding spring energy: their particles
+    /// (`i`, `j` as [`ContactSet::i`], [`ContactSet::j`]) and that energy (J), with `energy`.
+    pub ended: Vec<(u32, u32, f64)>,
     /// The chunk's first particle.
     pub first: usize,
     /// Contacts of this set that were not in the previous one (first touches this step).

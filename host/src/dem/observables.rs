@@ -46,7 +46,8 @@ impl<const D: usize> Engine<D> {
     }
 
     /// Each particle's share of the power its contacts dissipated at the last step (W, every
-    /// family): half of each pair contact's, the whole of a wall contact's. `None` without
+    /// family; a spring its contact dropped at the step counts as dissipated then): half of
+    /// each pair contact's, the whole of a wall contact's. `None` without
     /// [`EngineConfig::energy`], or when a family's law does not report its energy.
     pub fn particle_power(&self) -> Option<Vec<f64>> {
         if !self.config().energy || self.unreported.iter().any(|&u| u) {
@@ -62,6 +63,16 @@ impl<const D: usize> Engine<D> {
                     if pair {
                         out[i] += 0.5 * w;
                         out[self.user_index(j)] += 0.5 * w;
+                    } else {
+                        out[i] += w;
+                    }
+                }
+                // the springs of the contacts that ended at this step, dissipated
+                for &(i, j, e) in &set.ended {
+                    let (i, w) = (self.user_index(i as usize), e / self.dt());
+                    if pair {
+                        out[i] += 0.5 * w;
+                        out[self.user_index(j as usize)] += 0.5 * w;
                     } else {
                         out[i] += w;
                     }

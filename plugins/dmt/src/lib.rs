@@ -39,8 +39,8 @@ impl ContactLaw for Dmt {
         radius (m), m its effective mass (kg), w the work of adhesion (J/m²), α(ε) = −√5 ln ε/√(ln²ε + π²) the \
         Tsuji factor of the hsd law (eps = 1, the default, is undamped); F = 0 for δ < 0 (the contact ends at \
         touch: reach 0). Most tensile force: −2π w R, at δ = 0⁺ (the DMT pull-off force). No history. Energy: \
-        elastic = (2/5) K δ^{5/2} (J, Hertz's; the adhesive term is a constant force, not stored), power = the \
-        damping force × δ̇ (W).";
+        elastic = (2/5) K δ^{5/2} − 2π w R δ (J: Hertz's, and the constant adhesive force's potential, \
+        negative, which the contact gives back as it ends at touch), power = the damping force × δ̇ (W).";
     const END_CRITERION: EndCriterion = EndCriterion::Overlap;
 
     fn bind(&self, m: &MaterialPair) -> Result<DmtBound, LawError> {
@@ -77,7 +77,8 @@ impl BoundContact for DmtBound {
         let d = c.delta;
         Some(Energy {
             power: self.damping(c) * c.rate,
-            elastic: 0.4 * self.a * (c.radius * d).sqrt() * d * d,
+            // Hertz's (2/5) K δ^{5/2}, and the adhesion's potential −2π w R δ
+            elastic: 0.4 * self.a * (c.radius * d).sqrt() * d * d - self.adhesion * c.radius * d,
         })
     }
 

@@ -77,7 +77,9 @@ macro_rules! jkr_doc {
         tension beyond it and breaks at LAMMPS's pull-off distance δ_po = (3π²/16)^{1/3} \
         (R γ²/E_eff²)^{1/3} (its reach), where the force is its largest tension −3π γ R = \
         −(3/2) π w R (load-controlled pull-off; dashpot's own `jkr` breaks later, at the \
-        displacement-controlled rupture). History `touch` (1 while the contact acts). Cap force \
+        displacement-controlled rupture). History `touch` (1 while the contact acts). Elastic energy \
+        measured from touch: at the pull-off distance the contact holds its cycle's adhesion \
+        hysteresis, lost (booked dissipated) as it ends. Cap force \
         F_c = |F_ne + 2 F_po|, F_po = 3π γ R. LAMMPS refuses `tsuji`, `coeff_restitution` and \
         `limit_damping` with it."
     };

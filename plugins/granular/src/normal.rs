@@ -197,10 +197,13 @@ impl NormalModel for Jkr {
         (fne, 3.0 * PI * self.cohesion * reff)
     }
 
-    /// W(a) − W(a_end), a_end the contact radius at the pull-off distance.
+    /// W(a) − W(a_t), a_t the contact radius at touch (δ = 0), where the contact forms: nothing
+    /// appears as it forms, the energy integrates the force, and at the pull-off distance it holds
+    /// the cycle's adhesion hysteresis W(a_po) − W(a_t), which a host books as dissipated when the
+    /// contact ends (as for dashpot's own `jkr`).
     fn elastic_energy(&self, a: f64, _delta: f64, reff: f64) -> f64 {
-        let end = self.radius_at(reff, -self.pulloff_distance(reff) * reff);
-        self.work(a, reff) - self.work(end, reff)
+        let touch = self.radius_at(reff, 0.0);
+        self.work(a, reff) - self.work(touch, reff)
     }
 
     /// (3π²/16)^{1/3} (R γ²/E²)^{1/3} (LAMMPS's `pulloff_distance`): where the tensile force is

@@ -101,10 +101,13 @@ impl ContactLaw for Jkr {
         δ < 0 feels no force. History: 'formed' (1 once touched, 0 before and after rupture). Damping (optional): \
         F_d = α(ε) √((4/3) E a m) δ̇ (N), m the effective mass, α(ε) = −√5 ln ε/√(ln²ε + π²) the Tsuji factor \
         of the hsd law (eps = 1, the default, is undamped); as w → 0 the law tends to hsd (Hertz with Tsuji damping). \
-        Energy: elastic = W(a) − W(a0/6^{2/3}) (J), the work the contact gives back when unloaded \
-        quasi-statically to rupture, with W(a) = 8E a⁵/(15R²) − (4/3)(E c/R) a^{7/2} + E c² a²/2, \
-        c = √(2π w/E) (Hertz's (2/5) K δ^{5/2} at w = 0); power = F_d δ̇ (W). Callers that end contacts at δ = 0 \
-        (end criterion 'overlap') see only its compressive part. Context (what the contact's other laws read, \
+        Energy: elastic = W(a) − W(a_t) (J), the work the contact gives back when unloaded \
+        quasi-statically to touch, with W(a) = 8E a⁵/(15R²) − (4/3)(E c/R) a^{7/2} + E c² a²/2, \
+        c = √(2π w/E), a_t = (2π w R²/E)^{1/3} the contact radius at touch (Hertz's (2/5) K δ^{5/2} at \
+        w = 0): nothing appears as the contact forms, it is negative in tension past touch, and at rupture \
+        it holds W(a0/6^{2/3}) − W(a_t) > 0, the adhesion hysteresis of the cycle, which is lost with the \
+        contact (a host books it dissipated); power = F_d δ̇ (W). Callers that end contacts at δ = 0 (end \
+        criterion 'overlap') see only its compressive part. Context (what the contact's other laws read, \
         sdk 0.4): the contact radius a above (positive past touching, until rupture; 0 when the contact is not \
         formed), the cap force F_e + 3π w R = F_e + 2 F_po (N, with F_e the elastic force F(a) and F_po = \
         (3/2)π w R the pull-off force: Thornton & Yin 1991, Powder Technol. 65, 153, so that friction keeps \
@@ -168,10 +171,12 @@ impl BoundContact for JkrBound {
             return Some(Energy::default());
         }
         let a = self.contact_radius(c.radius, c.delta);
-        let ac = self.a0(c.radius) / 6f64.powf(2.0 / 3.0);
+        // relative to the contact as it forms at touch (a(0)³ = 2π w R²/E): no energy appears
+        // when it forms; what it holds when it breaks at δ_c (the adhesion hysteresis) is lost
+        let touch = (2.0 * PI * self.w * c.radius * c.radius / self.young).cbrt();
         Some(Energy {
             power: self.damping(a, c.mass) * c.rate * c.rate,
-            elastic: self.work(c.radius, a) - self.work(c.radius, ac),
+            elastic: self.work(c.radius, a) - self.work(c.radius, touch),
         })
     }
 

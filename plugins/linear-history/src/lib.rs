@@ -21,22 +21,24 @@
 //! (x_{n+1} − x_n)/dt), and the normal force at the end of the step.
 //!
 //! # Order of one call (time step dt)
-//! 1. δ ≤ 0: no contact; the force is 0 and ξ is reset to 0.
+//! 1. δ ≤ 0: no contact; the force is 0 and ξ is reset to 0 (what it stored is dissipated).
 //! 2. Rotate: ξ ← ξ − (ξ·n̂) n̂, rescaled to its previous length (the contact frame turned).
-//! 3. Tangential relative velocity: v_t = v − (v·n̂) n̂.
-//! 4. Advance: ξ ← ξ + v_t dt.
-//! 5. Trial force: F_t = −k_t ξ − η_t v_t.
-//! 6. Coulomb: if |F_t| > μ max(F_n, 0), F_t is scaled to length μ max(F_n, 0) and the spring is
-//!    reset to match it, ξ = −(F_t + η_t v_t)/k_t.
+//! 3. Tangential relative velocity v_t = v − (v·n̂) n̂; advance ξ_t = ξ + v_t dt; trial force
+//!    F_t = −k_t ξ_t − η_t v_t.
+//! 4. Coulomb: if |F_t| > μ max(F_n, 0), F_t is scaled to length μ max(F_n, 0), and the spring
+//!    is the one that force leaves in a spring ∥ dashpot element in series with the slider:
+//!    ξ = ((η_t/dt) ξ_before − F_t)/(k_t + η_t/dt), the rest of v_t dt being slip
+//!    ([`dashpot_sdk::physics::Slider`]); with η_t = 0 this is Cundall–Strack's ξ = −F_t/k_t.
 //!
 //! Capping after advancing makes a sliding contact carry exactly μ F_n from its first step, and
-//! leaves the spring holding exactly the sliding force when the slip stops, so stick starts
-//! without a jump. With this order a sphere launched sliding without spin on a plane ends rolling
-//! at 5/7 of its launch speed and an oblique impact in gross sliding changes the tangential
-//! velocity by μ (1 + e) v_n (both tested here). There is no friction in tension (F_n ≤ 0). With
-//! damping the reset spring holds the dashpot's share −η_t v_t/k_t; with a constant k_t the next
-//! trial force can only turn along the slip if the slip speed drops by more than μ F_n/η_t in
-//! one step (not so with Mindlin's growing k_t, see the `mindlin` law).
+//! leaves the spring holding the sliding force's spring share when the slip stops. With this
+//! order a sphere launched sliding without spin on a plane ends rolling at 5/7 of its launch
+//! speed and an oblique impact in gross sliding changes the tangential velocity by μ (1 + e) v_n
+//! (both tested). There is no friction in tension (F_n ≤ 0). The dashpot acts on the spring's
+//! own rate, never on the slip, so the law never does positive work on the motion it resists
+//! (LAMMPS's reset ξ = −(F_t + η_t v_t)/k_t stores the dashpot's share in the spring, which can
+//! push along the slip when the slip slows; the LAMMPS-compatible `gran-linear-history` keeps
+//! it).
 //!
 //! # Parameters
 //! - `kt` (N/m, > 0, default 1e5, illustrative): tangential stiffness k_t;
@@ -48,7 +50,7 @@
 
 #![warn(missing_docs)]
 
-use dashpot_sdk::physics::{spring_friction, spring_friction_energy};
+use dashpot_sdk::physics::{slider_friction, Slider};
 use dashpot_sdk::{
     BoundTangential, Energy, History, LawError, MaterialPair, Range, TangentialContact, TangentialLaw,
 };
@@ -81,41 +83,74 @@ impl TangentialLaw for LinearHistory {
     const SUMMARY: &'static str =
         "Cundall–Strack tangential spring of constant k_t with history, Coulomb cap μ F_n, optional damping";
     const DOC: &'static str = "Cundall–Strack tangential spring with Coulomb friction (Cundall & Strack \
-        1979; Luding 2008; LAMMPS pair granular 'tangential linear_history'). Constant stiffness \
-        k_t; dashpot η_t = 2 ζ_t √(m k_t), m the effective mass. History: the spring displacement ξ \
-        (m; slots xi_x, xi_y, xi_z), 0 at first touch. Conventions: normal n from the partner to \
-        the particle; velocity = relative velocity of the particle's contact point w.r.t. the \
-        partner's (ω × r included; pass the velocity over the step, e.g. the half-step velocity of \
-        velocity Verlet); the result is the tangential force on the particle. Each call: if δ ≤ 0 \
-        the force is 0 and ξ = 0; otherwise (1) rotate ξ into the tangent plane keeping its length, \
-        (2) v_t = v − (v·n) n, (3) ξ += v_t dt, (4) F_t = −k_t ξ − η_t v_t, (5) if \
-        |F_t| > μ max(F_n, 0) scale F_t to μ max(F_n, 0) and reset ξ = −(F_t + η_t v_t)/k_t. No \
-        friction in tension. Parameters: kt (N/m, > 0, default 1e5, illustrative), mu (≥ 0, \
-        default 0.5), damping ζ_t (≥ 0, default 0). A sphere launched sliding on a plane ends \
-        rolling at 5/7 of its launch speed; an oblique impact in gross sliding changes the \
-        tangential velocity by μ (1 + e) v_n.";
-    const HISTORY: &'static [History] = &History::TANGENTIAL_SPRING;
+        1979; Luding 2008; the order of LAMMPS pair granular 'tangential linear_history'). Constant \
+        stiffness k_t; dashpot η_t = 2 ζ_t √(m k_t), m the effective mass. History: the spring \
+        displacement ξ (m; slots xi_x, xi_y, xi_z), 0 at first touch, and the dashpot's share of the \
+        last force (N; fd_x, fd_y, fd_z), which the energy books read. Conventions: normal n from \
+        the partner to the particle; velocity = relative velocity of the particle's contact point \
+        w.r.t. the partner's (ω × r included; pass the velocity over the step, e.g. the half-step \
+        velocity of velocity Verlet); the result is the tangential force on the particle. Each \
+        call: if δ ≤ 0 the force is 0 and ξ = 0; otherwise (1) rotate ξ into the tangent plane \
+        keeping its length, (2) v_t = v − (v·n) n, ξ_t = ξ + v_t dt, F_t = −k_t ξ_t − η_t v_t, \
+        (3) if |F_t| > μ max(F_n, 0) scale F_t to μ max(F_n, 0) and set \
+        ξ = ((η_t/dt) ξ − F_t)/(k_t + η_t/dt) (a spring ∥ dashpot in series with the slider: the \
+        dashpot acts on the spring's rate, not on the slip), else ξ = ξ_t. No friction in \
+        tension; the law never does positive work on the motion it resists (see \
+        gran-linear-history for LAMMPS's reset ξ = −(F + η v)/k). Parameters: kt (N/m, > 0, \
+        default 1e5, illustrative), mu (≥ 0, default 0.5), damping ζ_t (≥ 0, default 0). A sphere \
+        launched sliding on a plane ends rolling at 5/7 of its launch speed; an oblique impact in \
+        gross sliding changes the tangential velocity by μ (1 + e) v_n.";
+    const HISTORY: &'static [History] = &{
+        let [x, y, z] = History::TANGENTIAL_SPRING;
+        [
+            x,
+            y,
+            z,
+            History::new(
+                "fd_x",
+                "N",
+                "the dashpot's share of the last force, x (its energy's)",
+            ),
+            History::new("fd_y", "N", "the dashpot's share of the last force, y"),
+            History::new("fd_z", "N", "the dashpot's share of the last force, z"),
+        ]
+    };
 
     fn bind(&self, _materials: &MaterialPair) -> Result<LinearHistory, LawError> {
         Ok(self.clone())
     }
 }
 
+impl LinearHistory {
+    /// The slider of contact `c`: k_t, η_t = 2 ζ_t √(m k_t), the cap μ max(F_n, 0).
+    #[inline(always)]
+    fn slider(&self, c: &TangentialContact) -> Slider {
+        Slider {
+            k: self.kt,
+            k_before: self.kt,
+            eta: 2.0 * self.damping * (c.mass * self.kt).sqrt(),
+            cap: self.mu * c.normal_force.max(0.0),
+            rate: Slider::rate(c.dt),
+            dt: c.dt,
+        }
+    }
+}
+
 impl BoundTangential for LinearHistory {
     #[inline]
     fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3] {
-        let eta = 2.0 * self.damping * (c.mass * self.kt).sqrt();
-        spring_friction(self.kt, eta, self.mu, c, history)
+        let (xi, fd) = history.split_at_mut(3);
+        slider_friction::<false>(&self.slider(c), c, xi, fd).0
     }
 
-    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): η_t |v_t|² while
-    /// the spring holds, −F_t·v_t plus the change of the stored energy while it slides or is
-    /// dropped out of contact (see [`dashpot_sdk::physics::SliderStep`]).
+    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W) as
+    /// [`dashpot_sdk::physics::Slider::energy`] books it: the work of the force of the last call
+    /// and this one over the step's velocity, less the change of the stored energy (the
+    /// velocity Verlet balance, exactly).
     #[inline]
     fn force_energy(&self, c: &TangentialContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let eta = 2.0 * self.damping * (c.mass * self.kt).sqrt();
-        let (f, e) = spring_friction_energy([self.kt, self.kt], eta, self.mu, c, history);
-        (f, Some(e))
+        let (xi, fd) = history.split_at_mut(3);
+        slider_friction::<true>(&self.slider(c), c, xi, fd)
     }
 }
 
@@ -135,6 +170,15 @@ mod tests {
         assert_eq!((l.kt, l.mu, l.damping), (1e5, 0.5, 0.0));
         for bad in [("kt", 0.0), ("mu", -0.1), ("damping", -1.0)] {
             assert!(LinearHistory::from_values(&[ParamValue::new(bad.0, bad.1)]).is_err());
+        }
+    }
+
+    /// The law never gives back more energy than the slip put into it, and its books close
+    /// ([`dashpot_sdk::testkit`]: random materials, random paths).
+    #[test]
+    fn never_gives_back_more_than_it_was_given() {
+        for (kt, mu, damping) in [(1e5, 0.5, 0.0), (1e5, 0.4, 2.0), (1e3, 0.1, 5.0), (1e8, 1.0, 0.3)] {
+            dashpot_sdk::testkit::assert_dissipative_tangential(&LinearHistory::with(kt, mu, damping));
         }
     }
 }

@@ -2,16 +2,16 @@
 //! run time): the per-contact form's arithmetic, operation for operation, on four lanes
 //! ([`dashpot_sdk::simd`]), so every contact gets its bits (a test checks); branches become
 //! selects. Contacts are taken in blocks, in two passes: the first turns each spring into the
-//! tangent plane, the second advances it and applies the cap; within a pass the steps are
+//! tangent plane, the second takes the slider's step ([`SliderX4`]); within a pass the steps are
 //! independent, so the square roots and divisions of several are in flight together (one step
 //! from start to end is a chain of them that would leave the divider waiting). Written with
-//! explicit lanes because the compiler's vectorisation of the portable lane loop
-//! ([`super::lanes`]) costs 1.7 times as much.
+//! explicit lanes because the compiler's vectorisation of a portable lane loop cost 1.7 times
+//! as much.
 
 use super::{MindlinBound, SLOTS};
-use dashpot_sdk::simd::{
-    add3, dot, put_quads, put_triples, quads, scale3, select3, sub3, triples, F64x4, SliderLanes, V3,
-};
+use dashpot_sdk::physics::lanes::{load_rows, one_by_one, store_rows, SlidX4, SliderX4};
+use dashpot_sdk::physics::Slider;
+use dashpot_sdk::simd::{dot, put_triples, scale3, select3, sub3, triples, F64x4, V3};
 use dashpot_sdk::{BoundTangential, EnergyBatch, TangentialBatch};
 use std::mem::MaybeUninit;
 
@@ -26,24 +26,27 @@ struct Turned {
     // the spring turned into the tangent plane, and as it was read
     xi: V3,
     x0: V3,
-    // the tangential velocity
+    // the dashpot's share of the last force, as read
+    fd: V3,
+    // the relative velocity, and its tangential part
+    v: V3,
     vt: V3,
-    // k_t of the last call (read only with the energy)
+    // k_t of the last call
     kprev: F64x4,
     delta: F64x4,
     cap: F64x4,
 }
 
-/// [`super::lanes`] on four contacts at a time, with the last `n % 4` through the per-contact
-/// form (`DAMPED`: whether η_t ≠ 0 needs computing; `ENERGY`: whether to write each contact's
-/// energy to `out`).
+/// The batch four contacts at a time, with the last `n % 4` (and any four whose trial force
+/// overflows |F_t|²) through the per-contact form (`DAMPED`: whether η_t ≠ 0 needs computing;
+/// `ENERGY`: whether to write each contact's energy to `out`).
 ///
 /// # Safety
 /// The CPU must support AVX2.
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
     law: &MindlinBound,
-    b: TangentialBatch<'_>,
+    mut b: TangentialBatch<'_>,
     mut out: Option<EnergyBatch<'_>>,
 ) {
     let n = b.force.len();
@@ -65,8 +68,8 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
         F64x4::splat(2.0 * law.damping),
     );
     let dt = F64x4::splat(b.dt);
-    // SliderStep's 1/dt, the same value for every contact
-    let rate = F64x4::splat(1.0 / b.dt);
+    // the slider's 1/dt, the same value for every contact
+    let rate = F64x4::splat(Slider::rate(b.dt));
     let (normal, velocity) = (b.normal.as_flattened(), b.velocity.as_flattened());
     let mut lo = 0;
     while lo < n4 {
@@ -80,7 +83,7 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
             let i = lo + 4 * j;
             let nv = triples(normal, i);
             let v = triples(velocity, i);
-            let [x, y, z, kprev] = quads(b.history, i);
+            let [x, y, z, kprev, fx, fy, fz] = load_rows::<SLOTS>(b.history, i);
             let x0 = [x, y, z];
             let (delta, r) = (F64x4::load(b.delta, i), F64x4::load(b.radius, i));
             // k_t = 8 G √(r max(δ, 0)), η_t = 2 ζ_t √(m k_t)
@@ -100,14 +103,15 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
                 eta,
                 xi: select3(xn.ne(zero), scale3(p, s), x0),
                 x0,
+                fd: [fx, fy, fz],
+                v,
                 vt: sub3(v, scale3(nv, dot(v, nv))),
                 kprev,
                 delta,
                 cap: mu.mul(F64x4::load(b.normal_force, i).max(zero)),
             });
         }
-        // 2. advance, trial force, Coulomb cap with the spring reset to the capped force; out of
-        // touch, no force and the spring dropped
+        // 2. the slider's step; out of touch, no force and the spring dropped
         for (j, t) in turned[..steps].iter().enumerate() {
             let i = lo + 4 * j;
             // SAFETY: the first pass wrote entries ..steps
@@ -116,38 +120,51 @@ pub(crate) unsafe fn lanes<const DAMPED: bool, const ENERGY: bool>(
                 eta,
                 xi: t0,
                 x0,
+                fd,
+                v,
                 vt,
                 kprev,
                 delta,
                 cap,
             } = unsafe { t.assume_init_read() };
-            let xi = add3(t0, scale3(vt, dt));
-            let ft = sub3(scale3(xi, kt.neg()), scale3(vt, eta));
-            let f2 = dot(ft, ft);
-            let slide = f2.gt(cap.mul(cap));
-            let fs = scale3(ft, cap.div(f2.sqrt()));
-            let stiff = kt.gt(zero);
-            let touching = delta.gt(zero);
-            let mut xs = [zero; 3];
-            for k in 0..3 {
-                xs[k] = F64x4::select(stiff, fs[k].add(eta.mul(vt[k])).neg().div(kt), zero);
+            let sl = SliderX4 {
+                k: kt,
+                k_before: kprev,
+                eta,
+                cap,
+                rate,
+                dt,
+            };
+            let s = sl.advance(t0, vt);
+            if s.overflow {
+                // |F_t|² overflowed on some lane: these four one at a time (history unwritten)
+                let o = out.as_mut().filter(|_| ENERGY);
+                one_by_one(
+                    &mut b,
+                    i,
+                    i + 4,
+                    o,
+                    |c, h| law.force(c, h),
+                    |c, h| law.force_energy(c, h),
+                );
+                continue;
             }
-            let f = select3(touching, select3(slide, fs, ft), [zero; 3]);
-            let h = select3(touching, select3(slide, xs, xi), [zero; 3]);
-            put_triples(f, b.force.as_flattened_mut(), i);
-            put_quads([h[0], h[1], h[2], kt], b.history, i);
+            let touching = delta.gt(zero);
+            let none = [zero; 3];
+            let s = SlidX4 {
+                force: select3(touching, s.force, none),
+                spring: select3(touching, s.spring, none),
+                dashpot: select3(touching, s.dashpot, none),
+                sliding: s.sliding,
+                overflow: false,
+            };
+            put_triples(s.force, b.force.as_flattened_mut(), i);
+            let (h, d) = (s.spring, s.dashpot);
+            store_rows::<SLOTS>([h[0], h[1], h[2], kt, d[0], d[1], d[2]], b.history, i);
             if let (true, Some(o)) = (ENERGY, out.as_mut()) {
-                // SliderStep::energy from the spring the step started from (as read when the
-                // contact is dropped), with k_t of the last call
-                let step = SliderLanes {
-                    xi_before: select3(touching, t0, x0),
-                    k_before: kprev,
-                    k: kt,
-                    eta,
-                    rate,
-                    timed: b.dt > 0.0,
-                };
-                let (power, elastic) = step.energy(slide.or(delta.not_gt(zero)), h, vt, f);
+                // Slider::energy from the spring and dashpot's share as read (out of touch: a
+                // step to rest, Slider::dropped), against the whole relative velocity
+                let (power, elastic) = sl.energy(x0, fd, &s, v);
                 o.put(i, &power.to_array(), &elastic.to_array());
             }
         }

@@ -1,5 +1,6 @@
 //! Mindlin–Deresiewicz tangential spring with Coulomb friction (no-slip stiffness of Mindlin
-//! 1949, bookkeeping of LAMMPS `pair_style granular` `tangential mindlin` and Luding 2008).
+//! 1949, incremental as Mindlin & Deresiewicz 1953; the order of LAMMPS `pair_style granular`
+//! `tangential mindlin` and Luding 2008, with a passive spring reset).
 //!
 //! # Formula
 //! Per contact of overlap δ (m), effective radius r (m), effective mass m (kg), with G the
@@ -22,37 +23,44 @@
 //! (x_{n+1} − x_n)/dt), and the normal force at the end of the step.
 //!
 //! # Order of one call (time step dt)
-//! 1. δ ≤ 0: no contact; the force is 0 and ξ is reset to 0.
+//! 1. δ ≤ 0: no contact; the force is 0 and ξ is reset to 0 (what it stored is dissipated).
 //! 2. Rotate: ξ ← ξ − (ξ·n̂) n̂, rescaled to its previous length (the contact frame turned).
-//! 3. Tangential relative velocity: v_t = v − (v·n̂) n̂.
-//! 4. Advance: ξ ← ξ + v_t dt.
-//! 5. Trial force: F_t = −k_t ξ − η_t v_t.
-//! 6. Coulomb: if |F_t| > μ max(F_n, 0), F_t is scaled to length μ max(F_n, 0) and the spring is
-//!    reset to match it, ξ = −(F_t + η_t v_t)/k_t (ξ = 0 if k_t = 0).
+//! 3. Stiffness: k_t changed since the last call acts incrementally (Mindlin & Deresiewicz):
+//!    as k_t grows the spring keeps its force, ξ ← (k_t,before / k_t) ξ (the new rim of the
+//!    contact area carries no traction yet); as it falls the spring keeps its length (the force
+//!    falls with it).
+//! 4. Tangential relative velocity v_t = v − (v·n̂) n̂; advance ξ_t = ξ + v_t dt; trial force
+//!    F_t = −k_t ξ_t − η_t v_t.
+//! 5. Coulomb: if |F_t| > μ max(F_n, 0), F_t is scaled to length μ max(F_n, 0), and the spring
+//!    is the one that force leaves in a spring ∥ dashpot element in series with the slider:
+//!    ξ = ((η_t/dt) ξ_before − F_t)/(k_t + η_t/dt), the rest of v_t dt being slip
+//!    ([`dashpot_sdk::physics::Slider`]); with η_t = 0 this is ξ = −F_t/k_t.
 //!
 //! Capping after advancing makes a sliding contact carry exactly μ F_n from its first step, and
-//! leaves the spring holding exactly the sliding force when the slip stops, so stick starts
-//! without a jump. With this order a sphere launched sliding without spin on a plane ends rolling
-//! at 5/7 of its launch speed and an oblique impact in gross sliding changes the tangential
-//! velocity by μ (1 + e) v_n (both tested here). There is no friction in tension (F_n ≤ 0).
+//! leaves the spring holding the sliding force's spring share when the slip stops. With this
+//! order a sphere launched sliding without spin on a plane ends rolling at 5/7 of its launch
+//! speed and an oblique impact in gross sliding changes the tangential velocity by μ (1 + e) v_n
+//! (both tested). There is no friction in tension (F_n ≤ 0).
 //!
-//! Caveat, with damping: the reset stores the dashpot's share in the spring. When
-//! η_t |v_t| > μ F_n the spring then holds a force along the slip that the dashpot balances, and
-//! if k_t grows faster than η_t at the next step (loading: k_t ∝ √δ, η_t ∝ δ^{1/4}) the trial
-//! force can point along the slip for a few steps. This belongs to the LAMMPS/Luding
-//! bookkeeping; in the tested oblique impact (ζ_t = 0.3, tan θ = 3) it costs 0.4 % of the
-//! tangential impulse, and it vanishes with ζ_t = 0.
+//! The law never does positive work on the motion it resists: neither a growing stiffness
+//! (step 3) nor the dashpot (step 5: it acts on the spring's own rate, never on the slip) puts
+//! energy into the spring that the motion did not. LAMMPS's `tangential mindlin` differs in both
+//! (its spring keeps its length as k_t grows, and its reset ξ = −(F_t + η_t v_t)/k_t stores the
+//! dashpot's share, which can turn the force along the slip: a spinning sphere hitting a wall
+//! with damping can leave with more tangential and rotational energy than it came with); the
+//! LAMMPS-compatible `gran-mindlin` keeps that bookkeeping.
 //!
 //! # Parameters
 //! - `mu` (1, ≥ 0, default 0.5): Coulomb friction coefficient μ;
 //! - `damping` (1, ≥ 0, default 0): tangential damping ratio ζ_t.
 //!
 //! References: R. D. Mindlin, J. Appl. Mech. 16, 259 (1949); Mindlin & Deresiewicz, J. Appl. Mech.
-//! 20, 327 (1953); S. Luding, Granular Matter 10, 235 (2008); LAMMPS `pair_style granular`.
+//! 20, 327 (1953); S. Luding, Granular Matter 10, 235 (2008); C. Thornton, S. J. Cummins &
+//! P. W. Cleary, Powder Technol. 233, 30 (2013); LAMMPS `pair_style granular`.
 
 #![warn(missing_docs)]
 
-use dashpot_sdk::physics::{dot, spring_friction, spring_friction_energy, SliderStep};
+use dashpot_sdk::physics::{slider_friction, Slider};
 use dashpot_sdk::{
     BoundTangential, Energy, EnergyBatch, History, LawError, MaterialPair, Range, TangentialBatch,
     TangentialContact, TangentialLaw,
@@ -102,21 +110,25 @@ impl TangentialLaw for Mindlin {
     const SUMMARY: &'static str =
         "Mindlin–Deresiewicz tangential spring k_t = 8 G a with history, Coulomb cap μ F_n, optional damping";
     const DOC: &'static str = "Mindlin–Deresiewicz no-slip tangential spring with Coulomb friction \
-        (Mindlin 1949; Luding 2008; LAMMPS pair granular 'tangential mindlin'). k_t = 8 G_eff a, \
-        a = √(r_eff δ), 1/G_eff = (2 − ν1)/G1 + (2 − ν2)/G2; dashpot η_t = 2 ζ_t √(m k_t), m the \
-        effective mass. History: the spring displacement ξ (m; slots xi_x, xi_y, xi_z), 0 at first \
-        touch, and the stiffness k_t of the last call (N/m; slot kt, which the energy accounting reads). Conventions: normal n from the partner to the particle; velocity = relative velocity \
+        (Mindlin 1949; Mindlin & Deresiewicz 1953; Luding 2008; the order of LAMMPS pair granular \
+        'tangential mindlin'). k_t = 8 G_eff a, a = √(r_eff δ), 1/G_eff = (2 − ν1)/G1 + (2 − ν2)/G2; \
+        dashpot η_t = 2 ζ_t √(m k_t), m the effective mass. History: the spring displacement ξ (m; \
+        slots xi_x, xi_y, xi_z), 0 at first touch, the stiffness k_t of the last call (N/m; slot \
+        kt) and the dashpot's share of the last force (N; fd_x, fd_y, fd_z), which the energy books \
+        read. Conventions: normal n from the partner to the particle; velocity = relative velocity \
         of the particle's contact point w.r.t. the partner's (ω × r included; pass the velocity over \
         the step, e.g. the half-step velocity of velocity Verlet); the result is the tangential \
         force on the particle. Each call: if δ ≤ 0 the force is 0 and ξ = 0; otherwise (1) rotate \
-        ξ into the tangent plane keeping its length, (2) v_t = v − (v·n) n, (3) ξ += v_t dt, \
-        (4) F_t = −k_t ξ − η_t v_t, (5) if |F_t| > μ max(F_n, 0) scale F_t to μ max(F_n, 0) and \
-        reset ξ = −(F_t + η_t v_t)/k_t. No friction in tension. With damping, the reset spring \
-        holds the dashpot's share, and while k_t grows on loading a trial force can briefly point \
-        along the slip when η_t |v_t| > μ F_n (LAMMPS's bookkeeping; ζ_t = 0 avoids it). Parameters: mu (≥ 0, default 0.5), \
-        damping ζ_t (≥ 0, default 0). A sphere launched sliding on a plane ends rolling at 5/7 of \
-        its launch speed; an oblique impact in gross sliding changes the tangential velocity by \
-        μ (1 + e) v_n.";
+        ξ into the tangent plane keeping its length, (2) if k_t grew since the last call scale ξ by \
+        k_t,before/k_t (the force is kept; incremental stiffness), (3) v_t = v − (v·n) n, \
+        ξ_t = ξ + v_t dt, F_t = −k_t ξ_t − η_t v_t, (4) if |F_t| > μ max(F_n, 0) scale F_t to \
+        μ max(F_n, 0) and set ξ = ((η_t/dt) ξ − F_t)/(k_t + η_t/dt) (a spring ∥ dashpot in series \
+        with the slider: the dashpot acts on the spring's rate, not on the slip), else ξ = ξ_t. \
+        No friction in tension. The law never does positive work on the motion it resists \
+        (LAMMPS's reset ξ = −(F + η v)/k can; see gran-mindlin for LAMMPS's bookkeeping). \
+        Parameters: mu (≥ 0, default 0.5), damping ζ_t (≥ 0, default 0). A sphere launched \
+        sliding on a plane ends rolling at 5/7 of its launch speed; an oblique impact in gross \
+        sliding changes the tangential velocity by μ (1 + e) v_n.";
     const HISTORY: &'static [History] = &{
         let [x, y, z] = History::TANGENTIAL_SPRING;
         [
@@ -128,6 +140,13 @@ impl TangentialLaw for Mindlin {
                 "N/m",
                 "the spring's stiffness k_t at the last call (its energy's)",
             ),
+            History::new(
+                "fd_x",
+                "N",
+                "the dashpot's share of the last force, x (its energy's)",
+            ),
+            History::new("fd_y", "N", "the dashpot's share of the last force, y"),
+            History::new("fd_z", "N", "the dashpot's share of the last force, z"),
         ]
     };
 
@@ -140,41 +159,61 @@ impl TangentialLaw for Mindlin {
     }
 }
 
+impl MindlinBound {
+    /// The slider of contact `c`: k_t now, `k_before` from the history, η_t, the cap μ F_n.
+    #[inline(always)]
+    fn slider(&self, c: &TangentialContact, k_before: f64) -> Slider {
+        let kt = self.stiffness(c.radius, c.delta);
+        // (as the lanes compute it: no dashpot to compute when ζ_t = 0)
+        let eta = if self.damping != 0.0 {
+            2.0 * self.damping * (c.mass * kt).sqrt()
+        } else {
+            0.0
+        };
+        Slider {
+            k: kt,
+            k_before,
+            eta,
+            cap: self.mu * c.normal_force.max(0.0),
+            rate: Slider::rate(c.dt),
+            dt: c.dt,
+        }
+    }
+
+    /// One call on contact `c` (see the crate's doc), with the step's energy when `ENERGY`.
+    #[inline(always)]
+    fn step<const ENERGY: bool>(&self, c: &TangentialContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
+        let sl = self.slider(c, h[3]);
+        h[3] = sl.k;
+        let (xi, fd) = h.split_at_mut(4);
+        slider_friction::<ENERGY>(&sl, c, xi, fd)
+    }
+}
+
 impl BoundTangential for MindlinBound {
     #[inline]
     fn force(&self, c: &TangentialContact, history: &mut [f64]) -> [f64; 3] {
-        let kt = self.stiffness(c.radius, c.delta);
-        let eta = 2.0 * self.damping * (c.mass * kt).sqrt();
-        let f = spring_friction(kt, eta, self.mu, c, history);
-        history[3] = kt;
-        f
+        self.step::<false>(c, history).0
     }
 
-    /// The same arithmetic as [`BoundTangential::force`], contact for contact, rearranged for
-    /// SIMD: lanes of `LANES` contacts are transposed into component arrays, every branch of
-    /// steps 1–6 becomes a select (both sides computed, the unused one discarded), and the
-    /// results are transposed back; on x86-64 CPUs with AVX2, four contacts at a time in
-    /// explicit lanes (`avx2.rs`). A test checks the bits of both against the per-contact form.
+    /// The same arithmetic as [`BoundTangential::force`], contact for contact, on x86-64 CPUs
+    /// with AVX2 four contacts at a time in explicit lanes (`avx2.rs`; every branch a select),
+    /// else one at a time. A test checks the bits of both against the per-contact form.
     #[inline(always)]
     fn force_batch(&self, b: TangentialBatch<'_>) {
         self.batch::<false>(b, None)
     }
 
-    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): the dashpot's
-    /// η_t |v_t|² while the spring holds, the slip's −F_t·v_t plus the change of the stored
-    /// energy while it slides or is dropped out of contact, less the energy the growing
-    /// stiffness puts into the spring at fixed ξ (k_t of the last call from the history; see
-    /// [`dashpot_sdk::physics::SliderStep`]).
+    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W) as
+    /// [`dashpot_sdk::physics::Slider::energy`] books it: the work of the force of the last call
+    /// and this one over the step's velocity, less the change of the stored energy (the
+    /// velocity Verlet balance, exactly).
     #[inline]
     fn force_energy(&self, c: &TangentialContact, history: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let kt = self.stiffness(c.radius, c.delta);
-        let eta = 2.0 * self.damping * (c.mass * kt).sqrt();
-        let (f, e) = spring_friction_energy([history[3], kt], eta, self.mu, c, history);
-        history[3] = kt;
-        (f, Some(e))
+        self.step::<true>(c, history)
     }
 
-    /// [`BoundTangential::force_energy`] over the batch in the SIMD lanes of
+    /// [`BoundTangential::force_energy`] over the batch in the lanes of
     /// [`BoundTangential::force_batch`], the same bits contact for contact (a test checks).
     #[inline(always)]
     fn force_batch_energy(&self, b: TangentialBatch<'_>, out: EnergyBatch<'_>) -> bool {
@@ -185,152 +224,36 @@ impl BoundTangential for MindlinBound {
 
 impl MindlinBound {
     /// The batch with (`ENERGY`) or without its energy outputs, in AVX2 lanes where the CPU has
-    /// them ([`dashpot_sdk::simd::available`]), else in the portable lanes.
+    /// them ([`dashpot_sdk::simd::available`]), else contact by contact.
     #[inline(always)]
     fn batch<const ENERGY: bool>(&self, b: TangentialBatch<'_>, out: Option<EnergyBatch<'_>>) {
-        // the host checks every batch against the law's declared slots (four: ξ, k_t); a caller
-        // that does not is told so through the trampoline's panic catch
-        assert_eq!(b.slots, SLOTS, "mindlin keeps 4 history slots per contact");
-        let damped = self.damping != 0.0;
+        // the host checks every batch against the law's declared slots (seven: ξ, k_t, the
+        // dashpot's share); a caller that does not is told so through the trampoline's panic
+        // catch
+        assert_eq!(b.slots, SLOTS, "mindlin keeps 7 history slots per contact");
         #[cfg(target_arch = "x86_64")]
         if dashpot_sdk::simd::available() {
             // SAFETY: the CPU has AVX2 (checked just above); the slots were checked.
             return unsafe {
-                if damped {
+                if self.damping != 0.0 {
                     avx2::lanes::<true, ENERGY>(self, b, out)
                 } else {
                     avx2::lanes::<false, ENERGY>(self, b, out)
                 }
             };
         }
-        if damped {
-            lanes::<true, ENERGY>(self, b, out)
-        } else {
-            lanes::<false, ENERGY>(self, b, out)
-        }
+        let mut out = out.filter(|_| ENERGY);
+        b.each_from(
+            0,
+            out.as_mut(),
+            |c, h| self.force(c, h),
+            |c, h| self.force_energy(c, h),
+        );
     }
 }
 
-/// Contacts per SIMD lane group.
-const LANES: usize = 8;
-
-/// History slots per contact: ξ (3), k_t.
-const SLOTS: usize = 4;
-
-/// [`spring_friction`] over a batch, `LANES` contacts at a time, branch-free (`DAMPED`: whether
-/// η_t ≠ 0 needs computing; `ENERGY`: whether to write each contact's energy to `out`, as
-/// [`spring_friction_energy`] computes it).
-#[inline(always)]
-fn lanes<const DAMPED: bool, const ENERGY: bool>(
-    law: &MindlinBound,
-    b: TangentialBatch<'_>,
-    mut out: Option<EnergyBatch<'_>>,
-) {
-    let n = b.force.len();
-    let (mu, two_zeta, dt) = (law.mu, 2.0 * law.damping, b.dt);
-    let mut lo = 0;
-    while lo < n {
-        let m = LANES.min(n - lo);
-        // transpose in (idle lanes: a harmless contact out of touch)
-        let mut nv = [[0.0f64; LANES]; 3];
-        let mut kprev = [0.0f64; LANES];
-        let mut know = [0.0f64; LANES];
-        let mut v = [[0.0f64; LANES]; 3];
-        let mut h = [[0.0f64; LANES]; 3];
-        let (mut d, mut r, mut ms, mut fnorm) = ([0.0; LANES], [1.0; LANES], [1.0; LANES], [0.0; LANES]);
-        for l in 0..m {
-            let i = lo + l;
-            for k in 0..3 {
-                nv[k][l] = b.normal[i][k];
-                v[k][l] = b.velocity[i][k];
-                h[k][l] = b.history[SLOTS * i + k];
-            }
-            if ENERGY {
-                kprev[l] = b.history[SLOTS * i + 3];
-            }
-            d[l] = b.delta[i];
-            r[l] = b.radius[i];
-            ms[l] = b.mass[i];
-            fnorm[l] = b.normal_force[i];
-        }
-        let mut f = [[0.0f64; LANES]; 3];
-        let (mut power, mut elastic) = ([0.0f64; LANES], [0.0f64; LANES]);
-        for l in 0..LANES {
-            let kt = law.stiffness(r[l], d[l]);
-            know[l] = kt;
-            let eta = if DAMPED {
-                two_zeta * (ms[l] * kt).sqrt()
-            } else {
-                0.0
-            };
-            let n3 = [nv[0][l], nv[1][l], nv[2][l]];
-            let x0 = [h[0][l], h[1][l], h[2][l]];
-            // 1. rotate into the tangent plane, keeping the length
-            let xn = dot(x0, n3);
-            let len2 = dot(x0, x0);
-            let p = [x0[0] - xn * n3[0], x0[1] - xn * n3[1], x0[2] - xn * n3[2]];
-            let plen2 = dot(p, p);
-            let s = if plen2 > 0.0 { (len2 / plen2).sqrt() } else { 0.0 };
-            let rot = xn != 0.0;
-            let mut xi = [0.0; 3];
-            for k in 0..3 {
-                xi[k] = if rot { p[k] * s } else { x0[k] };
-            }
-            let turned = xi;
-            // 2.–4. tangential velocity, advance, trial force
-            let v3 = [v[0][l], v[1][l], v[2][l]];
-            let vn = dot(v3, n3);
-            let mut vt = [0.0; 3];
-            let mut ft = [0.0; 3];
-            for k in 0..3 {
-                vt[k] = v3[k] - vn * n3[k];
-                xi[k] += vt[k] * dt;
-                ft[k] = -kt * xi[k] - eta * vt[k];
-            }
-            // 5. Coulomb cap, the spring reset to the capped force
-            let cap = mu * fnorm[l].max(0.0);
-            let f2 = dot(ft, ft);
-            let slide = f2 > cap * cap;
-            let sc = cap / f2.sqrt();
-            let touching = d[l] > 0.0;
-            for k in 0..3 {
-                let fs = ft[k] * sc;
-                let xs = if kt > 0.0 { -(fs + eta * vt[k]) / kt } else { 0.0 };
-                let (fk, xk) = if slide { (fs, xs) } else { (ft[k], xi[k]) };
-                // 6. out of touch: no force, the spring dropped
-                f[k][l] = if touching { fk } else { 0.0 };
-                h[k][l] = if touching { xk } else { 0.0 };
-            }
-            if ENERGY {
-                // spring_friction_energy's SliderStep, from the spring the step started from
-                let step = SliderStep {
-                    k: kt,
-                    k_before: kprev[l],
-                    eta,
-                    eta_held: eta,
-                    xi_before: if touching { turned } else { x0 },
-                    dt,
-                };
-                let (f3, x3) = ([f[0][l], f[1][l], f[2][l]], [h[0][l], h[1][l], h[2][l]]);
-                let e = step.energy(slide || !touching, x3, vt, f3);
-                (power[l], elastic[l]) = (e.power, e.elastic);
-            }
-        }
-        // transpose out
-        for l in 0..m {
-            let i = lo + l;
-            for k in 0..3 {
-                b.force[i][k] = f[k][l];
-                b.history[SLOTS * i + k] = h[k][l];
-            }
-            b.history[SLOTS * i + 3] = know[l];
-        }
-        if let (true, Some(o)) = (ENERGY, out.as_mut()) {
-            o.put(lo, &power[..m], &elastic[..m]);
-        }
-        lo += m;
-    }
-}
+/// History slots per contact: ξ (3), k_t, the dashpot's share of the force (3).
+const SLOTS: usize = 7;
 
 #[cfg(target_arch = "x86_64")]
 mod avx2;

@@ -1,7 +1,6 @@
 //! Elastic–plastic spring–dashpot (EPSD) rolling resistance of Ai et al. (2011).
 
 use dashpot_sdk::physics::dot;
-use dashpot_sdk::physics::SliderStep;
 use dashpot_sdk::{BoundRolling, Energy, History, LawError, MaterialPair, Range, RollingContact, RollingLaw};
 
 dashpot_sdk::law_params! {
@@ -39,13 +38,21 @@ impl RollingLaw for RollingEpsd {
         into the tangent plane keeping its length, (2) ξ += v_roll dt, (3) F_r = −k_t ξ − γ v_roll with \
         γ = C_r/R² = 2 η √((7/5) m k_t) (N·s/m); (4) if |k_t ξ| > μ_r |F_n|: F_r = −μ_r |F_n| ξ/|ξ| and \
         ξ = −F_r/k_t (no damping while mobilized). Parameters: kt (N/m), mu_r (the rolling friction \
-        coefficient: the limit torque is μ_r R |F_n|), eta (damping ratio, Ai et al. use 0.3). Energy: elastic \
-        k_t |ξ|²/2 (J); power γ |v_roll|² while the spring holds, −F_r·v_roll plus the change of the stored \
-        energy while mobilized (W).";
+        coefficient: the limit torque is μ_r R |F_n|), eta (damping ratio, Ai et al. use 0.3). History: ξ, and \
+        the dashpot's share of the last force (N; 0 mobilized). Energy: elastic k_t |ξ|²/2 (J); power (W) the \
+        work of the force averaged over the step less the change of the stored energy: γ |v_roll|² while the \
+        spring holds, −F_r·v_roll plus the change of the stored energy while mobilized.";
     const HISTORY: &'static [History] = &[
         History::new("xi_x", "m", "rolling displacement ξ = R θ_r, x component"),
         History::new("xi_y", "m", "rolling displacement ξ = R θ_r, y component"),
         History::new("xi_z", "m", "rolling displacement ξ = R θ_r, z component"),
+        History::new(
+            "fd_x",
+            "N",
+            "the dashpot's share of the last force, x component (its energy's)",
+        ),
+        History::new("fd_y", "N", "the dashpot's share of the last force, y component"),
+        History::new("fd_z", "N", "the dashpot's share of the last force, z component"),
     ];
 
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
@@ -54,11 +61,11 @@ impl RollingLaw for RollingEpsd {
 }
 
 impl RollingEpsd {
-    /// [`BoundRolling::force`], whether the spring was mobilized (capped), and the spring the
-    /// step started from, turned into the tangent plane.
-    fn step(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], bool, [f64; 3]) {
+    /// One call (see [`RollingEpsd::DOC`]): the force, and the step's energy when `ENERGY`.
+    fn step<const ENERGY: bool>(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
         let n = c.normal;
-        let mut xi = [h[0], h[1], h[2]];
+        let read = [h[0], h[1], h[2]];
+        let mut xi = read;
         let xn = dot(xi, n);
         if xn != 0.0 {
             let len = dot(xi, xi).sqrt();
@@ -67,52 +74,83 @@ impl RollingEpsd {
             let s = if plen > 0.0 { len / plen } else { 0.0 };
             xi = [p[0] * s, p[1] * s, p[2] * s];
         }
-        let turned = xi;
         for (x, v) in xi.iter_mut().zip(c.velocity) {
             *x += v * c.dt;
         }
         let cap = self.mu_r * c.normal_force.abs();
         let spring = self.kt * dot(xi, xi).sqrt();
-        let mobilized = spring > cap;
-        let f = if mobilized {
+        let gamma = self.gamma(c.mass);
+        let v = c.velocity;
+        let (f, fd) = if spring > cap {
+            // mobilized: the spring holds the limit force alone, the dashpot off
             let s = cap / spring;
             let f = [-self.kt * xi[0] * s, -self.kt * xi[1] * s, -self.kt * xi[2] * s];
             xi = [-f[0] / self.kt, -f[1] / self.kt, -f[2] / self.kt];
-            f
+            (f, [0.0; 3])
         } else {
-            let g = self.gamma(c.mass);
-            [
-                -self.kt * xi[0] - g * c.velocity[0],
-                -self.kt * xi[1] - g * c.velocity[1],
-                -self.kt * xi[2] - g * c.velocity[2],
-            ]
+            let fd = [-gamma * v[0], -gamma * v[1], -gamma * v[2]];
+            let f = [
+                -self.kt * xi[0] + fd[0],
+                -self.kt * xi[1] + fd[1],
+                -self.kt * xi[2] + fd[2],
+            ];
+            (f, fd)
         };
+        let energy = ENERGY.then(|| {
+            // the work of the force averaged over the step, the force before it as the last
+            // step left it (its spring and its dashpot's share), less what the spring stored
+            let (k, dt) = (self.kt, c.dt);
+            let mut mean = [0.0; 3];
+            for q in 0..3 {
+                mean[q] = 0.5 * (f[q] - k * read[q] + h[3 + q]);
+            }
+            let stored = 0.5 * k * (dot(read, read) - dot(xi, xi));
+            Energy {
+                power: if dt > 0.0 {
+                    -dot(mean, v) + stored / dt
+                } else {
+                    0.0
+                },
+                elastic: 0.5 * k * dot(xi, xi),
+            }
+        });
         h[..3].copy_from_slice(&xi);
-        (f, mobilized, turned)
+        h[3..6].copy_from_slice(&fd);
+        (f, energy)
     }
 }
 
 impl BoundRolling for RollingEpsd {
     fn force(&self, c: &RollingContact, h: &mut [f64]) -> [f64; 3] {
-        self.step(c, h).0
+        self.step::<false>(c, h).0
     }
 
-    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): γ |v_roll|² while
-    /// the spring holds, −F_r·v_roll plus the change of the stored energy while mobilized (see
-    /// [`SliderStep`]).
+    /// The force with the step's energy: elastic k_t |ξ|²/2 (J); power (W): the work of the
+    /// force averaged over the step (the force before it rebuilt from the history: the spring's
+    /// and the dashpot's shares, so the balance closes as velocity Verlet integrates it) less
+    /// the change of the stored energy.
     fn force_energy(&self, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], Option<Energy>) {
-        let (f, mobilized, before) = self.step(c, h);
-        // a mobilized spring holds the capped force alone: F = −k_t ξ
-        let step = SliderStep {
-            k: self.kt,
-            k_before: self.kt,
-            eta: self.gamma(c.mass),
-            eta_held: 0.0,
-            xi_before: before,
-            dt: c.dt,
-        };
-        (f, Some(step.energy(mobilized, [h[0], h[1], h[2]], c.velocity, f)))
+        self.step::<true>(c, h)
     }
 }
 
 dashpot_sdk::export_laws!(rolling: [RollingEpsd]);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The law never gives back more energy than the rolling put into it, and its books close
+    /// ([`dashpot_sdk::testkit`]: random materials, random paths).
+    #[test]
+    fn never_gives_back_more_than_it_was_given() {
+        for (kt, mu_r, eta) in [
+            (1e5, 0.1, 0.3),
+            (1e5, 0.1, 0.0),
+            (1e3, 0.01, 1.0),
+            (1e8, 1.0, 0.3),
+        ] {
+            dashpot_sdk::testkit::assert_dissipative_rolling(&RollingEpsd { kt, mu_r, eta });
+        }
+    }
+}

@@ -120,6 +120,37 @@ fn touching_row<const D: usize, const IMAGE: bool>(
     count
 }
 
+/// The elastic energy (J) of the motion families' springs (tangential, rolling, twisting; and
+/// the normal law's, when it is adhesive) that `prev`'s contacts not carried over held, added to
+/// `dropped` by family and listed in `ended` by contact: `src` lists the carried ones' indices in `prev`, in increasing order ([`NEW`]
+/// for the new ones).
+fn dropped_springs(prev: &ContactSet, src: &[u32], dropped: &mut [f64; 4], ended: &mut Vec<(u32, u32, f64)>) {
+    // an adhesive normal law's contact ends at its reach, beyond touching, holding what its
+    // adhesion hysteresis left in it; a contact of any other normal law ends at touch, where
+    // its last step's mean force has given its energy back
+    let from = if prev.reach_bound > 0.0 { 0 } else { 1 };
+    let mut gone = |a: usize, b: usize| {
+        for m in a..b.min(prev.len()) {
+            let mut sum = 0.0;
+            for (k, d) in dropped.iter_mut().enumerate().skip(from) {
+                if let Some(&e) = prev.elastic[k].get(m) {
+                    *d += e;
+                    sum += e;
+                }
+            }
+            if sum != 0.0 {
+                ended.push((prev.i[m], prev.j[m], sum));
+            }
+        }
+    };
+    let mut next = 0;
+    for &m in src.iter().filter(|&&m| m != NEW) {
+        gone(next, m as usize);
+        next = m as usize + 1;
+    }
+    gone(next, prev.len());
+}
+
 /// The arrays pass 2 of a pair gathering writes, one element per candidate.
 struct PairsOut<'a> {
     i: &'a mut [u32],
@@ -430,6 +461,11 @@ impl ContactSet {
         }
         let n = self.len();
         let src = &owned[..n];
+        self.dropped = [0.0; 4];
+        self.ended.clear();
+        if self.energy {
+            dropped_springs(prev, src, &mut self.dropped, &mut self.ended);
+        }
         carry_slots(&mut self.hist_n, &prev.hist_n, src, self.slots_n);
         carry_slots(&mut self.hist_t, &prev.hist_t, src, self.slots_t);
         let mut formed = 0;

@@ -10,7 +10,7 @@ impl Contacts {
     /// contacts (`pairs`) keep i < j (the history needs no change: the laws see a pair from the
     /// partner the user numbered first, whatever the engine's numbers); wall contacts keep
     /// their wall. Only what the next gathering reads of the previous sets is carried: keys,
-    /// histories, the last-step flags and the reaches. The work is a counting sort by the new
+    /// histories, the last-step flags, the reaches and the springs' elastic energy. The work is a counting sort by the new
     /// i, then each particle's few partners sorted: linear in the contacts.
     pub fn renumber(&mut self, new_of: &[u32], pairs: bool, chunk: usize) {
         let n = new_of.len();
@@ -88,7 +88,7 @@ impl Contacts {
 }
 
 /// Contact `m` of `src` as contact `k` of `dst`, keyed (`i`, `j`): what the merge of the next
-/// gathering reads (histories, last-step flag, reach).
+/// gathering reads (histories, last-step flag, reach, the springs' elastic energy).
 fn move_history(dst: &mut ContactSet, k: usize, i: u32, j: u32, src: &ContactSet, m: usize) {
     dst.i[k] = i;
     dst.j[k] = j;
@@ -104,5 +104,11 @@ fn move_history(dst: &mut ContactSet, k: usize, i: u32, j: u32, src: &ContactSet
     if dst.rotational() {
         copy(&mut dst.hist_r, &src.hist_r, dst.slots_r.unwrap_or(0));
         copy(&mut dst.hist_w, &src.hist_w, dst.slots_w.unwrap_or(0));
+    }
+    if dst.energy {
+        // the springs' energy, which the gathering books if the contact ends
+        for (d, s) in dst.elastic.iter_mut().zip(&src.elastic).skip(1) {
+            d[k] = s[m];
+        }
     }
 }

@@ -176,12 +176,12 @@ impl<const D: usize> Engine<D> {
         self.wall_work += work * self.dt;
     }
 
-    /// Adds the step's dissipation (each contact's power × dt) to [`Engine::dissipated`], chunk
-    /// by chunk in order.
+    /// Adds the step's dissipation (each contact's power × dt, and the springs of the contacts
+    /// that ended) to [`Engine::dissipated`], chunk by chunk in order.
     fn account_energy(&mut self) {
         for set in self.pairs.chunks.iter().chain(&self.wall_contacts.chunks) {
             for (k, p) in set.power_sum.iter().enumerate() {
-                self.dissipated[k] += p * self.dt;
+                self.dissipated[k] += p * self.dt + set.dropped[k];
                 self.unreported[k] |= set.unreported[k];
             }
         }
