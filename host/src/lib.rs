@@ -13,11 +13,13 @@
 
 pub mod ae_statements;
 pub mod bed;
+pub mod budget;
 pub mod cli;
 pub mod config;
 pub mod dem;
 pub mod output;
 pub mod piston;
+pub mod progress;
 pub mod report;
 pub mod tabulate;
 

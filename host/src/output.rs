@@ -6,32 +6,74 @@ use serde_json::json;
 use std::io::Write;
 use std::path::Path;
 
-/// Writes `bytes` to `path` through a temporary file in the same directory and a rename, so a
-/// reader (or a crash) never sees a half-written result.
+/// Writes `bytes` to `path` whole or not at all, every error naming the path and the reason:
+/// a regular file (or a new one) through a temporary file beside it, synced and renamed over it,
+/// so a reader (or a crash) never sees it half-written; a path that is not a regular file (a
+/// device such as `/dev/null` or `/dev/stdout`, a pipe) is written in place and flushed, never
+/// replaced. A symbolic link is followed: its target is what is written.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let mut f = AtomicFile::create(path)?;
+    // (its writes name the path already)
     f.write_all(bytes)?;
     f.commit()
+}
+
+/// `e` with the path it was about: "cannot write PATH: REASON" (the kind kept).
+pub fn write_error(path: &Path, e: std::io::Error) -> std::io::Error {
+    std::io::Error::new(e.kind(), format!("cannot write {}: {e}", path.display()))
+}
+
+/// Where an [`AtomicFile`] writes.
+enum Sink {
+    /// A temporary file beside the result, renamed over it at the end.
+    Temp(std::io::BufWriter<tempfile::NamedTempFile>),
+    /// The path itself: a device or a pipe, written in place.
+    InPlace(std::io::BufWriter<std::fs::File>),
 }
 
 /// A result file written as it grows (a trajectory), which appears at its path only when
 /// [`AtomicFile::commit`] is called: until then it is a temporary file beside it (tempfile's
 /// `NamedTempFile`), removed if the writer is dropped uncommitted (a run that failed leaves no
-/// half-written result).
+/// half-written result). A path that is not a regular file (a device, a pipe) is written in
+/// place (see [`write_atomic`]). Every error names the path.
 pub struct AtomicFile {
     path: std::path::PathBuf,
-    w: std::io::BufWriter<tempfile::NamedTempFile>,
+    w: Sink,
 }
 
 impl AtomicFile {
     /// A new file to become `path` (its folder created if need be).
     pub fn create(path: &Path) -> std::io::Result<AtomicFile> {
-        let dir = path
+        let fail = |e| write_error(path, e);
+        // a link is followed (renaming over it would replace the link, not its target)
+        let target = match std::fs::canonicalize(path) {
+            Ok(t) => t,
+            Err(_) => path.to_path_buf(),
+        };
+        if let Ok(meta) = std::fs::metadata(&target) {
+            if meta.is_dir() {
+                return Err(fail(std::io::Error::new(
+                    std::io::ErrorKind::IsADirectory,
+                    "it is a directory",
+                )));
+            }
+            if !meta.is_file() {
+                let f = std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(&target)
+                    .map_err(fail)?;
+                return Ok(AtomicFile {
+                    path: path.to_path_buf(),
+                    w: Sink::InPlace(std::io::BufWriter::new(f)),
+                });
+            }
+        }
+        let dir = target
             .parent()
             .filter(|d| !d.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
-        std::fs::create_dir_all(dir)?;
-        let name = path
+        std::fs::create_dir_all(dir).map_err(fail)?;
+        let name = target
             .file_name()
             .map(|n| n.to_string_lossy().to_string())
             .unwrap_or_default();
@@ -41,28 +83,100 @@ impl AtomicFile {
         // a result file's usual mode (under the umask), not a temporary's owner-only 0600
         #[cfg(unix)]
         b.permissions(std::os::unix::fs::PermissionsExt::from_mode(0o666));
-        let tmp = b.tempfile_in(dir)?;
+        let tmp = b.tempfile_in(dir).map_err(fail)?;
         Ok(AtomicFile {
-            path: path.to_path_buf(),
-            w: std::io::BufWriter::new(tmp),
+            path: target,
+            w: Sink::Temp(std::io::BufWriter::new(tmp)),
         })
     }
 
-    /// Flushes the file, syncs it and moves it to its path.
+    /// `e` naming this file's path.
+    fn failed(&self, e: std::io::Error) -> std::io::Error {
+        write_error(&self.path, e)
+    }
+
+    /// Flushes the file, syncs it and moves it to its path (a device or a pipe: flushes it).
     pub fn commit(self) -> std::io::Result<()> {
-        let tmp = self.w.into_inner().map_err(|e| e.into_error())?;
-        tmp.as_file().sync_all()?;
-        tmp.persist(&self.path).map(|_| ()).map_err(|e| e.error)
+        let path = self.path;
+        let fail = |e| write_error(&path, e);
+        match self.w {
+            Sink::Temp(w) => {
+                let tmp = w.into_inner().map_err(|e| fail(e.into_error()))?;
+                tmp.as_file().sync_all().map_err(fail)?;
+                tmp.persist(&path).map(|_| ()).map_err(|e| fail(e.error))
+            }
+            Sink::InPlace(mut w) => w.flush().map_err(fail),
+        }
     }
 }
 
 impl Write for AtomicFile {
     fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
-        self.w.write(buf)
+        let r = match &mut self.w {
+            Sink::Temp(w) => w.write(buf),
+            Sink::InPlace(w) => w.write(buf),
+        };
+        r.map_err(|e| self.failed(e))
     }
 
     fn flush(&mut self) -> std::io::Result<()> {
-        self.w.flush()
+        let r = match &mut self.w {
+            Sink::Temp(w) => w.flush(),
+            Sink::InPlace(w) => w.flush(),
+        };
+        r.map_err(|e| self.failed(e))
+    }
+}
+
+/// A print to the standard output or error that failed (a full disk, a closed pipe): `println!`
+/// panics with it, [`catch_print_failures`] turns that panic into this value.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PrintFailure {
+    /// The reason, e.g. "failed printing to stdout: No space left on device (os error 28)".
+    pub message: String,
+    /// The reader went away (a pipe closed early, as `dashpot laws | head -1` does).
+    pub broken_pipe: bool,
+}
+
+/// The message of a panic payload, if it is text.
+fn panic_text(p: &(dyn std::any::Any + Send)) -> Option<&str> {
+    p.downcast_ref::<String>()
+        .map(|s| s.as_str())
+        .or_else(|| p.downcast_ref::<&str>().copied())
+}
+
+/// Whether a panic message is that of a failed `print!`/`eprint!`.
+fn is_print_failure(m: &str) -> bool {
+    m.starts_with("failed printing to std")
+}
+
+/// Runs `f`; a print of it to stdout or stderr that fails (which panics in `println!`) ends it
+/// as a [`PrintFailure`] instead of a crash, without the panic's message and backtrace. Other
+/// panics go on as they were. Stdout is flushed at the end, its failure reported the same way.
+pub fn catch_print_failures<T>(f: impl FnOnce() -> T) -> Result<T, PrintFailure> {
+    static HOOK: std::sync::Once = std::sync::Once::new();
+    HOOK.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if panic_text(info.payload()).is_some_and(is_print_failure) {
+                return;
+            }
+            previous(info)
+        }));
+    });
+    let failure = |message: String| PrintFailure {
+        broken_pipe: message.contains("Broken pipe") || message.contains("os error 32"),
+        message,
+    };
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(f)) {
+        Ok(v) => match std::io::stdout().flush() {
+            Ok(()) => Ok(v),
+            Err(e) => Err(failure(format!("failed printing to stdout: {e}"))),
+        },
+        Err(p) => match panic_text(&*p) {
+            Some(m) if is_print_failure(m) => Err(failure(m.to_string())),
+            _ => std::panic::resume_unwind(p),
+        },
     }
 }
 

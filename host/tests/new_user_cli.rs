@@ -261,6 +261,9 @@ fn check_prints_the_step_contact_time_count_and_sizes_and_does_not_run() {
         "contact time",
         "50.0 steps per collision",
         "2 3D particles, diameters 2.0000e-3 .. 3.0000e-3 m",
+        "steps: ",
+        "peak memory: about ",
+        "wall time: about ",
     ] {
         assert!(stdout.contains(needle), "'{needle}' in: {stdout}");
     }
@@ -272,6 +275,15 @@ fn check_prints_the_step_contact_time_count_and_sizes_and_does_not_run() {
     assert_eq!(v["particles"].as_u64(), Some(2));
     assert_eq!(v["diameter_min"].as_f64(), Some(0.002));
     assert_eq!(v["diameter_max"].as_f64(), Some(0.003));
+    // the estimate: the steps to the duration, a peak above what the process holds, a time
+    let est = &v["estimate"];
+    let steps = est["steps"].as_u64().unwrap();
+    assert_eq!(steps, (0.001 / dt).ceil() as u64, "{est}");
+    assert!(
+        est["memory_bytes"].as_f64().unwrap() > est["resident_bytes_after_sample"].as_f64().unwrap() * 0.5,
+        "{est}"
+    );
+    assert!(est["wall_seconds"].as_f64().unwrap() > 0.0, "{est}");
     // the same with steps_per_collision = 100: half the step
     let p100 = scene(
         "check100.toml",

@@ -191,6 +191,23 @@ pub(crate) unsafe fn string<'a>(p: *const c_char, what: &str) -> Result<&'a str,
         .map_err(|_| CError::new(DASHPOT_ERR_INVALID_ARGUMENT, format!("{what} is not valid UTF-8")))
 }
 
+/// Refuses an array of `n` values of `T` whose size in bytes exceeds `isize::MAX` (no array in
+/// memory is that large: such a length is a caller's error, e.g. a negative count cast to
+/// `size_t`, and making a slice of it is undefined behaviour).
+fn fits<T>(n: usize, what: &str) -> Result<(), CError> {
+    let most = isize::MAX as usize / std::mem::size_of::<T>().max(1);
+    if n <= most {
+        return Ok(());
+    }
+    Err(CError::new(
+        DASHPOT_ERR_BAD_LENGTH,
+        format!(
+            "{what}: length {n} is out of range: an array of {} bytes each holds at most {most} values (isize::MAX bytes)",
+            std::mem::size_of::<T>()
+        ),
+    ))
+}
+
 /// An input array of `n` values; null is allowed only when `n == 0`.
 ///
 /// # Safety
@@ -199,6 +216,7 @@ pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Result<&
     if n == 0 {
         return Ok(&[]);
     }
+    fits::<T>(n, what)?;
     if p.is_null() {
         return Err(CError::new(
             DASHPOT_ERR_NULL_POINTER,
@@ -217,6 +235,7 @@ pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Result
     if n == 0 {
         return Ok(&mut []);
     }
+    fits::<T>(n, what)?;
     if p.is_null() {
         return Err(CError::new(
             DASHPOT_ERR_NULL_POINTER,

@@ -427,6 +427,9 @@ fn sweep(
     let opt = options(rtol)?;
     let end = end_of(end, EndCriterion::Overlap)?;
     let (pair, mats) = (body.pair()?, body.materials()?);
+    // (a product of grids past the machine is refused before anything is allocated)
+    dashpot::cli::sweep::check_size(v0s.len(), &varied, base.len())
+        .map_err(|r| PyValueError::new_err(r.0))?;
     let combos: usize = varied.iter().map(|(_, g)| g.len()).product();
     // blocks of about 64 collisions, whole impact speeds each, with a Ctrl-C check between
     let per_block = 64usize.div_ceil(combos.max(1)).max(1);

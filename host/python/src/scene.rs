@@ -226,6 +226,17 @@ impl Scene {
     /// in blocks of about 50 ms, Ctrl-C checked between them (the blocks do not change the
     /// result: the engine's state after k steps is the same however they are split).
     fn _advance(&mut self, py: Python<'_>, t_end: f64, stop: u64) -> PyResult<()> {
+        // a step count past any machine's reach is refused before the first step
+        let (dt, t, n, steps) = on!(&self.e, e => (e.dt(), e.time(), e.p.len(), e.steps()));
+        let span = (t_end - t).min(stop.saturating_sub(steps) as f64 * dt);
+        dashpot::budget::check_steps(
+            "Scene.run",
+            dt,
+            span,
+            n,
+            "a law or material far stiffer than meant (young, a stiffness k), a far smaller dt or more steps_per_collision than meant, or a far longer duration",
+        )
+        .map_err(|r| PyValueError::new_err(r.0))?;
         // the blocks keep a large pile in the engine's memory order (no permutation of its
         // arrays per block); the views see the user's order again before Python does
         let done = self.advance_blocks(py, t_end, stop);
@@ -299,6 +310,46 @@ impl Scene {
         d.set_item("initial", on.then_some(self.energy_initial))?;
         d.set_item("wall_work", on.then_some(work))?;
         Ok(d)
+    }
+
+    /// What `dashpot dem --scene FILE --check` estimates of the scene's run from t = 0 to its
+    /// duration, as JSON text: steps, peak memory, wall time from a timed sample of about
+    /// `sample` seconds (s) of its own steps on a second engine built from the scene (this
+    /// scene's state is not touched). The GIL is released meanwhile.
+    fn _check(&self, py: Python<'_>, sample: f64) -> PyResult<String> {
+        if !(sample.is_finite() && sample > 0.0 && sample <= 3600.0) {
+            return Err(PyValueError::new_err(format!(
+                "sample = {sample} s is out of range: it must lie in (0, 3600]"
+            )));
+        }
+        let reg = registry(py)?;
+        let reg: &Registry = &reg;
+        let file = &self.file;
+        let started = Instant::now();
+        let budget = Duration::from_secs_f64(sample);
+        let v = py
+            .allow_threads(|| -> anyhow::Result<serde_json::Value> {
+                fn one<const D: usize>(
+                    reg: &Registry,
+                    file: &SceneFile,
+                    started: Instant,
+                    budget: Duration,
+                ) -> anyhow::Result<serde_json::Value> {
+                    let scene = file.scene::<D>()?;
+                    let (mut e, _, mut fp) = dashpot::cli::dem::scene_engine_sized(reg, file, &scene)?;
+                    // (result() builds the final document only when asked: counted apart)
+                    fp.final_json = false;
+                    let setup = started.elapsed().as_secs_f64();
+                    let est = dashpot::cli::budget::estimate(&mut e, fp, scene.duration, setup, 0, budget)?;
+                    Ok(est.json())
+                }
+                match file.dimension()? {
+                    2 => one::<2>(reg, file, started, budget),
+                    _ => one::<3>(reg, file, started, budget),
+                }
+            })
+            .map_err(run_err)?;
+        Ok(v.to_string())
     }
 
     /// The document `dashpot dem --scene FILE --json` prints after the same steps, as JSON

@@ -137,6 +137,9 @@ impl DemBed {
         let b = &self.bed;
         self.check().map_err(|e| DemError::Invalid(e.to_string()))?;
         let n = b.disks();
+        // (before the disks are made: a bed past the machine's memory is refused)
+        crate::dem::footprint::check_count("the bed's disks N = n L/d", n, 2)
+            .map_err(|e| DemError::Invalid(format!("{e}; lower --layers")))?;
         let d = b.diameter;
         let bottom = -0.5 * b.amplitude;
         let lid = b.lid();
@@ -188,6 +191,15 @@ impl DemBed {
         let clock = std::time::Instant::now();
         let mut e = self.engine(laws)?;
         let period = 1.0 / self.bed.freq;
+        // a step count past any machine's reach is refused before the first step
+        crate::budget::check_steps(
+            "the DEM bed",
+            e.dt(),
+            (transient + cycles) * period,
+            e.p.len(),
+            "a stiffer material than meant (--young), a far smaller --dt or too many --steps-per-collision, or a protocol (--transient, --cycles, --freq) far longer than meant",
+        )
+        .map_err(|r| DemError::Invalid(r.0))?;
         // block sums: time, lid impulse, piston impulse, lid episodes, kinetic energy, samples
         let blocks = (cycles.floor() as usize).clamp(1, 20);
         let block_len = cycles * period / blocks as f64;

@@ -9,7 +9,7 @@ use crate::dem::DemError;
 use crate::output::{write_atomic, Provenance};
 use crate::plot::{Mark, Panel, Series};
 use crate::registry::Registry;
-use anyhow::{Context, Result};
+use anyhow::Result;
 use dashpot_sdk::ParamValue;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -292,7 +292,7 @@ pub fn write_grid_csv<R: Measured>(path: &Path, runs: &[R], prov: &[Provenance])
     for r in runs {
         s.push_str(&format!("{},{}\n", r.csv(), r.csv_extra()));
     }
-    write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
+    Ok(write_atomic(path, s.as_bytes())?)
 }
 
 /// Writes the exponents as CSV (theta and max |residual| of each observable), after the
@@ -313,7 +313,7 @@ pub fn write_fit_csv(path: &Path, rows: &[ScalingRow], prov: &[Provenance]) -> R
         let fits = r.fits().map(c).join(",");
         s.push_str(&format!("{},{fits},{}\n", r.layers, r.tc_share));
     }
-    write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
+    Ok(write_atomic(path, s.as_bytes())?)
 }
 
 /// θ(n) for the four observables; points whose fit is not a power law (a residual ≥ 0.25, the

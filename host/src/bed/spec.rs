@@ -65,6 +65,9 @@ pub enum BedEngine {
     },
 }
 
+/// The most seeds a bed experiment runs (each a whole run: more would not end).
+pub const MAX_SEEDS: usize = 100_000;
+
 /// One bed experiment, run by either engine.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BedSpec {
@@ -93,8 +96,11 @@ impl BedSpec {
     /// disks or TC model on soft disks).
     pub fn validate(&self) -> Result<()> {
         BedConfig::check_protocol(self.transient, self.cycles).map_err(|e| anyhow::anyhow!("--{e}"))?;
-        if self.seeds == 0 {
-            bail!("--seeds = 0 is out of range: give at least 1 seed");
+        if self.seeds == 0 || self.seeds > MAX_SEEDS {
+            bail!(
+                "--seeds = {} is out of range: give 1 to {MAX_SEEDS} seeds",
+                self.seeds
+            );
         }
         if let Some(e) = self.young {
             if !(e.is_finite() && e > 0.0) {

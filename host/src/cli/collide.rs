@@ -169,7 +169,7 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
     let c = run_one(reg, &sel, v0, end, &opt)?;
     if let Some(p) = &a.trajectory {
         let csv = [prov.csv_comment().into_bytes(), trajectory_csv(&c)?].concat();
-        write_atomic(p, &csv).with_context(|| format!("cannot write {}", p.display()))?;
+        write_atomic(p, &csv)?;
     }
     if a.json {
         println!(

@@ -37,6 +37,9 @@ pub struct DemArgs {
     /// contact time, the particle count and size range. Exits non-zero if a check fails.
     #[arg(long, requires = "scene")]
     pub check: bool,
+    /// The limits of a long run (`--max-hours`).
+    #[command(flatten)]
+    pub limits: crate::cli::budget::LimitArgs,
     /// Write a checkpoint (the whole state, to resume with --restart) every STEPS steps (e.g.
     /// 5000) or every so much wall-clock time (90s, 10min, 2h). Ctrl-C (or SIGTERM) writes one
     /// in any case: the step under way ends, the checkpoint is written, and the run stops
@@ -98,6 +101,7 @@ pub struct DemBedArgs {
 
 /// Runs `dashpot dem`.
 pub fn run(reg: &Registry, a: &DemArgs) -> Result<()> {
+    crate::budget::check_max_hours(a.limits.max_hours)?;
     if let Some(r) = &a.restart {
         let r = Resume::read(r)?;
         return match r.header.dimension {
@@ -199,7 +203,9 @@ fn run_dim<const D: usize>(
     let scene = file
         .scene::<D>()
         .with_context(|| format!("in {}", path.display()))?;
-    let (mut e, mut energy_initial) = scene_engine(reg, file, &scene)?;
+    // (the setup --check times: the scene's particles, the engine)
+    let started = std::time::Instant::now();
+    let (mut e, mut energy_initial, fp) = scene_engine_sized(reg, file, &scene)?;
     let c = e.step_choice;
     let line = if c.given {
         format!(
@@ -215,8 +221,34 @@ fn run_dim<const D: usize>(
             c.dt, c.collision_time, scene.config.steps_per_collision, scene.plan.law_names(), c.impact_speed
         )
     };
+    // steps past any machine's reach are refused before the first (and under --check)
+    let total_steps = crate::cli::budget::check_run_steps(&e, scene.duration)?;
+    crate::cli::budget::check_least_hours(total_steps, e.p.len(), a.limits.max_hours)?;
+    let frames = if a.out.is_some() {
+        scene.snapshots.max(1)
+    } else {
+        0
+    } as u64;
     if a.check {
-        return print_check(&e, path, &scene, a.json);
+        let setup = started.elapsed().as_secs_f64();
+        let mut fp = fp;
+        // (--json here is the check's own output; the run's final document is counted apart)
+        fp.final_json = a.out.is_some();
+        let est = crate::cli::budget::estimate(
+            &mut e,
+            fp,
+            scene.duration,
+            setup,
+            frames,
+            std::time::Duration::from_secs(2),
+        )?;
+        crate::budget::check_hours(
+            &format!("the run of {total_steps} steps of {} particles", e.p.len()),
+            est.total_seconds(),
+            "estimated from a timed sample of its steps",
+            a.limits.max_hours,
+        )?;
+        return print_check(&e, path, &scene, a.json, &est);
     }
     eprintln!("{line}");
     if let Some(w) = c.warning() {
@@ -300,15 +332,20 @@ fn run_dim<const D: usize>(
     let pb = crate::output::progress_bar(total_steps, "dem");
     pb.set_message("steps");
     let wall0 = std::time::Instant::now();
-    let every = (total_steps / 200).max(1);
-    // the steps to the next progress tick, frame or the end, as one block
+    // blocks of steps of about progress::TICK each (the bar moves, Ctrl-C is seen, the pace is
+    // judged against --max-hours), cut at the frames and checkpoints; a run's bits do not
+    // depend on its blocks
+    let pace = std::cell::RefCell::new(crate::progress::Pace::new());
+    let mut limit = crate::cli::budget::PaceLimit::new(a.limits.max_hours);
+    let last_stop = std::cell::Cell::new(e.steps());
+    let first_step = e.steps();
     let next_frame = std::cell::Cell::new(frames_done(e.steps()));
     let framing = traj.is_some() && frames > 0;
     let cks = std::cell::RefCell::new(cks);
     let ran = e.run_with_stops(
         scene.duration,
         &mut |s| {
-            let next_tick = (s / every + 1) * every;
+            let next_tick = s.saturating_add(pace.borrow().block());
             let next = next_tick.min(cks.borrow().next_stop(s));
             if framing {
                 next.min((next_frame.get() * total_steps).div_ceil(frames))
@@ -317,9 +354,13 @@ fn run_dim<const D: usize>(
             }
         },
         &mut |e| -> Result<()> {
-            if e.steps() % every == 0 {
-                pb.set_position(e.steps());
-            }
+            pace.borrow_mut().done(e.steps() - last_stop.replace(e.steps()));
+            pb.set_position(e.steps());
+            limit.check(
+                e.steps() - first_step,
+                total_steps.saturating_sub(first_step),
+                wall0.elapsed().as_secs_f64(),
+            )?;
             if let Some(w) = traj.as_mut() {
                 let k = next_frame.get();
                 if frames > 0 && e.steps() * frames >= k * total_steps {
@@ -361,20 +402,25 @@ fn run_dim<const D: usize>(
     if let (Some(w), true) = (traj.as_mut(), framing && next_frame.get() <= frames) {
         frame(&e, w, next_frame.get())?;
     }
-    pb.finish_and_clear();
+    pb.finish();
     let wall = wall0.elapsed().as_secs_f64();
     if let Some(w) = traj {
-        w.commit().context("writing the trajectory")?;
+        w.commit()?;
     }
-    let state = final_json(reg, file, &scene.plan, &e, energy_initial, wall)?;
-    if let Some(dir) = &a.out {
+    // (the final state as JSON only where it goes: a large pile's costs more than its engine)
+    let state = if a.json || a.out.is_some() {
+        Some(final_json(reg, file, &scene.plan, &e, energy_initial, wall)?)
+    } else {
+        None
+    };
+    if let (Some(dir), Some(state)) = (&a.out, &state) {
         crate::output::write_atomic(
             &dir.join("final.json"),
-            serde_json::to_string_pretty(&state)?.as_bytes(),
+            serde_json::to_string_pretty(state)?.as_bytes(),
         )?;
     }
-    if a.json {
-        println!("{}", serde_json::to_string_pretty(&state)?);
+    if let (true, Some(state)) = (a.json, &state) {
+        println!("{}", serde_json::to_string_pretty(state)?);
     } else {
         let en = e.energy();
         println!("{} {}D particles, {}", e.p.len(), D, laws_line(&scene.plan));
@@ -427,8 +473,19 @@ pub fn scene_engine<const D: usize>(
     file: &SceneFile,
     scene: &crate::dem::scene::Scene<D>,
 ) -> Result<(Engine<D>, f64)> {
-    let _ = file;
+    scene_engine_sized(reg, file, scene).map(|(e, en, _)| (e, en))
+}
+
+/// [`scene_engine`], and the run's memory footprint, checked against the memory available
+/// before the engine is built (a run that cannot fit is refused, naming what it needs).
+pub fn scene_engine_sized<const D: usize>(
+    reg: &Registry,
+    file: &SceneFile,
+    scene: &crate::dem::scene::Scene<D>,
+) -> Result<(Engine<D>, f64, crate::dem::footprint::Footprint)> {
     let laws = scene.plan.bind(reg)?;
+    let fp = crate::cli::budget::scene_footprint(scene, &laws);
+    crate::cli::budget::check_scene_memory(file, scene, &laws)?;
     let e = Engine::with_species(
         scene.config.clone(),
         &scene.bodies,
@@ -437,7 +494,7 @@ pub fn scene_engine<const D: usize>(
         laws,
     )?;
     let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
-    Ok((e, energy_initial))
+    Ok((e, energy_initial, fp))
 }
 
 /// The laws of a run in one line: `law hsd + mindlin`, or with several classes
@@ -509,12 +566,14 @@ pub fn final_json<const D: usize>(
 }
 
 /// `dem --scene FILE --check`: what the run would start with (the checks have passed): the
-/// step, the particles, the species, every class of contacts with its laws, the walls.
+/// step, the particles, the species, every class of contacts with its laws, the walls; and
+/// the estimate of the run (steps, peak memory, wall time).
 fn print_check<const D: usize>(
     e: &Engine<D>,
     path: &std::path::Path,
     scene: &crate::dem::scene::Scene<D>,
     json: bool,
+    est: &crate::cli::budget::RunEstimate,
 ) -> Result<()> {
     let c = e.step_choice;
     if let Some(w) = c.warning() {
@@ -545,6 +604,7 @@ fn print_check<const D: usize>(
             "diameter_max": dmax,
             "walls": e.walls.len(),
             "wall_shapes": walls,
+            "estimate": est.json(),
         });
         let mut pairs = plan.json();
         for (s, n) in pairs["species"].as_array_mut().into_iter().flatten().zip(&count) {
@@ -554,7 +614,11 @@ fn print_check<const D: usize>(
         println!("{}", serde_json::to_string_pretty(&v)?);
         return Ok(());
     }
-    println!("{}: every check passed (not run)", path.display());
+    println!(
+        "{}: every check passed (not run): a timed sample of {} steps, nothing written",
+        path.display(),
+        est.sample_steps
+    );
     println!(
         "dt = {:.4e} s{}; contact time {:.4e} s at {:.3} m/s (law '{law}'), {:.1} steps per collision",
         c.dt,
@@ -587,6 +651,7 @@ fn print_check<const D: usize>(
     for (k, w) in walls.iter().enumerate() {
         println!("wall {k}: {w}");
     }
+    est.lines().iter().for_each(|l| println!("{l}"));
     Ok(())
 }
 

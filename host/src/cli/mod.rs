@@ -2,6 +2,7 @@
 
 pub mod args;
 pub mod bed;
+pub mod budget;
 pub mod collide;
 pub mod dem;
 pub mod dem_checkpoint;
@@ -135,21 +136,32 @@ pub struct EvalArgs {
 
 /// Runs the CLI; returns the process exit code.
 pub fn run() -> std::process::ExitCode {
+    use std::io::Write as _;
+    use std::process::ExitCode;
     let cli = Cli::parse();
-    match dispatch(cli) {
-        Ok(()) => std::process::ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e:#}");
+    // a failed print (a full disk, a closed pipe) is an error, not a crash
+    match crate::output::catch_print_failures(|| dispatch(cli)) {
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) => {
+            let _ = writeln!(std::io::stderr(), "error: {e:#}");
             let usage = e.chain().any(|c| c.is::<UsageError>());
-            // (130: stopped by Ctrl-C, as a shell reports SIGINT, after writing a checkpoint)
-            let stopped = e.chain().any(|c| c.is::<dem_checkpoint::Interrupted>());
-            std::process::ExitCode::from(if stopped {
-                130
-            } else if usage {
+            // (130: stopped by Ctrl-C, as a shell reports SIGINT; a DEM run writes a checkpoint)
+            let stopped = e
+                .chain()
+                .any(|c| c.is::<crate::progress::Interrupted>() || c.is::<dem_checkpoint::Interrupted>());
+            ExitCode::from(if usage {
                 2
+            } else if stopped {
+                130
             } else {
                 1
             })
+        }
+        // the reader has gone (`dashpot laws | head -1`): the shell's code for SIGPIPE, quietly
+        Err(f) if f.broken_pipe => ExitCode::from(141),
+        Err(f) => {
+            let _ = writeln!(std::io::stderr(), "error: {}", f.message);
+            ExitCode::from(1)
         }
     }
 }

@@ -76,8 +76,7 @@ pub fn run_rolling(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
         }
         let body = w.into_inner().context("csv")?;
         let head: String = provs.iter().map(|p| p.csv_comment()).collect();
-        write_atomic(path, &[head.into_bytes(), body].concat())
-            .with_context(|| format!("cannot write {}", path.display()))?;
+        write_atomic(path, &[head.into_bytes(), body].concat())?;
     }
     if a.json {
         println!(

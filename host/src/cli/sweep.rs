@@ -11,7 +11,6 @@ use crate::registry::Registry;
 use anyhow::{Context, Result};
 use clap::Args;
 use dashpot_sdk::{EndCriterion, MaterialPair, Pair, ParamValue};
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use std::path::PathBuf;
 
@@ -63,6 +62,34 @@ pub struct SweepSpec<'a> {
     pub options: Options,
 }
 
+/// The rows of a sweep over `v0s` impact speeds and the `varied` grids (their product), refused
+/// before anything is allocated if they would not fit in the memory available: each row keeps
+/// its parameters and its collision until the CSV is written, and its CSV line.
+pub fn check_size(
+    v0s: usize,
+    varied: &[(String, Vec<f64>)],
+    base: usize,
+) -> Result<usize, crate::budget::Refused> {
+    let combos: f64 = varied.iter().map(|(_, g)| g.len() as f64).product();
+    let rows = combos * v0s as f64;
+    let params = (base + varied.len()) as f64;
+    let per_row = (std::mem::size_of::<SweepRow>() + 2 * std::mem::size_of::<Option<SweepRow>>()) as f64
+        + params * (std::mem::size_of::<ParamValue>() as f64 + 24.0)
+        + 200.0;
+    let mut need = crate::budget::Need::new();
+    need.holding(crate::budget::rss().now as f64);
+    need.add("the rows", rows * per_row);
+    let grids: Vec<String> = std::iter::once(format!("{v0s} impact speeds"))
+        .chain(varied.iter().map(|(n, g)| format!("{} values of {n}", g.len())))
+        .collect();
+    crate::budget::check_memory(
+        &format!("the sweep of {rows:.0} collisions ({})", grids.join(" x ")),
+        &need,
+        "fewer grid points (--v0 COUNT, --vary grids), or several sweeps",
+    )?;
+    Ok(rows as usize)
+}
+
 /// Runs collisions over the product of `v0s` and `varied` grids in parallel, with a progress bar
 /// on stderr when it is a terminal.
 pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
@@ -75,6 +102,7 @@ pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
         spec.end,
         &spec.options,
     );
+    check_size(v0s.len(), varied, base.len())?;
     let mut combos: Vec<Vec<ParamValue>> = vec![base.to_vec()];
     for (n, g) in varied {
         combos = combos
@@ -100,12 +128,7 @@ pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
     let tasks: Vec<(usize, &[f64])> = (0..combos.len())
         .flat_map(|i| v0s.chunks(MAX_LANES).map(move |c| (i, c)))
         .collect();
-    let pb = ProgressBar::new((combos.len() * v0s.len()) as u64);
-    pb.set_style(
-        ProgressStyle::with_template("{prefix} [{bar:40}] {pos}/{len} collisions, {elapsed} (eta {eta})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    pb.set_prefix("sweep");
+    let pb = crate::progress::Progress::new((combos.len() * v0s.len()) as u64, "sweep", "collisions", false);
     let runs: Vec<Vec<SweepRow>> = tasks
         .par_iter()
         .map(|&(i, speeds)| -> Result<Vec<SweepRow>> {
@@ -130,7 +153,7 @@ pub fn sweep(reg: &Registry, spec: &SweepSpec<'_>) -> Result<Vec<SweepRow>> {
         })
         .collect::<Result<_>>()?;
     let rows: Vec<SweepRow> = runs.into_iter().flatten().collect();
-    pb.finish_and_clear();
+    pb.finish();
     Ok(rows)
 }
 
@@ -198,7 +221,7 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
         w.write_record(&rec)?;
     }
     let csv = [prov.csv_comment().into_bytes(), w.into_inner().context("csv")?].concat();
-    write_atomic(&a.out, &csv).with_context(|| format!("cannot write {}", a.out.display()))?;
+    write_atomic(&a.out, &csv)?;
     println!("wrote {} collisions to {}", rows.len(), a.out.display());
     Ok(())
 }

@@ -166,7 +166,8 @@ impl<const D: usize> Neighbours<D> {
             return;
         }
         let rmax = radius.iter().cloned().fold(0.0, f64::max);
-        let mut size = 2.0 * rmax + skin;
+        // (a positive size even for particles too small to have one: 5e-324 m halves to 0)
+        let mut size = (2.0 * rmax + skin).max(f64::MIN_POSITIVE);
         // grid bounds: the box along periodic axes, the particles' extent along the others
         let mut lo = VecD::<D>::zeros();
         let mut hi = VecD::<D>::zeros();
@@ -187,7 +188,8 @@ impl<const D: usize> Neighbours<D> {
             let cells: f64 = (0..D)
                 .map(|k| ((hi[k] - lo[k]) / size).floor().max(1.0))
                 .product();
-            if cells <= 2.0 * n as f64 + 64.0 {
+            // (NaN, from extents that are not finite, ends it too)
+            if cells <= 2.0 * n as f64 + 64.0 || cells.is_nan() {
                 break;
             }
             size *= 1.5;
@@ -398,6 +400,28 @@ impl<const D: usize> Neighbours<D> {
 mod tests {
     use super::*;
     use crate::dem::walls::Wall;
+
+    /// Particles too small to have a size (a diameter of 5e-324 m halves to a radius of 0),
+    /// with no skin, some far apart: the build ends, with a grid, and lists no pair.
+    #[test]
+    fn a_build_ends_for_particles_of_no_size() {
+        let dom = Domain::<3> {
+            lo: VecD::<3>::zeros(),
+            hi: VecD::<3>::zeros(),
+            periodic: [false; 3],
+            bounded: false,
+        };
+        let mut pos = vec![
+            VecD::<3>::new(0.0, 0.0, 0.0),
+            VecD::<3>::new(1.0, 0.0, 0.0),
+            VecD::<3>::new(1e300, -1e300, 0.0),
+        ];
+        let mut nb = Neighbours::<3>::default();
+        nb.build(&dom, &mut pos, &[0.0; 3], 0.0);
+        assert_eq!(nb.start, vec![0, 0, 0, 0]);
+        nb.build(&dom, &mut pos, &[0.5 * 5e-324; 3], 0.0);
+        assert_eq!(nb.start.len(), 4);
+    }
 
     /// Every particle that comes within `reach` of a wall while the list is valid (moved by at
     /// most half the skin, the walls by at most half the skin along their normals) is among

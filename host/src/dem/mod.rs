@@ -21,6 +21,7 @@
 pub mod cells;
 pub mod checkpoint;
 pub mod contacts;
+pub mod footprint;
 pub mod integrator;
 pub mod observables;
 pub mod scene;

@@ -228,6 +228,11 @@ impl SceneFile {
         crate::config::from_toml(text).map_err(bad)
     }
 
+    /// The particles listed one by one (`[[particle]]` tables).
+    pub fn particle_tables(&self) -> usize {
+        self.particle.len()
+    }
+
     /// The dimension (2 or 3).
     pub fn dimension(&self) -> Result<usize, SceneError> {
         match self.dimension {
@@ -379,6 +384,21 @@ impl SceneFile {
             return Err(bad(
                 "no particles: give [[particle]] entries or a [generate] table".into(),
             ));
+        }
+        // (a diameter so small its mass or moment of inertia is 0 in f64, e.g. 1e-320 m)
+        let material_of = |k: usize| kinds[species.get(k).map_or(0, |&s| s as usize)].material;
+        if let Some((k, b)) = bodies.iter().enumerate().find(|(k, b)| {
+            let (m, i) = material_of(*k).mass_inertia(D, b.diameter);
+            let normal = |x: f64| x.is_finite() && x >= f64::MIN_POSITIVE;
+            !(normal(m) && normal(i) && normal(0.5 * b.diameter))
+        }) {
+            return Err(bad(format!(
+                "particle {k}: diameter = {:e} m is out of range: its mass and moment of inertia at density {} kg/m³ are not finite normal numbers in f64 (between {:e} and {:e}): give the diameters in metres",
+                b.diameter,
+                material_of(k).density,
+                f64::MIN_POSITIVE,
+                f64::MAX
+            )));
         }
         let problems = check::start_problems(&bodies, &walls, &config.domain, self.allow_initial_overlap);
         if !problems.is_empty() {

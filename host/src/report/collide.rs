@@ -65,7 +65,7 @@ fn csv_write(path: &Path, prov: &str, header: &str, rows: &[Vec<f64>]) -> Result
         s.push_str(&line.join(","));
         s.push('\n');
     }
-    write_atomic(path, s.as_bytes()).with_context(|| format!("cannot write {}", path.display()))
+    Ok(write_atomic(path, s.as_bytes())?)
 }
 
 /// Writes the collision figures into `out` and returns the markdown report.

@@ -9,6 +9,7 @@
 #include "dashpot.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -272,6 +273,9 @@ int main(int argc, char **argv) {
     EXPECT(dashpot_contact_force_batch(bound, d3, 3, NULL, 3, o3, 3), DASHPOT_ERR_NULL_POINTER, "rate");
     EXPECT(dashpot_contact_force_batch(bound, d3, 3, r3, 3, NULL, 3), DASHPOT_ERR_NULL_POINTER, "out_force");
     EXPECT(dashpot_contact_force_batch(bound, NULL, 0, NULL, 0, NULL, 0), DASHPOT_OK, NULL);
+    /* a length past isize::MAX bytes (a negative count cast to size_t) is refused, unread */
+    EXPECT(dashpot_contact_force_batch(bound, d3, SIZE_MAX, r3, SIZE_MAX, o3, SIZE_MAX), DASHPOT_ERR_BAD_LENGTH, "isize::MAX");
+    EXPECT(dashpot_contact_force_batch(bound, d3, SIZE_MAX / 8 + 1, r3, SIZE_MAX / 8 + 1, o3, SIZE_MAX / 8 + 1), DASHPOT_ERR_BAD_LENGTH, "at most");
 
     /* ---- a panicking plugin: the error comes back, the handle stays usable ---- */
     const char *at_name[1] = {"at"};
@@ -353,6 +357,7 @@ int main(int argc, char **argv) {
     EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, NULL), DASHPOT_ERR_NULL_POINTER, "out_force");
     EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, mo, 3, mo), DASHPOT_ERR_BAD_LENGTH, "n_history = 3");
     EXPECT(dashpot_contact_model_force_batch(cm, 0, NULL, NULL, NULL, NULL, NULL, 0, NULL), DASHPOT_OK, NULL);
+    EXPECT(dashpot_contact_model_force_batch(cm, SIZE_MAX, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_BAD_LENGTH, "isize::MAX");
     md[1] = NAN;
     EXPECT(dashpot_contact_model_force_batch(cm, 3, md, mr, mm, mrad, NULL, 0, mo), DASHPOT_ERR_NON_FINITE, "delta[1] = NaN");
     md[1] = 2e-5;
@@ -466,6 +471,7 @@ int main(int argc, char **argv) {
     EXPECT(dashpot_restitution_batch(rb, s2, 2, o2, 2), DASHPOT_OK, NULL);
     CLOSE(o2[1], r, 1e-15);
     EXPECT(dashpot_restitution_batch(rb, s2, 2, o2, 1), DASHPOT_ERR_BAD_LENGTH, "2 and 1");
+    EXPECT(dashpot_restitution_batch(rb, s2, SIZE_MAX, o2, SIZE_MAX), DASHPOT_ERR_BAD_LENGTH, "isize::MAX");
     EXPECT(dashpot_restitution_batch(NULL, s2, 2, o2, 2), DASHPOT_ERR_NULL_POINTER, "bound");
     EXPECT(dashpot_restitution_batch(rb, NULL, 2, o2, 2), DASHPOT_ERR_NULL_POINTER, "speed");
     EXPECT(dashpot_restitution_batch(rb, s2, 2, NULL, 2), DASHPOT_ERR_NULL_POINTER, "out_restitution");

@@ -268,6 +268,17 @@ class Scene:
                 break
         return self
 
+    def check(self, sample: float = 1.0) -> Dict[str, Any]:
+        """What ``dashpot dem --scene FILE --check`` estimates of this scene's run from t = 0 to
+        its ``duration``, before running it: ``steps``, ``dt`` (s), the peak memory
+        ``memory_bytes`` (with ``memory_parts`` and ``memory_available_bytes``) and the wall time
+        ``wall_seconds``, from a timed sample of about ``sample`` seconds of the scene's own steps
+        on this machine (run on a second engine built from the scene: this one is not touched).
+        A run that cannot fit or would never end raises ``ValueError`` naming why."""
+        if self._duration is None:
+            raise ValueError("duration: the scene was made without one; a check estimates the run to it")
+        return _json.loads(self._inner._check(float(sample)))
+
     def _view(self, which: str) -> _np.ndarray:
         v = self._views.get(which)
         if v is None:

@@ -169,6 +169,14 @@ impl<R: Restitution> Bed<R> {
                 lid - bottom
             )));
         }
+        // (before the disks are made: a bed past the machine's memory is refused)
+        let need = crate::budget::bed_need(n as f64, 1.0, 0.0);
+        crate::budget::check_memory(
+            &format!("the bed of layers n = {} (N = {n} disks)", cfg.layers),
+            &need,
+            "lower --layers (or --width)",
+        )
+        .map_err(|e| BedError::Invalid(e.0))?;
         let mut rng = SplitMix64(cfg.seed ^ 0x6a09_e667_f3bc_c909);
         let spacing = cfg.width / per_row as f64;
         let (mut x, mut y) = (Vec::with_capacity(n), Vec::with_capacity(n));

@@ -267,6 +267,13 @@ pub struct BedArgs {
     /// Independent seeds.
     #[command(flatten)]
     pub seeds: SeedArgs,
+    /// Estimate the run and stop: the disks, the peak memory, and the wall time from a timed
+    /// sample of the bed's own run on this machine (about a second); nothing is written.
+    #[arg(long)]
+    pub check: bool,
+    /// The limits of a long run (`--max-hours`).
+    #[command(flatten)]
+    pub limits: crate::cli::budget::LimitArgs,
 }
 
 /// `dashpot scaling`.
@@ -327,6 +334,9 @@ pub fn parse_range(s: &str) -> Result<Vec<f64>> {
     let k: usize = parts[2].trim().parse().map_err(|_| bad())?;
     if k == 0 || !a.is_finite() || !b.is_finite() {
         return Err(bad());
+    }
+    if k > 1_000_000 {
+        anyhow::bail!("--freqs '{s}': COUNT = {k} is out of range: at most 1000000 frequencies");
     }
     if k == 1 {
         return Ok(vec![a]);

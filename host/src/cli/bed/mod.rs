@@ -2,6 +2,7 @@
 //! (delegated to from [`crate::cli`]).
 
 mod args;
+pub mod check;
 mod run;
 mod sweeps;
 

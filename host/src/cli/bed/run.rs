@@ -28,7 +28,12 @@ pub struct BedOutput<'a> {
 
 /// `dashpot bed`.
 pub fn bed(reg: &Registry, a: &BedArgs) -> Result<()> {
-    if let Some(v) = run_bed(reg, a, &|_| {})? {
+    crate::budget::check_max_hours(a.limits.max_hours)?;
+    let simulated = (a.phys.transient + a.phys.cycles) / a.freq;
+    let waves = a.seeds.seeds.div_ceil(rayon::current_num_threads().max(1)) as f64;
+    let watch = super::check::PaceWatch::new(simulated, waves, a.limits.max_hours);
+    let v = super::check::watch(|| run_bed(reg, a, &|t| watch.tick(t)))?;
+    if let Some(v) = v {
         println!("{}", serde_json::to_string_pretty(&v)?);
     }
     Ok(())
@@ -44,6 +49,9 @@ pub fn run_bed(
     progress: &(dyn Fn(f64) + Sync),
 ) -> Result<Option<serde_json::Value>> {
     let spec = a.phys.spec(a.layers, a.freq, a.seeds.seeds)?;
+    if a.check {
+        return super::check::check(reg, &spec, a.json, a.limits.max_hours);
+    }
     let out = BedOutput {
         json: a.json,
         snapshot: a.snapshot.as_deref(),
@@ -460,5 +468,5 @@ fn write_trace<R: crate::bed::Restitution>(p: &Path, bed: &Bed<R>) -> Result<()>
         w.serialize(row)?;
     }
     let bytes = w.into_inner().context("trace csv")?;
-    write_atomic(p, &bytes).with_context(|| format!("cannot write {}", p.display()))
+    Ok(write_atomic(p, &bytes)?)
 }

@@ -162,7 +162,8 @@ pub fn packing_within<const D: usize>(
         }
         c
     };
-    let kept: Vec<usize> = (0..total).filter(|&s| keep(&corner(s))).collect();
+    // (the first `count` kept, in order: not every site of a region that may hold 10^13)
+    let kept: Vec<usize> = (0..total).filter(|&s| keep(&corner(s))).take(count).collect();
     if kept.len() < count {
         return Err(bad(crowded(count, dmax, &lo, &hi, &sites, kept.len())));
     }
@@ -335,6 +336,8 @@ fn generate_one<const D: usize>(g: &GenerateTable, within: &[&Wall<D>]) -> Resul
             crowded(g.count, dmax, &lo, &hi, &sites, total)
         )));
     }
+    // (before they are made: a count past the machine is refused, not an allocation failure)
+    crate::dem::footprint::check_count("generate.count", g.count, D).map_err(|e| bad(e.0))?;
     // a cell is inside the walls when its corners are (the walls' open sides are convex)
     let a = 1.05 * dmax;
     let surfaces: Vec<_> = within.iter().flat_map(|w| w.surfaces(0.0)).collect();
