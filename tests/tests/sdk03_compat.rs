@@ -83,6 +83,7 @@ fn sdk03_normal_laws_load_as_03_and_give_the_same_bits_with_their_default_contex
         let slots = mo.history_slots();
         assert_eq!(slots, mn.history_slots());
         let (mut ho, mut hn) = (vec![0.0; n * slots], vec![0.0; n * slots]);
+        let mut jkr_shift: Vec<Option<f64>> = vec![None; n];
         for s in 0..steps {
             let mut outs = Vec::new();
             for (m, h) in [(&mo, &mut ho), (&mn, &mut hn)] {
@@ -113,7 +114,26 @@ fn sdk03_normal_laws_load_as_03_and_give_the_same_bits_with_their_default_contex
             assert_same_bits(fo, fnew, what("force"));
             assert_same_bits(ro, rn, what("reach"));
             assert_same_bits(po, pn, what("power"));
-            assert_same_bits(eo, en, what("elastic"));
+            if name == "jkr" {
+                // JKR's elastic energy is measured from touch today, from rupture in 0.3 (a
+                // change of reference on purpose): the same energy to a constant per contact
+                for i in 0..n {
+                    if eo[i] == 0.0 && en[i] == 0.0 {
+                        continue;
+                    }
+                    let shift = en[i] - eo[i];
+                    let first = *jkr_shift[i].get_or_insert(shift);
+                    assert!(
+                        (shift - first).abs() <= 1e-9 * first.abs().max(eo[i].abs()),
+                        "{}: {} vs {} (shift {shift:e}, first {first:e})",
+                        what("elastic")(i),
+                        eo[i],
+                        en[i]
+                    );
+                }
+            } else {
+                assert_same_bits(eo, en, what("elastic"));
+            }
             assert_same_bits(&ho, &hn, what("history"));
             // a 0.3 law reports no context of its own: the default, from its force
             for i in 0..n {

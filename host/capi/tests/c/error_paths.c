@@ -521,20 +521,21 @@ int main(int argc, char **argv) {
         const double sds_vals[3] = {1000.0, 0.0, 10.0};
         const double sds_bad[3] = {-5.0, 0.0, 10.0};
         size_t rslots = 0;
-        EXPECT_MODEL(rolling, rl3, rm3, "rolling-sds", sds_names, sds_vals, sds_bad, 3, "-5", "hsd", "contact", rslots, 3);
+        EXPECT_MODEL(rolling, rl3, rm3, "rolling-sds", sds_names, sds_vals, sds_bad, 3, "-5", "hsd", "contact", rslots, 6);
         /* one step of a rolling velocity v along x from zero history: ξ = v dt, F_r = −k ξ
            (far below the cap μ F_n), elastic energy k ξ²/2, no dissipation (γ = 0) */
         double rn[3] = {0, 0, 1}, rv[3] = {0.2, 0, 0}, rfn[1] = {1.0}, rdl[1] = {1e-6}, rms[1] = {1e-3}, rrd[1] = {1e-3};
-        double rh[3] = {0, 0, 0}, rf[3], rp[1], re[1];
+        double rh[6] = {0, 0, 0, 0, 0, 0}, rf[3], rp[1], re[1]; /* ξ, and the dashpot's share */
         int written = -1;
-        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 3, rf, rp, re, &written), DASHPOT_OK, NULL);
+        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 6, rf, rp, re, &written), DASHPOT_OK, NULL);
         CHECK(fabs(rf[0] - (-1000.0 * 0.2 * 1e-4)) < 1e-15 && rf[1] == 0.0 && rf[2] == 0.0);
-        CHECK(fabs(re[0] - 0.5 * 1000.0 * (0.2e-4) * (0.2e-4)) < 1e-18 && rp[0] == 0.0 && written == 1);
-        EXPECT(dashpot_rolling_model_force_batch(NULL, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 3, rf, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "model");
-        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, NULL, rv, rfn, rdl, rms, rrd, rh, 3, rf, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "normal");
+        /* no dissipation: the power zero to rounding of the work rate |F| v = 4e-3 W */
+        CHECK(fabs(re[0] - 0.5 * 1000.0 * (0.2e-4) * (0.2e-4)) < 1e-18 && fabs(rp[0]) < 1e-12 * 4e-3 && written == 1);
+        EXPECT(dashpot_rolling_model_force_batch(NULL, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 6, rf, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, NULL, rv, rfn, rdl, rms, rrd, rh, 6, rf, NULL, NULL, NULL), DASHPOT_ERR_NULL_POINTER, "normal");
         EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 2, rf, NULL, NULL, NULL), DASHPOT_ERR_BAD_LENGTH, "n_history = 2");
         rv[1] = NAN;
-        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 3, rf, NULL, NULL, NULL), DASHPOT_ERR_NON_FINITE, "NaN");
+        EXPECT(dashpot_rolling_model_force_batch(rm3, 1, 1e-4, rn, rv, rfn, rdl, rms, rrd, rh, 6, rf, NULL, NULL, NULL), DASHPOT_ERR_NON_FINITE, "NaN");
         dashpot_rolling_model_free(rm3);
 
         DashpotTwistingLaw *wl3 = NULL;
@@ -542,7 +543,7 @@ int main(int argc, char **argv) {
         const double tw_vals[3] = {1e-3, 0.0, 1.0};
         size_t wslots = 0;
         EXPECT_MODEL(twisting, wl3, wm3, "twisting-sds", sds_names, tw_vals, sds_bad, 3, "-5", "rolling-sds", "rolling",
-                     wslots, 1);
+                     wslots, 2);
         /* one step of spin rate w: θ = w dt, M = −k θ below the cap μ F_n */
         double wrate[1] = {3.0}, wh[4] = {0, 0, 0, 0}, wt[1];
         EXPECT(dashpot_twisting_model_torque_batch(wm3, 1, 1e-4, rn, wrate, rfn, rdl, rms, rrd, wh, wslots, wt, NULL, NULL, NULL), DASHPOT_OK, NULL);
@@ -553,22 +554,22 @@ int main(int argc, char **argv) {
 
         /* Mindlin through the energy batch: one step of slip v below the cap stores
            elastic = k (v dt)^2 / 2 = |F| v dt / 2 and dissipates nothing (no damping); a fast
-           slip beyond the cap mu F_n dissipates (power > 0); its history: xi and k_t, 4 slots */
+           slip beyond the cap mu F_n dissipates (power > 0); its history: xi, k_t and the dashpot's share, 7 slots */
         DashpotTangentialLaw *ml = NULL;
         DashpotTangentialModel *mm = NULL;
         EXPECT(dashpot_tangential_new(reg, "mindlin", (const char *[]){"mu"}, (double[]){0.5}, 1, &ml), DASHPOT_OK, NULL);
         EXPECT(dashpot_tangential_bind_materials(ml, &mat, &mm), DASHPOT_OK, NULL);
-        double mv[3] = {1e-3, 0, 0}, mh[4] = {0, 0, 0, 0}, mf[3], mp[1] = {-1}, me[1] = {-1};
+        double mv[3] = {1e-3, 0, 0}, mh[7] = {0, 0, 0, 0, 0, 0, 0}, mf[3], mp[1] = {-1}, me[1] = {-1};
         written = -1;
-        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 4, mf, mp, me, &written), DASHPOT_OK, NULL);
-        CHECK(written == 1 && mf[0] < 0.0 && mp[0] == 0.0);
+        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 7, mf, mp, me, &written), DASHPOT_OK, NULL);
+        CHECK(written == 1 && mf[0] < 0.0 && fabs(mp[0]) <= 1e-12 * -mf[0] * 1e-3);
         CLOSE(me[0], 0.5 * -mf[0] * 1e-3 * 1e-4, 1e-12);
         mv[0] = 1e3;
-        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 4, mf, mp, NULL, NULL), DASHPOT_OK, NULL);
+        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 7, mf, mp, NULL, NULL), DASHPOT_OK, NULL);
         CLOSE(-mf[0], 0.5 * rfn[0], 1e-12);
         CHECK(mp[0] > 0.0);
-        EXPECT(dashpot_tangential_model_force_batch_energy(NULL, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 4, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "model");
-        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, NULL, rfn, rdl, rms, rrd, mh, 4, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "velocity");
+        EXPECT(dashpot_tangential_model_force_batch_energy(NULL, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 7, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "model");
+        EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, NULL, rfn, rdl, rms, rrd, mh, 7, mf, mp, me, &written), DASHPOT_ERR_NULL_POINTER, "velocity");
         EXPECT(dashpot_tangential_model_force_batch_energy(mm, 1, 1e-4, rn, mv, rfn, rdl, rms, rrd, mh, 1, mf, mp, me, &written), DASHPOT_ERR_BAD_LENGTH, "n_history = 1");
         dashpot_tangential_model_free(mm);
         dashpot_tangential_free(ml);

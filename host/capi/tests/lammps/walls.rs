@@ -274,7 +274,9 @@ fn wall_outputs_are_the_force_on_the_wall_and_the_power_dissipated() {
         ("style", "dashpot"),
         (
             "dmodel",
-            "1e7 0.3 hsd eps=0.6 tangential linear-history kt=2e3 mu=0.4 rolling sds k=500 gamma=0.01 mu=0.2",
+            // LAMMPS's rolling sds: with dashpot's own rolling-sds beside linear-history the
+            // books of this corner open by 0.5 % (docs/lammps.md, "What is missing")
+            "1e7 0.3 hsd eps=0.6 tangential linear-history kt=2e3 mu=0.4 rolling gran-rolling-sds k=500 gamma=0.01 mu=0.2",
         ),
         ("kind", "region"),
         ("wall", "region R"),

