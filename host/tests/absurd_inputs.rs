@@ -305,6 +305,10 @@ fn absurd_beds_and_grids_are_refused() {
             Want::Refused(&["COUNT = 1000000000000"]),
         ),
         (
+            common::sh("scaling --restitution mcnamara-falcon --layers 1,2 --freqs 10:30:3 --cycles 1e15"),
+            Want::Refused(&["the scaling grid would take", "--max-hours"]),
+        ),
+        (
             common::sh("sweep --law hsd --v0 1e-3:10:1000000000000"),
             Want::Refused(&["COUNT"]),
         ),

@@ -294,6 +294,9 @@ pub struct ScalingArgs {
     /// Machine-readable output.
     #[arg(long)]
     pub json: bool,
+    /// The limits of a long run (`--max-hours`).
+    #[command(flatten)]
+    pub limits: crate::cli::budget::LimitArgs,
 }
 
 /// `dashpot figures ...`: the figures of one driver.

@@ -29,12 +29,31 @@ pub fn scaling(reg: &Registry, a: &ScalingArgs) -> Result<()> {
         }
         .validate()?;
     }
+    crate::budget::check_max_hours(a.limits.max_hours)?;
     let grid = scaling::Grid {
         layers: a.layers.clone(),
         freqs,
         transient: spec.transient,
         cycles: spec.cycles,
     };
+    // the grid's slowest run (most layers, lowest frequency: the most disks over the longest
+    // protocol), timed for a moment, bounds every run; they run in waves of the thread pool
+    let (most, lowest) = (
+        grid.layers.iter().copied().fold(f64::MIN, f64::max),
+        grid.freqs.iter().copied().fold(f64::MAX, f64::min),
+    );
+    let slowest = BedSpec {
+        config: spec.at(most, lowest),
+        ..spec.clone()
+    };
+    let est = super::check::estimate(reg, &slowest)?;
+    let waves = grid.len().div_ceil(rayon::current_num_threads().max(1)) as f64;
+    crate::budget::check_hours(
+        "the scaling grid",
+        waves * est.total_seconds(),
+        "estimated from a timed sample of its slowest run",
+        a.limits.max_hours,
+    )?;
     let prov = scaling_provenance(reg, &spec)?;
     let pb = progress_bar(grid.len() as u64, "scaling (runs)");
     std::fs::create_dir_all(&a.out).with_context(|| format!("cannot create {}", a.out.display()))?;
