@@ -89,12 +89,12 @@ run             100
 /// with its tolerance: a fraction of granular's value (0.02: the 2 %), or with a
 /// negative number -L, the length L (the turned drum's centre of mass, which moves by several
 /// percent of its diameter from one pour to the next, granular's own included).
-struct Deck {
-    file: &'static str,
-    vars: &'static [(&'static str, &'static str)],
-    com: &'static [(&'static str, f64)],
+pub(super) struct Deck {
+    pub(super) file: &'static str,
+    pub(super) vars: &'static [(&'static str, &'static str)],
+    pub(super) com: &'static [(&'static str, f64)],
     /// fix pour's seeds to average over (none: the deck's own)
-    seeds: &'static [&'static str],
+    pub(super) seeds: &'static [&'static str],
 }
 
 /// Each deck through `granular` and through `dashpot` (both on 1 and 2 ranks, for each seed):
@@ -103,7 +103,7 @@ struct Deck {
 /// mean. The laws are LAMMPS's to
 /// rounding (the step-by-step tests): the runs part only as a many-body trajectory amplifies
 /// rounding, so agreement is statistical.
-fn deck_agrees(v: &Path, deck: &Deck) {
+pub(super) fn deck_agrees(v: &Path, deck: &Deck) {
     let run = |style: &str, ranks: u32, seed: &str| -> HashMap<String, String> {
         let mut vars: Vec<(&str, String)> = vec![("style", style.to_string())];
         vars.extend(deck.vars.iter().map(|&(k, x)| (k, x.to_string())));
