@@ -258,7 +258,7 @@ void FixWallDashpot::parse_wall(const std::vector<std::string> &w, size_t i)
             i += 2;
         } else {
             error->all(FLERR,
-                       "{}: unknown keyword '{}' (valid: {}temperature, contacts, plugin_dir=DIR, energy=1, "
+                       "{}: unknown keyword '{}' (valid: {}contacts, temperature, plugin_dir=DIR, energy=1, "
                        "wall=rigid|particle)",
                        context, k, region_fix ? "" : "wiggle, shear, ");
         }

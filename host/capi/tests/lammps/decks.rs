@@ -5,7 +5,7 @@
 
 use super::{lammps_dir, lib_dir, num, run_deck, venv};
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The switch of a deck that uses every granular style: each style line changes by its one word
@@ -29,18 +29,7 @@ pair_style      hybrid granular lj/cut 2.5
 pair_coeff      1 1 granular hooke 1 1 tangential linear_nohistory 0 0
 run             100
 ";
-    let dir = lib_dir().join("lammps-switch");
-    std::fs::create_dir_all(&dir).expect("switch dir");
-    let path = dir.join("in.granular");
-    std::fs::write(&path, deck).expect("write deck");
-    let out = Command::new("bash")
-        .arg(lammps_dir().join("switch.sh"))
-        .args(["--plugin", "/p/dashpotplugin.so", "--plugin-dir", "/laws"])
-        .arg(&path)
-        .output()
-        .expect("run switch.sh");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let text = String::from_utf8_lossy(&out.stdout);
+    let (text, path) = switch_sh(deck, "lammps-switch");
     let lines: Vec<&str> = text.lines().collect();
     let expect = [
         "units           lj",
@@ -83,6 +72,23 @@ run             100
         !out.status.success() && err.contains("unknown option '--plugins'"),
         "{err}"
     );
+}
+
+/// `switch.sh --plugin /p/dashpotplugin.so --plugin-dir /laws` on `deck`, written to
+/// `in.granular` in directory `dir` of the test build: the switched deck, and the file.
+pub(super) fn switch_sh(deck: &str, dir: &str) -> (String, PathBuf) {
+    let dir = lib_dir().join(dir);
+    std::fs::create_dir_all(&dir).expect("switch dir");
+    let path = dir.join("in.granular");
+    std::fs::write(&path, deck).expect("write deck");
+    let out = Command::new("bash")
+        .arg(lammps_dir().join("switch.sh"))
+        .args(["--plugin", "/p/dashpotplugin.so", "--plugin-dir", "/laws"])
+        .arg(&path)
+        .output()
+        .expect("run switch.sh");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    (String::from_utf8_lossy(&out.stdout).into_owned(), path)
 }
 
 /// A deck of LAMMPS's, shortened: its file, its variables, and the RESULT keys compared, each

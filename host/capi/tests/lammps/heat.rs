@@ -6,11 +6,10 @@
 //! without a wall at an oscillating temperature; LAMMPS's `in.pour.heat` gives the same
 //! temperatures, statistically, as with `pair_style granular`.
 
-use super::decks::{deck_agrees, Deck};
-use super::{assert_same, failing_deck, lammps_dir, lib_dir, num, run_deck, venv};
+use super::decks::{deck_agrees, switch_sh, Deck};
+use super::{assert_same, failing_deck, num, run_deck, venv};
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::Command;
 
 const DECK: &str = "in.heat";
 
@@ -99,10 +98,7 @@ fn two_spheres_on_a_heating_wall_as_with_granular() {
         for k in ["t1", "t2"] {
             assert_same(k, &g, &d, 1e-9, &format!("on the wall, {ranks} rank(s)"));
         }
-        // the wall gave or took heat: the pair's own sum is not conserved
-        let (c1, c2) = (num(&d, "m1"), num(&d, "m2"));
-        let sum = c1 * num(&d, "t1") + c2 * num(&d, "t2");
-        assert!((sum - c1).abs() > 1e-4 * c1, "no heat from the wall: {d:?}");
+        assert_wall_conducted(&d);
     }
 }
 
@@ -142,9 +138,14 @@ fn dashpot_syntax_heat_laws_conduct() {
             "hsd + heat-radius on a heat-area wall, 1 against 2 ranks",
         );
     }
-    let (c1, c2) = (num(&one, "m1"), num(&one, "m2"));
-    let sum = c1 * num(&one, "t1") + c2 * num(&one, "t2");
-    assert!((sum - c1).abs() > 1e-4 * c1, "no heat from the wall: {one:?}");
+    assert_wall_conducted(&one);
+}
+
+/// The wall gave or took heat: the pair's own C1 T1 + C2 T2 (C1 at the start) is not conserved.
+fn assert_wall_conducted(r: &HashMap<String, String>) {
+    let (c1, c2) = (num(r, "m1"), num(r, "m2"));
+    let sum = c1 * num(r, "t1") + c2 * num(r, "t2");
+    assert!((sum - c1).abs() > 1e-4 * c1, "no heat from the wall: {r:?}");
 }
 
 /// Bad input stops LAMMPS with an error naming what is missing.
@@ -206,18 +207,7 @@ fn switch_sh_switches_in_pour_heat_by_one_word() {
          fix 3 all heat/flow constant 1.0\n\
          fix 5 all wall/gran/region granular {model} heat area 5.0 region bottom_wall temperature v_oscillate\n"
     );
-    let dir = lib_dir().join("lammps-switch-heat");
-    std::fs::create_dir_all(&dir).expect("switch dir");
-    let path = dir.join("in.pour.heat");
-    std::fs::write(&path, &deck).expect("write deck");
-    let out = Command::new("bash")
-        .arg(lammps_dir().join("switch.sh"))
-        .args(["--plugin", "/p/dashpotplugin.so", "--plugin-dir", "/laws"])
-        .arg(&path)
-        .output()
-        .expect("run switch.sh");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let text = String::from_utf8_lossy(&out.stdout);
+    let (text, _) = switch_sh(&deck, "lammps-switch-heat");
     let lines: Vec<&str> = text.lines().collect();
     let fix5 = format!(
         "fix 5 all wall/dashpot/region {model} heat area 5.0 region bottom_wall temperature v_oscillate plugin_dir=/laws"
