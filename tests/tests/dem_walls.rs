@@ -327,7 +327,7 @@ fn a_bed_in_a_rotating_drum_rises_and_closes_its_books_with_the_drums_work() {
     assert!((15.0..45.0).contains(&angle), "the surface's angle {angle}°");
     assert!(e.wall_work > 0.0, "the drum lifts the bed: {}", e.wall_work);
     // the comparison script (examples/dem/drum_compare.py) reads dashpot's own frames: its
-    // centroid angle of this state is the one computed here
+    // centroid angle of this state is the one computed here (to the file's 7-10 digits)
     let dir = tempfile::tempdir().unwrap();
     let file = dir.path().join("drum.xyz");
     let mut w = std::io::BufWriter::new(std::fs::File::create(&file).unwrap());
@@ -336,7 +336,7 @@ fn a_bed_in_a_rotating_drum_rises_and_closes_its_books_with_the_drums_work() {
     let got = drum_script(&file, 0.0, None, 0.02);
     assert_eq!(got.frames, 1);
     assert!(
-        (got.centroid[0] - angle).abs() < 1e-6,
+        (got.centroid[0] - angle).abs() < 1e-4,
         "the script's centroid angle {}° against {angle}°",
         got.centroid[0]
     );
@@ -408,10 +408,10 @@ fn tilted_bed(theta_deg: f64, depth: f64, big_r: f64) -> Vec<[f64; 4]> {
 fn the_drum_script_measures_a_tilted_bed_to_a_tenth_of_a_degree_from_both_codes_outputs() {
     let big_r = 0.04;
     let dir = tempfile::tempdir().unwrap();
-    for (theta, depth) in [(14.0, 0.0), (27.3, 0.0), (38.6, 0.0), (31.0, 0.008)] {
+    for (theta, depth) in [(14.0f64, 0.0f64), (27.3, 0.0), (38.6, 0.0), (31.0, 0.008)] {
         // two frames: the bed flat at t = 0, tilted at t = 1 s; the script measures from 0.5 s
         let frames = [
-            (0.0, tilted_bed(0.0, depth, big_r)),
+            (0.0f64, tilted_bed(0.0, depth, big_r)),
             (1.0, tilted_bed(theta, depth, big_r)),
         ];
         let (xyz, dump) = (dir.path().join("bed.xyz"), dir.path().join("bed.dump"));
