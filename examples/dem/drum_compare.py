@@ -63,6 +63,8 @@ def frames_xyz(path: Path):
     k = 0
     while k < len(lines) and lines[k].strip():
         n = int(lines[k])
+        if len(lines) < k + 2 + n:
+            raise ValueError(f"{path}: the frame at line {k + 1} is cut short ({len(lines) - k - 2} of {n} spheres)")
         head = lines[k + 1]
         t = float(re.search(r"Time=(\S+)", head).group(1))
         # the columns: Properties=name:type:count:... ; find pos and radius
@@ -89,6 +91,8 @@ def frames_dump(path: Path, dt: float):
     while k < len(lines) and lines[k].strip():
         step = int(lines[k + 1])
         n = int(lines[k + 3])
+        if len(lines) < k + 9 + n:
+            raise ValueError(f"{path}: the frame at line {k + 1} is cut short ({len(lines) - k - 9} of {n} atoms)")
         names = lines[k + 8].split()[2:]
         ix, iz, ir = names.index("x"), names.index("z"), names.index("radius")
         frame = []
