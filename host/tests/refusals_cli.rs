@@ -6,18 +6,10 @@
 mod common;
 
 use common::{fails, ok_json, scene, sh};
-use std::process::Command;
 
 /// `dashpot ARGS` with every plugin of the workspace (rolling and twisting laws included).
 fn with_all(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_dashpot"))
-        .arg("--no-default-plugins")
-        .arg("--plugin-dir")
-        .arg(common::all_plugins_dir())
-        .args(args)
-        .env_remove("DASHPOT_PLUGIN_PATH")
-        .output()
-        .unwrap()
+    common::dashpot_with(common::all_plugins_dir(), args)
 }
 
 /// LSD with k = 1e308 N/m: √(k/m) overflows, so w0 and γ were printed as inf and the contact time as

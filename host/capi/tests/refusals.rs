@@ -149,74 +149,62 @@ fn a_normal_that_is_not_a_unit_vector_is_refused() {
             let name = CString::new(law).unwrap();
             let mut out = [f64::NAN; 3];
             let mut history = [0.0; 16];
+            // one batch of one contact through kind's functions (the energy form: one shape)
+            macro_rules! batch {
+                ($law:ty, $model:ty, $new:ident, $bind:ident, $slots:ident, $call:ident, $free_m:ident, $free_l:ident) => {{
+                    let mut l: *mut $law = ptr::null_mut();
+                    let mut m: *mut $model = ptr::null_mut();
+                    let made = $new(reg, name.as_ptr(), ptr::null(), ptr::null(), 0, &mut l);
+                    assert_eq!(made, DashpotStatus::DASHPOT_OK, "{}", last_error());
+                    assert_eq!($bind(l, &mat, &mut m), DashpotStatus::DASHPOT_OK);
+                    let mut slots = 0usize;
+                    $slots(m, &mut slots);
+                    let (mut power, mut elastic, mut written) = ([0.0], [0.0], 0);
+                    let st = $call(
+                        m,
+                        1,
+                        1e-6,
+                        normal.as_ptr(),
+                        velocity.as_ptr(),
+                        fnorm.as_ptr(),
+                        delta.as_ptr(),
+                        mass.as_ptr(),
+                        radius.as_ptr(),
+                        history.as_mut_ptr(),
+                        slots,
+                        out.as_mut_ptr(),
+                        power.as_mut_ptr(),
+                        elastic.as_mut_ptr(),
+                        &mut written,
+                    );
+                    $free_m(m);
+                    $free_l(l);
+                    st
+                }};
+            }
             let st = unsafe {
                 if kind == "tangential" {
-                    let mut l: *mut DashpotTangentialLaw = ptr::null_mut();
-                    let mut m: *mut DashpotTangentialModel = ptr::null_mut();
-                    assert_eq!(
-                        dashpot_tangential_new(reg, name.as_ptr(), ptr::null(), ptr::null(), 0, &mut l),
-                        DashpotStatus::DASHPOT_OK,
-                        "{}",
-                        last_error()
-                    );
-                    assert_eq!(
-                        dashpot_tangential_bind_materials(l, &mat, &mut m),
-                        DashpotStatus::DASHPOT_OK
-                    );
-                    let mut slots = 0usize;
-                    dashpot_tangential_model_history_slots(m, &mut slots);
-                    let st = dashpot_tangential_model_force_batch(
-                        m,
-                        1,
-                        1e-6,
-                        normal.as_ptr(),
-                        velocity.as_ptr(),
-                        fnorm.as_ptr(),
-                        delta.as_ptr(),
-                        mass.as_ptr(),
-                        radius.as_ptr(),
-                        history.as_mut_ptr(),
-                        slots,
-                        out.as_mut_ptr(),
-                    );
-                    dashpot_tangential_model_free(m);
-                    dashpot_tangential_free(l);
-                    st
+                    batch!(
+                        DashpotTangentialLaw,
+                        DashpotTangentialModel,
+                        dashpot_tangential_new,
+                        dashpot_tangential_bind_materials,
+                        dashpot_tangential_model_history_slots,
+                        dashpot_tangential_model_force_batch_energy,
+                        dashpot_tangential_model_free,
+                        dashpot_tangential_free
+                    )
                 } else {
-                    let mut l: *mut DashpotRollingLaw = ptr::null_mut();
-                    let mut m: *mut DashpotRollingModel = ptr::null_mut();
-                    assert_eq!(
-                        dashpot_rolling_new(reg, name.as_ptr(), ptr::null(), ptr::null(), 0, &mut l),
-                        DashpotStatus::DASHPOT_OK,
-                        "{}",
-                        last_error()
-                    );
-                    assert_eq!(
-                        dashpot_rolling_bind_materials(l, &mat, &mut m),
-                        DashpotStatus::DASHPOT_OK
-                    );
-                    let mut slots = 0usize;
-                    dashpot_rolling_model_history_slots(m, &mut slots);
-                    let st = dashpot_rolling_model_force_batch(
-                        m,
-                        1,
-                        1e-6,
-                        normal.as_ptr(),
-                        velocity.as_ptr(),
-                        fnorm.as_ptr(),
-                        delta.as_ptr(),
-                        mass.as_ptr(),
-                        radius.as_ptr(),
-                        history.as_mut_ptr(),
-                        slots,
-                        out.as_mut_ptr(),
-                        ptr::null_mut(),
-                        ptr::null_mut(),
-                        ptr::null_mut(),
-                    );
-                    dashpot_rolling_model_free(m);
-                    dashpot_rolling_free(l);
-                    st
+                    batch!(
+                        DashpotRollingLaw,
+                        DashpotRollingModel,
+                        dashpot_rolling_new,
+                        dashpot_rolling_bind_materials,
+                        dashpot_rolling_model_history_slots,
+                        dashpot_rolling_model_force_batch,
+                        dashpot_rolling_model_free,
+                        dashpot_rolling_free
+                    )
                 }
             };
             if ok {

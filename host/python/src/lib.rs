@@ -216,9 +216,11 @@ fn check_law(py: Python<'_>, kind: &str, name: &str, params: Option<&Bound<'_, P
             "twisting" => reg.twisting(name, &p).map(drop),
             "heat" => reg.heat(name, &p).map(drop),
             "restitution" => reg.restitution(name, &p).map(drop),
-            k => return Err(PyValueError::new_err(format!(
+            k => {
+                return Err(PyValueError::new_err(format!(
                 "kind '{k}' is not a law kind: contact, tangential, rolling, twisting, heat or restitution"
-            ))),
+            )))
+            }
         };
         made.map_err(law_err)
     })
