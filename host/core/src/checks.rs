@@ -21,6 +21,9 @@ pub fn family_name(reg: &Registry, name: &str, kind: LawKind) -> String {
     }
 }
 
+/// Whether the law, with these parameters, has finite coefficients for the pair in question.
+pub type FiniteFor<'a> = dyn Fn(&[ParamValue]) -> bool + 'a;
+
 /// Refuses coefficients of law `law` (bound to a pair of effective mass `mass` kg and radius
 /// `radius` m) that are not finite: the law's arithmetic overflowed for the parameters `given`.
 /// The message names the coefficient, the parameters given with their valid ranges (`schema`)
@@ -33,7 +36,7 @@ pub fn finite_coefficients(
     mass: f64,
     radius: f64,
     coeffs: &[Coefficient],
-    limit: Option<&dyn Fn(&[ParamValue]) -> bool>,
+    limit: Option<&FiniteFor<'_>>,
 ) -> Result<(), LawError> {
     let Some(bad) = coeffs.iter().find(|c| !c.value.is_finite()) else {
         return Ok(());
@@ -74,7 +77,7 @@ pub fn finite_coefficients(
 fn bound_of(
     given: &[ParamValue],
     schema: &[ParamSpec],
-    ok: &dyn Fn(&[ParamValue]) -> bool,
+    ok: &FiniteFor<'_>,
 ) -> Option<(String, f64, String, bool)> {
     for (i, p) in given.iter().enumerate() {
         let v = p.value;
@@ -159,7 +162,8 @@ pub const UNIT_TOLERANCE: f64 = 1e-6;
 pub fn unit_normals(normal: &[[f64; 3]]) -> Result<(), String> {
     for (i, n) in normal.iter().enumerate() {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
-        if !((len - 1.0).abs() <= UNIT_TOLERANCE) {
+        // (NaN fails the comparison: refused too)
+        if (len - 1.0).abs().partial_cmp(&UNIT_TOLERANCE) != Some(std::cmp::Ordering::Less) {
             return Err(format!(
                 "normal of contact {i} = ({}, {}, {}) has length {len}: it must be a unit vector (length 1 \
                  within {UNIT_TOLERANCE:e}), from the partner to the particle",
