@@ -23,7 +23,7 @@ pub mod progress;
 pub mod report;
 pub mod tabulate;
 
-pub use dashpot_core::{laws, registry};
+pub use dashpot_core::{checks, laws, registry};
 pub use registry::{Registry, SearchPath};
 pub use report::{plot, reproduce};
 

@@ -95,6 +95,12 @@ pub mod simd;
 #[cfg(feature = "testkit")]
 pub mod testkit;
 
+/// The law author's guide, `docs/writing-a-law.md`: its Rust examples compile (and their laws
+/// export) as doc tests, so the guide cannot drift from the sdk.
+#[cfg(doctest)]
+#[doc = include_str!("../../docs/writing-a-law.md")]
+pub struct WritingALawGuide;
+
 pub use context::NormalContext;
 pub use error::{ErrorKind, LawError};
 pub use heat::{BoundHeat, HeatBatch, HeatContact, HeatFlow, HeatLaw};

@@ -8,14 +8,15 @@ use std::f64::consts::PI;
 /// 0. Dimensionless; α(1) = 0.
 pub fn tsuji_alpha(eps: f64) -> f64 {
     let l = eps.ln();
-    -(5.0f64).sqrt() * l / (l * l + PI * PI).sqrt()
+    // (0 − l, not −l: α(1) is +0, which prints as 0, not -0)
+    (5.0f64).sqrt() * (0.0 - l) / (l * l + PI * PI).sqrt()
 }
 
 /// The damping ratio ζ = −ln ε / √(ln²ε + π²) of the linear spring-dashpot with restitution ε
 /// (Antypov & Elliott 2011, eq. 8: γ = ζ ω0). Dimensionless.
 pub fn lsd_damping_ratio(eps: f64) -> f64 {
     let l = eps.ln();
-    -l / (l * l + PI * PI).sqrt()
+    (0.0 - l) / (l * l + PI * PI).sqrt()
 }
 
 /// Hertz contact radius a = √(r δ) (m) at overlap δ (m) for effective radius r (m); 0 for δ ≤ 0.
@@ -45,6 +46,9 @@ mod tests {
     fn damping_factors_vanish_for_elastic_and_relate_by_sqrt5() {
         assert_eq!(tsuji_alpha(1.0), 0.0);
         assert_eq!(lsd_damping_ratio(1.0), 0.0);
+        // +0, not -0: a report prints α(1) as 0.000000, not -0.000000
+        assert!(tsuji_alpha(1.0).is_sign_positive() && lsd_damping_ratio(1.0).is_sign_positive());
+        assert_eq!(format!("{:.6}", tsuji_alpha(1.0)), "0.000000");
         for eps in [0.1, 0.5, 0.9] {
             let r = tsuji_alpha(eps) / lsd_damping_ratio(eps);
             assert!((r - 5f64.sqrt()).abs() < 1e-14, "{eps}: {r}");

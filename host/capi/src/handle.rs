@@ -479,6 +479,8 @@ pub(crate) unsafe fn energy_batch<M: EnergyBatch>(
         let slots = history_width(what, m, n, n_history)?;
         let w = if M::WIDTH == 3 { triple_len(n)? } else { n };
         let normal = unsafe { vectors(normal, n, "normal") }?;
+        dashpot_core::checks::unit_normals(normal)
+            .map_err(|m| CError::new(DASHPOT_ERR_INVALID_ARGUMENT, m))?;
         let input = unsafe { slice(input, w, input_name) }?;
         let scalars = [
             unsafe { slice(normal_force, n, "normal_force") }?,

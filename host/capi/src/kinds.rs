@@ -13,6 +13,8 @@ use dashpot_sdk::{MaterialPair, Pair, ParamValue};
 /// A configured contact (normal-force) law (opaque).
 pub struct DashpotContactLaw {
     pub(crate) law: ContactLawHandle,
+    /// The parameters it was created with (named in refusals).
+    pub(crate) params: Vec<ParamValue>,
 }
 
 /// A contact law bound to a pair of materials (opaque): the hot path of a polydisperse DEM code.
@@ -77,12 +79,16 @@ pub struct DashpotBoundRestitution {
     pub(crate) bound: BoundRestitutionHandle,
 }
 
-/// A kind made by `Registry::$make`, whose handle binds to materials into a model handle.
+/// A kind made by `Registry::$make`, whose handle binds to materials into a model handle (and,
+/// given `params`, that keeps the parameters it was made with).
 macro_rules! material_kind {
-    ($($law:ident = $make:ident => $model:ident;)*) => {$(
+    ($($law:ident = $make:ident => $model:ident $(, $keep:ident)?;)*) => {$(
         impl NewLaw for $law {
             fn make(reg: &dashpot_core::Registry, name: &str, p: &[ParamValue]) -> Result<Self, CError> {
-                Ok($law { law: reg.$make(name, p)? })
+                Ok($law {
+                    law: reg.$make(name, p)?,
+                    $($keep: p.to_vec(),)?
+                })
             }
         }
 
@@ -108,7 +114,7 @@ macro_rules! material_kind {
 }
 
 material_kind! {
-    DashpotContactLaw = contact => DashpotContactModel;
+    DashpotContactLaw = contact => DashpotContactModel, params;
     DashpotTangentialLaw = tangential => DashpotTangentialModel;
     DashpotRollingLaw = rolling => DashpotRollingModel;
     DashpotTwistingLaw = twisting => DashpotTwistingModel;
@@ -150,8 +156,20 @@ impl BindPair for DashpotContactLaw {
                 ),
             ));
         }
+        let model = self.law.bind(&pair.materials(0.3)?)?;
+        // a law whose arithmetic overflows for this pair is refused here, not as inf coefficients
+        let coeffs = model.coefficients(pair.mass, pair.radius)?;
+        dashpot_core::checks::finite_coefficients(
+            &info.name,
+            &self.params,
+            &info.params,
+            pair.mass,
+            pair.radius,
+            &coeffs,
+            None,
+        )?;
         Ok(DashpotBoundContact {
-            model: self.law.bind(&pair.materials(0.3)?)?,
+            model,
             mass: pair.mass,
             radius: pair.radius,
         })

@@ -395,8 +395,16 @@ impl Registry {
         pair: &Pair,
         fixed: &[ParamValue],
     ) -> Result<Option<Vec<ParamValue>>, LawError> {
-        let (_, p) = self.find(name)?;
-        p.calibrate(name, target, pair, fixed)
+        let (entry, p) = self.find(name)?;
+        let values = p.calibrate(name, target, pair, fixed)?;
+        if let Some(v) = &values {
+            let what = match target.contact_time {
+                Some(t) => format!("restitution {} and contact time {t:e} s", target.restitution),
+                None => format!("restitution {}", target.restitution),
+            };
+            crate::checks::calibrated(name, &what, &entry.info.params, v)?;
+        }
+        Ok(values)
     }
 
     /// Names of the laws of one kind, comma-separated.

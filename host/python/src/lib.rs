@@ -200,6 +200,32 @@ fn provenance(py: Python<'_>, name: &str, params: Option<&Bound<'_, PyDict>>) ->
     })
 }
 
+/// Refuses law `name` of `kind` ("contact", "tangential", "rolling", "twisting", "heat",
+/// "restitution") with `params` when the registry would: an unknown law or one of another kind,
+/// an unknown parameter name (with "did you mean"), a value out of range. A law's constructor
+/// calls it, so a bad law is refused where it is written, not where it is first bound.
+#[pyfunction]
+#[pyo3(signature = (kind, name, **params))]
+fn check_law(py: Python<'_>, kind: &str, name: &str, params: Option<&Bound<'_, PyDict>>) -> PyResult<()> {
+    let p = params_of(params)?;
+    with_registry(py, |reg| {
+        let made = match kind {
+            "contact" => reg.contact(name, &p).map(drop),
+            "tangential" => reg.tangential(name, &p).map(drop),
+            "rolling" => reg.rolling(name, &p).map(drop),
+            "twisting" => reg.twisting(name, &p).map(drop),
+            "heat" => reg.heat(name, &p).map(drop),
+            "restitution" => reg.restitution(name, &p).map(drop),
+            k => {
+                return Err(PyValueError::new_err(format!(
+                "kind '{k}' is not a law kind: contact, tangential, rolling, twisting, heat or restitution"
+            )))
+            }
+        };
+        made.map_err(law_err)
+    })
+}
+
 /// A particle and its partner, as Python passes them: `(diameter, density, young, poisson,
 /// wall)`, a sphere (m, kg/m³, Pa, Poisson's ratio) against an identical one or a rigid wall.
 #[derive(FromPyObject, Clone, Copy)]
@@ -264,6 +290,7 @@ fn _dashpot(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(laws, m)?)?;
     m.add_function(wrap_pyfunction!(load_plugin, m)?)?;
     m.add_function(wrap_pyfunction!(provenance, m)?)?;
+    m.add_function(wrap_pyfunction!(check_law, m)?)?;
     forces::register(m)?;
     runs::register(m)?;
     m.add_function(wrap_pyfunction!(fit::calibrate, m)?)?;

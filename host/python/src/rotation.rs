@@ -121,6 +121,7 @@ pub(crate) fn call<'py, K: Kind>(
     let scalars = contact_slices([&a.normal_force, &a.delta, &a.mass, &a.radius])?;
     let n = scalars[0].len();
     let normal = vectors("normal", a.normal.as_slice()?, n)?;
+    dashpot::checks::unit_normals(normal).map_err(PyValueError::new_err)?;
     let own = a.own.as_slice()?;
     if own.len() != K::WIDTH * n {
         return Err(PyValueError::new_err(format!(

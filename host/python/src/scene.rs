@@ -60,11 +60,13 @@ impl Scene {
         let reg = registry(py)?;
         let scene_err = |e: dashpot::dem::scene::SceneError| PyValueError::new_err(format!("{source}: {e}"));
         let (e, energy_initial, duration, plan) = if dim == 2 {
-            let s = file.scene::<2>().map_err(scene_err)?;
+            let mut s = file.scene::<2>().map_err(scene_err)?;
+            s.plan.resolve_names(&reg);
             let (e, en) = scene_engine(&reg, &file, &s).map_err(run_err)?;
             (Dim::Two(e), en, s.duration, s.plan)
         } else {
-            let s = file.scene::<3>().map_err(scene_err)?;
+            let mut s = file.scene::<3>().map_err(scene_err)?;
+            s.plan.resolve_names(&reg);
             let (e, en) = scene_engine(&reg, &file, &s).map_err(run_err)?;
             (Dim::Three(e), en, s.duration, s.plan)
         };
@@ -335,7 +337,8 @@ impl Scene {
                     started: Instant,
                     budget: Duration,
                 ) -> anyhow::Result<serde_json::Value> {
-                    let scene = file.scene::<D>()?;
+                    let mut scene = file.scene::<D>()?;
+                    scene.plan.resolve_names(reg);
                     let (mut e, _, mut fp) = dashpot::cli::dem::scene_engine_sized(reg, file, &scene)?;
                     // (result() builds the final document only when asked: counted apart)
                     fp.final_json = false;

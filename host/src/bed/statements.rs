@@ -75,6 +75,22 @@ fn maximum(runs: &[BedReport]) -> (f64, bool, f64) {
     (top.config.layers, drop > 2.0, drop)
 }
 
+/// How P(n) ends after its maximum, in words: "falls 2.3 σ by the last n", or, when the maximum
+/// is the last n, that it does not fall (not "falls 0.0 σ").
+fn fall(runs: &[BedReport]) -> String {
+    let (at, _, drop) = maximum(runs);
+    fall_text(runs.last().is_some_and(|r| r.config.layers == at), drop)
+}
+
+/// [`fall`]'s words for a maximum at the last n (`at_last`) or a drop of `drop` σ after it.
+fn fall_text(at_last: bool, drop: f64) -> String {
+    if at_last {
+        "does not fall: its maximum is at the last n".to_string()
+    } else {
+        format!("falls {drop:.1} σ by the last n")
+    }
+}
+
 fn row(runs: &[BedReport]) -> String {
     runs.iter()
         .map(|r| match r.pressure_stderr {
@@ -154,8 +170,8 @@ pub fn run(
             .max(1e-300);
         worst = worst.max((r.piston_pressure - expect).abs() / s);
     }
-    let (m0, ok0, d0) = maximum(&g0);
-    let (m20, ok20, d20) = maximum(&g20);
+    let (m0, ok0, _) = maximum(&g0);
+    let (m20, ok20, _) = maximum(&g20);
     writeln!(
         md,
         "\n- \"The time averaged pressure on the lower wall is just P plus the weight of the \
@@ -163,12 +179,14 @@ pub fn run(
          it) against P + N m g/L in the {} runs at g = 9.8 and 20: the largest difference is \
          {worst:.2} σ: {}.\n\
          - \"This maximum pressure is not due to gravity because it also appears in simulations \
-         with g = 0\": with g = 0, P peaks at n = {m0} and falls {d0:.1} σ by the last n: {}.\n\
+         with g = 0\": with g = 0, P peaks at n = {m0} and {}: {}.\n\
          - \"The maximum persists when g is increased above 9.8 m/s²\": with g = 20 m/s², P \
-         peaks at n = {m20} and falls {d20:.1} σ: {}.",
+         peaks at n = {m20} and {}: {}.",
         g98.len() + g20.len(),
         verdict(worst < 3.0),
+        fall(&g0),
         verdict(ok0 && (0.5..=2.0).contains(&m0)),
+        fall(&g20),
         verdict(ok20 && (0.5..=2.0).contains(&m20)),
     )?;
 
@@ -186,29 +204,30 @@ pub fn run(
     writeln!(md, "| h − h0 = 15 mm | {} |", row(&g98))?;
     writeln!(md, "| h − h0 = 50 mm | {} |", row(&hs[1].1))?;
     writeln!(md, "| h0 = 0.9 n d (h − h0 = 15 mm) | {} |", row(&h09))?;
-    let (m5, ok5, d5) = maximum(&hs[0].1);
+    let (m5, ok5, _) = maximum(&hs[0].1);
     let (m15, ok15, _) = maximum(&g98);
-    let (m50, ok50, d50) = maximum(&hs[1].1);
+    let (m50, ok50, _) = maximum(&hs[1].1);
     let peak = |r: &[BedReport]| r.iter().map(|r| r.pressure).fold(f64::MIN, f64::max);
-    let (mh, okh, dh) = maximum(&h09);
+    let (mh, okh, _) = maximum(&h09);
     writeln!(
         md,
         "\n- Headroom, 5 ≤ h − h0 ≤ 50 mm: \"increasing h − h0 shifts the maximum towards \
          smaller values of n and decreases in amplitude\": the peak is at n = {m15} (15 mm) and \
          n = {m50} (50 mm), P_max {:.3} → {:.3} N/m: {}. \"The maximum disappears\" at 5 mm: \
-         here P peaks at n = {m5} and falls {d5:.1} σ by the last n: {}.\n\
+         here P peaks at n = {m5} and {}: {}.\n\
          - h0, both readings (the paper does not define it): with h0 = n d the maximum is at \
-         n = {m15} ({}); with h0 = 0.9 n d (a random 2D packing) at n = {mh}, falling {dh:.1} σ \
+         n = {m15} ({}); with h0 = 0.9 n d (a random 2D packing) at n = {mh} and {} \
          ({}). The conclusion does not depend on the reading: {}.",
         peak(&g98),
         peak(&hs[1].1),
         verdict(m50 <= m15 && peak(&hs[1].1) < peak(&g98) && ok50),
+        fall(&hs[0].1),
         verdict(!(ok5 && (0.5..=2.0).contains(&m5))),
         if ok15 { "a maximum" } else { "no maximum" },
+        fall(&h09),
         if okh { "a maximum" } else { "no maximum" },
         verdict(ok15 == okh),
     )?;
-    let _ = d50;
 
     stage("box width L = 10 and 40 cm");
     let l10 = varied("r(v), L = 10 cm", &|c| c.width = 0.1)?;
@@ -346,4 +365,16 @@ pub fn run(
         verdict(worst_v < 0.3),
     )?;
     Ok(md)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_maximum_at_the_last_n_is_said_not_to_fall() {
+        assert_eq!(
+            super::fall_text(true, 0.0),
+            "does not fall: its maximum is at the last n"
+        );
+        assert_eq!(super::fall_text(false, 2.345), "falls 2.3 σ by the last n");
+    }
 }

@@ -200,9 +200,10 @@ fn run_dim<const D: usize>(
     file: &SceneFile,
     resume: Option<(Resume, Checkpoint<D>)>,
 ) -> Result<()> {
-    let scene = file
+    let mut scene = file
         .scene::<D>()
         .with_context(|| format!("in {}", path.display()))?;
+    scene.plan.resolve_names(reg);
     // (the setup --check times: the scene's particles, the engine)
     let started = std::time::Instant::now();
     let (mut e, mut energy_initial, fp) = scene_engine_sized(reg, file, &scene)?;
@@ -666,7 +667,8 @@ fn frame_png<const D: usize>(e: &Engine<D>, dir: &std::path::Path, k: u64, law: 
 }
 
 /// `dissipated` of `dem --json`: the energy each family's laws dissipated since the start (J),
-/// `null` for a family whose law does not report it (a plugin of sdk 0.1 or 0.2), and the total
+/// `null` for a family whose law does not report it (a law without `energy`, or a plugin of
+/// sdk 0.1 or 0.2), and the total
 /// (`null` if any is).
 fn dissipated_json<const D: usize>(e: &Engine<D>) -> serde_json::Value {
     let fam = |k: usize| (!e.unreported[k]).then_some(e.dissipated[k]);

@@ -328,8 +328,23 @@ fn eval(reg: &Registry, a: &EvalArgs) -> Result<()> {
                 mass: pair.mass,
                 radius: pair.radius,
             };
-            let force = bound.force(contact, &mut history)?;
             let coeffs = bound.coefficients(pair.mass, pair.radius)?;
+            let finite_for = |p: &[dashpot_sdk::ParamValue]| {
+                reg.contact(name, p)
+                    .and_then(|l| l.bind(&sel.materials))
+                    .and_then(|b| b.coefficients(pair.mass, pair.radius))
+                    .is_ok_and(|c| c.iter().all(|c| c.value.is_finite()))
+            };
+            crate::checks::finite_coefficients(
+                name,
+                params,
+                &entry.info.params,
+                pair.mass,
+                pair.radius,
+                &coeffs,
+                Some(&finite_for),
+            )?;
+            let force = bound.force(contact, &mut history)?;
             if a.json {
                 let c: serde_json::Map<String, serde_json::Value> = coeffs
                     .iter()

@@ -90,6 +90,20 @@ pub struct Panel {
     pub equal_aspect: bool,
     /// Circles to draw in data units: (x, y, radius), for particle snapshots.
     pub disks: Vec<(f64, f64, f64)>,
+    /// Each disk's depth behind the picture's plane, 0 (nearest) to 1 (farthest), for the side
+    /// view of a 3D scene: a farther sphere is drawn paler and outlined, so that a packing is
+    /// no solid blob of one colour (empty: every disk flat, in one colour). The disks are drawn
+    /// in their order: give the farthest first.
+    pub disk_depth: Vec<f64>,
+}
+
+/// The fill of a disk at depth `t` (0 nearest, 1 farthest): the first colour of the palette,
+/// paler with depth.
+pub fn depth_color(t: f64) -> RGBColor {
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let c = PALETTE[0];
+    let pale = |v: u8| (v as f64 + 0.7 * t * (255.0 - v as f64)).round() as u8;
+    RGBColor(pale(c.0), pale(c.1), pale(c.2))
 }
 
 /// A figure: panels laid out in a grid.
@@ -303,14 +317,27 @@ fn draw_panel<DB: DrawingBackend>(
                 .axis_desc_style((FONT, 16))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()?;
-            for &(x, y, r) in &panel.disks {
+            for (k, &(x, y, r)) in panel.disks.iter().enumerate() {
                 // radius in pixels from data units along x
                 let (px0, _) = chart.backend_coord(&(x - r, y));
                 let (px1, _) = chart.backend_coord(&(x + r, y));
                 let rp = ((px1 - px0).abs() / 2).max(1);
-                chart
-                    .plotting_area()
-                    .draw(&Circle::new((x, y), rp as u32, PALETTE[0].filled()))?;
+                match panel.disk_depth.get(k) {
+                    None => {
+                        chart
+                            .plotting_area()
+                            .draw(&Circle::new((x, y), rp as u32, PALETTE[0].filled()))?
+                    }
+                    Some(&t) => {
+                        let area = chart.plotting_area();
+                        area.draw(&Circle::new((x, y), rp as u32, depth_color(t).filled()))?;
+                        area.draw(&Circle::new(
+                            (x, y),
+                            rp as u32,
+                            RGBColor(0, 60, 100).stroke_width(1),
+                        ))?;
+                    }
+                }
             }
             let mut any_label = false;
             for s in &panel.series {
@@ -391,6 +418,36 @@ mod tests {
         assert_eq!(&png[1..4], b"PNG");
         let svg = std::fs::read_to_string(dir.join("t.svg")).unwrap();
         assert!(svg.contains("v (m/s)"));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+
+    /// A side view's spheres at three depths are drawn in three colours, paler with depth, each
+    /// outlined: not one solid blob.
+    #[test]
+    fn disks_at_depth_are_shaded_and_outlined() {
+        let dir = std::env::temp_dir().join(format!("dashpot-depth-{}", std::process::id()));
+        let p = Panel {
+            equal_aspect: true,
+            disks: vec![(0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (2.0, 0.0, 1.0)],
+            disk_depth: vec![1.0, 0.5, 0.0],
+            ..Default::default()
+        };
+        Figure::single(p).save(&dir, "d").unwrap();
+        let svg = std::fs::read_to_string(dir.join("d.svg")).unwrap();
+        let fills: std::collections::BTreeSet<String> = [0.0, 0.5, 1.0]
+            .iter()
+            .map(|&t| {
+                let c = depth_color(t);
+                format!("#{:02X}{:02X}{:02X}", c.0, c.1, c.2)
+            })
+            .collect();
+        assert_eq!(fills.len(), 3);
+        for f in &fills {
+            assert!(svg.to_uppercase().contains(f.as_str()), "{f} missing");
+        }
+        // paler with depth: every channel rises towards white
+        let (a, b) = (depth_color(0.0), depth_color(1.0));
+        assert!(a.0 < b.0 && a.1 < b.1 && a.2 < b.2);
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -12,6 +12,9 @@ use std::path::Path;
 pub struct Scene {
     /// Disks: centre (x, y) and radius.
     pub disks: Vec<(f64, f64, f64)>,
+    /// Each disk's depth behind the picture's plane, 0 (nearest) to 1 (farthest), the disks
+    /// ordered farthest first (a 3D side view; empty in 2D).
+    pub depth: Vec<f64>,
     /// Walls, as segments across the view.
     pub walls: Vec<[(f64, f64); 2]>,
     /// Periodic boundaries, as segments.
@@ -32,6 +35,7 @@ impl Scene {
         let (l, lid) = (c.width, bed.lid());
         Scene {
             disks: bed.positions().into_iter().map(|(x, y)| (x, y, r)).collect(),
+            depth: Vec::new(),
             walls: vec![[(0.0, lid), (l, lid)], [(0.0, z), (l, z)]],
             boundaries: vec![[(0.0, z), (0.0, lid)], [(l, z), (l, lid)]],
             view: ((-0.005, l + 0.005), (-0.5 * c.amplitude - 0.003, lid + 0.003)),
@@ -44,9 +48,10 @@ impl Scene {
     /// walls' points.
     pub fn dem<const D: usize>(e: &Engine<D>) -> Scene {
         let (ax, ay) = (0, D - 1);
-        let disks: Vec<(f64, f64, f64)> = (0..e.p.len())
-            .map(|i| (e.p.pos[i][ax], e.p.pos[i][ay], e.p.radius[i]))
-            .collect();
+        let (disks, depth) = side_view(
+            (0..e.p.len()).map(|i| (e.p.pos[i][ax], e.p.pos[i][ay], e.p.radius[i])),
+            (D == 3).then(|| e.p.pos.iter().map(|p| p[1]).collect()),
+        );
         let rmax = e.p.radius.iter().cloned().fold(0.0, f64::max);
         let (mut x0, mut x1, mut y0, mut y1) = disks.iter().fold(
             (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
@@ -79,6 +84,7 @@ impl Scene {
             .collect();
         Scene {
             disks,
+            depth,
             walls,
             boundaries: Vec::new(),
             view: ((x0, x1), (y0, y1)),
@@ -104,6 +110,7 @@ impl Scene {
             x_range: Some(self.view.0),
             y_range: Some(self.view.1),
             disks: self.disks,
+            disk_depth: self.depth,
             series,
             ..Default::default()
         }
@@ -120,6 +127,30 @@ impl Scene {
         );
         f
     }
+}
+
+/// The disks of a picture and, given each one's coordinate into the page (`into`: a 3D side
+/// view, y into the page), their depths from 0 (nearest) to 1 (farthest), the disks reordered
+/// farthest first so that nearer spheres are drawn over farther ones.
+fn side_view(
+    disks: impl Iterator<Item = (f64, f64, f64)>,
+    into: Option<Vec<f64>>,
+) -> (Vec<(f64, f64, f64)>, Vec<f64>) {
+    let disks: Vec<(f64, f64, f64)> = disks.collect();
+    let Some(y) = into else {
+        return (disks, Vec::new());
+    };
+    let (lo, hi) = y.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+        (a.min(v), b.max(v))
+    });
+    let span = hi - lo;
+    let t = |v: f64| if span > 0.0 { (v - lo) / span } else { 0.0 };
+    let mut order: Vec<usize> = (0..disks.len()).collect();
+    order.sort_by(|&a, &b| y[b].total_cmp(&y[a]));
+    (
+        order.iter().map(|&i| disks[i]).collect(),
+        order.iter().map(|&i| t(y[i])).collect(),
+    )
 }
 
 /// Saving a figure by its PNG path.
@@ -140,5 +171,22 @@ impl SaveAs for Figure {
             .with_context(|| format!("{}: not a file name", path.display()))?;
         self.save(dir, &stem)?;
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_side_view_draws_the_farthest_first_with_depths_from_0_to_1() {
+        let disks = [(0.0, 0.0, 1.0), (1.0, 0.0, 1.0), (2.0, 0.0, 1.0)];
+        let (d, t) = side_view(disks.into_iter(), Some(vec![0.5, 2.0, -1.0]));
+        assert_eq!(d, vec![(1.0, 0.0, 1.0), (0.0, 0.0, 1.0), (2.0, 0.0, 1.0)]);
+        assert_eq!(t, vec![1.0, 0.5, 0.0]);
+        // a 2D picture: the disks as they are, no depth
+        let (d, t) = side_view(disks.into_iter(), None);
+        assert_eq!(d, disks.to_vec());
+        assert!(t.is_empty());
     }
 }

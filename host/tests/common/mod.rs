@@ -81,10 +81,15 @@ pub fn all_plugins_dir() -> PathBuf {
 /// `dashpot` with exactly the five seed plugins (`--no-default-plugins`: whatever else sits
 /// beside the binary in target/ stays out).
 pub fn dashpot(args: &[&str]) -> Output {
+    dashpot_with(plugin_dir(), args)
+}
+
+/// `dashpot` with exactly the plugins of directory `dir` (e.g. [`all_plugins_dir`]).
+pub fn dashpot_with(dir: PathBuf, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_dashpot"))
         .arg("--no-default-plugins")
         .arg("--plugin-dir")
-        .arg(plugin_dir())
+        .arg(dir)
         .args(args)
         .env_remove("DASHPOT_PLUGIN_PATH")
         .env_remove("RUST_BACKTRACE")

@@ -295,8 +295,9 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
     let (entry, _) = reg.find(&spec.law)?;
     if entry.info.kind != LawKind::Contact {
         return Err(CalibrateError::BadTarget(format!(
-            "'{}' is a restitution law: calibration fits a contact law's parameters",
-            spec.law
+            "'{}' is a {} law: calibration fits a contact (normal) law's parameters",
+            spec.law,
+            entry.info.kind.as_str()
         )));
     }
     let schema = entry.info.params.clone();

@@ -88,6 +88,13 @@ class _Law(_Named, Generic[B]):
 
     _bind: Any = staticmethod(_dashpot.bind_contact)
     _bound: Any = None
+    _kind = "contact"
+
+    def __init__(self, name: str, **params: float) -> None:
+        """Raises ``ValueError`` here, not at ``bind``, for an unknown law or parameter (with "did
+        you mean"), a law of another kind, or a value out of its valid range."""
+        super().__init__(name, **params)
+        _dashpot.check_law(type(self)._kind, self.name, **self.params)
 
     def bind(self, young: float, poisson: float, young2: Optional[float] = None,
              poisson2: Optional[float] = None, wall: bool = False) -> B:
@@ -297,6 +304,7 @@ class TangentialLaw(_Law[BoundTangentialLaw]):
 
     _bind = staticmethod(_dashpot.bind_tangential)
     _bound = BoundTangentialLaw
+    _kind = "tangential"
 
 
 class RollingLaw(_Law[BoundRollingLaw]):
@@ -304,6 +312,7 @@ class RollingLaw(_Law[BoundRollingLaw]):
 
     _bind = staticmethod(_dashpot.bind_rolling)
     _bound = BoundRollingLaw
+    _kind = "rolling"
 
 
 class TwistingLaw(_Law[BoundTwistingLaw]):
@@ -311,6 +320,7 @@ class TwistingLaw(_Law[BoundTwistingLaw]):
 
     _bind = staticmethod(_dashpot.bind_twisting)
     _bound = BoundTwistingLaw
+    _kind = "twisting"
 
 
 class HeatLaw(_Law[BoundHeatLaw]):
@@ -319,6 +329,7 @@ class HeatLaw(_Law[BoundHeatLaw]):
 
     _bind = staticmethod(_dashpot.bind_heat)
     _bound = BoundHeatLaw
+    _kind = "heat"
 
 
 class RestitutionLaw(_Named):
@@ -329,6 +340,7 @@ class RestitutionLaw(_Named):
     def __init__(self, name: str, *, diameter: float = 0.01, density: float = 1500.0,
                  young: float = 6e9, poisson: float = 0.3, wall: bool = False, **params: float) -> None:
         super().__init__(name, **params)
+        _dashpot.check_law("restitution", self.name, **self.params)
         self._pair = (float(diameter), float(density), float(young), float(poisson), bool(wall))
 
     def r(self, speeds: Any) -> Array:

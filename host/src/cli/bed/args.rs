@@ -174,7 +174,7 @@ impl PhysArgs {
                     && !name.starts_with(crate::bed::FROM_CONTACT)
                 {
                     return Err(UsageError(format!(
-                        "--young/--poisson reach the event-driven engine only through a contact law's table, --restitution from:LAW; '{name}' is a restitution law, which does not use them"
+                        "--young/--poisson reach the event-driven engine only through a contact law's table, --restitution from:LAW; --restitution '{name}' names a restitution law r(v), which does not use them"
                     ))
                     .into());
                 }

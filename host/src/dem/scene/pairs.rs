@@ -626,6 +626,19 @@ impl PairPlan {
 }
 
 impl PairPlan {
+    /// Renames the rolling and twisting laws given by LAMMPS's short names (`sds`, `epsd`,
+    /// `marshall`) to the laws they mean (`rolling-sds`, ...), as `pair_style dashpot` does.
+    pub fn resolve_names(&mut self, reg: &crate::Registry) {
+        use dashpot_sdk::LawKind::{Rolling, Twisting};
+        for c in self.pair.iter_mut().chain(self.wall.iter_mut()) {
+            for (t, kind) in [(&mut c.laws.rolling, Rolling), (&mut c.laws.twisting, Twisting)] {
+                if let Some(t) = t {
+                    t.name = crate::checks::family_name(reg, &t.name, kind);
+                }
+            }
+        }
+    }
+
     /// The normal laws' names, each once: `"hsd"`, `"hsd, jkr"`.
     pub fn law_names(&self) -> String {
         let mut names: Vec<&str> = Vec::new();
