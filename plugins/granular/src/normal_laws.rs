@@ -417,6 +417,24 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
         self.eval(&c).force
     }
 
+    /// The context is the force's own evaluation (JKR's contact radius is a cube root): one
+    /// evaluation for both, the bits of `force` then `context`.
+    const CONTEXT_WITH_FORCE: bool = true;
+
+    #[inline]
+    fn force_context(&self, c: Contact, history: &mut [f64]) -> (f64, Ctx) {
+        if !self.touches(&c, history) {
+            return (0.0, Ctx::default());
+        }
+        let e = self.eval(&c);
+        let ctx = Ctx {
+            contact_radius: e.contact_radius,
+            cap_force: if M::COHESIVE { e.cap } else { e.force.abs() },
+            damping: e.damping,
+        };
+        (e.force, ctx)
+    }
+
     fn coefficients(&self, _mass: f64, radius: f64) -> Vec<Coefficient> {
         let mut c = vec![Coefficient::new(
             "damp_coefficient",
