@@ -363,10 +363,9 @@ fn with_contexts<B: BoundContact>(
             return Err(fault);
         }
     }
-    let out = &mut out[..n];
-    for i in 0..n {
+    for (i, x) in out[..n].iter_mut().enumerate() {
         let c = b.contact(i);
-        (b.force[i], out[i]) = law.force_context(c, history_mut(b.history, slots, i));
+        (b.force[i], *x) = law.force_context(c, history_mut(b.history, slots, i));
     }
     if let Some(i) = first_non_finite(b.force) {
         return Err((i, BatchFault::OUTPUT));
@@ -379,7 +378,7 @@ fn with_contexts<B: BoundContact>(
             }
         }
     }
-    match out.iter().position(|x| !x.is_valid()) {
+    match out[..n].iter().position(|x| !x.is_valid()) {
         Some(i) => Err((i, BatchFault::CONTEXT)),
         None => Ok(false),
     }
