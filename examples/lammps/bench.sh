@@ -16,7 +16,8 @@
 # alpha(eps) as hsd) and the same friction (`tangential mindlin NULL 0 MU` against dashpot's
 # `tangential mindlin mu=MU`, or `linear_nohistory 0 0` without friction).
 # Both runs have the same floor (fix wall/gran), integrator and neighbor settings. Each repeat
-# runs the two styles one after the other (alternating, so that machine noise hits both); the
+# runs the two styles one after the other (granular first in odd pairs, dashpot first in even
+# ones, so that machine noise hits both and neither always runs second); the
 # score is the CPU seconds of LAMMPS's run loops ("Loop time" x processes x "% CPU use"), and
 # the ratio is the median over the repeats of each pair's granular/dashpot ratio. Particle-steps
 # per second (atoms x steps / loop time) are printed beside. Each run's RESULT line goes to
@@ -104,14 +105,21 @@ median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] :
 printf "%-6s %-10s %10s %16s %10s %10s\n" ranks style cpu_s particle-steps/s pair_s loop_s
 for ranks in ${BENCH_RANKS:-1 2}; do
     ratios="" pratios="" cpu_g="" cpu_d=""
-    for _ in $(seq "$repeats"); do
-        for style in granular dashpot; do
+    for rep in $(seq "$repeats"); do
+        # the order alternates from pair to pair, so that neither style always runs second
+        order="granular dashpot"
+        [ $((rep % 2)) -eq 0 ] && order="dashpot granular"
+        for style in $order; do
             read -r cpu ps pair loop < <(run "$ranks" "$style")
             printf "%-6s %-10s %10.4g %16.4g %10.4g %10.4g\n" "$ranks" "$style" "$cpu" "$ps" "$pair" "$loop"
-            if [ "$style" = granular ]; then g=$cpu; gp=$pair; cpu_g="$cpu_g $cpu"; else cpu_d="$cpu_d $cpu"; fi
+            if [ "$style" = granular ]; then
+                g=$cpu gp=$pair cpu_g="$cpu_g $cpu"
+            else
+                d=$cpu dp=$pair cpu_d="$cpu_d $cpu"
+            fi
         done
-        ratios="$ratios $(awk -v g="$g" -v d="$cpu" 'BEGIN { print g / d }')"
-        pratios="$pratios $(awk -v g="$gp" -v d="$pair" 'BEGIN { print (d > 0 ? g / d : 0) }')"
+        ratios="$ratios $(awk -v g="$g" -v d="$d" 'BEGIN { print g / d }')"
+        pratios="$pratios $(awk -v g="$gp" -v d="$dp" 'BEGIN { print (d > 0 ? g / d : 0) }')"
     done
     mg=$(echo $cpu_g | tr ' ' '\n' | median) md=$(echo $cpu_d | tr ' ' '\n' | median)
     mr=$(echo $ratios | tr ' ' '\n' | median) mp=$(echo $pratios | tr ' ' '\n' | median)

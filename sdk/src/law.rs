@@ -386,6 +386,23 @@ pub trait BoundContact: Send + Sync + 'static {
         NormalContext::default_for(c, force)
     }
 
+    /// Whether a host's call that asks for contexts (and no energy) evaluates each contact's
+    /// force and context together through [`BoundContact::force_context`] (sdk 0.4), instead of
+    /// the force batch and then [`BoundContact::context_batch`]: for a law whose context repeats
+    /// the work of its force (a contact radius from a cube root, a damping prefactor). The
+    /// results must be those of the two calls, bit for bit. Default `false`.
+    const CONTEXT_WITH_FORCE: bool = false;
+
+    /// The normal force (N) on contact `c`, `history` updated as by [`BoundContact::force`],
+    /// and the contact's context after it, as [`BoundContact::context`] gives it (sdk 0.4). The
+    /// default is those two calls; a law that sets [`BoundContact::CONTEXT_WITH_FORCE`]
+    /// overrides it to share their work.
+    #[inline(always)]
+    fn force_context(&self, c: Contact, history: &mut [f64]) -> (f64, NormalContext) {
+        let f = self.force(c, history);
+        (f, self.context(&c, history, f))
+    }
+
     /// [`BoundContact::context`] for every contact of a batch just evaluated (its forces and
     /// histories as the force call left them), into `out` (one per contact). Override only if a
     /// hand-vectorised form is faster than this loop.

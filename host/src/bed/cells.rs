@@ -103,7 +103,7 @@ impl Cells {
     }
 
     /// Takes disk `i` out of its cell.
-    #[inline]
+    #[inline(always)]
     pub fn remove(&mut self, i: usize) {
         let (p, n) = (self.prev[i], self.next[i]);
         if p != NONE {

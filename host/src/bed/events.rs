@@ -184,21 +184,32 @@ fn poly_roots(c: &[f64], lo: f64, hi: f64, eval: &dyn Fn(f64) -> f64) -> Vec<f64
 
 /// A tournament (winner) tree over a fixed set of keys: one pending event time per disk.
 ///
-/// Each node holds the smallest (key, index) below it, packed in one integer: the key's bits
-/// mapped to an unsigned 64-bit integer of the same order, shifted up by 32 bits, and the index
-/// in the low 32 bits. Integer order is then the order by key with ties to the lower index, and
-/// the smaller of two nodes is taken by arithmetic on their difference, without a branch (the
-/// comparisons of keys and indices, and even an integer `min`, were compiled into a branch per
-/// level that went either way at random, mispredicted half the time). `update(i, t)` is
-/// O(log N) and always climbs to the root (most updates are of the top disk, whose path has to
-/// be replayed to the root anyway; a check per level for an unchanged node cost more than it
-/// saved); `top()` is O(1). Ties go to the lower index, so the event order is deterministic.
-/// Keys are times (s); −0 is stored as +0 (so that the two compare equal, as `f64`s do); NaN
-/// keys are not expected.
+/// Each node holds the smallest (key, index) below it: the key's bits mapped to an unsigned
+/// 64-bit integer of the same order ([`ordered`]) and the index. Ties go to the lower index,
+/// which is the left subtree's winner (leaf `size + i` holds index `i`, so every index of a
+/// left subtree is below every index of its right sibling): climbing from node `k`, the
+/// sibling `k ^ 1` wins if its key is smaller, or equal while it is the left one, that is if
+/// key(sibling) + [k is a left child] <= key(climber), one integer comparison, and the winner
+/// is taken by two conditional moves. The chain from one level to the next is that compare and
+/// move (two cycles; a packed 96-bit key took a 128-bit subtraction and two masks, six), and
+/// there is no branch on the keys (the comparisons of keys and indices, and even an integer
+/// `min`, were compiled into a branch per level that went either way at random, mispredicted
+/// half the time: on x86-64 the moves are written out, elsewhere left to the compiler).
+/// `update(i, t)` is O(log N) and always climbs to the root (most updates are of the top disk,
+/// whose path has to be replayed to the root anyway; a check per level for an unchanged node
+/// cost more than it saved); `top()` is O(1). Keys are times (s); −0 is stored as +0 (so that
+/// the two compare equal, as `f64`s do); NaN keys are not expected.
 #[derive(Debug, Clone)]
 pub struct Tournament {
     size: usize,
-    node: Vec<i128>,
+    node: Vec<Node>,
+}
+
+/// A node of the tournament: the winner's ordered key and index.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Node {
+    key: u64,
+    index: u64,
 }
 
 /// The key `t` as an unsigned integer of the same order (IEEE 754 total order, −0 as +0).
@@ -218,30 +229,53 @@ fn unordered(k: u64) -> f64 {
     f64::from_bits(if k >> 63 == 1 { k & !(1 << 63) } else { !k })
 }
 
-/// A node: key `t` (s) of index `i`, in [0, 2⁹⁶).
-#[inline]
-fn pack(t: f64, i: usize) -> i128 {
-    (ordered(t) as i128) << 32 | i as u32 as i128
-}
-
-/// The smaller of two nodes, without a branch: their difference cannot overflow (both are in
-/// [0, 2⁹⁶)), and its sign, spread over all bits, masks it.
-#[inline]
-fn smaller(a: i128, b: i128) -> i128 {
-    let d = b - a;
-    a + (d & (d >> 127))
+/// The winner of `w` (climbing from node `k`) and `s` (its sibling, node `k ^ 1`): the sibling
+/// if its key is smaller, or equal while it is the left one (its indices are the lower).
+#[inline(always)]
+fn winner(w: Node, s: Node, k: usize) -> Node {
+    // (+1 cannot wrap: no ordered key is u64::MAX, which would be a NaN)
+    let biased = s.key.wrapping_add((!k & 1) as u64);
+    #[cfg(target_arch = "x86_64")]
+    {
+        let (mut key, mut index) = (w.key, w.index);
+        // SAFETY: a comparison and two conditional moves between registers; no memory, no
+        // stack; the flags it sets are declared clobbered (asm!'s default).
+        unsafe {
+            std::arch::asm!(
+                "cmp {b}, {key}",
+                "cmovbe {key}, {sk}",
+                "cmovbe {index}, {si}",
+                b = in(reg) biased,
+                sk = in(reg) s.key,
+                si = in(reg) s.index,
+                key = inout(reg) key,
+                index = inout(reg) index,
+                options(pure, nomem, nostack),
+            );
+        }
+        Node { key, index }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        if biased <= w.key {
+            s
+        } else {
+            w
+        }
+    }
 }
 
 impl Tournament {
     /// A tree of `n` keys, all +∞.
     pub fn new(n: usize) -> Tournament {
         let size = n.max(1).next_power_of_two();
-        let mut node = vec![0i128; 2 * size];
+        let inf = ordered(f64::INFINITY);
+        let mut node = vec![Node { key: inf, index: 0 }; 2 * size];
         for i in 0..size {
-            node[size + i] = pack(f64::INFINITY, i);
+            node[size + i].index = i as u64;
         }
         for k in (1..size).rev() {
-            node[k] = smaller(node[2 * k], node[2 * k + 1]);
+            node[k] = winner(node[2 * k], node[2 * k + 1], 2 * k);
         }
         Tournament { size, node }
     }
@@ -250,13 +284,13 @@ impl Tournament {
     #[inline]
     pub fn top(&self) -> (usize, f64) {
         let w = self.node[1];
-        (w as u32 as usize, unordered((w >> 32) as u64))
+        (w.index as usize, unordered(w.key))
     }
 
     /// The key of `i` (s).
     #[inline]
     pub fn key(&self, i: usize) -> f64 {
-        unordered((self.node[self.size + i] >> 32) as u64)
+        unordered(self.node[self.size + i].key)
     }
 
     /// Sets the key of `i` to `t` (s) and replays its path towards the root.
@@ -269,13 +303,16 @@ impl Tournament {
         assert!(i < self.size, "tournament index {i} out of range");
         let node = self.node.as_mut_ptr();
         let mut k = self.size + i;
-        let mut w = pack(t, i);
+        let mut w = Node {
+            key: ordered(t),
+            index: i as u64,
+        };
         // SAFETY: k < 2 size = node.len() on entry (checked above); each step halves k, and
         // k ^ 1 < 2 size and k >> 1 < size are in range for every k in [2, 2 size).
         unsafe {
             *node.add(k) = w;
             while k > 1 {
-                w = smaller(w, *node.add(k ^ 1));
+                w = winner(w, *node.add(k ^ 1), k);
                 k >>= 1;
                 *node.add(k) = w;
             }
@@ -441,7 +478,7 @@ mod tests {
 
     #[test]
     fn tournament_keys_keep_the_order_of_f64_over_signs_zeros_and_infinities() {
-        // the packed integer keys order as the f64 keys do, −0 equals +0 (ties to the lower
+        // the integer keys order as the f64 keys do, −0 equals +0 (ties to the lower
         // index), and every key reads back exactly
         let keys = [
             f64::INFINITY,
@@ -459,10 +496,19 @@ mod tests {
         for a in keys {
             for b in keys {
                 assert_eq!(ordered(a) < ordered(b), a < b, "{a:e} < {b:e}");
-                assert_eq!(
-                    smaller(pack(a, 0), pack(b, 1)),
-                    if b < a { pack(b, 1) } else { pack(a, 0) }
-                );
+                // a (index 0, the left node 2) against b (index 1, the right node 3), climbing
+                // from either side: the smaller key, ties to the left
+                let na = Node {
+                    key: ordered(a),
+                    index: 0,
+                };
+                let nb = Node {
+                    key: ordered(b),
+                    index: 1,
+                };
+                let expect = if b < a { nb } else { na };
+                assert_eq!(winner(na, nb, 2), expect, "{a:e} from the left");
+                assert_eq!(winner(nb, na, 3), expect, "{b:e} from the right");
             }
             assert_eq!(unordered(ordered(a)), a);
         }

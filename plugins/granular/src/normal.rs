@@ -163,7 +163,7 @@ impl Jkr {
         let t2 = 8.0 * dr * dr2 * e * e * e;
         let t3 = 4.0 * dr2 * e;
         let sqrt1 = lmax(0.0, t0 * (t1 + 2.0 * t2));
-        let t4 = (t1 + t2 + THREEROOT3 * PI * sqrt1.sqrt()).cbrt();
+        let t4 = cbrt(t1 + t2 + THREEROOT3 * PI * sqrt1.sqrt());
         let t5 = t3 / t4 + t4 / e;
         let sqrt2 = lmax(0.0, 2.0 * dr + t5);
         let t6 = sqrt2.sqrt();
@@ -213,16 +213,34 @@ impl NormalModel for Jkr {
         if reff <= 0.0 {
             return 0.0;
         }
-        JKRPREFIX * (reff * self.cohesion * self.cohesion / (self.emix * self.emix)).cbrt()
+        JKRPREFIX * cbrt(reff * self.cohesion * self.cohesion / (self.emix * self.emix))
     }
 
     #[inline(always)]
     fn touches(&self, delta: f64, reff: f64, touching: bool) -> bool {
-        if touching {
-            delta > -self.pulloff_distance(reff)
-        } else {
-            delta > 0.0
+        // an overlapping contact acts either way: the pull-off distance (a cube root) is
+        // needed only for a formed contact pulled apart beyond touching
+        delta > 0.0 || (touching && delta > -self.pulloff_distance(reff))
+    }
+}
+
+/// The cube root as LAMMPS takes it: the C library's `cbrt`. Rust's `f64::cbrt` in a plugin
+/// binds the toolchain's own software routine (correctly rounded, but five times the
+/// instructions of the C library's and not always its bits); on glibc (2.27 and later) its
+/// alias `cbrtf64`, which no Rust runtime defines, reaches the C library's function.
+#[inline(always)]
+pub(crate) fn cbrt(x: f64) -> f64 {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        extern "C" {
+            fn cbrtf64(x: f64) -> f64;
         }
+        // SAFETY: a pure function of one double, from the C math library the plugin links.
+        unsafe { cbrtf64(x) }
+    }
+    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+    {
+        x.cbrt()
     }
 }
 

@@ -417,6 +417,24 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
         self.eval(&c).force
     }
 
+    /// The context is the force's own evaluation (JKR's contact radius is a cube root): one
+    /// evaluation for both, the bits of `force` then `context`.
+    const CONTEXT_WITH_FORCE: bool = true;
+
+    #[inline]
+    fn force_context(&self, c: Contact, history: &mut [f64]) -> (f64, Ctx) {
+        if !self.touches(&c, history) {
+            return (0.0, Ctx::default());
+        }
+        let e = self.eval(&c);
+        let ctx = Ctx {
+            contact_radius: e.contact_radius,
+            cap_force: if M::COHESIVE { e.cap } else { e.force.abs() },
+            damping: e.damping,
+        };
+        (e.force, ctx)
+    }
+
     fn coefficients(&self, _mass: f64, radius: f64) -> Vec<Coefficient> {
         let mut c = vec![Coefficient::new(
             "damp_coefficient",
@@ -531,4 +549,60 @@ normal_laws! {
         "LAMMPS jkr + damping mass_velocity: JKR adhesion to LAMMPS's pull-off distance, + damp m δ̇";
     GranJkrViscoelastic = "gran-jkr-viscoelastic", JkrSpec, Viscoelastic, jkr_doc, viscoelastic_doc,
         "LAMMPS jkr + damping viscoelastic: JKR adhesion to LAMMPS's pull-off distance, + damp m a δ̇";
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `force_context` gives the bits of `force` then `context`, and the same history: pressed,
+    /// touching, pulled apart within and beyond JKR's pull-off distance, formed or not.
+    fn same_bits<M: NormalModel, D: DampingModel>(law: GranNormalBound<M, D>, slots: usize) {
+        let mut acting = 0;
+        for delta in [-1e-6, -1e-8, 0.0, 1e-9, 3e-7, 4e-6] {
+            for rate in [-0.3, 0.0, 0.2] {
+                for formed in [0.0, 1.0] {
+                    let c = Contact {
+                        delta,
+                        rate,
+                        mass: 1.1e-7,
+                        radius: 2.7e-4,
+                    };
+                    let (mut h1, mut h2) = (vec![formed; slots], vec![formed; slots]);
+                    let f = law.force(c, &mut h1);
+                    let x = law.context(&c, &h1, f);
+                    let (g, y) = law.force_context(c, &mut h2);
+                    assert_eq!(f.to_bits(), g.to_bits(), "force at delta = {delta:e}");
+                    assert_eq!(x.to_array().map(f64::to_bits), y.to_array().map(f64::to_bits));
+                    assert_eq!(h1, h2);
+                    acting += usize::from(f != 0.0);
+                }
+            }
+        }
+        assert!(acting > 0, "some contacts act");
+    }
+
+    #[test]
+    fn force_context_is_force_then_context_to_the_bit() {
+        let e = 5e7;
+        let jkr = Jkr {
+            k: FOURTHIRDS * e,
+            emix: e,
+            cohesion: 0.05,
+        };
+        same_bits(GranNormalBound::<Jkr, Viscoelastic>::new(jkr, 0.3, false), 1);
+        same_bits(GranNormalBound::<Jkr, Velocity>::new(jkr, 1e-3, false), 1);
+        let hertz = Hertz { k: FOURTHIRDS * e };
+        let tsuji = Tsuji::coefficient(0.7, false);
+        same_bits(GranNormalBound::<Hertz, Tsuji>::new(hertz, tsuji, true), 0);
+        let dmt = Dmt {
+            k: FOURTHIRDS * e,
+            cohesion: 0.05,
+        };
+        same_bits(GranNormalBound::<Dmt, MassVelocity>::new(dmt, 50.0, false), 0);
+        same_bits(
+            GranNormalBound::<Hooke, CoeffRestitution>::new(Hooke { k: 1e3 }, 0.5, false),
+            0,
+        );
+    }
 }

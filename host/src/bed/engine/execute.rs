@@ -94,6 +94,7 @@ impl<R: Restitution> Bed<R> {
 
     /// The restitution for a collision of `i` (and `j`, for a pair) at impact speed `u` (m/s),
     /// after the TC model.
+    #[inline(always)]
     pub(super) fn restitution(
         &mut self,
         i: usize,
@@ -109,10 +110,7 @@ impl<R: Restitution> Bed<R> {
         let law = if wall { &self.laws.wall } else { &self.laws.disk };
         let r = law.r(u)?;
         if !(0.0..=1.0).contains(&r) {
-            return Err(BedError::Law(dashpot_sdk::LawError::new(
-                dashpot_sdk::ErrorKind::NonFinite,
-                format!("the law returned r = {r} at impact speed {u:e} m/s; a bed needs r in [0, 1]"),
-            )));
+            return Err(out_of_range(r, u));
         }
         Ok(r)
     }
@@ -369,4 +367,15 @@ impl<R: Restitution> Bed<R> {
         }
         Ok(())
     }
+}
+
+/// The error of a restitution `r` outside [0, 1] at impact speed `u` (m/s) (out of the event
+/// loop's way).
+#[cold]
+#[inline(never)]
+fn out_of_range(r: f64, u: f64) -> BedError {
+    BedError::Law(dashpot_sdk::LawError::new(
+        dashpot_sdk::ErrorKind::NonFinite,
+        format!("the law returned r = {r} at impact speed {u:e} m/s; a bed needs r in [0, 1]"),
+    ))
 }

@@ -13,18 +13,25 @@ impl<R: Restitution> Bed<R> {
     /// `overlap` (m). Beyond [`OVERLAP_LIMIT`] diameters a contact was missed (disks pinned
     /// against a wall or each other in an inelastic collapse): the run stops with an error
     /// naming the disks, the time, the overlap and the remedy, rather than report wrong physics.
-    #[inline]
+    #[inline(always)]
     pub(super) fn guard_overlap(&self, i: usize, with: u32, overlap: f64) -> Result<(), BedError> {
         if overlap <= OVERLAP_LIMIT * self.cfg.diameter {
             return Ok(());
         }
+        Err(self.missed_contact(i, with, overlap))
+    }
+
+    /// The error of [`Bed::guard_overlap`] (out of the event loop's way).
+    #[cold]
+    #[inline(never)]
+    fn missed_contact(&self, i: usize, with: u32, overlap: f64) -> BedError {
         let (x, y, _, _) = self.state_at(i, self.now);
         let what = match with {
             LID => "the lid".to_string(),
             PISTON => "the piston".to_string(),
             j => format!("disk {j}"),
         };
-        Err(BedError::Overlap(format!(
+        BedError::Overlap(format!(
             "overlap at t = {:.9} s: disk {i} (at x = {:.4} m, y = {:.4} m) and {what} overlap by \
              {overlap:.3e} m ({:.3e} d), more than {OVERLAP_LIMIT:e} d: a contact was missed, \
              which happens when disks are pinned against each other or a wall in an inelastic \
@@ -34,7 +41,7 @@ impl<R: Restitution> Bed<R> {
             x.rem_euclid(self.width),
             y,
             overlap / self.cfg.diameter
-        )))
+        ))
     }
 
     /// The largest overlap (m) at time `t` (s) between neighbours and between a disk and a wall,
@@ -100,33 +107,41 @@ impl<R: Restitution> Bed<R> {
     /// The ping-pong guard: a disk colliding again at the very instant of its last collision
     /// (roundoff can make a pair that just separated look approaching) is allowed a few times,
     /// then the run stops with an error naming the time and the disk, instead of looping.
+    #[inline(always)]
     pub(super) fn guard_same_instant(&mut self, i: usize) -> Result<(), BedError> {
         if self.last_coll[i] == self.now {
             self.same_instant[i] += 1;
             if self.same_instant[i] > SAME_INSTANT_LIMIT {
-                let (x, y, _, _) = self.state_at(i, self.now);
-                let with = match self.last_partner[i] {
-                    LID => "the lid".to_string(),
-                    PISTON => "the piston".to_string(),
-                    j => format!("disk {j}"),
-                };
-                return Err(BedError::Collapse(format!(
-                    "ping-pong at t = {:.9} s: disk {i} (at x = {:.4} m, y = {:.4} m) collided \
-                     {} times at the same instant, last with {with} (inelastic collapse: disks \
-                     coming to rest on each other, e.g. one on a disk that rides on the piston; \
-                     largest overlap so far {:.3e} d); use the TC model (--tc SECONDS, e.g. \
-                     --tc 1e-5) or a restitution that tends to 1 at low speed",
-                    self.now,
-                    x.rem_euclid(self.width),
-                    y,
-                    self.same_instant[i],
-                    self.counters.max_overlap / self.cfg.diameter
-                )));
+                return Err(self.ping_pong(i));
             }
         } else {
             self.same_instant[i] = 0;
         }
         Ok(())
+    }
+
+    /// The error of [`Bed::guard_same_instant`] for disk `i` (out of the event loop's way).
+    #[cold]
+    #[inline(never)]
+    fn ping_pong(&self, i: usize) -> BedError {
+        let (x, y, _, _) = self.state_at(i, self.now);
+        let with = match self.last_partner[i] {
+            LID => "the lid".to_string(),
+            PISTON => "the piston".to_string(),
+            j => format!("disk {j}"),
+        };
+        BedError::Collapse(format!(
+            "ping-pong at t = {:.9} s: disk {i} (at x = {:.4} m, y = {:.4} m) collided \
+             {} times at the same instant, last with {with} (inelastic collapse: disks \
+             coming to rest on each other, e.g. one on a disk that rides on the piston; \
+             largest overlap so far {:.3e} d); use the TC model (--tc SECONDS, e.g. \
+             --tc 1e-5) or a restitution that tends to 1 at low speed",
+            self.now,
+            x.rem_euclid(self.width),
+            y,
+            self.same_instant[i],
+            self.counters.max_overlap / self.cfg.diameter
+        ))
     }
 
     /// The explosion guard: `block_len` events within a simulated time so short that each disk

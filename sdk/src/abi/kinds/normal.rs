@@ -307,6 +307,11 @@ impl<B: BoundContact> KindBound<Normal> for B {
             history,
             force,
         };
+        if B::CONTEXT_WITH_FORCE && !b4.context.is_null() && b.power.is_null() {
+            let out = unsafe { slice_mut(b4.context, n) };
+            let reach = (!b.reach.is_null()).then(|| unsafe { slice_mut(b.reach, n) });
+            return with_contexts(self, batch, out, reach);
+        }
         let mut scratch = Vec::new();
         let written = normal_blocks(
             self,
@@ -337,6 +342,45 @@ impl<B: BoundContact> KindBound<Normal> for B {
     }
     fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {
         self.coefficients(mass, radius)
+    }
+}
+
+/// A normal batch of a law that evaluates each contact's force and context together
+/// ([`BoundContact::CONTEXT_WITH_FORCE`]), with the checks of the block loop: the inputs, then
+/// the forces, the reaches (into `reach` if given) and the contexts. Returns false: no energy
+/// was written.
+#[inline(always)]
+fn with_contexts<B: BoundContact>(
+    law: &B,
+    b: NormalBatch<'_>,
+    out: &mut [NormalContext],
+    reach: Option<&mut [f64]>,
+) -> Result<bool, (usize, u8)> {
+    let (slots, n) = (b.slots, b.force.len());
+    let (d, r, m, a) = (&b.delta[..n], &b.rate[..n], &b.mass[..n], &b.radius[..n]);
+    if !normal_inputs_ok(d, r, m, a) {
+        if let Some(fault) = check_normal_inputs(d, r, m, a) {
+            return Err(fault);
+        }
+    }
+    for (i, x) in out[..n].iter_mut().enumerate() {
+        let c = b.contact(i);
+        (b.force[i], *x) = law.force_context(c, history_mut(b.history, slots, i));
+    }
+    if let Some(i) = first_non_finite(b.force) {
+        return Err((i, BatchFault::OUTPUT));
+    }
+    if let Some(reach) = reach {
+        for (i, x) in reach[..n].iter_mut().enumerate() {
+            *x = law.reach(&b.contact(i), history_of(b.history, slots, i));
+            if !(0.0..f64::INFINITY).contains(x) {
+                return Err((i, BatchFault::REACH));
+            }
+        }
+    }
+    match out[..n].iter().position(|x| !x.is_valid()) {
+        Some(i) => Err((i, BatchFault::CONTEXT)),
+        None => Ok(false),
     }
 }
 
