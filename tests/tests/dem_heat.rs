@@ -405,38 +405,50 @@ fn heat_does_not_move_the_mechanics_by_a_bit() {
     }
 }
 
-#[test]
-fn a_checkpoint_resumes_the_temperatures_bit_for_bit() {
+/// `e`'s state, of the scene `text`, written as a checkpoint into a scratch directory.
+fn checkpointed(text: &str, e: &Engine<3>) -> (tempfile::TempDir, std::path::PathBuf) {
     use dashpot::dem::checkpoint::{self, Checkpoint, Header};
-    let text = pile(
-        HEAT,
-        "temperature = { mean = 400.0, amplitude = 50.0, frequency = 20.0 }",
-    );
-    let mut a = scene_run(&text);
-    a.advance(700).unwrap();
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.dpck");
     let ck = Checkpoint::<3> {
-        scene: text.clone(),
+        scene: text.to_string(),
         laws: String::new(),
         energy_initial: 0.0,
         frames: 0,
-        engine: a.save_state(),
+        engine: e.save_state(),
     };
     let header = Header {
         dimension: 3,
         scene_hash: 1,
     };
     checkpoint::write(&path, header, &ck).unwrap();
-    a.advance(500).unwrap();
-    let (_, payload) = checkpoint::read_raw(&path).unwrap();
-    let back = checkpoint::decode::<3>(&path, &payload).unwrap();
+    (dir, path)
+}
+
+/// The engine state of the checkpoint `path`.
+fn read_back(path: &std::path::Path) -> dashpot::dem::integrator::EngineState<3> {
+    use dashpot::dem::checkpoint;
+    let (_, payload) = checkpoint::read_raw(path).unwrap();
+    checkpoint::decode::<3>(path, &payload).unwrap().engine
+}
+
+#[test]
+fn a_checkpoint_resumes_the_temperatures_bit_for_bit() {
+    let text = pile(
+        HEAT,
+        "temperature = { mean = 400.0, amplitude = 50.0, frequency = 20.0 }",
+    );
+    let mut a = scene_run(&text);
+    a.advance(15_000).unwrap();
+    let (_dir, path) = checkpointed(&text, &a);
+    a.advance(3000).unwrap();
     let mut b = scene_run(&text);
-    b.restore_state(back.engine).unwrap();
-    b.advance(500).unwrap();
+    b.restore_state(read_back(&path)).unwrap();
+    b.advance(3000).unwrap();
     let (ta, tb) = (a.temperatures().unwrap(), b.temperatures().unwrap());
     assert!(ta.iter().zip(tb).all(|(x, y)| x.to_bits() == y.to_bits()));
     assert_eq!(a.heat_books(), b.heat_books());
+    assert!(a.heat_books().unwrap().wall_heat != 0.0, "the floor conducted");
     // a state without temperatures does not fit a run with heat, and the other way round
     let plain = scene_run(&pile("", ""));
     let e = b.restore_state(plain.save_state()).unwrap_err().to_string();
@@ -448,28 +460,11 @@ fn a_checkpoint_resumes_the_temperatures_bit_for_bit() {
 
 #[test]
 fn a_checkpoint_of_format_one_reads_as_a_run_without_heat() {
-    use dashpot::dem::checkpoint::{self, Checkpoint, Header, HEADER_LEN};
+    use dashpot::dem::checkpoint::HEADER_LEN;
     let text = pile("", "");
     let mut a = scene_run(&text);
     a.advance(300).unwrap();
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("run.dpck");
-    let ck = Checkpoint::<3> {
-        scene: text.clone(),
-        laws: String::new(),
-        energy_initial: 0.0,
-        frames: 0,
-        engine: a.save_state(),
-    };
-    checkpoint::write(
-        &path,
-        Header {
-            dimension: 3,
-            scene_hash: 1,
-        },
-        &ck,
-    )
-    .unwrap();
+    let (_dir, path) = checkpointed(&text, &a);
     // format 1 is format 2 without the last byte (the temperatures' `None`)
     let bytes = std::fs::read(&path).unwrap();
     assert_eq!(*bytes.last().unwrap(), 0);
@@ -480,11 +475,10 @@ fn a_checkpoint_of_format_one_reads_as_a_run_without_heat() {
     old[28..32].copy_from_slice(&crc32(payload).to_le_bytes());
     old.extend_from_slice(payload);
     std::fs::write(&path, &old).unwrap();
-    let (_, p) = checkpoint::read_raw(&path).unwrap();
-    let back = checkpoint::decode::<3>(&path, &p).unwrap();
+    let back = read_back(&path);
     a.advance(200).unwrap();
     let mut b = scene_run(&text);
-    b.restore_state(back.engine).unwrap();
+    b.restore_state(back).unwrap();
     b.advance(200).unwrap();
     assert!(a.p.pos.iter().zip(&b.p.pos).all(|(x, y)| x == y));
 }
