@@ -557,3 +557,26 @@ pub fn sdk02_registry(profile: &str) -> Option<Registry> {
 pub fn sdk03_registry(profile: &str) -> Option<Registry> {
     old_sdk_registry(&SDK_0_3, profile)
 }
+
+/// Masses (kg), radii (m), and per step the overlaps (m) and overlap rates (m/s) of a
+/// load–unload–reload cycle ([`load_cycle`]).
+pub type Cycle = (Vec<f64>, Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>);
+
+/// `n` contacts of assorted geometry over `steps` steps of one and a half sine periods of
+/// overlap (contact i of amplitude 2 (1 + i) µm, shifted by `offset(i)` m, so some go into
+/// tension): loading, unloading, reloading, with the matching rates.
+pub fn load_cycle(n: usize, steps: usize, offset: impl Fn(usize) -> f64) -> Cycle {
+    let mass: Vec<f64> = (0..n).map(|i| 1e-4 * (1.0 + 0.37 * i as f64)).collect();
+    let radius: Vec<f64> = (0..n).map(|i| 1e-3 * (1.0 + 0.11 * i as f64)).collect();
+    let (mut delta, mut rate) = (Vec::new(), Vec::new());
+    for s in 0..steps {
+        let ph = 3.0 * std::f64::consts::PI * s as f64 / steps as f64;
+        delta.push(
+            (0..n)
+                .map(|i| 2e-6 * (1.0 + i as f64) * ph.sin() + offset(i))
+                .collect(),
+        );
+        rate.push((0..n).map(|i| 0.3 * (1.0 + i as f64) * ph.cos()).collect());
+    }
+    (mass, radius, delta, rate)
+}

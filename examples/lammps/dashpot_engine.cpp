@@ -63,7 +63,7 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
     // history; vroll, froll (3 each); twist, mtwist; reach; each family's power and elastic energy
     size_t per = 7 + 18 + lay.width[NORMAL] + lay.width[TANGENTIAL] + lay.width[ROLLING] + lay.width[TWISTING] +
         (fl.rolling ? 6 : 0) + (fl.twisting ? 2 : 0) + (lay.adhesive ? 1 : 0) + (fl.energy ? 2 * NFAMILY : 0) +
-        (fl.context ? 3 : 0);
+        (fl.context ? 3 : 0) + (fl.heat ? 3 : 0);
     dstore.assign((size_t) C * per, 0.0);
     a = istore.data();
     b = a + C;
@@ -100,6 +100,8 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
     }
     if (lay.adhesive) reach = take(1);
     context = fl.context ? take(3) : nullptr;
+    temp = fl.heat ? take(2) : nullptr;
+    heat = fl.heat ? take(1) : nullptr;
     for (int f = 0; f < NFAMILY; f++) power[f] = elastic[f] = nullptr;
     if (fl.energy)
         for (int f = 0; f < NFAMILY; f++) {
@@ -113,8 +115,11 @@ void ContactEngine::configure(const ModelTable *m, const Layout &l, const Engine
     models = m;
     lay = l;
     fl = f;
-    fl.context = false;
-    for (int id = 0; id < models->nmodels(); id++) fl.context = fl.context || models->model(id).any_context;
+    fl.context = fl.heat = false;
+    for (int id = 0; id < models->nmodels(); id++) {
+        fl.context = fl.context || models->model(id).any_context;
+        fl.heat = fl.heat || models->model(id).heat != nullptr;
+    }
     use_regions = fl.regions && models->nmodels() > 1 && models->nmodels() <= MAX_REGIONS;
     if (use_regions) {
         reg.resize(models->nmodels());
@@ -323,6 +328,7 @@ void ContactEngine::run_laws(Chunk &c, int lo, int m, const Model &md, double *c
     } else if (c.mtwist) {
         std::fill(c.mtwist + lo, c.mtwist + lo + m, 0.0);
     }
+    if (md.heat) conduct(c, lo, m, md, dt);
     if (en) {
         const bool present[NFAMILY] = {true, md.tangential != nullptr, md.rolling != nullptr, md.twisting != nullptr};
         for (int f = 0; f < NFAMILY; f++)
@@ -330,6 +336,33 @@ void ContactEngine::run_laws(Chunk &c, int lo, int m, const Model &md, double *c
                 std::fill(c.power[f] + lo, c.power[f] + lo + m, present[f] ? NAN : 0.0);
                 std::fill(c.elastic[f] + lo, c.elastic[f] + lo + m, present[f] ? NAN : 0.0);
             }
+    }
+}
+
+/* The heat law's batch call on contacts lo .. lo+m-1 (all of model md, all pairs or all wall
+ * contacts) with the normal law's force and context, and the heat flows added to the target's
+ * heatflow: Q to a, -Q to b, as LAMMPS's pair granular and fix wall/gran add theirs. */
+void ContactEngine::conduct(Chunk &c, int lo, int m, const Model &md, double dt)
+{
+    const HeatTarget &h = heat_target;
+    if (!h.heatflow || !h.temperature || m == 0) return;
+    const bool wall = c.b[lo] < 0;
+    if (wall && !std::isfinite(h.wall_temperature)) return;
+    double *tp = c.temp + 2 * lo;
+    for (int k = 0; k < m; k++) {
+        tp[2 * k] = h.temperature[c.a[lo + k]];
+        tp[2 * k + 1] = wall ? h.wall_temperature : h.temperature[c.b[lo + k]];
+    }
+    const double *ctx = md.reads_context[HEAT] ? c.context + 3 * lo : nullptr;
+    check_status(dashpot_heat_model_heat_batch(md.heat, m, dt, tp, c.fn + lo, c.delta + lo, c.rad + lo, ctx, nullptr,
+                                               0, c.heat + lo, nullptr),
+                 "dashpot_heat_model_heat_batch");
+    double *hf = h.heatflow;
+    for (int k = lo; k < lo + m; k++) {
+        const int a = c.a[k], b = c.b[k];
+        const double q = c.heat[k];
+        if (a < h.nlocal || h.newton) hf[a] += q;
+        if (b >= 0 && (b < h.nlocal || h.newton)) hf[b] -= q;
     }
 }
 

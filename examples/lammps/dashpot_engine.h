@@ -57,6 +57,20 @@ struct EngineFlags {
      * (see evaluate()). */
     bool regions = false;
     bool context = false;    // set by configure(): some model reads the normal context
+    bool heat = false;       // set by configure(): some model has a heat law
+};
+
+/* Where evaluate() conducts heat (sdk 0.4), as LAMMPS's fix property/atom temperature heatflow:
+ * each contact of a model with a heat law reads the two bodies' temperatures (a wall's own for
+ * b < 0) and adds the heat flow Q into a to heatflow[a], -Q to heatflow[b] (a ghost atom takes
+ * its share only with newton on, as the forces). A wall whose temperature is not finite (none
+ * given) conducts no heat. */
+struct HeatTarget {
+    const double *temperature = nullptr;    // per atom (local and ghost)
+    double *heatflow = nullptr;             // per atom; null: no heat conducted
+    double wall_temperature = 0.0;
+    int nlocal = 0;
+    bool newton = false;
 };
 
 /* Where evaluate() may add the forces and torques itself (instead of leaving them in the chunk's
@@ -83,6 +97,7 @@ class ContactEngine {
         // outputs: the laws'
         double *fn = nullptr, *ft = nullptr, *froll = nullptr, *mtwist = nullptr, *reach = nullptr;
         double *context = nullptr;    // sdk 0.4: each contact's normal context (3 values)
+        double *temp = nullptr, *heat = nullptr;    // heat: [T_a, T_b] per contact, the heat flow into a
         double *power[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};      // energy: power (W)
         double *elastic[NFAMILY] = {nullptr, nullptr, nullptr, nullptr};    // energy: elastic energy (J)
         // outputs: the force on a (b takes its opposite) and the torques on a and b
@@ -95,6 +110,9 @@ class ContactEngine {
     /* The models, the record layout of the store and the flags: columns sized once. */
     void configure(const ModelTable *models, const Layout &lay, const EngineFlags &fl);
     const EngineFlags &flags() const { return fl; }
+    /* Where the heat of the contacts evaluated next goes (see HeatTarget); set before each step
+     * (the per-atom arrays move as atoms are added). */
+    void set_heat(const HeatTarget &h) { heat_target = h; }
 
     /* The number of staged contacts evaluate() takes next (with regions: those of one model, the
      * full one first); 0 when none is staged. */
@@ -135,6 +153,7 @@ class ContactEngine {
     const ModelTable *models = nullptr;
     Layout lay;
     EngineFlags fl;
+    HeatTarget heat_target;
     Chunk stage_, sorted;
     int n = 0, model0 = -1;
     bool mixed = false;
@@ -161,6 +180,7 @@ class ContactEngine {
     void store_back(Chunk &c, int lo, int m, const Model &md, HistoryStore &store);
     void run_laws(Chunk &c, int lo, int m, const Model &md, double *const *hist, double *reach, double dt);
     void torques(Chunk &c, int lo, int m, const Model &md, const ApplyTarget *direct);
+    void conduct(Chunk &c, int lo, int m, const Model &md, double dt);
 };
 
 inline bool ContactEngine::stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta,

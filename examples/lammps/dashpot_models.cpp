@@ -24,14 +24,27 @@ ModelTable::~ModelTable()
     free_all();
 }
 
+void ModelTable::free_model(Model &m)
+{
+    dashpot_contact_model_free(m.normal);
+    dashpot_tangential_model_free(m.tangential);
+    dashpot_rolling_model_free(m.rolling);
+    dashpot_twisting_model_free(m.twisting);
+    dashpot_heat_model_free(m.heat);
+}
+
+void ModelTable::free_laws(SpecLaws &l)
+{
+    dashpot_contact_free(l.normal);
+    dashpot_tangential_free(l.tangential);
+    dashpot_rolling_free(l.rolling);
+    dashpot_twisting_free(l.twisting);
+    dashpot_heat_free(l.heat);
+}
+
 void ModelTable::clear_models()
 {
-    for (auto &m : models) {
-        dashpot_contact_model_free(m.normal);
-        dashpot_tangential_model_free(m.tangential);
-        dashpot_rolling_model_free(m.rolling);
-        dashpot_twisting_model_free(m.twisting);
-    }
+    for (auto &m : models) free_model(m);
     models.clear();
     model_materials.clear();
 }
@@ -39,12 +52,7 @@ void ModelTable::clear_models()
 void ModelTable::free_all()
 {
     clear_models();
-    for (auto &l : laws) {
-        dashpot_contact_free(l.normal);
-        dashpot_tangential_free(l.tangential);
-        dashpot_rolling_free(l.rolling);
-        dashpot_twisting_free(l.twisting);
-    }
+    for (auto &l : laws) free_laws(l);
     laws.clear();
     dashpot_registry_free(registry);
     registry = nullptr;
@@ -164,22 +172,19 @@ int ModelTable::add_spec(const ContactSpec &spec, const std::string &context)
         if (n.spec.law[TWISTING].present())
             check_status(make_law(dashpot_twisting_new, registry, "twisting", n.spec.law[TWISTING], &n.twisting),
                          context + ": creating the twisting law");
+        if (n.spec.law[HEAT].present())
+            check_status(make_law(dashpot_heat_new, registry, "heat", n.spec.law[HEAT], &n.heat),
+                         context + ": creating the heat law");
         probe(n, context);
     } catch (...) {
-        dashpot_contact_free(n.normal);
-        dashpot_tangential_free(n.tangential);
-        dashpot_rolling_free(n.rolling);
-        dashpot_twisting_free(n.twisting);
+        free_laws(n);
         laws.pop_back();
         throw;
     }
     // a resolved short name ("sds" -> "rolling-sds") may equal an existing spec: keep one
     for (int s = 0; s + 1 < (int) laws.size(); s++)
         if (laws[s].spec.same_laws(n.spec)) {
-            dashpot_contact_free(n.normal);
-            dashpot_tangential_free(n.tangential);
-            dashpot_rolling_free(n.rolling);
-            dashpot_twisting_free(n.twisting);
+            free_laws(n);
             laws.pop_back();
             return s;
         }
@@ -234,11 +239,9 @@ int ModelTable::bind(int s, const Materials &mat, const std::string &context)
         if (l.twisting)
             check_status(dashpot_twisting_bind_materials(l.twisting, &m, &md.twisting),
                          context + ": binding the twisting law");
+        if (l.heat) check_status(dashpot_heat_bind_materials(l.heat, &m, &md.heat), context + ": binding the heat law");
     } catch (...) {
-        dashpot_contact_model_free(md.normal);
-        dashpot_tangential_model_free(md.tangential);
-        dashpot_rolling_model_free(md.rolling);
-        dashpot_twisting_model_free(md.twisting);
+        free_model(md);
         throw;
     }
 #if DASHPOT_LMP_CONTEXT
@@ -249,7 +252,10 @@ int ModelTable::bind(int s, const Materials &mat, const std::string &context)
         md.reads_context[ROLLING] = reads != 0;
     if (md.twisting && dashpot_twisting_model_reads_context(md.twisting, &reads) == DASHPOT_OK)
         md.reads_context[TWISTING] = reads != 0;
-    md.any_context = md.reads_context[TANGENTIAL] || md.reads_context[ROLLING] || md.reads_context[TWISTING];
+    if (md.heat && dashpot_heat_model_reads_context(md.heat, &reads) == DASHPOT_OK)
+        md.reads_context[HEAT] = reads != 0;
+    md.any_context = md.reads_context[TANGENTIAL] || md.reads_context[ROLLING] || md.reads_context[TWISTING] ||
+        md.reads_context[HEAT];
 #endif
     models.push_back(md);
     model_materials.push_back(mat);

@@ -47,12 +47,13 @@ struct Model {
     DashpotTangentialModel *tangential = nullptr;
     DashpotRollingModel *rolling = nullptr;
     DashpotTwistingModel *twisting = nullptr;
+    DashpotHeatModel *heat = nullptr;    // sdk 0.4: the heat-conduction law, or none
     int slots[NFAMILY] = {0, 0, 0, 0};
     bool adhesive = false;
     TorqueArm arm = TorqueArm::RADIUS;
     /* sdk 0.4: the family's law reads the normal law's context (contact radius, cap force,
      * damping), which the normal law then reports (any_context) */
-    bool reads_context[NFAMILY] = {false, false, false, false};
+    bool reads_context[NLAW] = {false, false, false, false, false};
     bool any_context = false;
 };
 
@@ -95,7 +96,7 @@ class ModelTable {
 
     /* The record layout over every spec added so far. */
     Layout layout() const;
-    /* Whether some spec has a rolling / twisting law. */
+    /* Whether some spec has a law of family f (rolling, twisting, heat). */
     bool any(Family f) const;
 
     /* The reach (length) of a fresh contact of effective radius `radius` under model id: the
@@ -109,6 +110,7 @@ class ModelTable {
         DashpotTangentialLaw *tangential = nullptr;
         DashpotRollingLaw *rolling = nullptr;
         DashpotTwistingLaw *twisting = nullptr;
+        DashpotHeatLaw *heat = nullptr;
         int slots[NFAMILY] = {0, 0, 0, 0};
         bool adhesive = false;
     };
@@ -118,6 +120,8 @@ class ModelTable {
     std::vector<Materials> model_materials;
     void free_all();
     void probe(SpecLaws &l, const std::string &context);
+    static void free_laws(SpecLaws &l);
+    static void free_model(Model &m);
 };
 
 /* Throws SpecError "`what` failed (STATUS): library message" unless status is DASHPOT_OK. */

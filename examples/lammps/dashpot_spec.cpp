@@ -10,7 +10,7 @@
 
 namespace dashpot_lmp {
 
-const char *const FAMILY_NAME[NFAMILY] = {"normal", "tangential", "rolling", "twisting"};
+const char *const FAMILY_NAME[NLAW] = {"normal", "tangential", "rolling", "twisting", "heat"};
 
 static std::string number_text(double v)
 {
@@ -30,7 +30,7 @@ std::string LawSpec::describe() const
 std::string ContactSpec::describe() const
 {
     std::string s;
-    for (int f = 0; f < NFAMILY; f++) {
+    for (int f = 0; f < NLAW; f++) {
         if (!law[f].present()) continue;
         if (!s.empty()) s += " + ";
         s += law[f].describe();
@@ -40,7 +40,7 @@ std::string ContactSpec::describe() const
 
 bool ContactSpec::same_laws(const ContactSpec &o) const
 {
-    for (int f = 0; f < NFAMILY; f++)
+    for (int f = 0; f < NLAW; f++)
         if (!(law[f] == o.law[f])) return false;
     return arm == o.arm && granular == o.granular;
 }
@@ -66,7 +66,7 @@ static bool is_number(const std::string &word)
 
 static int family_of(const std::string &word)
 {
-    for (int f = TANGENTIAL; f < NFAMILY; f++)
+    for (int f = TANGENTIAL; f < NLAW; f++)
         if (word == FAMILY_NAME[f]) return f;
     return -1;
 }
@@ -137,7 +137,7 @@ Parsed parse_dashpot(const std::vector<std::string> &words, size_t first, const 
                 throw SpecError(context + ": '" + fam + "' must be followed by one " + fam + " law name" +
                                 (i + 1 < n ? ", got '" + words[i + 1] + "'" : ", got nothing") +
                                 " (for instance 'tangential mindlin mu=0.5', 'rolling sds k=1e3 mu=0.1', "
-                                "'twisting marshall')");
+                                "'twisting marshall', 'heat heat-area h=5')");
             spec.law[f].name = words[++i];
             family = f;
             continue;
@@ -153,7 +153,7 @@ Parsed parse_dashpot(const std::vector<std::string> &words, size_t first, const 
             continue;
         }
         throw SpecError(context + ": unexpected word '" + w + "' after law '" + spec.law[family].name +
-                        "': expected key=value, 'tangential LAW', 'rolling LAW' or 'twisting LAW'" +
+                        "': expected key=value, 'tangential LAW', 'rolling LAW', 'twisting LAW' or 'heat LAW'" +
                         (stop.empty() ? std::string() : ", or one of: " + join(stop)));
     }
     out.end = i;
@@ -184,7 +184,7 @@ ContactSpec mix_specs(const ContactSpec &a, const ContactSpec &b, int itype, int
     m.arm = a.arm;
     const std::string types = std::to_string(itype) + " " + std::to_string(itype) + " and " + std::to_string(jtype) +
         " " + std::to_string(jtype);
-    for (int f = 0; f < NFAMILY; f++) {
+    for (int f = 0; f < NLAW; f++) {
         const LawSpec &la = a.law[f], &lb = b.law[f];
         if (la.name != lb.name) {
             auto shown = [](const LawSpec &l) { return l.present() ? "'" + l.name + "'" : std::string("none"); };

@@ -8,6 +8,7 @@
  * tangential force's torque acts). Parsers read dashpot's own syntax
  *
  *   [E nu] LAW [key=value ...] [tangential LAW [key=value ...]] [rolling LAW ...] [twisting LAW ...]
+ *       [heat LAW ...]
  *
  * and mix the specs of two types into the one of an unset pair (as pair_style granular mixes:
  * the laws must be the same, the parameters take their geometric mean). Errors are SpecError
@@ -24,10 +25,13 @@
 
 namespace dashpot_lmp {
 
-enum Family { NORMAL = 0, TANGENTIAL = 1, ROLLING = 2, TWISTING = 3, NFAMILY = 4 };
+/* The families of laws a contact carries: the four that act on the motion (forces and torques,
+ * each with its history: NFAMILY), then heat conduction (sdk 0.4), which conducts heat between
+ * the two bodies' temperatures and keeps no history here (NLAW laws in all). */
+enum Family { NORMAL = 0, TANGENTIAL = 1, ROLLING = 2, TWISTING = 3, NFAMILY = 4, HEAT = 4, NLAW = 5 };
 
-/* "normal", "tangential", "rolling", "twisting" */
-extern const char *const FAMILY_NAME[NFAMILY];
+/* "normal", "tangential", "rolling", "twisting", "heat" */
+extern const char *const FAMILY_NAME[NLAW];
 
 struct Param {
     std::string key;
@@ -62,6 +66,8 @@ struct GranularWords {
     std::vector<double> rcoef;
     std::string twisting;    // marshall, sds, or empty
     std::vector<double> wcoef;
+    std::string heat;    // radius, area, or empty (none)
+    std::vector<double> hcoef;
     bool limit_damping = false;
     double cutoff = -1.0;    // pair_coeff's cutoff keyword (< 0: none)
     bool classic = false;    // from a classic style's arguments (torques at a radius from the centres)
@@ -74,7 +80,7 @@ struct GranularWords {
 enum class Syntax { DASHPOT, GRANULAR, CLASSIC };
 
 struct ContactSpec {
-    LawSpec law[NFAMILY];
+    LawSpec law[NLAW];    // law[HEAT]: the heat-conduction law, or none
     bool has_material = false;    // E and nu given
     double young = 0.0;           // E (pressure units of the deck), > 0
     double poisson = 0.0;         // nu, -1 < nu < 0.5
@@ -106,7 +112,7 @@ struct Parsed {
 double parse_number(const std::string &word, const std::string &what);
 
 /* dashpot's own syntax, from words[first..]:
- *   [E nu] [LAW [key=value ...] [tangential LAW ...] [rolling LAW ...] [twisting LAW ...]]
+ *   [E nu] [LAW [key=value ...] [tangential LAW ...] [rolling LAW ...] [twisting LAW ...] [heat LAW ...]]
  * `materials`: the words may start with the two numbers E nu (pair_coeff); `context` names the
  * command in messages ("pair_style dashpot", "pair_coeff 1 2"). A family keyword must be
  * followed by a law name (a word that is neither key=value nor a family keyword) and appears

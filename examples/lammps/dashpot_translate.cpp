@@ -22,6 +22,7 @@ const SubModel TANGENTIALS[] = {{"linear_nohistory", 2},      {"linear_history",
                                 {"mindlin_rescale/force", 3}, {"mindlin_classic", 3}};
 const SubModel ROLLINGS[] = {{"sds", 3}};
 const SubModel TWISTINGS[] = {{"marshall", 0}, {"sds", 3}};
+const SubModel HEATS[] = {{"none", 0}, {"radius", 1}, {"area", 1}};
 
 template <size_t N> const SubModel *find(const SubModel (&table)[N], const std::string &name)
 {
@@ -91,7 +92,7 @@ bool GranularWords::operator==(const GranularWords &o) const
     };
     return normal == o.normal && same(ncoef, o.ncoef) && damping == o.damping && tangential == o.tangential &&
         same(tcoef, o.tcoef) && rolling == o.rolling && same(rcoef, o.rcoef) && twisting == o.twisting &&
-        same(wcoef, o.wcoef) && limit_damping == o.limit_damping && cutoff == o.cutoff && classic == o.classic &&
+        same(wcoef, o.wcoef) && heat == o.heat && same(hcoef, o.hcoef) && limit_damping == o.limit_damping && cutoff == o.cutoff && classic == o.classic &&
         mixed == o.mixed;
 }
 
@@ -122,7 +123,9 @@ const std::vector<TranslationRow> &translation_table()
         {"twisting", "sds", "k gamma mu", "gran-twisting-sds", "k, gamma, mu", "exact"},
         {"keyword", "limit_damping", "", "the normal law's limit_damping=1", "", "exact"},
         {"keyword", "cutoff", "X", "the pair's neighbour cutoff", "", "exact"},
-        {"heat", "area, radius, ...", "", "", "", "refused: heat conduction is not carried yet"},
+        {"heat", "radius", "k", "heat-radius", "k", "exact (a: the normal law's contact radius)"},
+        {"heat", "area", "h", "heat-area", "h", "exact (a: the normal law's contact radius)"},
+        {"heat", "none", "", "(no heat law)", "", "exact"},
         {"classic", "gran/hooke", "kn kt gamman gammat xmu dampflag",
          "gran-hooke-mass-velocity + gran-linear-nohistory", "k=kn damp=gamman; xt=gammat/gamman mu=xmu", "exact"},
         {"tangential", "linear_history_classic, mindlin_classic", "kt xt mu", "gran-wall-history-classic",
@@ -240,9 +243,14 @@ GranularWords parse_granular(const std::vector<std::string> &words, size_t first
             g.cutoff = parse_number(next("cutoff distance"), context + ": cutoff");
             if (!(g.cutoff > 0.0)) throw SpecError(context + ": cutoff must be > 0, got " + words[i]);
         } else if (w == "heat") {
-            throw SpecError(context + ": heat models are not carried by pair_style dashpot yet");
+            const std::string &m = next("heat model");
+            const SubModel *h = find(HEATS, m);
+            if (!h) throw SpecError(context + ": unknown heat model '" + m + "' (valid: " + names(HEATS) + ")");
+            if (!g.heat.empty()) throw SpecError(context + ": 'heat' is given twice");
+            g.heat = m;
+            g.hcoef = coefficients(words, i, h->ncoeffs, "heat", m, false, context);
         } else {
-            std::string valid = "damping, tangential, rolling, twisting, limit_damping, cutoff";
+            std::string valid = "damping, tangential, rolling, twisting, heat, limit_damping, cutoff";
             for (auto &s : stop) valid += ", " + s;
             throw SpecError(context + ": unknown keyword '" + w + "' (valid: " + valid + ")");
         }
@@ -339,6 +347,8 @@ GranularWords mix_granular(const GranularWords &a, const GranularWords &b, int i
     differ("tangential", a.tangential, b.tangential);
     differ("rolling", a.rolling, b.rolling);
     differ("twisting", a.twisting, b.twisting);
+    // LAMMPS's heat model none is no heat law
+    differ("heat", a.heat == "none" ? "" : a.heat, b.heat == "none" ? "" : b.heat);
     if (a.classic != b.classic) throw SpecError("cannot mix a classic and a granular model (types " + types + ")");
     GranularWords m = a;
     auto geom = [](const std::vector<double> &x, const std::vector<double> &y) {
@@ -357,6 +367,7 @@ GranularWords mix_granular(const GranularWords &a, const GranularWords &b, int i
         m.tcoef[0] = std::numeric_limits<double>::quiet_NaN();
     m.rcoef = geom(a.rcoef, b.rcoef);
     m.wcoef = geom(a.wcoef, b.wcoef);
+    m.hcoef = geom(a.hcoef, b.hcoef);
     m.limit_damping = a.limit_damping || b.limit_damping;
     m.cutoff = std::max(a.cutoff, b.cutoff);
     m.mixed = true;
@@ -431,6 +442,15 @@ ContactSpec translate_granular(const GranularWords &g, const std::string &contex
         if (!std::isnan(kt)) s.law[TWISTING].params.push_back({"kt", kt});
         s.law[TWISTING].params.push_back({"xt", xt});
         s.law[TWISTING].params.push_back({"mu", mu});
+    }
+    // LAMMPS's heat models read the normal model's contact radius, as heat-radius and heat-area
+    // read the normal law's context
+    if (g.heat == "radius") {
+        s.law[HEAT].name = "heat-radius";
+        s.law[HEAT].params = {{"k", g.hcoef[0]}};
+    } else if (g.heat == "area") {
+        s.law[HEAT].name = "heat-area";
+        s.law[HEAT].params = {{"h", g.hcoef[0]}};
     }
     return s;
 }

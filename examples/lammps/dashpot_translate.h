@@ -3,7 +3,7 @@
  *
  *   pair_style granular's model, as in pair_coeff I J (and fix wall/gran granular):
  *     NORMAL c... [damping D] [tangential T c...] [rolling R c...] [twisting W c...]
- *     [limit_damping] [cutoff X]
+ *     [heat radius k | heat area h | heat none] [limit_damping] [cutoff X]
  *   the classic styles' arguments (pair_style gran/hooke, gran/hooke/history,
  *   gran/hertz/history; fix wall/gran hooke, hooke/history, hertz/history):
  *     kn kt gamman gammat xmu dampflag [limit_damping]

@@ -10,9 +10,11 @@
 #include "domain.h"
 #include "error.h"
 #include "force.h"
+#include "input.h"
 #include "memory.h"
 #include "modify.h"
 #include "update.h"
+#include "variable.h"
 
 #include <mpi.h>
 
@@ -48,7 +50,7 @@ static bool is_option(const std::string &w)
 FixWallDashpot::FixWallDashpot(LAMMPS *lmp, int narg, char **arg) :
     Fix(lmp, narg, arg), wallstyle(-1), lo(-BIG), hi(BIG), cylradius(0.0), wiggle(0), wshear(0), axis(0),
     amplitude(0.0), period(0.0), omega_wiggle(0.0), vshear(0.0), time_origin(0), contacts_flag(0), energy_flag(0),
-    spec_index(-1), rigid_wall(-1), young(1.0), poisson(0.3), nper(1), nmax_atoms(0), restart_mismatch(0),
+    wall_temperature(NAN), temperature_ivar(-1), spec_index(-1), rigid_wall(-1), young(1.0), poisson(0.3), nper(1), nmax_atoms(0), restart_mismatch(0),
     fix_rigid(nullptr), sums_step(-1), reduced(0)
 {
     context = std::string("fix ") + style;
@@ -246,11 +248,31 @@ void FixWallDashpot::parse_wall(const std::vector<std::string> &w, size_t i)
         } else if (k == "contacts") {
             contacts_flag = 1;
             i += 1;
+        } else if (k == "temperature") {
+            if (i + 1 >= w.size()) error->all(FLERR, "{}: temperature takes a value T or v_name", context);
+            const std::string &t = w[i + 1];
+            if (t.rfind("v_", 0) == 0 && t.size() > 2)
+                temperature_var = t.substr(2);
+            else
+                wall_temperature = number(t);
+            i += 2;
         } else {
-            error->all(FLERR, "{}: unknown keyword '{}' (valid: {}contacts, plugin_dir=DIR, energy=1, wall=rigid|particle)",
+            error->all(FLERR,
+                       "{}: unknown keyword '{}' (valid: {}contacts, temperature, plugin_dir=DIR, energy=1, "
+                       "wall=rigid|particle)",
                        context, k, region_fix ? "" : "wiggle, shear, ");
         }
     }
+    // as fix wall/gran: a heat law and the wall's temperature come together
+    const bool heat_law = models.any(HEAT), temperature = temperature_var.size() || !std::isnan(wall_temperature);
+    if (heat_law && !temperature)
+        error->all(FLERR, "{}: heat law '{}' needs the wall's temperature: add 'temperature T' or 'temperature v_name'",
+                   context, models.spec(spec_index).law[HEAT].name);
+    if (temperature && !heat_law)
+        error->all(FLERR,
+                   "{}: 'temperature' needs a heat law in the wall's model (granular syntax: 'heat area h' or "
+                   "'heat radius k'; dashpot's: 'heat LAW key=value ...')",
+                   context);
     const bool periodic[3] = {domain->xperiodic != 0, domain->yperiodic != 0, domain->zperiodic != 0};
     if (wallstyle <= ZPLANE && periodic[wallstyle])
         error->all(FLERR, "{}: a {} wall in a periodic dimension", context, WALL_STYLES[wallstyle]);
@@ -283,7 +305,26 @@ void FixWallDashpot::init()
                        "history starts from zero",
                        context, dropped);
     restart_mismatch = 0;
+    init_heat();
     bind_models();
+}
+
+/* The wall's temperature variable, and the per-atom arrays a heat law needs. */
+void FixWallDashpot::init_heat()
+{
+    temperature_ivar = -1;
+    if (!models.any(HEAT)) return;
+    if (!atom->temperature_flag || !atom->heatflow_flag)
+        error->all(FLERR,
+                   "{}: a heat law needs per-atom temperature and heatflow: add 'fix ID all property/atom "
+                   "temperature heatflow' (and 'fix ID all heat/flow constant CP' to integrate the temperatures)",
+                   context);
+    if (temperature_var.empty()) return;
+    temperature_ivar = input->variable->find(temperature_var.c_str());
+    if (temperature_ivar < 0)
+        error->all(FLERR, "{}: variable '{}' of the wall's temperature does not exist", context, temperature_var);
+    if (!input->variable->equalstyle(temperature_ivar))
+        error->all(FLERR, "{}: variable '{}' of the wall's temperature is not equal-style", context, temperature_var);
 }
 
 /* The laws bound for every atom type (the materials of this run), and the engine configured. */

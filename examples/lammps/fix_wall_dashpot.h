@@ -3,15 +3,17 @@
  * dashpot C ABI, evaluated in batch calls by the contact engine pair_style dashpot uses.
  *
  *   fix ID group wall/dashpot MODELS WALLSTYLE args [wiggle dim A period] [shear dim vshear]
- *       [contacts] [plugin_dir=DIR] [energy=1] [wall=rigid|particle]
- *   fix ID group wall/dashpot/region MODELS region R [contacts] [plugin_dir=DIR] [energy=1]
- *       [wall=rigid|particle]
+ *       [temperature T|v_name] [contacts] [plugin_dir=DIR] [energy=1] [wall=rigid|particle]
+ *   fix ID group wall/dashpot/region MODELS region R [temperature T|v_name] [contacts]
+ *       [plugin_dir=DIR] [energy=1] [wall=rigid|particle]
  *
  * MODELS, in any of the three syntaxes of pair_style dashpot:
  *   E nu LAW [key=value ...] [tangential LAW ...] [rolling LAW ...] [twisting LAW ...]
- *       dashpot's own laws; E, nu the particles' Young's modulus and Poisson's ratio
+ *       [heat LAW ...]             dashpot's own laws; E, nu the particles' Young's modulus and
+ *                                  Poisson's ratio
  *   [granular] NORMAL c... [damping D] [tangential T c...] [rolling R c...] [twisting W c...]
- *       [limit_damping]            fix wall/gran granular's model words (the gran-* laws)
+ *       [heat radius k|area h] [limit_damping]
+ *                                  fix wall/gran granular's model words (the gran-* laws)
  *   hooke|hooke/history|hertz/history kn kt gamman gammat xmu dampflag [limit_damping]
  *                                  fix wall/gran's classic styles
  * WALLSTYLE: xplane|yplane|zplane lo hi (either NULL), zcylinder radius (axis along z through
@@ -28,6 +30,11 @@
  * the granular and classic syntaxes) makes the wall of the particle's own material, as fix
  * wall/gran does (E_eff = E/(2 (1 - nu^2))); `wall=rigid` (the default of dashpot's syntax) a
  * rigid wall (E_eff = E/(1 - nu^2)).
+ *
+ * Heat (as fix wall/gran's): with a heat law, `temperature` gives the wall's temperature, a
+ * number or an equal-style variable v_name evaluated every step; each contact adds the heat
+ * flow into the atom to LAMMPS's per-atom heatflow (fix property/atom temperature heatflow),
+ * which fix heat/flow integrates. The wall is a reservoir: what it gives is not tallied.
  *
  * History: per atom and wall contact (one for a plane or cylinder; up to the region's maximum
  * number of touching contacts for a region, each keyed by the region's wall id), zeroed when the
@@ -87,6 +94,9 @@ class FixWallDashpot : public Fix {
     double amplitude, period, omega_wiggle, vshear;
     bigint time_origin;
     int contacts_flag, energy_flag;
+    double wall_temperature;     // the temperature keyword's number (NaN: none, or a variable)
+    std::string temperature_var;    // the temperature keyword's v_name (without v_), or empty
+    int temperature_ivar;
 
     // the laws: one spec, bound per atom type (init)
     std::vector<std::string> plugin_dirs;
@@ -122,7 +132,7 @@ class FixWallDashpot : public Fix {
     double mass_of(int i) const;
     /* Updates the rigid-body masses after a neighbour-list build. */
     void update_rigid_masses();
-    /* Starts a step: outputs cleared, engine reset. */
+    /* Starts a step: outputs cleared, engine reset, the wall's temperature set. */
     void begin_step();
     /* Stages contact c of atom i: n the unit normal from the wall to the particle, delta the
      * overlap, reff the effective radius, vwall the wall's velocity at the contact point. */
@@ -142,6 +152,7 @@ class FixWallDashpot : public Fix {
  private:
     void parse(int narg, char **arg);
     size_t parse_models(const std::vector<std::string> &w);
+    void init_heat();
     void parse_wall(const std::vector<std::string> &w, size_t at);
 };
 

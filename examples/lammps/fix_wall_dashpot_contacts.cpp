@@ -6,9 +6,11 @@
 #include "atom.h"
 #include "comm.h"
 #include "error.h"
+#include "input.h"
 #include "memory.h"
 #include "neighbor.h"
 #include "update.h"
+#include "variable.h"
 
 #include <mpi.h>
 
@@ -47,6 +49,18 @@ void FixWallDashpot::begin_step()
         for (int i = 0; i < atom->nlocal; i++)
             for (int m = 0; m < 8; m++) array_atom[i][m] = 0.0;
     engine.reset();
+    if (engine.flags().heat) {
+        HeatTarget heat;
+        heat.temperature = atom->temperature;
+        heat.heatflow = atom->heatflow;
+        heat.wall_temperature =
+            temperature_ivar >= 0 ? input->variable->compute_equal(temperature_ivar) : wall_temperature;
+        if (!std::isfinite(heat.wall_temperature))
+            error->all(FLERR, "{}: the wall's temperature is {}, must be finite", context, heat.wall_temperature);
+        heat.nlocal = atom->nlocal;
+        heat.newton = false;
+        engine.set_heat(heat);
+    }
 }
 
 void FixWallDashpot::stage(int i, int c, const double *n, double delta, double reff, const double *vwall)

@@ -248,6 +248,10 @@ void PairDashpot::init_style()
     if (!models.is_open() || models.nspecs() == 0)
         error->all(FLERR, "Pair dashpot: no law (pair_style dashpot LAW ... or pair_coeff I J E nu LAW ...)");
     layout = models.layout();
+    if (models.any(dashpot_lmp::HEAT) && (!atom->temperature_flag || !atom->heatflow_flag))
+        error->all(FLERR, "Pair dashpot: a heat law needs per-atom temperature and heatflow: add 'fix ID all "
+                          "property/atom temperature heatflow' (and 'fix ID all heat/flow constant CP' to integrate "
+                          "the temperatures)");
     if (layout.nvalues > 0 && atom->tag_enable == 0) error->all(FLERR, "Pair dashpot with history requires atom IDs");
     // A size list holds the pairs within r_i + r_j + skin; an adhesive law's contacts reach
     // further, so it takes a list by type, within the cutoffs of init_one (+ skin), as LAMMPS's

@@ -5,6 +5,7 @@
  *   pair_style dashpot [LAWS] [plugin_dir=DIR ...] [zplane=Z] [energy=1]
  *   pair_coeff I J [E nu] [LAWS]
  *   LAWS = NORMAL [key=value ...] [tangential T key=value ...] [rolling R ...] [twisting W ...]
+ *          [heat H key=value ...]
  *
  * NORMAL is any dashpot contact law (hsd, lsd, kuwabara-kono, thornton, jkr, dmt, a third-party
  * plugin ...), the key=value pairs after it its parameters; after each of the keywords
@@ -17,6 +18,12 @@
  * mean; each side its own material). Per contact the laws run in pair_style granular's order,
  * normal (with its damping) -> tangential -> rolling -> twisting. zplane=Z adds a flat rigid
  * wall at z = Z (particles above it) for the types of this instance. Any consistent units.
+ *
+ * Heat (sdk 0.4): a heat law (`heat H ...`, or granular's `heat radius k` / `heat area h`)
+ * reads each atom's temperature and adds the heat flow into it to its heatflow, LAMMPS's fix
+ * property/atom temperature heatflow, as pair_style granular does: Q into the lower-ID atom,
+ * -Q into its partner (a ghost's share only with newton on; fix heat/flow sums the ghosts' back
+ * and integrates). pair_style's zplane wall conducts no heat.
  *
  * Needs atom_style sphere and comm_modify vel yes. Between neighbour-list builds the history
  * sits in arrays in list order; a history fix of its own per instance (ID DASHPOT_HISTORY, or

@@ -114,6 +114,17 @@ void PairDashpot::compute(int eflag, int vflag)
         engine.configure(&models, layout, engine_flags);
         engine_ready = true;
     }
+    if (engine.flags().heat) {
+        // LAMMPS's fix property/atom temperature heatflow: fix heat/flow zeroes heatflow before
+        // the forces, sends the temperatures to the ghosts, and sums the ghosts' heatflow back
+        HeatTarget heat;
+        heat.temperature = atom->temperature;
+        heat.heatflow = atom->heatflow;
+        heat.wall_temperature = NAN;    // pair_style's zplane wall conducts no heat
+        heat.nlocal = atom->nlocal;
+        heat.newton = force->newton_pair;
+        engine.set_heat(heat);
+    }
     double **x = atom->x, **v = atom->v, **omega = atom->omega;
     const double *radius = atom->radius, *rmass = atom->rmass;
     const int *type = atom->type, *mask = atom->mask;

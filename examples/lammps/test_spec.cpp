@@ -80,6 +80,14 @@ static void dashpot_syntax()
     CHECK(p.spec.has_material && p.spec.young == 1e7 && p.spec.poisson == 0.3 && p.spec.law[NORMAL].name == "jkr");
     p = parse_dashpot(words("1e5 0.25"), 0, {}, true, "pair_coeff 1 1");
     CHECK(p.spec.has_material && !p.has_laws);
+
+    // a heat law is one more family, given by its keyword
+    p = parse_dashpot(words("1e7 0.3 hsd eps=0.5 heat heat-radius-corrected k=2 young_real=1e11"), 0, {}, true,
+                      "pair_coeff 1 1");
+    CHECK(p.spec.law[HEAT].name == "heat-radius-corrected" && p.spec.law[HEAT].params.size() == 2);
+    CHECK(p.spec.describe() == "hsd eps=0.5 + heat-radius-corrected k=2 young_real=100000000000");
+    CHECK(has(refusal("hsd heat"), "'heat' must be followed by one heat law name, got nothing"));
+    CHECK(has(refusal("heat heat-area h=1"), "'heat' comes before the normal law"));
 }
 
 static void refusals()
@@ -288,7 +296,34 @@ static void granular_syntax()
     CHECK(translate_granular(parse_classic("hertz/history", words("1 NULL 1 NULL 0.5 1"), 0, 1.0, "fix"), "fix", true)
               .law[TANGENTIAL]
               .name == "gran-wall-history-classic");
-    CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 heat area 1"), "heat models are not carried"));
+    // heat: LAMMPS's radius and area models are heat-radius and heat-area with the same
+    // coefficient; none is no law; mixed as the geometric mean; refusals name the choices
+    ContactSpec h = granular("hertz/material 1e5 0.2 0.3 tangential mindlin NULL 1.0 0.5 heat area 5.0");
+    CHECK(h.law[HEAT].name == "heat-area" && h.law[HEAT].params.size() == 1 && h.law[HEAT].params[0].key == "h" &&
+          h.law[HEAT].params[0].value == 5.0);
+    h = granular("hooke 1 1 tangential linear_nohistory 0 0 heat radius 2.5 limit_damping");
+    CHECK(h.law[HEAT].name == "heat-radius" && h.law[HEAT].params[0].key == "k" && h.law[HEAT].params[0].value == 2.5);
+    CHECK(!granular("hooke 1 1 tangential linear_nohistory 0 0 heat none").law[HEAT].present());
+    CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 heat volume 1"),
+              "unknown heat model 'volume' (valid: none, radius, area)"));
+    CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 heat area"), "heat model 'area' takes 1"));
+    CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 heat area -1"), "must be >= 0"));
+    CHECK(has(granular_refusal("hooke 1 1 tangential linear_nohistory 0 0 heat area 1 heat area 2"),
+              "'heat' is given twice"));
+    {
+        GranularWords a = parse_granular(words("hooke 1 1 tangential linear_nohistory 0 0 heat area 4"), 0, "t");
+        GranularWords b = parse_granular(words("hooke 1 1 tangential linear_nohistory 0 0 heat area 9"), 0, "t");
+        ContactSpec m = translate_granular(mix_granular(a, b, 1, 2), "t");
+        CHECK(m.law[HEAT].name == "heat-area" && m.law[HEAT].params[0].value == 6.0);
+        GranularWords c = parse_granular(words("hooke 1 1 tangential linear_nohistory 0 0 heat radius 9"), 0, "t");
+        msg.clear();
+        try {
+            mix_granular(a, c, 1, 2);
+        } catch (SpecError &e) {
+            msg = e.what();
+        }
+        CHECK(has(msg, "cannot mix the heat models of types 1 1 and 2 2 ('area' and 'radius')"));
+    }
     CHECK(has(granular_refusal("mdr 1 0.3 1 1 0.5 0.1 tangential linear_nohistory 0 0"), "out of the scope"));
     CHECK(has(granular_refusal("hooke -1 1 tangential linear_nohistory 0 0"), "must be >= 0"));
     msg.clear();

@@ -131,6 +131,20 @@ impl History {
         History::new("xi_y", "m", "tangential spring displacement ξ, y component"),
         History::new("xi_z", "m", "tangential spring displacement ξ, z component"),
     ];
+
+    /// The three slots of the dashpot's share of the force a spring–dashpot–slider law returned
+    /// last (N): `fd_x`, `fd_y`, `fd_z`, which [`crate::physics::Slider::energy`] reads to book
+    /// the step's work exactly (the vector laws of [`crate::physics::Slider`] keep them after
+    /// their spring).
+    pub const DASHPOT_FORCE: [History; 3] = [
+        History::new(
+            "fd_x",
+            "N",
+            "the dashpot's share of the last force, x (its energy's)",
+        ),
+        History::new("fd_y", "N", "the dashpot's share of the last force, y"),
+        History::new("fd_z", "N", "the dashpot's share of the last force, z"),
+    ];
 }
 
 /// A derived constant of a bound law (for example a damping coefficient), for display and tests.

@@ -270,7 +270,7 @@ impl SliderLanes {
 /// Rows of four lanes to columns (and back: the same operation).
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn transpose(r: [__m256d; 4]) -> [__m256d; 4] {
+pub(crate) unsafe fn transpose(r: [__m256d; 4]) -> [__m256d; 4] {
     let t0 = _mm256_unpacklo_pd(r[0], r[1]);
     let t1 = _mm256_unpackhi_pd(r[0], r[1]);
     let t2 = _mm256_unpacklo_pd(r[2], r[3]);

@@ -19,19 +19,27 @@
 //!    one core, interleaved blocks, the median of the blocks' ratios;
 //! 6. `energy`: the same 4,000 spheres and laws (plugins) with energy accounting on against
 //!    off (`EngineConfig::energy`), interleaved blocks: the overhead as a fraction of a step;
-//! 7. `heat`: the same 4,000 spheres and laws (plugins) conducting heat (`heat-radius`, k = 40
+//! 7. `species`: the same 4,000 spheres and laws as one species against two species of the
+//!    same material, alternating sphere by sphere, each of the three pairs of species and each
+//!    species against the floor under its own copy of the laws (so the contacts go to five
+//!    batch calls instead of two), interleaved blocks: what species and per-pair laws cost;
+//! 8. `checkpoint`: the time to write one checkpoint (`dem::checkpoint::write`, the whole
+//!    state, atomically) of that pile and of 10⁵ spheres, as a share of a minute of run (a run
+//!    checkpointing once a minute);
+//! 9. `heat`: the same 4,000 spheres and laws (plugins) conducting heat (`heat-radius`, k = 40
 //!    W/(m·K), temperatures 300/400 K, the floor at 350 K) against the same pile without heat,
 //!    interleaved blocks: the cost of heat as a fraction of a step (target ≤ 15 %).
 //!
 //! One-core figures are thread CPU time (the machine is shared). Run: `cargo bench -p
-//! dashpot-tests --bench dem [-- plugins | scaling | cores | scaling3d | plugins3d | energy | heat]`
+//! dashpot-tests --bench dem [-- plugins | scaling | cores | scaling3d | plugins3d | energy |
+//! species | checkpoint | heat]`
 //! (sections by name; all by default).
 
 mod common;
 
 use common::{median, TileOrder};
 
-use dashpot::dem::{Engine, Laws, Material, Rotation};
+use dashpot::dem::{Engine, Laws, Material, Rotation, SpeciesInfo, SpeciesLaws};
 use dashpot::laws::{compiled, compiled_rolling, compiled_tangential};
 use dashpot_hsd::Hsd;
 use dashpot_mindlin::Mindlin;
@@ -330,6 +338,60 @@ fn tiled3d(base: &Engine<3>, tiles: [usize; 2], order: TileOrder, laws: Laws, en
     common::pile3d_engine(&bodies, side, top, laws, MAT, energy)
 }
 
+/// `tiles` copies of `base` as two species of the same material (sphere k of species k mod 2),
+/// each pair of species and each species–floor pair under its own copy of `laws()`.
+fn tiled3d_species(base: &Engine<3>, tiles: [usize; 2], laws: impl Fn() -> Laws) -> Engine<3> {
+    let (bodies, side, top) = common::tile3d(base, BASE3D, tiles, TileOrder::Lattice);
+    let (cfg, walls) = common::pile3d_config(side, top, MAT, false);
+    let mut table = SpeciesLaws::single(laws(), MAT);
+    for (k, name) in ["a", "b"].into_iter().enumerate() {
+        let info = SpeciesInfo {
+            name: name.into(),
+            material: MAT,
+        };
+        match k {
+            0 => table.species[0] = info,
+            _ => table.species.push(info),
+        }
+    }
+    for _ in 0..2 {
+        let more = SpeciesLaws::single(laws(), MAT);
+        table.pair.extend(more.pair);
+        table.wall.extend(more.wall);
+    }
+    table.wall.truncate(2);
+    table.pair_class = vec![0, 1, 1, 2];
+    table.pair_labels = vec!["a–a".into(), "a–b".into(), "b–b".into()];
+    table.wall_class = vec![0, 1];
+    table.wall_labels = vec!["a–floor".into(), "b–floor".into()];
+    let species: Vec<u8> = (0..bodies.len()).map(|k| (k % 2) as u8).collect();
+    Engine::with_species(cfg, &bodies, &species, walls, table).expect("the two-species pile")
+}
+
+/// CPU seconds (this thread) to write the checkpoint of `e` to `path`, the median of `n`.
+fn checkpoint_seconds(e: &Engine<3>, path: &std::path::Path, n: usize) -> (f64, u64) {
+    use dashpot::dem::checkpoint::{self, Checkpoint, Header};
+    let mut t = Vec::new();
+    for _ in 0..n {
+        let t0 = std::time::Instant::now();
+        let ck = Checkpoint {
+            scene: String::new(),
+            laws: String::new(),
+            energy_initial: 0.0,
+            frames: 0,
+            engine: e.save_state(),
+        };
+        let header = Header {
+            dimension: 3,
+            scene_hash: 0,
+        };
+        checkpoint::write(path, header, &ck).expect("the checkpoint is written");
+        t.push(t0.elapsed().as_secs_f64());
+    }
+    let bytes = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+    (median(&t), bytes)
+}
+
 fn main() {
     // `cargo bench --bench dem -- [plugins] [scaling] [cores] [scaling3d] [plugins3d] [energy]`:
     // the named sections only
@@ -519,7 +581,7 @@ fn main() {
     // 5. plugins vs compiled in, 3D, HSD + Mindlin + rolling sds: 4,000 spheres (2 × 2 copies of
     // the base pile), one core, interleaved blocks
     // 6. energy accounting on vs off: the same pile and laws (plugins)
-    if run("plugins3d") || run("energy") || run("heat") {
+    if run("plugins3d") || run("energy") || run("species") || run("checkpoint") || run("heat") {
         let base = base3d(&one, plugin_laws(&reg, true));
         let n = 4 * BASE3D;
         const BLOCKS: usize = 21;
@@ -563,6 +625,43 @@ fn main() {
                 a.p.pos[0], b.p.pos[0],
                 "the accounting does not change the trajectory"
             );
+        }
+        if run("species") {
+            let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
+            let mut b = tiled3d_species(&base, [2, 2], || plugin_laws(&reg, true));
+            let ab = contest(&mut a, &mut b);
+            let r = ab.ratios();
+            println!(
+                "{n} spheres, HSD + Mindlin + rolling sds (plugins), 1 core: one species {:.3e} particle-steps/s, two species with laws per pair {:.3e}; cost of a step {:+.1} % median of the blocks' ratios ({:+.1} to {:+.1} %) ({BLOCKS} interleaved blocks of {K} steps; {} and {} contacts)   target <= 5 %",
+                ps(median(&ab.ta)),
+                ps(median(&ab.tb)),
+                100.0 * (median(&r) - 1.0),
+                100.0 * (r[0] - 1.0),
+                100.0 * (r[r.len() - 1] - 1.0),
+                a.contacts(),
+                b.contacts()
+            );
+        }
+        if run("checkpoint") {
+            let dir = std::env::temp_dir().join(format!("dashpot-bench-{}", std::process::id()));
+            std::fs::create_dir_all(&dir).expect("a temporary directory");
+            let path = dir.join("bench.dpck");
+            for tiles in [[2, 2], [10, 10]] {
+                let mut e = tiled3d(&base, tiles, TileOrder::Lattice, plugin_laws(&reg, true), false);
+                let step = one.install(|| cpu_steps(&mut e, 100)) / 100.0;
+                let (t, bytes) = checkpoint_seconds(&e, &path, 5);
+                println!(
+                    "{} spheres ({} contacts): a checkpoint of {:.1} MB written in {:.3} s (median of 5, wall) = {:.0} steps ({:.2e} s a step); at one a minute {:.3} % of the run   target <= 2 %",
+                    e.p.len(),
+                    e.contacts(),
+                    bytes as f64 / 1e6,
+                    t,
+                    t / step,
+                    step,
+                    100.0 * t / 60.0
+                );
+            }
+            let _ = std::fs::remove_dir_all(&dir);
         }
         if run("heat") {
             let reg = dashpot_tests::registry_04();

@@ -4,7 +4,8 @@
 //! a sphere bounces off the inside of a cylinder and off a post with HSD's ε along the radius;
 //! a disk driven into a box's corner bounces off both faces at once, each its own contact; a
 //! disk hitting a box's corner from outside bounces along the diagonal. A pile on a vibrated
-//! floor and a sphere bed in a rotating drum close their energy books with the walls' work.
+//! floor and a sphere bed in a rotating drum close their energy books with the walls' work; the
+//! drum comparison script (examples/dem/drum_compare.py) measures a synthetic tilted bed to 0.1°.
 
 use dashpot::cli::dem::scene_engine;
 use dashpot::dem::scene::SceneFile;
@@ -291,11 +292,13 @@ fn a_bed_in_a_rotating_drum_rises_and_closes_its_books_with_the_drums_work() {
         .replace("duration = 8.0", "duration = 1.0")
         .replace("rpm = 3.0", "rpm = 10.0")
         .replace("radius = 0.04", "radius = 0.02")
-        .replace("count = 2800", "count = 200")
+        .replace("count = 2100", "count = 200")
+        .replace("[0.0038, 0.0042]", "[0.0028, 0.0032]")
+        .replace("young = 1.0e6", "young = 5.0e6")
         .replace("lo = [-0.045, 0.0, -0.045]", "lo = [-0.025, 0.0, -0.025]")
-        .replace("hi = [0.045, 0.02688, 0.045]", "hi = [0.025, 0.01344, 0.025]")
+        .replace("hi = [0.045, 0.0486, 0.045]", "hi = [0.025, 0.01344, 0.025]")
         .replace("lo = [-0.04, 0.0, -0.04]", "lo = [-0.02, 0.0, -0.02]")
-        .replace("hi = [0.04, 0.02688, 0.04]", "hi = [0.02, 0.01344, 0.02]");
+        .replace("hi = [0.04, 0.0486, 0.04]", "hi = [0.02, 0.01344, 0.02]");
     let reg = registry_03();
     let file = SceneFile::parse(&text).unwrap();
     let scene = file.scene::<3>().unwrap();
@@ -307,16 +310,149 @@ fn a_bed_in_a_rotating_drum_rises_and_closes_its_books_with_the_drums_work() {
     // the bed has been carried up the rising side (the drum's bottom moves towards -x) and
     // flows down its surface: the centroid's angle from the vertical is the surface's (for a
     // flat surface, at any fill)
-    let n = e.p.len() as f64;
-    let (cx, cz) = (
-        e.p.pos.iter().map(|x| x[0]).sum::<f64>() / n,
-        e.p.pos.iter().map(|x| x[2]).sum::<f64>() / n,
-    );
-    let angle = (-cx).atan2(-cz).to_degrees();
+    let m: f64 = e.p.radius.iter().map(|r| r.powi(3)).sum();
+    let centre = |k: usize| {
+        e.p.pos
+            .iter()
+            .zip(&e.p.radius)
+            .map(|(x, r)| x[k] * r.powi(3))
+            .sum::<f64>()
+            / m
+    };
+    let angle = (-centre(0)).atan2(-centre(2)).to_degrees();
     eprintln!(
         "drum: angle {angle:.2}°, books residual {r:.2e} of the dissipated, wall work {} J",
         e.wall_work
     );
     assert!((15.0..45.0).contains(&angle), "the surface's angle {angle}°");
     assert!(e.wall_work > 0.0, "the drum lifts the bed: {}", e.wall_work);
+    // the comparison script (examples/dem/drum_compare.py) reads dashpot's own frames: its
+    // centroid angle of this state is the one computed here (to the file's 7-10 digits)
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("drum.xyz");
+    let mut w = std::io::BufWriter::new(std::fs::File::create(&file).unwrap());
+    dashpot::dem::xyz::write_frame(&e, &mut w).unwrap();
+    drop(w);
+    let got = drum_script(&file, 0.0, None, 0.02);
+    assert_eq!(got.frames, 1);
+    assert!(
+        (got.centroid[0] - angle).abs() < 1e-4,
+        "the script's centroid angle {}° against {angle}°",
+        got.centroid[0]
+    );
+}
+
+/// The angles the drum comparison script measures in a trajectory file (degrees).
+struct DrumAngles {
+    frames: usize,
+    centroid: [f64; 2],
+    surface: [f64; 2],
+}
+
+/// Runs `examples/dem/drum_compare.py --measure FILE` (the frames at t >= `since` s, a LAMMPS
+/// dump's step `dt` s, the drum's radius `radius` m) with `python3`.
+fn drum_script(file: &std::path::Path, since: f64, dt: Option<f64>, radius: f64) -> DrumAngles {
+    let script = dashpot_tests::workspace_root().join("examples/dem/drum_compare.py");
+    let mut cmd = std::process::Command::new("python3");
+    cmd.arg(&script).arg("--measure").arg(file);
+    cmd.args(["--since", &since.to_string(), "--radius", &radius.to_string()]);
+    if let Some(dt) = dt {
+        cmd.args(["--dt", &dt.to_string()]);
+    }
+    let out = cmd
+        .output()
+        .unwrap_or_else(|e| panic!("python3 (for {}): {e}", script.display()));
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let pair = |k: &str| [v[k][0].as_f64().unwrap(), v[k][1].as_f64().unwrap()];
+    DrumAngles {
+        frames: v["frames"].as_u64().unwrap() as usize,
+        centroid: pair("centroid"),
+        surface: pair("surface"),
+    }
+}
+
+/// A synthetic bed in a drum of radius `big_r` (m) about y: a free surface at `theta_deg` to the
+/// horizontal, lifted on the -x side, `depth` m below the axis (0: half full), sphere tops on
+/// it; below a gap, a square lattice. Symmetric about the surface's perpendicular through the
+/// axis, so the bed's centre of mass lies on it. Spheres as (x, y, z, radius) (m).
+fn tilted_bed(theta_deg: f64, depth: f64, big_r: f64) -> Vec<[f64; 4]> {
+    let (s, r0) = (0.003, 0.0015);
+    let (sin, cos) = theta_deg.to_radians().sin_cos();
+    // u along the surface (cos, -sin), v up its normal (sin, cos)
+    let at = |u: f64, v: f64, y: f64, r: f64| [u * cos + v * sin, y, -u * sin + v * cos, r];
+    let mut out = Vec::new();
+    let n = (big_r / s).ceil() as i32 + 1;
+    for layer in 0..3 {
+        let y = layer as f64 * s;
+        for j in -n..n {
+            let u = (j as f64 + 0.5) * s;
+            // the surface layer: radii varying along it (symmetric in u), tops on the surface
+            let r = r0 + 0.0002 * (u / (2.3 * s)).cos();
+            let v = -depth - r;
+            if u.hypot(v) <= big_r - r {
+                out.push(at(u, v, y, r));
+            }
+            for k in 3..2 * n {
+                let v = -depth - r0 - k as f64 * s;
+                if u.hypot(v) <= big_r - r0 {
+                    out.push(at(u, v, y, r0));
+                }
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_drum_script_measures_a_tilted_bed_to_a_tenth_of_a_degree_from_both_codes_outputs() {
+    let big_r = 0.04;
+    let dir = tempfile::tempdir().unwrap();
+    for (theta, depth) in [(14.0f64, 0.0f64), (27.3, 0.0), (38.6, 0.0), (31.0, 0.008)] {
+        // two frames: the bed flat at t = 0, tilted at t = 1 s; the script measures from 0.5 s
+        let frames = [
+            (0.0f64, tilted_bed(0.0, depth, big_r)),
+            (1.0, tilted_bed(theta, depth, big_r)),
+        ];
+        let (xyz, dump) = (dir.path().join("bed.xyz"), dir.path().join("bed.dump"));
+        let (mut a, mut b) = (String::new(), String::new());
+        for (t, bed) in &frames {
+            // dashpot's extended XYZ (as dashpot::dem::xyz writes it)
+            a += &format!(
+                "{}\nLattice=\"0.09 0 0 0 0.009 0 0 0 0.09\" Origin=\"-0.045 0 -0.045\" \
+                 Properties=species:S:1:pos:R:3:velo:R:3:omega:R:3:radius:R:1:power:R:1 \
+                 Time={t} pbc=\"F T F\"\n",
+                bed.len()
+            );
+            for p in bed {
+                a += &format!("P {} {} {} 0 0 0 0 0 0 {} 0\n", p[0], p[1], p[2], p[3]);
+            }
+            // a LAMMPS custom dump (id x y z radius) at a step of 1e-5 s, ids in reverse
+            b += &format!(
+                "ITEM: TIMESTEP\n{}\nITEM: NUMBER OF ATOMS\n{}\nITEM: BOX BOUNDS ff pp ff\n\
+                 -0.045 0.045\n0 0.009\n-0.045 0.045\nITEM: ATOMS id x y z radius\n",
+                (t / 1e-5).round(),
+                bed.len()
+            );
+            for (i, p) in bed.iter().enumerate().rev() {
+                b += &format!("{} {} {} {} {}\n", i + 1, p[0], p[1], p[2], p[3]);
+            }
+        }
+        std::fs::write(&xyz, a).unwrap();
+        std::fs::write(&dump, b).unwrap();
+        for got in [
+            drum_script(&xyz, 0.5, None, big_r),
+            drum_script(&dump, 0.5, Some(1e-5), big_r),
+        ] {
+            assert_eq!(got.frames, 1, "the frames from t = 0.5 s on");
+            for (what, a) in [("centroid", got.centroid), ("surface fit", got.surface)] {
+                assert!(
+                    (a[0] - theta).abs() < 0.1 && a[1] == 0.0,
+                    "{what}: {:.3} ± {:.3}° for a surface at {theta}° ({depth} m below the axis)",
+                    a[0],
+                    a[1]
+                );
+            }
+        }
+    }
 }

@@ -13,26 +13,8 @@ fn materials() -> MaterialPair {
     MaterialPair::new(7.0e10, 2.7e10).unwrap()
 }
 
-/// `n` contacts of assorted geometry, their overlaps following a load–unload–reload cycle of
-/// `steps` steps with a per-contact amplitude (some in tension at times).
-/// Masses, radii, and per step the overlaps and rates.
-type Cycle = (Vec<f64>, Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>);
-
-fn cycle(n: usize, steps: usize) -> Cycle {
-    let mass: Vec<f64> = (0..n).map(|i| 1e-4 * (1.0 + 0.37 * i as f64)).collect();
-    let radius: Vec<f64> = (0..n).map(|i| 1e-3 * (1.0 + 0.11 * i as f64)).collect();
-    let mut delta = Vec::new();
-    let mut rate = Vec::new();
-    for s in 0..steps {
-        let ph = 2.0 * std::f64::consts::PI * s as f64 / steps as f64 * 1.5;
-        delta.push(
-            (0..n)
-                .map(|i| 2e-6 * (1.0 + i as f64) * ph.sin() - 1e-7 * (i % 3) as f64)
-                .collect(),
-        );
-        rate.push((0..n).map(|i| 0.3 * (1.0 + i as f64) * ph.cos()).collect());
-    }
-    (mass, radius, delta, rate)
+fn cycle(n: usize, steps: usize) -> dashpot_tests::Cycle {
+    dashpot_tests::load_cycle(n, steps, |i| -1e-7 * (i % 3) as f64)
 }
 
 #[test]

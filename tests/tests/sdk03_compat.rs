@@ -17,25 +17,8 @@ fn materials() -> MaterialPair {
     MaterialPair::new(7.0e10, 2.7e10).unwrap()
 }
 
-/// Overlaps of `n` contacts over `steps` steps: loading, unloading into tension (through
-/// JKR's reach), reloading; masses, radii, and rates.
-/// Masses, radii, and per step the overlaps and rates.
-type Cycle = (Vec<f64>, Vec<f64>, Vec<Vec<f64>>, Vec<Vec<f64>>);
-
-fn cycle(n: usize, steps: usize) -> Cycle {
-    let mass: Vec<f64> = (0..n).map(|i| 1e-4 * (1.0 + 0.37 * i as f64)).collect();
-    let radius: Vec<f64> = (0..n).map(|i| 1e-3 * (1.0 + 0.11 * i as f64)).collect();
-    let (mut delta, mut rate) = (Vec::new(), Vec::new());
-    for s in 0..steps {
-        let ph = 3.0 * std::f64::consts::PI * s as f64 / steps as f64;
-        delta.push(
-            (0..n)
-                .map(|i| 2e-6 * (1.0 + i as f64) * ph.sin() - 1.2e-7)
-                .collect(),
-        );
-        rate.push((0..n).map(|i| 0.3 * (1.0 + i as f64) * ph.cos()).collect());
-    }
-    (mass, radius, delta, rate)
+fn cycle(n: usize, steps: usize) -> dashpot_tests::Cycle {
+    dashpot_tests::load_cycle(n, steps, |_| -1.2e-7)
 }
 
 #[test]

@@ -55,6 +55,14 @@ fn probe_context(c: &Contacts, i: usize, f: f64) -> NormalContext {
 
 /// The normal forces and contexts of `law` on `c` (memoryless).
 fn forces_and_contexts(law: &dyn NormalLaw, c: &Contacts) -> (Vec<f64>, Vec<NormalContext>) {
+    try_forces_and_contexts(law, c).unwrap()
+}
+
+/// [`forces_and_contexts`], or the law's refusal.
+fn try_forces_and_contexts(
+    law: &dyn NormalLaw,
+    c: &Contacts,
+) -> Result<(Vec<f64>, Vec<NormalContext>), dashpot_sdk::LawError> {
     let n = c.delta.len();
     let (mut f, mut x) = (vec![0.0; n], vec![NormalContext::default(); n]);
     let b = NormalBatch {
@@ -66,9 +74,8 @@ fn forces_and_contexts(law: &dyn NormalLaw, c: &Contacts) -> (Vec<f64>, Vec<Norm
         history: &mut [],
         force: &mut f,
     };
-    law.force_batch_context(b, None, &mut x, EnergyOut::none())
-        .unwrap();
-    (f, x)
+    law.force_batch_context(b, None, &mut x, EnergyOut::none())?;
+    Ok((f, x))
 }
 
 fn flat(x: &[NormalContext]) -> Vec<f64> {
@@ -308,7 +315,7 @@ fn bad_contexts_are_errors_naming_the_contact() {
     let reg = registry_with_context_fixture();
     let c = contacts(5);
     let law = probe(&reg, 5e-6);
-    let e = forces_and_contexts_err(&law, &c);
+    let e = try_forces_and_contexts(&law, &c).unwrap_err();
     let first = c.delta.iter().position(|&d| d > 5e-6).unwrap();
     assert_eq!(e.kind, ErrorKind::NonFinite);
     assert!(
@@ -342,22 +349,6 @@ fn bad_contexts_are_errors_naming_the_contact() {
         "{}",
         e.message
     );
-}
-
-fn forces_and_contexts_err(law: &dyn NormalLaw, c: &Contacts) -> dashpot_sdk::LawError {
-    let n = c.delta.len();
-    let (mut f, mut x) = (vec![0.0; n], vec![NormalContext::default(); n]);
-    let b = NormalBatch {
-        delta: &c.delta,
-        rate: &c.rate,
-        mass: &c.mass,
-        radius: &c.radius,
-        slots: 0,
-        history: &mut [],
-        force: &mut f,
-    };
-    law.force_batch_context(b, None, &mut x, EnergyOut::none())
-        .unwrap_err()
 }
 
 /// A DEM contact set of `c`, every contact a pair (0, 1 + i), with room for rotation laws.

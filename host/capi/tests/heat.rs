@@ -3,20 +3,11 @@
 //! the normal law's contexts or the defaults, and every bad argument an error naming it.
 
 use dashpot_capi::*;
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::ptr;
 
-fn deps_dir() -> CString {
-    let exe = std::env::current_exe().expect("current_exe");
-    let dir = exe.parent().expect("exe dir").to_str().expect("UTF-8 path");
-    CString::new(dir).expect("no NUL")
-}
-
-fn last_error() -> String {
-    unsafe { CStr::from_ptr(dashpot_last_error()) }
-        .to_string_lossy()
-        .into_owned()
-}
+mod common;
+use common::{deps_dir, last_error};
 
 /// Heat law `name` with its one coefficient `p` = `v`, bound to steel on steel.
 unsafe fn model(reg: *const DashpotRegistry, name: &str, p: &str, v: f64) -> *mut DashpotHeatModel {

@@ -3,20 +3,11 @@
 //! own last-error message.
 
 use dashpot_capi::*;
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::ptr;
 
-fn deps_dir() -> CString {
-    let exe = std::env::current_exe().expect("current_exe");
-    let dir = exe.parent().expect("exe dir").to_str().expect("UTF-8 path");
-    CString::new(dir).expect("no NUL")
-}
-
-fn last_error() -> String {
-    unsafe { CStr::from_ptr(dashpot_last_error()) }
-        .to_string_lossy()
-        .into_owned()
-}
+mod common;
+use common::{deps_dir, last_error};
 
 /// A pointer that may cross threads (the header promises the handle may).
 struct Shared<T>(*const T);

@@ -102,18 +102,8 @@ impl TangentialLaw for LinearHistory {
         gross sliding changes the tangential velocity by μ (1 + e) v_n.";
     const HISTORY: &'static [History] = &{
         let [x, y, z] = History::TANGENTIAL_SPRING;
-        [
-            x,
-            y,
-            z,
-            History::new(
-                "fd_x",
-                "N",
-                "the dashpot's share of the last force, x (its energy's)",
-            ),
-            History::new("fd_y", "N", "the dashpot's share of the last force, y"),
-            History::new("fd_z", "N", "the dashpot's share of the last force, z"),
-        ]
+        let [fx, fy, fz] = History::DASHPOT_FORCE;
+        [x, y, z, fx, fy, fz]
     };
 
     fn bind(&self, _materials: &MaterialPair) -> Result<LinearHistory, LawError> {
@@ -125,14 +115,13 @@ impl LinearHistory {
     /// The slider of contact `c`: k_t, η_t = 2 ζ_t √(m k_t), the cap μ max(F_n, 0).
     #[inline(always)]
     fn slider(&self, c: &TangentialContact) -> Slider {
-        Slider {
-            k: self.kt,
-            k_before: self.kt,
-            eta: 2.0 * self.damping * (c.mass * self.kt).sqrt(),
-            cap: self.mu * c.normal_force.max(0.0),
-            rate: Slider::rate(c.dt),
-            dt: c.dt,
-        }
+        Slider::new(
+            self.kt,
+            self.kt,
+            2.0 * self.damping * (c.mass * self.kt).sqrt(),
+            self.mu * c.normal_force.max(0.0),
+            c.dt,
+        )
     }
 }
 

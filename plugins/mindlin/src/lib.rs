@@ -131,6 +131,7 @@ impl TangentialLaw for Mindlin {
         sliding changes the tangential velocity by μ (1 + e) v_n.";
     const HISTORY: &'static [History] = &{
         let [x, y, z] = History::TANGENTIAL_SPRING;
+        let [fx, fy, fz] = History::DASHPOT_FORCE;
         [
             x,
             y,
@@ -140,13 +141,9 @@ impl TangentialLaw for Mindlin {
                 "N/m",
                 "the spring's stiffness k_t at the last call (its energy's)",
             ),
-            History::new(
-                "fd_x",
-                "N",
-                "the dashpot's share of the last force, x (its energy's)",
-            ),
-            History::new("fd_y", "N", "the dashpot's share of the last force, y"),
-            History::new("fd_z", "N", "the dashpot's share of the last force, z"),
+            fx,
+            fy,
+            fz,
         ]
     };
 
@@ -170,14 +167,7 @@ impl MindlinBound {
         } else {
             0.0
         };
-        Slider {
-            k: kt,
-            k_before,
-            eta,
-            cap: self.mu * c.normal_force.max(0.0),
-            rate: Slider::rate(c.dt),
-            dt: c.dt,
-        }
+        Slider::new(kt, k_before, eta, self.mu * c.normal_force.max(0.0), c.dt)
     }
 
     /// One call on contact `c` (see the crate's doc), with the step's energy when `ENERGY`.

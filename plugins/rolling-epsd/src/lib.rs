@@ -42,18 +42,17 @@ impl RollingLaw for RollingEpsd {
         the dashpot's share of the last force (N; 0 mobilized). Energy: elastic k_t |ξ|²/2 (J); power (W) the \
         work of the force averaged over the step less the change of the stored energy: γ |v_roll|² while the \
         spring holds, −F_r·v_roll plus the change of the stored energy while mobilized.";
-    const HISTORY: &'static [History] = &[
-        History::new("xi_x", "m", "rolling displacement ξ = R θ_r, x component"),
-        History::new("xi_y", "m", "rolling displacement ξ = R θ_r, y component"),
-        History::new("xi_z", "m", "rolling displacement ξ = R θ_r, z component"),
-        History::new(
-            "fd_x",
-            "N",
-            "the dashpot's share of the last force, x component (its energy's)",
-        ),
-        History::new("fd_y", "N", "the dashpot's share of the last force, y component"),
-        History::new("fd_z", "N", "the dashpot's share of the last force, z component"),
-    ];
+    const HISTORY: &'static [History] = &{
+        let [fx, fy, fz] = History::DASHPOT_FORCE;
+        [
+            History::new("xi_x", "m", "rolling displacement ξ = R θ_r, x component"),
+            History::new("xi_y", "m", "rolling displacement ξ = R θ_r, y component"),
+            History::new("xi_z", "m", "rolling displacement ξ = R θ_r, z component"),
+            fx,
+            fy,
+            fz,
+        ]
+    };
 
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
         Ok(self.clone())

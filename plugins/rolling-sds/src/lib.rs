@@ -44,18 +44,17 @@ impl RollingLaw for RollingSds {
         whose contact ends while it slides (gran-rolling-sds keeps LAMMPS's reset). Parameters: k (N/m), \
         gamma (N·s/m), mu (dimensionless). Energy: elastic = k|ξ|²/2 (J); power (W) = γ|v_roll|² while \
         the spring holds, the slip's work and the change of the stored energy while it slides.";
-    const HISTORY: &'static [History] = &[
-        History::new("xi_x", "m", "rolling displacement ξ, x component"),
-        History::new("xi_y", "m", "rolling displacement ξ, y component"),
-        History::new("xi_z", "m", "rolling displacement ξ, z component"),
-        History::new(
-            "fd_x",
-            "N",
-            "the dashpot's share of the last force, x (its energy's)",
-        ),
-        History::new("fd_y", "N", "the dashpot's share of the last force, y"),
-        History::new("fd_z", "N", "the dashpot's share of the last force, z"),
-    ];
+    const HISTORY: &'static [History] = &{
+        let [fx, fy, fz] = History::DASHPOT_FORCE;
+        [
+            History::new("xi_x", "m", "rolling displacement ξ, x component"),
+            History::new("xi_y", "m", "rolling displacement ξ, y component"),
+            History::new("xi_z", "m", "rolling displacement ξ, z component"),
+            fx,
+            fy,
+            fz,
+        ]
+    };
 
     fn bind(&self, _m: &MaterialPair) -> Result<Self, LawError> {
         Ok(self.clone())
@@ -66,14 +65,7 @@ impl RollingSds {
     /// The slider of contact `c`: k, γ, the cap μ |F_n|.
     #[inline(always)]
     fn slider(&self, c: &RollingContact) -> Slider {
-        Slider {
-            k: self.k,
-            k_before: self.k,
-            eta: self.gamma,
-            cap: self.mu * c.normal_force.abs(),
-            rate: Slider::rate(c.dt),
-            dt: c.dt,
-        }
+        Slider::new(self.k, self.k, self.gamma, self.mu * c.normal_force.abs(), c.dt)
     }
 
     /// The spring `xi` turned into the tangent plane of `n` keeping its length, if its normal

@@ -64,14 +64,13 @@ impl TwistingMarshall {
     /// the history).
     fn slider(&self, c: &TwistingContact, k_before: f64) -> Slider {
         let a = dashpot_sdk::physics::contact_radius(c.radius, c.delta);
-        Slider {
-            k: 0.5 * self.kt * a * a,
+        Slider::new(
+            0.5 * self.kt * a * a,
             k_before,
-            eta: 0.5 * self.gammat * a * a,
-            cap: 2.0 / 3.0 * self.mu_t * a * c.normal_force.abs(),
-            rate: Slider::rate(c.dt),
-            dt: c.dt,
-        }
+            0.5 * self.gammat * a * a,
+            2.0 / 3.0 * self.mu_t * a * c.normal_force.abs(),
+            c.dt,
+        )
     }
 
     /// One call (see [`TwistingMarshall::DOC`]), with the step's energy.

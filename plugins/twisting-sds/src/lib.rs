@@ -54,14 +54,7 @@ impl TwistingLaw for TwistingSds {
 impl TwistingSds {
     /// The slider of contact `c`: k, γ, the critical torque μ |F_n|.
     fn slider(&self, c: &TwistingContact) -> Slider {
-        Slider {
-            k: self.k,
-            k_before: self.k,
-            eta: self.gamma,
-            cap: self.mu * c.normal_force.abs(),
-            rate: Slider::rate(c.dt),
-            dt: c.dt,
-        }
+        Slider::new(self.k, self.k, self.gamma, self.mu * c.normal_force.abs(), c.dt)
     }
 }
 

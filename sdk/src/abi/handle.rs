@@ -35,6 +35,28 @@ pub trait BoundModel<K: Kind>: Send + Sync {
     }
 }
 
+/// The accessors `name`, `history_slots` and `reads_context` of a handle keeping the fields
+/// `name`, `slots` and `reads_context`.
+macro_rules! identity_accessors {
+    () => {
+        /// The law's name.
+        pub fn name(&self) -> &str {
+            &self.name
+        }
+
+        /// History slots per contact.
+        pub fn history_slots(&self) -> usize {
+            self.slots
+        }
+
+        /// Whether the law reads the normal law's context (sdk 0.4).
+        pub fn reads_context(&self) -> bool {
+            self.reads_context
+        }
+    };
+}
+pub(crate) use identity_accessors;
+
 /// Implements [`BoundModel`] of kind `$k` for `$t` by its inherent methods `name`,
 /// `history_slots`, `$batch` and `coefficients`.
 macro_rules! bound_model {
@@ -206,20 +228,7 @@ pub struct ModelHandle<K: Kind> {
 }
 
 impl<K: Kind> ModelHandle<K> {
-    /// The law's name.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// History slots per contact.
-    pub fn history_slots(&self) -> usize {
-        self.slots
-    }
-
-    /// Whether the law reads the normal law's context.
-    pub fn reads_context(&self) -> bool {
-        self.reads_context
-    }
+    identity_accessors!();
 
     /// Evaluates every contact of `b`, with the energy outputs `energy` asks for: `Ok(true)`
     /// when they were written, `Ok(false)` when the law does not account for energy (or none
@@ -294,20 +303,7 @@ impl<K: Kind, B: KindBound<K>> StaticModel<K, B> {
         }
     }
 
-    /// The law's name.
-    pub fn name(&self) -> &str {
-        &self.name
-    }
-
-    /// History slots per contact.
-    pub fn history_slots(&self) -> usize {
-        self.slots
-    }
-
-    /// Whether the law reads the normal law's context.
-    pub fn reads_context(&self) -> bool {
-        self.reads_context
-    }
+    identity_accessors!();
 
     /// The bound law.
     pub fn law(&self) -> &B {

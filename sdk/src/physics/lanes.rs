@@ -5,7 +5,7 @@
 //! |F_t| without overflow. Also: a history of `S` slots a contact read into and written from
 //! `S` lane vectors.
 
-use crate::simd::{dot, F64x4, V3};
+use crate::simd::{dot, transpose, F64x4, V3};
 use std::arch::x86_64::*;
 
 /// [`super::Slider`] with each field on four lanes.
@@ -100,22 +100,6 @@ impl SliderX4 {
         let power = before.sub(elastic).mul(self.rate).sub(half.mul(dot(sum, w)));
         (F64x4::select(self.rate.gt(zero), power, zero), elastic)
     }
-}
-
-/// The 4 × 4 transpose of four rows of four.
-#[inline]
-#[target_feature(enable = "avx2")]
-unsafe fn transpose(r: [__m256d; 4]) -> [__m256d; 4] {
-    let t0 = _mm256_unpacklo_pd(r[0], r[1]);
-    let t1 = _mm256_unpackhi_pd(r[0], r[1]);
-    let t2 = _mm256_unpacklo_pd(r[2], r[3]);
-    let t3 = _mm256_unpackhi_pd(r[2], r[3]);
-    [
-        _mm256_permute2f128_pd::<0x20>(t0, t2),
-        _mm256_permute2f128_pd::<0x20>(t1, t3),
-        _mm256_permute2f128_pd::<0x31>(t0, t2),
-        _mm256_permute2f128_pd::<0x31>(t1, t3),
-    ]
 }
 
 /// The `S` history slots (4 ≤ S ≤ 8) of contacts i .. i + 3 of `x` (`S` values a contact), slot

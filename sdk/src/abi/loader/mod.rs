@@ -58,20 +58,7 @@ macro_rules! model_handle {
                 }
             }
 
-            /// The law's name.
-            pub fn name(&self) -> &str {
-                &self.name
-            }
-
-            /// History slots per contact.
-            pub fn history_slots(&self) -> usize {
-                self.slots
-            }
-
-            /// Whether the law reads the normal law's context (sdk 0.4).
-            pub fn reads_context(&self) -> bool {
-                self.reads_context
-            }
+            $crate::abi::handle::identity_accessors!();
         }
 
         $crate::abi::handle::bound_model!(impl<> $kind => $handle, $batch);
