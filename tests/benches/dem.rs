@@ -25,11 +25,14 @@
 //!    batch calls instead of two), interleaved blocks: what species and per-pair laws cost;
 //! 8. `checkpoint`: the time to write one checkpoint (`dem::checkpoint::write`, the whole
 //!    state, atomically) of that pile and of 10⁵ spheres, as a share of a minute of run (a run
-//!    checkpointing once a minute).
+//!    checkpointing once a minute);
+//! 9. `heat`: the same 4,000 spheres and laws (plugins) conducting heat (`heat-radius`, k = 40
+//!    W/(m·K), temperatures 300/400 K, the floor at 350 K) against the same pile without heat,
+//!    interleaved blocks: the cost of heat as a fraction of a step (target ≤ 15 %).
 //!
 //! One-core figures are thread CPU time (the machine is shared). Run: `cargo bench -p
 //! dashpot-tests --bench dem [-- plugins | scaling | cores | scaling3d | plugins3d | energy |
-//! species | checkpoint]`
+//! species | checkpoint | heat]`
 //! (sections by name; all by default).
 
 mod common;
@@ -578,7 +581,7 @@ fn main() {
     // 5. plugins vs compiled in, 3D, HSD + Mindlin + rolling sds: 4,000 spheres (2 × 2 copies of
     // the base pile), one core, interleaved blocks
     // 6. energy accounting on vs off: the same pile and laws (plugins)
-    if run("plugins3d") || run("energy") || run("species") || run("checkpoint") {
+    if run("plugins3d") || run("energy") || run("species") || run("checkpoint") || run("heat") {
         let base = base3d(&one, plugin_laws(&reg, true));
         let n = 4 * BASE3D;
         const BLOCKS: usize = 21;
@@ -659,6 +662,40 @@ fn main() {
                 );
             }
             let _ = std::fs::remove_dir_all(&dir);
+        }
+        if run("heat") {
+            let reg = dashpot_tests::registry_04();
+            let hot = plugin_laws(&reg, true)
+                .with_heat(&reg, ("heat-radius", &[ParamValue::new("k", 40.0)]), &MAT)
+                .unwrap();
+            let a = tiled3d(&base, [2, 2], TileOrder::Lattice, hot, true);
+            let setup = dashpot::dem::heat::HeatSetup {
+                temperature: (0..a.p.len())
+                    .map(|i| if i % 2 == 0 { 300.0 } else { 400.0 })
+                    .collect(),
+                specific_heat: vec![500.0],
+                walls: vec![Some(dashpot::dem::heat::WallTemperature::Fixed(350.0)); a.walls.len()],
+            };
+            let mut a = a.with_heat(setup).unwrap();
+            let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), true);
+            let ab = contest(&mut a, &mut b);
+            let r = ab.ratios();
+            let books = a.heat_books().unwrap();
+            println!(
+                "{n} spheres, HSD + Mindlin + rolling sds (plugins), 1 core: heat-radius on {:.3e} particle-steps/s, off {:.3e}; cost of heat {:+.1} % of a step, median of the blocks' ratios ({:+.1} to {:+.1} %), {:+.1} % of the medians ({BLOCKS} interleaved blocks of {K} steps; {} contacts)   target <= 15 %",
+                ps(median(&ab.ta)),
+                ps(median(&ab.tb)),
+                100.0 * (1.0 / median(&r) - 1.0),
+                100.0 * (1.0 / r[r.len() - 1] - 1.0),
+                100.0 * (1.0 / r[0] - 1.0),
+                100.0 * (median(&ab.ta) / median(&ab.tb) - 1.0),
+                a.contacts()
+            );
+            println!(
+                "  thermal books: Σ m c T {:.6e} J, the floor gave {:.3e} J, balance {:.1e} J; smallest m c/ΣH {:.3e} s (dt {:.3e} s)",
+                books.thermal, books.wall_heat, books.balance, books.stability_limit, books.dt
+            );
+            assert_eq!(a.p.pos[0], b.p.pos[0], "heat does not change the trajectory");
         }
     }
 }

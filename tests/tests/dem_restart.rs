@@ -290,9 +290,12 @@ fn truncated_corrupted_foreign_and_wrong_version_files_are_refused() {
     assert!(refusal(dir, &foreign).contains("not a dashpot checkpoint"));
     assert!(refusal(dir, b"dimension = 2\nduration = 1.0\n").contains("not a dashpot checkpoint"));
     let mut version = bytes.clone();
-    version[8..12].copy_from_slice(&2u32.to_le_bytes());
+    version[8..12].copy_from_slice(&3u32.to_le_bytes());
     let m = refusal(dir, &version);
-    assert!(m.contains("format version 2") && m.contains("version 1"), "{m}");
+    assert!(
+        m.contains("format version 3") && m.contains("versions 1 to 2"),
+        "{m}"
+    );
 }
 
 #[test]

@@ -399,6 +399,7 @@ fn the_dem_contact_sets_pass_the_contexts_to_the_laws_that_read_them() {
     let rotation = Rotating {
         rolling: Some(&rolling),
         twisting: Some(&twisting),
+        context: false,
     };
     s.evaluate(&normal, Some(&echo), rotation, 1e-6, false).unwrap();
     let want: Vec<NormalContext> = (0..n).map(|i| probe_context(&c, i, s.fnorm[i])).collect();

@@ -249,7 +249,8 @@ impl Scene {
     /// A read-only numpy view of one of the engine's arrays (no copy: it shows the state as the
     /// run goes on): `positions`, `velocities`, `forces` (contact forces of the last step, N,
     /// gravity excluded), shape (N, D); `angular_velocities` and `torques`, shape (N,) in 2D
-    /// (about z), (N, 3) in 3D; `radii` (m), `masses` (kg), `inertia` (kg·m²), shape (N,).
+    /// (about z), (N, 3) in 3D; `radii` (m), `masses` (kg), `inertia` (kg·m²), shape (N,); in a
+    /// scene with a heat law, `temperatures` (K) and `heat_capacities` (m c, J/K), shape (N,).
     fn _view<'py>(slf: Bound<'py, Self>, which: &str) -> PyResult<Bound<'py, PyArrayDyn<f64>>> {
         let (ptr, shape): (*const f64, Vec<usize>) = {
             let s = slf.borrow();
@@ -265,6 +266,17 @@ impl Scene {
                     "radii" => (e.p.radius.as_ptr(), vec![n]),
                     "masses" => (e.p.mass.as_ptr(), vec![n]),
                     "inertia" => (e.p.inertia.as_ptr(), vec![n]),
+                    "temperatures" | "heat_capacities" => {
+                        let v = if which == "temperatures" { e.temperatures() } else { e.heat_capacities() };
+                        match v {
+                            Some(v) => (v.as_ptr(), vec![n]),
+                            None => {
+                                return Err(PyValueError::new_err(format!(
+                                    "{which}: the scene has no heat law (give heat=..., or a [heat] table, with heat_capacity and temperatures)"
+                                )))
+                            }
+                        }
+                    }
                     w => return Err(PyValueError::new_err(format!("no array '{w}'"))),
                 }
             })
@@ -312,6 +324,27 @@ impl Scene {
         d.set_item("initial", on.then_some(self.energy_initial))?;
         d.set_item("wall_work", on.then_some(work))?;
         Ok(d)
+    }
+
+    /// The thermal books now, in a scene with a heat law (else `None`): `thermal` Σ m c T (J),
+    /// `thermal_initial`, `wall_heat` (the heat the walls gave, J), `balance` (thermal −
+    /// initial − wall heat: 0 to rounding), `stability_limit` (the smallest m c/ΣH met, s) and
+    /// `warning` (when dt exceeds it).
+    fn heat<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(b) = on!(&self.e, e => e.heat_books()) else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        d.set_item("thermal", b.thermal)?;
+        d.set_item("thermal_initial", b.thermal_initial)?;
+        d.set_item("wall_heat", b.wall_heat)?;
+        d.set_item("balance", b.balance)?;
+        d.set_item(
+            "stability_limit",
+            b.stability_limit.is_finite().then_some(b.stability_limit),
+        )?;
+        d.set_item("warning", b.warning())?;
+        Ok(Some(d))
     }
 
     /// What `dashpot dem --scene FILE --check` estimates of the scene's run from t = 0 to its

@@ -65,3 +65,51 @@ def test_bad_input_names_it():
         law.heat(np.array([[300.0, 301.0], [300.0, np.nan]]), [1.0, 1.0], [1e-6, 1e-6], [1e-3, 1e-3])
     with pytest.raises(ValueError, match="needs the conductivity k"):
         dashpot.HeatLaw("heat-radius").bind(*STEEL)
+
+
+def _held_pair(**kw):
+    """Two steel spheres at rest in contact, in zero gravity, conducting through heat-area."""
+    return dashpot.Scene(dimension=3, positions=[[0.0, 0.0, 0.0], [0.002 - 2e-6, 0.0, 0.0]],
+                         diameters=0.002, law="lsd", young=2e11, poisson=0.3, density=7800.0,
+                         heat=dashpot.HeatLaw("heat-area", h=1e6), heat_capacity=500.0,
+                         temperatures=[300.0, 400.0], gravity=[0.0, 0.0, 0.0],
+                         allow_initial_overlap=True, duration=1e-5, **kw)
+
+
+def test_a_scene_exposes_temperatures_as_views_and_closes_its_thermal_books():
+    sim = _held_pair()
+    t = sim.temperatures
+    assert t.shape == (2,) and not t.flags.writeable
+    assert list(t) == [300.0, 400.0]
+    c = sim.heat_capacities
+    m = 7800.0 * math.pi / 6.0 * 0.002**3
+    assert np.allclose(c, m * 500.0, rtol=1e-15)
+    books = sim.heat()
+    assert books["thermal"] == pytest.approx(c[0] * 300.0 + c[1] * 400.0, rel=1e-15)
+    sim.run(1e-5)
+    # the same view, following the run: heat went from the hot sphere to the cold one
+    assert t[0] > 300.0 and t[1] < 400.0
+    assert c[0] * (t[0] - 300.0) == pytest.approx(-c[1] * (t[1] - 400.0), rel=1e-9)
+    books = sim.heat()
+    assert abs(books["balance"]) <= 1e-13 * books["thermal"] and books["wall_heat"] == 0.0
+    assert books["warning"] is None
+    # result() carries each particle's temperature and the books
+    r = sim.result()
+    assert r["particles"][1]["temperature"] == t[1]
+    assert r["heat"]["thermal"] == books["thermal"]
+
+
+def test_a_scene_without_heat_has_no_temperatures_and_bad_heat_input_is_refused():
+    sim = dashpot.Scene(dimension=3, positions=[[0.0, 0.0, 0.001]], diameters=0.002, law="hsd",
+                        young=1e7, poisson=0.3, density=2500.0)
+    assert sim.heat() is None
+    with pytest.raises(ValueError, match="no heat law"):
+        sim.temperatures
+    with pytest.raises(ValueError, match="heat_capacity is missing"):
+        dashpot.Scene(dimension=3, positions=[[0.0, 0.0, 0.001]], diameters=0.002,
+                      law="hsd", young=1e7, poisson=0.3, density=2500.0,
+                      heat="heat-radius", temperatures=300.0)
+    with pytest.raises(ValueError, match=r"particle\[1\].temperature = -5 K"):
+        dashpot.Scene(dimension=3, positions=[[0.0, 0.0, 0.0], [0.01, 0.0, 0.0]], diameters=0.002,
+                      law="hsd", young=1e7, poisson=0.3, density=2500.0, heat="heat-radius",
+                      heat_capacity=500.0, temperatures=[300.0, -5.0])

@@ -106,6 +106,9 @@ pub struct CollideArgs {
     /// Gravity pressing the rolling particle on the wall (m/s², > 0; with `--rolling`).
     #[arg(long, default_value_t = 9.81)]
     pub gravity: f64,
+    /// The heat exchanged during the impact (`--heat LAW --t1 K --t2 K --heat-capacity C`).
+    #[command(flatten)]
+    pub heat: super::collide_heat::HeatArgs,
 }
 
 pub(crate) fn check_v0(v0: f64) -> Result<f64> {
@@ -152,6 +155,9 @@ pub fn trajectory_csv(c: &Collision) -> Result<Vec<u8>> {
 /// `dashpot collide`.
 pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
     let v0 = check_v0(a.v0)?;
+    if a.heat.heat.is_some() {
+        return super::collide_heat::run_heat(reg, a, v0);
+    }
     if a.rolling.is_some() {
         return super::roll::run_rolling(reg, a, v0);
     }

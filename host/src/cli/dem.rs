@@ -404,6 +404,9 @@ fn run_dim<const D: usize>(
         frame(&e, w, next_frame.get())?;
     }
     pb.finish();
+    if let Some(w) = e.heat_books().and_then(|b| b.warning()) {
+        eprintln!("warning: {w}");
+    }
     let wall = wall0.elapsed().as_secs_f64();
     if let Some(w) = traj {
         w.commit()?;
@@ -487,13 +490,16 @@ pub fn scene_engine_sized<const D: usize>(
     let laws = scene.plan.bind(reg)?;
     let fp = crate::cli::budget::scene_footprint(scene, &laws);
     crate::cli::budget::check_scene_memory(file, scene, &laws)?;
-    let e = Engine::with_species(
+    let mut e = Engine::with_species(
         scene.config.clone(),
         &scene.bodies,
         &scene.species,
         scene.walls.clone(),
         laws,
     )?;
+    if let Some(h) = &scene.heat {
+        e = e.with_heat(h.clone())?;
+    }
     let energy_initial = e.energy().total() + e.elastic().iter().sum::<f64>();
     Ok((e, energy_initial, fp))
 }
@@ -530,6 +536,7 @@ pub fn final_json<const D: usize>(
     state["tangential"] = serde_json::json!(file.tangential.as_ref().map(|t| t.name.clone()));
     state["rolling"] = serde_json::json!(file.rolling.as_ref().map(|t| t.name.clone()));
     state["twisting"] = serde_json::json!(file.twisting.as_ref().map(|t| t.name.clone()));
+    state["heat_law"] = serde_json::json!(file.heat.as_ref().map(|t| t.name.clone()));
     if plan.named || plan.pair.len() > 1 || plan.wall.len() > 1 {
         // the species and every class of contacts with its laws; each particle's species
         state["pairs"] = plan.json();

@@ -4,6 +4,7 @@ pub mod args;
 pub mod bed;
 pub mod budget;
 pub mod collide;
+pub mod collide_heat;
 pub mod dem;
 pub mod dem_checkpoint;
 pub mod grid;

@@ -25,8 +25,14 @@ use std::path::{Path, PathBuf};
 /// control byte: a file mangled as text, or a text file, does not start so).
 pub const MAGIC: [u8; 8] = *b"\x89DPCK\r\n\x1a";
 
-/// The format's version: a file of another version is refused (its layout is not this one's).
-pub const VERSION: u32 = 1;
+/// The format's version: a file of a later version is refused (its layout is not this one's).
+/// Version 2 added the temperatures (an optional last field of the engine's state, itself the
+/// payload's last field): a file of version 1 reads as one of version 2 without them (a run
+/// without heat, as every run of version 1 was).
+pub const VERSION: u32 = 2;
+
+/// The oldest version read (see [`VERSION`]).
+pub const OLDEST_VERSION: u32 = 1;
 
 /// Bytes of the header: magic, version, dimension, scene hash, payload length, payload CRC-32.
 pub const HEADER_LEN: usize = 8 + 4 + 4 + 4 + 8 + 4;
@@ -151,9 +157,9 @@ pub fn read_raw(path: &Path) -> Result<(Header, Vec<u8>), CheckpointError> {
     }
     let u32_at = |k: usize| u32::from_le_bytes(bytes[k..k + 4].try_into().expect("4 bytes"));
     let version = u32_at(8);
-    if version != VERSION {
+    if !(OLDEST_VERSION..=VERSION).contains(&version) {
         return Err(refuse(format!(
-            "written in checkpoint format version {version}; this dashpot ({}) reads version {VERSION} only",
+            "written in checkpoint format version {version}; this dashpot ({}) reads versions {OLDEST_VERSION} to {VERSION}",
             env!("CARGO_PKG_VERSION")
         )));
     }
@@ -175,11 +181,15 @@ pub fn read_raw(path: &Path) -> Result<(Header, Vec<u8>), CheckpointError> {
             have - len
         )));
     }
-    let payload = bytes[HEADER_LEN..].to_vec();
+    let mut payload = bytes[HEADER_LEN..].to_vec();
     if crc32fast::hash(&payload) != crc {
         return Err(refuse(
             "corrupted: its checksum does not match its contents".into(),
         ));
+    }
+    if version == 1 {
+        // version 2's last field, the temperatures, absent: postcard's `None`
+        payload.push(0);
     }
     if !(header.dimension == 2 || header.dimension == 3) {
         return Err(refuse(format!(

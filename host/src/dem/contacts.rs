@@ -135,8 +135,8 @@ pub struct ContactSet {
     pub froll: Vec<[f64; 3]>,
     /// Twisting torques about n̂ on i (N·m), on j their opposite.
     pub mtwist: Vec<f64>,
-    /// The normal law's contexts (sdk 0.4), one per contact while a tangential, rolling or
-    /// twisting law of the run reads them (see [`ContactSet::evaluate`]); empty otherwise.
+    /// The normal law's contexts (sdk 0.4), one per contact while a tangential, rolling,
+    /// twisting or heat law of the run reads them (see [`ContactSet::evaluate`]); empty otherwise.
     #[serde(skip)]
     pub context: Vec<NormalContext>,
     /// Whether the laws are asked for their energy outputs.
@@ -422,7 +422,8 @@ impl ContactSet {
         // the normal law's contexts only when a law of the contact's motion reads them
         let reads = tangential.is_some_and(|t| t.reads_context())
             || rotation.rolling.is_some_and(|l| l.reads_context())
-            || rotation.twisting.is_some_and(|l| l.reads_context());
+            || rotation.twisting.is_some_and(|l| l.reads_context())
+            || rotation.context;
         self.context
             .resize(if reads { n } else { 0 }, NormalContext::default());
         self.unreported = [false; 4];

@@ -36,6 +36,7 @@ use rayon::prelude::*;
 mod awake;
 mod config;
 mod forces;
+mod heat;
 mod kernels;
 mod order;
 mod pipeline;
@@ -140,6 +141,8 @@ pub struct Engine<const D: usize> {
     parallel: bool,
     /// Which of a parallel and a serial block is faster for this pile now.
     pace: awake::Pace,
+    /// The temperatures, in a run with heat ([`Engine::with_heat`]).
+    heat: Option<Box<heat::Thermal>>,
 }
 
 impl<const D: usize> Engine<D> {
@@ -338,6 +341,7 @@ impl<const D: usize> Engine<D> {
             nearest_first: nearest_first(gather_chunk(bodies.len(), D)),
             parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
             pace: awake::Pace::default(),
+            heat: None,
         };
         e.order.due = e.sorts();
         e.check(false)?;
@@ -595,6 +599,9 @@ impl<const D: usize> Engine<D> {
             self.steps += 1;
             self.rebuild();
             self.forces()?;
+        }
+        if self.heat.is_some() {
+            self.conduct()?;
         }
         if defer {
             self.pending_kick = true;

@@ -14,6 +14,7 @@
 //! - [`checkpoint`]: checkpoint files (the whole state, to resume a run bit for bit);
 //! - [`integrator`]: the engine and its step (velocity Verlet with a predicted velocity for the
 //!   rate-dependent forces), the choice of the time step;
+//! - [`heat`]: temperatures and the heat the contacts conduct (sdk 0.4);
 //! - [`observables`]: energies, contacts, wall impulses;
 //! - [`scene`]: the TOML scene format and the packing generator; [`xyz`]: trajectories;
 //! - [`bed`]: McNamara & Falcon's vibrated bed on this engine.
@@ -22,6 +23,7 @@ pub mod cells;
 pub mod checkpoint;
 pub mod contacts;
 pub mod footprint;
+pub mod heat;
 pub mod integrator;
 pub mod observables;
 pub mod scene;
@@ -36,7 +38,7 @@ pub use species::{LawSet, SpeciesInfo, SpeciesLaws};
 pub use state::{Body, DiskMass, Material, Vec3, VecD};
 pub use walls::{Motion, Wall};
 
-use crate::laws::{NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
+use crate::laws::{HeatConduction, NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
 use dashpot_sdk::LawError;
 
 /// The laws of a run, each bound twice: to the particle pair (`MaterialPair::spheres`) and to
@@ -54,8 +56,8 @@ pub struct Laws {
     pub rotation: Rotation,
 }
 
-/// The rolling and twisting laws of a run (sdk 0.3), each bound to particle pairs and to
-/// particle–wall pairs; none by default.
+/// The rolling and twisting laws of a run (sdk 0.3) and its heat conduction (sdk 0.4), each
+/// bound to particle pairs and to particle–wall pairs; none by default.
 #[derive(Default)]
 pub struct Rotation {
     /// Rolling resistance between particles.
@@ -66,6 +68,10 @@ pub struct Rotation {
     pub pair_twisting: Option<Box<dyn TwistingResistance>>,
     /// Twisting resistance against walls.
     pub wall_twisting: Option<Box<dyn TwistingResistance>>,
+    /// Heat conduction between particles (see [`Engine::with_heat`]).
+    pub pair_heat: Option<Box<dyn HeatConduction>>,
+    /// Heat conduction against walls.
+    pub wall_heat: Option<Box<dyn HeatConduction>>,
 }
 
 impl Rotation {
@@ -122,6 +128,22 @@ impl Laws {
             self.rotation.pair_twisting = Some(Box::new(l.bind(&pp)?));
             self.rotation.wall_twisting = Some(Box::new(l.bind(&pw)?));
         }
+        Ok(self)
+    }
+
+    /// Adds the heat law `heat` (name and parameters) from the registry, bound to `mat` for
+    /// particle pairs and particle–wall pairs (it acts once the engine has temperatures:
+    /// [`Engine::with_heat`]).
+    pub fn with_heat(
+        mut self,
+        reg: &crate::Registry,
+        heat: (&str, &[dashpot_sdk::ParamValue]),
+        mat: &Material,
+    ) -> Result<Laws, LawError> {
+        let (pp, pw) = material_pairs(mat)?;
+        let l = reg.heat(heat.0, heat.1)?;
+        self.rotation.pair_heat = Some(Box::new(l.bind(&pp)?));
+        self.rotation.wall_heat = Some(Box::new(l.bind(&pw)?));
         Ok(self)
     }
 }

@@ -128,7 +128,13 @@ impl<const D: usize> Engine<D> {
             .collect();
         let e = self.energy();
         let mv = self.mean_velocity();
-        serde_json::json!({
+        let mut parts = parts;
+        if let Some(t) = self.temperatures() {
+            for (p, t) in parts.iter_mut().zip(t) {
+                p["temperature"] = serde_json::json!(t);
+            }
+        }
+        let mut v = serde_json::json!({
             "dimension": D,
             "particles": parts,
             "dt": self.dt(),
@@ -145,6 +151,11 @@ impl<const D: usize> Engine<D> {
             "impact_speed": self.step_choice.impact_speed,
             "dt_given": self.step_choice.given,
             "mean_velocity": [mv.x, mv.y, mv.z],
-        })
+        });
+        // the thermal books (a run with heat): Σ C T, the walls' heat, their balance
+        if let Some(b) = self.heat_books() {
+            v["heat"] = b.json();
+        }
+        v
     }
 }

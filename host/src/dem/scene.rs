@@ -24,11 +24,15 @@
 //! [twisting]                         # optional (sdk 0.3): twisting resistance (3D)
 //! name = "twisting-sds"
 //! params = { k = 1e-3, mu = 1e-4 }
+//! [heat]                             # optional (sdk 0.4): heat conduction through contacts;
+//! name = "heat-radius"               # then heat_capacity and every particle's temperature
+//! params = { k = 40.0 }              # are required, walls conduct if they have a temperature
 //! [material]
 //! young = 1.0e8                      # Pa
 //! poisson = 0.3
 //! density = 7800.0                   # kg/m³
 //! disk_mass = "sphere"               # 2D: "sphere" (m = π ρ d³/6, I = 2/5 m R²) or "disk" (m = π ρ d³/4, I = m R²/2)
+//! # heat_capacity = 500.0            # J/(kg·K), with [heat]
 //! [box]                              # optional
 //! lo = [0.0, 0.0]
 //! hi = [0.2, 0.1]
@@ -38,11 +42,14 @@
 //! point = [0.0, 0.0]
 //! normal = [0.0, 1.0]
 //! # motion = { kind = "piston", amplitude = 0.025, frequency = 20.0 }   # or kind = "sine"
+//! # temperature = 300.0              # K, with [heat]; or { mean = 300.0, amplitude = 20.0, frequency = 5.0 }
+//! #                                  # (K, K, Hz: T0 + A sin(2π f t)); without, the wall does not conduct
 //! [[particle]]
 //! position = [0.1, 0.001]
 //! velocity = [1.0, 0.0]
 //! angular_velocity = 0.0             # 2D: a number (about z); 3D: [x, y, z]
 //! diameter = 0.002
+//! # temperature = 300.0              # K, with [heat]
 //! [generate]                         # optional: random polydisperse particles added to [[particle]]
 //! count = 2000
 //! diameter = [0.0018, 0.0022]        # uniform in [min, max] (m), or one number
@@ -50,6 +57,7 @@
 //! hi = [0.2, 0.1]
 //! speed = 0.1                        # random velocities of this magnitude (m/s), default 0
 //! seed = 1
+//! # temperature = 300.0              # K, with [heat]
 //! ```
 
 mod check;
@@ -61,6 +69,7 @@ pub use generate::packing;
 pub use pairs::{ClassPlan, LawChoice, PairPlan, Partners};
 
 use super::cells::Domain;
+use super::heat::HeatSetup;
 use super::integrator::{check_steps_per_collision, EngineConfig};
 use super::state::{Body, DiskMass, Material, Vec3, VecD};
 use super::walls::Wall;
@@ -103,6 +112,9 @@ struct MaterialTable {
     density: f64,
     #[serde(default)]
     disk_mass: Option<DiskMass>,
+    /// Specific heat capacity c (J/(kg·K)), with a heat law.
+    #[serde(default)]
+    heat_capacity: Option<f64>,
 }
 
 #[derive(Debug, Clone, Deserialize)]
@@ -138,6 +150,9 @@ struct ParticleTable {
     /// The particle's species (a `[[species]]` name).
     #[serde(default)]
     species: Option<String>,
+    /// The particle's temperature (K), with a heat law.
+    #[serde(default)]
+    temperature: Option<f64>,
 }
 
 /// The scene file as written.
@@ -181,6 +196,9 @@ pub struct SceneFile {
     /// The twisting-resistance law, if any.
     #[serde(default)]
     pub twisting: Option<LawTable>,
+    /// The heat-conduction law, if any (sdk 0.4).
+    #[serde(default)]
+    pub heat: Option<LawTable>,
     #[serde(default)]
     material: Option<MaterialTable>,
     /// The species, each of its material (instead of `[material]`).
@@ -216,6 +234,8 @@ pub struct Scene<const D: usize> {
     pub walls: Vec<Wall<D>>,
     /// The species and the laws of every class of contacts, by name (see [`PairPlan::bind`]).
     pub plan: PairPlan,
+    /// The temperatures, in a scene with a heat law (see [`crate::dem::Engine::with_heat`]).
+    pub heat: Option<HeatSetup>,
 }
 
 fn accounting_on() -> bool {
@@ -336,7 +356,10 @@ impl SceneFile {
         }
         let mut bodies = Vec::with_capacity(self.particle.len());
         let mut species = Vec::with_capacity(self.particle.len());
+        // each particle's temperature and where the scene gives it
+        let mut temps: Vec<(Option<f64>, String)> = Vec::with_capacity(self.particle.len());
         for (k, p) in self.particle.iter().enumerate() {
+            temps.push((p.temperature, format!("particle[{k}].temperature")));
             species.push(match &p.species {
                 Some(name) => pairs::species_index(&kinds, named, &format!("particle[{k}].species"), name)?,
                 None if kinds.len() > 1 => {
@@ -376,6 +399,12 @@ impl SceneFile {
         if let Some(g) = &self.generate {
             for (k, t) in g.0.iter().enumerate() {
                 let (b, s) = generate::generate::<D>(t, k, g.0.len(), &kinds, named, (&walls, &wall_names))?;
+                let key = if g.0.len() > 1 {
+                    format!("generate[{k}].temperature")
+                } else {
+                    "generate.temperature".into()
+                };
+                temps.extend(std::iter::repeat_n((t.temperature, key), b.len()));
                 bodies.extend(b);
                 species.extend(s);
             }
@@ -413,11 +442,13 @@ impl SceneFile {
             tangential: self.tangential.as_ref(),
             rolling: self.rolling.as_ref(),
             twisting: self.twisting.as_ref(),
+            heat: self.heat.as_ref(),
             wall_names,
             wall_materials: self.wall.iter().map(|w| w.material.clone()).collect(),
             count,
         };
         let plan = pairs::plan(kinds, named, &self.pair, &given)?;
+        let heat = self.heat_setup(&plan, temps)?;
         Ok(Scene {
             config,
             duration: self.duration,
@@ -426,7 +457,64 @@ impl SceneFile {
             species,
             walls,
             plan,
+            heat,
         })
+    }
+
+    /// The temperatures of a scene whose `plan` has a heat law (else none): each species'
+    /// heat capacity, each particle's temperature (`temps`, with where the scene gives it),
+    /// each wall's; a missing or bad value refused, naming it.
+    fn heat_setup(
+        &self,
+        plan: &PairPlan,
+        temps: Vec<(Option<f64>, String)>,
+    ) -> Result<Option<HeatSetup>, SceneError> {
+        if !plan.pair.iter().chain(&plan.wall).any(|c| c.laws.heat.is_some()) {
+            return Ok(None);
+        }
+        let capacity = |c: Option<f64>, key: &str| {
+            match c {
+            Some(c) => positive(key, "J/(kg·K)", c),
+            None => Err(bad(format!(
+                "{key} is missing: a scene with a heat law needs each material's specific heat capacity (J/(kg·K), e.g. 500 for steel)"
+            ))),
+        }
+        };
+        let specific_heat = if self.species.is_empty() {
+            vec![capacity(
+                self.material.as_ref().and_then(|m| m.heat_capacity),
+                "[material].heat_capacity",
+            )?]
+        } else {
+            self.species
+                .iter()
+                .enumerate()
+                .map(|(k, s)| capacity(s.heat_capacity, &format!("species[{k}].heat_capacity")))
+                .collect::<Result<_, _>>()?
+        };
+        let temperature = temps
+            .into_iter()
+            .map(|(t, key)| match t {
+                Some(t) if t.is_finite() && t >= 0.0 => Ok(t),
+                Some(t) => Err(bad(format!(
+                    "{key} = {t} K is out of range: it must be finite and >= 0"
+                ))),
+                None => Err(bad(format!(
+                    "{key} is missing: a scene with a heat law gives every particle's temperature (K)"
+                ))),
+            })
+            .collect::<Result<_, _>>()?;
+        let walls = self
+            .wall
+            .iter()
+            .enumerate()
+            .map(|(k, w)| w.temperature.as_ref().map(|t| t.temperature(k)).transpose())
+            .collect::<Result<_, _>>()?;
+        Ok(Some(HeatSetup {
+            temperature,
+            specific_heat,
+            walls,
+        }))
     }
 }
 

@@ -14,7 +14,7 @@
 use super::contacts::ClassMap;
 use super::state::Material;
 use super::{DemError, Laws};
-use crate::laws::{NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
+use crate::laws::{HeatConduction, NormalLaw, RollingResistance, TangentialForce, TwistingResistance};
 
 /// The laws of one class of contacts, bound to its pair of materials.
 pub struct LawSet {
@@ -26,6 +26,9 @@ pub struct LawSet {
     pub rolling: Option<Box<dyn RollingResistance>>,
     /// The twisting resistance (sdk 0.3), if any.
     pub twisting: Option<Box<dyn TwistingResistance>>,
+    /// The heat conduction (sdk 0.4), if any: it acts in a run with temperatures
+    /// ([`crate::dem::Engine::with_heat`]).
+    pub heat: Option<Box<dyn HeatConduction>>,
 }
 
 impl LawSet {
@@ -46,6 +49,7 @@ impl LawSet {
             self.tangential.as_ref().map(|l| l.name().to_string()),
             self.rolling.as_ref().map(|l| l.name().to_string()),
             self.twisting.as_ref().map(|l| l.name().to_string()),
+            self.heat.as_ref().map(|l| l.name().to_string()),
         ];
         for n in more.into_iter().flatten() {
             s.push_str(" + ");
@@ -110,6 +114,7 @@ impl SpeciesLaws {
                 tangential: pair_tangential,
                 rolling: rotation.pair_rolling,
                 twisting: rotation.pair_twisting,
+                heat: rotation.pair_heat,
             }],
             pair_labels: vec!["particle–particle".into()],
             wall_class: Vec::new(),
@@ -118,6 +123,7 @@ impl SpeciesLaws {
                 tangential: wall_tangential,
                 rolling: rotation.wall_rolling,
                 twisting: rotation.wall_twisting,
+                heat: rotation.wall_heat,
             }],
             wall_labels: vec!["particle–wall".into()],
         }

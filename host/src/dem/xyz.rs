@@ -1,7 +1,8 @@
 //! Extended XYZ trajectories (one frame per snapshot), readable by OVITO and ASE: species,
 //! position, velocity, angular velocity and radius per particle, and with energy accounting
 //! on, the power its contacts dissipated at the last step (`power`, W: half of each pair
-//! contact's, the whole of a wall contact's); 2D runs have z = 0.
+//! contact's, the whole of a wall contact's), and in a run with heat the temperature
+//! (`temperature`, K); 2D runs have z = 0.
 
 use super::state::to3;
 use super::Engine;
@@ -36,6 +37,7 @@ pub fn write_frame<const D: usize, W: Write>(e: &Engine<D>, w: &mut W) -> std::i
         .map(|k| if k < D && dom.periodic[k] { "T" } else { "F" })
         .collect();
     let power = e.particle_power();
+    let temperature = e.temperatures();
     writeln!(w, "{}", p.len())?;
     writeln!(
         w,
@@ -46,7 +48,12 @@ pub fn write_frame<const D: usize, W: Write>(e: &Engine<D>, w: &mut W) -> std::i
         lo[0],
         lo[1],
         lo[2],
-        if power.is_some() { ":power:R:1" } else { "" },
+        match (power.is_some(), temperature.is_some()) {
+            (true, true) => ":power:R:1:temperature:R:1",
+            (true, false) => ":power:R:1",
+            (false, true) => ":temperature:R:1",
+            (false, false) => "",
+        },
         e.time(),
         pbc.join(" ")
     )?;
@@ -59,10 +66,13 @@ pub fn write_frame<const D: usize, W: Write>(e: &Engine<D>, w: &mut W) -> std::i
             "P {:.9e} {:.9e} {:.9e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e} {:.6e}",
             x.x, x.y, x.z, v.x, v.y, v.z, o.x, o.y, o.z, p.radius[i]
         )?;
-        match &power {
-            Some(pw) => writeln!(w, " {:.6e}", pw[i])?,
-            None => writeln!(w)?,
+        if let Some(pw) = &power {
+            write!(w, " {:.6e}", pw[i])?;
         }
+        if let Some(t) = temperature {
+            write!(w, " {:.9e}", t[i])?;
+        }
+        writeln!(w)?;
     }
     Ok(())
 }

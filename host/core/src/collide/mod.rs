@@ -5,6 +5,7 @@
 pub mod adhesive;
 pub mod calibrate;
 pub mod extrap;
+pub mod heat;
 pub mod lanes;
 pub mod oblique;
 pub mod outcome;
@@ -13,6 +14,7 @@ pub mod rk;
 pub mod rolling;
 pub mod two_body;
 
+pub use heat::{impact_heat, HeatExchange, HeatImpact};
 pub use lanes::collide_many;
 pub use oblique::{oblique, Body, Impact, ObliqueCollision, ObliqueError, Target};
 pub use two_body::{collide, collide_named, CollideError, Collision, ContactForce, Options, PairLaw, Sample};

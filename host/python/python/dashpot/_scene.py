@@ -60,7 +60,11 @@ class Scene:
     m/s (default 0), ``angular_velocities`` (N,) in 2D or (N, 3) in 3D, rad/s; ``law`` the
     contact law, ``tangential``, ``rolling``, ``twisting`` optional laws (each a name, a law
     object or ``{"name", "params"}``); the material ``young`` (Pa), ``poisson``, ``density``
-    (kg/m³), ``disk_mass`` (2D: ``"sphere"`` or ``"disk"``); ``gravity`` (m/s², D values);
+    (kg/m³), ``disk_mass`` (2D: ``"sphere"`` or ``"disk"``); ``heat`` a heat-conduction law
+    (sdk 0.4: the contacts conduct heat), with ``heat_capacity`` (J/(kg·K), or a species'
+    ``heat_capacity``) and ``temperatures`` (K, one per particle or one for all; walls conduct
+    when given a ``temperature``, K or ``{"mean", "amplitude", "frequency"}``; a ``generate``
+    table takes a ``temperature``); ``gravity`` (m/s², D values);
     ``species``, a list of ``{"name", "young", "poisson", "density"}`` (instead of ``young``,
     ``poisson``, ``density``), with ``particle_species`` (one name per particle, or one for
     all) and ``pairs``, a list of ``{"species": [a, b], "law", "tangential", "rolling",
@@ -77,7 +81,9 @@ class Scene:
 
     The state is read through read-only numpy views that follow the run without copies:
     ``positions``, ``velocities``, ``forces`` (contact forces of the last step, N, gravity
-    excluded), ``angular_velocities``, ``torques``, ``radii``, ``masses``, ``inertia``. Copy
+    excluded), ``angular_velocities``, ``torques``, ``radii``, ``masses``, ``inertia``, and with
+    a heat law ``temperatures`` (K) and ``heat_capacities`` (J/K); ``heat()`` gives the thermal
+    books. Copy
     what you keep (``sim.positions.copy()``), and do not read them from another thread while
     ``run`` steps."""
 
@@ -85,6 +91,8 @@ class Scene:
                  velocities: Any = None, angular_velocities: Any = None,
                  law: Optional[LawSpec] = None, tangential: Optional[LawSpec] = None,
                  rolling: Optional[LawSpec] = None, twisting: Optional[LawSpec] = None,
+                 heat: Optional[LawSpec] = None, heat_capacity: Optional[float] = None,
+                 temperatures: Any = None,
                  young: Optional[float] = None, poisson: Optional[float] = None,
                  density: Optional[float] = None, disk_mass: Optional[str] = None,
                  species: Optional[Sequence[Mapping[str, Any]]] = None,
@@ -98,7 +106,8 @@ class Scene:
                  allow_initial_overlap: bool = False, energy: bool = True) -> None:
         spec: Dict[str, Any] = {"dimension": int(dimension)}
         material = {k: v for k, v in [("young", young), ("poisson", poisson), ("density", density),
-                                      ("disk_mass", disk_mass)] if v is not None}
+                                      ("disk_mass", disk_mass), ("heat_capacity", heat_capacity)]
+                    if v is not None}
         if species is None:
             if any(v is None for v in (young, poisson, density)):
                 raise ValueError("young, poisson, density: give the particles' material (Pa, ratio, kg/m³), "
@@ -110,7 +119,7 @@ class Scene:
                                  "gives its own material")
             spec["species"] = [dict(sp) for sp in species]
         for key, law_spec in [("law", law), ("tangential", tangential), ("rolling", rolling),
-                              ("twisting", twisting)]:
+                              ("twisting", twisting), ("heat", heat)]:
             if law_spec is not None:
                 spec[key] = _law_table(key, law_spec)
         if pairs:
@@ -130,6 +139,10 @@ class Scene:
             spec["energy"] = False
         spec["particle"] = self._particles(int(dimension), positions, diameters, velocities, angular_velocities,
                                            particle_species)
+        if temperatures is not None:
+            t = _rows("temperatures", temperatures, len(spec["particle"]), None)
+            for p, ti in zip(spec["particle"], t):
+                p["temperature"] = float(ti)
         self._bind(_dashpot.Scene.from_spec(spec), duration if given_duration else None)
 
     @staticmethod
@@ -138,7 +151,7 @@ class Scene:
         name, or a list), and law specs ``law``, ``tangential``, ``rolling``, ``twisting``."""
         out: Dict[str, Any] = {}
         for key, value in p.items():
-            if key in ("law", "tangential", "rolling", "twisting"):
+            if key in ("law", "tangential", "rolling", "twisting", "heat"):
                 out[key] = _law_table(f"pairs[{k}].{key}", value)
             else:
                 out[key] = value
@@ -205,6 +218,8 @@ class Scene:
     radii = View("Radii (m), shape (N,).")
     masses = View("Masses (kg), shape (N,).")
     inertia = View("Moments of inertia (kg·m²), shape (N,).")
+    temperatures = View("Temperatures (K), shape (N,), in a scene with a heat law: a read-only view.")
+    heat_capacities = View("Heat capacities m c (J/K), shape (N,), in a scene with a heat law.")
 
     @property
     def species(self) -> List[str]:
@@ -293,6 +308,13 @@ class Scene:
         elastic energy at the start; ``wall_work``, the work moving walls did on the particles.
         Their balance: initial + wall_work ≈ total + elastic + dissipated."""
         return self._inner.energy()
+
+    def heat(self) -> Optional[Dict[str, Any]]:
+        """The thermal books now, in a scene with a heat law (else None): ``thermal`` Σ m c T
+        (J), ``thermal_initial``, ``wall_heat`` (the heat the walls gave, J), ``balance``
+        (thermal − initial − wall heat: 0 to rounding), ``stability_limit`` (the smallest
+        m c/ΣH met, s; None before any contact conducted) and ``warning`` (when dt exceeds it)."""
+        return self._inner.heat()
 
     def result(self) -> Dict[str, Any]:
         """What ``dashpot dem --scene FILE --json`` prints after the same steps: the particles,

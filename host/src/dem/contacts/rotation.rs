@@ -14,6 +14,9 @@ pub struct Rotating<'a> {
     pub rolling: Option<&'a dyn RollingResistance>,
     /// Twisting resistance.
     pub twisting: Option<&'a dyn TwistingResistance>,
+    /// Whether another law of the contact (its heat law, sdk 0.4) reads the normal law's
+    /// contexts: they are then kept ([`ContactSet::context`]).
+    pub context: bool,
 }
 
 impl ContactSet {

@@ -331,6 +331,7 @@ fn evaluate<const D: usize>(
     let rot = Rotating {
         rolling: laws.rolling.as_deref(),
         twisting: laws.twisting.as_deref(),
+        context: laws.heat.as_ref().is_some_and(|h| h.reads_context()),
     };
     set.evaluate(&*laws.normal, laws.tangential.as_deref(), rot, ctx.dt, ctx.edges)
 }

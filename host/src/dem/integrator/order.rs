@@ -132,6 +132,7 @@ impl<const D: usize> Engine<D> {
         {
             std::mem::swap(v, other);
         }
+        self.cross_heat(into);
     }
 
     /// Whether this run keeps its own order.
@@ -191,6 +192,7 @@ impl<const D: usize> Engine<D> {
         if !self.species.is_empty() {
             gather(&mut self.species, &perm, 1);
         }
+        self.gather_heat(&perm);
         let mut new_of = vec![0u32; n];
         for (k, &o) in perm.iter().enumerate() {
             new_of[o as usize] = k as u32;
@@ -201,7 +203,7 @@ impl<const D: usize> Engine<D> {
 }
 
 /// `v` ← `v[perm[k]]` for each element `k` (of `stride` values), in place.
-fn gather<T: Copy>(v: &mut [T], perm: &[u32], stride: usize) {
+pub(super) fn gather<T: Copy>(v: &mut [T], perm: &[u32], stride: usize) {
     let old = v.to_vec();
     for (k, &o) in perm.iter().enumerate() {
         let o = o as usize;
@@ -211,7 +213,7 @@ fn gather<T: Copy>(v: &mut [T], perm: &[u32], stride: usize) {
 
 /// `dst` ← `src` permuted: into the engine's order (`into`: `dst[k]` ← `src[uid[k]]`) or out
 /// of it (`dst[uid[k]]` ← `src[k]`), elements of `stride` values.
-fn permute_into<T: Copy>(src: &[T], dst: &mut Vec<T>, uid: &[u32], stride: usize, into: bool) {
+pub(super) fn permute_into<T: Copy>(src: &[T], dst: &mut Vec<T>, uid: &[u32], stride: usize, into: bool) {
     if dst.len() != src.len() {
         // (the first crossing: the buffer made; every element is written below)
         *dst = src.to_vec();

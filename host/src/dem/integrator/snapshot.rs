@@ -47,6 +47,10 @@ pub struct EngineState<const D: usize> {
     dissipated: [f64; 4],
     unreported: [bool; 4],
     wall_work: f64,
+    /// The temperatures and thermal books (a run with heat), last: a checkpoint of format 1,
+    /// which had none, reads as one of format 2 with `None` here (see
+    /// [`crate::dem::checkpoint::decode`]).
+    heat: Option<crate::dem::heat::HeatState>,
 }
 
 impl<const D: usize> EngineState<D> {
@@ -91,6 +95,7 @@ impl<const D: usize> Engine<D> {
             dissipated: self.dissipated,
             unreported: self.unreported,
             wall_work: self.wall_work,
+            heat: self.save_heat(),
         }
     }
 
@@ -135,6 +140,7 @@ impl<const D: usize> Engine<D> {
         self.wall_episodes = s.wall_episodes;
         self.pair_episodes = s.pair_episodes;
         (self.dissipated, self.unreported, self.wall_work) = (s.dissipated, s.unreported, s.wall_work);
+        self.restore_heat(s.heat);
         Ok(())
     }
 
@@ -196,6 +202,7 @@ impl<const D: usize> Engine<D> {
                 reach.len()
             ));
         }
+        self.check_heat(s.heat.as_ref())?;
         self.pairs
             .check_saved(&s.pairs, n, None)
             .map_err(|m| format!("pair contacts: {m}"))?;

@@ -39,6 +39,9 @@ pub(super) struct GenerateTable {
     /// holding particles): a drum's fill.
     #[serde(default)]
     within: Option<WallRefs>,
+    /// The particles' temperature (K), in a run with a heat law.
+    #[serde(default)]
+    pub(super) temperature: Option<f64>,
 }
 
 /// `[generate]` (one table) or `[[generate]]` (several): read as what the file holds, each

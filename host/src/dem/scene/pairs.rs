@@ -21,6 +21,9 @@ pub(super) struct SpeciesTable {
     density: f64,
     #[serde(default)]
     disk_mass: Option<DiskMass>,
+    /// Specific heat capacity c (J/(kg·K)), for a run with a heat law.
+    #[serde(default)]
+    pub(super) heat_capacity: Option<f64>,
 }
 
 /// One name or a list of names.
@@ -75,6 +78,8 @@ pub(super) struct PairTable {
     rolling: Option<LawTable>,
     #[serde(default)]
     twisting: Option<LawTable>,
+    #[serde(default)]
+    heat: Option<LawTable>,
 }
 
 /// A wall's material: a species' (by name) or its own moduli.
@@ -101,6 +106,8 @@ pub struct LawChoice {
     pub rolling: Option<LawTable>,
     /// The twisting resistance, if any.
     pub twisting: Option<LawTable>,
+    /// The heat conduction, if any.
+    pub heat: Option<LawTable>,
 }
 
 impl LawChoice {
@@ -110,6 +117,7 @@ impl LawChoice {
             .chain(self.tangential.as_ref())
             .chain(self.rolling.as_ref())
             .chain(self.twisting.as_ref())
+            .chain(self.heat.as_ref())
     }
 
     /// `"hsd (eps = 0.5) + mindlin (mu = 0.3)"`.
@@ -276,6 +284,7 @@ pub(super) struct Given<'a> {
     pub(super) tangential: Option<&'a LawTable>,
     pub(super) rolling: Option<&'a LawTable>,
     pub(super) twisting: Option<&'a LawTable>,
+    pub(super) heat: Option<&'a LawTable>,
     pub(super) wall_names: Vec<Option<String>>,
     pub(super) wall_materials: Vec<Option<WallMaterial>>,
     pub(super) count: Vec<usize>,
@@ -319,7 +328,7 @@ pub(super) fn plan(
         if let Some(law) = &p.law {
             if law.name == "none" {
                 return Err(bad(format!(
-                    "pair[{k}].law.name = \"none\": a pair needs a normal law (\"none\" removes only a tangential, rolling or twisting law)"
+                    "pair[{k}].law.name = \"none\": a pair needs a normal law (\"none\" removes only a tangential, rolling, twisting or heat law)"
                 )));
             }
         }
@@ -379,6 +388,7 @@ pub(super) fn plan(
             tangential: family(own.and_then(|p| p.tangential.as_ref()), g.tangential),
             rolling: family(own.and_then(|p| p.rolling.as_ref()), g.rolling),
             twisting: family(own.and_then(|p| p.twisting.as_ref()), g.twisting),
+            heat: family(own.and_then(|p| p.heat.as_ref()), g.heat),
         })
     };
     let mat_key = |p: Partners| -> Result<MaterialPair, SceneError> { partners_materials(&species, p) };
@@ -569,6 +579,7 @@ impl PairPlan {
                     "tangential" => c.laws.tangential.as_ref(),
                     "rolling" => c.laws.rolling.as_ref(),
                     "twisting" => c.laws.twisting.as_ref(),
+                    "heat" => c.laws.heat.as_ref(),
                     _ => Some(&c.laws.normal),
                 }
                 .map_or("", |t| t.name.as_str());
@@ -606,11 +617,20 @@ impl PairPlan {
                 ) as Box<dyn crate::laws::TwistingResistance>),
                 None => None,
             };
+            let heat = match &t.heat {
+                Some(x) => Some(Box::new(
+                    reg.heat(&x.name, &x.param_values())
+                        .and_then(|l| l.bind(&mp))
+                        .map_err(|e| ctx("heat", e))?,
+                ) as Box<dyn crate::laws::HeatConduction>),
+                None => None,
+            };
             Ok(LawSet {
                 normal: Box::new(normal),
                 tangential,
                 rolling,
                 twisting,
+                heat,
             })
         };
         Ok(SpeciesLaws {
@@ -672,6 +692,7 @@ impl PairPlan {
                 "tangential": c.laws.tangential.as_ref().map(|t| &t.name),
                 "rolling": c.laws.rolling.as_ref().map(|t| &t.name),
                 "twisting": c.laws.twisting.as_ref().map(|t| &t.name),
+                "heat": c.laws.heat.as_ref().map(|t| &t.name),
             })
         };
         serde_json::json!({

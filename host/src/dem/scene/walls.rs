@@ -102,6 +102,47 @@ pub(super) struct WallTable {
     /// The wall's own material: a species' name or `{ young, poisson }` (else rigid).
     #[serde(default)]
     pub(super) material: Option<WallMaterial>,
+    /// The wall's temperature, in a run with a heat law (else it does not conduct).
+    #[serde(default)]
+    pub(super) temperature: Option<TemperatureTable>,
+}
+
+/// `temperature = K` or `temperature = { mean = K, amplitude = K, frequency = Hz }`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a temperature (K) or a table { mean = K, amplitude = K, frequency = Hz }"
+)]
+pub(super) enum TemperatureTable {
+    Fixed(f64),
+    Sine {
+        mean: f64,
+        amplitude: f64,
+        frequency: f64,
+    },
+}
+
+impl TemperatureTable {
+    /// The wall's temperature, checked (`k`: the wall's index).
+    pub(super) fn temperature(&self, k: usize) -> Result<crate::dem::heat::WallTemperature, SceneError> {
+        use crate::dem::heat::WallTemperature;
+        let t = match *self {
+            TemperatureTable::Fixed(x) => WallTemperature::Fixed(x),
+            TemperatureTable::Sine {
+                mean,
+                amplitude,
+                frequency,
+            } => WallTemperature::Sine {
+                mean,
+                amplitude,
+                frequency,
+            },
+        };
+        match t.problem(&format!("wall[{k}].temperature")) {
+            Some(m) => Err(bad(m)),
+            None => Ok(t),
+        }
+    }
 }
 
 /// A non-zero vector of dimension `D` as a unit one.
