@@ -309,15 +309,22 @@ fn solve(
         let mut fa = fs;
         let mut fb = fs;
         let mut found = false;
+        // a side stops where the law refuses the value with the other parameters (say
+        // Walton–Braun's k2 below its k1)
+        let (mut open_a, mut open_b) = (true, true);
         for _ in 0..60 {
             let (na, nb) = (a / 4.0, b * 4.0);
-            if inside(na) {
-                a = na;
-                fa = f(a)? - target;
+            if open_a && inside(na) {
+                match refused(f(na))? {
+                    Some(v) => (a, fa) = (na, v - target),
+                    None => open_a = false,
+                }
             }
-            if inside(nb) {
-                b = nb;
-                fb = f(b)? - target;
+            if open_b && inside(nb) {
+                match refused(f(nb))? {
+                    Some(v) => (b, fb) = (nb, v - target),
+                    None => open_b = false,
+                }
             }
             if (fa > 0.0) != (fs > 0.0) {
                 b = a * 4.0;
@@ -379,6 +386,15 @@ fn solve(
 /// integrator's tolerance, so the last point of the bracket need not be the best).
 /// If even the best point misses by more than 1e-6 the bracket has closed on a jump of f
 /// across 0: [`CalibrateError::Jump`] (the caller fills in the names and maps the coordinate).
+/// `Ok(None)` for a value the law refuses as invalid (with the other parameters given).
+fn refused(r: Result<f64, CalibrateError>) -> Result<Option<f64>, CalibrateError> {
+    match r {
+        Ok(v) => Ok(Some(v)),
+        Err(CalibrateError::Law(e)) if e.kind == dashpot_sdk::ErrorKind::InvalidParameter => Ok(None),
+        Err(e) => Err(e),
+    }
+}
+
 fn illinois(
     a: f64,
     fa: f64,
@@ -606,7 +622,8 @@ fn check_reached(
             .join(", "),
     };
     let residual = reached - spec.restitution;
-    if !(residual.abs() <= tolerance) {
+    // (a NaN misses too)
+    if residual.abs() > tolerance || residual.is_nan() {
         let why = match fitted {
             Some((n, range)) => {
                 let x = value_of(n).unwrap_or(f64::NAN);
@@ -631,7 +648,7 @@ fn check_reached(
     }
     if let (Some(tau), Some(t)) = (spec.contact_time, contact_time) {
         let rel = t / tau - 1.0;
-        if !(rel.abs() <= tolerance) {
+        if rel.abs() > tolerance || rel.is_nan() {
             return Err(CalibrateError::Missed {
                 law: spec.law.clone(),
                 what: "contact time (s)",

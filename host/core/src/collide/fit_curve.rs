@@ -154,6 +154,9 @@ pub fn check_measurements(data: &[Measurement]) -> Result<(), CalibrateError> {
     Ok(())
 }
 
+/// The residuals at a point of the fit and each measurement's (restitution, contact time).
+type Evaluated = (DVector<f64>, Vec<(f64, f64)>);
+
 /// One free coordinate of the fit: a law parameter or the Young's modulus factor, in log space
 /// when its range is positive and unbounded.
 struct Free {
@@ -327,23 +330,22 @@ pub fn fit_curve(
         (p, yf)
     };
     let base = params.clone();
-    let eval =
-        |y: &DVector<f64>, runs: &mut usize| -> Result<(DVector<f64>, Vec<(f64, f64)>), CalibrateError> {
-            let (p, yf) = at(y, &base);
-            let mut r = Vec::with_capacity(residual_count);
-            let mut out = Vec::with_capacity(data.len());
-            for m in data {
-                let (e, t) = at_speed(reg, spec, &p, yf, m.v0)?;
-                *runs += 1;
-                r.push(e - m.restitution);
-                if let Some(tm) = m.contact_time {
-                    // a contact that never ends counts as a contact time of 0
-                    r.push(if t.is_finite() { t / tm - 1.0 } else { -1.0 });
-                }
-                out.push((e, t));
+    let eval = |y: &DVector<f64>, runs: &mut usize| -> Result<Evaluated, CalibrateError> {
+        let (p, yf) = at(y, &base);
+        let mut r = Vec::with_capacity(residual_count);
+        let mut out = Vec::with_capacity(data.len());
+        for m in data {
+            let (e, t) = at_speed(reg, spec, &p, yf, m.v0)?;
+            *runs += 1;
+            r.push(e - m.restitution);
+            if let Some(tm) = m.contact_time {
+                // a contact that never ends counts as a contact time of 0
+                r.push(if t.is_finite() { t / tm - 1.0 } else { -1.0 });
             }
-            Ok((DVector::from_vec(r), out))
-        };
+            out.push((e, t));
+        }
+        Ok((DVector::from_vec(r), out))
+    };
 
     let (mut r, _) = eval(&y, &mut runs)?;
     let mut cost = r.norm_squared();
