@@ -70,7 +70,7 @@ fn kuwabara_kono_calibrated_then_collided_gives_back_its_restitution() {
         "overlap",
         "--json",
     ]);
-    assert_eq!(o["end_source"], "--end");
+    assert_eq!(o["end_source"], "given");
     assert!(num(&o, "restitution") < 0.7999, "{}", o["restitution"]);
     // the text says which criterion and where it came from
     let t =

@@ -263,6 +263,7 @@ fn collide<'py>(
     let p = params_of(params)?;
     let pair = body.pair()?;
     let cached = cached_contact(py, name, &p)?;
+    let given = end.is_some();
     let end = end_of(end, cached.end)?;
     let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, body.3).map_err(law_err)?;
     opt.record = record;
@@ -276,6 +277,10 @@ fn collide<'py>(
     out.set_item(intern!(py, "law"), name)?;
     out.set_item(intern!(py, "v0"), v0)?;
     out.set_item(intern!(py, "end"), end.as_str())?;
+    out.set_item(
+        intern!(py, "end_source"),
+        dashpot::cli::collide::end_source(given, name),
+    )?;
     out.set_item(intern!(py, "restitution"), c.restitution)?;
     out.set_item(intern!(py, "contact_time"), c.contact_time)?;
     out.set_item(intern!(py, "max_overlap"), c.max_overlap)?;
@@ -344,6 +349,7 @@ fn collide_curve<'py>(
     let p = params_of(params)?;
     let pair = body.pair()?;
     let cached = cached_contact(py, name, &p)?;
+    let given = end.is_some();
     let end = end_of(end, cached.end)?;
     let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, body.3).map_err(law_err)?;
     let n = v0s.len();
@@ -379,6 +385,10 @@ fn collide_curve<'py>(
     out.set_item(intern!(py, "law"), name)?;
     out.set_item(intern!(py, "v0"), v0s.to_vec().into_pyarray(py))?;
     out.set_item(intern!(py, "end"), end.as_str())?;
+    out.set_item(
+        intern!(py, "end_source"),
+        dashpot::cli::collide::end_source(given, name),
+    )?;
     out.set_item(intern!(py, "restitution"), e.into_pyarray(py))?;
     out.set_item(intern!(py, "contact_time"), tc.into_pyarray(py))?;
     out.set_item(intern!(py, "max_overlap"), dm.into_pyarray(py))?;

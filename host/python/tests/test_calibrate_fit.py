@@ -37,7 +37,7 @@ def test_a_ten_point_curve_gives_back_a_to_1e6_from_an_array_and_from_a_file(tmp
     assert f["residuals"].shape == (10,) and np.all(np.abs(f["residuals"]) < 1e-9)
     assert f["rms"] < 1e-9
     path = tmp_path / "kk.csv"
-    path.write_text("v0,e\n" + "".join(f"{v!r},{e!r}\n" for v, e in data))
+    path.write_text("v0,e\n" + "".join(f"{float(v)!r},{float(e)!r}\n" for v, e in data))
     g = dashpot.calibrate("kuwabara-kono", data=path)
     assert g["params"] == f["params"]
     # the CLI's --data fit, to the bit

@@ -68,12 +68,19 @@ impl IntegrationArgs {
         Ok(self.end_or(reg.end_criterion(law)?))
     }
 
-    /// Where the end criterion came from, for the output: "--end" or "declared by LAW".
+    /// Where the end criterion came from, for the output: "given" or "declared by 'LAW'".
     pub fn end_source(&self, law: &str) -> String {
-        match self.end {
-            Some(_) => "--end".to_string(),
-            None => format!("declared by '{law}'"),
-        }
+        end_source(self.end.is_some(), law)
+    }
+}
+
+/// Where a run's end criterion came from: "given" (`--end`, Python's `end=`) or "declared by
+/// 'LAW'" (the law's `END_CRITERION`).
+pub fn end_source(given: bool, law: &str) -> String {
+    if given {
+        "given".to_string()
+    } else {
+        format!("declared by '{law}'")
     }
 }
 
@@ -212,7 +219,10 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
                 EndCriterion::Overlap => "overlap returns to 0",
                 EndCriterion::Force => "force returns to 0",
             },
-            a.integration.end_source(&sel.name)
+            match a.integration.end {
+                Some(_) => "given by --end".to_string(),
+                None => a.integration.end_source(&sel.name),
+            }
         );
         if c.stuck {
             println!("restitution           = 0 (stuck: the rebound turned back before pull-off)");

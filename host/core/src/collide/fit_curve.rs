@@ -81,6 +81,7 @@ pub struct CurveFit {
 pub fn parse_measurements(text: &str) -> Result<Vec<Measurement>, CalibrateError> {
     let bad = |m: String| CalibrateError::BadTarget(m);
     let mut out = Vec::new();
+    let mut first = true;
     for (i, line) in text.lines().enumerate() {
         let l = line.trim();
         if l.is_empty() || l.starts_with('#') {
@@ -91,7 +92,7 @@ pub fn parse_measurements(text: &str) -> Result<Vec<Measurement>, CalibrateError
             .filter(|c| !c.is_empty())
             .collect();
         let nums: Vec<Option<f64>> = cells.iter().map(|c| c.parse::<f64>().ok()).collect();
-        if out.is_empty() && nums.iter().any(Option::is_none) && !nums.iter().any(Option::is_some) {
+        if std::mem::take(&mut first) && nums.iter().all(Option::is_none) {
             continue; // the header
         }
         let row = i + 1;
