@@ -45,13 +45,7 @@ pub(crate) fn calibrate(
             },
         };
         let c = fit_law(reg, &spec).map_err(|e| PyValueError::new_err(e.to_string()))?;
-        let fitted: Vec<ParamValue> = c.params.iter().map(|(k, v)| ParamValue::new(k, *v)).collect();
-        let prov = Provenance::of(reg, name, &fitted).map_err(law_err)?;
-        let params: serde_json::Map<String, serde_json::Value> = c
-            .params
-            .iter()
-            .map(|(k, v)| (k.clone(), serde_json::json!(v)))
-            .collect();
+        let (params, prov) = fitted_json(reg, name, &c.params)?;
         Ok(serde_json::json!({
             "law": name, "method": c.method, "params": params,
             "young": body.2 * c.young_factor, "effective_young": c.effective_young, "v0": v0,
@@ -141,13 +135,7 @@ pub(crate) fn calibrate_curve(
     };
     let reg: &Registry = &reg;
     let c = py.allow_threads(|| fit_curve(reg, &spec, &data)).map_err(bad)?;
-    let fitted: Vec<ParamValue> = c.params.iter().map(|(k, v)| ParamValue::new(k, *v)).collect();
-    let prov = Provenance::of(reg, name, &fitted).map_err(law_err)?;
-    let params: serde_json::Map<String, serde_json::Value> = c
-        .params
-        .iter()
-        .map(|(k, v)| (k.clone(), serde_json::json!(v)))
-        .collect();
+    let (params, prov) = fitted_json(reg, name, &c.params)?;
     Ok(serde_json::json!({
         "law": name, "method": "least squares", "end": end.as_str(), "fitted": c.free,
         "params": params, "young": body.2 * c.young_factor, "effective_young": c.effective_young,
@@ -155,4 +143,19 @@ pub(crate) fn calibrate_curve(
         "iterations": c.iterations, "collisions": c.collisions, "provenance": prov.json(),
     })
     .to_string())
+}
+
+/// A fit's parameters as the JSON object the CLI prints, and the provenance of the law with them.
+fn fitted_json(
+    reg: &Registry,
+    name: &str,
+    params: &[(String, f64)],
+) -> PyResult<(serde_json::Map<String, serde_json::Value>, Provenance)> {
+    let fitted: Vec<ParamValue> = params.iter().map(|(k, v)| ParamValue::new(k, *v)).collect();
+    let prov = Provenance::of(reg, name, &fitted).map_err(law_err)?;
+    let json = params
+        .iter()
+        .map(|(k, v)| (k.clone(), serde_json::json!(v)))
+        .collect();
+    Ok((json, prov))
 }

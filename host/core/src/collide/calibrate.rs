@@ -579,17 +579,9 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
     let reached = if realized.stuck { 0.0 } else { realized.restitution };
     let time = Some(realized.contact_time);
     check_reached(&mut model, &params, young_factor, reached, time, fitted.as_ref())?;
-    let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
-    for s in &schema {
-        if !full.iter().any(|(n, _)| n == s.name.as_str()) {
-            if let Some(d) = s.default {
-                full.push((s.name.to_string(), d));
-            }
-        }
-    }
     Ok(Calibration {
         method,
-        params: full,
+        params: complete(&params, &schema),
         young_factor,
         effective_young: spec.pair.young * young_factor,
         restitution_residual: realized.restitution - eps,
@@ -597,6 +589,19 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
         realized,
         collisions: model.runs,
     })
+}
+
+/// `params` with the defaults of the parameters of `schema` they do not name, as (name, value).
+pub(super) fn complete(params: &[ParamValue], schema: &[dashpot_sdk::ParamSpec]) -> Vec<(String, f64)> {
+    let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
+    for s in schema {
+        if !full.iter().any(|(n, _)| n == s.name.as_str()) {
+            if let Some(d) = s.default {
+                full.push((s.name.to_string(), d));
+            }
+        }
+    }
+    full
 }
 
 /// Refuses a calibration whose parameters do not reproduce its targets within

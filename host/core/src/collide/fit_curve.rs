@@ -465,17 +465,9 @@ pub fn fit_curve(
             / n)
             .sqrt()
     });
-    let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
-    for s in &schema {
-        if !full.iter().any(|(n, _)| n == s.name.as_str()) {
-            if let Some(d) = s.default {
-                full.push((s.name.to_string(), d));
-            }
-        }
-    }
     Ok(CurveFit {
         free,
-        params: full,
+        params: super::calibrate::complete(&params, &schema),
         young_factor,
         effective_young: spec.pair.young * young_factor,
         points,
