@@ -2,7 +2,6 @@
 
 use super::*;
 use dashpot::collide::Options;
-use dashpot_sdk::EndCriterion;
 
 /// Fits a law's parameters to a measured restitution (and optionally contact time) at impact
 /// speed `v0` (m/s), as `dashpot calibrate --json` does: law `name` with the `fixed`
