@@ -212,12 +212,7 @@ pub fn contact_restitution(
 ) -> Result<(TabulatedRestitution, TabulatedRestitution), LawError> {
     use crate::collide::Options;
     let law = reg.contact(name, params)?;
-    let end = reg
-        .find(name)?
-        .0
-        .info
-        .end_criterion
-        .unwrap_or(EndCriterion::Overlap);
+    let end = reg.end_criterion(name)?;
     let (pp, pw) = (Pair::spheres(p, p)?, Pair::wall(p)?);
     let opt = Options {
         rtol: 1e-10,

@@ -458,7 +458,10 @@ fn misuses_are_answered_with_the_value_and_the_remedy() {
     // the default of --fit is documented where the user looks
     let h = String::from_utf8_lossy(&dashpot(&["calibrate", "--help"]).stdout).to_string();
     assert!(
-        h.contains("Default: `eps` if the law has one, else its only parameter other than `k`"),
+        h.contains(
+            "Default: `eps` if the law has one, else `damp` (LAMMPS's `gran-*` laws), else its only \
+             parameter other than `k`"
+        ),
         "{h}"
     );
 }

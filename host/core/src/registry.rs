@@ -4,7 +4,7 @@ use crate::laws::{
     ContactLawHandle, Heat, LawHandle, LoadedPlugin, RestitutionLawHandle, Rolling, TangentialLawHandle,
     Twisting,
 };
-use dashpot_sdk::{CalibrationTarget, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
+use dashpot_sdk::{CalibrationTarget, EndCriterion, ErrorKind, LawError, LawInfo, LawKind, Pair, ParamValue};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
@@ -255,6 +255,18 @@ impl Registry {
                 ),
             )),
         }
+    }
+
+    /// The end-of-contact criterion law `name` declares (its `END_CRITERION`; overlap for a law
+    /// that declares none): the default of `collide`, `sweep` and `calibrate`, so that a law
+    /// calibrated for a criterion is also run by it.
+    pub fn end_criterion(&self, name: &str) -> Result<EndCriterion, LawError> {
+        Ok(self
+            .find(name)?
+            .0
+            .info
+            .end_criterion
+            .unwrap_or(EndCriterion::Overlap))
     }
 
     /// The plugin files whose law `name` is hidden by the one in use.

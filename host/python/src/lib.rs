@@ -294,6 +294,7 @@ fn _dashpot(m: &Bound<'_, PyModule>) -> PyResult<()> {
     forces::register(m)?;
     runs::register(m)?;
     m.add_function(wrap_pyfunction!(fit::calibrate, m)?)?;
+    m.add_function(wrap_pyfunction!(fit::calibrate_curve, m)?)?;
     m.add_function(wrap_pyfunction!(bed::bed, m)?)?;
     m.add_class::<scene::Scene>()?;
     Ok(())

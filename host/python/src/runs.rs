@@ -35,7 +35,7 @@ fn check_v0(v0: f64) -> PyResult<f64> {
 }
 
 /// The integrator's options at `rtol`, as the CLI checks them.
-fn options(rtol: f64) -> PyResult<Options> {
+pub(crate) fn options(rtol: f64) -> PyResult<Options> {
     if !(1e-14..=1e-3).contains(&rtol) {
         return Err(PyValueError::new_err(format!(
             "rtol = {rtol} is out of range: it must lie in [1e-14, 1e-3]"
@@ -53,6 +53,8 @@ fn options(rtol: f64) -> PyResult<Options> {
 struct Cached {
     law: Arc<ContactLawHandle>,
     template: Arc<Template>,
+    /// The end-of-contact criterion the law declares (the default of `end`).
+    end: EndCriterion,
 }
 
 /// What a law's provenance holds besides the parameter values, for one law and one set of
@@ -107,10 +109,14 @@ fn cached_contact(py: Python<'_>, name: &str, p: &[ParamValue]) -> PyResult<Arc<
     if let Some(l) = caches().laws.get(&key) {
         return Ok(l.clone());
     }
-    let law = with_registry(py, |reg| reg.contact(name, p).map_err(law_err))?;
+    let (law, end) = with_registry(py, |reg| {
+        let law = reg.contact(name, p).map_err(law_err)?;
+        Ok((law, reg.end_criterion(name).map_err(law_err)?))
+    })?;
     let entry = Arc::new(Cached {
         law: Arc::new(law),
         template: template(py, name, p)?,
+        end,
     });
     let mut c = caches();
     if c.laws.len() >= CACHED_LAWS {
@@ -254,10 +260,11 @@ fn collide<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     check_v0(v0)?;
     let mut opt = options(rtol)?;
-    let end = end_of(end, EndCriterion::Overlap)?;
     let p = params_of(params)?;
     let pair = body.pair()?;
     let cached = cached_contact(py, name, &p)?;
+    let given = end.is_some();
+    let end = end_of(end, cached.end)?;
     let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, body.3).map_err(law_err)?;
     opt.record = record;
     if record {
@@ -270,6 +277,10 @@ fn collide<'py>(
     out.set_item(intern!(py, "law"), name)?;
     out.set_item(intern!(py, "v0"), v0)?;
     out.set_item(intern!(py, "end"), end.as_str())?;
+    out.set_item(
+        intern!(py, "end_source"),
+        dashpot::cli::collide::end_source(given, name),
+    )?;
     out.set_item(intern!(py, "restitution"), c.restitution)?;
     out.set_item(intern!(py, "contact_time"), c.contact_time)?;
     out.set_item(intern!(py, "max_overlap"), c.max_overlap)?;
@@ -335,10 +346,11 @@ fn collide_curve<'py>(
         check_v0(v).map_err(|e| PyValueError::new_err(format!("v0[{i}]: {}", e.value(py))))?;
     }
     let opt = options(rtol)?;
-    let end = end_of(end, EndCriterion::Overlap)?;
     let p = params_of(params)?;
     let pair = body.pair()?;
     let cached = cached_contact(py, name, &p)?;
+    let given = end.is_some();
+    let end = end_of(end, cached.end)?;
     let bound: PairLaw<ContactModelHandle> = PairLaw::bind(&cached.law, &pair, body.3).map_err(law_err)?;
     let n = v0s.len();
     let (mut e, mut tc, mut dm, mut tm, mut tp) = (
@@ -373,6 +385,10 @@ fn collide_curve<'py>(
     out.set_item(intern!(py, "law"), name)?;
     out.set_item(intern!(py, "v0"), v0s.to_vec().into_pyarray(py))?;
     out.set_item(intern!(py, "end"), end.as_str())?;
+    out.set_item(
+        intern!(py, "end_source"),
+        dashpot::cli::collide::end_source(given, name),
+    )?;
     out.set_item(intern!(py, "restitution"), e.into_pyarray(py))?;
     out.set_item(intern!(py, "contact_time"), tc.into_pyarray(py))?;
     out.set_item(intern!(py, "max_overlap"), dm.into_pyarray(py))?;
@@ -399,9 +415,10 @@ fn grid(what: &str, g: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
 
 /// Collisions over the product of the impact speeds `v0` and the parameter grids `vary`, as
 /// `dashpot sweep` runs them (in parallel), in its order: every v0 for the first parameter
-/// set, then the next. Returns `(names, values, results)`: the parameter names, each row's
-/// parameter values, and each row's v0, restitution, contact time, maximum overlap and its
-/// time. Ctrl-C stops it between blocks of collisions.
+/// set, then the next. Returns `(names, values, results, end)`: the parameter names, each
+/// row's parameter values, each row's v0, restitution, contact time, maximum overlap and its
+/// time, and the end criterion used (`end`, or else the law's own). Ctrl-C stops it between
+/// blocks of collisions.
 #[pyfunction]
 #[pyo3(signature = (name, params, v0, vary, body, end, rtol))]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
@@ -414,7 +431,7 @@ fn sweep(
     body: Body,
     end: Option<&str>,
     rtol: f64,
-) -> PyResult<(Vec<String>, Vec<Vec<f64>>, Vec<[f64; 5]>)> {
+) -> PyResult<(Vec<String>, Vec<Vec<f64>>, Vec<[f64; 5]>, &'static str)> {
     let base = params_of(params)?;
     let v0s = grid("v0", v0)?;
     for &v in &v0s {
@@ -425,7 +442,8 @@ fn sweep(
         .map(|(n, g)| Ok((n.clone(), grid(&format!("vary {n}"), g)?)))
         .collect::<PyResult<Vec<_>>>()?;
     let opt = options(rtol)?;
-    let end = end_of(end, EndCriterion::Overlap)?;
+    let declared = with_registry(py, |reg| reg.end_criterion(name).map_err(law_err))?;
+    let end = end_of(end, declared)?;
     let (pair, mats) = (body.pair()?, body.materials()?);
     // (a product of grids past the machine is refused before anything is allocated)
     dashpot::cli::sweep::check_size(v0s.len(), &varied, base.len())
@@ -476,7 +494,7 @@ fn sweep(
             ]
         })
         .collect();
-    Ok((names, values, results))
+    Ok((names, values, results, end.as_str()))
 }
 
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {

@@ -32,8 +32,9 @@ impl From<EndArg> for EndCriterion {
 /// Integration options shared by the collision commands.
 #[derive(Args, Debug, Clone)]
 pub struct IntegrationArgs {
-    /// When contact ends: when the overlap returns to 0, or when the force does. Default:
-    /// overlap (for `calibrate`: the criterion the law declares it is calibrated for).
+    /// When contact ends: when the overlap returns to 0, or when the force does. Default: the
+    /// criterion the law declares (`dashpot laws LAW`; overlap if it declares none), the one
+    /// `calibrate` fits it by, so that a calibrated law reproduces its target in `collide`.
     #[arg(long, value_enum)]
     pub end: Option<EndArg>,
     /// Relative tolerance per step, in [1e-14, 1e-3]; the realized restitution is accurate to
@@ -60,6 +61,26 @@ impl IntegrationArgs {
     /// The end criterion, `default` if none was given.
     pub fn end_or(&self, default: EndCriterion) -> EndCriterion {
         self.end.map(EndCriterion::from).unwrap_or(default)
+    }
+
+    /// The end criterion for law `law`: `--end`, or else the one the law declares.
+    pub fn end_for(&self, reg: &Registry, law: &str) -> Result<EndCriterion> {
+        Ok(self.end_or(reg.end_criterion(law)?))
+    }
+
+    /// Where the end criterion came from, for the output: "given" or "declared by 'LAW'".
+    pub fn end_source(&self, law: &str) -> String {
+        end_source(self.end.is_some(), law)
+    }
+}
+
+/// Where a run's end criterion came from: "given" (`--end`, Python's `end=`) or "declared by
+/// 'LAW'" (the law's `END_CRITERION`).
+pub fn end_source(given: bool, law: &str) -> String {
+    if given {
+        "given".to_string()
+    } else {
+        format!("declared by '{law}'")
     }
 }
 
@@ -170,7 +191,7 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
     if opt.record {
         opt.max_step_fraction = 0.01;
     }
-    let end = a.integration.end_or(EndCriterion::Overlap);
+    let end = a.integration.end_for(reg, &sel.name)?;
     let prov = sel.provenance(reg)?;
     let c = run_one(reg, &sel, v0, end, &opt)?;
     if let Some(p) = &a.trajectory {
@@ -182,7 +203,7 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
             "{}",
             serde_json::to_string_pretty(&json!({
                 "law": sel.name, "params": prov.params_json(), "pair": sel.pair_json(),
-                "v0": v0, "end": end.as_str(),
+                "v0": v0, "end": end.as_str(), "end_source": a.integration.end_source(&sel.name),
                 "restitution": c.restitution, "contact_time": c.contact_time,
                 "max_overlap": c.max_overlap, "max_overlap_time": c.max_overlap_time,
                 "stuck": c.stuck, "tensile_peak": c.tensile_peak,
@@ -198,11 +219,15 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
         );
         println!("impact speed v0       = {v0} m/s");
         println!(
-            "end of contact        : {} ({})",
+            "end of contact        : {} ({}; {})",
             end.as_str(),
             match end {
                 EndCriterion::Overlap => "overlap returns to 0",
                 EndCriterion::Force => "force returns to 0",
+            },
+            match a.integration.end {
+                Some(_) => "given by --end".to_string(),
+                None => a.integration.end_source(&sel.name),
             }
         );
         if c.stuck {
@@ -236,17 +261,28 @@ pub fn run_collide(reg: &Registry, a: &CollideArgs) -> Result<()> {
 pub struct CalibrateArgs {
     #[command(flatten)]
     pub law: LawArgs,
-    /// Measured coefficient of restitution, in (0, 1].
-    #[arg(long, allow_hyphen_values = true)]
-    pub restitution: f64,
+    /// Measured coefficient of restitution, in (0, 1] (or --data).
+    #[arg(long, allow_hyphen_values = true, required_unless_present = "data")]
+    pub restitution: Option<f64>,
     /// Measured contact time (s); fits the stiffness too (k, or else the Young's modulus).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "data")]
     pub contact_time: Option<f64>,
+    /// A measured curve instead of one point: a CSV file of rows v0 (m/s), e [, contact time
+    /// (s)] (a header line is allowed), fitted by least squares; prints the fitted parameters
+    /// and each point's residual, and draws the data and the fitted curve into --out.
+    #[arg(long, value_name = "FILE.csv", conflicts_with = "restitution")]
+    pub data: Option<PathBuf>,
+    /// With --data: the folder for calibration.png/.svg (data and fitted curve) and
+    /// calibration.csv (each point with its fitted value and residual).
+    #[arg(long, value_name = "DIR", default_value = "calibration")]
+    pub out: PathBuf,
     /// Impact speed of the measurement (m/s).
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub v0: f64,
-    /// The law parameter to fit to the restitution. Default: `eps` if the law has one, else its
-    /// only parameter other than `k`; a law with several others needs --fit NAME.
+    /// The law parameter to fit to the restitution. Default: `eps` if the law has one, else
+    /// `damp` (LAMMPS's `gran-*` laws), else its only parameter other than `k`; a law with
+    /// several others needs --fit NAME. With --data,
+    /// a comma-separated list fits several (e.g. --fit A,k).
     #[arg(long)]
     pub fit: Option<String>,
     #[command(flatten)]
@@ -259,21 +295,22 @@ pub struct CalibrateArgs {
 /// `dashpot calibrate`.
 pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
     let sel = a.law.resolve()?;
-    let declared = reg
-        .find(&sel.name)?
-        .0
-        .info
-        .end_criterion
-        .unwrap_or(EndCriterion::Overlap);
+    let restitution = match (a.restitution, &a.data) {
+        (_, Some(file)) => return super::calibrate_data::run(reg, a, &sel, file),
+        (Some(e), None) => e,
+        (None, None) => {
+            bail!("give the measured --restitution E (and --v0), or a curve with --data FILE.csv")
+        }
+    };
     let spec = CalibrateSpec {
         law: sel.name.clone(),
         fixed: sel.params.clone(),
         pair: sel.pair,
         shear: sel.materials.shear,
-        restitution: a.restitution,
+        restitution,
         contact_time: a.contact_time,
         v0: a.v0,
-        end: a.integration.end_or(declared),
+        end: a.integration.end_for(reg, &sel.name)?,
         fit: a.fit.clone(),
         options: a.integration.options()?,
     };
@@ -291,7 +328,7 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
                 "law": sel.name, "method": c.method, "params": params,
                 "young": young, "effective_young": c.effective_young, "v0": a.v0,
                 "end": spec.end.as_str(),
-                "target_restitution": a.restitution, "target_contact_time": a.contact_time,
+                "target_restitution": restitution, "target_contact_time": a.contact_time,
                 "restitution": c.realized.restitution, "contact_time": c.realized.contact_time,
                 "max_overlap": c.realized.max_overlap,
                 "restitution_residual": c.restitution_residual,
@@ -316,10 +353,11 @@ pub fn run_calibrate(reg: &Registry, a: &CalibrateArgs) -> Result<()> {
             );
         }
         println!(
-            "check at v0 = {} m/s: restitution {:.12} (residual {:+.2e}), contact time {:.10e} s{}",
+            "check at v0 = {} m/s: restitution {:.12} (residual {:+.2e}, tolerance {:.0e}), contact time {:.10e} s{}",
             a.v0,
             c.realized.restitution,
             c.restitution_residual,
+            crate::collide::calibrate::fit_tolerance(&spec.options),
             c.realized.contact_time,
             c.contact_time_residual
                 .map(|r| format!(" (residual {r:+.2e} s)"))
@@ -411,13 +449,7 @@ fn run_oblique(reg: &Registry, a: &CollideArgs, v0: f64) -> Result<()> {
     let mut la = a.law.clone();
     la.set = nsets;
     let sel = la.resolve()?;
-    let end = a.integration.end_or(
-        reg.find(&sel.name)?
-            .0
-            .info
-            .end_criterion
-            .unwrap_or(EndCriterion::Overlap),
-    );
+    let end = a.integration.end_for(reg, &sel.name)?;
     let model = reg.contact(&sel.name, &sel.params)?.bind(&sel.materials)?;
     let tmodel = match &a.tangential {
         Some(t) => Some(reg.tangential(t, &tparams)?.bind(&sel.materials)?),

@@ -3,6 +3,7 @@
 pub mod args;
 pub mod bed;
 pub mod budget;
+pub mod calibrate_data;
 pub mod collide;
 pub mod collide_heat;
 pub mod dem;

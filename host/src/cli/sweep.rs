@@ -172,7 +172,7 @@ pub fn run_sweep(reg: &Registry, a: &SweepArgs) -> Result<()> {
         varied.push((n.trim().to_string(), parse_grid(g)?));
     }
     let opt = a.integration.options()?;
-    let end = a.integration.end_or(EndCriterion::Overlap);
+    let end = a.integration.end_for(reg, &sel.name)?;
     let prov = sel.provenance(reg)?;
     let rows = sweep(
         reg,

@@ -72,14 +72,64 @@ pub enum CalibrateError {
     /// Which parameter to fit is ambiguous.
     #[error(
         "say which parameter of '{law}' to fit to the restitution with --fit NAME (one of: \
-         {candidates}); the default is `eps`, or else the only parameter other than `k`, and \
-         '{law}' has neither"
+         {candidates}); the default is `eps`, else `damp`, else the only parameter other than \
+         `k`, and '{law}' has none of these"
     )]
     Ambiguous {
         /// The law.
         law: String,
         /// Its parameters.
         candidates: String,
+    },
+    /// The fit ended on parameters that do not reproduce its target.
+    #[error(
+        "the fit of '{law}' missed its target: {what} {target} wanted, {reached} reached \
+         (residual {residual:+.3e}, tolerance {tolerance:e}) with {param}: {why}"
+    )]
+    Missed {
+        /// The law.
+        law: String,
+        /// "restitution" or "contact time (s)".
+        what: &'static str,
+        /// The fitted parameter(s) and their values, as `name = value`.
+        param: String,
+        /// The target.
+        target: f64,
+        /// The value the fitted parameters realize.
+        reached: f64,
+        /// reached − target.
+        residual: f64,
+        /// The acceptance bound ([`fit_tolerance`]; relative for a contact time).
+        tolerance: f64,
+        /// Why, as far as the fit can tell.
+        why: String,
+    },
+    /// The target lies in a jump of the law's response to the parameter.
+    #[error(
+        "no value of '{param}' reproduces {what} {target}: it jumps from {f_hi} to {f_lo} \
+         between {param} = {hi:e} and {lo:e} (the law changes regime there, as an adhesive law \
+         that captures the particle does); the closest value reached, {reached}, misses it by \
+         {residual:+.3e}"
+    )]
+    Jump {
+        /// The fitted parameter.
+        param: String,
+        /// "restitution" or "contact time".
+        what: &'static str,
+        /// The target.
+        target: f64,
+        /// The parameter value on the side below the target.
+        lo: f64,
+        /// The parameter value on the side above the target.
+        hi: f64,
+        /// The law's value at `lo` (below the target).
+        f_lo: f64,
+        /// The law's value at `hi` (above the target).
+        f_hi: f64,
+        /// The value closest to the target that was reached.
+        reached: f64,
+        /// reached − target.
+        residual: f64,
     },
     /// No parameter value in range gives the target.
     #[error(
@@ -104,17 +154,55 @@ pub enum CalibrateError {
     },
 }
 
-fn set(params: &mut Vec<ParamValue>, name: &str, v: f64) {
+/// A fit is accepted when the realized restitution is within this of its target (absolute: a
+/// restitution lies in (0, 1]) and a fitted contact time within this relative to its target;
+/// with an integrator tolerance `rtol` coarser than 1e-11 the bound is `100 rtol` (the realized
+/// restitution is only accurate to about 20 `rtol`).
+pub const FIT_TOLERANCE: f64 = 1e-9;
+
+/// The acceptance bound of a fit integrated with `options` (see [`FIT_TOLERANCE`]).
+pub fn fit_tolerance(options: &Options) -> f64 {
+    FIT_TOLERANCE.max(100.0 * options.rtol)
+}
+
+pub(super) fn set(params: &mut Vec<ParamValue>, name: &str, v: f64) {
     match params.iter_mut().find(|p| p.name == name) {
         Some(p) => p.value = v,
         None => params.push(ParamValue::new(name, v)),
     }
 }
 
-struct Model<'a> {
-    reg: &'a Registry,
-    spec: &'a CalibrateSpec,
-    runs: usize,
+/// The parameter of law `law` (parameters `names`) fitted to the restitution: `fit` if given
+/// (it must exist), else `eps`, else `damp` (the damping of LAMMPS's `gran-*` laws), else the
+/// only parameter other than `k`.
+pub(super) fn fit_name(law: &str, names: &[String], fit: Option<&str>) -> Result<String, CalibrateError> {
+    if let Some(f) = fit {
+        if !names.iter().any(|n| n == f) {
+            return Err(CalibrateError::BadTarget(format!(
+                "--fit {f}: law '{law}' has no such parameter; its parameters are: {}",
+                names.join(", ")
+            )));
+        }
+        return Ok(f.to_string());
+    }
+    let cands: Vec<&String> = names.iter().filter(|n| *n != "k").collect();
+    if let Some(n) = ["eps", "damp"].iter().find(|d| names.iter().any(|n| n == *d)) {
+        Ok(n.to_string())
+    } else if cands.len() == 1 {
+        Ok(cands[0].clone())
+    } else {
+        Err(CalibrateError::Ambiguous {
+            law: law.to_string(),
+            candidates: names.join(", "),
+        })
+    }
+}
+
+/// A calibration's collisions: law `spec.law` with given parameters and Young's modulus factor.
+pub(super) struct Model<'a> {
+    pub(super) reg: &'a Registry,
+    pub(super) spec: &'a CalibrateSpec,
+    pub(super) runs: usize,
 }
 
 impl From<super::rk::RhsError> for CalibrateError {
@@ -124,7 +212,11 @@ impl From<super::rk::RhsError> for CalibrateError {
 }
 
 impl Model<'_> {
-    fn run(&mut self, params: &[ParamValue], young_factor: f64) -> Result<Collision, CalibrateError> {
+    pub(super) fn run(
+        &mut self,
+        params: &[ParamValue],
+        young_factor: f64,
+    ) -> Result<Collision, CalibrateError> {
         let pair = Pair::new(
             self.spec.pair.mass,
             self.spec.pair.radius,
@@ -144,7 +236,11 @@ impl Model<'_> {
     }
 
     /// Restitution, with a law that captures the particles counted as restitution 0.
-    fn restitution(&mut self, params: &[ParamValue], young_factor: f64) -> Result<f64, CalibrateError> {
+    pub(super) fn restitution(
+        &mut self,
+        params: &[ParamValue],
+        young_factor: f64,
+    ) -> Result<f64, CalibrateError> {
         match self.run(params, young_factor) {
             Ok(c) => Ok(c.restitution),
             Err(CalibrateError::Collide(CollideError::NoReturn { .. })) => Ok(0.0),
@@ -182,6 +278,21 @@ fn solve(
         f_lo: f_lo + target,
         f_hi: f_hi + target,
     };
+    // a bracket closed on a jump, in parameter values
+    let jump = |b: Bracket, from: &dyn Fn(f64) -> f64| match b {
+        Bracket::Failed(e) => e,
+        Bracket::Jump { below, above, best } => CalibrateError::Jump {
+            param: name.into(),
+            what,
+            target,
+            lo: from(below.0),
+            hi: from(above.0),
+            f_lo: below.1 + target,
+            f_hi: above.1 + target,
+            reached: best.0 + target,
+            residual: best.0,
+        },
+    };
     let (mut a, mut b);
     if log {
         let s = if start > 0.0 && start.is_finite() {
@@ -198,15 +309,22 @@ fn solve(
         let mut fa = fs;
         let mut fb = fs;
         let mut found = false;
+        // a side stops where the law refuses the value with the other parameters (say
+        // Walton–Braun's k2 below its k1)
+        let (mut open_a, mut open_b) = (true, true);
         for _ in 0..60 {
             let (na, nb) = (a / 4.0, b * 4.0);
-            if inside(na) {
-                a = na;
-                fa = f(a)? - target;
+            if open_a && inside(na) {
+                match refused(f(na))? {
+                    Some(v) => (a, fa) = (na, v - target),
+                    None => open_a = false,
+                }
             }
-            if inside(nb) {
-                b = nb;
-                fb = f(b)? - target;
+            if open_b && inside(nb) {
+                match refused(f(nb))? {
+                    Some(v) => (b, fb) = (nb, v - target),
+                    None => open_b = false,
+                }
             }
             if (fa > 0.0) != (fs > 0.0) {
                 b = a * 4.0;
@@ -233,7 +351,9 @@ fn solve(
         if !found {
             return Err(unreachable(a, b, fa, fb));
         }
-        illinois(to(a), fa, to(b), fb, |y| Ok(f(from(y))? - target)).map(from)
+        illinois(to(a), fa, to(b), fb, |y| Ok(f(from(y))? - target))
+            .map(&from)
+            .map_err(|b| jump(b, &*from))
     } else {
         let w = range.max - range.min;
         a = if range.min_inclusive {
@@ -257,7 +377,21 @@ fn solve(
         if (fa > 0.0) == (fb > 0.0) {
             return Err(unreachable(a, b, fa, fb));
         }
-        illinois(a, fa, b, fb, |y| Ok(f(y)? - target))
+        illinois(a, fa, b, fb, |y| Ok(f(y)? - target)).map_err(|b| jump(b, &|x| x))
+    }
+}
+
+/// The root of f between a and b by the Illinois method: of the points it evaluated, the one
+/// where |f| is least (an integrated restitution is smooth in a parameter only to the
+/// integrator's tolerance, so the last point of the bracket need not be the best).
+/// If even the best point misses by more than 1e-6 the bracket has closed on a jump of f
+/// across 0: [`CalibrateError::Jump`] (the caller fills in the names and maps the coordinate).
+/// `Ok(None)` for a value the law refuses as invalid (with the other parameters given).
+fn refused(r: Result<f64, CalibrateError>) -> Result<Option<f64>, CalibrateError> {
+    match r {
+        Ok(v) => Ok(Some(v)),
+        Err(CalibrateError::Law(e)) if e.kind == dashpot_sdk::ErrorKind::InvalidParameter => Ok(None),
+        Err(e) => Err(e),
     }
 }
 
@@ -267,8 +401,44 @@ fn illinois(
     b: f64,
     fb: f64,
     mut f: impl FnMut(f64) -> Result<f64, CalibrateError>,
-) -> Result<f64, CalibrateError> {
-    super::rk::locate(a, fa, b, fb, |x| Ok((f(x)?, x))).map(|(x, _)| x)
+) -> Result<f64, Bracket> {
+    let mut best = if fa.abs() <= fb.abs() { (fa, a) } else { (fb, b) };
+    // the closest points on either side of the root: (x, f)
+    let (mut below, mut above) = if fa < 0.0 {
+        ((a, fa), (b, fb))
+    } else {
+        ((b, fb), (a, fa))
+    };
+    let r = super::rk::locate(a, fa, b, fb, |x| -> Result<(f64, f64), CalibrateError> {
+        let fx = f(x)?;
+        if fx.abs() < best.0.abs() {
+            best = (fx, x);
+        }
+        if fx < 0.0 && fx >= below.1 {
+            below = (x, fx);
+        } else if fx > 0.0 && fx <= above.1 {
+            above = (x, fx);
+        }
+        Ok((fx, x))
+    });
+    match r {
+        Err(e) => Err(Bracket::Failed(e)),
+        Ok(_) if best.0.abs() > 1e-6 => Err(Bracket::Jump { below, above, best }),
+        Ok(_) => Ok(best.1),
+    }
+}
+
+/// Why [`illinois`] found no root.
+enum Bracket {
+    /// f failed.
+    Failed(CalibrateError),
+    /// f jumps across 0 between `below` and `above` ((x, f) each, f < 0 and > 0); `best` is
+    /// the (f, x) of least |f|.
+    Jump {
+        below: (f64, f64),
+        above: (f64, f64),
+        best: (f64, f64),
+    },
 }
 
 /// Calibrates `spec.law`.
@@ -322,34 +492,12 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
         None => (spec.fixed.clone(), 1.0, "numerical"),
     };
 
+    // the parameter fitted numerically to the restitution, and its range
+    let mut fitted: Option<(String, Range)> = None;
     if method == "numerical" {
         // the parameter fitted to the restitution
         let names: Vec<String> = schema.iter().map(|s| s.name.to_string()).collect();
-        let fit = match &spec.fit {
-            Some(f) => {
-                if !names.contains(f) {
-                    return Err(CalibrateError::BadTarget(format!(
-                        "--fit {f}: law '{}' has no such parameter; its parameters are: {}",
-                        spec.law,
-                        names.join(", ")
-                    )));
-                }
-                f.clone()
-            }
-            None => {
-                let cands: Vec<&String> = names.iter().filter(|n| *n != "k").collect();
-                if names.iter().any(|n| n == "eps") {
-                    "eps".to_string()
-                } else if cands.len() == 1 {
-                    cands[0].clone()
-                } else {
-                    return Err(CalibrateError::Ambiguous {
-                        law: spec.law.clone(),
-                        candidates: names.join(", "),
-                    });
-                }
-            }
-        };
+        let fit = fit_name(&spec.law, &names, spec.fit.as_deref())?;
         let fit_spec = schema
             .iter()
             .find(|s| s.name == fit.as_str())
@@ -357,6 +505,7 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
             .ok_or_else(|| {
                 CalibrateError::BadTarget(format!("law '{}' has no parameter '{fit}'", spec.law))
             })?;
+        fitted = Some((fit.clone(), fit_spec.range));
         let stiff_k = names.iter().any(|n| n == "k") && fit != "k";
         let mut p_fit = params
             .iter()
@@ -410,7 +559,14 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
             }
         }
     }
-    let mut realized = model.run(&params, young_factor)?;
+    let mut realized = match model.run(&params, young_factor) {
+        // the fitted value captures the particle: restitution 0, refused below with the reason
+        Err(e @ CalibrateError::Collide(CollideError::NoReturn { .. })) if fitted.is_some() => {
+            check_reached(&mut model, &params, young_factor, 0.0, None, fitted.as_ref())?;
+            return Err(e);
+        }
+        r => r?,
+    };
     if let (Some(tau), "closed form") = (spec.contact_time, method) {
         // a closed form that did not place the contact time is completed numerically
         if (realized.contact_time / tau - 1.0).abs() > 1e-9 {
@@ -421,17 +577,12 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
             realized = model.run(&params, young_factor)?;
         }
     }
-    let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
-    for s in &schema {
-        if !full.iter().any(|(n, _)| n == s.name.as_str()) {
-            if let Some(d) = s.default {
-                full.push((s.name.to_string(), d));
-            }
-        }
-    }
+    let reached = if realized.stuck { 0.0 } else { realized.restitution };
+    let time = Some(realized.contact_time);
+    check_reached(&mut model, &params, young_factor, reached, time, fitted.as_ref())?;
     Ok(Calibration {
         method,
-        params: full,
+        params: complete(&params, &schema),
         young_factor,
         effective_young: spec.pair.young * young_factor,
         restitution_residual: realized.restitution - eps,
@@ -439,4 +590,121 @@ pub fn calibrate(reg: &Registry, spec: &CalibrateSpec) -> Result<Calibration, Ca
         realized,
         collisions: model.runs,
     })
+}
+
+/// `params` with the defaults of the parameters of `schema` they do not name, as (name, value).
+pub(super) fn complete(params: &[ParamValue], schema: &[dashpot_sdk::ParamSpec]) -> Vec<(String, f64)> {
+    let mut full: Vec<(String, f64)> = params.iter().map(|p| (p.name.to_string(), p.value)).collect();
+    for s in schema {
+        if !full.iter().any(|(n, _)| n == s.name.as_str()) {
+            if let Some(d) = s.default {
+                full.push((s.name.to_string(), d));
+            }
+        }
+    }
+    full
+}
+
+/// Refuses a calibration whose parameters do not reproduce its targets within
+/// [`fit_tolerance`] (`reached`: the realized restitution, 0 for a capture), saying why as far
+/// as a probe around the fitted value can tell.
+fn check_reached(
+    model: &mut Model<'_>,
+    params: &[ParamValue],
+    young_factor: f64,
+    reached: f64,
+    contact_time: Option<f64>,
+    fitted: Option<&(String, Range)>,
+) -> Result<(), CalibrateError> {
+    let spec = model.spec;
+    let tolerance = fit_tolerance(&spec.options);
+    let value_of = |n: &str| params.iter().find(|p| p.name == n).map(|p| p.value);
+    let named = match fitted {
+        Some((n, _)) => format!("{n} = {:e}", value_of(n).unwrap_or(f64::NAN)),
+        None => params
+            .iter()
+            .map(|p| format!("{} = {:e}", p.name, p.value))
+            .collect::<Vec<_>>()
+            .join(", "),
+    };
+    let residual = reached - spec.restitution;
+    // (a NaN misses too)
+    if residual.abs() > tolerance || residual.is_nan() {
+        let why = match fitted {
+            Some((n, range)) => {
+                let x = value_of(n).unwrap_or(f64::NAN);
+                why_missed(model, params, young_factor, n, *range, x)
+            }
+            None => format!(
+                "the closed form of '{}' does not reproduce it with contacts ending by {}",
+                spec.law,
+                spec.end.as_str()
+            ),
+        };
+        return Err(CalibrateError::Missed {
+            law: spec.law.clone(),
+            what: "restitution",
+            param: named,
+            target: spec.restitution,
+            reached,
+            residual,
+            tolerance,
+            why,
+        });
+    }
+    if let (Some(tau), Some(t)) = (spec.contact_time, contact_time) {
+        let rel = t / tau - 1.0;
+        if rel.abs() > tolerance || rel.is_nan() {
+            return Err(CalibrateError::Missed {
+                law: spec.law.clone(),
+                what: "contact time (s)",
+                param: format!("{named} and a Young's modulus factor {young_factor:e}"),
+                target: tau,
+                reached: t,
+                residual: t - tau,
+                tolerance,
+                why: "the stiffness that places the contact time moves the restitution off its \
+                      target (or the reverse) and the alternation did not settle"
+                    .to_string(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Why the restitution of `name` = `x` misses the target (the search closed on it, so f is
+/// continuous there to the integrator's resolution, or not at all).
+fn why_missed(
+    model: &mut Model<'_>,
+    params: &[ParamValue],
+    young_factor: f64,
+    name: &str,
+    range: Range,
+    x: f64,
+) -> String {
+    let target = model.spec.restitution;
+    let miss = (model
+        .restitution(&with(params, name, x), young_factor)
+        .unwrap_or(f64::NAN)
+        - target)
+        .abs();
+    if miss <= 1e-6 {
+        format!(
+            "the integrated restitution is smooth in '{name}' only to about {miss:.0e} here (the \
+             resolution of the integrator at --rtol {}): try a smaller --rtol",
+            model.spec.options.rtol
+        )
+    } else {
+        format!(
+            "no value of '{name}' in its range {range} was found that gives {target}: the \
+             restitution is not a continuous function of '{name}' there"
+        )
+    }
+}
+
+/// `params` with `name` set to `v`.
+fn with(params: &[ParamValue], name: &str, v: f64) -> Vec<ParamValue> {
+    let mut p = params.to_vec();
+    set(&mut p, name, v);
+    p
 }

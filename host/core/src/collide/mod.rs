@@ -5,6 +5,7 @@
 pub mod adhesive;
 pub mod calibrate;
 pub mod extrap;
+pub mod fit_curve;
 pub mod heat;
 pub mod lanes;
 pub mod oblique;
