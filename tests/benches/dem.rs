@@ -160,6 +160,24 @@ impl Pairs {
         r
     }
 
+    /// Prints what `a` costs more than `b` a step (`on` and `off` name them), `work`
+    /// particle-steps a block, `contacts` in the pile: the median of the blocks' ratios, the
+    /// spread of the ratios and the ratio of the medians.
+    fn print_cost(&self, what: &str, on: &str, off: &str, work: usize, contacts: usize, target: &str) {
+        let r = self.ratios();
+        let ps = |t: &[f64]| work as f64 / median(t);
+        println!(
+            "{what}, 1 core: {on} {:.3e} particle-steps/s, {off} {:.3e}; cost of a step {:+.1} % median of the blocks' ratios ({:+.1} to {:+.1} %), {:+.1} % of the medians ({} interleaved blocks; {contacts} contacts)   target {target}",
+            ps(&self.ta),
+            ps(&self.tb),
+            100.0 * (1.0 / median(&r) - 1.0),
+            100.0 * (1.0 / r[r.len() - 1] - 1.0),
+            100.0 * (1.0 / r[0] - 1.0),
+            100.0 * (median(&self.ta) / median(&self.tb) - 1.0),
+            self.ta.len()
+        );
+    }
+
     /// Prints the plugins' speed (`a`) against the laws compiled in (`b`), `work` particle-steps
     /// a block, and checks that both followed the same trajectory.
     fn plugins_against_compiled<const D: usize>(
@@ -586,7 +604,6 @@ fn main() {
         let n = 4 * BASE3D;
         const BLOCKS: usize = 21;
         const K: usize = 400;
-        let ps = |t: f64| (n * K) as f64 / t;
         let contest = |a: &mut Engine<3>, b: &mut Engine<3>| {
             one.install(|| {
                 // the contacts' history formed again after the copy
@@ -606,16 +623,14 @@ fn main() {
             let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), true);
             let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
             let ab = contest(&mut a, &mut b);
-            let r = ab.ratios();
-            println!(
-                "{n} spheres, HSD + Mindlin + rolling sds (plugins), 1 core: energy accounting on {:.3e} particle-steps/s, off {:.3e}; overhead of a step {:+.1} % median of the blocks' ratios ({:+.1} to {:+.1} %), {:+.1} % of the medians ({BLOCKS} interleaved blocks of {K} steps; {} contacts)   target <= 10 %",
-                ps(median(&ab.ta)),
-                ps(median(&ab.tb)),
-                100.0 * (1.0 / median(&r) - 1.0),
-                100.0 * (1.0 / r[r.len() - 1] - 1.0),
-                100.0 * (1.0 / r[0] - 1.0),
-                100.0 * (median(&ab.ta) / median(&ab.tb) - 1.0),
-                a.contacts()
+            let what = format!("{n} spheres, HSD + Mindlin + rolling sds (plugins), blocks of {K} steps");
+            ab.print_cost(
+                &what,
+                "energy accounting on",
+                "off",
+                n * K,
+                a.contacts(),
+                "<= 10 %",
             );
             println!(
                 "  dissipated since the copy (J): normal {:.3e}, tangential {:.3e}, rolling {:.3e}, twisting {:.3e}",
@@ -627,20 +642,12 @@ fn main() {
             );
         }
         if run("species") {
-            let mut a = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
-            let mut b = tiled3d_species(&base, [2, 2], || plugin_laws(&reg, true));
+            let mut a = tiled3d_species(&base, [2, 2], || plugin_laws(&reg, true));
+            let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
             let ab = contest(&mut a, &mut b);
-            let r = ab.ratios();
-            println!(
-                "{n} spheres, HSD + Mindlin + rolling sds (plugins), 1 core: one species {:.3e} particle-steps/s, two species with laws per pair {:.3e}; cost of a step {:+.1} % median of the blocks' ratios ({:+.1} to {:+.1} %) ({BLOCKS} interleaved blocks of {K} steps; {} and {} contacts)   target <= 5 %",
-                ps(median(&ab.ta)),
-                ps(median(&ab.tb)),
-                100.0 * (median(&r) - 1.0),
-                100.0 * (r[0] - 1.0),
-                100.0 * (r[r.len() - 1] - 1.0),
-                a.contacts(),
-                b.contacts()
-            );
+            let what = format!("{n} spheres, HSD + Mindlin + rolling sds (plugins), blocks of {K} steps");
+            let (on, off) = ("two species with laws per pair", "one species");
+            ab.print_cost(&what, on, off, n * K, a.contacts(), "<= 5 %");
         }
         if run("checkpoint") {
             let dir = std::env::temp_dir().join(format!("dashpot-bench-{}", std::process::id()));
@@ -679,18 +686,9 @@ fn main() {
             let mut a = a.with_heat(setup).unwrap();
             let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), true);
             let ab = contest(&mut a, &mut b);
-            let r = ab.ratios();
             let books = a.heat_books().unwrap();
-            println!(
-                "{n} spheres, HSD + Mindlin + rolling sds (plugins), 1 core: heat-radius on {:.3e} particle-steps/s, off {:.3e}; cost of heat {:+.1} % of a step, median of the blocks' ratios ({:+.1} to {:+.1} %), {:+.1} % of the medians ({BLOCKS} interleaved blocks of {K} steps; {} contacts)   target <= 15 %",
-                ps(median(&ab.ta)),
-                ps(median(&ab.tb)),
-                100.0 * (1.0 / median(&r) - 1.0),
-                100.0 * (1.0 / r[r.len() - 1] - 1.0),
-                100.0 * (1.0 / r[0] - 1.0),
-                100.0 * (median(&ab.ta) / median(&ab.tb) - 1.0),
-                a.contacts()
-            );
+            let what = format!("{n} spheres, HSD + Mindlin + rolling sds (plugins), blocks of {K} steps");
+            ab.print_cost(&what, "heat-radius on", "off", n * K, a.contacts(), "<= 15 %");
             println!(
                 "  thermal books: Σ m c T {:.6e} J, the floor gave {:.3e} J, balance {:.1e} J; smallest m c/ΣH {:.3e} s (dt {:.3e} s)",
                 books.thermal, books.wall_heat, books.balance, books.stability_limit, books.dt

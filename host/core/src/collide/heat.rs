@@ -10,7 +10,7 @@
 //! 1/C₂)), e^{−(1/C₁ + 1/C₂) ∫ H dt} as dt → 0), the largest conductance, and the motion's
 //! contact time and restitution. C₁ ΔT₁ + C₂ ΔT₂ = 0 to rounding between spheres.
 
-use super::oblique::{Body, ObliqueError, Target};
+use super::oblique::{contact_over, Body, ObliqueError, Target};
 use super::two_body::{collide, Options, PairLaw};
 use crate::laws::{EnergyOut, HeatConduction, NormalLaw};
 use dashpot_sdk::{EndCriterion, HeatBatch, HeatFlow, NormalBatch, NormalContext};
@@ -112,7 +112,8 @@ pub fn impact_heat<N: NormalLaw, H: HeatConduction>(
     let (mut f, mut t, mut steps) = (0.0f64, 0.0f64, 0usize);
     let [mut t1, mut t2] = imp.temperature;
     let (mut q_sum, mut h_sum, mut h_max) = (0.0f64, 0.0f64, 0.0f64);
-    let (mut unloading, mut stuck) = (false, false);
+    let mut unloading = false;
+    let stuck: bool;
     let max_steps = 100 * imp.steps;
     loop {
         // kick, drift (the force pushes the particle up, the partner down)
@@ -164,15 +165,8 @@ pub fn impact_heat<N: NormalLaw, H: HeatConduction>(
         if rate < 0.0 {
             unloading = true;
         }
-        let over = match imp.end {
-            EndCriterion::Overlap => unloading && delta <= -reach[0],
-            EndCriterion::Force => unloading && f <= 0.0,
-        };
-        if over {
-            break;
-        }
-        if unloading && rate > 0.0 {
-            stuck = true;
+        if let Some(s) = contact_over(imp.end, unloading, delta, reach[0], f, rate) {
+            stuck = s;
             break;
         }
         if steps > max_steps {

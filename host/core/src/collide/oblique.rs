@@ -215,7 +215,7 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
     let mut ratios: Vec<f64> = Vec::with_capacity(impact.steps + 16);
     let mut max_overlap = 0.0f64;
     let mut unloading = false;
-    let mut stuck = false;
+    let stuck: bool;
     let limit = 100.0;
     let max_steps = (limit * impact.steps as f64) as usize;
     let (inv_m1, inv_m2) = (1.0 / m1, if wall { 0.0 } else { 1.0 / m2 });
@@ -299,15 +299,8 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
         w2 = w2h + t2 * (0.5 * dt * inv_i2);
         // an adhesive contact lasts to its reach (δ < −reach), and sticks if the rebound turns
         // back before it gets there
-        let over = match impact.end {
-            EndCriterion::Overlap => unloading && delta <= -reach[0],
-            EndCriterion::Force => unloading && fnv <= 0.0,
-        };
-        if over {
-            break;
-        }
-        if unloading && rate > 0.0 {
-            stuck = true;
+        if let Some(s) = contact_over(impact.end, unloading, delta, reach[0], fnv, rate) {
+            stuck = s;
             break;
         }
         if steps > max_steps {
@@ -340,6 +333,31 @@ pub fn oblique<N: NormalLaw, T: TangentialForce>(
 
 /// The share of contact steps whose |F_t|/F_n equals the largest one seen (to 1e-6): the steps
 /// on the Coulomb line, without knowing the tangential law's μ.
+/// After a step of a contact with overlap `delta` (m), normal force `force` (N) and overlap
+/// rate `rate` (m/s), `unloading` once the overlap has started to fall: `None` while it goes
+/// on, `Some(false)` when it has ended by `end` (an adhesive contact at its reach, δ < −reach
+/// (m)), `Some(true)` when the rebound turned back before then (the particles stuck).
+pub(crate) fn contact_over(
+    end: EndCriterion,
+    unloading: bool,
+    delta: f64,
+    reach: f64,
+    force: f64,
+    rate: f64,
+) -> Option<bool> {
+    let over = match end {
+        EndCriterion::Overlap => unloading && delta <= -reach,
+        EndCriterion::Force => unloading && force <= 0.0,
+    };
+    if over {
+        Some(false)
+    } else if unloading && rate > 0.0 {
+        Some(true)
+    } else {
+        None
+    }
+}
+
 fn sliding_share(ratios: &[f64]) -> f64 {
     let top = ratios.iter().copied().fold(0.0, f64::max);
     if ratios.is_empty() || top == 0.0 {
