@@ -60,6 +60,7 @@
 //! # temperature = 300.0              # K, with [heat]
 //! ```
 
+mod bind;
 mod check;
 mod generate;
 mod pairs;

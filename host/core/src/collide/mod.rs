@@ -4,6 +4,7 @@
 
 pub mod adhesive;
 pub mod calibrate;
+mod calibrate_error;
 pub mod extrap;
 pub mod fit_curve;
 pub mod heat;
