@@ -164,6 +164,9 @@ pub(super) fn context_block(
         return Ok(&[]);
     }
     let x = &all[lo..hi];
+    if all_contexts_valid(x) {
+        return Ok(x);
+    }
     match x.iter().position(|c| !c.is_valid()) {
         Some(i) => Err((lo + i, BatchFault::CONTEXT_INPUT)),
         None => Ok(x),

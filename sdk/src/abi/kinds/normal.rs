@@ -334,7 +334,10 @@ impl<B: BoundContact> KindBound<Normal> for B {
         if !b4.context.is_null() {
             let out = unsafe { slice_mut(b4.context, n) };
             self.context_batch(&batch, out);
-            if let Some(i) = out.iter().position(|x| !x.is_valid()) {
+            if let Some(i) = (!all_contexts_valid(out))
+                .then(|| out.iter().position(|x| !x.is_valid()))
+                .flatten()
+            {
                 return Err((i, BatchFault::CONTEXT));
             }
         }
@@ -377,6 +380,9 @@ fn with_contexts<B: BoundContact>(
                 return Err((i, BatchFault::REACH));
             }
         }
+    }
+    if all_contexts_valid(&out[..n]) {
+        return Ok(false);
     }
     match out[..n].iter().position(|x| !x.is_valid()) {
         Some(i) => Err((i, BatchFault::CONTEXT)),
