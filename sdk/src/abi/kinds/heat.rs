@@ -103,10 +103,9 @@ impl Kind for Heat {
 /// and ≥ 0, with the array at fault.
 #[inline(always)]
 fn bad_flow(flow: &[HeatFlow]) -> Option<(usize, u8)> {
-    let ok = flow.iter().fold(true, |ok, f| {
-        ok & is_finite(f.heat) & (0.0..f64::INFINITY).contains(&f.conductance)
-    });
-    if ok {
+    // SAFETY: `HeatFlow` is `repr(C)` of two f64, the conductance second: n flows are 2 n f64
+    let flat = unsafe { std::slice::from_raw_parts(flow.as_ptr().cast::<f64>(), 2 * flow.len()) };
+    if all_finite_non_negative(flat, true) {
         return None;
     }
     flow.iter().enumerate().find_map(|(i, f)| {
