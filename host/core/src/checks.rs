@@ -164,7 +164,10 @@ pub fn unit_normals(normal: &[[f64; 3]]) -> Result<(), String> {
     // roots, that accepts lengths within half the tolerance (|n|² in [(1 − tol/2)², (1 +
     // tol/2)²], far inside the exact test's band whatever the rounding); the exact test below
     // decides (and names the culprit) only when it says no
-    let (lo, hi) = ((1.0 - 0.5 * UNIT_TOLERANCE).powi(2), (1.0 + 0.5 * UNIT_TOLERANCE).powi(2));
+    let (lo, hi) = (
+        (1.0 - 0.5 * UNIT_TOLERANCE).powi(2),
+        (1.0 + 0.5 * UNIT_TOLERANCE).powi(2),
+    );
     let surely = normal.iter().fold(true, |ok, n| {
         let l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
         ok & (l2 >= lo) & (l2 <= hi)
