@@ -334,7 +334,7 @@ impl<B: BoundContact> KindBound<Normal> for B {
         if !b4.context.is_null() {
             let out = unsafe { slice_mut(b4.context, n) };
             self.context_batch(&batch, out);
-            if let Some(i) = out.iter().position(|x| !x.is_valid()) {
+            if let Some(i) = first_invalid_context(out) {
                 return Err((i, BatchFault::CONTEXT));
             }
         }
@@ -378,7 +378,7 @@ fn with_contexts<B: BoundContact>(
             }
         }
     }
-    match out[..n].iter().position(|x| !x.is_valid()) {
+    match first_invalid_context(&out[..n]) {
         Some(i) => Err((i, BatchFault::CONTEXT)),
         None => Ok(false),
     }
