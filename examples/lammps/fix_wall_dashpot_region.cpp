@@ -59,9 +59,15 @@ void FixWallDashpotRegion::update_contacts(int i, int nc)
     // most atoms of a region's fix touch none of its surfaces, now or at the last step
     if (nc == 0 && nold == 0) return;
     const double radius = atom->radius[i];
+    int *keys = key.data() + (size_t) i * nper;
+    // the common case, one stored contact reported again on its surface and still acting: kept
+    if (nc == 1 && nold == 1 && keys[0] == region->contact[0].iwall && acts(i, 0, radius - region->contact[0].r)) {
+        slot_of.resize(1);
+        slot_of[0] = 0;
+        return;
+    }
     slot_of.assign(nc, -1);
     alive.assign(nper, 0);
-    int *keys = key.data() + (size_t) i * nper;
     for (int ic = 0; ic < nc; ic++) {
         const int iwall = region->contact[ic].iwall;
         for (int c = 0; c < nold; c++)
@@ -114,16 +120,19 @@ void FixWallDashpotRegion::post_force(int /*vflag*/)
     const int *mask = atom->mask;
     const int nlocal = atom->nlocal;
     const int tmax = region->tmax;
+    const bool adhesive = layout.adhesive;
     for (int i = 0; i < nlocal; i++) {
         if (!(mask[i] & groupbit)) continue;
         int nc = 0;
         // a particle whose centre left the region touches none of its surfaces
         if (region->match(x[i][0], x[i][1], x[i][2])) {
-            nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + reach_of(i));
+            nc = region->surface(x[i][0], x[i][1], x[i][2], radius[i] + (adhesive ? reach_of(i) : 0.0));
             if (nc > tmax)
                 error->one(FLERR, "{}: atom {} touches {} surfaces of region {}, more than its {}", context,
                            atom->tag[i], nc, idregion, tmax);
         }
+        // most atoms touch none of the surfaces, now or at the last step: no call
+        if (nc == 0 && ncontact[i] == 0) continue;
         update_contacts(i, nc);
         for (int ic = 0; ic < nc; ic++) {
             const int c = slot_of[ic];

@@ -129,6 +129,8 @@ class PairDashpot : public Pair {
     int spec_of(int i, int j) const;
     void bind_pair(int i, int j);
     void apply(dashpot_lmp::ContactEngine::Chunk &c, int n, bool wall, bool applied);
+    /* Stops with an error: contact k of chunk c reaches past the neighbour cutoff. */
+    [[noreturn]] void reach_error(const dashpot_lmp::ContactEngine::Chunk &c, int k);
     void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
     int find_slot(int i, int j) const;
     [[noreturn]] void fail(const std::exception &e, bool all);

@@ -17,6 +17,20 @@
 using namespace LAMMPS_NS;
 using namespace dashpot_lmp;
 
+/* Contact k of chunk c reaches past the neighbour cutoff of its pair of types: an error. */
+void PairDashpot::reach_error(const ContactEngine::Chunk &c, int k)
+{
+    const int a = c.a[k], b = c.b[k];
+    const double *radius = atom->radius;
+    const double cut = key_cut[atom->type[a] * (atom->ntypes + 1) + atom->type[b]];
+    error->one(FLERR,
+               "pair dashpot: a contact of law '{}' reaches {} beyond touching, past the neighbour "
+               "cutoff ({} for radii {} and {}): its reach depends on more than the radii it was "
+               "probed at",
+               models.spec(models.model(c.model[k]).spec).law[dashpot_lmp::NORMAL].name, c.reach[k], cut,
+               radius[a], radius[b]);
+}
+
 /* What the step keeps of the n contacts of chunk c beyond their forces and torques (added by the
  * engine to the atoms): the virial, each pair's energy outputs for single(), and the check that
  * an adhesive contact stays within the neighbour cutoff. With `applied` false (the virial is
@@ -28,6 +42,17 @@ void PairDashpot::apply(ContactEngine::Chunk &c, int n, bool wall, bool applied)
     const int nlocal = atom->nlocal;
     const int newton_pair = force->newton_pair;
     const bool adh = layout.adhesive;
+    const int *type = atom->type;
+    const int nt1 = atom->ntypes + 1;
+    const double *cut = key_cut.data();
+    if (applied && !wall && !energy_flag) {
+        // the forces applied, no virial nor energy: only an adhesive contact's reach to check
+        for (int k = 0; k < n; k++) {
+            const int a = c.a[k], b = c.b[k];
+            if (adh && radius[a] + radius[b] + c.reach[k] > cut[type[a] * nt1 + type[b]]) reach_error(c, k);
+        }
+        return;
+    }
     for (int k = 0; k < n; k++) {
         const int a = c.a[k], b = c.b[k];
         if (!applied) {
@@ -50,14 +75,7 @@ void PairDashpot::apply(ContactEngine::Chunk &c, int n, bool wall, bool applied)
                 ev_tally_xyz(a, b, nlocal, newton_pair, 0.0, 0.0, F[0], F[1], F[2], nv[0] * r, nv[1] * r, nv[2] * r);
             }
             // an adhesive contact must stay in the neighbour list as long as it acts
-            const int key = atom->type[a] * (atom->ntypes + 1) + atom->type[b];
-            if (adh && radius[a] + radius[b] + c.reach[k] > key_cut[key])
-                error->one(FLERR,
-                           "pair dashpot: a contact of law '{}' reaches {} beyond touching, past the neighbour "
-                           "cutoff ({} for radii {} and {}): its reach depends on more than the radii it was "
-                           "probed at",
-                           models.spec(models.model(c.model[k]).spec).law[dashpot_lmp::NORMAL].name, c.reach[k],
-                           key_cut[key], radius[a], radius[b]);
+            if (adh && radius[a] + radius[b] + c.reach[k] > cut[type[a] * nt1 + type[b]]) reach_error(c, k);
             if (energy_flag) {
                 double *e = slot_energy.data() + (size_t) c.slot[k] * NENERGY;
                 e[dashpot_lmp::NFAMILY] = 0.0;

@@ -19,10 +19,10 @@
 //!    one core, interleaved blocks, the median of the blocks' ratios;
 //! 6. `energy`: the same 4,000 spheres and laws (plugins) with energy accounting on against
 //!    off (`EngineConfig::energy`), interleaved blocks: the overhead as a fraction of a step;
-//! 7. `species`: the same 4,000 spheres and laws as one species against two species of the
-//!    same material, alternating sphere by sphere, each of the three pairs of species and each
-//!    species against the floor under its own copy of the laws (so the contacts go to five
-//!    batch calls instead of two), interleaved blocks: what species and per-pair laws cost;
+//! 7. `species`: the same 4,000 spheres as one species against two species of the same
+//!    material, alternating sphere by sphere, each pair of species and each species–floor pair
+//!    under its own laws ([`SPECIES_LAWS`]: five classes of contacts instead of two),
+//!    interleaved blocks: what species and per-pair laws cost;
 //! 8. `checkpoint`: the time to write one checkpoint (`dem::checkpoint::write`, the whole
 //!    state, atomically) of that pile and of 10⁵ spheres, as a share of a minute of run (a run
 //!    checkpointing once a minute);
@@ -69,10 +69,15 @@ fn rolling_params() -> Vec<ParamValue> {
 
 /// HSD + Mindlin (+ rolling sds with `rolling`) from the plugins.
 fn plugin_laws(reg: &dashpot::Registry, rolling: bool) -> Laws {
+    plugin_laws_with(reg, rolling, SPECIES_LAWS[0])
+}
+
+/// [`plugin_laws`] with HSD's restitution ε and Mindlin's μ `(eps, mu)`.
+fn plugin_laws_with(reg: &dashpot::Registry, rolling: bool, (eps, mu): (f64, f64)) -> Laws {
     let laws = Laws::from_registry(
         reg,
-        ("hsd", &[ParamValue::new("eps", 0.5)]),
-        Some(("mindlin", &[ParamValue::new("mu", 0.3)])),
+        ("hsd", &[ParamValue::new("eps", eps)]),
+        Some(("mindlin", &[ParamValue::new("mu", mu)])),
         &MAT,
     )
     .unwrap();
@@ -82,6 +87,10 @@ fn plugin_laws(reg: &dashpot::Registry, rolling: bool) -> Laws {
     laws.with_rotation(reg, Some(("rolling-sds", &rolling_params())), None, &MAT)
         .unwrap()
 }
+
+/// The laws (HSD's ε, Mindlin's μ) of the `species` section's classes: a–a (and the pile of
+/// one species), a–b, b–b; a–floor, b–floor. Each class its own: no two could share a batch.
+const SPECIES_LAWS: [(f64, f64); 5] = [(0.5, 0.3), (0.55, 0.32), (0.6, 0.34), (0.5, 0.3), (0.45, 0.28)];
 
 /// The same laws as [`plugin_laws`] compiled into this benchmark.
 fn compiled_laws(rolling: bool) -> Laws {
@@ -357,27 +366,20 @@ fn tiled3d(base: &Engine<3>, tiles: [usize; 2], order: TileOrder, laws: Laws, en
 }
 
 /// `tiles` copies of `base` as two species of the same material (sphere k of species k mod 2),
-/// each pair of species and each species–floor pair under its own copy of `laws()`.
-fn tiled3d_species(base: &Engine<3>, tiles: [usize; 2], laws: impl Fn() -> Laws) -> Engine<3> {
+/// each pair of species and each species–floor pair under its own laws: `laws(SPECIES_LAWS[c])`
+/// for class c (a–a, a–b, b–b between spheres; a–floor, b–floor).
+fn tiled3d_species(base: &Engine<3>, tiles: [usize; 2], laws: impl Fn((f64, f64)) -> Laws) -> Engine<3> {
     let (bodies, side, top) = common::tile3d(base, BASE3D, tiles, TileOrder::Lattice);
     let (cfg, walls) = common::pile3d_config(side, top, MAT, false);
-    let mut table = SpeciesLaws::single(laws(), MAT);
-    for (k, name) in ["a", "b"].into_iter().enumerate() {
-        let info = SpeciesInfo {
-            name: name.into(),
-            material: MAT,
-        };
-        match k {
-            0 => table.species[0] = info,
-            _ => table.species.push(info),
-        }
-    }
-    for _ in 0..2 {
-        let more = SpeciesLaws::single(laws(), MAT);
-        table.pair.extend(more.pair);
-        table.wall.extend(more.wall);
-    }
-    table.wall.truncate(2);
+    let mut table = SpeciesLaws::single(laws(SPECIES_LAWS[0]), MAT);
+    let class = |c: usize| SpeciesLaws::single(laws(SPECIES_LAWS[c]), MAT);
+    let info = |name: &str| SpeciesInfo {
+        name: name.into(),
+        material: MAT,
+    };
+    table.species = vec![info("a"), info("b")];
+    table.pair.extend([1, 2].into_iter().flat_map(|c| class(c).pair));
+    table.wall = [3, 4].into_iter().flat_map(|c| class(c).wall).collect();
     table.pair_class = vec![0, 1, 1, 2];
     table.pair_labels = vec!["a–a".into(), "a–b".into(), "b–b".into()];
     table.wall_class = vec![0, 1];
@@ -642,7 +644,7 @@ fn main() {
             );
         }
         if run("species") {
-            let mut a = tiled3d_species(&base, [2, 2], || plugin_laws(&reg, true));
+            let mut a = tiled3d_species(&base, [2, 2], |l| plugin_laws_with(&reg, true, l));
             let mut b = tiled3d(&base, [2, 2], TileOrder::Lattice, plugin_laws(&reg, true), false);
             let ab = contest(&mut a, &mut b);
             let what = format!("{n} spheres, HSD + Mindlin + rolling sds (plugins), blocks of {K} steps");

@@ -345,6 +345,66 @@ seed = 4
     );
 }
 
+/// A mixed 3D pile of small chunks (1,024 spheres of two species drawn at random, three pair
+/// classes and two wall classes, each with its own laws), stepped in parallel: the same bit for
+/// bit on one thread and two, whatever the threads did (the chunks, and so the order in which
+/// each particle's forces are summed, are a function of the pile and its classes alone).
+#[test]
+fn a_mixed_pile_is_the_same_bit_for_bit_on_one_thread_and_two() {
+    let text = tables()
+        .replace("impact_speed = 1.0", "impact_speed = 3.0")
+        .replace(
+            "name = \"jkr\"\nparams = { w = 0.05 }",
+            "name = \"hsd\"\nparams = { eps = 0.5 }",
+        )
+        + r#"
+[[generate]]
+count = 1024
+diameter = [0.0020, 0.0022]
+lo = [-0.0095, -0.0095, 0.0]
+hi = [0.0095, 0.0095, 0.042]
+speed = 3.0
+species = ["glass", "powder"]
+seed = 5
+"#;
+    let text = text.replacen(
+        "dimension = 3\n",
+        "dimension = 3\ngravity = [0.0, 0.0, -9.81]\n",
+        1,
+    );
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut e = engine(&text);
+            e.advance(600).unwrap();
+            e
+        })
+    };
+    let (a, b) = (run(1), run(2));
+    let chunks = a.pairs.chunks.len() / a.pairs.classes();
+    assert!(
+        a.pairs.classes() == 3 && chunks >= 2,
+        "{} pair classes in {chunks} chunks",
+        a.pairs.classes()
+    );
+    // every class in touch, in more than one chunk
+    let busy = a.pairs.chunks.iter().filter(|s| !s.is_empty()).count();
+    assert!(
+        busy > 3 && a.pairs.formed() + a.pairs.len() > 0,
+        "{busy} sets in touch"
+    );
+    let bits = |e: &Engine<3>| -> Vec<u64> {
+        let p = &e.p;
+        let vecs = p.pos.iter().chain(&p.vel).flat_map(|v| v.iter().copied());
+        vecs.chain(p.omega.iter().copied()).map(f64::to_bits).collect()
+    };
+    assert!(bits(&a) == bits(&b), "one thread and two part");
+    assert_eq!(a.contacts(), b.contacts());
+}
+
 /// What a scene's pair tables may not say, each refused with a message naming the pair or key.
 #[test]
 fn bad_pair_tables_are_refused_naming_the_pair() {

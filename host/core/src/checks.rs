@@ -160,6 +160,21 @@ pub const UNIT_TOLERANCE: f64 = 1e-6;
 /// tangential, rolling and twisting laws project onto the plane it defines, and a zero normal
 /// would give a force in no defined direction. The message names the contact and its vector.
 pub fn unit_normals(normal: &[[f64; 3]]) -> Result<(), String> {
+    // every call of a LAMMPS step checks its normals: first one branch-free pass, without square
+    // roots, that accepts lengths within half the tolerance (|n|² in [(1 − tol/2)², (1 +
+    // tol/2)²], far inside the exact test's band whatever the rounding); the exact test below
+    // decides (and names the culprit) only when it says no
+    let (lo, hi) = (
+        (1.0 - 0.5 * UNIT_TOLERANCE).powi(2),
+        (1.0 + 0.5 * UNIT_TOLERANCE).powi(2),
+    );
+    let surely = normal.iter().fold(true, |ok, n| {
+        let l2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        ok & (l2 >= lo) & (l2 <= hi)
+    });
+    if surely {
+        return Ok(());
+    }
     for (i, n) in normal.iter().enumerate() {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         // (NaN fails the comparison: refused too)

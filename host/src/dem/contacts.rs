@@ -25,12 +25,13 @@ use std::ops::Range;
 mod classes;
 mod edges;
 mod gather;
+mod pair_geometry;
 mod renumber;
 mod rotation;
 mod saved;
 
 pub use classes::{gather_pair_classes, gather_wall_classes};
-use edges::{step_edge_means, Edges};
+use edges::{step_edge_means, EdgeScratch, Edges};
 pub use rotation::Rotating;
 
 /// The particle state a gathering reads: particles `base..base + pos.len()`, each array
@@ -181,12 +182,19 @@ pub struct ContactSet {
     /// they are sorted into their sets (kept by the chunk's first set).
     #[serde(skip)]
     split: Vec<(u32, u32)>,
+    /// Scratch of a gathering into several classes' sets: each candidate's class (kept by the
+    /// chunk's first set).
+    #[serde(skip)]
+    class_of: Vec<u8>,
     /// Scratch of the walls' gathering: each particle's largest overlap with a wall (m).
     #[serde(skip)]
     scratch: Vec<f64>,
     /// Scratch of the merge: each contact's index in the previous set.
     #[serde(skip)]
     src: Vec<u32>,
+    /// Scratch of the first- and last-step means.
+    #[serde(skip)]
+    edge: EdgeScratch,
 }
 
 /// The overlap beyond which a run is refused, as a fraction of the smaller radius.
@@ -212,6 +220,21 @@ pub fn gather_chunk(n: usize, dim: usize) -> usize {
         n.div_ceil(SMALL_CHUNKS).next_multiple_of(64).max(MIN_CHUNK)
     } else {
         GATHER_CHUNK
+    }
+}
+
+/// [`gather_chunk`] for a run whose pair contacts fall into `classes` classes (pairs of species
+/// with their own laws, see [`crate::dem::species`]): a small pile's chunks then hold `classes`
+/// times the particles (at most [`GATHER_CHUNK`]), so that each class's batch calls and arrays
+/// are as long as those of a run of one class (a chunk's contacts split into `classes` sets of
+/// a third as many each made every batch call's fixed cost and every array's first touch count
+/// three times as often). One class: [`gather_chunk`].
+pub fn gather_chunk_classes(n: usize, dim: usize, classes: usize) -> usize {
+    let c = gather_chunk(n, dim);
+    if classes > 1 && c < GATHER_CHUNK {
+        (c * classes).min(GATHER_CHUNK)
+    } else {
+        c
     }
 }
 
@@ -475,6 +498,7 @@ impl ContactSet {
                     &mut self.last[a..b],
                     f,
                     dt,
+                    &mut self.edge,
                 )?;
             }
             if let Some(t) = tangential {

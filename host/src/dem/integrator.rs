@@ -26,7 +26,7 @@
 //! [`MIN_STEPS_PER_COLLISION`] steps, below which the explicit scheme is unstable.
 
 use super::cells::Neighbours;
-use super::contacts::{gather_chunk, nearest_first, parallel, Contacts};
+use super::contacts::{gather_chunk_classes, nearest_first, parallel, Contacts};
 use super::species::SpeciesLaws;
 use super::state::{spin_len, to3, Body, Particles, Vec3, VecD};
 use super::walls::{Wall, WallState};
@@ -295,6 +295,7 @@ impl<const D: usize> Engine<D> {
         };
         let nw = walls.len();
         let energy = cfg.energy;
+        let chunk = gather_chunk_classes(bodies.len(), D, laws.pair.len());
         let pair_slots: Vec<_> = laws.pair.iter().map(|l| l.slots()).collect();
         let wall_slots: Vec<_> = laws.wall.iter().map(|l| l.slots()).collect();
         let mut e = Engine {
@@ -337,9 +338,9 @@ impl<const D: usize> Engine<D> {
             wall_episodes: vec![0; nw],
             pair_episodes: 0,
             order: order::Order::default(),
-            chunk: gather_chunk(bodies.len(), D),
-            nearest_first: nearest_first(gather_chunk(bodies.len(), D)),
-            parallel: parallel(bodies.len(), gather_chunk(bodies.len(), D)),
+            chunk,
+            nearest_first: nearest_first(chunk),
+            parallel: parallel(bodies.len(), chunk),
             pace: awake::Pace::default(),
             heat: None,
         };

@@ -18,6 +18,7 @@
 #![warn(missing_docs)]
 
 pub mod calibrate;
+pub mod cbrt;
 mod docs;
 pub mod normal;
 pub mod normal_laws;

@@ -8,6 +8,7 @@
 //! `limit_damping`), and the force the Coulomb caps of the other families scale with, F_c
 //! (LAMMPS's `Fncrit`: |F_n|, or |F_ne + 2 F_pulloff| for the cohesive models).
 
+use crate::cbrt::cbrt;
 use std::f64::consts::PI;
 
 /// 27 π² (LAMMPS's `PI27SQ`).
@@ -153,7 +154,7 @@ pub struct Jkr {
 impl Jkr {
     /// The JKR contact radius a (m) at dR = δ R (m²): the closed-form root of
     /// δ = a²/R − 2 √(π γ a/E) (LAMMPS's `calculate_contact_radius`, same operations).
-    #[inline]
+    #[inline(always)]
     pub fn radius_at(&self, reff: f64, dr: f64) -> f64 {
         let (coh, e) = (self.cohesion, self.emix);
         let r2 = reff * reff;
@@ -221,26 +222,6 @@ impl NormalModel for Jkr {
         // an overlapping contact acts either way: the pull-off distance (a cube root) is
         // needed only for a formed contact pulled apart beyond touching
         delta > 0.0 || (touching && delta > -self.pulloff_distance(reff))
-    }
-}
-
-/// The cube root as LAMMPS takes it: the C library's `cbrt`. Rust's `f64::cbrt` in a plugin
-/// binds the toolchain's own software routine (correctly rounded, but five times the
-/// instructions of the C library's and not always its bits); on glibc (2.27 and later) its
-/// alias `cbrtf64`, which no Rust runtime defines, reaches the C library's function.
-#[inline(always)]
-pub(crate) fn cbrt(x: f64) -> f64 {
-    #[cfg(all(target_os = "linux", target_env = "gnu"))]
-    {
-        extern "C" {
-            fn cbrtf64(x: f64) -> f64;
-        }
-        // SAFETY: a pure function of one double, from the C math library the plugin links.
-        unsafe { cbrtf64(x) }
-    }
-    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
-    {
-        x.cbrt()
     }
 }
 

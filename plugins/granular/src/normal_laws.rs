@@ -409,7 +409,7 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn force(&self, c: Contact, history: &mut [f64]) -> f64 {
         if !self.touches(&c, history) {
             return 0.0;
@@ -421,7 +421,7 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
     /// evaluation for both, the bits of `force` then `context`.
     const CONTEXT_WITH_FORCE: bool = true;
 
-    #[inline]
+    #[inline(always)]
     fn force_context(&self, c: Contact, history: &mut [f64]) -> (f64, Ctx) {
         if !self.touches(&c, history) {
             return (0.0, Ctx::default());

@@ -13,7 +13,7 @@ use crate::tangential::{turn_advance, Motion};
 /// ξ += v_roll dt, F = −k ξ − γ v_roll; past μ F_c, with ξ ≠ 0: ξ = −(μ F_c F/|F| + γ v)/k and
 /// F scaled to μ F_c; with ξ = 0, F = 0. History ξ (m), slots 0..3.
 /// `s` holds k (N/m), γ (N·s/m) and μ; `m` the normal, v_roll and dt; `cap` is F_c (N).
-#[inline]
+#[inline(always)]
 pub fn rolling_sds(s: &Sds, cap: f64, m: &Motion, h: &mut [f64]) -> SpringStep {
     let (k, gamma, mu, n, vrl, dt) = (s.k, s.gamma, s.mu, m.n, m.v, m.dt);
     let frcrit = mu * cap;
@@ -77,7 +77,7 @@ impl Twist {
     /// One step: θ += ω dt, M = −k θ − γ ω; past M_c = μ F_c: θ = (M_c sgn ω − γ ω)/k and
     /// M = −M_c sgn ω. `theta` is the angle (rad), read and updated; `k_before` the stiffness
     /// of the previous step (for the energy).
-    #[inline]
+    #[inline(always)]
     pub fn step(&self, cap: f64, rate: f64, dt: f64, theta: &mut f64, k_before: f64) -> (f64, SpringStep) {
         let before = *theta;
         *theta += rate * dt;

@@ -127,7 +127,7 @@ pub struct TwistSdsBound(pub Twist);
 
 impl ReadsContext<RollingContact> for Sds {
     type Out = [f64; 3];
-    #[inline]
+    #[inline(always)]
     fn eval(&self, x: &Ctx, c: &RollingContact, h: &mut [f64]) -> ([f64; 3], SpringStep) {
         let m = Motion {
             n: c.normal,
@@ -143,7 +143,7 @@ through_context!(BoundRolling, Sds, RollingContact, [f64; 3], force, force_energ
 
 impl ReadsContext<TwistingContact> for TwistSdsBound {
     type Out = f64;
-    #[inline]
+    #[inline(always)]
     fn eval(&self, x: &Ctx, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
         self.0.step(x.cap_force, c.rate, c.dt, &mut h[0], self.0.k)
     }
@@ -208,7 +208,7 @@ impl TwistingLaw for GranTwistingMarshall {
 
 impl ReadsContext<TwistingContact> for MarshallBound {
     type Out = f64;
-    #[inline]
+    #[inline(always)]
     fn eval(&self, x: &Ctx, c: &TwistingContact, h: &mut [f64]) -> (f64, SpringStep) {
         let s = &self.0;
         let t = marshall_twist(s.k, s.xt, s.mu, x);

@@ -144,7 +144,7 @@ impl SpringStep {
     /// reset holding the dashpot's share), which no force paid for and which can make the power
     /// negative. Sliding: W = −(F_start + F)·v dt/2 with F_start = −k ξ_start − η v, the force
     /// averaged over the step. A step of no length dissipates nothing.
-    #[inline]
+    #[inline(always)]
     pub fn energy(&self, dt: f64) -> Energy {
         let elastic = 0.5 * self.k * dot(self.xi_after, self.xi_after);
         let before = 0.5 * self.k_before * dot(self.xi_before, self.xi_before);
@@ -178,11 +178,11 @@ pub trait ReadsContext<C> {
 macro_rules! through_context {
     ($trait:ident, $ty:ty, $contact:ty, $out:ty, $call:ident, $energy_call:ident) => {
         impl $trait for $ty {
-            #[inline]
+            #[inline(always)]
             fn $call(&self, c: &$contact, h: &mut [f64]) -> $out {
                 self.eval(&c.context, c, h).0
             }
-            #[inline]
+            #[inline(always)]
             fn $energy_call(&self, c: &$contact, h: &mut [f64]) -> ($out, Option<dashpot_sdk::Energy>) {
                 let (o, s) = self.eval(&c.context, c, h);
                 (o, Some(s.energy(c.dt)))

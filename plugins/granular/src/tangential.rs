@@ -44,7 +44,7 @@ pub struct Motion {
 /// v_t/|v_t|, η_t = x_t η_n.
 /// No spring: the step's energy is the dashpot-or-cap's power F_t |v_t| (`SpringStep` with
 /// k = 0 and η = F_t/|v_t|).
-#[inline]
+#[inline(always)]
 pub fn linear_nohistory(s: &Spring, ctx: &Ctx, m: &Motion) -> SpringStep {
     let vtr = tangential(m.v, m.n);
     let vrel = len(vtr);
@@ -120,7 +120,7 @@ fn coulomb(
 /// LAMMPS `tangential linear_history k_t x_t μ`: history ξ (m, slots 0..3). Turn ξ into the
 /// tangent plane (when its normal part matters), ξ += v_t dt, F = −k_t ξ − η_t v_t; if
 /// |F| > μ F_c and ξ ≠ 0: F scaled to μ F_c and ξ = −(F + η_t v_t)/k_t; if ξ = 0, F = 0.
-#[inline]
+#[inline(always)]
 pub fn linear_history(s: &Spring, ctx: &Ctx, m: &Motion, h: &mut [f64]) -> SpringStep {
     let (kt, n, dt) = (s.k, m.n, m.dt);
     let (vtr, damp, fscrit) = dashpot_and_cap(s, ctx, m);
@@ -138,7 +138,7 @@ pub fn linear_history(s: &Spring, ctx: &Ctx, m: &Motion, h: &mut [f64]) -> Sprin
 /// `RESCALE` (`mindlin_rescale*`): on unloading (a below the a of the last step, slot 3) the
 /// history is first scaled by a/a_last. Slot 3 holds a of this step for every variant (LAMMPS
 /// keeps it for the rescaling ones only; the others use it for their energy).
-#[inline]
+#[inline(always)]
 pub fn mindlin<const FORCE: bool, const RESCALE: bool>(
     s: &Spring,
     ctx: &Ctx,
@@ -196,7 +196,7 @@ pub fn mindlin<const FORCE: bool, const RESCALE: bool>(
 /// 22 Jul 2025's granular `linear_history_classic`/`mindlin_classic` (and `fix wall/gran`
 /// `hooke/history`, `hertz/history`): k_s = k_t a, k_r = k_t. The spring `s` has k = k_s;
 /// `k_before` is the spring stiffness of the previous step (for the energy only).
-#[inline]
+#[inline(always)]
 pub fn classic(s: &Spring, k_reset: f64, ctx: &Ctx, m: &Motion, h: &mut [f64], k_before: f64) -> SpringStep {
     let (k_spring, n, dt) = (s.k, m.n, m.dt);
     let (vtr, damp, fscrit) = dashpot_and_cap(s, ctx, m);

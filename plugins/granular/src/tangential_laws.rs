@@ -121,7 +121,7 @@ impl TangentialLaw for GranLinearNoHistory {
 
 impl ReadsContext<TangentialContact> for LinearNoHistoryBound {
     type Out = [f64; 3];
-    #[inline]
+    #[inline(always)]
     fn eval(&self, x: &Ctx, c: &TangentialContact, _h: &mut [f64]) -> ([f64; 3], SpringStep) {
         let step = linear_nohistory(&self.0, x, &motion(c));
         (step.force, step)
@@ -188,7 +188,7 @@ impl<const KIND: u8> SpringBound<KIND> {
 
 impl<const KIND: u8> ReadsContext<TangentialContact> for SpringBound<KIND> {
     type Out = [f64; 3];
-    #[inline]
+    #[inline(always)]
     fn eval(&self, x: &Ctx, c: &TangentialContact, h: &mut [f64]) -> ([f64; 3], SpringStep) {
         let s = self.step(x, c, h);
         (s.force, s)

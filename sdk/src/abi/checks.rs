@@ -4,7 +4,7 @@
 //! they say no, and the run-time choice of the AVX2 build of the block loops.
 
 use super::fault::BatchFault;
-use crate::context::NormalContext;
+use crate::NormalContext;
 
 /// Whether every value is finite (vectorises with plain SSE2: v − v is NaN exactly when v is not
 /// finite).
@@ -26,41 +26,6 @@ pub(crate) fn all_finite(x: &[f64]) -> bool {
 #[inline]
 pub(crate) fn all_positive(x: &[f64]) -> bool {
     x.iter().fold(true, |ok, &v| ok & (v > 0.0) & (v < f64::INFINITY))
-}
-
-/// Whether every value is finite and ≥ 0 (−0 included), or with `odd_only` every value finite
-/// and those at odd positions ≥ 0 (the second of each pair): a running minimum in four lanes
-/// and the finiteness sum of [`all_finite`], branch-free passes that the compiler vectorises.
-/// (A search that stops at the first bad value tests each with its own branches: tens of
-/// instructions a contact for a context of three values.)
-#[inline(always)]
-pub(crate) fn all_finite_non_negative(x: &[f64], odd_only: bool) -> bool {
-    let mut low = [0.0f64; 4];
-    let mut it = x.chunks_exact(4);
-    for c in &mut it {
-        for j in 0..4 {
-            low[j] = if c[j] < low[j] { c[j] } else { low[j] };
-        }
-    }
-    for (j, &v) in it.remainder().iter().enumerate() {
-        low[j] = if v < low[j] { v } else { low[j] };
-    }
-    let non_negative = if odd_only {
-        low[1] >= 0.0 && low[3] >= 0.0
-    } else {
-        low.iter().all(|&m| m >= 0.0)
-    };
-    non_negative && all_finite(x)
-}
-
-/// Whether every context is valid ([`NormalContext::is_valid`]: each field finite and ≥ 0),
-/// by [`all_finite_non_negative`] over their fields; the exact search that names the culprit
-/// runs only when this says no.
-#[inline(always)]
-pub(crate) fn all_contexts_valid(x: &[NormalContext]) -> bool {
-    // SAFETY: `NormalContext` is `repr(C)` of three f64: n contexts are 3 n f64 in a row
-    let flat = unsafe { std::slice::from_raw_parts(x.as_ptr().cast::<f64>(), 3 * x.len()) };
-    all_finite_non_negative(flat, false)
 }
 
 /// Inputs and outputs are checked in blocks of this many contacts, right before and after the
@@ -200,6 +165,35 @@ fn min(x: f64, y: f64) -> f64 {
         x
     } else {
         y
+    }
+}
+
+/// Index of the first context of `x` that is not valid (a field not finite or < 0,
+/// [`NormalContext::is_valid`]), if any: one fused, branch-free pass over the fields that
+/// vectorises (the sum of v − v is NaN unless every v is finite; the minimum is ≥ 0 unless
+/// some v is not), then the search only when it says no (its early exits cost ~40
+/// instructions a context).
+#[inline(always)]
+#[allow(clippy::eq_op)]
+pub(crate) fn first_invalid_context(x: &[NormalContext]) -> Option<usize> {
+    const _: () = assert!(std::mem::size_of::<NormalContext>() == 3 * std::mem::size_of::<f64>());
+    // SAFETY: NormalContext is repr(C) with three f64 fields and no padding (asserted above).
+    let flat = unsafe { std::slice::from_raw_parts(x.as_ptr().cast::<f64>(), 3 * x.len()) };
+    let (mut sum, mut low) = ([0.0f64; 8], [0.0f64; 8]);
+    let mut it = flat.chunks_exact(8);
+    for c in &mut it {
+        for j in 0..8 {
+            sum[j] += c[j] - c[j];
+            low[j] = min(low[j], c[j]);
+        }
+    }
+    let tail = it.remainder();
+    let finite = sum.iter().chain(tail).fold(0.0, |a, &v| a + (v - v)) == 0.0;
+    let non_negative = low.iter().chain(tail).fold(0.0, |a, &v| min(a, v)) >= 0.0;
+    if finite && non_negative {
+        None
+    } else {
+        x.iter().position(|c| !c.is_valid())
     }
 }
 
@@ -462,8 +456,8 @@ mod tests {
         }
     }
 
-    /// The vectorised context check says what [`NormalContext::is_valid`] says of every
-    /// context, whichever field and contact is bad (−0 is valid, as ≥ 0 holds for it).
+    /// The fused context check names the contact [`NormalContext::is_valid`] refuses,
+    /// whichever field and contact is bad (−0 is valid, as ≥ 0 holds for it).
     #[test]
     fn the_context_check_agrees_with_is_valid() {
         let good = NormalContext {
@@ -472,7 +466,7 @@ mod tests {
             damping: 0.0,
         };
         for n in [1, 5, CHECK_BLOCK] {
-            assert!(all_contexts_valid(&vec![good; n]));
+            assert_eq!(first_invalid_context(&vec![good; n]), None);
             for i in 0..n {
                 for field in 0..3 {
                     for v in [
@@ -491,34 +485,17 @@ mod tests {
                             _ => &mut x[i].damping,
                         };
                         *f = v;
+                        let valid = v == 0.0 || (v > 0.0 && v.is_finite());
+                        assert_eq!(x[i].is_valid(), valid);
                         assert_eq!(
-                            all_contexts_valid(&x),
-                            x[i].is_valid(),
+                            first_invalid_context(&x),
+                            (!valid).then_some(i),
                             "contact {i} of {n}, field {field} = {v}"
                         );
-                        assert_eq!(x[i].is_valid(), v == 0.0 || (v > 0.0 && v.is_finite()));
                     }
                 }
             }
         }
-        assert!(all_contexts_valid(&[]));
-    }
-
-    /// With `odd_only`, only the values at odd positions must be ≥ 0; every value finite.
-    #[test]
-    fn the_pairwise_check_wants_the_odd_values_non_negative_and_all_finite() {
-        for n in [2, 6, 8, 130] {
-            let good: Vec<f64> = (0..n).map(|k| if k % 2 == 0 { -3.0 } else { 0.5 }).collect();
-            assert!(all_finite_non_negative(&good, true));
-            assert!(!all_finite_non_negative(&good, false));
-            for k in 0..n {
-                for v in [-0.0, 5e-324, -1e-300, f64::NAN, f64::INFINITY, -f64::INFINITY] {
-                    let mut x = good.clone();
-                    x[k] = v;
-                    let want = v.is_finite() && (k % 2 == 0 || v >= 0.0);
-                    assert_eq!(all_finite_non_negative(&x, true), want, "{n} values, [{k}] = {v}");
-                }
-            }
-        }
+        assert_eq!(first_invalid_context(&[]), None);
     }
 }

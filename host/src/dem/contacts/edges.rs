@@ -21,19 +21,40 @@ pub(super) struct Edges<'a> {
     pub(super) fresh: &'a [bool],
 }
 
+/// The arrays of [`step_edge_means`]' extra batch, kept from call to call (no allocation once
+/// grown): the contacts to correct (contact, upper overlap D of the mean, the time-to-overlap
+/// factor |δ̇| dt) and the batch's inputs and forces, 5 per contact.
+#[derive(Debug, Clone, Default)]
+pub(super) struct EdgeScratch {
+    jobs: Vec<(usize, f64, f64)>,
+    delta: Vec<f64>,
+    rate: Vec<f64>,
+    mass: Vec<f64>,
+    radius: Vec<f64>,
+    force: Vec<f64>,
+}
+
 /// The first- and last-step means of [`ContactSet::evaluate`], for one chunk: `f` holds the
 /// law's forces at the step end and is corrected in place; `last` is read (the previous step's
-/// flag) and written.
+/// flag) and written; `scratch` holds the extra batch.
 pub(super) fn step_edge_means(
     law: &dyn NormalLaw,
     c: Edges<'_>,
     last: &mut [bool],
     f: &mut [f64],
     dt: f64,
+    scratch: &mut EdgeScratch,
 ) -> Result<(), DemError> {
     let h = 0.5 * dt;
-    // (contact, upper overlap D of the mean, the time-to-overlap factor |δ̇| dt)
-    let mut jobs: Vec<(usize, f64, f64)> = Vec::new();
+    let EdgeScratch {
+        jobs,
+        delta: qd,
+        rate: qr,
+        mass: qm,
+        radius: qa,
+        force: qf,
+    } = scratch;
+    jobs.clear();
     for m in 0..f.len() {
         let (d, r) = (c.delta[m], c.rate[m]);
         let was_last = last[m];
@@ -60,13 +81,10 @@ pub(super) fn step_edge_means(
         return Ok(());
     }
     let k = jobs.len() * GAUSS5.len();
-    let (mut qd, mut qr, mut qm, mut qa) = (
-        Vec::with_capacity(k),
-        Vec::with_capacity(k),
-        Vec::with_capacity(k),
-        Vec::with_capacity(k),
-    );
-    for &(m, dd, _) in &jobs {
+    for v in [&mut *qd, &mut *qr, &mut *qm, &mut *qa] {
+        v.clear();
+    }
+    for &(m, dd, _) in jobs.iter() {
         for (u, _) in GAUSS5 {
             qd.push(dd * u.powi(4));
             qr.push(c.rate[m]);
@@ -74,15 +92,16 @@ pub(super) fn step_edge_means(
             qa.push(c.radius[m]);
         }
     }
-    let mut qf = vec![0.0; k];
+    qf.clear();
+    qf.resize(k, 0.0);
     law.force_batch(NormalBatch {
-        delta: &qd,
-        rate: &qr,
-        mass: &qm,
-        radius: &qa,
+        delta: qd,
+        rate: qr,
+        mass: qm,
+        radius: qa,
         slots: 0,
         history: &mut [],
-        force: &mut qf,
+        force: qf,
     })?;
     for (q, &(m, dd, div)) in jobs.iter().enumerate() {
         // ∫_0^D F dδ = ∫_0^1 F(D u⁴) 4 D u³ du

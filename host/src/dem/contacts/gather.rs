@@ -6,6 +6,7 @@
 //! the rolling and twisting part when a scene has those laws): short loops with few live values
 //! and no calls, which the compiler keeps in registers.
 
+use super::pair_geometry::{pair_geometry, ContactValues, PairsOut};
 use super::{ContactSet, View, MAX_OVERLAP};
 use crate::dem::cells::{Domain, Images, Neighbours};
 use crate::dem::state::{spin, to3, Vec3};
@@ -151,108 +152,10 @@ fn dropped_springs(prev: &ContactSet, src: &[u32], dropped: &mut [f64; 4], ended
     gone(next, prev.len());
 }
 
-/// The arrays pass 2 of a pair gathering writes, one element per candidate.
-struct PairsOut<'a> {
-    i: &'a mut [u32],
-    j: &'a mut [u32],
-    delta: &'a mut [f64],
-    rate: &'a mut [f64],
-    mass: &'a mut [f64],
-    radius: &'a mut [f64],
-    normal: &'a mut [[f64; 3]],
-    vrel: &'a mut [[f64; 3]],
-    /// Each contact's side (see [`ContactSet::sign`]), written when `SORTED`.
-    sign: &'a mut [f64],
-}
-
 /// Particle `k` of the view as the user numbers it.
 #[inline]
 pub(super) fn user(view_uid: Option<&[u32]>, base: usize, k: usize) -> usize {
     view_uid.map_or(k, |u| u[k - base] as usize)
-}
-
-/// Pass 2 of a pair gathering: each candidate pair's overlap (m), overlap rate (m/s, from the
-/// predicted velocities), effective mass (kg) and radius (m), unit normal from j to i, and the
-/// slip of i's contact point relative to j's (m/s, from the step's velocities and spins); an
-/// overlap beyond [`MAX_OVERLAP`] (or NaN) is refused. `SORTED` (the engine's own order): a
-/// pair whose j the user numbered first is seen from j, normal and slip negated (exactly:
-/// the very numbers the laws get in the user's order).
-#[inline(never)]
-fn pair_geometry<const D: usize, const SORTED: bool>(
-    cand: &[(u32, u32)],
-    images: &Images<D>,
-    view: &View<'_, D>,
-    out: PairsOut<'_>,
-) -> Result<(), DemError> {
-    let View {
-        base,
-        pos,
-        vpred,
-        vel,
-        omega,
-        radius,
-        mass,
-        uid,
-        ..
-    } = *view;
-    let PairsOut {
-        i: oi,
-        j: oj,
-        delta: od,
-        rate: orate,
-        mass: om,
-        radius: or,
-        normal: on,
-        vrel: ov,
-        sign: os,
-    } = out;
-    let n = cand.len();
-    let (oi, oj, od, orate) = (&mut oi[..n], &mut oj[..n], &mut od[..n], &mut orate[..n]);
-    let (om, or, on, ov) = (&mut om[..n], &mut or[..n], &mut on[..n], &mut ov[..n]);
-    let (os, us) = if SORTED {
-        (&mut os[..n], uid.unwrap_or(&[]))
-    } else {
-        (&mut os[..0], &[][..])
-    };
-    for (k, &(i, j)) in cand.iter().enumerate() {
-        let (ig, jg) = (i as usize, j as usize);
-        // indices into the view
-        let (i, ju) = (ig - base, jg - base);
-        let d = images.delta(&pos[i], &pos[ju]);
-        let sum = radius[i] + radius[ju];
-        let dist = d.norm_squared().sqrt();
-        let delta = sum - dist;
-        let rmin = radius[i].min(radius[ju]);
-        if delta.is_nan() || delta > MAX_OVERLAP * rmin {
-            return Err(DemError::Overlap {
-                i: user(uid, base, ig),
-                partner: format!("particle {}", user(uid, base, jg)),
-                delta,
-                radius: rmin,
-            });
-        }
-        let mut nv = to3(&(d / dist));
-        let rate = -to3(&(vpred[i] - vpred[ju])).dot(&nv);
-        let dv = to3(&(vel[i] - vel[ju]));
-        let (wi, wj) = (spin::<D>(omega, i), spin::<D>(omega, ju));
-        let mut v = dv - (wi * radius[i] + wj * radius[ju]).cross(&nv);
-        if SORTED {
-            let s = if us[i] > us[ju] { -1.0 } else { 1.0 };
-            nv *= s;
-            v *= s;
-            os[k] = s;
-        }
-        let (mi, mj) = (mass[i], mass[ju]);
-        oi[k] = ig as u32;
-        oj[k] = jg as u32;
-        od[k] = delta;
-        orate[k] = rate;
-        om[k] = mi * mj / (mi + mj);
-        or[k] = radius[i] * radius[ju] / sum;
-        on[k] = [nv.x, nv.y, nv.z];
-        ov[k] = [v.x, v.y, v.z];
-    }
-    Ok(())
 }
 
 impl ContactSet {
@@ -296,36 +199,54 @@ impl ContactSet {
         // by less than the reach of an adhesive law, not touching, is dropped by the merge
         // unless its contact still acts; without such a law every candidate touches)
         let sorted = view.uid.is_some();
+        self.start_pairs(count, sorted);
+        let out = self.pairs_out(0..count);
+        let done = pair_geometry(sorted, &cand[..count], images, view, out);
+        self.cand = cand;
+        done?;
+        self.finish_pairs(prev, view);
+        Ok(())
+    }
+
+    /// Sizes the set for `count` pair contacts, with their sides when `sorted` (the engine's
+    /// own order, see [`ContactSet::sign`]).
+    pub(super) fn start_pairs(&mut self, count: usize, sorted: bool) {
         self.sign.clear();
         if sorted {
             self.sign.resize(count, 1.0);
         }
         self.size(count);
-        let out = PairsOut {
-            i: &mut self.i[..count],
-            j: &mut self.j[..count],
-            delta: &mut self.delta[..count],
-            rate: &mut self.rate[..count],
-            mass: &mut self.mass[..count],
-            radius: &mut self.radius[..count],
-            normal: &mut self.normal[..count],
-            vrel: &mut self.vrel[..count],
-            sign: &mut self.sign,
-        };
-        let done = if sorted {
-            pair_geometry::<D, true>(&cand[..count], images, view, out)
+    }
+
+    /// The arrays pass 2 writes, for the set's contacts `r` (sized by
+    /// [`ContactSet::start_pairs`]).
+    pub(super) fn pairs_out(&mut self, r: Range<usize>) -> PairsOut<'_> {
+        let sign = if self.sign.is_empty() {
+            &mut self.sign[..]
         } else {
-            pair_geometry::<D, false>(&cand[..count], images, view, out)
+            &mut self.sign[r.clone()]
         };
-        if let Err(e) = done {
-            self.cand = cand;
-            return Err(e);
+        PairsOut {
+            i: &mut self.i[r.clone()],
+            j: &mut self.j[r.clone()],
+            delta: &mut self.delta[r.clone()],
+            rate: &mut self.rate[r.clone()],
+            mass: &mut self.mass[r.clone()],
+            radius: &mut self.radius[r.clone()],
+            normal: &mut self.normal[r.clone()],
+            vrel: &mut self.vrel[r],
+            sign,
         }
+    }
+
+    /// The end of a pair gathering once pass 2 has written the set's contacts: with a rolling
+    /// or twisting law, each contact's relative spin ω_i − ω_j from `view` (seen from j where
+    /// the contact is: negated, as the normal); then the merge with `prev` ([`ContactSet::carry`]).
+    pub(super) fn finish_pairs<const D: usize>(&mut self, prev: &ContactSet, view: &View<'_, D>) {
         if self.rotational() {
-            // the relative spin ω_i − ω_j, for the rolling and twisting part of the merge
             let (base, omega) = (view.base, view.omega);
-            // (seen from j where the contact is: negated, as the normal)
-            for (k, (w, &(i, j))) in self.vroll.iter_mut().zip(&cand[..count]).enumerate() {
+            let pairs = self.i.iter().zip(&self.j);
+            for (k, (w, (&i, &j))) in self.vroll.iter_mut().zip(pairs).enumerate() {
                 let (i, j) = (i as usize - base, j as usize - base);
                 let mut r = spin::<D>(omega, i) - spin::<D>(omega, j);
                 if let Some(&s) = self.sign.get(k) {
@@ -334,9 +255,7 @@ impl ContactSet {
                 *w = [r.x, r.y, r.z];
             }
         }
-        self.cand = cand;
         self.carry(prev, false);
-        Ok(())
     }
 
     /// Fills `self` with the particle–wall contacts of the particles of `range` at the current
@@ -434,14 +353,7 @@ impl ContactSet {
     /// Writes the contact `c` of particle `ig` with wall `w` as contact `k`.
     #[inline(always)]
     pub(super) fn put_wall_contact(&mut self, k: usize, ig: u32, w: usize, c: &WallContact) {
-        self.i[k] = ig;
-        self.j[k] = w as u32;
-        self.delta[k] = c.delta;
-        self.rate[k] = c.rate;
-        self.mass[k] = c.mass;
-        self.radius[k] = c.radius;
-        self.normal[k] = c.normal;
-        self.vrel[k] = c.vrel;
+        self.pairs_out(k..k + 1).put::<false>(0, ig, w as u32, &c.values);
         if self.rotational() {
             self.vroll[k] = c.spin;
         }
@@ -576,12 +488,7 @@ impl ContactSet {
 
 /// A particle–wall contact's gathered values (see [`ContactSet`]).
 pub(super) struct WallContact {
-    delta: f64,
-    rate: f64,
-    mass: f64,
-    radius: f64,
-    normal: [f64; 3],
-    vrel: [f64; 3],
+    values: ContactValues,
     /// The particle's spin relative to the wall's (rad/s), for the rolling and twisting part of
     /// the merge.
     spin: [f64; 3],
@@ -634,12 +541,15 @@ pub(super) fn wall_contact<const D: usize>(
         wi - ws.omega
     };
     Ok(Some(WallContact {
-        delta,
-        rate,
-        mass: view.mass[i],
-        radius: r,
-        normal: [nv.x, nv.y, nv.z],
-        vrel: [v.x, v.y, v.z],
+        values: ContactValues {
+            delta,
+            rate,
+            mass: view.mass[i],
+            radius: r,
+            normal: [nv.x, nv.y, nv.z],
+            vrel: [v.x, v.y, v.z],
+            sign: 1.0,
+        },
         spin: [wr.x, wr.y, wr.z],
     }))
 }

@@ -164,10 +164,7 @@ pub(super) fn context_block(
         return Ok(&[]);
     }
     let x = &all[lo..hi];
-    if all_contexts_valid(x) {
-        return Ok(x);
-    }
-    match x.iter().position(|c| !c.is_valid()) {
+    match first_invalid_context(x) {
         Some(i) => Err((lo + i, BatchFault::CONTEXT_INPUT)),
         None => Ok(x),
     }

@@ -334,10 +334,7 @@ impl<B: BoundContact> KindBound<Normal> for B {
         if !b4.context.is_null() {
             let out = unsafe { slice_mut(b4.context, n) };
             self.context_batch(&batch, out);
-            if let Some(i) = (!all_contexts_valid(out))
-                .then(|| out.iter().position(|x| !x.is_valid()))
-                .flatten()
-            {
+            if let Some(i) = first_invalid_context(out) {
                 return Err((i, BatchFault::CONTEXT));
             }
         }
@@ -381,10 +378,7 @@ fn with_contexts<B: BoundContact>(
             }
         }
     }
-    if all_contexts_valid(&out[..n]) {
-        return Ok(false);
-    }
-    match out[..n].iter().position(|x| !x.is_valid()) {
+    match first_invalid_context(&out[..n]) {
         Some(i) => Err((i, BatchFault::CONTEXT)),
         None => Ok(false),
     }
