@@ -5,7 +5,8 @@
 //! T0 + A sin ωt its amplitude is A/√(1 + ω²τ²); a small pile conserves Σ C T to rounding, and
 //! with a hot wall its books close (Σ C T − initial − wall heat = 0); heat never moves the
 //! mechanics by a bit; a checkpoint resumes the temperatures bit for bit (and a checkpoint of
-//! format 1 still reads); bad input is refused naming the key.
+//! format 1 still reads); a pile stepped on one thread and on two has the same temperatures to
+//! the bit; bad input is refused naming the key.
 //!
 //! "Held": the two spheres' normal law here is a contact without force (compiled into the
 //! test), so the overlap, the contact radius and the conductance stay what they were set to,
@@ -403,6 +404,46 @@ fn heat_does_not_move_the_mechanics_by_a_bit() {
             without.dissipated.map(f64::to_bits)
         );
     }
+}
+
+/// A pile of 1,200 spheres (a 3D pile of 1,024 or more steps in parallel, in small chunks),
+/// hot below and cold above, on a floor at 350 K, with `heat-radius`.
+fn big_pile() -> String {
+    pile(
+        "[heat]\nname = \"heat-radius\"\nparams = { k = 40.0 }\n",
+        "temperature = 350.0",
+    )
+    .replace("hi = [0.012, 0.012, 0.05]", "hi = [0.03, 0.03, 0.06]")
+    .replace("count = 40", "count = 600")
+    .replace("hi = [0.012, 0.012, 0.006]", "hi = [0.03, 0.03, 0.012]")
+    .replace("lo = [0.0, 0.0, 0.006]", "lo = [0.0, 0.0, 0.012]")
+    .replace("hi = [0.012, 0.012, 0.012]", "hi = [0.03, 0.03, 0.024]")
+}
+
+#[test]
+fn a_heated_pile_has_the_same_temperatures_to_the_bit_on_one_thread_and_two() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+        pool.expect("a thread pool").install(|| {
+            let mut e = scene_run(&big_pile());
+            // single steps (each pass in parallel on two threads), then blocks
+            for _ in 0..300 {
+                e.step().unwrap();
+            }
+            e.advance(20_000).unwrap();
+            e
+        })
+    };
+    let (a, b) = (run(1), run(2));
+    assert!(a.p.len() >= 1024, "{} spheres", a.p.len());
+    assert!(a.contacts() > 300, "the pile is in contact ({})", a.contacts());
+    let (ta, tb) = (a.temperatures().unwrap(), b.temperatures().unwrap());
+    let moved = ta.iter().filter(|&&t| t != 300.0 && t != 400.0).count();
+    assert!(moved > 300, "heat flowed ({moved} particles changed)");
+    assert!(ta.iter().zip(tb).all(|(x, y)| x.to_bits() == y.to_bits()));
+    assert_eq!(a.heat_books(), b.heat_books());
+    assert!(a.heat_books().unwrap().wall_heat != 0.0, "the floor conducted");
+    assert!(a.p.pos.iter().zip(&b.p.pos).all(|(x, y)| x == y));
 }
 
 /// `e`'s state, of the scene `text`, written as a checkpoint into a scratch directory.

@@ -19,7 +19,7 @@
 use super::state::VecD;
 use super::DemError;
 use crate::laws::{EnergyOut, NormalLaw, TangentialForce};
-use dashpot_sdk::{NormalBatch, NormalContext, TangentialBatch};
+use dashpot_sdk::{HeatFlow, NormalBatch, NormalContext, TangentialBatch};
 use std::ops::Range;
 
 mod classes;
@@ -140,6 +140,14 @@ pub struct ContactSet {
     /// twisting or heat law of the run reads them (see [`ContactSet::evaluate`]); empty otherwise.
     #[serde(skip)]
     pub context: Vec<NormalContext>,
+    /// Each contact's heat flow into `i` (W; the partner gets its negative) and conductance
+    /// (W/K) at the last evaluation of a run with temperatures and a heat law for this class
+    /// (see `integrator/heat.rs`); empty otherwise.
+    #[serde(skip)]
+    pub flow: Vec<HeatFlow>,
+    /// Scratch of the heat law's call: each contact's temperatures `[T_i, T_j]` (K).
+    #[serde(skip)]
+    pub pair_t: Vec<[f64; 2]>,
     /// Whether the laws are asked for their energy outputs.
     pub energy: bool,
     /// The largest reach of the normal law (m; 0 for a law that is not adhesive): contacts are
@@ -494,10 +502,14 @@ impl ContactSet {
                 )?;
             }
             if let Some(t) = tangential {
-                let tb = motion_batch!(TangentialBatch {
+                let mut tb = motion_batch!(TangentialBatch {
                     self[a..b], dt, normal_force: &*f,
                     velocity: vrel, hist_t / st => force: ftan
                 });
+                // (the contexts only to a law that reads them, as to the rolling and twisting)
+                if !t.reads_context() {
+                    tb.context = &[];
+                }
                 if self.energy {
                     let out = family_out(true, &mut self.power, &mut self.elastic, 1, a..b);
                     self.unreported[1] |= !t.force_batch_with(tb, out)?;

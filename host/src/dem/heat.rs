@@ -2,13 +2,15 @@
 //!
 //! A run with a heat law (a class's [`crate::dem::LawSet::heat`]) and temperatures
 //! ([`crate::dem::Engine::with_heat`]) gives each particle a temperature T_i (K) and a heat
-//! capacity C_i = m_i c_i (J/K). At every step, after the forces, each contact's heat law gets
-//! the two temperatures, the normal force, the overlap, the effective radius and the normal
-//! law's context (its contact radius a) at the step's end, and returns the heat flow Q into
-//! particle i (W) and the contact's conductance H (W/K); the partner gets −Q exactly. A wall
+//! capacity C_i = m_i c_i (J/K). At every step, in the force pass (each contact right after its
+//! forces), each contact's heat law gets the two temperatures of the step's start, the normal
+//! force, the overlap, the effective radius and the normal law's context (its contact radius a)
+//! at the step's end, and returns the heat flow Q into particle i (W) and the contact's
+//! conductance H (W/K); the partner gets −Q exactly. A wall
 //! with a temperature ([`WallTemperature`]) is a reservoir: it gives Q and is not heated; a
-//! wall without one does not conduct. Then, as LAMMPS's `fix heat/flow`, each temperature
-//! steps by explicit Euler, T_i += dt Q_i / C_i.
+//! wall without one does not conduct. After the pass, as LAMMPS's `fix heat/flow`, each
+//! temperature steps by explicit Euler, T_i += dt Q_i / C_i, the flows summed per particle in
+//! one order whatever the number of threads (the same bits on one thread or many).
 //!
 //! The books: Σ C_i T_i − (Σ C_i T_i at the start) − (the heat the walls gave) = 0 to
 //! rounding ([`HeatBooks`]). Explicit Euler is stable for dt < 2 C_i/Σ_j H_ij and monotone

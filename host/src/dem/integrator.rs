@@ -601,9 +601,7 @@ impl<const D: usize> Engine<D> {
             self.rebuild();
             self.forces()?;
         }
-        if self.heat.is_some() {
-            self.conduct()?;
-        }
+        self.conduct();
         if defer {
             self.pending_kick = true;
             return Ok(());

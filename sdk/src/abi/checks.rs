@@ -455,4 +455,47 @@ mod tests {
             }
         }
     }
+
+    /// The fused context check names the contact [`NormalContext::is_valid`] refuses,
+    /// whichever field and contact is bad (−0 is valid, as ≥ 0 holds for it).
+    #[test]
+    fn the_context_check_agrees_with_is_valid() {
+        let good = NormalContext {
+            contact_radius: 1e-4,
+            cap_force: 2.0,
+            damping: 0.0,
+        };
+        for n in [1, 5, CHECK_BLOCK] {
+            assert_eq!(first_invalid_context(&vec![good; n]), None);
+            for i in 0..n {
+                for field in 0..3 {
+                    for v in [
+                        -0.0,
+                        5e-324,
+                        f64::MAX,
+                        -1e-300,
+                        f64::NAN,
+                        f64::INFINITY,
+                        -f64::INFINITY,
+                    ] {
+                        let mut x = vec![good; n];
+                        let f = match field {
+                            0 => &mut x[i].contact_radius,
+                            1 => &mut x[i].cap_force,
+                            _ => &mut x[i].damping,
+                        };
+                        *f = v;
+                        let valid = v == 0.0 || (v > 0.0 && v.is_finite());
+                        assert_eq!(x[i].is_valid(), valid);
+                        assert_eq!(
+                            first_invalid_context(&x),
+                            (!valid).then_some(i),
+                            "contact {i} of {n}, field {field} = {v}"
+                        );
+                    }
+                }
+            }
+        }
+        assert_eq!(first_invalid_context(&[]), None);
+    }
 }

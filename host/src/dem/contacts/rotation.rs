@@ -29,23 +29,33 @@ impl ContactSet {
     ) -> Result<(), DemError> {
         let (a, b) = (r.start, r.end);
         let energy = self.energy;
+        // (each law gets the normal law's contexts only if it reads them: a law that does not
+        // would only have them checked)
         if let (Some(law), Some(sr)) = (rot.rolling, self.slots_r) {
+            let mut batch = motion_batch!(RollingBatch {
+                self[a..b], dt, normal_force: &self.fnorm[a..b],
+                velocity: vroll, hist_r / sr => force: froll
+            });
+            if !law.reads_context() {
+                batch.context = &[];
+            }
             let written = law.force_batch(
-                motion_batch!(RollingBatch {
-                    self[a..b], dt, normal_force: &self.fnorm[a..b],
-                    velocity: vroll, hist_r / sr => force: froll
-                }),
+                batch,
                 family_out(energy, &mut self.power, &mut self.elastic, 2, a..b),
             )?;
             self.unreported[2] |= energy && !written;
             self.add_power(2, r.clone());
         }
         if let (Some(law), Some(sw)) = (rot.twisting, self.slots_w) {
+            let mut batch = motion_batch!(TwistingBatch {
+                self[a..b], dt, normal_force: &self.fnorm[a..b],
+                rate: twist, hist_w / sw => torque: mtwist
+            });
+            if !law.reads_context() {
+                batch.context = &[];
+            }
             let written = law.torque_batch(
-                motion_batch!(TwistingBatch {
-                    self[a..b], dt, normal_force: &self.fnorm[a..b],
-                    rate: twist, hist_w / sw => torque: mtwist
-                }),
+                batch,
                 family_out(energy, &mut self.power, &mut self.elastic, 3, a..b),
             )?;
             self.unreported[3] |= energy && !written;

@@ -23,6 +23,9 @@ impl<const D: usize> Engine<D> {
     /// chunk right after each chunk's drift: [`Engine::drift_and_forces`].)
     pub(super) fn forces(&mut self) -> Result<(), DemError> {
         let ws = self.wall_states();
+        if let Some(th) = self.heat.as_deref_mut() {
+            th.prepare(self.t, &self.surface_wall);
+        }
         let n = self.p.len();
         let c = self.chunk;
         let chunks = n.div_ceil(c);
@@ -55,6 +58,7 @@ impl<const D: usize> Engine<D> {
             },
             dt: self.dt,
             edges: self.cfg.edge_means,
+            heat: self.heat.as_deref().map(|th| th.view()),
         };
         let work = |(k, ((((pp, np), (pw, nw)), (f, tq)), ov)): ChunkTask<'_, D>| {
             let range = k * c..(k * c + f.len());

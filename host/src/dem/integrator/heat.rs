@@ -1,10 +1,33 @@
 //! The engine's temperatures (see [`crate::dem::heat`]): what a run with heat keeps, the
-//! conduction pass after each step's forces, the explicit update, the books.
+//! heat laws' calls inside the force pass, the explicit update after it, the books.
+//!
+//! The heat laws are called in the force pass itself, class set by class set right after the
+//! set's other laws ([`HeatView::conduct`], from `kernels.rs`), while the set's forces,
+//! overlaps, radii and contexts are in cache: each contact's flow is kept in the set
+//! ([`ContactSet::flow`]). The pass writes no temperature: every law reads those of the
+//! step's start. After the pass, [`Engine::conduct`] sums the flows per particle (chunk by
+//! chunk, class by class, contact by contact: one order whatever the threads, so the same
+//! bits on one thread or many) and steps the temperatures. A run without temperatures does
+//! none of it: no array, no work per contact.
 
 use super::Engine;
+use crate::dem::contacts::ContactSet;
 use crate::dem::heat::{HeatBooks, HeatSetup, HeatState, WallTemperature};
 use crate::dem::DemError;
+use crate::laws::HeatConduction;
 use dashpot_sdk::{HeatBatch, HeatFlow};
+
+/// Which walls conduct (have a temperature).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+enum Conducting {
+    /// No wall: wall contacts are not given to the heat laws.
+    #[default]
+    None,
+    /// Some walls: the flows of the others' contacts are zeroed.
+    Some,
+    /// Every wall.
+    All,
+}
 
 /// A run's temperatures and what their update needs. Per-particle arrays follow the
 /// particles (the user's order between calls, the engine's inside a step).
@@ -16,23 +39,135 @@ pub(super) struct Thermal {
     pub(super) capacity: Vec<f64>,
     /// The other order's buffers of `temperature` and `capacity` (see `order.rs`).
     pub(super) spare: [Vec<f64>; 2],
-    /// Each particle's heat rate at the last step (W).
-    rate: Vec<f64>,
-    /// Each particle's summed conductance at the last step (W/K).
-    conductance: Vec<f64>,
+    /// Each particle's heat rate (W) and summed conductance (W/K) of the step being summed;
+    /// zero between steps (the update zeroes what it has read).
+    sums: Vec<[f64; 2]>,
     /// Each wall's temperature, if it conducts.
     walls: Vec<Option<WallTemperature>>,
-    /// Scratch: each wall's temperature now (K; NaN: it does not conduct).
-    wall_now: Vec<f64>,
-    /// Scratch: a class's contacts' temperatures, and the flows its law returns.
-    pair_t: Vec<[f64; 2]>,
-    flow: Vec<HeatFlow>,
+    /// Which walls conduct.
+    conducting: Conducting,
+    /// Scratch: each wall surface's temperature at the end of the step being evaluated (K;
+    /// NaN: its wall does not conduct).
+    surface: Vec<f64>,
     /// Σ C T at the start (J).
     initial: f64,
     /// The heat the walls gave since the start (J).
     wall_heat: f64,
     /// The smallest C/ΣH met (s).
     limit: f64,
+}
+
+impl Thermal {
+    /// The walls' surfaces' temperatures at time `t` (s), surface `s` of wall
+    /// `surface_wall[s]`.
+    pub(super) fn prepare(&mut self, t: f64, surface_wall: &[usize]) {
+        if self.conducting == Conducting::None {
+            return;
+        }
+        self.surface.clear();
+        self.surface.extend(
+            surface_wall
+                .iter()
+                .map(|&w| self.walls[w].map_or(f64::NAN, |w| w.at(t))),
+        );
+    }
+
+    /// What the force pass's heat laws read (after [`Thermal::prepare`]).
+    pub(super) fn view(&self) -> HeatView<'_> {
+        HeatView {
+            temperature: &self.temperature,
+            surface: &self.surface,
+            conducting: self.conducting,
+        }
+    }
+}
+
+/// What the heat laws read in the force pass: the temperatures at the step's start (K, the
+/// engine's order) and the wall surfaces' at its end.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct HeatView<'a> {
+    temperature: &'a [f64],
+    surface: &'a [f64],
+    conducting: Conducting,
+}
+
+impl HeatView<'_> {
+    /// The heat law `law` on the contacts of `set` (particle pairs, or against walls with
+    /// `wall`), just evaluated: each contact's flow into its particle `i` in the engine's
+    /// order and its conductance into [`ContactSet::flow`]. A pair is presented to the law from
+    /// the partner the user numbered first (as its other laws see it), the flow then turned to
+    /// i's; a contact with a wall that does not conduct gets no flow (its wall set none at all
+    /// when no wall conducts). The temperatures of `[T_i, T_j]` are gathered into the set's
+    /// scratch.
+    pub(super) fn conduct(
+        &self,
+        set: &mut ContactSet,
+        law: &dyn HeatConduction,
+        wall: bool,
+        dt: f64,
+    ) -> Result<(), DemError> {
+        let n = set.len();
+        if n == 0 || (wall && self.conducting == Conducting::None) {
+            set.flow.clear();
+            return Ok(());
+        }
+        let temperature = self.temperature;
+        set.pair_t.clear();
+        if wall {
+            // (a wall that does not conduct: its contacts see their own temperature twice,
+            // and their flows are zeroed below)
+            set.pair_t.extend(set.i.iter().zip(&set.j).map(|(&i, &j)| {
+                let ti = temperature[i as usize];
+                let tw = self.surface[j as usize];
+                [ti, if tw.is_nan() { ti } else { tw }]
+            }));
+        } else if set.sign.is_empty() {
+            set.pair_t.extend(
+                set.i
+                    .iter()
+                    .zip(&set.j)
+                    .map(|(&i, &j)| [temperature[i as usize], temperature[j as usize]]),
+            );
+        } else {
+            set.pair_t
+                .extend(set.i.iter().zip(&set.j).zip(&set.sign).map(|((&i, &j), &s)| {
+                    let (ti, tj) = (temperature[i as usize], temperature[j as usize]);
+                    if s < 0.0 {
+                        [tj, ti]
+                    } else {
+                        [ti, tj]
+                    }
+                }));
+        }
+        set.flow.resize(n, HeatFlow::default());
+        law.heat_batch(HeatBatch {
+            dt,
+            temperature: &set.pair_t,
+            normal_force: &set.fnorm,
+            delta: &set.delta,
+            radius: &set.radius,
+            context: if set.context.len() == n { &set.context } else { &[] },
+            slots: 0,
+            history: &mut [],
+            flow: &mut set.flow,
+        })?;
+        if wall {
+            if self.conducting == Conducting::Some {
+                for (f, &j) in set.flow.iter_mut().zip(&set.j) {
+                    if self.surface[j as usize].is_nan() {
+                        *f = HeatFlow::default();
+                    }
+                }
+            }
+        } else if !set.sign.is_empty() {
+            for (f, &s) in set.flow.iter_mut().zip(&set.sign) {
+                if s < 0.0 {
+                    f.heat = -f.heat;
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 impl<const D: usize> Engine<D> {
@@ -110,13 +245,17 @@ impl<const D: usize> Engine<D> {
             .map(|i| self.p.mass[i] * setup.specific_heat[species[i] as usize])
             .collect();
         let initial = thermal_sum(&capacity, &setup.temperature);
+        let conducting = match setup.walls.iter().filter(|w| w.is_some()).count() {
+            0 => Conducting::None,
+            k if k == setup.walls.len() => Conducting::All,
+            _ => Conducting::Some,
+        };
         self.heat = Some(Box::new(Thermal {
             temperature: setup.temperature,
             capacity,
-            rate: vec![0.0; n],
-            conductance: vec![0.0; n],
-            wall_now: vec![f64::NAN; setup.walls.len()],
+            sums: vec![[0.0; 2]; n],
             walls: setup.walls,
+            conducting,
             initial,
             limit: f64::INFINITY,
             ..Thermal::default()
@@ -164,20 +303,18 @@ impl<const D: usize> Engine<D> {
         })
     }
 
-    /// The conduction of the step just evaluated: each contact's heat law on the contacts of
-    /// the last evaluation (at the step's end, with the normal laws' contexts), the heat rates
-    /// summed per particle (chunk by chunk, class by class, in order: the same bits on any
-    /// number of threads), then T += dt Q / C.
-    pub(super) fn conduct(&mut self) -> Result<(), DemError> {
+    /// The conduction of the step just evaluated: the flows the force pass kept in the
+    /// contact sets ([`HeatView::conduct`]: the heat laws on the step's end contacts, with the
+    /// temperatures of its start) summed per particle, chunk by chunk, class by class, contact
+    /// by contact (the same bits on any number of threads; a pair's partner gets −Q exactly),
+    /// then T += dt Q / C (explicit Euler, as LAMMPS's `fix heat/flow`), the stability limit
+    /// min C/ΣH kept, the sums zeroed for the next step in the same loop.
+    pub(super) fn conduct(&mut self) {
         let Some(th) = self.heat.as_deref_mut() else {
-            return Ok(());
+            return;
         };
         let dt = self.dt;
-        th.rate.iter_mut().for_each(|q| *q = 0.0);
-        th.conductance.iter_mut().for_each(|g| *g = 0.0);
-        for (now, w) in th.wall_now.iter_mut().zip(&th.walls) {
-            *now = w.map_or(f64::NAN, |w| w.at(self.t));
-        }
+        let sums = &mut th.sums[..];
         let mut wall_power = 0.0;
         for (contacts, laws, pair) in [
             (&self.pairs, &self.laws.pair, true),
@@ -185,75 +322,40 @@ impl<const D: usize> Engine<D> {
         ] {
             let nc = contacts.classes();
             for (k, set) in contacts.chunks.iter().enumerate() {
-                let n = set.len();
-                let Some(law) = laws[k % nc].heat.as_deref() else {
-                    continue;
-                };
-                if n == 0 {
+                // (no heat law, no contact, or walls that do not conduct: no flow)
+                if laws[k % nc].heat.is_none() || set.flow.is_empty() {
                     continue;
                 }
-                th.pair_t.clear();
-                for m in 0..n {
-                    let ti = th.temperature[set.i[m] as usize];
-                    let tj = if pair {
-                        th.temperature[set.j[m] as usize]
-                    } else {
-                        // (a wall that does not conduct: the contact's result is not used)
-                        let tw = th.wall_now[self.surface_wall[set.j[m] as usize]];
-                        if tw.is_nan() {
-                            ti
-                        } else {
-                            tw
-                        }
-                    };
-                    // (a pair is presented from the partner the user numbered first)
-                    let flip = pair && set.sign.get(m).is_some_and(|&s| s < 0.0);
-                    th.pair_t.push(if flip { [tj, ti] } else { [ti, tj] });
-                }
-                th.flow.resize(n, HeatFlow::default());
-                law.heat_batch(HeatBatch {
-                    dt,
-                    temperature: &th.pair_t,
-                    normal_force: &set.fnorm,
-                    delta: &set.delta,
-                    radius: &set.radius,
-                    context: if set.context.len() == n { &set.context } else { &[] },
-                    slots: 0,
-                    history: &mut [],
-                    flow: &mut th.flow[..n],
-                })?;
-                for (m, f) in th.flow[..n].iter().enumerate() {
-                    let i = set.i[m] as usize;
-                    if pair {
-                        let j = set.j[m] as usize;
-                        let q = if set.sign.get(m).is_some_and(|&s| s < 0.0) {
-                            -f.heat
-                        } else {
-                            f.heat
-                        };
-                        th.rate[i] += q;
-                        th.rate[j] -= q;
-                        th.conductance[i] += f.conductance;
-                        th.conductance[j] += f.conductance;
-                    } else if !th.wall_now[self.surface_wall[set.j[m] as usize]].is_nan() {
-                        th.rate[i] += f.heat;
-                        th.conductance[i] += f.conductance;
+                let flow = &set.flow[..set.len()];
+                if pair {
+                    for ((&i, &j), f) in set.i.iter().zip(&set.j).zip(flow) {
+                        let (a, b) = (sums[i as usize], sums[j as usize]);
+                        sums[i as usize] = [a[0] + f.heat, a[1] + f.conductance];
+                        sums[j as usize] = [b[0] - f.heat, b[1] + f.conductance];
+                    }
+                } else {
+                    // (a wall that does not conduct gave +0: adding it changes no sum)
+                    for (&i, f) in set.i.iter().zip(flow) {
+                        let s = &mut sums[i as usize];
+                        s[0] += f.heat;
+                        s[1] += f.conductance;
                         wall_power += f.heat;
                     }
                 }
             }
         }
         let mut limit = th.limit;
-        for i in 0..th.temperature.len() {
-            let (c, g) = (th.capacity[i], th.conductance[i]);
-            if g > 0.0 {
+        for ((t, &c), s) in th.temperature.iter_mut().zip(&th.capacity).zip(sums.iter_mut()) {
+            let [q, g] = *s;
+            // (C/H is divided only where it may lower the limit: the same minimum)
+            if g > 0.0 && c <= g * limit * (1.0 + 1e-9) {
                 limit = limit.min(c / g);
             }
-            th.temperature[i] += dt * th.rate[i] / c;
+            *t += dt * q / c;
+            *s = [0.0; 2];
         }
         th.limit = limit;
         th.wall_heat += dt * wall_power;
-        Ok(())
     }
 
     /// The temperatures into the engine's order (`into`) or out of it (see `order.rs`).

@@ -1,6 +1,7 @@
 //! The per-chunk kernels of a step: the kicks and the drift, the gather of a chunk's contacts
 //! and the scatter of their forces, over ranges of particles that threads take in turn.
 
+use super::heat::HeatView;
 use crate::dem::cells::{Domain, Neighbours};
 use crate::dem::contacts::{gather_pair_classes, gather_wall_classes, ClassMap, ContactSet, Rotating, View};
 use crate::dem::species::{LawSet, SpeciesLaws};
@@ -286,6 +287,8 @@ pub(super) struct ChunkContext<'a, const D: usize> {
     pub(super) map: ClassMap<'a>,
     pub(super) dt: f64,
     pub(super) edges: bool,
+    /// The temperatures the heat laws read, in a run with temperatures (see `heat.rs`).
+    pub(super) heat: Option<HeatView<'a>>,
 }
 
 /// The forces of the chunk of particles `range`: its pair and wall contacts gathered from
@@ -311,29 +314,36 @@ pub(super) fn chunk_forces<const D: usize>(
     let near = ctx.nb.wall_candidates(range.clone(), ctx.walls);
     gather_wall_classes(nw, pw, range.clone(), ctx.walls, near, view, &ctx.map)?;
     for (set, laws) in np.iter_mut().zip(&ctx.laws.pair) {
-        evaluate(set, laws, ctx)?;
+        evaluate(set, laws, ctx, false)?;
     }
     for (set, laws) in nw.iter_mut().zip(&ctx.laws.wall) {
-        evaluate(set, laws, ctx)?;
+        evaluate(set, laws, ctx, true)?;
     }
     let radius = &view.radius[range.start - view.base..];
     scatter_chunk(np, nw, radius, f, tq, range.len(), chunk, overflow);
     Ok(())
 }
 
-/// One class's contacts `set` through its laws `laws`.
+/// One class's contacts `set` (against walls: `wall`) through its laws `laws`; its heat law
+/// too in a run with temperatures, while the set is in cache.
 #[inline]
 fn evaluate<const D: usize>(
     set: &mut ContactSet,
     laws: &LawSet,
     ctx: &ChunkContext<'_, D>,
+    wall: bool,
 ) -> Result<(), DemError> {
+    let heat = laws.heat.as_deref().zip(ctx.heat.as_ref());
     let rot = Rotating {
         rolling: laws.rolling.as_deref(),
         twisting: laws.twisting.as_deref(),
-        context: laws.heat.as_ref().is_some_and(|h| h.reads_context()),
+        context: heat.is_some_and(|(h, _)| h.reads_context()),
     };
-    set.evaluate(&*laws.normal, laws.tangential.as_deref(), rot, ctx.dt, ctx.edges)
+    set.evaluate(&*laws.normal, laws.tangential.as_deref(), rot, ctx.dt, ctx.edges)?;
+    match heat {
+        Some((law, view)) => view.conduct(set, law, wall, ctx.dt),
+        None => Ok(()),
+    }
 }
 
 /// The arrays the kick loops read, whole or one chunk's part.

@@ -189,6 +189,9 @@ impl<const D: usize> Engine<D> {
         let (h, g) = (0.5 * dt, self.cfg.gravity);
         let t_end = self.t + dt;
         let ws = self.surfaces_at(t_end);
+        if let Some(th) = self.heat.as_deref_mut() {
+            th.prepare(t_end, &self.surface_wall);
+        }
         // one range per thread, each range run by the same thread at every step where it can
         // (its particles' state then stays in that core's cache: see the module doc); one
         // thread, one range
@@ -315,6 +318,7 @@ impl<const D: usize> Engine<D> {
             },
             dt,
             edges: self.cfg.edge_means,
+            heat: self.heat.as_deref().map(|th| th.view()),
         };
         let species = &self.species[..];
         let (reach, back) = (&self.reach, &self.back);
