@@ -46,29 +46,33 @@ cd "$work"
 run() {
     local ranks="$1" style="$2" log="$work/$2.$1.log"
     local file="in.$deck"
+    # LAMMPS's own walls under granular; BENCH_WALLS chooses dashpot's (the wall fixes compared)
+    local walls="${BENCH_WALLS:-gran}"
+    [ "$style" = granular ] && walls=gran
     case "$deck" in
         flatwall | drum | chute) file="in.pour.$deck" ;;
         pour2d) file="in.pour.2d" ;;
     esac
     if [ "$deck" = flatwall ]; then
-        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-1500}" -var nsteps "${BENCH_NSTEPS:-5000}"
+        set -- -var walls "$walls" -var n "${BENCH_N:-1500}" -var nsteps "${BENCH_NSTEPS:-5000}"
     elif [ "$deck" = drum ]; then
-        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-2000}" -var fill "${BENCH_FILL:-2000}" \
+        set -- -var walls "$walls" -var n "${BENCH_N:-2000}" -var fill "${BENCH_FILL:-2000}" \
             -var spin "${BENCH_NSTEPS:-3000}"
     elif [ "$deck" = chute ]; then
-        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-3000}" -var pour "${BENCH_NSTEPS:-25000}" \
+        set -- -var walls "$walls" -var n "${BENCH_N:-3000}" -var pour "${BENCH_NSTEPS:-25000}" \
             -var flow "${BENCH_NSTEPS:-25000}"
     elif [ "$deck" = pour2d ]; then
-        set -- -var walls "${BENCH_WALLS:-gran}" -var n "${BENCH_N:-1000}" -var nsteps "${BENCH_NSTEPS:-25000}"
+        set -- -var walls "$walls" -var n "${BENCH_N:-1000}" -var nsteps "${BENCH_NSTEPS:-25000}"
     elif [ "$deck" = pour ]; then
         set -- -var n "${BENCH_N:-2000}" -var L "${BENCH_L:-0.08}" -var tpour "${BENCH_TPOUR:-0.8}" \
             -var tsettle "${BENCH_TSETTLE:-0.2}" \
             -var rolling "$rolling" -var kr "${BENCH_KR:-1e4}" -var gr "${BENCH_GR:-0.1}" -var mur "${BENCH_MUR:-1.0}"
     else
-        set -- -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" -var d2 "$d2" -var friction "$friction"
+        set -- -var nx "$nx" -var nz "$nz" -var nsteps "$nsteps" -var d2 "$d2" -var friction "$friction" \
+            -var wall fix
     fi
     "$venv/bin/mpirun" -np "$ranks" "$venv/bin/lmp" -log none -in "$here/$file" \
-        -var style "$style" -var wall fix "$@" \
+        -var style "$style" "$@" \
         -var plugin "$plugin" -var plugin_dir "$root/target/release" >"$log" 2>&1 ||
         { cat "$log" >&2; exit 1; }
     # the deck's own result line (the settled pile's measures for the pour), to stderr; a run
