@@ -13,7 +13,7 @@
 //! contacts counted on a sample of the run's own steps, whichever is larger. Measured against the
 //! peak resident memory of real runs in docs/dem.md ("Before a run").
 
-use super::contacts::{gather_chunk, nearest_first};
+use super::contacts::{gather_chunk_classes, nearest_first};
 use super::integrator::EngineConfig;
 use super::species::{LawSet, SpeciesLaws};
 use super::state::{spin_len, Body, VecD};
@@ -102,7 +102,7 @@ impl Footprint {
             r.wall_rolling.as_ref().map(|l| l.history_slots()),
             r.wall_twisting.as_ref().map(|l| l.history_slots()),
         ];
-        Footprint::with_slots(cfg, slots, wall_slots, particles, walls)
+        Footprint::with_slots(cfg, slots, wall_slots, particles, walls, 1)
     }
 
     /// [`Footprint::of`] a run of several species: each family's history as wide as its widest
@@ -131,19 +131,29 @@ impl Footprint {
             }
             w
         };
-        Footprint::with_slots(cfg, widest(&laws.pair), widest(&laws.wall), particles, walls)
+        let classes = laws.pair.len();
+        Footprint::with_slots(
+            cfg,
+            widest(&laws.pair),
+            widest(&laws.wall),
+            particles,
+            walls,
+            classes,
+        )
     }
 
     /// The footprint of contacts of `slots` history slots per family (normal, tangential,
-    /// rolling, twisting; none: no such law), `wall_slots` against walls.
+    /// rolling, twisting; none: no such law), `wall_slots` against walls, the pair contacts in
+    /// `classes` classes (which set the engine's chunks, [`gather_chunk_classes`]).
     fn with_slots<const D: usize>(
         cfg: &EngineConfig<D>,
         slots: [Option<usize>; 4],
         wall_slots: [Option<usize>; 4],
         particles: usize,
         walls: usize,
+        classes: usize,
     ) -> Footprint {
-        let chunk = gather_chunk(particles, D);
+        let chunk = gather_chunk_classes(particles, D, classes);
         let reordered =
             cfg.sort_from != usize::MAX && (particles >= cfg.sort_from || (D == 3 && nearest_first(chunk)));
         Footprint {
