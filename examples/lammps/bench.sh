@@ -3,8 +3,11 @@
 # pour2d: the setups of examples/granular/in.pour.flatwall, in.pour.drum, examples/pour/in.pour
 # and in.pour.2d, at LAMMPS's sizes unless BENCH_N/BENCH_NSTEPS say otherwise), each run with
 # pair_style granular (or gran/*) and with pair_style dashpot on the same deck, the walls
-# LAMMPS's own unless BENCH_WALLS=dashpot; or the settling pile of in.pile (20,000 spheres by
-# default) on 1 and 2 MPI ranks,
+# LAMMPS's own unless BENCH_WALLS=dashpot; or BENCH_DECK=restitution, the two spheres of
+# examples/granular/in.restitution colliding head on over its 1 ms in BENCH_NSTEPS steps
+# (200,000 by default, dt = 5 ns; LAMMPS's deck takes 1,000,000 of 1 ns): with two atoms, the
+# pair styles' cost per step and call rather than per contact; or the settling pile of in.pile
+# (20,000 spheres by default) on 1 and 2 MPI ranks,
 # with Mindlin friction and history (BENCH_FRICTION=mindlin, the default) or without (none);
 # or the polydisperse frictional pour of in.pour (BENCH_DECK=pour, 2,000 spheres, fix pour, in a
 # box BENCH_L = 0.08 m wide, whose pile stays below the region fix pour inserts into: both
@@ -52,6 +55,7 @@ run() {
     case "$deck" in
         flatwall | drum | chute) file="in.pour.$deck" ;;
         pour2d) file="in.pour.2d" ;;
+        restitution) file="in.restitution" ;;
     esac
     if [ "$deck" = flatwall ]; then
         set -- -var walls "$walls" -var n "${BENCH_N:-1500}" -var nsteps "${BENCH_NSTEPS:-5000}"
@@ -63,6 +67,8 @@ run() {
             -var flow "${BENCH_NSTEPS:-25000}"
     elif [ "$deck" = pour2d ]; then
         set -- -var walls "$walls" -var n "${BENCH_N:-1000}" -var nsteps "${BENCH_NSTEPS:-25000}"
+    elif [ "$deck" = restitution ]; then
+        set -- -var dt "$(awk -v n="${BENCH_NSTEPS:-200000}" 'BEGIN { printf "%.17g", 1e-3 / n }')"
     elif [ "$deck" = pour ]; then
         set -- -var n "${BENCH_N:-2000}" -var L "${BENCH_L:-0.08}" -var tpour "${BENCH_TPOUR:-0.8}" \
             -var tsettle "${BENCH_TSETTLE:-0.2}" \
@@ -100,7 +106,9 @@ case "$deck" in
     flatwall | drum | chute | pour2d)
         echo "LAMMPS's $deck deck: granular against dashpot (walls ${BENCH_WALLS:-gran}), $repeats pairs; $(nproc) cores" ;;
 esac
-if [ "$deck" = pour ]; then
+if [ "$deck" = restitution ]; then
+    echo "in.restitution: 2 spheres, ${BENCH_NSTEPS:-200000} steps, granular against dashpot, $repeats pairs; $(nproc) cores"
+elif [ "$deck" = pour ]; then
     echo "polydisperse pour: ${BENCH_N:-2000} spheres, rolling $rolling, $repeats pairs; $(nproc) cores"
 elif [ "$deck" = pile ]; then
     echo "settling pile: $((nx * nx * nz)) spheres (d2 = $d2 m, friction $friction), $nsteps steps, $repeats pairs; $(nproc) cores"

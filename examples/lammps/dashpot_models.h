@@ -126,6 +126,12 @@ class ModelTable {
 
 /* Throws SpecError "`what` failed (STATUS): library message" unless status is DASHPOT_OK. */
 void check_status(int status, const std::string &what);
+/* The same for a name known at compile time (each batch call of a step): no string is made
+ * unless the call failed. */
+inline void check_status(int status, const char *what)
+{
+    if (status != DASHPOT_OK) check_status(status, std::string(what));
+}
 
 }    // namespace dashpot_lmp
 

@@ -55,6 +55,8 @@ class FixDashpotHistory : public Fix {
     int pack_reverse_comm(int, int, double *) override;
     void unpack_reverse_comm(int, int *, double *) override;
 
+    /* Whether atom i has any stored contact. */
+    bool any(int i) const { return !partner[i].empty(); }
     /* The stored record of atom i's contact with the partner of tag `partner` (0 = wall), or
      * nullptr if it has none. */
     const double *find(int i, tagint partner) const;

@@ -54,6 +54,7 @@ PairDashpot::PairDashpot(LAMMPS *lmp) :
     dirty(0)
 {
     single_enable = 1;
+    candidates.resize(128);    // the touching pairs compute() collects before staging them
     // svector: F_n, |F_t|; dissipated power: total, normal, tangential, rolling, twisting;
     // elastic energy; |F_roll|; twisting torque (pair_style granular's 12 columns when every
     // model is in LAMMPS's syntax: see single())
@@ -255,8 +256,11 @@ void PairDashpot::init_style()
     if (layout.nvalues > 0 && atom->tag_enable == 0) error->all(FLERR, "Pair dashpot with history requires atom IDs");
     // A size list holds the pairs within r_i + r_j + skin; an adhesive law's contacts reach
     // further, so it takes a list by type, within the cutoffs of init_one (+ skin), as LAMMPS's
-    // pair granular does for its beyond-contact models.
-    neighbor->add_request(this, layout.adhesive ? 0 : NeighConst::REQ_SIZE);
+    // pair granular does for its beyond-contact models. With history, the size list marks the
+    // pairs touching as it is built (REQ_HISTORY): only theirs are looked up after a build.
+    int request = layout.adhesive ? 0 : NeighConst::REQ_SIZE;
+    if (!layout.adhesive && layout.nvalues > 0) request |= NeighConst::REQ_HISTORY;
+    neighbor->add_request(this, request);
 
     // This instance's history fix: DASHPOT_HISTORY, or DASHPOT_HISTORY_k for the k-th of several
     // dashpot sub-styles of pair_style hybrid, in the place of the placeholder made with the pair.

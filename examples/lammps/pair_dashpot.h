@@ -114,14 +114,26 @@ class PairDashpot : public Pair {
     // (ilist order, then jlist order), valid from one list build to the next; the wall's per
     // local atom.
     dashpot_lmp::HistoryStore pair_slots, wall_slots;
-    std::vector<int> slot_i, slot_j;          // the pair's local indices, for history_to_atoms
-    std::vector<tagint> slot_ti, slot_tj;     // and tags
     std::vector<int> slot_first;              // per local atom i: the slot of its first list pair
     std::vector<double> slot_energy;          // energy=1: per slot, each family's power, the elastic energy
     int nwall_slots;
     bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)
     int slots_nlocal;       // atom->nlocal then
     int dirty;              // a compute advanced the slots since history_to_atoms copied them
+    // compute(): the touching pairs found and not yet staged: atoms i, j, slot k, the distance
+    // (first its square) and its inverse
+    struct Candidates {
+        std::vector<int> i, j, k;
+        std::vector<double> r, rinv;
+        void resize(size_t n)
+        {
+            i.resize(n);
+            j.resize(n);
+            k.resize(n);
+            r.resize(n);
+            rinv.resize(n);
+        }
+    } candidates;
 
     void allocate();
     void apply_settings(const std::vector<std::string> &args);
@@ -132,6 +144,7 @@ class PairDashpot : public Pair {
     /* Stops with an error: contact k of chunk c reaches past the neighbour cutoff. */
     [[noreturn]] void reach_error(const dashpot_lmp::ContactEngine::Chunk &c, int k);
     void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
+    void stage_pairs(int n);
     int find_slot(int i, int j) const;
     [[noreturn]] void fail(const std::exception &e, bool all);
 };

@@ -125,6 +125,81 @@ void PairDashpot::evaluate(HistoryStore &store, bool wall, bool all)
     } while (all);
 }
 
+/* Stages the n touching pairs collected in `candidates` (and evaluates every chunk they fill):
+ * first their distances, square roots and divisions independent of one another, then the
+ * contacts, oriented from the atom of the lower tag. */
+void PairDashpot::stage_pairs(int n)
+{
+    if (n == 0) return;
+    const Candidates &cd = candidates;
+    const int *ci = cd.i.data(), *cj = cd.j.data(), *ck = cd.k.data();
+    double *cr = candidates.r.data(), *cinv = candidates.rinv.data();
+    for (int q = 0; q < n; q++) {
+        cr[q] = std::sqrt(cr[q]);
+        cinv[q] = 1.0 / cr[q];
+    }
+    const double *radius = atom->radius, *rmass = atom->rmass;
+    const int *type = atom->type, *mask = atom->mask;
+    const tagint *tag = atom->tag;
+    // LAMMPS's per-atom 2D arrays are contiguous: index them from their first row
+    const double *x0 = atom->x[0], *v0 = atom->v[0], *w0 = atom->omega[0];
+    const int *mof = model_of.data();
+    const int nt1 = atom->ntypes + 1;
+    const int frozen = freeze_group_bit;
+    for (int q = 0; q < n; q++) {
+        const int i = ci[q], j = cj[q];
+        // the same bits from either side: x_b - x_a is exactly -(x_a - x_b)
+        const bool swap = tag[j] < tag[i];
+        const int a = swap ? j : i, b = swap ? i : j;
+        const double *xa = x0 + 3 * a, *xb = x0 + 3 * b;
+        const double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
+        const double ra = radius[a], rb = radius[b];
+        const double radsum = ra + rb;
+        const double r = cr[q], rinv = cinv[q];
+        const double ma = rmass[a], mb = rmass[b];
+        double meff = ma * mb / (ma + mb);
+        if (frozen) {
+            if (mask[a] & frozen) meff = mb;
+            if (mask[b] & frozen) meff = ma;
+        }
+        const double *va = v0 + 3 * a, *vb = v0 + 3 * b;
+        if (engine.stage(mof[type[a] * nt1 + type[b]], a, b, ck[q], dx * rinv, dy * rinv, dz * rinv, radsum - r, ra,
+                         rb, va[0] - vb[0], va[1] - vb[1], va[2] - vb[2], meff, ra * rb / radsum, w0 + 3 * a,
+                         w0 + 3 * b))
+            evaluate(pair_slots, false, false);
+    }
+}
+
+/* The touching pairs among atom i's jnum neighbours (slots k0 ..): appended to the candidates
+ * from n on, without a branch on each outcome; a pair that no longer touches (nor reaches,
+ * ADH: within an adhesive law's last reach) has its history zeroed (HIST). Returns the new n. */
+template <bool ADH, bool HIST>
+static int find_touching(const int *__restrict jlist, int jnum, int i, int k0, const double *xi, double radi,
+                         const double *__restrict x0, const double *__restrict radius,
+                         const unsigned char *__restrict stouch, const double *__restrict sreach,
+                         int *__restrict ci, int *__restrict cj, int *__restrict ck, double *__restrict crsq, int n,
+                         HistoryStore &ps)
+{
+    const double x = xi[0], y = xi[1], z = xi[2];
+    for (int jj = 0; jj < jnum; jj++) {
+        const int j = jlist[jj] & NEIGHMASK;
+        const double *xj = x0 + 3 * j;
+        const double dx = x - xj[0], dy = y - xj[1], dz = z - xj[2];
+        const double rsq = dx * dx + dy * dy + dz * dz;
+        const double radsum = radi + radius[j];
+        bool touch = rsq < radsum * radsum;
+        const int k = k0 + jj;
+        if (ADH && !touch && stouch[k]) touch = std::sqrt(rsq) - radsum <= sreach[k];
+        ci[n] = i;
+        cj[n] = j;
+        ck[n] = k;
+        crsq[n] = rsq;
+        n += touch;
+        if (HIST && !touch && stouch[k]) ps.zero(k);
+    }
+    return n;
+}
+
 void PairDashpot::compute(int eflag, int vflag)
 {
     ev_init(eflag, vflag);
@@ -145,16 +220,13 @@ void PairDashpot::compute(int eflag, int vflag)
     }
     double **x = atom->x, **v = atom->v, **omega = atom->omega;
     const double *radius = atom->radius, *rmass = atom->rmass;
-    const int *type = atom->type, *mask = atom->mask;
-    const tagint *tag = atom->tag;
+    const int *type = atom->type;
     const int nlocal = atom->nlocal;
     const int inum = list->inum;
     const int *ilist = list->ilist, *numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
     const bool hist = layout.nvalues > 0;
-    const int nt1 = atom->ntypes + 1;
     const bool adh = layout.adhesive;
-    const int frozen = freeze_group_bit;
 
     // a new list (flagged by the history fix's post_neighbor hooks: LAMMPS's count of builds
     // restarts at every run's setup, so after a run with no build in its steps, such as `run 0`,
@@ -167,61 +239,43 @@ void PairDashpot::compute(int eflag, int vflag)
     unsigned char *stouch = hist ? ps.touched.data() : nullptr;
     const double *sreach = adh ? ps.reach.data() : nullptr;
     // LAMMPS's per-atom 2D arrays are contiguous: index them from their first row
-    const double *x0 = atom->nmax > 0 ? x[0] : nullptr, *v0 = atom->nmax > 0 ? v[0] : nullptr;
-    const double *w0 = atom->nmax > 0 ? omega[0] : nullptr;
-    const int *mof = model_of.data();
+    const double *x0 = atom->nmax > 0 ? x[0] : nullptr;
 
     // 1. Walk the neighbour list once: contacts are staged and evaluated a chunk at a time;
     // history slots follow the list (slot k = the k-th pair), and a pair that has separated
-    // (beyond the reach of an adhesive law's last call) has its history zeroed.
-    int k = 0;
+    // (beyond the reach of an adhesive law's last call) has its history zeroed. The walk
+    // collects the touching pairs of several atoms without branching on each outcome (in a
+    // dilute flow most listed pairs do not touch, and which do is unpredictable); then their
+    // distances (square roots and divisions, independent of one another) and their staging.
+    Candidates &cd = candidates;
+    int nc = 0;
+    int k0 = 0;
     for (int ii = 0; ii < inum; ii++) {
         const int i = ilist[ii];
         const int jnum = numneigh[i];
         // most atoms of a dilute flow have no neighbour within the list's cutoff: nothing of
         // theirs is loaded (the per-atom loads below cost a chute more than its contacts)
         if (jnum == 0) continue;
-        const int *jlist = firstneigh[i];
-        const double xi = x[i][0], yi = x[i][1], zi = x[i][2], radi = radius[i];
-        const tagint ti = tag[i];
-        const int typei = type[i];
-        for (int jj = 0; jj < jnum; jj++, k++) {
-            const int j = jlist[jj] & NEIGHMASK;
-            const double *xj = x0 + 3 * j;
-            double dx = xi - xj[0], dy = yi - xj[1], dz = zi - xj[2];
-            const double rsq = dx * dx + dy * dy + dz * dz;
-            const double radj = radius[j];
-            const double radsum = radi + radj;
-            if (rsq >= radsum * radsum && !(adh && stouch[k] && std::sqrt(rsq) - radsum <= sreach[k])) {
-                if (hist && stouch[k]) ps.zero(k);
-                continue;
-            }
-            // orient from the lower tag, so that every rank computes a contact the same way
-            int a = i, b = j, ta = typei, tb = type[j];
-            double ra = radi, rb = radj;
-            if (tag[j] < ti) {
-                a = j;
-                b = i;
-                std::swap(ta, tb);
-                ra = radj;
-                rb = radi;
-                dx = -dx;
-                dy = -dy;
-                dz = -dz;
-            }
-            const double r = std::sqrt(rsq);
-            const double rinv = 1.0 / r;
-            const double ma = rmass[a], mb = rmass[b];
-            double meff = ma * mb / (ma + mb);
-            if (mask[a] & frozen) meff = mb;
-            if (mask[b] & frozen) meff = ma;
-            const double *va = v0 + 3 * a, *vb = v0 + 3 * b;
-            if (engine.stage(mof[ta * nt1 + tb], a, b, k, dx * rinv, dy * rinv, dz * rinv, radsum - r, ra, rb,
-                             va[0] - vb[0], va[1] - vb[1], va[2] - vb[2], meff, ra * rb / radsum, w0 + 3 * a,
-                             w0 + 3 * b))
-                evaluate(ps, false, false);
+        if (nc + jnum > (int) cd.i.size()) {
+            stage_pairs(nc);
+            nc = 0;
+            if (jnum > (int) cd.i.size()) cd.resize(jnum);
         }
+        const int *jlist = firstneigh[i];
+        int *ci = cd.i.data(), *cj = cd.j.data(), *ck = cd.k.data();
+        double *crsq = cd.r.data();
+        if (adh)
+            nc = find_touching<true, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach, ci,
+                                           cj, ck, crsq, nc, ps);
+        else if (hist)
+            nc = find_touching<false, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach, ci,
+                                            cj, ck, crsq, nc, ps);
+        else
+            nc = find_touching<false, false>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach,
+                                             ci, cj, ck, crsq, nc, ps);
+        k0 += jnum;
     }
+    stage_pairs(nc);
     // the pairs' last chunks, not full: a chunk holds pairs or wall contacts, not both
     evaluate(ps, false, true);
     if (wall_flag) {

@@ -30,33 +30,36 @@ using namespace dashpot_lmp;
 void PairDashpot::layout_slots()
 {
     const int nv = layout.nvalues;
-    tagint *tag = atom->tag;
+    const tagint *tag = atom->tag;
     const int nlocal = atom->nlocal;
     const int inum = list->inum;
-    int *ilist = list->ilist, *numneigh = list->numneigh;
+    const int *ilist = list->ilist, *numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
     size_t nslot = 0;
     for (int ii = 0; ii < inum; ii++) nslot += (size_t) numneigh[ilist[ii]];
     pair_slots.assign(nslot, layout);
-    slot_i.resize(nslot);
-    slot_j.resize(nslot);
-    slot_ti.resize(nslot);
-    slot_tj.resize(nslot);
     slot_first.assign(nlocal, -1);
     if (energy_flag) slot_energy.assign(nslot * NENERGY, 0.0);
+    // A size list with history marks each pair that touches as the list is built (bit HISTBITS
+    // of j, as for LAMMPS's granular styles): a contact without adhesion keeps its history only
+    // while it touches, so only the marked pairs can carry a record into this step.
+    const bool marked = nv > 0 && !layout.adhesive && list->history;
+    const int touching = 1 << HISTBITS;
     size_t k = 0;
     for (int ii = 0; ii < inum; ii++) {
         const int i = ilist[ii];
-        const int *jlist = firstneigh[i];
+        const int jnum = numneigh[i];
         if (i < nlocal) slot_first[i] = (int) k;
-        for (int jj = 0; jj < numneigh[i]; jj++, k++) {
-            const int j = jlist[jj] & NEIGHMASK;
-            slot_i[k] = i;
-            slot_j[k] = j;
-            slot_ti[k] = tag[i];
-            slot_tj[k] = tag[j];
-            if (nv == 0) continue;
-            const double *h = fix_history->find(i, tag[j]);
+        // an atom with no recorded contact: its pairs start from zero
+        if (nv == 0 || !fix_history->any(i)) {
+            k += jnum;
+            continue;
+        }
+        const int *jlist = firstneigh[i];
+        for (int jj = 0; jj < jnum; jj++, k++) {
+            const int j = jlist[jj];
+            if (marked && !(j & touching)) continue;
+            const double *h = fix_history->find(i, tag[j & NEIGHMASK]);
             if (h) pair_slots.set(k, h);
         }
     }
@@ -92,13 +95,28 @@ void PairDashpot::history_to_atoms()
     // contact yet), and with newton on every ghost
     fix_history->clear(mine ? (newton ? nall : std::min(slots_nlocal, nlocal)) : 0);
     std::vector<double> record(nv);
+    // the slots follow the neighbour list they were laid out from (no list is built between a
+    // list's post_neighbor and the next exchange), whose atoms keep their indices and tags
     const size_t nslot = mine ? pair_slots.size() : 0;
-    for (size_t k = 0; k < nslot; k++) {
-        if (!pair_slots.nonzero(k)) continue;    // the same as no record: zero at first touch
-        pair_slots.get(k, record.data());
-        const int i = slot_i[k], j = slot_j[k];
-        fix_history->add(i, slot_tj[k], record.data());
-        if (newton || j < nlocal) fix_history->add(j, slot_ti[k], record.data());
+    const tagint *tag = atom->tag;
+    const int *ilist = nslot ? list->ilist : nullptr, *numneigh = nslot ? list->numneigh : nullptr;
+    int **firstneigh = nslot ? list->firstneigh : nullptr;
+    const unsigned char *touched = pair_slots.touched.data();
+    const int inum = nslot ? list->inum : 0;
+    size_t k = 0;
+    for (int ii = 0; ii < inum; ii++) {
+        const int i = ilist[ii];
+        const int jnum = (int) std::min<size_t>((size_t) numneigh[i], nslot - k);
+        const int *jlist = firstneigh[i];
+        for (int jj = 0; jj < jnum; jj++) {
+            // a zero record is the same as none: zero at first touch
+            if (!touched[k + jj] || !pair_slots.nonzero(k + jj)) continue;
+            pair_slots.get(k + jj, record.data());
+            const int j = jlist[jj] & NEIGHMASK;
+            fix_history->add(i, tag[j], record.data());
+            if (newton || j < nlocal) fix_history->add(j, tag[i], record.data());
+        }
+        k += jnum;
     }
     for (int i = 0; mine && i < nwall_slots && i < nlocal; i++)
         if (wall_slots.nonzero(i)) {
