@@ -50,7 +50,7 @@ static bool is_plain_number(const std::string &w)
 
 PairDashpot::PairDashpot(LAMMPS *lmp) :
     Pair(lmp), default_spec(-1), cutoff_global(-1.0), granular_single(0), wall_flag(0), wall_z(0.0), energy_flag(0), coeff_spec(nullptr), coeff_e(nullptr),
-    coeff_nu(nullptr), freeze_group_bit(0), engine_ready(false), fix_history(nullptr), nwall_slots(0), slots_ncalls(-1), slots_nlocal(0),
+    coeff_nu(nullptr), freeze_group_bit(0), engine_ready(false), fix_history(nullptr), nslot_atoms(0), nwall_slots(0), slots_ncalls(-1), slots_nlocal(0),
     dirty(0)
 {
     single_enable = 1;

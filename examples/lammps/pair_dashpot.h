@@ -115,6 +115,8 @@ class PairDashpot : public Pair {
     // local atom.
     dashpot_lmp::HistoryStore pair_slots, wall_slots;
     std::vector<int> slot_first;              // per local atom i: the slot of its first list pair
+    std::vector<int> slot_atoms;              // the atoms with listed pairs, in list order:
+    int nslot_atoms;                          // the first nslot_atoms
     std::vector<double> slot_energy;          // energy=1: per slot, each family's power, the elastic energy
     int nwall_slots;
     bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)

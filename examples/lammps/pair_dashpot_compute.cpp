@@ -187,15 +187,16 @@ static int find_touching(const int *__restrict jlist, int jnum, int i, int k0, c
         const double dx = x - xj[0], dy = y - xj[1], dz = z - xj[2];
         const double rsq = dx * dx + dy * dy + dz * dz;
         const double radsum = radi + radius[j];
-        bool touch = rsq < radsum * radsum;
+        int touch = rsq < radsum * radsum;
         const int k = k0 + jj;
-        if (ADH && !touch && stouch[k]) touch = std::sqrt(rsq) - radsum <= sreach[k];
+        if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
         ci[n] = i;
         cj[n] = j;
         ck[n] = k;
         crsq[n] = rsq;
         n += touch;
-        if (HIST && !touch && stouch[k]) ps.zero(k);
+        // one test, true only for a record left by a contact that has ended (rare)
+        if (HIST && stouch[k] > touch) ps.zero(k);
     }
     return n;
 }

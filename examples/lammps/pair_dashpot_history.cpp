@@ -39,6 +39,8 @@ void PairDashpot::layout_slots()
     for (int ii = 0; ii < inum; ii++) nslot += (size_t) numneigh[ilist[ii]];
     pair_slots.assign(nslot, layout);
     slot_first.assign(nlocal, -1);
+    if ((int) slot_atoms.size() < inum) slot_atoms.resize(inum);
+    int natoms = 0;
     if (energy_flag) slot_energy.assign(nslot * NENERGY, 0.0);
     // A size list with history marks each pair that touches as the list is built (bit HISTBITS
     // of j, as for LAMMPS's granular styles): a contact without adhesion keeps its history only
@@ -50,6 +52,8 @@ void PairDashpot::layout_slots()
         const int i = ilist[ii];
         const int jnum = numneigh[i];
         if (i < nlocal) slot_first[i] = (int) k;
+        slot_atoms[natoms] = i;    // kept only if i has listed pairs
+        natoms += jnum > 0;
         // an atom with no recorded contact: its pairs start from zero
         if (nv == 0 || !fix_history->any(i)) {
             k += jnum;
@@ -63,6 +67,7 @@ void PairDashpot::layout_slots()
             if (h) pair_slots.set(k, h);
         }
     }
+    nslot_atoms = natoms;
     nwall_slots = wall_flag ? nlocal : 0;
     wall_slots.assign(nwall_slots, layout);
     for (int i = 0; i < nwall_slots && nv > 0; i++) {
@@ -95,19 +100,16 @@ void PairDashpot::history_to_atoms()
     // contact yet), and with newton on every ghost
     fix_history->clear(mine ? (newton ? nall : std::min(slots_nlocal, nlocal)) : 0);
     std::vector<double> record(nv);
-    // the slots follow the neighbour list they were laid out from (no list is built between a
-    // list's post_neighbor and the next exchange), whose atoms keep their indices and tags
     const size_t nslot = mine ? pair_slots.size() : 0;
+    // the slots follow the neighbour list they were laid out from (no list is built between a
+    // list's post_neighbor and the next exchange), whose atoms keep their indices and tags; the
+    // atoms with listed pairs, in list order
     const tagint *tag = atom->tag;
-    const int *ilist = nslot ? list->ilist : nullptr, *numneigh = nslot ? list->numneigh : nullptr;
-    int **firstneigh = nslot ? list->firstneigh : nullptr;
     const unsigned char *touched = pair_slots.touched.data();
-    const int inum = nslot ? list->inum : 0;
-    size_t k = 0;
-    for (int ii = 0; ii < inum; ii++) {
-        const int i = ilist[ii];
-        const int jnum = (int) std::min<size_t>((size_t) numneigh[i], nslot - k);
-        const int *jlist = firstneigh[i];
+    for (int q = 0; nslot > 0 && q < nslot_atoms; q++) {
+        const int i = slot_atoms[q];
+        const int k = slot_first[i], jnum = list->numneigh[i];
+        const int *jlist = list->firstneigh[i];
         for (int jj = 0; jj < jnum; jj++) {
             // a zero record is the same as none: zero at first touch
             if (!touched[k + jj] || !pair_slots.nonzero(k + jj)) continue;
@@ -116,7 +118,6 @@ void PairDashpot::history_to_atoms()
             fix_history->add(i, tag[j], record.data());
             if (newton || j < nlocal) fix_history->add(j, tag[i], record.data());
         }
-        k += jnum;
     }
     for (int i = 0; mine && i < nwall_slots && i < nlocal; i++)
         if (wall_slots.nonzero(i)) {
