@@ -5,7 +5,7 @@
 # pair_style granular (or gran/*) and with pair_style dashpot on the same deck, the walls
 # LAMMPS's own unless BENCH_WALLS=dashpot; or BENCH_DECK=restitution, the two spheres of
 # examples/granular/in.restitution colliding head on over its 1 ms in BENCH_NSTEPS steps
-# (200,000 by default, dt = 5 ns; LAMMPS's deck takes 1,000,000 of 1 ns): with two atoms, the
+# (100,000 by default, dt = 10 ns; LAMMPS's deck takes 1,000,000 of 1 ns): with two atoms, the
 # pair styles' cost per step and call rather than per contact; or the settling pile of in.pile
 # (20,000 spheres by default) on 1 and 2 MPI ranks,
 # with Mindlin friction and history (BENCH_FRICTION=mindlin, the default) or without (none);
@@ -68,7 +68,7 @@ run() {
     elif [ "$deck" = pour2d ]; then
         set -- -var walls "$walls" -var n "${BENCH_N:-1000}" -var nsteps "${BENCH_NSTEPS:-25000}"
     elif [ "$deck" = restitution ]; then
-        set -- -var dt "$(awk -v n="${BENCH_NSTEPS:-200000}" 'BEGIN { printf "%.17g", 1e-3 / n }')"
+        set -- -var dt "$(awk -v n="${BENCH_NSTEPS:-100000}" 'BEGIN { printf "%.10g", 1e-3 / n }')"
     elif [ "$deck" = pour ]; then
         set -- -var n "${BENCH_N:-2000}" -var L "${BENCH_L:-0.08}" -var tpour "${BENCH_TPOUR:-0.8}" \
             -var tsettle "${BENCH_TSETTLE:-0.2}" \
@@ -107,7 +107,7 @@ case "$deck" in
         echo "LAMMPS's $deck deck: granular against dashpot (walls ${BENCH_WALLS:-gran}), $repeats pairs; $(nproc) cores" ;;
 esac
 if [ "$deck" = restitution ]; then
-    echo "in.restitution: 2 spheres, ${BENCH_NSTEPS:-200000} steps, granular against dashpot, $repeats pairs; $(nproc) cores"
+    echo "in.restitution: 2 spheres, ${BENCH_NSTEPS:-100000} steps, granular against dashpot, $repeats pairs; $(nproc) cores"
 elif [ "$deck" = pour ]; then
     echo "polydisperse pour: ${BENCH_N:-2000} spheres, rolling $rolling, $repeats pairs; $(nproc) cores"
 elif [ "$deck" = pile ]; then
