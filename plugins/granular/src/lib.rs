@@ -26,6 +26,8 @@ pub mod rotation;
 pub mod rotation_laws;
 pub mod spring;
 pub mod tangential;
+#[cfg(target_arch = "x86_64")]
+mod tangential_avx2;
 pub mod tangential_laws;
 
 use normal_laws::*;

@@ -1,0 +1,172 @@
+//! The history springs' batch (four contacts at a time in AVX2 lanes where the CPU has them)
+//! gives the per-contact form's bits for every spring kind, on every path: a fresh spring and a
+//! held one, a spring with a normal part to turn or project, a velocity already tangent and one
+//! not, sticking and sliding (a cap of zero, a spring that held nothing), a contact radius
+//! shrinking (the rescaling variants) or growing, and a ragged last lane.
+
+use dashpot_granular::tangential::Spring;
+use dashpot_granular::tangential_laws::{kind, SpringBound};
+use dashpot_sdk::{BoundTangential, NormalContext, TangentialBatch, TangentialContact};
+use std::f64::consts::PI;
+
+/// `n` contacts with their history (`slots` a contact), drawn to cover every branch.
+fn contacts(n: usize, slots: usize, seed: u64) -> (Vec<TangentialContact>, Vec<f64>) {
+    let mut rnd = dashpot_testkit::uniform(seed);
+    let (mut cs, mut hist) = (Vec::new(), Vec::new());
+    for i in 0..n {
+        let (th, ph) = (PI * rnd(), 2.0 * PI * rnd());
+        let normal = [th.sin() * ph.cos(), th.sin() * ph.sin(), th.cos()];
+        let mut velocity = [rnd() - 0.5, rnd() - 0.5, rnd() - 0.5];
+        if i % 3 == 0 {
+            // already tangent (to rounding): the law keeps it as it is
+            let vn = velocity.iter().zip(normal).map(|(v, n)| v * n).sum::<f64>();
+            velocity = [0, 1, 2].map(|k| velocity[k] - vn * normal[k]);
+        }
+        let a = 1e-4 * (0.5 + rnd());
+        let context = NormalContext {
+            contact_radius: a,
+            // a zero cap slides every spring; a small one some; a large one none
+            cap_force: [0.0, 1e-3, 10.0][i % 3] * rnd(),
+            damping: if i % 4 == 1 { 0.0 } else { 0.05 * rnd() },
+        };
+        cs.push(TangentialContact {
+            normal,
+            velocity,
+            normal_force: context.cap_force,
+            delta: 1e-6 * rnd(),
+            mass: 1e-6 * (0.5 + rnd()),
+            radius: 1e-3 * (0.5 + rnd()),
+            context,
+            dt: 1e-4,
+        });
+        // none held, or a spring with a normal part (to turn or project)
+        for _ in 0..3 {
+            hist.push(if i % 5 == 0 { 0.0 } else { 1e-4 * (rnd() - 0.5) });
+        }
+        if slots == 4 {
+            // the contact radius of the last step: none, above or below this step's
+            hist.push([0.0, 1.3 * a, 0.7 * a][i % 3]);
+        }
+    }
+    (cs, hist)
+}
+
+/// Spring `law` of kind `kind` (`slots` history slots) in batches of several lengths against
+/// its per-contact form.
+fn check<L: BoundTangential>(law: L, kind: u8, slots: usize) {
+    for n in [0, 1, 4, 7, 203] {
+        let (cs, hist) = contacts(n, slots, 0x9e37_79b9_7f4a_7c15 ^ u64::from(kind));
+        if n == 0 {
+            continue;
+        }
+        let f = dashpot_testkit::batch_is_per_contact(
+            &cs,
+            &hist,
+            slots,
+            |c, h| law.force(c, h),
+            |b| law.force_batch(b),
+            &format!("kind {kind}, {n} contacts"),
+        );
+        if n == 203 {
+            // the draw reaches both sides of the cap and springs that held nothing
+            let (slid, stuck) = f.iter().zip(&cs).fold((0, 0), |(s, t), (f, c)| {
+                let m = f.iter().map(|x| x * x).sum::<f64>().sqrt();
+                let cap = 0.4 * c.context.cap_force;
+                (
+                    s + usize::from(m > 0.0 && (m - cap).abs() <= 1e-12 * cap),
+                    t + usize::from(m < 0.999 * cap),
+                )
+            });
+            assert!(
+                slid > 10 && stuck > 10,
+                "kind {kind}: {slid} sliding, {stuck} stuck"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_spring_batch_is_the_per_contact_form_bit_for_bit() {
+    let spring = |k| Spring { k, xt: 0.7, mu: 0.4 };
+    check(SpringBound::<{ kind::LINEAR }>(spring(1e3)), kind::LINEAR, 3);
+    check(SpringBound::<{ kind::MINDLIN }>(spring(1e7)), kind::MINDLIN, 4);
+    check(
+        SpringBound::<{ kind::MINDLIN_RESCALE }>(spring(1e7)),
+        kind::MINDLIN_RESCALE,
+        4,
+    );
+    check(
+        SpringBound::<{ kind::MINDLIN_FORCE }>(spring(1e7)),
+        kind::MINDLIN_FORCE,
+        4,
+    );
+    check(
+        SpringBound::<{ kind::MINDLIN_RESCALE_FORCE }>(spring(1e7)),
+        kind::MINDLIN_RESCALE_FORCE,
+        4,
+    );
+    check(
+        SpringBound::<{ kind::CLASSIC_HOOKE }>(spring(1e3)),
+        kind::CLASSIC_HOOKE,
+        3,
+    );
+    check(
+        SpringBound::<{ kind::CLASSIC_HERTZ }>(spring(1e7)),
+        kind::CLASSIC_HERTZ,
+        4,
+    );
+    check(
+        SpringBound::<{ kind::CLASSIC_GRANULAR }>(spring(1e7)),
+        kind::CLASSIC_GRANULAR,
+        4,
+    );
+}
+
+/// Without the normal law's contexts (a host that passes none) the batch gives the
+/// per-contact form's bits with each contact's default context.
+#[test]
+fn a_batch_without_contexts_is_the_per_contact_form() {
+    let law = SpringBound::<{ kind::CLASSIC_HOOKE }>(Spring {
+        k: 1e3,
+        xt: 0.7,
+        mu: 0.4,
+    });
+    let (mut cs, hist) = contacts(9, 3, 7);
+    let mut h1 = hist.clone();
+    let mut f1 = Vec::new();
+    for (i, c) in cs.iter_mut().enumerate() {
+        c.context = NormalContext::hertzian(c.radius, c.delta, c.normal_force);
+        f1.push(law.force(c, &mut h1[3 * i..3 * i + 3]));
+    }
+    let col = |g: fn(&TangentialContact) -> f64| cs.iter().map(g).collect::<Vec<_>>();
+    let (normal, velocity): (Vec<_>, Vec<_>) = cs.iter().map(|c| (c.normal, c.velocity)).unzip();
+    let (fnorm, delta, mass, radius) = (
+        col(|c| c.normal_force),
+        col(|c| c.delta),
+        col(|c| c.mass),
+        col(|c| c.radius),
+    );
+    let (mut h2, mut f2) = (hist, vec![[0.0; 3]; cs.len()]);
+    law.force_batch(TangentialBatch {
+        dt: cs[0].dt,
+        normal: &normal,
+        velocity: &velocity,
+        normal_force: &fnorm,
+        delta: &delta,
+        mass: &mass,
+        radius: &radius,
+        context: &[],
+        slots: 3,
+        history: &mut h2,
+        force: &mut f2,
+    });
+    assert_eq!(f1, f2);
+    assert_eq!(
+        h1.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+        h2.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+    );
+    assert!(
+        f1.iter().any(|f| f.iter().any(|&x| x != 0.0)),
+        "some contacts carry a force"
+    );
+}
