@@ -23,6 +23,8 @@ mod docs;
 pub mod normal;
 pub mod normal_laws;
 pub mod rotation;
+#[cfg(target_arch = "x86_64")]
+mod rotation_avx2;
 pub mod rotation_laws;
 pub mod spring;
 pub mod tangential;

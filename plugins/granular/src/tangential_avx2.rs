@@ -44,19 +44,108 @@ unsafe fn rotate_rescale(v: V3, n: V3) -> V3 {
     scale3(p, s)
 }
 
-/// The spring of kind `KIND` (bound constants `s`) on contacts `i .. i + 4` of batch `b`, whose
-/// contexts are `ctx` (flattened `[a, F_c, η_n]` triples): the force written, the history
-/// advanced. Each line is the per-contact form's operation (`crate::tangential`).
+/// [`crate::tangential::turn_advance`]: the spring `xi` turned into the tangent plane of `n`
+/// when its normal part, as a force (stiffness `k`), exceeds 10⁻¹⁰ of `cap`, then advanced by
+/// `step` `v`.
+#[inline]
+#[target_feature(enable = "avx2")]
+pub(crate) unsafe fn turn_advance(xi: V3, n: V3, k: F64x4, cap: F64x4, step: F64x4, v: V3) -> V3 {
+    let turn = dot(xi, n).abs().mul(k).gt(F64x4::splat(FRAME_EPS).mul(cap));
+    let start = select3(turn, rotate_rescale(xi, n), xi);
+    add3(start, scale3(v, step))
+}
+
+/// The flattened `[a, F_c, η_n]` triples of a batch's contexts.
+#[inline(always)]
+pub(crate) fn flat(ctx: &[dashpot_sdk::NormalContext]) -> &[f64] {
+    // SAFETY: NormalContext is three f64 (repr(C)), so n contexts are 3 n values
+    unsafe { std::slice::from_raw_parts(ctx.as_ptr() as *const f64, 3 * ctx.len()) }
+}
+
+/// A batch's arrays as the lane steps read and write them, flattened: the unit normals, the
+/// motion input (a velocity or a rate), the contexts (`[a, F_c, η_n]` triples), the history
+/// and the output (a force or a torque); the step (s).
+pub(crate) struct Cols<'a> {
+    pub(crate) dt: f64,
+    pub(crate) normal: &'a [f64],
+    pub(crate) motion: &'a [f64],
+    pub(crate) ctx: &'a [f64],
+    pub(crate) history: &'a mut [f64],
+    pub(crate) out: &'a mut [f64],
+}
+
+/// `four_at_a_time!(n, cols, [motion, slots, out], |c, i| step)`: the lane step on contacts
+/// `i .. i + 4` of the `n` contacts of `cols` (a [`Cols`] of `motion` input values, `slots`
+/// history slots and `out` outputs a contact) for every four; then the last `n % 4` in the
+/// four that end the batch (their inputs read in place, the history through a copy, only the
+/// last `n % 4` contacts' results kept), or, in a batch of fewer than four, copied into four
+/// padded with zeros: every contact in lanes. A macro, not a function taking a closure: the
+/// step must be compiled for AVX2.
+macro_rules! four_at_a_time {
+    ($n:expr, $cols:ident, [$wm:expr, $slots:expr, $wo:expr], |$c:ident, $i:ident| $step:expr) => {{
+        let (n, wm, slots, wo): (usize, usize, usize, usize) = ($n, $wm, $slots, $wo);
+        let n4 = n - n % 4;
+        let mut i = 0;
+        while i < n4 {
+            {
+                let ($c, $i) = (&mut $cols, i);
+                $step;
+            }
+            i += 4;
+        }
+        let r = n - n4;
+        if r > 0 {
+            // the four lanes from contact w: the batch's last four (of which the last r are
+            // kept), or its n < 4 contacts padded with zeros
+            let w = n.saturating_sub(4);
+            let keep = if n >= 4 { 4 - r } else { 0 };
+            let (mut normal, mut motion, mut ctx) = ([0.0; 12], [0.0; 12], [0.0; 12]);
+            let (mut history, mut out) = ([0.0; 16], [0.0; 12]);
+            history[..slots * (n - w)].copy_from_slice(&$cols.history[slots * w..slots * n]);
+            let (nl, ml, xl) = if n >= 4 {
+                (
+                    &$cols.normal[3 * w..3 * n],
+                    &$cols.motion[wm * w..wm * n],
+                    &$cols.ctx[3 * w..3 * n],
+                )
+            } else {
+                normal[..3 * n].copy_from_slice(&$cols.normal[..3 * n]);
+                motion[..wm * n].copy_from_slice(&$cols.motion[..wm * n]);
+                ctx[..3 * n].copy_from_slice(&$cols.ctx[..3 * n]);
+                (&normal[..], &motion[..4 * wm], &ctx[..])
+            };
+            let mut pad = $crate::tangential_avx2::Cols {
+                dt: $cols.dt,
+                normal: nl,
+                motion: ml,
+                ctx: xl,
+                history: &mut history[..4 * slots],
+                out: &mut out[..4 * wo],
+            };
+            {
+                let ($c, $i) = (&mut pad, 0);
+                $step;
+            }
+            $cols.history[slots * n4..slots * n]
+                .copy_from_slice(&pad.history[slots * keep..slots * (keep + r)]);
+            $cols.out[wo * n4..wo * n].copy_from_slice(&pad.out[wo * keep..wo * (keep + r)]);
+        }
+    }};
+}
+pub(crate) use four_at_a_time;
+
+/// The spring of kind `KIND` (bound constants `s`) on contacts `i .. i + 4` of the arrays `b`:
+/// the force written, the history advanced. Each line is the per-contact form's operation (`crate::tangential`).
 ///
 /// # Safety
 /// The CPU must support AVX2; `i + 4` contacts, `b.slots == slots(KIND)`.
 #[inline]
 #[target_feature(enable = "avx2")]
-unsafe fn step<const KIND: u8>(s: &Spring, b: &mut TangentialBatch<'_>, ctx: &[f64], i: usize) {
+unsafe fn step<const KIND: u8>(s: &Spring, b: &mut Cols<'_>, i: usize) {
     let zero = F64x4::splat(0.0);
-    let n = triples(b.normal.as_flattened(), i);
-    let v = triples(b.velocity.as_flattened(), i);
-    let [a, cap_force, damping] = triples(ctx, i);
+    let n = triples(b.normal, i);
+    let v = triples(b.motion, i);
+    let [a, cap_force, damping] = triples(b.ctx, i);
     let dt = F64x4::splat(b.dt);
     let classic =
         KIND == kind::CLASSIC_HOOKE || KIND == kind::CLASSIC_HERTZ || KIND == kind::CLASSIC_GRANULAR;
@@ -97,12 +186,7 @@ unsafe fn step<const KIND: u8>(s: &Spring, b: &mut TangentialBatch<'_>, ctx: &[f
         } else {
             (k_spring, dt)
         };
-        let turn = dot(hist, n)
-            .abs()
-            .mul(k_turn)
-            .gt(F64x4::splat(FRAME_EPS).mul(fscrit));
-        let start = select3(turn, rotate_rescale(hist, n), hist);
-        let xi = add3(start, scale3(vtr, step));
+        let xi = turn_advance(hist, n, k_turn, fscrit, step, vtr);
         (xi, dot(xi, xi).sqrt().ne(zero))
     };
     let f = if force_history {
@@ -123,7 +207,7 @@ unsafe fn step<const KIND: u8>(s: &Spring, b: &mut TangentialBatch<'_>, ctx: &[f
     }
     let force = select3(slid, select3(held, capped, [zero; 3]), f);
     let xi = select3(slid.and(held), reset, xi);
-    put_triples(force, b.force.as_flattened_mut(), i);
+    put_triples(force, b.out, i);
     if slots(KIND) == 3 {
         put_triples(xi, b.history, i);
     } else {
@@ -131,17 +215,17 @@ unsafe fn step<const KIND: u8>(s: &Spring, b: &mut TangentialBatch<'_>, ctx: &[f
     }
 }
 
-/// The spring of kind `KIND` on the contacts `0..n − n % 4` of batch `b` with contexts `ctx`
-/// (one per contact); returns where the lanes stopped (the rest is the caller's).
+/// The spring of kind `KIND` on every contact of batch `b` with contexts `ctx` (one per
+/// contact), four at a time.
 ///
 /// # Safety
-/// The CPU must support AVX2; `b.slots == slots(KIND)`, `ctx.len() == b.force.len()`.
+/// The CPU must support AVX2.
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn lanes<const KIND: u8>(
     s: &Spring,
     b: &mut TangentialBatch<'_>,
     ctx: &[dashpot_sdk::NormalContext],
-) -> usize {
+) {
     let n = b.force.len();
     assert!(
         b.normal.len() == n
@@ -151,13 +235,13 @@ pub(crate) unsafe fn lanes<const KIND: u8>(
             && b.history.len() == b.slots * n,
         "a batch's arrays have its contacts' lengths"
     );
-    // SAFETY: NormalContext is three f64 (repr(C)), so n contexts are 3 n values
-    let flat = unsafe { std::slice::from_raw_parts(ctx.as_ptr() as *const f64, 3 * n) };
-    let n4 = n - n % 4;
-    let mut i = 0;
-    while i < n4 {
-        step::<KIND>(s, b, flat, i);
-        i += 4;
-    }
-    n4
+    let mut cols = Cols {
+        dt: b.dt,
+        normal: b.normal.as_flattened(),
+        motion: b.velocity.as_flattened(),
+        ctx: flat(ctx),
+        history: b.history,
+        out: b.force.as_flattened_mut(),
+    };
+    four_at_a_time!(n, cols, [3, slots(KIND), 3], |c, i| step::<KIND>(s, c, i));
 }

@@ -198,22 +198,15 @@ impl<const KIND: u8> ReadsContext<TangentialContact> for SpringBound<KIND> {
 
 impl<const KIND: u8> SpringBound<KIND> {
     /// The batch's forces: with the normal law's contexts on an x86-64 CPU with AVX2, four
-    /// contacts at a time in explicit lanes (`tangential_avx2`, the per-contact form's bits),
-    /// the last `n % 4` (and every contact elsewhere) one at a time.
+    /// contacts at a time in explicit lanes (`tangential_avx2`, the per-contact form's bits;
+    /// the last `n % 4` padded to four), else one at a time.
     #[inline(always)]
     fn batch(&self, mut b: TangentialBatch<'_>) {
         #[cfg(target_arch = "x86_64")]
         if !b.context.is_empty() && dashpot_sdk::simd::available() {
             let ctx = b.context;
             // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
-            let from = unsafe { crate::tangential_avx2::lanes::<KIND>(&self.0, &mut b, ctx) };
-            b.each_from(
-                from,
-                None,
-                |c, h| self.eval(&c.context, c, h).0,
-                |c, h| (self.eval(&c.context, c, h).0, None),
-            );
-            return;
+            return unsafe { crate::tangential_avx2::lanes::<KIND>(&self.0, &mut b, ctx) };
         }
         b.each(|c, h| self.eval(&c.context, c, h).0);
     }

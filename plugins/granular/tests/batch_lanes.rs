@@ -2,11 +2,17 @@
 //! gives the per-contact form's bits for every spring kind, on every path: a fresh spring and a
 //! held one, a spring with a normal part to turn or project, a velocity already tangent and one
 //! not, sticking and sliding (a cap of zero, a spring that held nothing), a contact radius
-//! shrinking (the rescaling variants) or growing, and a ragged last lane.
+//! shrinking (the rescaling variants) or growing, and a ragged last lane; and so do `rolling sds`
+//! and `twisting marshall`.
 
+use dashpot_granular::rotation::Sds;
+use dashpot_granular::rotation_laws::MarshallBound;
 use dashpot_granular::tangential::Spring;
 use dashpot_granular::tangential_laws::{kind, SpringBound};
-use dashpot_sdk::{BoundTangential, NormalContext, TangentialBatch, TangentialContact};
+use dashpot_sdk::{
+    BoundRolling, BoundTangential, BoundTwisting, NormalContext, TangentialBatch, TangentialContact,
+    TwistingBatch, TwistingContact,
+};
 use std::f64::consts::PI;
 
 /// `n` contacts with their history (`slots` a contact), drawn to cover every branch.
@@ -54,7 +60,7 @@ fn contacts(n: usize, slots: usize, seed: u64) -> (Vec<TangentialContact>, Vec<f
 /// Spring `law` of kind `kind` (`slots` history slots) in batches of several lengths against
 /// its per-contact form.
 fn check<L: BoundTangential>(law: L, kind: u8, slots: usize) {
-    for n in [0, 1, 4, 7, 203] {
+    for n in [0, 1, 3, 4, 5, 7, 203] {
         let (cs, hist) = contacts(n, slots, 0x9e37_79b9_7f4a_7c15 ^ u64::from(kind));
         if n == 0 {
             continue;
@@ -169,4 +175,101 @@ fn a_batch_without_contexts_is_the_per_contact_form() {
         f1.iter().any(|f| f.iter().any(|&x| x != 0.0)),
         "some contacts carry a force"
     );
+}
+
+/// `rolling sds`'s batch is its per-contact form, bit for bit, stuck and sliding.
+#[test]
+fn rolling_sds_batch_is_the_per_contact_form_bit_for_bit() {
+    let law = Sds {
+        k: 1e3,
+        gamma: 0.02,
+        mu: 0.3,
+    };
+    for n in [1, 6, 203] {
+        let (cs, hist) = contacts(n, 3, 0x51);
+        dashpot_testkit::batch_is_per_contact(
+            &cs,
+            &hist,
+            3,
+            |c, h| BoundRolling::force(&law, c, h),
+            |b| BoundRolling::force_batch(&law, b),
+            &format!("rolling sds, {n} contacts"),
+        );
+    }
+}
+
+/// `twisting marshall`'s batch is its per-contact form, bit for bit: twisting either way or not
+/// at all, stuck and sliding, with a ragged last lane.
+#[test]
+fn twisting_marshall_batch_is_the_per_contact_form_bit_for_bit() {
+    let law = MarshallBound(Spring {
+        k: 1e7,
+        xt: 0.7,
+        mu: 0.4,
+    });
+    for n in [1, 5, 203] {
+        let (cs, mut hist) = contacts(n, 4, 0x77);
+        // slots θ and a_last of each contact from the drawn four
+        hist = hist.chunks(4).flat_map(|h| [1e-2 * h[0], h[3]]).collect();
+        let twist: Vec<TwistingContact> = cs
+            .iter()
+            .enumerate()
+            .map(|(i, c)| TwistingContact {
+                normal: c.normal,
+                rate: [0.0, 30.0 * c.velocity[0], -5.0 * c.velocity[1]][i % 3],
+                normal_force: c.normal_force,
+                delta: c.delta,
+                mass: c.mass,
+                radius: c.radius,
+                context: c.context,
+                dt: c.dt,
+            })
+            .collect();
+        let mut h1 = hist.clone();
+        let t1: Vec<f64> = twist
+            .iter()
+            .enumerate()
+            .map(|(i, c)| law.torque(c, &mut h1[2 * i..2 * i + 2]))
+            .collect();
+        let col = |g: fn(&TwistingContact) -> f64| twist.iter().map(g).collect::<Vec<_>>();
+        let normal: Vec<[f64; 3]> = twist.iter().map(|c| c.normal).collect();
+        let context: Vec<NormalContext> = twist.iter().map(|c| c.context).collect();
+        let (rate, fnorm, delta, mass, radius) = (
+            col(|c| c.rate),
+            col(|c| c.normal_force),
+            col(|c| c.delta),
+            col(|c| c.mass),
+            col(|c| c.radius),
+        );
+        let (mut h2, mut t2) = (hist, vec![0.0; n]);
+        law.torque_batch(TwistingBatch {
+            dt: twist[0].dt,
+            normal: &normal,
+            rate: &rate,
+            normal_force: &fnorm,
+            delta: &delta,
+            mass: &mass,
+            radius: &radius,
+            context: &context,
+            slots: 2,
+            history: &mut h2,
+            torque: &mut t2,
+        });
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&t1), bits(&t2), "torques, {n} contacts");
+        assert_eq!(bits(&h1), bits(&h2), "history, {n} contacts");
+        if n == 203 {
+            let slid = t1
+                .iter()
+                .zip(&twist)
+                .filter(|(t, c)| {
+                    **t != 0.0
+                        && (t.abs() - 2.0 / 3.0 * 0.4 * c.context.contact_radius * c.context.cap_force).abs()
+                            <= 1e-12 * t.abs()
+                })
+                .count();
+            let stuck = t1.iter().filter(|t| **t != 0.0).count() - slid;
+            assert!(slid > 10 && stuck > 10, "{slid} sliding, {stuck} stuck");
+        }
+    }
 }
