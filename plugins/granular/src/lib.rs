@@ -21,6 +21,8 @@ pub mod calibrate;
 pub mod cbrt;
 mod docs;
 pub mod normal;
+#[cfg(target_arch = "x86_64")]
+mod normal_avx2;
 pub mod normal_laws;
 pub mod rotation;
 #[cfg(target_arch = "x86_64")]

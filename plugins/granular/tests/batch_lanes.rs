@@ -3,15 +3,20 @@
 //! held one, a spring with a normal part to turn or project, a velocity already tangent and one
 //! not, sticking and sliding (a cap of zero, a spring that held nothing), a contact radius
 //! shrinking (the rescaling variants) or growing, and a ragged last lane; and so do `rolling sds`
-//! and `twisting marshall`.
+//! and `twisting marshall`; and the normal laws' force-and-context and reach batches.
 
+use dashpot_granular::normal::{
+    CoeffRestitution, DampingModel, Dmt, Hertz, Hooke, Jkr, MassVelocity, NormalModel, Tsuji, Velocity,
+    Viscoelastic, FOURTHIRDS,
+};
+use dashpot_granular::normal_laws::GranNormalBound;
 use dashpot_granular::rotation::Sds;
 use dashpot_granular::rotation_laws::MarshallBound;
 use dashpot_granular::tangential::Spring;
 use dashpot_granular::tangential_laws::{kind, SpringBound};
 use dashpot_sdk::{
-    BoundRolling, BoundTangential, BoundTwisting, NormalContext, TangentialBatch, TangentialContact,
-    TwistingBatch, TwistingContact,
+    BoundContact, BoundRolling, BoundTangential, BoundTwisting, Contact, NormalBatch, NormalContext,
+    TangentialBatch, TangentialContact, TwistingBatch, TwistingContact,
 };
 use std::f64::consts::PI;
 
@@ -271,5 +276,182 @@ fn twisting_marshall_batch_is_the_per_contact_form_bit_for_bit() {
             let stuck = t1.iter().filter(|t| **t != 0.0).count() - slid;
             assert!(slid > 10 && stuck > 10, "{slid} sliding, {stuck} stuck");
         }
+    }
+}
+
+/// A normal law's force-and-context batch and its reach batch (four contacts at a time in
+/// lanes where the CPU has them) give its per-contact forms' bits: pressed, touching, pulled
+/// apart within and beyond JKR's pull-off distance, formed or not, approaching and receding.
+fn normal_batch_is_per_contact<B: BoundContact>(law: &B, slots: usize, what: &str) {
+    let mut rnd = dashpot_testkit::uniform(0xabcd_ef01);
+    for n in [1, 3, 4, 9, 203] {
+        let contacts: Vec<Contact> = (0..n)
+            .map(|i| Contact {
+                delta: [-3e-6, -1e-8, 0.0, 2e-6, 1e-9][i % 5] * (0.5 + rnd()),
+                rate: 0.4 * (rnd() - 0.5),
+                mass: 1e-7 * (0.5 + rnd()),
+                radius: 2e-4 * (0.5 + rnd()),
+            })
+            .collect();
+        let hist: Vec<f64> = (0..n * slots).map(|i| f64::from(u8::from(i % 3 != 0))).collect();
+        let (mut h1, mut f1, mut x1) = (hist.clone(), vec![0.0; n], vec![NormalContext::default(); n]);
+        for (i, c) in contacts.iter().enumerate() {
+            (f1[i], x1[i]) = law.force_context(*c, &mut h1[i * slots..(i + 1) * slots]);
+        }
+        let col = |g: fn(&Contact) -> f64| contacts.iter().map(g).collect::<Vec<_>>();
+        let (delta, rate, mass, radius) = (
+            col(|c| c.delta),
+            col(|c| c.rate),
+            col(|c| c.mass),
+            col(|c| c.radius),
+        );
+        let (mut h2, mut f2, mut x2) = (hist, vec![0.0; n], vec![NormalContext::default(); n]);
+        let mut b = NormalBatch {
+            delta: &delta,
+            rate: &rate,
+            mass: &mass,
+            radius: &radius,
+            slots,
+            history: &mut h2,
+            force: &mut f2,
+        };
+        law.force_context_batch(&mut b, &mut x2);
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        let ctx = |x: &[NormalContext]| {
+            x.iter()
+                .flat_map(|c| c.to_array().map(f64::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&f1), bits(&f2), "forces, {what}, {n} contacts");
+        assert_eq!(bits(&h1), bits(&h2), "history, {what}, {n} contacts");
+        assert_eq!(ctx(&x1), ctx(&x2), "contexts, {what}, {n} contacts");
+        let r1: Vec<f64> = contacts
+            .iter()
+            .enumerate()
+            .map(|(i, c)| law.reach(c, &h1[i * slots..(i + 1) * slots]))
+            .collect();
+        let mut r2 = vec![0.0; n];
+        let b = NormalBatch {
+            delta: &delta,
+            rate: &rate,
+            mass: &mass,
+            radius: &radius,
+            slots,
+            history: &mut h2,
+            force: &mut f2,
+        };
+        law.reach_batch(&b, &mut r2);
+        assert_eq!(bits(&r1), bits(&r2), "reach, {what}, {n} contacts");
+        if n == 203 {
+            assert!(
+                f1.iter().filter(|f| **f != 0.0).count() > 50,
+                "{what}: contacts act"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_normal_batch_is_the_per_contact_form_bit_for_bit() {
+    let e = 5e7;
+    let k = FOURTHIRDS * e;
+    let jkr = Jkr {
+        k,
+        emix: e,
+        cohesion: 0.05,
+    };
+    let dmt = Dmt { k, cohesion: 0.05 };
+    let hertz = Hertz { k };
+    let hooke = Hooke { k: 1e3 };
+    let ts = Tsuji::coefficient(0.7, false);
+    let cr = CoeffRestitution::coefficient(0.7, false);
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Jkr, Viscoelastic>::new(jkr, 0.3, false),
+        1,
+        "jkr viscoelastic",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Jkr, Velocity>::new(jkr, 1e-3, false),
+        1,
+        "jkr velocity",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Jkr, MassVelocity>::new(jkr, 30.0, false),
+        1,
+        "jkr mass",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Dmt, MassVelocity>::new(dmt, 50.0, false),
+        0,
+        "dmt",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Hertz, Viscoelastic>::new(hertz, 0.3, true),
+        0,
+        "hertz",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Hertz, Tsuji>::new(hertz, ts, true),
+        0,
+        "hertz tsuji",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Hertz, CoeffRestitution>::new(hertz, cr, false),
+        0,
+        "hertz cr",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Hooke, MassVelocity>::new(hooke, 50.0, false),
+        0,
+        "hooke",
+    );
+    normal_batch_is_per_contact(
+        &GranNormalBound::<Hooke, CoeffRestitution>::new(hooke, 0.5, true),
+        0,
+        "hooke cr",
+    );
+}
+
+/// The lanes' cube root is the per-contact one, bit for bit, across the range and at its ends.
+#[test]
+fn lane_cube_roots_are_the_per_contact_ones() {
+    let mut rnd = dashpot_testkit::uniform(3);
+    let jkr = Jkr {
+        k: 1.0,
+        emix: 1.0,
+        cohesion: 1.0,
+    };
+    let law = GranNormalBound::<Jkr, Velocity>::new(jkr, 0.0, false);
+    // the reach is the pull-off distance, a cube root of R γ²/E² = R: radii across the range,
+    // every 7th beyond the lanes' range (then lane by lane)
+    let n = 400;
+    let radius: Vec<f64> = (0..n)
+        .map(|i| {
+            if i % 7 == 3 {
+                1e-305 * (1.0 + rnd())
+            } else {
+                10f64.powf(600.0 * (rnd() - 0.5))
+            }
+        })
+        .collect();
+    let zeros = vec![0.0; n];
+    let (mut h, mut f) = (vec![1.0; n], vec![0.0; n]);
+    let b = NormalBatch {
+        delta: &zeros,
+        rate: &zeros,
+        mass: &zeros,
+        radius: &radius,
+        slots: 1,
+        history: &mut h,
+        force: &mut f,
+    };
+    let mut r = vec![0.0; n];
+    law.reach_batch(&b, &mut r);
+    for (i, (&x, &y)) in radius.iter().zip(&r).enumerate() {
+        assert_eq!(
+            y.to_bits(),
+            jkr.pulloff_distance(x).to_bits(),
+            "radius {x:e} ({i})"
+        );
     }
 }
