@@ -7,7 +7,7 @@
 
 use crate::rotation::{Sds, TWOTHIRDS};
 use crate::tangential::Spring;
-use crate::tangential_avx2::{flat, four_at_a_time, turn_advance, Cols};
+use crate::tangential_avx2::{flat, four_at_a_time, turn_advance, vector_cols, Cols};
 use dashpot_sdk::simd::{add3, dot, put_triples, scale3, select3, triples, F64x4};
 use dashpot_sdk::{NormalContext, RollingBatch, TwistingBatch};
 use std::arch::x86_64::*;
@@ -52,22 +52,7 @@ unsafe fn sds_step(s: &Sds, b: &mut Cols<'_>, i: usize) {
 #[target_feature(enable = "avx2")]
 pub(crate) unsafe fn rolling_sds(s: &Sds, b: &mut RollingBatch<'_>, ctx: &[NormalContext]) {
     let n = b.force.len();
-    assert!(
-        b.normal.len() == n
-            && b.velocity.len() == n
-            && ctx.len() == n
-            && b.slots == 3
-            && b.history.len() == 3 * n,
-        "a batch's arrays have its contacts' lengths"
-    );
-    let mut cols = Cols {
-        dt: b.dt,
-        normal: b.normal.as_flattened(),
-        motion: b.velocity.as_flattened(),
-        ctx: flat(ctx),
-        history: b.history,
-        out: b.force.as_flattened_mut(),
-    };
+    let mut cols = vector_cols(b, ctx, 3);
     four_at_a_time!(n, cols, [3, 3, 3], |c, i| sds_step(s, c, i));
 }
 

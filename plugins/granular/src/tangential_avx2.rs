@@ -9,7 +9,7 @@ use crate::tangential::{Spring, FRAME_EPS};
 use crate::tangential_laws::kind;
 use dashpot_sdk::physics::lanes::{load_rows, store_rows};
 use dashpot_sdk::simd::{add3, dot, put_triples, scale3, select3, sub3, triples, F64x4, V3};
-use dashpot_sdk::TangentialBatch;
+use dashpot_sdk::{TangentialBatch, VectorBatch};
 
 /// The history slots of a spring of kind `KIND`: ξ (or the elastic force), and the contact
 /// radius of the last step but for the classic Hookean spring.
@@ -60,6 +60,32 @@ pub(crate) unsafe fn turn_advance(xi: V3, n: V3, k: F64x4, cap: F64x4, step: F64
 pub(crate) fn flat(ctx: &[dashpot_sdk::NormalContext]) -> &[f64] {
     // SAFETY: NormalContext is three f64 (repr(C)), so n contexts are 3 n values
     unsafe { std::slice::from_raw_parts(ctx.as_ptr() as *const f64, 3 * ctx.len()) }
+}
+
+/// The arrays of a tangential or rolling batch `b` with contexts `ctx`, checked: each of the
+/// batch's length, `slots` history slots a contact.
+pub(crate) fn vector_cols<'a>(
+    b: &'a mut VectorBatch<'_>,
+    ctx: &'a [dashpot_sdk::NormalContext],
+    slots: usize,
+) -> Cols<'a> {
+    let n = b.force.len();
+    assert!(
+        b.normal.len() == n
+            && b.velocity.len() == n
+            && ctx.len() == n
+            && b.slots == slots
+            && b.history.len() == slots * n,
+        "a batch's arrays have its contacts' lengths"
+    );
+    Cols {
+        dt: b.dt,
+        normal: b.normal.as_flattened(),
+        motion: b.velocity.as_flattened(),
+        ctx: flat(ctx),
+        history: &mut *b.history,
+        out: b.force.as_flattened_mut(),
+    }
 }
 
 /// A batch's arrays as the lane steps read and write them, flattened: the unit normals, the
@@ -227,21 +253,6 @@ pub(crate) unsafe fn lanes<const KIND: u8>(
     ctx: &[dashpot_sdk::NormalContext],
 ) {
     let n = b.force.len();
-    assert!(
-        b.normal.len() == n
-            && b.velocity.len() == n
-            && ctx.len() == n
-            && b.slots == slots(KIND)
-            && b.history.len() == b.slots * n,
-        "a batch's arrays have its contacts' lengths"
-    );
-    let mut cols = Cols {
-        dt: b.dt,
-        normal: b.normal.as_flattened(),
-        motion: b.velocity.as_flattened(),
-        ctx: flat(ctx),
-        history: b.history,
-        out: b.force.as_flattened_mut(),
-    };
+    let mut cols = vector_cols(b, ctx, slots(KIND));
     four_at_a_time!(n, cols, [3, slots(KIND), 3], |c, i| step::<KIND>(s, c, i));
 }

@@ -99,38 +99,21 @@ fn check<L: BoundTangential>(law: L, kind: u8, slots: usize) {
 #[test]
 fn every_spring_batch_is_the_per_contact_form_bit_for_bit() {
     let spring = |k| Spring { k, xt: 0.7, mu: 0.4 };
-    check(SpringBound::<{ kind::LINEAR }>(spring(1e3)), kind::LINEAR, 3);
-    check(SpringBound::<{ kind::MINDLIN }>(spring(1e7)), kind::MINDLIN, 4);
-    check(
-        SpringBound::<{ kind::MINDLIN_RESCALE }>(spring(1e7)),
-        kind::MINDLIN_RESCALE,
-        4,
-    );
-    check(
-        SpringBound::<{ kind::MINDLIN_FORCE }>(spring(1e7)),
-        kind::MINDLIN_FORCE,
-        4,
-    );
-    check(
-        SpringBound::<{ kind::MINDLIN_RESCALE_FORCE }>(spring(1e7)),
-        kind::MINDLIN_RESCALE_FORCE,
-        4,
-    );
-    check(
-        SpringBound::<{ kind::CLASSIC_HOOKE }>(spring(1e3)),
-        kind::CLASSIC_HOOKE,
-        3,
-    );
-    check(
-        SpringBound::<{ kind::CLASSIC_HERTZ }>(spring(1e7)),
-        kind::CLASSIC_HERTZ,
-        4,
-    );
-    check(
-        SpringBound::<{ kind::CLASSIC_GRANULAR }>(spring(1e7)),
-        kind::CLASSIC_GRANULAR,
-        4,
-    );
+    macro_rules! check {
+        ($($kind:ident: $k:expr, $slots:expr;)*) => {$(
+            check(SpringBound::<{ kind::$kind }>(spring($k)), kind::$kind, $slots);
+        )*};
+    }
+    check! {
+        LINEAR: 1e3, 3;
+        MINDLIN: 1e7, 4;
+        MINDLIN_RESCALE: 1e7, 4;
+        MINDLIN_FORCE: 1e7, 4;
+        MINDLIN_RESCALE_FORCE: 1e7, 4;
+        CLASSIC_HOOKE: 1e3, 3;
+        CLASSIC_HERTZ: 1e7, 4;
+        CLASSIC_GRANULAR: 1e7, 4;
+    }
 }
 
 /// Without the normal law's contexts (a host that passes none) the batch gives the
