@@ -299,6 +299,8 @@ fn normal_batch_is_per_contact<B: BoundContact>(law: &B, slots: usize, what: &st
             force: &mut f2,
         };
         law.force_context_batch(&mut b, &mut x2);
+        let mut r2 = vec![0.0; n];
+        law.reach_batch(&b, &mut r2);
         let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
         let ctx = |x: &[NormalContext]| {
             x.iter()
@@ -313,17 +315,6 @@ fn normal_batch_is_per_contact<B: BoundContact>(law: &B, slots: usize, what: &st
             .enumerate()
             .map(|(i, c)| law.reach(c, &h1[i * slots..(i + 1) * slots]))
             .collect();
-        let mut r2 = vec![0.0; n];
-        let b = NormalBatch {
-            delta: &delta,
-            rate: &rate,
-            mass: &mass,
-            radius: &radius,
-            slots,
-            history: &mut h2,
-            force: &mut f2,
-        };
-        law.reach_batch(&b, &mut r2);
         assert_eq!(bits(&r1), bits(&r2), "reach, {what}, {n} contacts");
         if n == 203 {
             assert!(
@@ -348,51 +339,26 @@ fn every_normal_batch_is_the_per_contact_form_bit_for_bit() {
     let hooke = Hooke { k: 1e3 };
     let ts = Tsuji::coefficient(0.7, false);
     let cr = CoeffRestitution::coefficient(0.7, false);
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Jkr, Viscoelastic>::new(jkr, 0.3, false),
-        1,
-        "jkr viscoelastic",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Jkr, Velocity>::new(jkr, 1e-3, false),
-        1,
-        "jkr velocity",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Jkr, MassVelocity>::new(jkr, 30.0, false),
-        1,
-        "jkr mass",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Dmt, MassVelocity>::new(dmt, 50.0, false),
-        0,
-        "dmt",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Hertz, Viscoelastic>::new(hertz, 0.3, true),
-        0,
-        "hertz",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Hertz, Tsuji>::new(hertz, ts, true),
-        0,
-        "hertz tsuji",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Hertz, CoeffRestitution>::new(hertz, cr, false),
-        0,
-        "hertz cr",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Hooke, MassVelocity>::new(hooke, 50.0, false),
-        0,
-        "hooke",
-    );
-    normal_batch_is_per_contact(
-        &GranNormalBound::<Hooke, CoeffRestitution>::new(hooke, 0.5, true),
-        0,
-        "hooke cr",
-    );
+    macro_rules! check {
+        ($($model:ident $m:ident, $damping:ident $c:expr, $limit:expr, $slots:expr;)*) => {$(
+            normal_batch_is_per_contact(
+                &GranNormalBound::<$model, $damping>::new($m, $c, $limit),
+                $slots,
+                concat!(stringify!($model), " ", stringify!($damping)),
+            );
+        )*};
+    }
+    check! {
+        Jkr jkr, Viscoelastic 0.3, false, 1;
+        Jkr jkr, Velocity 1e-3, false, 1;
+        Jkr jkr, MassVelocity 30.0, false, 1;
+        Dmt dmt, MassVelocity 50.0, false, 0;
+        Hertz hertz, Viscoelastic 0.3, true, 0;
+        Hertz hertz, Tsuji ts, true, 0;
+        Hertz hertz, CoeffRestitution cr, false, 0;
+        Hooke hooke, MassVelocity 50.0, false, 0;
+        Hooke hooke, CoeffRestitution 0.5, true, 0;
+    }
 }
 
 /// The lanes' cube root is the per-contact one, bit for bit, across the range and at its ends.
