@@ -374,6 +374,16 @@ pub trait BoundContact: Send + Sync + 'static {
         0.0
     }
 
+    /// [`BoundContact::reach`] for every contact of a batch just evaluated (its histories as
+    /// the force call left them), into `out` (one per contact, m). Override only if a
+    /// hand-vectorised form is faster, with the same bits.
+    #[inline(always)]
+    fn reach_batch(&self, b: &NormalBatch<'_>, out: &mut [f64]) {
+        for (i, x) in out.iter_mut().enumerate() {
+            *x = self.reach(&b.contact(i), history_of(b.history, b.slots, i));
+        }
+    }
+
     /// What the law tells the contact's other laws (tangential, rolling, twisting, heat) about
     /// contact `c` after a force call that returned `force` (N) and left `history` (sdk 0.4):
     /// its contact radius (m), the force their caps scale with (N) and its normal damping
@@ -401,6 +411,20 @@ pub trait BoundContact: Send + Sync + 'static {
     fn force_context(&self, c: Contact, history: &mut [f64]) -> (f64, NormalContext) {
         let f = self.force(c, history);
         (f, self.context(&c, history, f))
+    }
+
+    /// [`BoundContact::force_context`] for every contact of batch `b`: its forces and
+    /// histories written, each contact's context into `out` (one per contact). What a host's
+    /// call asking for contexts (and no energy) runs for a law that sets
+    /// [`BoundContact::CONTEXT_WITH_FORCE`]; the default loops over `force_context`. Override
+    /// only if a hand-vectorised form is faster, with the same bits.
+    #[inline(always)]
+    fn force_context_batch(&self, b: &mut NormalBatch<'_>, out: &mut [NormalContext]) {
+        let slots = b.slots;
+        for (i, x) in out.iter_mut().enumerate() {
+            let c = b.contact(i);
+            (b.force[i], *x) = self.force_context(c, history_mut(b.history, slots, i));
+        }
     }
 
     /// [`BoundContact::context`] for every contact of a batch just evaluated (its forces and

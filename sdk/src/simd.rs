@@ -87,6 +87,12 @@ impl F64x4 {
         ne => _CMP_NEQ_UQ;
         /// The mask of !(a > b) (true with a NaN).
         not_gt => _CMP_NGT_UQ;
+        /// The mask of a < b (false with a NaN, as Rust's `<`).
+        lt => _CMP_LT_OQ;
+        /// The mask of a ≤ b (false with a NaN, as Rust's `<=`).
+        le => _CMP_LE_OQ;
+        /// The mask of !(a ≤ b) (true with a NaN).
+        not_le => _CMP_NLE_UQ;
     }
 
     /// x in every lane.

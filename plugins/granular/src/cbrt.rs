@@ -15,16 +15,16 @@
 //! is the final addition's.
 
 /// Sign bit of an f64.
-const SIGN: u64 = 1 << 63;
+pub(crate) const SIGN: u64 = 1 << 63;
 /// Bits of 2⁻¹⁰⁰⁰ and 2¹⁰⁰⁰: the range of |x| taken here (beyond it t³ and 2x could leave the
 /// normal range).
-const LOWEST: u64 = 23 << 52;
-const HIGHEST: u64 = 2023 << 52;
+pub(crate) const LOWEST: u64 = 23 << 52;
+pub(crate) const HIGHEST: u64 = 2023 << 52;
 /// Added to bits(x)/3: two thirds of the exponent bias, less what centres the guess's error
 /// over a binade (its relative error is then within ±3.5 %).
-const GUESS: u64 = 0x2a9f_7893_782d_a1ce;
+pub(crate) const GUESS: u64 = 0x2a9f_7893_782d_a1ce;
 /// The low mantissa bits dropped to round t to 26 significant bits (1 + 25 stored).
-const LOW: u64 = (1 << 27) - 1;
+pub(crate) const LOW: u64 = (1 << 27) - 1;
 
 /// ∛x for every f64, within one ulp of the exact root; ±0, ±∞ and NaN give themselves.
 #[inline(always)]

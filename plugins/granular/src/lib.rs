@@ -21,11 +21,17 @@ pub mod calibrate;
 pub mod cbrt;
 mod docs;
 pub mod normal;
+#[cfg(target_arch = "x86_64")]
+mod normal_avx2;
 pub mod normal_laws;
 pub mod rotation;
+#[cfg(target_arch = "x86_64")]
+mod rotation_avx2;
 pub mod rotation_laws;
 pub mod spring;
 pub mod tangential;
+#[cfg(target_arch = "x86_64")]
+mod tangential_avx2;
 pub mod tangential_laws;
 
 use normal_laws::*;

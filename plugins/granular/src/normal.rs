@@ -12,15 +12,15 @@ use crate::cbrt::cbrt;
 use std::f64::consts::PI;
 
 /// 27 π² (LAMMPS's `PI27SQ`).
-const PI27SQ: f64 = 266.47931882941265;
+pub(crate) const PI27SQ: f64 = 266.47931882941265;
 /// 3 √3.
-const THREEROOT3: f64 = 5.196152422706632;
+pub(crate) const THREEROOT3: f64 = 5.196152422706632;
 /// 6 √6.
-const SIXROOT6: f64 = 14.696938456699067;
+pub(crate) const SIXROOT6: f64 = 14.696938456699067;
 /// 1/√6.
-const INVROOT6: f64 = 0.4082482904638631;
+pub(crate) const INVROOT6: f64 = 0.4082482904638631;
 /// (3π²/16)^{1/3}: the JKR pull-off distance over (R γ²/E²)^{1/3}.
-const JKRPREFIX: f64 = 1.2277228507842888;
+pub(crate) const JKRPREFIX: f64 = 1.2277228507842888;
 /// 4/3 as LAMMPS writes it (`FOURTHIRDS`).
 pub const FOURTHIRDS: f64 = 1.3333333333333333;
 /// √(3/2) (coefficient of restitution damping of the non-Hookean models).
@@ -28,8 +28,38 @@ const ROOTTHREEBYTWO: f64 = 1.224744871391589;
 /// 2 √(5/6) (the same).
 const TWOROOTFIVEBYSIX: f64 = 1.8257418583505538;
 
+/// Which lane form (`normal_avx2`) a normal or damping model has: [`lane::NONE`] for none.
+pub mod lane {
+    /// No lane form: contact by contact.
+    pub const NONE: u8 = 0;
+    /// `hooke`.
+    pub const HOOKE: u8 = 1;
+    /// `hertz`, `hertz/material`.
+    pub const HERTZ: u8 = 2;
+    /// `dmt`.
+    pub const DMT: u8 = 3;
+    /// `jkr`.
+    pub const JKR: u8 = 4;
+    /// damping `velocity`.
+    pub const VELOCITY: u8 = 5;
+    /// damping `mass_velocity`.
+    pub const MASS_VELOCITY: u8 = 6;
+    /// damping `viscoelastic`.
+    pub const VISCOELASTIC: u8 = 7;
+    /// damping `tsuji`, `coeff_restitution`: c √(max(0, m F_ne/δ)).
+    pub const ROOT: u8 = 8;
+}
+
 /// A normal sub-model of LAMMPS bound to its constants: contact radius, elastic force, energy.
 pub trait NormalModel: Copy + Send + Sync + 'static {
+    /// Its lane form ([`lane`]).
+    const LANE: u8 = lane::NONE;
+
+    /// Its constants as its lane form reads them: k, E_eff (JKR) and γ (DMT, JKR).
+    fn lane_constants(&self) -> [f64; 3] {
+        [0.0; 3]
+    }
+
     /// Whether the model is adhesive (LAMMPS's `cohesive_flag`: `dmt`, `jkr`): its cap force is
     /// |F_ne + 2 F_pulloff|, and LAMMPS refuses `tsuji`, `coeff_restitution` and
     /// `limit_damping` with it.
@@ -78,6 +108,11 @@ pub struct Hooke {
 impl NormalModel for Hooke {
     const COHESIVE: bool = false;
     const HOOKE: bool = true;
+    const LANE: u8 = lane::HOOKE;
+
+    fn lane_constants(&self) -> [f64; 3] {
+        [self.k, 0.0, 0.0]
+    }
 
     #[inline(always)]
     fn elastic(&self, _a: f64, delta: f64, _reff: f64) -> (f64, f64) {
@@ -100,6 +135,11 @@ pub struct Hertz {
 
 impl NormalModel for Hertz {
     const COHESIVE: bool = false;
+    const LANE: u8 = lane::HERTZ;
+
+    fn lane_constants(&self) -> [f64; 3] {
+        [self.k, 0.0, 0.0]
+    }
 
     #[inline(always)]
     fn elastic(&self, a: f64, delta: f64, _reff: f64) -> (f64, f64) {
@@ -124,6 +164,11 @@ pub struct Dmt {
 
 impl NormalModel for Dmt {
     const COHESIVE: bool = true;
+    const LANE: u8 = lane::DMT;
+
+    fn lane_constants(&self) -> [f64; 3] {
+        [self.k, 0.0, self.cohesion]
+    }
 
     #[inline(always)]
     fn elastic(&self, a: f64, delta: f64, reff: f64) -> (f64, f64) {
@@ -184,6 +229,11 @@ impl Jkr {
 
 impl NormalModel for Jkr {
     const COHESIVE: bool = true;
+    const LANE: u8 = lane::JKR;
+
+    fn lane_constants(&self) -> [f64; 3] {
+        [self.k, self.emix, self.cohesion]
+    }
 
     #[inline(always)]
     fn contact_radius(&self, delta: f64, reff: f64) -> f64 {
@@ -267,6 +317,9 @@ fn powint(x: f64, n: u32) -> f64 {
 /// A damping sub-model of LAMMPS: its coefficient (from the `damp` parameter, once) and its
 /// prefactor η_n (N·s/m) at a contact; the damping force is η_n δ̇.
 pub trait DampingModel: Copy + Send + Sync + 'static {
+    /// Its lane form ([`lane`]).
+    const LANE: u8 = lane::NONE;
+
     /// Whether LAMMPS refuses it with a cohesive normal model (`allow_cohesion = 0`).
     const REFUSES_COHESION: bool = false;
 
@@ -301,6 +354,8 @@ pub struct Tsuji;
 pub struct CoeffRestitution;
 
 impl DampingModel for Velocity {
+    const LANE: u8 = lane::VELOCITY;
+
     #[inline(always)]
     fn prefactor(c: f64, _meff: f64, _a: f64, _fnormal: f64, _delta: f64) -> f64 {
         c
@@ -308,6 +363,8 @@ impl DampingModel for Velocity {
 }
 
 impl DampingModel for MassVelocity {
+    const LANE: u8 = lane::MASS_VELOCITY;
+
     #[inline(always)]
     fn prefactor(c: f64, meff: f64, _a: f64, _fnormal: f64, _delta: f64) -> f64 {
         c * meff
@@ -315,6 +372,8 @@ impl DampingModel for MassVelocity {
 }
 
 impl DampingModel for Viscoelastic {
+    const LANE: u8 = lane::VISCOELASTIC;
+
     #[inline(always)]
     fn prefactor(c: f64, meff: f64, a: f64, _fnormal: f64, _delta: f64) -> f64 {
         c * meff * a
@@ -335,6 +394,7 @@ fn tsuji_root(meff: f64, fnormal: f64, delta: f64) -> f64 {
 
 impl DampingModel for Tsuji {
     const REFUSES_COHESION: bool = true;
+    const LANE: u8 = lane::ROOT;
 
     fn coefficient(e: f64, _hooke: bool) -> f64 {
         let mut d = 1.2728 - 4.2783 * e + 11.087 * (e * e);
@@ -351,6 +411,7 @@ impl DampingModel for Tsuji {
 
 impl DampingModel for CoeffRestitution {
     const REFUSES_COHESION: bool = true;
+    const LANE: u8 = lane::ROOT;
 
     fn coefficient(e: f64, hooke: bool) -> f64 {
         let l = e.ln();

@@ -5,13 +5,13 @@
 use crate::calibrate::Calibrate;
 use crate::docs::*;
 use crate::normal::{
-    evaluate, CoeffRestitution, DampingModel, Dmt, Hertz, Hooke, Jkr, MassVelocity, NormalEval, NormalModel,
-    Tsuji, Velocity, Viscoelastic, FOURTHIRDS,
+    evaluate, lane, CoeffRestitution, DampingModel, Dmt, Hertz, Hooke, Jkr, MassVelocity, NormalEval,
+    NormalModel, Tsuji, Velocity, Viscoelastic, FOURTHIRDS,
 };
 use crate::spring::Ctx;
 use dashpot_sdk::{
     BoundContact, CalibrationTarget, Coefficient, Contact, ContactLaw, EndCriterion, Energy, History,
-    LawError, LawParams, MaterialPair, Pair, ParamSpec, ParamValue, Params, Range,
+    LawError, LawParams, MaterialPair, NormalBatch, Pair, ParamSpec, ParamValue, Params, Range,
 };
 use std::marker::PhantomData;
 
@@ -433,6 +433,42 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
             damping: e.damping,
         };
         (e.force, ctx)
+    }
+
+    /// On an x86-64 CPU with AVX2, four contacts at a time in explicit lanes (`normal_avx2`,
+    /// the per-contact form's bits), the last `n % 4` one at a time.
+    #[inline(always)]
+    fn force_context_batch(&self, b: &mut NormalBatch<'_>, out: &mut [Ctx]) {
+        let mut from = 0;
+        #[cfg(target_arch = "x86_64")]
+        if M::LANE != lane::NONE && D::LANE != lane::NONE && dashpot_sdk::simd::available() {
+            let [k, emix, cohesion] = self.model.lane_constants();
+            let m = crate::normal_avx2::Consts { k, emix, cohesion };
+            // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
+            from = unsafe { crate::normal_avx2::force_context::<M, D>(&m, self.coef, self.limit, b, out) };
+        }
+        let slots = b.slots;
+        for (i, x) in out.iter_mut().enumerate().skip(from) {
+            let c = b.contact(i);
+            (b.force[i], *x) = self.force_context(c, &mut b.history[i * slots..(i + 1) * slots]);
+        }
+    }
+
+    /// JKR's on an x86-64 CPU with AVX2 four contacts at a time (`normal_avx2`, the same bits).
+    #[inline(always)]
+    fn reach_batch(&self, b: &NormalBatch<'_>, out: &mut [f64]) {
+        let mut from = 0;
+        #[cfg(target_arch = "x86_64")]
+        if M::LANE == lane::JKR && dashpot_sdk::simd::available() {
+            let [k, emix, cohesion] = self.model.lane_constants();
+            let m = crate::normal_avx2::Consts { k, emix, cohesion };
+            // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
+            from = unsafe { crate::normal_avx2::jkr_reach(&m, b, out) };
+        }
+        let slots = b.slots;
+        for (i, x) in out.iter_mut().enumerate().skip(from) {
+            *x = self.reach(&b.contact(i), &b.history[i * slots..(i + 1) * slots]);
+        }
     }
 
     fn coefficients(&self, _mass: f64, radius: f64) -> Vec<Coefficient> {

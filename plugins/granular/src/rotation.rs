@@ -103,7 +103,7 @@ impl Twist {
 }
 
 /// 2/3 as LAMMPS writes it (`TWOTHIRDS`).
-const TWOTHIRDS: f64 = 0.6666666666666666;
+pub(crate) const TWOTHIRDS: f64 = 0.6666666666666666;
 
 /// The Marshall twist of a contact from the tangential law's k_t, x_t and μ and the normal
 /// law's context (contact radius, damping prefactor η_n: the tangential dashpot is x_t η_n).

@@ -6,8 +6,8 @@ use crate::spring::{through_context, Ctx, ReadsContext, SpringStep};
 use crate::tangential::{Motion, Spring};
 use crate::tangential_laws::{need, spring_of};
 use dashpot_sdk::{
-    BoundRolling, BoundTwisting, History, LawError, MaterialPair, Range, RollingContact, RollingLaw,
-    TwistingContact, TwistingLaw,
+    BoundRolling, BoundTwisting, History, LawError, MaterialPair, Range, RollingBatch, RollingContact,
+    RollingLaw, TwistingBatch, TwistingContact, TwistingLaw,
 };
 
 /// The common end of the rolling and twisting laws' documentation.
@@ -139,7 +139,26 @@ impl ReadsContext<RollingContact> for Sds {
     }
 }
 
-through_context!(BoundRolling, Sds, RollingContact, [f64; 3], force, force_energy);
+through_context!(
+    BoundRolling,
+    Sds,
+    RollingContact,
+    [f64; 3],
+    force,
+    force_energy,
+    /// With the normal law's contexts on an x86-64 CPU with AVX2, four contacts at a time in
+    /// explicit lanes (`rotation_avx2`, the per-contact form's bits), else one at a time.
+    #[inline(always)]
+    fn force_batch(&self, mut b: RollingBatch<'_>) {
+        #[cfg(target_arch = "x86_64")]
+        if !b.context.is_empty() && dashpot_sdk::simd::available() {
+            let ctx = b.context;
+            // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
+            return unsafe { crate::rotation_avx2::rolling_sds(self, &mut b, ctx) };
+        }
+        b.each(|c, h| self.eval(&c.context, c, h).0);
+    }
+);
 
 impl ReadsContext<TwistingContact> for TwistSdsBound {
     type Out = f64;
@@ -225,5 +244,17 @@ through_context!(
     TwistingContact,
     f64,
     torque,
-    torque_energy
+    torque_energy,
+    /// With the normal law's contexts on an x86-64 CPU with AVX2, four contacts at a time in
+    /// explicit lanes (`rotation_avx2`, the per-contact form's bits), else one at a time.
+    #[inline(always)]
+    fn torque_batch(&self, mut b: TwistingBatch<'_>) {
+        #[cfg(target_arch = "x86_64")]
+        if !b.context.is_empty() && dashpot_sdk::simd::available() {
+            let ctx = b.context;
+            // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
+            return unsafe { crate::rotation_avx2::twisting_marshall(&self.0, &mut b, ctx) };
+        }
+        b.each(|c, h| self.eval(&c.context, c, h).0);
+    }
 );

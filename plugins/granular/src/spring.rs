@@ -176,8 +176,10 @@ pub trait ReadsContext<C> {
 /// Implements a kind's sdk trait for a bound law through [`ReadsContext`], with the context
 /// the host passes in the contact.
 macro_rules! through_context {
-    ($trait:ident, $ty:ty, $contact:ty, $out:ty, $call:ident, $energy_call:ident) => {
+    ($trait:ident, $ty:ty, $contact:ty, $out:ty, $call:ident, $energy_call:ident $(, $more:item)*) => {
         impl $trait for $ty {
+            $($more)*
+
             #[inline(always)]
             fn $call(&self, c: &$contact, h: &mut [f64]) -> $out {
                 self.eval(&c.context, c, h).0

@@ -13,8 +13,7 @@ use super::{v2, v3};
 use crate::context::NormalContext;
 use crate::error::{ErrorKind, LawError};
 use crate::law::{
-    history_mut, history_of, BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, LawKind,
-    NormalBatch,
+    history_of, BoundContact, Coefficient, Contact, ContactLaw, EnergyBatch, LawKind, NormalBatch,
 };
 use crate::lengths::length_error;
 use crate::pair::MaterialPair;

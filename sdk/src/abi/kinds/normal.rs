@@ -352,30 +352,25 @@ impl<B: BoundContact> KindBound<Normal> for B {
 #[inline(always)]
 fn with_contexts<B: BoundContact>(
     law: &B,
-    b: NormalBatch<'_>,
+    mut b: NormalBatch<'_>,
     out: &mut [NormalContext],
     reach: Option<&mut [f64]>,
 ) -> Result<bool, (usize, u8)> {
-    let (slots, n) = (b.slots, b.force.len());
+    let n = b.force.len();
     let (d, r, m, a) = (&b.delta[..n], &b.rate[..n], &b.mass[..n], &b.radius[..n]);
     if !normal_inputs_ok(d, r, m, a) {
         if let Some(fault) = check_normal_inputs(d, r, m, a) {
             return Err(fault);
         }
     }
-    for (i, x) in out[..n].iter_mut().enumerate() {
-        let c = b.contact(i);
-        (b.force[i], *x) = law.force_context(c, history_mut(b.history, slots, i));
-    }
+    law.force_context_batch(&mut b, &mut out[..n]);
     if let Some(i) = first_non_finite(b.force) {
         return Err((i, BatchFault::OUTPUT));
     }
     if let Some(reach) = reach {
-        for (i, x) in reach[..n].iter_mut().enumerate() {
-            *x = law.reach(&b.contact(i), history_of(b.history, slots, i));
-            if !(0.0..f64::INFINITY).contains(x) {
-                return Err((i, BatchFault::REACH));
-            }
+        law.reach_batch(&b, &mut reach[..n]);
+        if let Some(i) = reach[..n].iter().position(|x| !(0.0..f64::INFINITY).contains(x)) {
+            return Err((i, BatchFault::REACH));
         }
     }
     match first_invalid_context(&out[..n]) {
