@@ -106,6 +106,7 @@ impl Kind for Heat {
 /// tenth of a heat call on the DEM engine's small batches.) When it says no, the exact checks
 /// name the culprit.
 #[inline(always)]
+#[allow(clippy::eq_op)]
 fn inputs_ok(t: &[[f64; 2]], f: &[f64], d: &[f64], a: &[f64]) -> bool {
     let n = f.len();
     let (t, d, a) = (t[..n].as_flattened(), &d[..n], &a[..n]);
@@ -139,6 +140,7 @@ fn inputs_ok(t: &[[f64; 2]], f: &[f64], d: &[f64], a: &[f64]) -> bool {
 /// positions: lanes 1 and 3 of four). (A fold over the pairs was vectorised with shuffles that
 /// split them, some 16 instructions a contact.)
 #[inline(always)]
+#[allow(clippy::eq_op)]
 fn flows_ok(flow: &[HeatFlow]) -> bool {
     const _: () = assert!(std::mem::size_of::<HeatFlow>() == 2 * std::mem::size_of::<f64>());
     // SAFETY: `HeatFlow` is `repr(C)` of two f64 (asserted above), the conductance second
