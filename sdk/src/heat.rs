@@ -132,8 +132,31 @@ impl HeatBatch<'_> {
     /// `flow[i] = f(contact i, its history)` for every contact: the loop of a batch call.
     #[inline(always)]
     pub fn each(self, mut f: impl FnMut(&HeatContact, &mut [f64]) -> HeatFlow) {
-        let slots = self.slots;
-        for i in 0..self.flow.len() {
+        let (slots, n) = (self.slots, self.flow.len());
+        if slots == 0 && self.context.len() == n {
+            // the common case (no history, the normal law's contexts): one pass over slices
+            // of the same length, no per-contact branch nor bounds check
+            let inputs = self.temperature[..n]
+                .iter()
+                .zip(&self.normal_force[..n])
+                .zip(&self.delta[..n])
+                .zip(&self.radius[..n])
+                .zip(&self.context[..n]);
+            for (o, ((((&[t, tj], &fz), &d), &r), &x)) in self.flow.iter_mut().zip(inputs) {
+                let c = HeatContact {
+                    temperature: t,
+                    partner_temperature: tj,
+                    normal_force: fz,
+                    delta: d,
+                    radius: r,
+                    context: x,
+                    dt: self.dt,
+                };
+                *o = f(&c, &mut []);
+            }
+            return;
+        }
+        for i in 0..n {
             let c = self.contact(i);
             self.flow[i] = f(&c, history_mut(self.history, slots, i));
         }

@@ -140,12 +140,14 @@ pub struct ContactSet {
     /// twisting or heat law of the run reads them (see [`ContactSet::evaluate`]); empty otherwise.
     #[serde(skip)]
     pub context: Vec<NormalContext>,
-    /// Each contact's heat flow into `i` (W; the partner gets its negative) and conductance
+    /// Each contact's heat flow (W) into the partner the laws see it from (`i`, or `j` where
+    /// [`ContactSet::sign`] is −1; the other partner gets its negative) and conductance
     /// (W/K) at the last evaluation of a run with temperatures and a heat law for this class
     /// (see `integrator/heat.rs`); empty otherwise.
     #[serde(skip)]
     pub flow: Vec<HeatFlow>,
-    /// Scratch of the heat law's call: each contact's temperatures `[T_i, T_j]` (K).
+    /// Scratch of the heat law's call: each contact's temperatures as its laws see it
+    /// (`[T_i, T_j]`, or `[T_j, T_i]` where [`ContactSet::sign`] is −1; K).
     #[serde(skip)]
     pub pair_t: Vec<[f64; 2]>,
     /// Whether the laws are asked for their energy outputs.

@@ -19,6 +19,8 @@ use super::species::{LawSet, SpeciesLaws};
 use super::state::{spin_len, Body, VecD};
 use super::Laws;
 use crate::budget::{check_memory_against, largest_fitting, rss, Memory, Need, Refused};
+use crate::laws::{HeatConduction, RollingResistance, TangentialForce, TwistingResistance};
+use dashpot_sdk::{HeatFlow, NormalContext};
 use std::mem::size_of;
 
 /// A DEM run's shape: what its memory depends on.
@@ -37,6 +39,10 @@ pub struct Footprint {
     pub wall_slots: [Option<usize>; 4],
     /// Whether the laws report their energy (8 more arrays per contact).
     pub energy: bool,
+    /// Per contact between particles and against walls: whether the normal law's contexts are
+    /// kept (a tangential, rolling, twisting or heat law reads them), and whether the contacts
+    /// conduct heat (a heat law: each contact's flow and the temperatures it read).
+    pub extras: [Extras; 2],
     /// Whether the engine keeps an order of its own (second buffers of the particle arrays).
     pub reordered: bool,
     /// Pairs in the neighbour list now, if a list was built.
@@ -55,6 +61,64 @@ pub struct Footprint {
     pub final_json: bool,
     /// The process's resident memory before the run (bytes): code, plugins, the caller's data.
     pub baseline: f64,
+}
+
+/// What one kind of contacts keeps beyond its families' forces and history (see
+/// [`Footprint::extras`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Extras {
+    /// The normal law's contexts (sdk 0.4), kept when another law of the contact reads them.
+    pub contexts: bool,
+    /// A heat law: each contact's heat flow and conductance, and the temperatures it read.
+    pub heat: bool,
+}
+
+impl Extras {
+    /// What a contact's tangential, rolling, twisting and heat laws make it keep.
+    fn of(
+        tangential: Option<&dyn TangentialForce>,
+        rolling: Option<&dyn RollingResistance>,
+        twisting: Option<&dyn TwistingResistance>,
+        heat: Option<&dyn HeatConduction>,
+    ) -> Extras {
+        Extras {
+            contexts: tangential.is_some_and(|l| l.reads_context())
+                || rolling.is_some_and(|l| l.reads_context())
+                || twisting.is_some_and(|l| l.reads_context())
+                || heat.is_some_and(|l| l.reads_context()),
+            heat: heat.is_some(),
+        }
+    }
+
+    /// What the laws `set` make the contacts keep.
+    fn of_set(set: &LawSet) -> Extras {
+        Extras::of(
+            set.tangential.as_deref(),
+            set.rolling.as_deref(),
+            set.twisting.as_deref(),
+            set.heat.as_deref(),
+        )
+    }
+
+    /// Both, if either kind of contacts keeps them.
+    fn or(self, o: Extras) -> Extras {
+        Extras {
+            contexts: self.contexts || o.contexts,
+            heat: self.heat || o.heat,
+        }
+    }
+
+    /// Bytes per contact in one buffer: a context is three f64, a flow two, the temperatures two.
+    fn bytes(self) -> usize {
+        let mut b = 0;
+        if self.contexts {
+            b += size_of::<NormalContext>();
+        }
+        if self.heat {
+            b += size_of::<HeatFlow>() + size_of::<[f64; 2]>();
+        }
+        b
+    }
 }
 
 /// Pair contacts per particle in a dense pile (half the coordination number): 3D, 2D.
@@ -102,7 +166,23 @@ impl Footprint {
             r.wall_rolling.as_ref().map(|l| l.history_slots()),
             r.wall_twisting.as_ref().map(|l| l.history_slots()),
         ];
-        Footprint::with_slots(cfg, slots, wall_slots, particles, walls, 1)
+        let extras = [
+            Extras::of(
+                laws.pair_tangential.as_deref(),
+                r.pair_rolling.as_deref(),
+                r.pair_twisting.as_deref(),
+                r.pair_heat.as_deref(),
+            ),
+            Extras::of(
+                laws.wall_tangential.as_deref(),
+                r.wall_rolling.as_deref(),
+                r.wall_twisting.as_deref(),
+                r.wall_heat.as_deref(),
+            ),
+        ];
+        let mut fp = Footprint::with_slots(cfg, slots, wall_slots, particles, walls, 1);
+        fp.extras = extras;
+        fp
     }
 
     /// [`Footprint::of`] a run of several species: each family's history as wide as its widest
@@ -132,14 +212,21 @@ impl Footprint {
             w
         };
         let classes = laws.pair.len();
-        Footprint::with_slots(
+        let extras = |sets: &[LawSet]| {
+            sets.iter()
+                .map(Extras::of_set)
+                .fold(Extras::default(), Extras::or)
+        };
+        let mut fp = Footprint::with_slots(
             cfg,
             widest(&laws.pair),
             widest(&laws.wall),
             particles,
             walls,
             classes,
-        )
+        );
+        fp.extras = [extras(&laws.pair), extras(&laws.wall)];
+        fp
     }
 
     /// The footprint of contacts of `slots` history slots per family (normal, tangential,
@@ -163,6 +250,7 @@ impl Footprint {
             slots,
             wall_slots,
             energy: cfg.energy,
+            extras: [Extras::default(); 2],
             reordered,
             listed: None,
             sampled: None,
@@ -241,8 +329,8 @@ impl Footprint {
         particles += n * (4.0 + 1.0 + 4.0 + 8.0 + 8.0 + 8.0 + 4.0 + 4.0 + 1.0);
         need.add("particles", particles);
         need.add("neighbour list", 2.0 * 4.0 * self.listed_pairs());
-        let pair = contact_bytes(&self.slots, self.energy, self.reordered);
-        let wall = contact_bytes(&self.wall_slots, self.energy, self.reordered);
+        let pair = contact_bytes(&self.slots, self.energy, self.reordered, self.extras[0]);
+        let wall = contact_bytes(&self.wall_slots, self.energy, self.reordered, self.extras[1]);
         // each set's candidates (8 bytes a listed pair, in both buffers) and merge sources
         let scratch = 2.0 * 8.0 * self.listed_pairs() + 2.0 * 4.0 * self.pair_contacts();
         need.add(
@@ -346,10 +434,10 @@ fn per_particle(dim: usize, reordered: bool) -> usize {
 /// geometry (overlap, rate, mass, radius, normal, relative velocity), the forces, the flags,
 /// each family's history (`slots`: normal, tangential, rolling, twisting), the rolling and
 /// twisting arrays if either acts, the energy outputs (power and stored energy per family),
-/// the reach, and the sign of a reordered pile's pairs.
-fn contact_bytes(slots: &[Option<usize>; 4], energy: bool, reordered: bool) -> f64 {
+/// the reach, the sign of a reordered pile's pairs, and the contexts and heat flows (`extras`).
+fn contact_bytes(slots: &[Option<usize>; 4], energy: bool, reordered: bool, extras: Extras) -> f64 {
     let hist: usize = slots.iter().flatten().sum();
-    let mut b = 4 + 4 + 4 * 8 + 2 * 24 + 8 + 24 + 2 + 8 * hist + 8;
+    let mut b = 4 + 4 + 4 * 8 + 2 * 24 + 8 + 24 + 2 + 8 * hist + 8 + extras.bytes();
     if slots[2].is_some() || slots[3].is_some() {
         b += 24 + 8 + 24 + 8;
     }
@@ -374,6 +462,7 @@ mod tests {
             slots: [Some(0), None, None, None],
             wall_slots: [Some(0), None, None, None],
             energy: false,
+            extras: [Extras::default(); 2],
             reordered: false,
             listed: None,
             sampled: None,
@@ -401,6 +490,18 @@ mod tests {
         assert!(more(&|x| x.energy = true) > base);
         assert!(more(&|x| x.slots[2] = Some(3)) > more(&|x| x.slots[1] = Some(3)));
         assert!(more(&|x| x.reordered = true) > base);
+        // contexts (24 B a contact and buffer), heat's flow and temperatures (32 B)
+        let contexts = more(&|x| x.extras[0].contexts = true);
+        let heat = more(&|x| x.extras[0].heat = true);
+        let pairs = fp(3, 100_000).pair_contacts();
+        assert!(
+            (contexts - base - SLACK * 2.0 * 24.0 * pairs).abs() < 1.0,
+            "{contexts} {base}"
+        );
+        assert!(
+            (heat - base - SLACK * 2.0 * 32.0 * pairs).abs() < 1.0,
+            "{heat} {base}"
+        );
         assert!(more(&|x| x.final_json = true) > base + 1e8);
         assert!(fp(2, 100_000).need().total() < base);
         // a list longer than a dense pile's counts as it is

@@ -93,12 +93,12 @@ pub(super) struct HeatView<'a> {
 
 impl HeatView<'_> {
     /// The heat law `law` on the contacts of `set` (particle pairs, or against walls with
-    /// `wall`), just evaluated: each contact's flow into its particle `i` in the engine's
-    /// order and its conductance into [`ContactSet::flow`]. A pair is presented to the law from
-    /// the partner the user numbered first (as its other laws see it), the flow then turned to
-    /// i's; a contact with a wall that does not conduct gets no flow (its wall set none at all
-    /// when no wall conducts). The temperatures of `[T_i, T_j]` are gathered into the set's
-    /// scratch.
+    /// `wall`), just evaluated: each contact's flow and conductance into [`ContactSet::flow`].
+    /// A pair is presented to the law from the partner the user numbered first (as its other
+    /// laws see it), so its flow is that partner's (× [`ContactSet::sign`] it is i's, which
+    /// [`Engine::conduct`] takes); a contact with a wall that does not conduct gets no flow
+    /// (its wall set none at all when no wall conducts). The temperatures the law reads are
+    /// gathered into the set's scratch.
     pub(super) fn conduct(
         &self,
         set: &mut ContactSet,
@@ -129,14 +129,11 @@ impl HeatView<'_> {
                     .map(|(&i, &j)| [temperature[i as usize], temperature[j as usize]]),
             );
         } else {
+            // (the partner the laws see the contact from first: its index chosen, then loaded)
             set.pair_t
                 .extend(set.i.iter().zip(&set.j).zip(&set.sign).map(|((&i, &j), &s)| {
-                    let (ti, tj) = (temperature[i as usize], temperature[j as usize]);
-                    if s < 0.0 {
-                        [tj, ti]
-                    } else {
-                        [ti, tj]
-                    }
+                    let (a, b) = if s < 0.0 { (j, i) } else { (i, j) };
+                    [temperature[a as usize], temperature[b as usize]]
                 }));
         }
         set.flow.resize(n, HeatFlow::default());
@@ -151,18 +148,10 @@ impl HeatView<'_> {
             history: &mut [],
             flow: &mut set.flow,
         })?;
-        if wall {
-            if self.conducting == Conducting::Some {
-                for (f, &j) in set.flow.iter_mut().zip(&set.j) {
-                    if self.surface[j as usize].is_nan() {
-                        *f = HeatFlow::default();
-                    }
-                }
-            }
-        } else if !set.sign.is_empty() {
-            for (f, &s) in set.flow.iter_mut().zip(&set.sign) {
-                if s < 0.0 {
-                    f.heat = -f.heat;
+        if wall && self.conducting == Conducting::Some {
+            for (f, &j) in set.flow.iter_mut().zip(&set.j) {
+                if self.surface[j as usize].is_nan() {
+                    *f = HeatFlow::default();
                 }
             }
         }
@@ -305,7 +294,7 @@ impl<const D: usize> Engine<D> {
 
     /// The conduction of the step just evaluated: the flows the force pass kept in the
     /// contact sets ([`HeatView::conduct`]: the heat laws on the step's end contacts, with the
-    /// temperatures of its start) summed per particle, chunk by chunk, class by class, contact
+    /// temperatures of its start), turned to i's, summed per particle, chunk by chunk, class by class, contact
     /// by contact (the same bits on any number of threads; a pair's partner gets −Q exactly),
     /// then T += dt Q / C (explicit Euler, as LAMMPS's `fix heat/flow`), the stability limit
     /// min C/ΣH kept, the sums zeroed for the next step in the same loop.
@@ -327,7 +316,16 @@ impl<const D: usize> Engine<D> {
                     continue;
                 }
                 let flow = &set.flow[..set.len()];
-                if pair {
+                if pair && !set.sign.is_empty() {
+                    // (the flow of a contact seen from j turned to i's: × −1 is the negation)
+                    let signed = set.i.iter().zip(&set.j).zip(&set.sign).zip(flow);
+                    for (((&i, &j), &s), f) in signed {
+                        let q = f.heat * s;
+                        let (a, b) = (sums[i as usize], sums[j as usize]);
+                        sums[i as usize] = [a[0] + q, a[1] + f.conductance];
+                        sums[j as usize] = [b[0] - q, b[1] + f.conductance];
+                    }
+                } else if pair {
                     for ((&i, &j), f) in set.i.iter().zip(&set.j).zip(flow) {
                         let (a, b) = (sums[i as usize], sums[j as usize]);
                         sums[i as usize] = [a[0] + f.heat, a[1] + f.conductance];
