@@ -101,21 +101,32 @@ fn panic_text(p: &(dyn std::any::Any + Send)) -> String {
 
 /// Runs the body of an entry point: a panic becomes `DASHPOT_ERR_PANIC`, an error its status;
 /// both leave their message in the thread's last error.
+#[inline(always)]
 pub(crate) fn guard(f: impl FnOnce() -> Result<(), CError>) -> DashpotStatus {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(Ok(())) => DASHPOT_OK,
-        Ok(Err(e)) => {
-            store(&e.message);
-            e.status
-        }
-        Err(p) => {
-            store(&format!(
-                "internal error: the dashpot C library panicked: {}",
-                panic_text(&*p)
-            ));
-            DASHPOT_ERR_PANIC
-        }
+        Ok(Err(e)) => failed(e),
+        Err(p) => panicked(p),
     }
+}
+
+/// A refused call: its message stored, its status returned.
+#[cold]
+#[inline(never)]
+fn failed(e: CError) -> DashpotStatus {
+    store(&e.message);
+    e.status
+}
+
+/// A caught panic: reported as `DASHPOT_ERR_PANIC`.
+#[cold]
+#[inline(never)]
+fn panicked(p: Box<dyn std::any::Any + Send>) -> DashpotStatus {
+    store(&format!(
+        "internal error: the dashpot C library panicked: {}",
+        panic_text(&*p)
+    ));
+    DASHPOT_ERR_PANIC
 }
 
 /// The body of an entry point that writes one value: each pointer argument checked in the
@@ -159,6 +170,7 @@ pub(crate) fn same_lengths(what: &str, arrays: &[(&str, usize)]) -> Result<(), C
 ///
 /// # Safety
 /// A non-null `p` must point to a valid `T` for `'a`.
+#[inline(always)]
 pub(crate) unsafe fn arg<'a, T>(p: *const T, what: &str) -> Result<&'a T, CError> {
     // SAFETY: checked non-null; validity is the caller's contract.
     unsafe { p.as_ref() }.ok_or_else(|| null(what))
@@ -168,11 +180,14 @@ pub(crate) unsafe fn arg<'a, T>(p: *const T, what: &str) -> Result<&'a T, CError
 ///
 /// # Safety
 /// A non-null `p` must point to a valid, writable `T` for `'a`.
+#[inline(always)]
 pub(crate) unsafe fn out<'a, T>(p: *mut T, what: &str) -> Result<&'a mut T, CError> {
     // SAFETY: checked non-null; validity is the caller's contract.
     unsafe { p.as_mut() }.ok_or_else(|| null(what))
 }
 
+#[cold]
+#[inline(never)]
 pub(crate) fn null(what: &str) -> CError {
     CError::new(DASHPOT_ERR_NULL_POINTER, format!("{what} is a null pointer"))
 }
@@ -194,34 +209,46 @@ pub(crate) unsafe fn string<'a>(p: *const c_char, what: &str) -> Result<&'a str,
 /// Refuses an array of `n` values of `T` whose size in bytes exceeds `isize::MAX` (no array in
 /// memory is that large: such a length is a caller's error, e.g. a negative count cast to
 /// `size_t`, and making a slice of it is undefined behaviour).
+#[inline(always)]
 fn fits<T>(n: usize, what: &str) -> Result<(), CError> {
     let most = isize::MAX as usize / std::mem::size_of::<T>().max(1);
     if n <= most {
         return Ok(());
     }
-    Err(CError::new(
+    Err(too_long(n, most, std::mem::size_of::<T>(), what))
+}
+
+#[cold]
+#[inline(never)]
+fn too_long(n: usize, most: usize, size: usize, what: &str) -> CError {
+    CError::new(
         DASHPOT_ERR_BAD_LENGTH,
-        format!(
-            "{what}: length {n} is out of range: an array of {} bytes each holds at most {most} values (isize::MAX bytes)",
-            std::mem::size_of::<T>()
-        ),
-    ))
+        format!("{what}: length {n} is out of range: an array of {size} bytes each holds at most {most} values (isize::MAX bytes)"),
+    )
+}
+
+/// A null array whose length `n` is not 0.
+#[cold]
+#[inline(never)]
+fn null_array(n: usize, what: &str) -> CError {
+    CError::new(
+        DASHPOT_ERR_NULL_POINTER,
+        format!("{what} is a null pointer but its length is {n}"),
+    )
 }
 
 /// An input array of `n` values; null is allowed only when `n == 0`.
 ///
 /// # Safety
 /// A non-null `p` must point to `n` valid values for `'a`.
+#[inline(always)]
 pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Result<&'a [T], CError> {
     if n == 0 {
         return Ok(&[]);
     }
     fits::<T>(n, what)?;
     if p.is_null() {
-        return Err(CError::new(
-            DASHPOT_ERR_NULL_POINTER,
-            format!("{what} is a null pointer but its length is {n}"),
-        ));
+        return Err(null_array(n, what));
     }
     // SAFETY: non-null, n elements by contract.
     Ok(unsafe { std::slice::from_raw_parts(p, n) })
@@ -231,16 +258,14 @@ pub(crate) unsafe fn slice<'a, T>(p: *const T, n: usize, what: &str) -> Result<&
 ///
 /// # Safety
 /// A non-null `p` must point to `n` writable values for `'a`, not aliasing other arguments.
+#[inline(always)]
 pub(crate) unsafe fn slice_mut<'a, T>(p: *mut T, n: usize, what: &str) -> Result<&'a mut [T], CError> {
     if n == 0 {
         return Ok(&mut []);
     }
     fits::<T>(n, what)?;
     if p.is_null() {
-        return Err(CError::new(
-            DASHPOT_ERR_NULL_POINTER,
-            format!("{what} is a null pointer but its length is {n}"),
-        ));
+        return Err(null_array(n, what));
     }
     // SAFETY: non-null, n elements by contract.
     Ok(unsafe { std::slice::from_raw_parts_mut(p, n) })

@@ -262,6 +262,7 @@ pub(crate) use {bind_function, free_function, law_functions, model_functions, pa
 
 /// The history width of `model`, after checking that `n_history` = `n × slots` (`what` names
 /// the function in the message).
+#[inline(always)]
 pub(crate) fn history_width(
     what: &str,
     model: &impl Model,
@@ -272,34 +273,45 @@ pub(crate) fn history_width(
     if Some(n_history) == n.checked_mul(slots) {
         return Ok(slots);
     }
-    Err(CError::new(
+    Err(bad_history(what, model.law_name(), n, slots, n_history))
+}
+
+#[cold]
+#[inline(never)]
+fn bad_history(what: &str, law: &str, n: usize, slots: usize, n_history: usize) -> CError {
+    CError::new(
         DASHPOT_ERR_BAD_LENGTH,
-        format!(
-            "{what}: history must hold n × slots = {n} × {slots} values (law '{}'), got n_history = {n_history}",
-            model.law_name()
-        ),
-    ))
+        format!("{what}: history must hold n × slots = {n} × {slots} values (law '{law}'), got n_history = {n_history}"),
+    )
 }
 
 /// `n` contacts' `[x, y, z]` vectors: 3n values, null only when n = 0.
 ///
 /// # Safety
 /// A non-null `p` must point to 3n valid values for `'a`.
+#[inline(always)]
 pub(crate) unsafe fn vectors<'a>(p: *const f64, n: usize, what: &str) -> Result<&'a [[f64; 3]], CError> {
     let v = unsafe { slice(p, triple_len(n)?, what) }?;
     // SAFETY: [f64; 3] has the alignment of f64 and no padding; n whole triples.
     Ok(unsafe { std::slice::from_raw_parts(v.as_ptr().cast::<[f64; 3]>(), n) })
 }
 
+#[inline(always)]
 fn triple_len(n: usize) -> Result<usize, CError> {
-    n.checked_mul(3)
-        .ok_or_else(|| CError::new(DASHPOT_ERR_BAD_LENGTH, format!("n = {n} contacts is too many")))
+    n.checked_mul(3).ok_or_else(|| too_many(n))
+}
+
+#[cold]
+#[inline(never)]
+fn too_many(n: usize) -> CError {
+    CError::new(DASHPOT_ERR_BAD_LENGTH, format!("n = {n} contacts is too many"))
 }
 
 /// An optional output of `n` values (null: not wanted).
 ///
 /// # Safety
 /// A non-null `p` must point to `n` writable values for `'a`, not aliasing other arguments.
+#[inline(always)]
 pub(crate) unsafe fn optional<'a>(
     p: *mut f64,
     n: usize,
@@ -316,6 +328,7 @@ pub(crate) unsafe fn optional<'a>(
 ///
 /// # Safety
 /// As [`optional`], for each.
+#[inline(always)]
 pub(crate) unsafe fn energy<'a>(
     power: *mut f64,
     elastic: *mut f64,
@@ -332,6 +345,7 @@ pub(crate) unsafe fn energy<'a>(
 ///
 /// # Safety
 /// A non-null `p` must point to 3n valid values for `'a`.
+#[inline(always)]
 pub(crate) unsafe fn contexts<'a>(p: *const f64, n: usize) -> Result<&'a [NormalContext], CError> {
     if p.is_null() {
         return Ok(&[]);
@@ -345,6 +359,7 @@ pub(crate) unsafe fn contexts<'a>(p: *const f64, n: usize) -> Result<&'a [Normal
 ///
 /// # Safety
 /// A non-null `p` must point to 3n writable values for `'a`, not aliasing other arguments.
+#[inline(always)]
 pub(crate) unsafe fn contexts_out<'a>(p: *mut f64, n: usize) -> Result<&'a mut [NormalContext], CError> {
     let v = unsafe { slice_mut(p, triple_len(n)?, "out_context") }?;
     // SAFETY: as `contexts`, with the unique borrow of the values moved into the result.
@@ -355,6 +370,7 @@ pub(crate) unsafe fn contexts_out<'a>(p: *mut f64, n: usize) -> Result<&'a mut [
 ///
 /// # Safety
 /// A non-null `p` must be valid for writing.
+#[inline(always)]
 pub(crate) unsafe fn report_written(p: *mut c_int, written: bool) {
     if let Some(w) = unsafe { p.as_mut() } {
         *w = c_int::from(written);
