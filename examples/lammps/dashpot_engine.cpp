@@ -61,33 +61,34 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
     istore.assign(4 * C, 0);
     // delta, rate, mass, rad, ra, rb, fn; norm, vel, ft, force, ta, tb (3 each); the families'
     // history; vroll, froll (3 each); twist, mtwist; reach; each family's power and elastic energy
-    size_t per = 7 + 18 + lay.width[NORMAL] + lay.width[TANGENTIAL] + lay.width[ROLLING] + lay.width[TWISTING] +
+    size_t per = NFIXED + lay.width[NORMAL] + lay.width[TANGENTIAL] + lay.width[ROLLING] + lay.width[TWISTING] +
         (fl.rolling ? 6 : 0) + (fl.twisting ? 2 : 0) + (lay.adhesive ? 1 : 0) + (fl.energy ? 2 * NFAMILY : 0) +
         (fl.context ? 3 : 0) + (fl.heat ? 3 : 0);
     dstore.assign((size_t) C * per, 0.0);
-    a = istore.data();
-    b = a + C;
-    slot = b + C;
-    model = slot + C;
-    double *p = dstore.data();
+    a = istore.data() + A * C;
+    b = istore.data() + B * C;
+    slot = istore.data() + SLOT * C;
+    model = istore.data() + MODEL * C;
+    double *d = dstore.data();
+    delta = d + DELTA * C;
+    rate = d + RATE * C;
+    mass = d + MASS * C;
+    rad = d + RAD * C;
+    ra = d + RA * C;
+    rb = d + RB * C;
+    fn = d + FN * C;
+    norm = d + NORM * C;
+    vel = d + VEL * C;
+    ft = d + FT * C;
+    force = d + FORCE * C;
+    ta = d + TA * C;
+    tb = d + TB * C;
+    double *p = d + NFIXED * C;
     auto take = [&p](int width) {
         double *q = p;
         p += (size_t) CHUNK * width;
         return width > 0 ? q : nullptr;
     };
-    delta = take(1);
-    rate = take(1);
-    mass = take(1);
-    rad = take(1);
-    ra = take(1);
-    rb = take(1);
-    fn = take(1);
-    norm = take(3);
-    vel = take(3);
-    ft = take(3);
-    force = take(3);
-    ta = take(3);
-    tb = take(3);
     for (int f = 0; f < NFAMILY; f++) hist[f] = take(lay.width[f]);
     vroll = froll = twist = mtwist = reach = nullptr;
     if (fl.rolling) {
@@ -376,20 +377,24 @@ void ContactEngine::conduct(Chunk &c, int lo, int m, const Model &md, double dt)
 template <bool ROLL, bool TWST, bool HALF, bool DIRECT>
 static void torques_of(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
 {
-    const double *__restrict norm = c.norm, *__restrict ftan = c.ft, *__restrict fnor = c.fn;
-    const double *__restrict froll = c.froll, *__restrict rad = c.rad, *__restrict mtw = c.mtwist;
-    const double *__restrict ra = c.ra, *__restrict rb = c.rb, *__restrict delta = c.delta;
+    using Ch = ContactEngine::Chunk;
+    constexpr int C = ContactEngine::CHUNK;
+    // the fixed columns from two bases (Chunk's IntColumn, DoubleColumn): few registers held
+    double *__restrict d = c.dstore.data();
+    const int *__restrict iv = c.istore.data();
+    const double *__restrict froll = c.froll, *__restrict mtw = c.mtwist;
     double *__restrict f0 = DIRECT ? direct->f : nullptr, *__restrict t0 = DIRECT ? direct->torque : nullptr;
     const int nlocal = DIRECT ? direct->nlocal : 0;
     const bool newton = DIRECT && direct->newton;
     for (int k = lo; k < lo + m; k++) {
-        const double *nv = norm + 3 * k, *ft = ftan + 3 * k;
-        const double nx = nv[0], ny = nv[1], nz = nv[2], fn = fnor[k];
-        const double F[3] = {fn * nx + ft[0], fn * ny + ft[1], fn * nz + ft[2]};
-        const double cx = ny * ft[2] - nz * ft[1], cy = nz * ft[0] - nx * ft[2], cz = nx * ft[1] - ny * ft[0];
+        const double *nv = d + Ch::NORM * C + 3 * k, *ft = d + Ch::FT * C + 3 * k;
+        const double nx = nv[0], ny = nv[1], nz = nv[2], fn = d[Ch::FN * C + k];
+        const double ftx = ft[0], fty = ft[1], ftz = ft[2];
+        const double Fx = fn * nx + ftx, Fy = fn * ny + fty, Fz = fn * nz + ftz;
+        const double cx = ny * ftz - nz * fty, cy = nz * ftx - nx * ftz, cz = nx * fty - ny * ftx;
         double mx = 0.0, my = 0.0, mz = 0.0;
         if (ROLL) {
-            const double *fr = froll + 3 * k, reff = rad[k];
+            const double *fr = froll + 3 * k, reff = d[Ch::RAD * C + k];
             mx = reff * (ny * fr[2] - nz * fr[1]);
             my = reff * (nz * fr[0] - nx * fr[2]);
             mz = reff * (nx * fr[1] - ny * fr[0]);
@@ -400,29 +405,43 @@ static void torques_of(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget
             my += mt * ny;
             mz += mt * nz;
         }
-        const double arm_a = HALF ? ra[k] - 0.5 * delta[k] : ra[k];
-        const double arm_b = HALF ? rb[k] - 0.5 * delta[k] : rb[k];
-        const double ta[3] = {mx - arm_a * cx, my - arm_a * cy, mz - arm_a * cz};
-        const double tb[3] = {-mx - arm_b * cx, -my - arm_b * cy, -mz - arm_b * cz};
+        const double ra = d[Ch::RA * C + k], rb = d[Ch::RB * C + k];
+        const double arm_a = HALF ? ra - 0.5 * d[Ch::DELTA * C + k] : ra;
+        const double arm_b = HALF ? rb - 0.5 * d[Ch::DELTA * C + k] : rb;
+        const double tax = mx - arm_a * cx, tay = my - arm_a * cy, taz = mz - arm_a * cz;
+        const double tbx = -mx - arm_b * cx, tby = -my - arm_b * cy, tbz = -mz - arm_b * cz;
         if (!DIRECT) {
-            for (int d = 0; d < 3; d++) {
-                c.force[3 * k + d] = F[d];
-                c.ta[3 * k + d] = ta[d];
-                c.tb[3 * k + d] = tb[d];
-            }
+            double *F = d + Ch::FORCE * C + 3 * k, *ta = d + Ch::TA * C + 3 * k, *tb = d + Ch::TB * C + 3 * k;
+            F[0] = Fx;
+            F[1] = Fy;
+            F[2] = Fz;
+            ta[0] = tax;
+            ta[1] = tay;
+            ta[2] = taz;
+            tb[0] = tbx;
+            tb[1] = tby;
+            tb[2] = tbz;
             continue;
         }
-        const int a = c.a[k], b = c.b[k];
-        if (a < nlocal || newton)
-            for (int d = 0; d < 3; d++) {
-                f0[3 * a + d] += F[d];
-                t0[3 * a + d] += ta[d];
-            }
-        if (b >= 0 && (b < nlocal || newton))
-            for (int d = 0; d < 3; d++) {
-                f0[3 * b + d] -= F[d];
-                t0[3 * b + d] += tb[d];
-            }
+        const int a = iv[Ch::A * C + k], b = iv[Ch::B * C + k];
+        if (a < nlocal || newton) {
+            double *fa = f0 + 3 * a, *ta = t0 + 3 * a;
+            fa[0] += Fx;
+            fa[1] += Fy;
+            fa[2] += Fz;
+            ta[0] += tax;
+            ta[1] += tay;
+            ta[2] += taz;
+        }
+        if (b >= 0 && (b < nlocal || newton)) {
+            double *fb = f0 + 3 * b, *tb = t0 + 3 * b;
+            fb[0] -= Fx;
+            fb[1] -= Fy;
+            fb[2] -= Fz;
+            tb[0] += tbx;
+            tb[1] += tby;
+            tb[2] += tbz;
+        }
     }
 }
 

@@ -22,6 +22,7 @@
 
 #include "dashpot_models.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace dashpot_lmp {
@@ -105,6 +106,14 @@ class ContactEngine {
         std::vector<int> istore;
         std::vector<double> dstore;
         void reserve(const Layout &lay, const EngineFlags &fl);
+        /* Where the columns every chunk has start, in units of CHUNK from istore's and dstore's
+         * first element (reserve() lays them out so): the hot loops address them all from those
+         * two pointers, with constant displacements, rather than hold a register for each. */
+        enum IntColumn { A = 0, B = 1, SLOT = 2, MODEL = 3 };
+        enum DoubleColumn {
+            DELTA = 0, RATE = 1, MASS = 2, RAD = 3, RA = 4, RB = 5, FN = 6,
+            NORM = 7, VEL = 10, FT = 13, FORCE = 16, TA = 19, TB = 22, NFIXED = 25
+        };
     };
 
     /* The models, the record layout of the store and the flags: columns sized once. */
@@ -134,6 +143,19 @@ class ContactEngine {
         if (taken == full) full = -1;
         taken = -1;
     }
+
+    /* One contact's geometry, as stage() takes it (see the file's head). */
+    struct Geometry {
+        int model, a, b, slot;
+        double nx, ny, nz, delta, ra, rb, dvx, dvy, dvz, meff, reff;
+        const double *wa, *wb;
+    };
+    /* Stages contacts q = first, first + 1, ... before `last`, each described by geom(q, g)
+     * (which fills the Geometry g), until the chunk is full; returns the q after the last staged
+     * contact: `last` unless the chunk filled (then evaluate, apply, reset and call again from
+     * the returned q). The same columns, with the same bits, as stage() called on each, but the
+     * columns' addresses and the engine's state stay in registers over the whole run. */
+    template <class Geom> inline int stage_run(int first, int last, Geom &&geom);
 
     /* Stages one contact; true when the chunk is full (evaluate, apply, reset before the next). */
     inline bool stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta, double ra,
@@ -170,6 +192,7 @@ class ContactEngine {
             if (reg_n[q] > 0) return q;
         return -1;
     }
+    template <bool SPIN, class Geom> inline int stage_run_to(int first, int last, Geom &geom);
     inline void write(Chunk &c, int k, int model, int a, int b, int slot, double nx, double ny, double nz,
                       double delta, double ra, double rb, double dvx, double dvy, double dvz, double meff,
                       double reff, const double *wa, const double *wb) __attribute__((always_inline));
@@ -250,6 +273,90 @@ inline void ContactEngine::write(Chunk &c, int n, int model, int a, int b, int s
     }
 }
 
+template <class Geom> inline int ContactEngine::stage_run(int q, int last, Geom &&geom)
+{
+    if (use_regions) {
+        Geometry g;
+        while (q < last) {
+            geom(q++, g);
+            if (stage(g.model, g.a, g.b, g.slot, g.nx, g.ny, g.nz, g.delta, g.ra, g.rb, g.dvx, g.dvy, g.dvz, g.meff,
+                      g.reff, g.wa, g.wb))
+                break;
+        }
+        return q;
+    }
+    if (fl.rolling || fl.twisting) return stage_run_to<true>(q, last, geom);
+    return stage_run_to<false>(q, last, geom);
+}
+
+/* stage_run on the one staging chunk, SPIN: the relative spin's columns (rolling, twisting) are
+ * staged too. Each column is written by the same expressions as write()'s. */
+template <bool SPIN, class Geom> inline int ContactEngine::stage_run_to(int q, int last, Geom &geom)
+{
+    int k = n;
+    const int end = k + std::min(CHUNK - k, last - q);
+    if (k == end) return q;
+    // every column at a constant offset from two bases (see Chunk's IntColumn, DoubleColumn)
+    int *__restrict iv = stage_.istore.data();
+    double *__restrict dv = stage_.dstore.data();
+    constexpr int C = CHUNK;
+    double *__restrict cvroll = SPIN && fl.rolling ? stage_.vroll : nullptr;
+    double *__restrict ctwist = SPIN && fl.twisting ? stage_.twist : nullptr;
+    int m0 = k == 0 ? -1 : model0;
+    bool mix = mixed;
+    Geometry g;
+    for (; k < end; k++, q++) {
+        geom(q, g);
+        if (m0 < 0) m0 = g.model;
+        mix |= g.model != m0;
+        iv[Chunk::A * C + k] = g.a;
+        iv[Chunk::B * C + k] = g.b;
+        iv[Chunk::SLOT * C + k] = g.slot;
+        iv[Chunk::MODEL * C + k] = g.model;
+        dv[Chunk::DELTA * C + k] = g.delta;
+        dv[Chunk::MASS * C + k] = g.meff;
+        dv[Chunk::RAD * C + k] = g.reff;
+        dv[Chunk::RA * C + k] = g.ra;
+        dv[Chunk::RB * C + k] = g.rb;
+        const double nx = g.nx, ny = g.ny, nz = g.nz, dvx = g.dvx, dvy = g.dvy, dvz = g.dvz;
+        const double vn = dvx * nx + dvy * ny + dvz * nz;
+        dv[Chunk::RATE * C + k] = -vn;
+        double *cn = dv + Chunk::NORM * C + 3 * k;
+        cn[0] = nx;
+        cn[1] = ny;
+        cn[2] = nz;
+        const double *wa = g.wa, *wb = g.wb;
+        double wx = g.ra * wa[0], wy = g.ra * wa[1], wz = g.ra * wa[2];
+        if (wb) {
+            wx += g.rb * wb[0];
+            wy += g.rb * wb[1];
+            wz += g.rb * wb[2];
+        }
+        double *cv = dv + Chunk::VEL * C + 3 * k;
+        cv[0] = (dvx - vn * nx) - (wy * nz - wz * ny);
+        cv[1] = (dvy - vn * ny) - (wz * nx - wx * nz);
+        cv[2] = (dvz - vn * nz) - (wx * ny - wy * nx);
+        if (SPIN) {
+            double rx = wa[0], ry = wa[1], rz = wa[2];
+            if (wb) {
+                rx -= wb[0];
+                ry -= wb[1];
+                rz -= wb[2];
+            }
+            if (cvroll) {
+                double *vr = cvroll + 3 * k;
+                vr[0] = g.reff * (ry * nz - rz * ny);
+                vr[1] = g.reff * (rz * nx - rx * nz);
+                vr[2] = g.reff * (rx * ny - ry * nx);
+            }
+            if (ctwist) ctwist[k] = rx * nx + ry * ny + rz * nz;
+        }
+    }
+    n = k;
+    model0 = m0;
+    mixed = mix;
+    return q;
+}
 
 }    // namespace dashpot_lmp
 

@@ -146,7 +146,9 @@ void PairDashpot::stage_pairs(int n)
     const int *mof = model_of.data();
     const int nt1 = atom->ntypes + 1;
     const int frozen = freeze_group_bit;
-    for (int q = 0; q < n; q++) {
+    // one run of contacts per chunk: the engine keeps its columns in registers over the run
+    auto geometry = [&](int q, ContactEngine::Geometry &g) __attribute__((always_inline))
+    {
         const int i = ci[q], j = cj[q];
         // the same bits from either side: x_b - x_a is exactly -(x_a - x_b)
         const bool swap = tag[j] < tag[i];
@@ -163,10 +165,27 @@ void PairDashpot::stage_pairs(int n)
             if (mask[b] & frozen) meff = ma;
         }
         const double *va = v0 + 3 * a, *vb = v0 + 3 * b;
-        if (engine.stage(mof[type[a] * nt1 + type[b]], a, b, ck[q], dx * rinv, dy * rinv, dz * rinv, radsum - r, ra,
-                         rb, va[0] - vb[0], va[1] - vb[1], va[2] - vb[2], meff, ra * rb / radsum, w0 + 3 * a,
-                         w0 + 3 * b))
-            evaluate(pair_slots, false, false);
+        g.model = mof[type[a] * nt1 + type[b]];
+        g.a = a;
+        g.b = b;
+        g.slot = ck[q];
+        g.nx = dx * rinv;
+        g.ny = dy * rinv;
+        g.nz = dz * rinv;
+        g.delta = radsum - r;
+        g.ra = ra;
+        g.rb = rb;
+        g.dvx = va[0] - vb[0];
+        g.dvy = va[1] - vb[1];
+        g.dvz = va[2] - vb[2];
+        g.meff = meff;
+        g.reff = ra * rb / radsum;
+        g.wa = w0 + 3 * a;
+        g.wb = w0 + 3 * b;
+    };
+    for (int q = 0; q < n;) {
+        q = engine.stage_run(q, n, geometry);
+        if (q < n || engine.size() == ContactEngine::CHUNK) evaluate(pair_slots, false, false);
     }
 }
 
