@@ -155,7 +155,7 @@ class ContactEngine {
      * contact: `last` unless the chunk filled (then evaluate, apply, reset and call again from
      * the returned q). The same columns, with the same bits, as stage() called on each, but the
      * columns' addresses and the engine's state stay in registers over the whole run. */
-    template <class Geom> inline int stage_run(int first, int last, Geom &&geom);
+    template <class Geom> inline int stage_run(int first, int last, Geom &&geom) __attribute__((always_inline));
 
     /* Stages one contact; true when the chunk is full (evaluate, apply, reset before the next). */
     inline bool stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta, double ra,
@@ -192,7 +192,9 @@ class ContactEngine {
             if (reg_n[q] > 0) return q;
         return -1;
     }
-    template <bool SPIN, class Geom> inline int stage_run_to(int first, int last, Geom &geom);
+    template <bool SPIN, class Geom>
+    inline int stage_run_to(int first, int last, Geom &geom) __attribute__((always_inline));
+    template <class Geom> int stage_run_regions(int first, int last, Geom &geom);
     inline void write(Chunk &c, int k, int model, int a, int b, int slot, double nx, double ny, double nz,
                       double delta, double ra, double rb, double dvx, double dvy, double dvz, double meff,
                       double reff, const double *wa, const double *wb) __attribute__((always_inline));
@@ -275,18 +277,22 @@ inline void ContactEngine::write(Chunk &c, int n, int model, int a, int b, int s
 
 template <class Geom> inline int ContactEngine::stage_run(int q, int last, Geom &&geom)
 {
-    if (use_regions) {
-        Geometry g;
-        while (q < last) {
-            geom(q++, g);
-            if (stage(g.model, g.a, g.b, g.slot, g.nx, g.ny, g.nz, g.delta, g.ra, g.rb, g.dvx, g.dvy, g.dvz, g.meff,
-                      g.reff, g.wa, g.wb))
-                break;
-        }
-        return q;
-    }
+    if (use_regions) return stage_run_regions(q, last, geom);
     if (fl.rolling || fl.twisting) return stage_run_to<true>(q, last, geom);
     return stage_run_to<false>(q, last, geom);
+}
+
+/* stage_run with a chunk per model: each contact to its model's chunk, until one is full. */
+template <class Geom> int ContactEngine::stage_run_regions(int q, int last, Geom &geom)
+{
+    Geometry g;
+    while (q < last) {
+        geom(q++, g);
+        if (stage(g.model, g.a, g.b, g.slot, g.nx, g.ny, g.nz, g.delta, g.ra, g.rb, g.dvx, g.dvy, g.dvz, g.meff, g.reff,
+                  g.wa, g.wb))
+            break;
+    }
+    return q;
 }
 
 /* stage_run on the one staging chunk, SPIN: the relative spin's columns (rolling, twisting) are

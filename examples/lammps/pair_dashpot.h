@@ -76,6 +76,13 @@ class PairDashpot : public Pair {
      * fix holds). Called by the fix after every list build. */
     void layout_slots();
 
+    /* compute(): a touching pair found and not yet staged: atoms i, j, slot k, the distance
+     * (first its square) and its inverse (one record per pair: one base address in the loops). */
+    struct Candidate {
+        int i, j, k;
+        double r, rinv;
+    };
+
  private:
     using Family = dashpot_lmp::Family;
     static constexpr int NENERGY = dashpot_lmp::NFAMILY + 1;
@@ -122,20 +129,7 @@ class PairDashpot : public Pair {
     bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)
     int slots_nlocal;       // atom->nlocal then
     int dirty;              // a compute advanced the slots since history_to_atoms copied them
-    // compute(): the touching pairs found and not yet staged: atoms i, j, slot k, the distance
-    // (first its square) and its inverse
-    struct Candidates {
-        std::vector<int> i, j, k;
-        std::vector<double> r, rinv;
-        void resize(size_t n)
-        {
-            i.resize(n);
-            j.resize(n);
-            k.resize(n);
-            r.resize(n);
-            rinv.resize(n);
-        }
-    } candidates;
+    std::vector<Candidate> candidates;    // compute(): the touching pairs not yet staged
 
     void allocate();
     void apply_settings(const std::vector<std::string> &args);
@@ -147,6 +141,7 @@ class PairDashpot : public Pair {
     [[noreturn]] void reach_error(const dashpot_lmp::ContactEngine::Chunk &c, int k);
     void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
     void stage_pairs(int n);
+    template <bool ONE> void stage_pairs_of(int n);
     int find_slot(int i, int j) const;
     [[noreturn]] void fail(const std::exception &e, bool all);
 };

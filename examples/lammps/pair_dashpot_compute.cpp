@@ -131,13 +131,22 @@ void PairDashpot::evaluate(HistoryStore &store, bool wall, bool all)
 void PairDashpot::stage_pairs(int n)
 {
     if (n == 0) return;
-    const Candidates &cd = candidates;
-    const int *ci = cd.i.data(), *cj = cd.j.data(), *ck = cd.k.data();
-    double *cr = candidates.r.data(), *cinv = candidates.rinv.data();
+    Candidate *cand = candidates.data();
     for (int q = 0; q < n; q++) {
-        cr[q] = std::sqrt(cr[q]);
-        cinv[q] = 1.0 / cr[q];
+        const double r = std::sqrt(cand[q].r);
+        cand[q].r = r;
+        cand[q].rinv = 1.0 / r;
     }
+    // one bound model (every deck with one set of laws): no lookup of the pair's types
+    if (models.nmodels() == 1)
+        stage_pairs_of<true>(n);
+    else
+        stage_pairs_of<false>(n);
+}
+
+template <bool ONE> void PairDashpot::stage_pairs_of(int n)
+{
+    const Candidate *__restrict cand = candidates.data();
     const double *radius = atom->radius, *rmass = atom->rmass;
     const int *type = atom->type, *mask = atom->mask;
     const tagint *tag = atom->tag;
@@ -149,7 +158,8 @@ void PairDashpot::stage_pairs(int n)
     // one run of contacts per chunk: the engine keeps its columns in registers over the run
     auto geometry = [&](int q, ContactEngine::Geometry &g) __attribute__((always_inline))
     {
-        const int i = ci[q], j = cj[q];
+        const Candidate &cq = cand[q];
+        const int i = cq.i, j = cq.j;
         // the same bits from either side: x_b - x_a is exactly -(x_a - x_b)
         const bool swap = tag[j] < tag[i];
         const int a = swap ? j : i, b = swap ? i : j;
@@ -157,7 +167,7 @@ void PairDashpot::stage_pairs(int n)
         const double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
         const double ra = radius[a], rb = radius[b];
         const double radsum = ra + rb;
-        const double r = cr[q], rinv = cinv[q];
+        const double r = cq.r, rinv = cq.rinv;
         const double ma = rmass[a], mb = rmass[b];
         double meff = ma * mb / (ma + mb);
         if (frozen) {
@@ -165,10 +175,10 @@ void PairDashpot::stage_pairs(int n)
             if (mask[b] & frozen) meff = ma;
         }
         const double *va = v0 + 3 * a, *vb = v0 + 3 * b;
-        g.model = mof[type[a] * nt1 + type[b]];
+        g.model = ONE ? 0 : mof[type[a] * nt1 + type[b]];
         g.a = a;
         g.b = b;
-        g.slot = ck[q];
+        g.slot = cq.k;
         g.nx = dx * rinv;
         g.ny = dy * rinv;
         g.nz = dz * rinv;
@@ -196,8 +206,7 @@ template <bool ADH, bool HIST>
 static int find_touching(const int *__restrict jlist, int jnum, int i, int k0, const double *xi, double radi,
                          const double *__restrict x0, const double *__restrict radius,
                          const unsigned char *__restrict stouch, const double *__restrict sreach,
-                         int *__restrict ci, int *__restrict cj, int *__restrict ck, double *__restrict crsq, int n,
-                         HistoryStore &ps)
+                         PairDashpot::Candidate *__restrict cand, int n, HistoryStore &ps)
 {
     const double x = xi[0], y = xi[1], z = xi[2];
     for (int jj = 0; jj < jnum; jj++) {
@@ -209,10 +218,10 @@ static int find_touching(const int *__restrict jlist, int jnum, int i, int k0, c
         int touch = rsq < radsum * radsum;
         const int k = k0 + jj;
         if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
-        ci[n] = i;
-        cj[n] = j;
-        ck[n] = k;
-        crsq[n] = rsq;
+        cand[n].i = i;
+        cand[n].j = j;
+        cand[n].k = k;
+        cand[n].r = rsq;
         n += touch;
         // one test, true only for a record left by a contact that has ended (rare)
         if (HIST && stouch[k] > touch) ps.zero(k);
@@ -267,32 +276,35 @@ void PairDashpot::compute(int eflag, int vflag)
     // collects the touching pairs of several atoms without branching on each outcome (in a
     // dilute flow most listed pairs do not touch, and which do is unpredictable); then their
     // distances (square roots and divisions, independent of one another) and their staging.
-    Candidates &cd = candidates;
+    // With history (or energy), layout_slots() listed the atoms that have pairs, in list order:
+    // the walk skips the others (most atoms of a dilute flow), whose slots are none.
+    const bool listed = hist || energy_flag;
+    const int natoms = listed ? nslot_atoms : inum;
+    const int *atoms = listed ? slot_atoms.data() : ilist;
     int nc = 0;
     int k0 = 0;
-    for (int ii = 0; ii < inum; ii++) {
-        const int i = ilist[ii];
+    for (int ii = 0; ii < natoms; ii++) {
+        const int i = atoms[ii];
         const int jnum = numneigh[i];
         // most atoms of a dilute flow have no neighbour within the list's cutoff: nothing of
         // theirs is loaded (the per-atom loads below cost a chute more than its contacts)
         if (jnum == 0) continue;
-        if (nc + jnum > (int) cd.i.size()) {
+        if (nc + jnum > (int) candidates.size()) {
             stage_pairs(nc);
             nc = 0;
-            if (jnum > (int) cd.i.size()) cd.resize(jnum);
+            if (jnum > (int) candidates.size()) candidates.resize(jnum);
         }
         const int *jlist = firstneigh[i];
-        int *ci = cd.i.data(), *cj = cd.j.data(), *ck = cd.k.data();
-        double *crsq = cd.r.data();
+        Candidate *cand = candidates.data();
         if (adh)
-            nc = find_touching<true, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach, ci,
-                                           cj, ck, crsq, nc, ps);
+            nc = find_touching<true, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach, cand,
+                                           nc, ps);
         else if (hist)
-            nc = find_touching<false, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach, ci,
-                                            cj, ck, crsq, nc, ps);
+            nc = find_touching<false, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach,
+                                            cand, nc, ps);
         else
             nc = find_touching<false, false>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach,
-                                             ci, cj, ck, crsq, nc, ps);
+                                             cand, nc, ps);
         k0 += jnum;
     }
     stage_pairs(nc);
