@@ -142,6 +142,7 @@ class PairDashpot : public Pair {
     void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
     void stage_pairs(int n);
     template <bool ONE> void stage_pairs_of(int n);
+    template <bool ADH, bool HIST> int walk_pairs(const int *atoms, int natoms);
     int find_slot(int i, int j) const;
     [[noreturn]] void fail(const std::exception &e, bool all);
 };

@@ -199,32 +199,59 @@ template <bool ONE> void PairDashpot::stage_pairs_of(int n)
     }
 }
 
-/* The touching pairs among atom i's jnum neighbours (slots k0 ..): appended to the candidates
- * from n on, without a branch on each outcome; a pair that no longer touches (nor reaches,
- * ADH: within an adhesive law's last reach) has its history zeroed (HIST). Returns the new n. */
-template <bool ADH, bool HIST>
-static int find_touching(const int *__restrict jlist, int jnum, int i, int k0, const double *xi, double radi,
-                         const double *__restrict x0, const double *__restrict radius,
-                         const unsigned char *__restrict stouch, const double *__restrict sreach,
-                         PairDashpot::Candidate *__restrict cand, int n, HistoryStore &ps)
+/* The walk of the neighbour list's atoms `atoms` (natoms of them, in list order; slots follow
+ * the list: the k-th pair is slot k): each atom's touching pairs are collected as candidates
+ * without a branch on each outcome, and staged whenever the next atom's pairs could overflow the
+ * candidates; a pair that no longer touches (nor reaches, ADH: within an adhesive law's last
+ * reach) has its history zeroed (HIST). One loop nest with everything in registers (an atom in a
+ * dilute flow has one or two listed pairs: the per-atom cost counts). Returns the number of
+ * candidates left to stage. */
+template <bool ADH, bool HIST> int PairDashpot::walk_pairs(const int *atoms, int natoms)
 {
-    const double x = xi[0], y = xi[1], z = xi[2];
-    for (int jj = 0; jj < jnum; jj++) {
-        const int j = jlist[jj] & NEIGHMASK;
-        const double *xj = x0 + 3 * j;
-        const double dx = x - xj[0], dy = y - xj[1], dz = z - xj[2];
-        const double rsq = dx * dx + dy * dy + dz * dz;
-        const double radsum = radi + radius[j];
-        int touch = rsq < radsum * radsum;
-        const int k = k0 + jj;
-        if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
-        cand[n].i = i;
-        cand[n].j = j;
-        cand[n].k = k;
-        cand[n].r = rsq;
-        n += touch;
-        // one test, true only for a record left by a contact that has ended (rare)
-        if (HIST && stouch[k] > touch) ps.zero(k);
+    if (natoms == 0) return 0;
+    const int *__restrict numneigh = list->numneigh;
+    int **firstneigh = list->firstneigh;
+    const double *__restrict x0 = atom->x[0];
+    const double *__restrict radius = atom->radius;
+    HistoryStore &ps = pair_slots;
+    const unsigned char *__restrict stouch = HIST ? ps.touched.data() : nullptr;
+    const double *__restrict sreach = ADH ? ps.reach.data() : nullptr;
+    int cap = (int) candidates.size();
+    Candidate *__restrict cand = candidates.data();
+    int n = 0, k0 = 0;
+    for (int ii = 0; ii < natoms; ii++) {
+        const int i = atoms[ii];
+        const int jnum = numneigh[i];
+        // most atoms of a dilute flow have no neighbour within the list's cutoff: nothing of
+        // theirs is loaded
+        if (jnum == 0) continue;
+        if (n + jnum > cap) {
+            stage_pairs(n);
+            n = 0;
+            if (jnum > cap) candidates.resize(jnum);
+            cap = (int) candidates.size();
+            cand = candidates.data();
+        }
+        const int *__restrict jlist = firstneigh[i];
+        const double x = x0[3 * i], y = x0[3 * i + 1], z = x0[3 * i + 2], radi = radius[i];
+        for (int jj = 0; jj < jnum; jj++) {
+            const int j = jlist[jj] & NEIGHMASK;
+            const double *xj = x0 + 3 * j;
+            const double dx = x - xj[0], dy = y - xj[1], dz = z - xj[2];
+            const double rsq = dx * dx + dy * dy + dz * dz;
+            const double radsum = radi + radius[j];
+            int touch = rsq < radsum * radsum;
+            const int k = k0 + jj;
+            if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
+            cand[n].i = i;
+            cand[n].j = j;
+            cand[n].k = k;
+            cand[n].r = rsq;
+            n += touch;
+            // one test, true only for a record left by a contact that has ended (rare)
+            if (HIST && stouch[k] > touch) ps.zero(k);
+        }
+        k0 += jnum;
     }
     return n;
 }
@@ -252,8 +279,7 @@ void PairDashpot::compute(int eflag, int vflag)
     const int *type = atom->type;
     const int nlocal = atom->nlocal;
     const int inum = list->inum;
-    const int *ilist = list->ilist, *numneigh = list->numneigh;
-    int **firstneigh = list->firstneigh;
+    const int *ilist = list->ilist;
     const bool hist = layout.nvalues > 0;
     const bool adh = layout.adhesive;
 
@@ -265,10 +291,6 @@ void PairDashpot::compute(int eflag, int vflag)
          (wall_flag && nlocal != nwall_slots)))
         layout_slots();
     HistoryStore &ps = pair_slots;
-    unsigned char *stouch = hist ? ps.touched.data() : nullptr;
-    const double *sreach = adh ? ps.reach.data() : nullptr;
-    // LAMMPS's per-atom 2D arrays are contiguous: index them from their first row
-    const double *x0 = atom->nmax > 0 ? x[0] : nullptr;
 
     // 1. Walk the neighbour list once: contacts are staged and evaluated a chunk at a time;
     // history slots follow the list (slot k = the k-th pair), and a pair that has separated
@@ -281,32 +303,13 @@ void PairDashpot::compute(int eflag, int vflag)
     const bool listed = hist || energy_flag;
     const int natoms = listed ? nslot_atoms : inum;
     const int *atoms = listed ? slot_atoms.data() : ilist;
-    int nc = 0;
-    int k0 = 0;
-    for (int ii = 0; ii < natoms; ii++) {
-        const int i = atoms[ii];
-        const int jnum = numneigh[i];
-        // most atoms of a dilute flow have no neighbour within the list's cutoff: nothing of
-        // theirs is loaded (the per-atom loads below cost a chute more than its contacts)
-        if (jnum == 0) continue;
-        if (nc + jnum > (int) candidates.size()) {
-            stage_pairs(nc);
-            nc = 0;
-            if (jnum > (int) candidates.size()) candidates.resize(jnum);
-        }
-        const int *jlist = firstneigh[i];
-        Candidate *cand = candidates.data();
-        if (adh)
-            nc = find_touching<true, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach, cand,
-                                           nc, ps);
-        else if (hist)
-            nc = find_touching<false, true>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach,
-                                            cand, nc, ps);
-        else
-            nc = find_touching<false, false>(jlist, jnum, i, k0, x0 + 3 * i, radius[i], x0, radius, stouch, sreach,
-                                             cand, nc, ps);
-        k0 += jnum;
-    }
+    int nc;
+    if (adh)
+        nc = walk_pairs<true, true>(atoms, natoms);
+    else if (hist)
+        nc = walk_pairs<false, true>(atoms, natoms);
+    else
+        nc = walk_pairs<false, false>(atoms, natoms);
     stage_pairs(nc);
     // the pairs' last chunks, not full: a chunk holds pairs or wall contacts, not both
     evaluate(ps, false, true);
