@@ -124,12 +124,17 @@ class PairDashpot : public Pair {
     std::vector<int> slot_first;              // per local atom i: the slot of its first list pair
     std::vector<int> slot_atoms;              // the atoms with listed pairs, in list order:
     int nslot_atoms;                          // the first nslot_atoms
+    struct SlotPair {
+        int i, j;
+    };
+    std::vector<SlotPair> slot_pairs;         // per slot: its pair's atoms (j without its bits)
     std::vector<double> slot_energy;          // energy=1: per slot, each family's power, the elastic energy
     int nwall_slots;
     bigint slots_ncalls;    // neighbor->ncalls when the slots were laid out (-1: never)
     int slots_nlocal;       // atom->nlocal then
     int dirty;              // a compute advanced the slots since history_to_atoms copied them
     std::vector<Candidate> candidates;    // compute(): the touching pairs not yet staged
+    std::vector<int> ended;               // compute(): one atom's slots whose contact ended
 
     void allocate();
     void apply_settings(const std::vector<std::string> &args);
@@ -140,9 +145,10 @@ class PairDashpot : public Pair {
     /* Stops with an error: contact k of chunk c reaches past the neighbour cutoff. */
     [[noreturn]] void reach_error(const dashpot_lmp::ContactEngine::Chunk &c, int k);
     void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
-    void stage_pairs(int n);
+    void stage_pairs(int n) __attribute__((noinline));
     template <bool ONE> void stage_pairs_of(int n);
     template <bool ADH, bool HIST> int walk_pairs(const int *atoms, int natoms);
+    template <bool ADH, bool HIST> int walk_slots();
     int find_slot(int i, int j) const;
     [[noreturn]] void fail(const std::exception &e, bool all);
 };

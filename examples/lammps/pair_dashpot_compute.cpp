@@ -12,6 +12,7 @@
 #include "neighbor.h"
 #include "update.h"
 
+#include <algorithm>
 #include <cmath>
 
 using namespace LAMMPS_NS;
@@ -216,9 +217,11 @@ template <bool ADH, bool HIST> int PairDashpot::walk_pairs(const int *atoms, int
     HistoryStore &ps = pair_slots;
     const unsigned char *__restrict stouch = HIST ? ps.touched.data() : nullptr;
     const double *__restrict sreach = ADH ? ps.reach.data() : nullptr;
+    if (ended.size() < candidates.size()) ended.resize(candidates.size());
     int cap = (int) candidates.size();
     Candidate *__restrict cand = candidates.data();
-    int n = 0, k0 = 0;
+    int *__restrict zk = ended.data();
+    int n = 0, k = 0;
     for (int ii = 0; ii < natoms; ii++) {
         const int i = atoms[ii];
         const int jnum = numneigh[i];
@@ -228,30 +231,84 @@ template <bool ADH, bool HIST> int PairDashpot::walk_pairs(const int *atoms, int
         if (n + jnum > cap) {
             stage_pairs(n);
             n = 0;
-            if (jnum > cap) candidates.resize(jnum);
+            if (jnum > cap) {
+                candidates.resize(jnum);
+                ended.resize(jnum);
+            }
             cap = (int) candidates.size();
             cand = candidates.data();
+            zk = ended.data();
         }
-        const int *__restrict jlist = firstneigh[i];
+        const int *__restrict jl = firstneigh[i];
         const double x = x0[3 * i], y = x0[3 * i + 1], z = x0[3 * i + 2], radi = radius[i];
-        for (int jj = 0; jj < jnum; jj++) {
-            const int j = jlist[jj] & NEIGHMASK;
+        int nz = 0;
+        for (const int *jend = jl + jnum; jl < jend; jl++, k++) {
+            const int j = *jl & NEIGHMASK;
             const double *xj = x0 + 3 * j;
             const double dx = x - xj[0], dy = y - xj[1], dz = z - xj[2];
             const double rsq = dx * dx + dy * dy + dz * dz;
             const double radsum = radi + radius[j];
             int touch = rsq < radsum * radsum;
-            const int k = k0 + jj;
             if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
             cand[n].i = i;
             cand[n].j = j;
             cand[n].k = k;
             cand[n].r = rsq;
             n += touch;
-            // one test, true only for a record left by a contact that has ended (rare)
-            if (HIST && stouch[k] > touch) ps.zero(k);
+            // one test, true only for a record left by a contact that has ended (rare): zeroed
+            // after the loop, which then calls nothing
+            if (HIST && stouch[k] > touch) zk[nz++] = k;
         }
-        k0 += jnum;
+        for (int q = 0; q < nz; q++) ps.zero(zk[q]);
+    }
+    return n;
+}
+
+/* walk_pairs over the slots laid out for this list (with history or energy): one flat loop over
+ * the slots' pairs, a block of candidates at a time, with no per-atom work. The same pairs in the
+ * same order as walk_pairs, hence the same candidates. */
+template <bool ADH, bool HIST> int PairDashpot::walk_slots()
+{
+    const int nslot = (int) pair_slots.size();
+    if (nslot == 0) return 0;
+    constexpr int BLOCK = 512;
+    if (candidates.size() < BLOCK) candidates.resize(BLOCK);
+    if (ended.size() < BLOCK) ended.resize(BLOCK);
+    const int cap = (int) candidates.size();
+    const SlotPair *__restrict sp = slot_pairs.data();
+    const double *__restrict x0 = atom->x[0];
+    const double *__restrict radius = atom->radius;
+    HistoryStore &ps = pair_slots;
+    const unsigned char *__restrict stouch = HIST ? ps.touched.data() : nullptr;
+    const double *__restrict sreach = ADH ? ps.reach.data() : nullptr;
+    Candidate *__restrict cand = candidates.data();
+    int *__restrict zk = ended.data();
+    int n = 0;
+    for (int k0 = 0; k0 < nslot; k0 += BLOCK) {
+        const int k1 = std::min(nslot, k0 + BLOCK);
+        if (n + (k1 - k0) > cap) {
+            stage_pairs(n);
+            n = 0;
+        }
+        int nz = 0;
+        for (int k = k0; k < k1; k++) {
+            const int i = sp[k].i, j = sp[k].j;
+            const double *xi = x0 + 3 * i, *xj = x0 + 3 * j;
+            const double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
+            const double rsq = dx * dx + dy * dy + dz * dz;
+            const double radsum = radius[i] + radius[j];
+            int touch = rsq < radsum * radsum;
+            if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
+            cand[n].i = i;
+            cand[n].j = j;
+            cand[n].k = k;
+            cand[n].r = rsq;
+            n += touch;
+            // one test, true only for a record left by a contact that has ended (rare): zeroed
+            // after the loop, which then calls nothing
+            if (HIST && stouch[k] > touch) zk[nz++] = k;
+        }
+        for (int q = 0; q < nz; q++) ps.zero(zk[q]);
     }
     return n;
 }
@@ -300,16 +357,18 @@ void PairDashpot::compute(int eflag, int vflag)
     // distances (square roots and divisions, independent of one another) and their staging.
     // With history (or energy), layout_slots() listed the atoms that have pairs, in list order:
     // the walk skips the others (most atoms of a dilute flow), whose slots are none.
-    const bool listed = hist || energy_flag;
-    const int natoms = listed ? nslot_atoms : inum;
-    const int *atoms = listed ? slot_atoms.data() : ilist;
     int nc;
-    if (adh)
-        nc = walk_pairs<true, true>(atoms, natoms);
-    else if (hist)
-        nc = walk_pairs<false, true>(atoms, natoms);
-    else
-        nc = walk_pairs<false, false>(atoms, natoms);
+    if (hist || energy_flag) {
+        // the slots laid out for this list: one flat loop over their pairs
+        if (adh)
+            nc = walk_slots<true, true>();
+        else if (hist)
+            nc = walk_slots<false, true>();
+        else
+            nc = walk_slots<false, false>();
+    } else {
+        nc = walk_pairs<false, false>(ilist, inum);
+    }
     stage_pairs(nc);
     // the pairs' last chunks, not full: a chunk holds pairs or wall contacts, not both
     evaluate(ps, false, true);

@@ -68,6 +68,18 @@ void PairDashpot::layout_slots()
         }
     }
     nslot_atoms = natoms;
+    // every slot's pair, in slot order: the walk of each step is one flat loop over them
+    if (slot_pairs.size() < nslot) slot_pairs.resize(nslot);
+    SlotPair *sp = slot_pairs.data();
+    for (int q = 0; q < natoms; q++) {
+        const int i = slot_atoms[q];
+        const int *jlist = firstneigh[i];
+        const int jnum = numneigh[i];
+        for (int jj = 0; jj < jnum; jj++, sp++) {
+            sp->i = i;
+            sp->j = jlist[jj] & NEIGHMASK;
+        }
+    }
     nwall_slots = wall_flag ? nlocal : 0;
     wall_slots.assign(nwall_slots, layout);
     for (int i = 0; i < nwall_slots && nv > 0; i++) {
