@@ -135,6 +135,7 @@ class PairDashpot : public Pair {
     int dirty;              // a compute advanced the slots since history_to_atoms copied them
     std::vector<Candidate> candidates;    // compute(): the touching pairs not yet staged
     std::vector<int> ended;               // compute(): one atom's slots whose contact ended
+    bool walked_slots = false;            // compute(): the candidates hold their slots only
 
     void allocate();
     void apply_settings(const std::vector<std::string> &args);

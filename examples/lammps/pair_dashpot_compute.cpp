@@ -133,6 +133,15 @@ void PairDashpot::stage_pairs(int n)
 {
     if (n == 0) return;
     Candidate *cand = candidates.data();
+    if (walked_slots) {
+        // walk_slots() left each touching pair's slot only: its atoms are the slot's
+        const SlotPair *sp = slot_pairs.data();
+        for (int q = 0; q < n; q++) {
+            const SlotPair p = sp[cand[q].k];
+            cand[q].i = p.i;
+            cand[q].j = p.j;
+        }
+    }
     for (int q = 0; q < n; q++) {
         const double r = std::sqrt(cand[q].r);
         cand[q].r = r;
@@ -299,8 +308,7 @@ template <bool ADH, bool HIST> int PairDashpot::walk_slots()
             const double radsum = radius[i] + radius[j];
             int touch = rsq < radsum * radsum;
             if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
-            cand[n].i = i;
-            cand[n].j = j;
+            // the slot only (stage_pairs() reads its atoms back from slot_pairs)
             cand[n].k = k;
             cand[n].r = rsq;
             n += touch;
@@ -358,7 +366,8 @@ void PairDashpot::compute(int eflag, int vflag)
     // With history (or energy), layout_slots() listed the atoms that have pairs, in list order:
     // the walk skips the others (most atoms of a dilute flow), whose slots are none.
     int nc;
-    if (hist || energy_flag) {
+    walked_slots = hist || energy_flag;
+    if (walked_slots) {
         // the slots laid out for this list: one flat loop over their pairs
         if (adh)
             nc = walk_slots<true, true>();
