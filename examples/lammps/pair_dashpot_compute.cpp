@@ -290,7 +290,7 @@ template <bool ADH, bool HIST> int PairDashpot::walk_slots()
     HistoryStore &ps = pair_slots;
     const unsigned char *__restrict stouch = HIST ? ps.touched.data() : nullptr;
     const double *__restrict sreach = ADH ? ps.reach.data() : nullptr;
-    Candidate *__restrict cand = candidates.data();
+    Candidate *const cand = candidates.data();
     int *__restrict zk = ended.data();
     int n = 0;
     for (int k0 = 0; k0 < nslot; k0 += BLOCK) {
@@ -300,8 +300,9 @@ template <bool ADH, bool HIST> int PairDashpot::walk_slots()
             n = 0;
         }
         int nz = 0;
+        Candidate *__restrict cp = cand + n;    // the next candidate
         for (int k = k0; k < k1; k++) {
-            const int i = sp[k].i, j = sp[k].j;
+            const ptrdiff_t i = sp[k].i, j = sp[k].j;
             const double *xi = x0 + 3 * i, *xj = x0 + 3 * j;
             const double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
             const double rsq = dx * dx + dy * dy + dz * dz;
@@ -309,13 +310,14 @@ template <bool ADH, bool HIST> int PairDashpot::walk_slots()
             int touch = rsq < radsum * radsum;
             if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
             // the slot only (stage_pairs() reads its atoms back from slot_pairs)
-            cand[n].k = k;
-            cand[n].r = rsq;
-            n += touch;
+            cp->k = k;
+            cp->r = rsq;
+            cp += touch;
             // one test, true only for a record left by a contact that has ended (rare): zeroed
             // after the loop, which then calls nothing
             if (HIST && stouch[k] > touch) zk[nz++] = k;
         }
+        n = (int) (cp - cand);
         for (int q = 0; q < nz; q++) ps.zero(zk[q]);
     }
     return n;
