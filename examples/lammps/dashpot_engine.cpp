@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace dashpot_lmp {
 
@@ -65,24 +66,13 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
         (fl.rolling ? 6 : 0) + (fl.twisting ? 2 : 0) + (lay.adhesive ? 1 : 0) + (fl.energy ? 2 * NFAMILY : 0) +
         (fl.context ? 3 : 0) + (fl.heat ? 3 : 0);
     dstore.assign((size_t) C * per, 0.0);
-    a = istore.data() + A * C;
-    b = istore.data() + B * C;
-    slot = istore.data() + SLOT * C;
-    model = istore.data() + MODEL * C;
+    const std::pair<int **, IntColumn> icols[] = {{&a, A}, {&b, B}, {&slot, SLOT}, {&model, MODEL}};
+    for (const auto &col : icols) *col.first = istore.data() + col.second * C;
     double *d = dstore.data();
-    delta = d + DELTA * C;
-    rate = d + RATE * C;
-    mass = d + MASS * C;
-    rad = d + RAD * C;
-    ra = d + RA * C;
-    rb = d + RB * C;
-    fn = d + FN * C;
-    norm = d + NORM * C;
-    vel = d + VEL * C;
-    ft = d + FT * C;
-    force = d + FORCE * C;
-    ta = d + TA * C;
-    tb = d + TB * C;
+    const std::pair<double **, DoubleColumn> dcols[] = {
+        {&delta, DELTA}, {&rate, RATE}, {&mass, MASS}, {&rad, RAD},   {&ra, RA},       {&rb, RB}, {&fn, FN},
+        {&norm, NORM},   {&vel, VEL},   {&ft, FT},     {&force, FORCE}, {&ta, TA}, {&tb, TB}};
+    for (const auto &col : dcols) *col.first = d + col.second * C;
     double *p = d + NFIXED * C;
     auto take = [&p](int width) {
         double *q = p;
