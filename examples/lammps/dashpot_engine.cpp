@@ -167,31 +167,37 @@ void ContactEngine::sort()
 
 /* The copies between the store (record s of a family at s * W) and a chunk's packed columns
  * (contact k at k * w, w <= W the model's own width), with the common widths known at compile
- * time. */
-template <int WIDTH, bool IN>
-static void copy_records(double *packed, double *store, const int *slot, int m, int w, int W)
+ * time; TOUCH: each copied record is also marked touched (the copy back of the first family
+ * with history, whose loop has the slot at hand). */
+template <int WIDTH, bool IN, bool TOUCH>
+static void copy_records(double *__restrict packed, double *__restrict store, const int *__restrict slot, int m,
+                         int w, int W, unsigned char *__restrict touched)
 {
     const int width = WIDTH > 0 ? WIDTH : w;
     for (int k = 0; k < m; k++) {
-        double *s = store + (size_t) slot[k] * W, *p = packed + (size_t) k * width;
+        const size_t sk = (size_t) slot[k];
+        double *s = store + sk * W, *p = packed + (size_t) k * width;
         for (int q = 0; q < width; q++) {
             if (IN)
                 p[q] = s[q];
             else
                 s[q] = p[q];
         }
+        if (TOUCH) touched[sk] = 1;
     }
 }
 
-template <bool IN> static void copy_family(double *packed, double *store, const int *slot, int m, int w, int W)
+template <bool IN, bool TOUCH>
+static void copy_family(double *packed, double *store, const int *slot, int m, int w, int W,
+                        unsigned char *touched = nullptr)
 {
     switch (w) {
         case 0: return;
-        case 1: return copy_records<1, IN>(packed, store, slot, m, w, W);
-        case 2: return copy_records<2, IN>(packed, store, slot, m, w, W);
-        case 3: return copy_records<3, IN>(packed, store, slot, m, w, W);
-        case 4: return copy_records<4, IN>(packed, store, slot, m, w, W);
-        default: return copy_records<0, IN>(packed, store, slot, m, w, W);
+        case 1: return copy_records<1, IN, TOUCH>(packed, store, slot, m, w, W, touched);
+        case 2: return copy_records<2, IN, TOUCH>(packed, store, slot, m, w, W, touched);
+        case 3: return copy_records<3, IN, TOUCH>(packed, store, slot, m, w, W, touched);
+        case 4: return copy_records<4, IN, TOUCH>(packed, store, slot, m, w, W, touched);
+        default: return copy_records<0, IN, TOUCH>(packed, store, slot, m, w, W, touched);
     }
 }
 
@@ -200,21 +206,31 @@ template <bool IN> static void copy_family(double *packed, double *store, const 
 void ContactEngine::gather(Chunk &c, int lo, int m, const Model &md, const HistoryStore &store)
 {
     for (int f = 0; f < NFAMILY; f++)
-        copy_family<true>(c.hist[f] + (size_t) lo * lay.width[f], const_cast<double *>(store.fam[f].data()),
-                          c.slot + lo, m, md.slots[f], lay.width[f]);
+        copy_family<true, false>(c.hist[f] + (size_t) lo * lay.width[f],
+                                 const_cast<double *>(store.fam[f].data()), c.slot + lo, m, md.slots[f],
+                                 lay.width[f]);
 }
 
 void ContactEngine::store_back(Chunk &c, int lo, int m, const Model &md, HistoryStore &store)
 {
-    for (int f = 0; f < NFAMILY; f++)
-        copy_family<false>(c.hist[f] + (size_t) lo * lay.width[f], store.fam[f].data(), c.slot + lo, m, md.slots[f],
-                           lay.width[f]);
     unsigned char *touched = store.touched.data();
+    bool marked = false;
+    for (int f = 0; f < NFAMILY; f++) {
+        double *packed = c.hist[f] + (size_t) lo * lay.width[f];
+        if (!marked && md.slots[f] > 0) {
+            copy_family<false, true>(packed, store.fam[f].data(), c.slot + lo, m, md.slots[f], lay.width[f],
+                                     touched);
+            marked = true;
+        } else {
+            copy_family<false, false>(packed, store.fam[f].data(), c.slot + lo, m, md.slots[f], lay.width[f]);
+        }
+    }
     if (lay.adhesive) {
         double *reach = store.reach.data();
         for (int k = 0; k < m; k++) reach[c.slot[lo + k]] = c.reach[lo + k];
     }
-    for (int k = 0; k < m; k++) touched[c.slot[lo + k]] = 1;
+    if (!marked)
+        for (int k = 0; k < m; k++) touched[c.slot[lo + k]] = 1;
 }
 
 /* Every family's batch call on contacts lo .. lo+m-1 of chunk c, all of model md, with each
