@@ -116,10 +116,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
         }
         h = h.min(hmax);
         let reach = law.reach(z[0], z[1])?;
-        if !end_in_time
-            && reach == 0.0
-            && max_overlap.is_some_and(|(_, dm)| z[1] < 0.0 && z[0] <= 0.5 * dm)
-        {
+        if !end_in_time && reach == 0.0 && max_overlap.is_some_and(|(_, dm)| z[1] < 0.0 && z[0] <= 0.5 * dm) {
             match end_in_u(&mut run, t, z)? {
                 End::Touch { t, v } => break (false, t, v),
                 End::Slowed { t: ts, z: zs } => {
@@ -203,7 +200,7 @@ pub(crate) fn collide_adhesive<C: ContactForce>(
 
 /// A rebound in u that slows below this fraction of its speed at the switch may stick (turn
 /// back before touch, where u's clock stops): it is carried on in time.
-pub(crate) const STICK: f64 = 1e-3;
+pub(crate) const STICK: f64 = 1e-6;
 
 /// What an adhesive impact's phases share: the law and its inputs, the counts, the trajectory
 /// and the most tensile force met at an accepted state (N).
@@ -239,7 +236,10 @@ impl<C, R> Run<'_, C, R> {
 /// stays above 0.9 of its largest so far (the adhesion speeds the particle up before the contact
 /// slows it down); `xscale` (m) sets the first step. Returns the time (s) and the state (δ m,
 /// δ̇ m/s) where the integration in time takes over.
-fn start_in_u<C: ContactForce, R>(run: &mut Run<'_, C, R>, xscale: f64) -> Result<(f64, [f64; 2]), CollideError>
+fn start_in_u<C: ContactForce, R>(
+    run: &mut Run<'_, C, R>,
+    xscale: f64,
+) -> Result<(f64, [f64; 2]), CollideError>
 where
     R: Fn(f64, f64, f64, usize, &'static str) -> CollideError,
 {
