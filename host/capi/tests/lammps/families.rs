@@ -213,7 +213,7 @@ fn an_adhesive_contact_reaching_past_the_cutoff_stops_lammps_naming_law_reach_cu
         let (got_reach, cut, needed) = (after("reaches "), after("neighbour cutoff ("), after("at least "));
         let radii = &line[line.find("for radii ").unwrap_or_else(|| panic!("{line}")) + 10..];
         let radii: Vec<f64> = radii
-            .split(|ch: char| ch == ')')
+            .split(')')
             .next()
             .unwrap_or_default()
             .split(" and ")
