@@ -232,6 +232,27 @@ impl<C, R> Run<'_, C, R> {
     }
 }
 
+impl<C: ContactForce, R: Fn(f64, f64, f64, usize, &'static str) -> CollideError> Run<'_, C, R> {
+    /// Whether step `n` of a phase in u, at u (m^{1/4}) and y = (δ̇ m/s, t s), may be taken:
+    /// [`CollideError::NoReturn`] past the step or time limit, for the reasons `why`.
+    fn may_step(&self, n: usize, u: f64, y: &[f64; 2], why: [&'static str; 2]) -> Result<(), CollideError> {
+        match overrun(n, self.opt.max_steps, y[1], self.t_limit, why) {
+            Some(why) => Err((self.no_return)(y[1], u.powi(4), y[0], self.steps, why)),
+            None => Ok(()),
+        }
+    }
+
+    /// An accepted state of a phase in u: committed to the law's history and recorded.
+    fn accept_u(&mut self, u: f64, y: &[f64; 2]) -> Result<(), CollideError> {
+        self.steps += 1;
+        let d = u.powi(4);
+        self.law.commit(d, y[0])?;
+        let f = self.law.force(d, y[0])?;
+        self.record(y[1], d, y[0], f);
+        Ok(())
+    }
+}
+
 /// The start of a contact that ends at touch, in u = δ^{1/4} (m^{1/4}) from 0 while the speed
 /// stays above 0.9 of its largest so far (the adhesion speeds the particle up before the contact
 /// slows it down); `xscale` (m) sets the first step. Returns the time (s) and the state (δ m,
@@ -265,9 +286,7 @@ where
             "too many steps at the start of an adhesive contact",
             "contact time limit at the start of an adhesive contact",
         ];
-        if let Some(why) = overrun(n, opt.max_steps, y[1], run.t_limit, why) {
-            return Err((run.no_return)(y[1], u.powi(4), y[0], run.steps, why));
-        }
+        run.may_step(n, u, &y, why)?;
         let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, h))? else {
             h *= 0.25;
             continue;
@@ -277,10 +296,7 @@ where
             u += h;
             y = s.y;
             k = s.f;
-            run.steps += 1;
-            let d = u.powi(4);
-            law.commit(d, y[0])?;
-            run.record(y[1], d, y[0], law.force(d, y[0])?);
+            run.accept_u(u, &y)?;
             peak = peak.max(y[0]);
         }
         h *= opt.method.factor(e);
@@ -332,9 +348,7 @@ where
             "too many steps at the end of an adhesive contact",
             "contact time limit at the end of an adhesive contact",
         ];
-        if let Some(why) = overrun(n, opt.max_steps, y[1], run.t_limit, why) {
-            return Err((run.no_return)(y[1], u.powi(4), y[0], run.steps, why));
-        }
+        run.may_step(n, u, &y, why)?;
         let last = u + h <= 0.0;
         let hh = if last { -u } else { h };
         let Some(s) = in_domain(opt.method.step(&mut ph, u, &y, &k, hh))? else {
@@ -349,10 +363,7 @@ where
         u = if last { 0.0 } else { u + hh };
         y = s.y;
         k = s.f;
-        run.steps += 1;
-        let d = u.powi(4);
-        law.commit(d, y[0])?;
-        run.record(y[1], d, y[0], law.force(d, y[0])?);
+        run.accept_u(u, &y)?;
         if !last {
             h = hh * opt.method.factor(e);
         }
