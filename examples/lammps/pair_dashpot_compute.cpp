@@ -18,7 +18,8 @@
 using namespace LAMMPS_NS;
 using namespace dashpot_lmp;
 
-/* Contact k of chunk c reaches past the neighbour cutoff of its pair of types: an error. */
+/* Contact k of chunk c reaches past the neighbour cutoff of its pair of types: an error (a cutoff
+ * given by the deck too short, or a reach beyond the margin of the one probed in init_one). */
 void PairDashpot::reach_error(const ContactEngine::Chunk &c, int k)
 {
     const int a = c.a[k], b = c.b[k];
@@ -26,10 +27,11 @@ void PairDashpot::reach_error(const ContactEngine::Chunk &c, int k)
     const double cut = key_cut[atom->type[a] * (atom->ntypes + 1) + atom->type[b]];
     error->one(FLERR,
                "pair dashpot: a contact of law '{}' reaches {} beyond touching, past the neighbour "
-               "cutoff ({} for radii {} and {}): its reach depends on more than the radii it was "
-               "probed at",
+               "cutoff ({} for radii {} and {}): it would leave the neighbour list while it acts. It "
+               "needs a cutoff of at least {} (pair_style dashpot CUTOFF, or pair_coeff's cutoff "
+               "keyword; without one, the cutoff covers 1.5 times the reach probed at the largest radii)",
                models.spec(models.model(c.model[k]).spec).law[dashpot_lmp::NORMAL].name, c.reach[k], cut,
-               radius[a], radius[b]);
+               radius[a], radius[b], radius[a] + radius[b] + c.reach[k]);
 }
 
 /* What the step keeps of the n contacts of chunk c beyond their forces and torques (added by the

