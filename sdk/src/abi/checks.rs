@@ -458,7 +458,16 @@ mod tests {
     /// vector input (tangential, rolling) or a scalar one (twisting).
     #[test]
     fn fused_motion_check_finds_every_bad_value() {
-        for (n, width) in [(CHECK_BLOCK, 3), (5, 3), (1, 3), (CHECK_BLOCK, 1), (2, 1), (1, 1)] {
+        for (n, width) in [
+            (CHECK_BLOCK, 3),
+            (5, 3),
+            (3, 3),
+            (1, 3),
+            (CHECK_BLOCK, 1),
+            (4, 1),
+            (2, 1),
+            (1, 1),
+        ] {
             let good = || {
                 vec![
                     vec![0.6; 3 * n],

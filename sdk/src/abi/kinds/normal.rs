@@ -94,6 +94,7 @@ impl Kind for Normal {
         }
         bad_lengths(name, slots, c)
     }
+    #[inline]
     fn raw(c: &mut NormalCall<'_>, power: *mut f64, elastic: *mut f64) -> FfiNormalBatch4 {
         let b = &mut c.batch;
         FfiNormalBatch4 {

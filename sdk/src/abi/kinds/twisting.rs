@@ -29,6 +29,7 @@ impl Kind for Twisting {
     fn check_lengths(name: &str, slots: usize, b: &TwistingBatch<'_>) -> Result<(), LawError> {
         b.lengths().check("twisting", name, slots)
     }
+    #[inline]
     fn raw(b: &mut TwistingBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiTwistingBatch4 {
         let base = v3::FfiTwistingBatch {
             n: b.torque.len(),

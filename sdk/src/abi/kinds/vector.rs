@@ -42,6 +42,7 @@ macro_rules! vector_kind {
             fn check_lengths(name: &str, slots: usize, b: &VectorBatch<'_>) -> Result<(), LawError> {
                 b.lengths().check(Self::KIND.as_str(), name, slots)
             }
+            #[inline]
             fn raw(b: &mut VectorBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiVectorBatch4 {
                 FfiVectorBatch4 {
                     base: v3::FfiVectorBatch {
@@ -108,6 +109,7 @@ vector_kind!(
 );
 
 /// The raw 0.2 arrays of a vector batch.
+#[inline]
 pub(crate) fn raw_base(b: &mut VectorBatch<'_>) -> v2::FfiTangentialBatch {
     v2::FfiTangentialBatch {
         n: b.force.len(),
