@@ -135,22 +135,7 @@ pub(super) fn check_motion(
     if motion_inputs_ok(normal, motion, f, d, m, a) {
         return Ok(());
     }
-    bad_motion(lo, normal, motion, width, field, [f, d, m, a])
-}
-
-/// The search of [`check_motion`] (a bad block, or a false alarm of the fused test).
-#[cold]
-#[inline(never)]
-fn bad_motion(
-    lo: usize,
-    normal: &[f64],
-    motion: &[f64],
-    width: usize,
-    field: u8,
-    [f, d, m, a]: [&[f64]; 4],
-) -> Result<(), (usize, u8)> {
-    let input = (first_non_finite(motion).map(|i| i / width), field);
-    first_bad_motion(lo, normal, input, f, d, m, a)
+    first_bad_motion(lo, normal, motion, width, field, [f, d, m, a])
 }
 
 mod heat;
@@ -235,24 +220,25 @@ pub(super) fn first_bad<const N: usize>(
 }
 
 /// The first bad input of a block of a motion kind (tangential, rolling, twisting), from
-/// contact `lo`: the unit normals (`normal`, flattened `[x, y, z]` triples), then the kind's
-/// own input (`input`: its first non-finite contact and its array), the normal forces (N), the
-/// overlaps (m), the masses (kg) and the radii (m).
-#[inline(always)]
-pub(super) fn first_bad_motion(
+/// contact `lo`, the search of [`check_motion`] (a bad block, or a false alarm of its fused
+/// test): the unit normals (`normal`, flattened `[x, y, z]` triples), then the kind's own input
+/// (`motion`, flattened, `width` values a contact, reported as array `field`), the normal
+/// forces (N), the overlaps (m), the masses (kg) and the radii (m).
+#[cold]
+#[inline(never)]
+fn first_bad_motion(
     lo: usize,
     normal: &[f64],
-    input: (Option<usize>, u8),
-    fnorm: &[f64],
-    delta: &[f64],
-    m: &[f64],
-    a: &[f64],
+    motion: &[f64],
+    width: usize,
+    field: u8,
+    [fnorm, delta, m, a]: [&[f64]; 4],
 ) -> Result<(), (usize, u8)> {
     first_bad(
         lo,
         [
             (first_non_finite(normal).map(|i| i / 3), BatchFault::NORMAL),
-            input,
+            (first_non_finite(motion).map(|i| i / width), field),
             (first_non_finite(fnorm), BatchFault::NORMAL_FORCE),
             (first_non_finite(delta), BatchFault::DELTA),
             (first_non_positive(m), BatchFault::MASS),
