@@ -29,6 +29,7 @@ use dashpot_sdk::{LawError, TwistingBatch};
 
 impl EnergyBatch for DashpotTangentialModel {
     const WIDTH: usize = 3;
+    #[inline(always)]
     fn run(&self, b: Raw<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         self.model.force_batch_with(b.vector(), energy)
     }
@@ -36,6 +37,7 @@ impl EnergyBatch for DashpotTangentialModel {
 
 impl EnergyBatch for DashpotRollingModel {
     const WIDTH: usize = 3;
+    #[inline(always)]
     fn run(&self, b: Raw<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         self.model.batch(b.vector(), energy)
     }
@@ -43,6 +45,7 @@ impl EnergyBatch for DashpotRollingModel {
 
 impl EnergyBatch for DashpotTwistingModel {
     const WIDTH: usize = 1;
+    #[inline(always)]
     fn run(&self, b: Raw<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         let [normal_force, delta, mass, radius] = b.scalars;
         let (dt, normal, context, slots) = (b.dt, b.normal, b.context, b.slots);

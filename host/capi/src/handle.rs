@@ -396,6 +396,7 @@ pub(crate) trait VectorBatch<'a>: Sized {
 macro_rules! vector_batch {
     ($($batch:ident),*) => {$(
         impl<'a> VectorBatch<'a> for dashpot_sdk::$batch<'a> {
+            #[inline(always)]
             fn of(
                 dt: f64,
                 normal: &'a [[f64; 3]],
@@ -441,6 +442,7 @@ pub(crate) struct Raw<'a> {
 
 impl<'a> Raw<'a> {
     /// The batch of a vector kind (`input` and `out` as triples).
+    #[inline(always)]
     pub fn vector<B: VectorBatch<'a>>(self) -> B {
         let velocity = triples(self.input);
         B::of(

@@ -159,6 +159,7 @@ pub const UNIT_TOLERANCE: f64 = 1e-6;
 /// Refuses a normal that is not a unit vector (zero, non-finite, or of another length): the
 /// tangential, rolling and twisting laws project onto the plane it defines, and a zero normal
 /// would give a force in no defined direction. The message names the contact and its vector.
+#[inline]
 pub fn unit_normals(normal: &[[f64; 3]]) -> Result<(), String> {
     // every call of a LAMMPS step checks its normals: first one branch-free pass, without square
     // roots, that accepts lengths within half the tolerance (|n|² in [(1 − tol/2)², (1 +
@@ -175,6 +176,14 @@ pub fn unit_normals(normal: &[[f64; 3]]) -> Result<(), String> {
     if surely {
         return Ok(());
     }
+    not_unit(normal)
+}
+
+/// The search of [`unit_normals`] when its fused test says no: the first normal that is not a
+/// unit vector, named.
+#[cold]
+#[inline(never)]
+fn not_unit(normal: &[[f64; 3]]) -> Result<(), String> {
     for (i, n) in normal.iter().enumerate() {
         let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
         // (NaN fails the comparison: refused too)

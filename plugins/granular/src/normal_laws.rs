@@ -441,7 +441,11 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
     fn force_context_batch(&self, b: &mut NormalBatch<'_>, out: &mut [Ctx]) {
         let mut from = 0;
         #[cfg(target_arch = "x86_64")]
-        if M::LANE != lane::NONE && D::LANE != lane::NONE && dashpot_sdk::simd::available() {
+        if M::LANE != lane::NONE
+            && D::LANE != lane::NONE
+            && b.force.len() >= 4
+            && dashpot_sdk::simd::available()
+        {
             let [k, emix, cohesion] = self.model.lane_constants();
             let m = crate::normal_avx2::Consts { k, emix, cohesion };
             // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
@@ -459,7 +463,7 @@ impl<M: NormalModel, D: DampingModel> BoundContact for GranNormalBound<M, D> {
     fn reach_batch(&self, b: &NormalBatch<'_>, out: &mut [f64]) {
         let mut from = 0;
         #[cfg(target_arch = "x86_64")]
-        if M::LANE == lane::JKR && dashpot_sdk::simd::available() {
+        if M::LANE == lane::JKR && out.len() >= 4 && dashpot_sdk::simd::available() {
             let [k, emix, cohesion] = self.model.lane_constants();
             let m = crate::normal_avx2::Consts { k, emix, cohesion };
             // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths

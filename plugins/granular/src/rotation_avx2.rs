@@ -44,16 +44,16 @@ unsafe fn sds_step(s: &Sds, b: &mut Cols<'_>, i: usize) {
     put_triples(select3(slid.and(held), reset, xi), b.history, i);
 }
 
-/// `rolling sds` on every contact of batch `b` with contexts `ctx` (one per contact), four at
-/// a time.
+/// `rolling sds` on the contacts `0 .. n − n % 4` of batch `b` with contexts `ctx` (one per
+/// contact), four at a time; returns where the lanes stopped (the rest is the caller's).
 ///
 /// # Safety
 /// The CPU must support AVX2.
 #[target_feature(enable = "avx2")]
-pub(crate) unsafe fn rolling_sds(s: &Sds, b: &mut RollingBatch<'_>, ctx: &[NormalContext]) {
+pub(crate) unsafe fn rolling_sds(s: &Sds, b: &mut RollingBatch<'_>, ctx: &[NormalContext]) -> usize {
     let n = b.force.len();
     let mut cols = vector_cols(b, ctx, 3);
-    four_at_a_time!(n, cols, [3, 3, 3], |c, i| sds_step(s, c, i));
+    four_at_a_time!(n, cols, |c, i| sds_step(s, c, i))
 }
 
 /// `twisting marshall` ([`crate::rotation::marshall_twist`], [`crate::rotation::Twist::step`])
@@ -92,13 +92,18 @@ unsafe fn marshall_step(s: &Spring, b: &mut Cols<'_>, i: usize) {
     _mm256_storeu_pd(h.add(4), _mm256_unpackhi_pd(t, r));
 }
 
-/// `twisting marshall` of the tangential constants `s` on every contact of batch `b` with
-/// contexts `ctx` (one per contact), four at a time.
+/// `twisting marshall` of the tangential constants `s` on the contacts `0 .. n − n % 4` of
+/// batch `b` with contexts `ctx` (one per contact), four at a time; returns where the lanes
+/// stopped (the rest is the caller's).
 ///
 /// # Safety
 /// The CPU must support AVX2.
 #[target_feature(enable = "avx2")]
-pub(crate) unsafe fn twisting_marshall(s: &Spring, b: &mut TwistingBatch<'_>, ctx: &[NormalContext]) {
+pub(crate) unsafe fn twisting_marshall(
+    s: &Spring,
+    b: &mut TwistingBatch<'_>,
+    ctx: &[NormalContext],
+) -> usize {
     let n = b.torque.len();
     assert!(
         b.normal.len() == n
@@ -116,5 +121,5 @@ pub(crate) unsafe fn twisting_marshall(s: &Spring, b: &mut TwistingBatch<'_>, ct
         history: b.history,
         out: b.torque,
     };
-    four_at_a_time!(n, cols, [1, 2, 1], |c, i| marshall_step(s, c, i));
+    four_at_a_time!(n, cols, |c, i| marshall_step(s, c, i))
 }

@@ -147,16 +147,18 @@ through_context!(
     force,
     force_energy,
     /// With the normal law's contexts on an x86-64 CPU with AVX2, four contacts at a time in
-    /// explicit lanes (`rotation_avx2`, the per-contact form's bits), else one at a time.
+    /// explicit lanes (`rotation_avx2`, the per-contact form's bits), the last `n % 4` one at a
+    /// time; without them, every contact one at a time.
     #[inline(always)]
     fn force_batch(&self, mut b: RollingBatch<'_>) {
+        let mut from = 0;
         #[cfg(target_arch = "x86_64")]
-        if !b.context.is_empty() && dashpot_sdk::simd::available() {
+        if !b.context.is_empty() && b.force.len() >= 4 && dashpot_sdk::simd::available() {
             let ctx = b.context;
             // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
-            return unsafe { crate::rotation_avx2::rolling_sds(self, &mut b, ctx) };
+            from = unsafe { crate::rotation_avx2::rolling_sds(self, &mut b, ctx) };
         }
-        b.each(|c, h| self.eval(&c.context, c, h).0);
+        crate::spring::each_from!(b, from, force, |c, h| self.eval(&c.context, c, h).0);
     }
 );
 
@@ -246,15 +248,17 @@ through_context!(
     torque,
     torque_energy,
     /// With the normal law's contexts on an x86-64 CPU with AVX2, four contacts at a time in
-    /// explicit lanes (`rotation_avx2`, the per-contact form's bits), else one at a time.
+    /// explicit lanes (`rotation_avx2`, the per-contact form's bits), the last `n % 4` one at a
+    /// time; without them, every contact one at a time.
     #[inline(always)]
     fn torque_batch(&self, mut b: TwistingBatch<'_>) {
+        let mut from = 0;
         #[cfg(target_arch = "x86_64")]
-        if !b.context.is_empty() && dashpot_sdk::simd::available() {
+        if !b.context.is_empty() && b.torque.len() >= 4 && dashpot_sdk::simd::available() {
             let ctx = b.context;
             // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
-            return unsafe { crate::rotation_avx2::twisting_marshall(&self.0, &mut b, ctx) };
+            from = unsafe { crate::rotation_avx2::twisting_marshall(&self.0, &mut b, ctx) };
         }
-        b.each(|c, h| self.eval(&c.context, c, h).0);
+        crate::spring::each_from!(b, from, torque, |c, h| self.eval(&c.context, c, h).0);
     }
 );

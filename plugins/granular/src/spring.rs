@@ -193,3 +193,19 @@ macro_rules! through_context {
     };
 }
 pub(crate) use through_context;
+
+/// `each_from!(b, from, out, |c, h| output)`: `b.out[i]` = the output on contact `i` of batch
+/// `b` (a tangential, rolling or twisting batch; its context the one the host passed, or the
+/// default), its history `h` advanced, for the contacts `from..`: the per-contact form, for the
+/// contacts the lanes leave (the last `n % 4`) or every contact of a batch that takes none.
+macro_rules! each_from {
+    ($b:ident, $from:expr, $out:ident, |$c:ident, $h:ident| $eval:expr) => {{
+        let slots = $b.slots;
+        for i in $from..$b.$out.len() {
+            let $c = &$b.contact(i);
+            let $h = &mut $b.history[i * slots..(i + 1) * slots];
+            $b.$out[i] = $eval;
+        }
+    }};
+}
+pub(crate) use each_from;

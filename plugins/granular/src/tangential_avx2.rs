@@ -100,16 +100,15 @@ pub(crate) struct Cols<'a> {
     pub(crate) out: &'a mut [f64],
 }
 
-/// `four_at_a_time!(n, cols, [motion, slots, out], |c, i| step)`: the lane step on contacts
-/// `i .. i + 4` of the `n` contacts of `cols` (a [`Cols`] of `motion` input values, `slots`
-/// history slots and `out` outputs a contact) for every four; then the last `n % 4` in the
-/// four that end the batch (their inputs read in place, the history through a copy, only the
-/// last `n % 4` contacts' results kept), or, in a batch of fewer than four, copied into four
-/// padded with zeros: every contact in lanes. A macro, not a function taking a closure: the
-/// step must be compiled for AVX2.
+/// `four_at_a_time!(n, cols, |c, i| step)`: the lane step on contacts `i .. i + 4` of the `n`
+/// contacts of `cols` (a [`Cols`]) for every four; evaluates to where the lanes stopped,
+/// `n − n % 4`: the last `n % 4` contacts (all of a batch of fewer than four) are the caller's,
+/// through the per-contact form (the same bits; padding them to four lanes cost more than the
+/// per-contact form, which a batch of one contact pays on every call). A macro, not a function
+/// taking a closure: the step must be compiled for AVX2.
 macro_rules! four_at_a_time {
-    ($n:expr, $cols:ident, [$wm:expr, $slots:expr, $wo:expr], |$c:ident, $i:ident| $step:expr) => {{
-        let (n, wm, slots, wo): (usize, usize, usize, usize) = ($n, $wm, $slots, $wo);
+    ($n:expr, $cols:ident, |$c:ident, $i:ident| $step:expr) => {{
+        let n: usize = $n;
         let n4 = n - n % 4;
         let mut i = 0;
         while i < n4 {
@@ -119,43 +118,7 @@ macro_rules! four_at_a_time {
             }
             i += 4;
         }
-        let r = n - n4;
-        if r > 0 {
-            // the four lanes from contact w: the batch's last four (of which the last r are
-            // kept), or its n < 4 contacts padded with zeros
-            let w = n.saturating_sub(4);
-            let keep = if n >= 4 { 4 - r } else { 0 };
-            let (mut normal, mut motion, mut ctx) = ([0.0; 12], [0.0; 12], [0.0; 12]);
-            let (mut history, mut out) = ([0.0; 16], [0.0; 12]);
-            history[..slots * (n - w)].copy_from_slice(&$cols.history[slots * w..slots * n]);
-            let (nl, ml, xl) = if n >= 4 {
-                (
-                    &$cols.normal[3 * w..3 * n],
-                    &$cols.motion[wm * w..wm * n],
-                    &$cols.ctx[3 * w..3 * n],
-                )
-            } else {
-                normal[..3 * n].copy_from_slice(&$cols.normal[..3 * n]);
-                motion[..wm * n].copy_from_slice(&$cols.motion[..wm * n]);
-                ctx[..3 * n].copy_from_slice(&$cols.ctx[..3 * n]);
-                (&normal[..], &motion[..4 * wm], &ctx[..])
-            };
-            let mut pad = $crate::tangential_avx2::Cols {
-                dt: $cols.dt,
-                normal: nl,
-                motion: ml,
-                ctx: xl,
-                history: &mut history[..4 * slots],
-                out: &mut out[..4 * wo],
-            };
-            {
-                let ($c, $i) = (&mut pad, 0);
-                $step;
-            }
-            $cols.history[slots * n4..slots * n]
-                .copy_from_slice(&pad.history[slots * keep..slots * (keep + r)]);
-            $cols.out[wo * n4..wo * n].copy_from_slice(&pad.out[wo * keep..wo * (keep + r)]);
-        }
+        n4
     }};
 }
 pub(crate) use four_at_a_time;
@@ -241,8 +204,9 @@ unsafe fn step<const KIND: u8>(s: &Spring, b: &mut Cols<'_>, i: usize) {
     }
 }
 
-/// The spring of kind `KIND` on every contact of batch `b` with contexts `ctx` (one per
-/// contact), four at a time.
+/// The spring of kind `KIND` on the contacts `0 .. n − n % 4` of batch `b` with contexts
+/// `ctx` (one per contact), four at a time; returns where the lanes stopped (the rest is the
+/// caller's).
 ///
 /// # Safety
 /// The CPU must support AVX2.
@@ -251,8 +215,8 @@ pub(crate) unsafe fn lanes<const KIND: u8>(
     s: &Spring,
     b: &mut TangentialBatch<'_>,
     ctx: &[dashpot_sdk::NormalContext],
-) {
+) -> usize {
     let n = b.force.len();
     let mut cols = vector_cols(b, ctx, slots(KIND));
-    four_at_a_time!(n, cols, [3, slots(KIND), 3], |c, i| step::<KIND>(s, c, i));
+    four_at_a_time!(n, cols, |c, i| step::<KIND>(s, c, i))
 }

@@ -198,17 +198,19 @@ impl<const KIND: u8> ReadsContext<TangentialContact> for SpringBound<KIND> {
 
 impl<const KIND: u8> SpringBound<KIND> {
     /// The batch's forces: with the normal law's contexts on an x86-64 CPU with AVX2, four
-    /// contacts at a time in explicit lanes (`tangential_avx2`, the per-contact form's bits;
-    /// the last `n % 4` padded to four), else one at a time.
+    /// contacts at a time in explicit lanes (`tangential_avx2`, the per-contact form's bits),
+    /// the last `n % 4` (all of a batch of fewer than four) one at a time, as is every contact
+    /// of a batch without contexts.
     #[inline(always)]
     fn batch(&self, mut b: TangentialBatch<'_>) {
+        let mut from = 0;
         #[cfg(target_arch = "x86_64")]
-        if !b.context.is_empty() && dashpot_sdk::simd::available() {
+        if !b.context.is_empty() && b.force.len() >= 4 && dashpot_sdk::simd::available() {
             let ctx = b.context;
             // SAFETY: the CPU has AVX2 (checked just above); the lanes check the lengths
-            return unsafe { crate::tangential_avx2::lanes::<KIND>(&self.0, &mut b, ctx) };
+            from = unsafe { crate::tangential_avx2::lanes::<KIND>(&self.0, &mut b, ctx) };
         }
-        b.each(|c, h| self.eval(&c.context, c, h).0);
+        crate::spring::each_from!(b, from, force, |c, h| self.eval(&c.context, c, h).0);
     }
 }
 

@@ -11,6 +11,11 @@ use crate::NormalContext;
 #[inline]
 #[allow(clippy::eq_op)]
 pub(crate) fn all_finite(x: &[f64]) -> bool {
+    if x.len() < 8 {
+        // a few values (a batch of one or two contacts): the sum alone, without the lanes'
+        // setup and reduction
+        return x.iter().fold(0.0, |a, v| a + (v - v)) == 0.0;
+    }
     let mut acc = [0.0f64; 8];
     let mut it = x.chunks_exact(8);
     for c in &mut it {
@@ -179,6 +184,17 @@ pub(crate) fn first_invalid_context(x: &[NormalContext]) -> Option<usize> {
     const _: () = assert!(std::mem::size_of::<NormalContext>() == 3 * std::mem::size_of::<f64>());
     // SAFETY: NormalContext is repr(C) with three f64 fields and no padding (asserted above).
     let flat = unsafe { std::slice::from_raw_parts(x.as_ptr().cast::<f64>(), 3 * x.len()) };
+    if flat.len() < 8 {
+        // one or two contexts: the sum and the minimum alone, without the lanes' setup
+        let (sum, low) = flat
+            .iter()
+            .fold((0.0, 0.0), |(s, l), &v| (s + (v - v), min(l, v)));
+        return if sum == 0.0 && low >= 0.0 {
+            None
+        } else {
+            x.iter().position(|c| !c.is_valid())
+        };
+    }
     let (mut sum, mut low) = ([0.0f64; 8], [0.0f64; 8]);
     let mut it = flat.chunks_exact(8);
     for c in &mut it {
@@ -273,27 +289,30 @@ pub(crate) fn check_normal_inputs(d: &[f64], r: &[f64], m: &[f64], a: &[f64]) ->
     None
 }
 
-/// Whether a tangential block's inputs are surely good (every component finite, m and r finite
-/// and > 0), by the same fused sums and minima as [`normal_inputs_ok`]; `normal` and `velocity`
-/// are the flattened 3-vectors.
+/// Whether a motion block's inputs are surely good (tangential, rolling, twisting: every
+/// component finite, m and r finite and > 0), by the same fused sums and minima as
+/// [`normal_inputs_ok`]; `normal` is the flattened unit normals, `motion` the kind's own input
+/// flattened (a velocity's three components, or one rate, a contact).
 #[inline(always)]
-pub(crate) fn tangential_inputs_ok(
+pub(crate) fn motion_inputs_ok(
     normal: &[f64],
-    velocity: &[f64],
+    motion: &[f64],
     fnorm: &[f64],
     delta: &[f64],
     m: &[f64],
     a: &[f64],
 ) -> bool {
     let (mut s0, mut s1) = (0.0f64, 0.0f64);
-    let (nc, vc) = (normal.chunks_exact(2), velocity.chunks_exact(2));
-    let (nt, vt) = (nc.remainder(), vc.remainder());
-    for (n, v) in nc.zip(vc) {
-        s0 += n[0] + v[0];
-        s1 += n[1] + v[1];
-    }
-    for (n, v) in nt.iter().zip(vt) {
-        s0 += n + v;
+    for x in [normal, motion] {
+        let c = x.chunks_exact(2);
+        let tail = c.remainder();
+        for v in c {
+            s0 += v[0];
+            s1 += v[1];
+        }
+        for v in tail {
+            s0 += v;
+        }
     }
     let (mut l0, mut l1) = (f64::INFINITY, f64::INFINITY);
     let (fc, dc, mc, ac) = (
@@ -330,6 +349,18 @@ mod tests {
         assert!(!all_positive(&[1.0, 0.0]));
         assert!(!all_positive(&[f64::NAN]));
         assert!(!all_positive(&[f64::INFINITY]));
+        // short slices (their own path) and long ones, a bad value anywhere
+        for n in 1..20 {
+            assert!(all_finite(&vec![-1e300; n]));
+            for i in 0..n {
+                for v in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                    let mut x = vec![1.0; n];
+                    x[i] = v;
+                    assert!(!all_finite(&x), "{n} values, {v} at {i}");
+                    assert_eq!(first_non_finite(&x), Some(i));
+                }
+            }
+        }
     }
 
     /// The fused check agrees with the exact one on every kind of bad value, at every position
@@ -423,21 +454,31 @@ mod tests {
         assert!(!l.ok());
         assert_eq!(l.verdict(0, &big, &big, &big, &big), Ok(()));
     }
-    /// The fused tangential check catches a bad value in every field and every component.
+    /// The fused motion check catches a bad value in every field and every component, with a
+    /// vector input (tangential, rolling) or a scalar one (twisting).
     #[test]
-    fn fused_tangential_check_finds_every_bad_value() {
-        for n in [CHECK_BLOCK, 5] {
+    fn fused_motion_check_finds_every_bad_value() {
+        for (n, width) in [
+            (CHECK_BLOCK, 3),
+            (5, 3),
+            (3, 3),
+            (1, 3),
+            (CHECK_BLOCK, 1),
+            (4, 1),
+            (2, 1),
+            (1, 1),
+        ] {
             let good = || {
                 vec![
                     vec![0.6; 3 * n],
-                    vec![-0.1; 3 * n],
+                    vec![-0.1; width * n],
                     vec![3.0; n],
                     vec![1e-6; n],
                     vec![2.0e-4; n],
                     vec![1.5e-3; n],
                 ]
             };
-            let ok = |v: &[Vec<f64>]| tangential_inputs_ok(&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
+            let ok = |v: &[Vec<f64>]| motion_inputs_ok(&v[0], &v[1], &v[2], &v[3], &v[4], &v[5]);
             assert!(ok(&good()));
             for field in 0..6 {
                 let bad: &[f64] = if field < 4 {
@@ -465,7 +506,7 @@ mod tests {
             cap_force: 2.0,
             damping: 0.0,
         };
-        for n in [1, 5, CHECK_BLOCK] {
+        for n in [1, 2, 3, 5, CHECK_BLOCK] {
             assert_eq!(first_invalid_context(&vec![good; n]), None);
             for i in 0..n {
                 for field in 0..3 {

@@ -131,6 +131,7 @@ pub(crate) fn run_v2<K: Kind>(
 /// Runs a batch of kind `K` through `call` (a vtable entry or the compiled-in trampoline):
 /// lengths checked first, then the status turned into a result; `Ok(true)` when the energy
 /// outputs were written.
+#[inline]
 pub(crate) fn run<K: Kind>(
     name: &str,
     slots: usize,
@@ -234,6 +235,7 @@ impl<K: Kind> ModelHandle<K> {
     /// when they were written, `Ok(false)` when the law does not account for energy (or none
     /// was asked for). A law of sdk 0.3 is called with the 0.3 part of the raw batch, and what
     /// it leaves unwritten gets this sdk's defaults ([`Kind::older_defaults`]).
+    #[inline]
     pub fn batch(&self, mut b: K::Batch<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         match &self.ffi {
             Series::V4(m) => run::<K>(
@@ -244,19 +246,29 @@ impl<K: Kind> ModelHandle<K> {
                 m.vtable.take_panic,
                 |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, ffi, fault, written) },
             ),
-            Series::V3(m, _) => {
-                let written = run::<K>(
-                    &self.name,
-                    self.slots,
-                    &mut b,
-                    energy,
-                    m.vtable.take_panic,
-                    |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, K::ffi03(ffi), fault, written) },
-                )?;
-                K::older_defaults(&mut b);
-                Ok(written)
-            }
+            Series::V3(m, _) => self.batch_v3(m, b, energy),
         }
+    }
+
+    /// [`ModelHandle::batch`] of a law of an sdk 0.3 plugin `m` (out of line: the hot path is
+    /// a law of this sdk's series).
+    #[inline(never)]
+    fn batch_v3(
+        &self,
+        m: &FfiModel<K::Ffi03>,
+        mut b: K::Batch<'_>,
+        energy: EnergyOut<'_>,
+    ) -> Result<bool, LawError> {
+        let written = run::<K>(
+            &self.name,
+            self.slots,
+            &mut b,
+            energy,
+            m.vtable.take_panic,
+            |ffi, fault, written| unsafe { (m.vtable.batch)(m.obj, K::ffi03(ffi), fault, written) },
+        )?;
+        K::older_defaults(&mut b);
+        Ok(written)
     }
 
     /// Derived constants for a contact of effective `mass` (kg) and `radius` (m).

@@ -50,21 +50,24 @@ macro_rules! eval_block {
 }
 
 /// The checked block loop of a raw motion batch `$r` (twisting, or a vector kind: its sdk batch
-/// `$batch`, whose motion input `$motion` and output `$out` are arrays of `$mty` and `$oty`),
-/// with the energy outputs `$power` and `$elastic` when either is wanted and the normal
-/// contexts `$context` (null: none, the defaults). `$check(lo, normal,
-/// motion, normal_force, delta, mass, radius)` refuses a block's bad input, `$eval(block)` runs
-/// the law on it, `$eval_energy(block, energy)` runs it with its energy outputs (whether every
-/// contact reported one), and `$bad_out(outputs)` finds a non-finite output. Expands to the
-/// body of a `KindBound::run` (it returns the first fault).
+/// `$batch`, whose motion input `$motion` and output `$out` are arrays of `$mty` and `$oty`,
+/// `$mty` being `$width` f64 values; a bad motion input is reported as array `$field`), with
+/// the energy outputs `$power` and `$elastic` when either is wanted and the normal contexts
+/// `$context` (null: none, the defaults). `$eval(block)` runs the law on a block,
+/// `$eval_energy(block, energy)` runs it with its energy outputs (whether every contact
+/// reported one). Each block's inputs are checked before the law runs on it (the fused test
+/// [`motion_inputs_ok`], the search only when it says no) and its outputs after. Expands to
+/// the body of a `KindBound::run` (it returns the first fault).
 macro_rules! motion_run {
     ($r:expr, $power:expr, $elastic:expr, $context:expr,
-     $batch:ident { $motion:ident: $mty:ty => $out:ident: $oty:ty },
-     $check:expr, $eval:expr, $eval_energy:expr, $bad_out:expr $(,)?) => {{
+     $batch:ident { $motion:ident: $mty:ty => $out:ident: $oty:ty }, $width:expr, $field:expr,
+     $eval:expr, $eval_energy:expr $(,)?) => {{
         let r = $r;
         if !(r.dt >= 0.0 && r.dt < f64::INFINITY) {
             return Err((0, BatchFault::DT));
         }
+        const W: usize = $width;
+        const _: () = assert!(std::mem::size_of::<$mty>() == W * 8 && std::mem::size_of::<$oty>() == W * 8);
         let (n, slots) = (r.n, r.slots);
         let (normal, motion, fnorm, delta, mass, radius, history, out) = unsafe {
             (
@@ -85,7 +88,9 @@ macro_rules! motion_run {
         blocks!(n, |lo, hi| {
             let (nl, ml) = (&normal[lo..hi], &motion[lo..hi]);
             let (f, d, m, a) = (&fnorm[lo..hi], &delta[lo..hi], &mass[lo..hi], &radius[lo..hi]);
-            ($check)(lo, nl, ml, f, d, m, a)?;
+            // SAFETY: $mty is W f64 values (asserted above)
+            let mf = unsafe { slice(ml.as_ptr() as *const f64, W * (hi - lo)) };
+            check_motion(lo, nl.as_flattened(), mf, W, $field, [f, d, m, a])?;
             let x = context_block(context, lo, hi)?;
             let o = &mut out[lo..hi];
             let block = $batch {
@@ -102,13 +107,35 @@ macro_rules! motion_run {
                 $out: &mut *o,
             };
             written &= eval_block!(energy, lo, hi, block, $eval, $eval_energy);
-            match ($bad_out)(&*o) {
-                Some(i) => Err((lo + i, BatchFault::OUTPUT)),
+            // SAFETY: $oty is W f64 values (asserted above)
+            let of = unsafe { slice(o.as_ptr() as *const f64, W * (hi - lo)) };
+            match first_non_finite(of) {
+                Some(i) => Err((lo + i / W, BatchFault::OUTPUT)),
                 None => Ok(()),
             }
         });
         Ok(written)
     }};
+}
+
+/// Checks the inputs of a block of a motion kind (tangential, rolling, twisting) from contact
+/// `lo`: the unit normals (flattened), the kind's own input `motion` (flattened, `width` values
+/// a contact; a bad one reported as array `field`), the normal forces (N), overlaps (m),
+/// masses (kg) and radii (m). The fused test first, the search only when it says no: `Ok`, or
+/// the first bad contact and its array.
+#[inline(always)]
+pub(super) fn check_motion(
+    lo: usize,
+    normal: &[f64],
+    motion: &[f64],
+    width: usize,
+    field: u8,
+    [f, d, m, a]: [&[f64]; 4],
+) -> Result<(), (usize, u8)> {
+    if motion_inputs_ok(normal, motion, f, d, m, a) {
+        return Ok(());
+    }
+    first_bad_motion(lo, normal, motion, width, field, [f, d, m, a])
 }
 
 mod heat;
@@ -193,24 +220,25 @@ pub(super) fn first_bad<const N: usize>(
 }
 
 /// The first bad input of a block of a motion kind (tangential, rolling, twisting), from
-/// contact `lo`: the unit normals (`normal`, flattened `[x, y, z]` triples), then the kind's
-/// own input (`input`: its first non-finite contact and its array), the normal forces (N), the
-/// overlaps (m), the masses (kg) and the radii (m).
-#[inline(always)]
-pub(super) fn first_bad_motion(
+/// contact `lo`, the search of [`check_motion`] (a bad block, or a false alarm of its fused
+/// test): the unit normals (`normal`, flattened `[x, y, z]` triples), then the kind's own input
+/// (`motion`, flattened, `width` values a contact, reported as array `field`), the normal
+/// forces (N), the overlaps (m), the masses (kg) and the radii (m).
+#[cold]
+#[inline(never)]
+fn first_bad_motion(
     lo: usize,
     normal: &[f64],
-    input: (Option<usize>, u8),
-    fnorm: &[f64],
-    delta: &[f64],
-    m: &[f64],
-    a: &[f64],
+    motion: &[f64],
+    width: usize,
+    field: u8,
+    [fnorm, delta, m, a]: [&[f64]; 4],
 ) -> Result<(), (usize, u8)> {
     first_bad(
         lo,
         [
             (first_non_finite(normal).map(|i| i / 3), BatchFault::NORMAL),
-            input,
+            (first_non_finite(motion).map(|i| i / width), field),
             (first_non_finite(fnorm), BatchFault::NORMAL_FORCE),
             (first_non_finite(delta), BatchFault::DELTA),
             (first_non_positive(m), BatchFault::MASS),

@@ -56,6 +56,26 @@ pub(crate) fn normal_non_finite(name: &str, value: f64, c: Contact) -> LawError 
     )
 }
 
+/// The error of [`Normal`]'s `check_lengths` when its fused test fails.
+#[cold]
+#[inline(never)]
+fn bad_lengths(name: &str, slots: usize, c: &NormalCall<'_>) -> Result<(), LawError> {
+    let n = c.batch.force.len();
+    if let Some(r) = c.reach.as_ref().filter(|r| r.len() != n) {
+        return Err(length_error(
+            "contact force_batch",
+            format!("reach {}, force {n}", r.len()),
+        ));
+    }
+    if let Some(x) = c.context.as_ref().filter(|x| x.len() != n) {
+        return Err(length_error(
+            "contact force_batch",
+            format!("context {}, force {n}", x.len()),
+        ));
+    }
+    c.batch.lengths().check("contact", name, slots)
+}
+
 impl Kind for Normal {
     type Ffi = FfiNormalBatch4;
     type Ffi03 = v3::FfiNormalBatch3;
@@ -64,22 +84,17 @@ impl Kind for Normal {
     fn len(b: &NormalCall<'_>) -> usize {
         b.batch.force.len()
     }
+    #[inline(always)]
     fn check_lengths(name: &str, slots: usize, c: &NormalCall<'_>) -> Result<(), LawError> {
         let n = c.batch.force.len();
-        if let Some(r) = c.reach.as_ref().filter(|r| r.len() != n) {
-            return Err(length_error(
-                "contact force_batch",
-                format!("reach {}, force {n}", r.len()),
-            ));
+        let reach = c.reach.as_ref().is_none_or(|r| r.len() == n);
+        let context = c.context.as_ref().is_none_or(|x| x.len() == n);
+        if reach & context {
+            return c.batch.lengths().check("contact", name, slots);
         }
-        if let Some(x) = c.context.as_ref().filter(|x| x.len() != n) {
-            return Err(length_error(
-                "contact force_batch",
-                format!("context {}, force {n}", x.len()),
-            ));
-        }
-        c.batch.lengths().check("contact", name, slots)
+        bad_lengths(name, slots, c)
     }
+    #[inline]
     fn raw(c: &mut NormalCall<'_>, power: *mut f64, elastic: *mut f64) -> FfiNormalBatch4 {
         let b = &mut c.batch;
         FfiNormalBatch4 {

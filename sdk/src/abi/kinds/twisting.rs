@@ -25,9 +25,11 @@ impl Kind for Twisting {
     fn len(b: &TwistingBatch<'_>) -> usize {
         b.torque.len()
     }
+    #[inline(always)]
     fn check_lengths(name: &str, slots: usize, b: &TwistingBatch<'_>) -> Result<(), LawError> {
         b.lengths().check("twisting", name, slots)
     }
+    #[inline]
     fn raw(b: &mut TwistingBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiTwistingBatch4 {
         let base = v3::FfiTwistingBatch {
             n: b.torque.len(),
@@ -91,12 +93,10 @@ impl<B: BoundTwisting> KindBound<Twisting> for B {
             b.elastic,
             b4.context,
             TwistingBatch { rate: f64 => torque: f64 },
-            |lo, nl: &[[f64; 3]], ml: &[f64], f: &[f64], d: &[f64], m: &[f64], a: &[f64]| {
-                first_bad_motion(lo, nl.as_flattened(), (first_non_finite(ml), BatchFault::RATE), f, d, m, a)
-            },
+            1,
+            BatchFault::RATE,
             |batch| self.torque_batch(batch),
             |batch, out| self.torque_batch_energy(batch, out),
-            first_non_finite,
         )
     }
     fn kind_coefficients(&self, mass: f64, radius: f64) -> Vec<Coefficient> {

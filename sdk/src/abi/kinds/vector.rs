@@ -38,9 +38,11 @@ macro_rules! vector_kind {
             fn len(b: &VectorBatch<'_>) -> usize {
                 b.force.len()
             }
+            #[inline(always)]
             fn check_lengths(name: &str, slots: usize, b: &VectorBatch<'_>) -> Result<(), LawError> {
                 b.lengths().check(Self::KIND.as_str(), name, slots)
             }
+            #[inline]
             fn raw(b: &mut VectorBatch<'_>, power: *mut f64, elastic: *mut f64) -> FfiVectorBatch4 {
                 FfiVectorBatch4 {
                     base: v3::FfiVectorBatch {
@@ -107,6 +109,7 @@ vector_kind!(
 );
 
 /// The raw 0.2 arrays of a vector batch.
+#[inline]
 pub(crate) fn raw_base(b: &mut VectorBatch<'_>) -> v2::FfiTangentialBatch {
     v2::FfiTangentialBatch {
         n: b.force.len(),
@@ -161,16 +164,9 @@ unsafe fn run<L: VectorLaw>(law: &L, b4: &FfiVectorBatch4) -> Result<bool, (usiz
         b.elastic,
         b4.context,
         VectorBatch { velocity: [f64; 3] => force: [f64; 3] },
-        |lo, nl: &[[f64; 3]], vl: &[[f64; 3]], f: &[f64], d: &[f64], m: &[f64], a: &[f64]| {
-            let (nl, vl) = (nl.as_flattened(), vl.as_flattened());
-            if tangential_inputs_ok(nl, vl, f, d, m, a) {
-                return Ok(());
-            }
-            let velocity = (first_non_finite(vl).map(|i| i / 3), BatchFault::VELOCITY);
-            first_bad_motion(lo, nl, velocity, f, d, m, a)
-        },
+        3,
+        BatchFault::VELOCITY,
         |batch| law.batch(batch),
         |batch, out| law.batch_energy(batch, out),
-        |o: &[[f64; 3]]| first_non_finite(o.as_flattened()).map(|i| i / 3),
     )
 }

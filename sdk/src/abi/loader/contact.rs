@@ -112,6 +112,7 @@ impl ContactModelHandle {
     /// ends at δ < −reach) written to `reach` and the energy outputs `energy` asks for:
     /// `Ok(true)` when those were written. A law of a plugin older than sdk 0.3 has reach 0 and
     /// reports energy as not available (`Ok(false)`).
+    #[inline]
     pub fn force_batch_with(
         &self,
         b: NormalBatch<'_>,
@@ -132,6 +133,7 @@ impl ContactModelHandle {
     /// As [`ContactModelHandle::force_batch_with`], with each contact's normal context (sdk
     /// 0.4: what the contact's other laws read) written to `context`, one per contact. A law of
     /// a plugin older than sdk 0.4 gives the defaults ([`NormalContext::default_for`]).
+    #[inline]
     pub fn force_batch_context(
         &self,
         b: NormalBatch<'_>,
@@ -152,7 +154,18 @@ impl ContactModelHandle {
 
     /// A call of the normal kind (its batch, reach and contexts), through the ABI of the law's
     /// series; what a law of an older series leaves unwritten gets this sdk's defaults.
-    fn call(&self, mut call: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+    #[inline]
+    fn call(&self, call: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
+        match &self.inner {
+            ModelInner::V3(m) => m.batch(call, energy),
+            _ => self.call_older(call, energy),
+        }
+    }
+
+    /// [`ContactModelHandle::call`] of a law of any series (out of line: the hot path is a law
+    /// of sdk 0.3 or later).
+    #[inline(never)]
+    fn call_older(&self, mut call: NormalCall<'_>, energy: EnergyOut<'_>) -> Result<bool, LawError> {
         match &self.inner {
             ModelInner::V3(m) => m.batch(call, energy),
             ModelInner::V2(m) => {

@@ -46,6 +46,7 @@ impl TangentialModelHandle {
     /// As [`TangentialModelHandle::force_batch`], with the energy outputs `energy` asks for:
     /// `Ok(true)` when they were written, `Ok(false)` for a law that does not account for
     /// energy (every law of a plugin older than sdk 0.3).
+    #[inline]
     pub fn force_batch_with(
         &self,
         mut b: TangentialBatch<'_>,
