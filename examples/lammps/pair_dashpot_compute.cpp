@@ -211,27 +211,21 @@ template <bool ONE> void PairDashpot::stage_pairs_of(int n)
     }
 }
 
-/* The walk of the neighbour list's atoms `atoms` (natoms of them, in list order; slots follow
- * the list: the k-th pair is slot k): each atom's touching pairs are collected as candidates
- * without a branch on each outcome, and staged whenever the next atom's pairs could overflow the
- * candidates; a pair that no longer touches (nor reaches, ADH: within an adhesive law's last
- * reach) has its history zeroed (HIST). One loop nest with everything in registers (an atom in a
- * dilute flow has one or two listed pairs: the per-atom cost counts). Returns the number of
- * candidates left to stage. */
-template <bool ADH, bool HIST> int PairDashpot::walk_pairs(const int *atoms, int natoms)
+/* The walk of the neighbour list's atoms `atoms` (natoms of them, in list order) for a deck with
+ * neither history nor energy (with either, walk_slots() walks the slots laid out for the list):
+ * each atom's touching pairs are collected as candidates without a branch on each outcome, and
+ * staged whenever the next atom's pairs could overflow the candidates. One loop nest with
+ * everything in registers (an atom in a dilute flow has one or two listed pairs: the per-atom
+ * cost counts). Returns the number of candidates left to stage. */
+int PairDashpot::walk_pairs(const int *atoms, int natoms)
 {
     if (natoms == 0) return 0;
     const int *__restrict numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
     const double *__restrict x0 = atom->x[0];
     const double *__restrict radius = atom->radius;
-    HistoryStore &ps = pair_slots;
-    const unsigned char *__restrict stouch = HIST ? ps.touched.data() : nullptr;
-    const double *__restrict sreach = ADH ? ps.reach.data() : nullptr;
-    if (ended.size() < candidates.size()) ended.resize(candidates.size());
     int cap = (int) candidates.size();
     Candidate *__restrict cand = candidates.data();
-    int *__restrict zk = ended.data();
     int n = 0, k = 0;
     for (int ii = 0; ii < natoms; ii++) {
         const int i = atoms[ii];
@@ -242,35 +236,24 @@ template <bool ADH, bool HIST> int PairDashpot::walk_pairs(const int *atoms, int
         if (n + jnum > cap) {
             stage_pairs(n);
             n = 0;
-            if (jnum > cap) {
-                candidates.resize(jnum);
-                ended.resize(jnum);
-            }
+            if (jnum > cap) candidates.resize(jnum);
             cap = (int) candidates.size();
             cand = candidates.data();
-            zk = ended.data();
         }
         const int *__restrict jl = firstneigh[i];
         const double x = x0[3 * i], y = x0[3 * i + 1], z = x0[3 * i + 2], radi = radius[i];
-        int nz = 0;
         for (const int *jend = jl + jnum; jl < jend; jl++, k++) {
             const int j = *jl & NEIGHMASK;
             const double *xj = x0 + 3 * j;
             const double dx = x - xj[0], dy = y - xj[1], dz = z - xj[2];
             const double rsq = dx * dx + dy * dy + dz * dz;
             const double radsum = radi + radius[j];
-            int touch = rsq < radsum * radsum;
-            if (ADH && stouch[k] > touch) touch = std::sqrt(rsq) - radsum <= sreach[k];
             cand[n].i = i;
             cand[n].j = j;
             cand[n].k = k;
             cand[n].r = rsq;
-            n += touch;
-            // one test, true only for a record left by a contact that has ended (rare): zeroed
-            // after the loop, which then calls nothing
-            if (HIST && stouch[k] > touch) zk[nz++] = k;
+            n += rsq < radsum * radsum;
         }
-        for (int q = 0; q < nz; q++) ps.zero(zk[q]);
     }
     return n;
 }
@@ -380,7 +363,7 @@ void PairDashpot::compute(int eflag, int vflag)
         else
             nc = walk_slots<false, false>();
     } else {
-        nc = walk_pairs<false, false>(ilist, inum);
+        nc = walk_pairs(ilist, inum);
     }
     stage_pairs(nc);
     // the pairs' last chunks, not full: a chunk holds pairs or wall contacts, not both
