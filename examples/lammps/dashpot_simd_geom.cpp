@@ -1,0 +1,201 @@
+/* The AVX2 walk of pair_style dashpot's slots and staging of its contacts (see
+ * dashpot_simd_geom.h). Every expression is the scalar code's (pair_dashpot_compute.cpp's walk
+ * and geometry, dashpot_engine.h's stage_run_to), in the same order, four pairs per lane set. */
+#include "dashpot_simd_geom.h"
+
+#include "dashpot_engine.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <immintrin.h>
+
+// GCC 12's _mm256_undefined_pd() (the gathers' unused source) trips -Wmaybe-uninitialized
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+
+namespace dashpot_lmp {
+namespace simd_geom {
+
+bool enabled()
+{
+    static const bool on = [] {
+        const char *s = std::getenv("DASHPOT_LMP_SIMD");
+        if (s && std::strcmp(s, "0") == 0) return false;
+        __builtin_cpu_init();
+        return __builtin_cpu_supports("avx2") != 0;
+    }();
+    return on;
+}
+
+namespace {
+
+/* The byte shuffles that pack the lanes set in a 4-bit mask of four 32-bit lanes to the front. */
+struct PackTable {
+    alignas(16) unsigned char shuf[16][16];
+    constexpr PackTable() : shuf()
+    {
+        for (int m = 0; m < 16; m++) {
+            int o = 0;
+            for (int l = 0; l < 4; l++)
+                if (m >> l & 1) {
+                    for (int b = 0; b < 4; b++) shuf[m][4 * o + b] = (unsigned char) (4 * l + b);
+                    o++;
+                }
+            for (; o < 4; o++)
+                for (int b = 0; b < 4; b++) shuf[m][4 * o + b] = 0x80;
+        }
+    }
+};
+constexpr PackTable pack_table;
+
+#define DASHPOT_AVX2 __attribute__((target("avx2")))
+
+/* x, y, z of the atoms idx (3 * index) from an array of 3 per atom */
+DASHPOT_AVX2 inline void gather3(const double *p, __m128i idx3, __m256d &x, __m256d &y, __m256d &z)
+{
+    x = _mm256_i32gather_pd(p, idx3, 8);
+    y = _mm256_i32gather_pd(p + 1, idx3, 8);
+    z = _mm256_i32gather_pd(p + 2, idx3, 8);
+}
+
+DASHPOT_AVX2 inline __m128i times3(__m128i v) { return _mm_add_epi32(_mm_slli_epi32(v, 1), v); }
+
+/* stores the lanes of X, Y, Z as 4 rows of 3 (x0 y0 z0 x1 y1 z1 ...) at p */
+DASHPOT_AVX2 inline void store_rows3(double *p, __m256d X, __m256d Y, __m256d Z)
+{
+    const __m256d a = _mm256_unpacklo_pd(X, Y);    // x0 y0 | x2 y2
+    const __m256d b = _mm256_unpackhi_pd(X, Y);    // x1 y1 | x3 y3
+    const __m256d c = _mm256_unpacklo_pd(Z, b);    // z0 x1 | z2 x3
+    const __m256d e = _mm256_unpackhi_pd(b, Z);    // y1 z1 | y3 z3
+    _mm256_storeu_pd(p, _mm256_permute2f128_pd(a, c, 0x20));
+    _mm256_storeu_pd(p + 4, _mm256_permute2f128_pd(e, a, 0x30));
+    _mm256_storeu_pd(p + 8, _mm256_permute2f128_pd(c, e, 0x31));
+}
+
+}    // namespace
+
+DASHPOT_AVX2 int walk(const int *pairs, const double *x0, const double *radius, const unsigned char *touched, int k0,
+                      int k1, int *out, int *ended, int &nended)
+{
+    int n = 0, nz = nended;
+    int k = k0;
+    const __m256i deal = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+    const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
+    for (; k + 4 <= k1; k += 4) {
+        const __m256i ij =
+            _mm256_permutevar8x32_epi32(_mm256_loadu_si256((const __m256i *) (pairs + 2 * k)), deal);
+        const __m128i vi = _mm256_castsi256_si128(ij), vj = _mm256_extracti128_si256(ij, 1);
+        __m256d xi, yi, zi, xj, yj, zj;
+        gather3(x0, times3(vi), xi, yi, zi);
+        gather3(x0, times3(vj), xj, yj, zj);
+        const __m256d dx = _mm256_sub_pd(xi, xj), dy = _mm256_sub_pd(yi, yj), dz = _mm256_sub_pd(zi, zj);
+        const __m256d rsq =
+            _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+        const __m256d radsum = _mm256_add_pd(_mm256_i32gather_pd(radius, vi, 8), _mm256_i32gather_pd(radius, vj, 8));
+        const int touch = _mm256_movemask_pd(_mm256_cmp_pd(rsq, _mm256_mul_pd(radsum, radsum), _CMP_LT_OQ));
+        const __m128i ks = _mm_add_epi32(_mm_set1_epi32(k), lane);
+        _mm_storeu_si128((__m128i *) (out + n),
+                         _mm_shuffle_epi8(ks, _mm_load_si128((const __m128i *) pack_table.shuf[touch])));
+        n += __builtin_popcount(touch);
+        if (touched) {
+            int t4;
+            std::memcpy(&t4, touched + k, 4);
+            // a record touched (its bytes are 0 or 1) whose pair no longer touches: rare
+            const int tm = _mm_movemask_epi8(_mm_cmpgt_epi8(_mm_cvtsi32_si128(t4), _mm_setzero_si128())) & 0xF;
+            if (int gone = tm & ~touch)
+                for (int l = 0; l < 4; l++)
+                    if (gone >> l & 1) ended[nz++] = k + l;
+        }
+    }
+    for (; k < k1; k++) {
+        const int i = pairs[2 * k], j = pairs[2 * k + 1];
+        const double *xi = x0 + 3 * (ptrdiff_t) i, *xj = x0 + 3 * (ptrdiff_t) j;
+        const double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
+        const double rsq = dx * dx + dy * dy + dz * dz;
+        const double radsum = radius[i] + radius[j];
+        const int touch = rsq < radsum * radsum;
+        out[n] = k;
+        n += touch;
+        if (touched && touched[k] > touch) ended[nz++] = k;
+    }
+    nended = nz;
+    return n;
+}
+
+DASHPOT_AVX2 void stage(const Atoms &at, const int *kq, int m, int model, int *iv, double *dv, int k)
+{
+    using Chunk = ContactEngine::Chunk;
+    constexpr int C = ContactEngine::CHUNK;
+    const __m256i deal = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+    const __m256d sign = _mm256_set1_pd(-0.0), one = _mm256_set1_pd(1.0);
+    const __m128i vmodel = _mm_set1_epi32(model), frozen = _mm_set1_epi32(at.frozen);
+    for (int q = 0; q < m; q += 4, k += 4) {
+        const __m128i slot = _mm_loadu_si128((const __m128i *) (kq + q));
+        const __m256i ij =
+            _mm256_permutevar8x32_epi32(_mm256_i32gather_epi64((const long long *) at.pairs, slot, 8), deal);
+        const __m128i vi = _mm256_castsi256_si128(ij), vj = _mm256_extracti128_si256(ij, 1);
+        // the same bits from either side: oriented from the atom of the lower tag
+        const __m128i swap = _mm_cmplt_epi32(_mm_i32gather_epi32(at.tag, vj, 4), _mm_i32gather_epi32(at.tag, vi, 4));
+        const __m128i va = _mm_blendv_epi8(vi, vj, swap), vb = _mm_blendv_epi8(vj, vi, swap);
+        const __m128i a3 = times3(va), b3 = times3(vb);
+        __m256d xa, ya, za, xb, yb, zb;
+        gather3(at.x0, a3, xa, ya, za);
+        gather3(at.x0, b3, xb, yb, zb);
+        const __m256d dx = _mm256_sub_pd(xa, xb), dy = _mm256_sub_pd(ya, yb), dz = _mm256_sub_pd(za, zb);
+        const __m256d rsq =
+            _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+        const __m256d r = _mm256_sqrt_pd(rsq);
+        const __m256d rinv = _mm256_div_pd(one, r);
+        const __m256d ra = _mm256_i32gather_pd(at.radius, va, 8), rb = _mm256_i32gather_pd(at.radius, vb, 8);
+        const __m256d radsum = _mm256_add_pd(ra, rb);
+        const __m256d ma = _mm256_i32gather_pd(at.rmass, va, 8), mb = _mm256_i32gather_pd(at.rmass, vb, 8);
+        __m256d meff = _mm256_div_pd(_mm256_mul_pd(ma, mb), _mm256_add_pd(ma, mb));
+        if (at.frozen) {
+            // all ones in the lanes whose body is not frozen (the scalar: a frozen a gives mb,
+            // then a frozen b gives ma)
+            const __m128i zero = _mm_setzero_si128();
+            const __m256d fa = _mm256_castsi256_pd(
+                _mm256_cvtepi32_epi64(_mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, va, 4), frozen), zero)));
+            const __m256d fb = _mm256_castsi256_pd(
+                _mm256_cvtepi32_epi64(_mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, vb, 4), frozen), zero)));
+            meff = _mm256_blendv_pd(mb, meff, fa);
+            meff = _mm256_blendv_pd(ma, meff, fb);
+        }
+        __m256d vxa, vya, vza, vxb, vyb, vzb;
+        gather3(at.v0, a3, vxa, vya, vza);
+        gather3(at.v0, b3, vxb, vyb, vzb);
+        const __m256d dvx = _mm256_sub_pd(vxa, vxb), dvy = _mm256_sub_pd(vya, vyb), dvz = _mm256_sub_pd(vza, vzb);
+        const __m256d nx = _mm256_mul_pd(dx, rinv), ny = _mm256_mul_pd(dy, rinv), nz = _mm256_mul_pd(dz, rinv);
+        const __m256d delta = _mm256_sub_pd(radsum, r);
+        const __m256d reff = _mm256_div_pd(_mm256_mul_pd(ra, rb), radsum);
+        const __m256d vn =
+            _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dvx, nx), _mm256_mul_pd(dvy, ny)), _mm256_mul_pd(dvz, nz));
+        __m256d wxa, wya, wza, wxb, wyb, wzb;
+        gather3(at.w0, a3, wxa, wya, wza);
+        gather3(at.w0, b3, wxb, wyb, wzb);
+        const __m256d wx = _mm256_add_pd(_mm256_mul_pd(ra, wxa), _mm256_mul_pd(rb, wxb));
+        const __m256d wy = _mm256_add_pd(_mm256_mul_pd(ra, wya), _mm256_mul_pd(rb, wyb));
+        const __m256d wz = _mm256_add_pd(_mm256_mul_pd(ra, wza), _mm256_mul_pd(rb, wzb));
+        const __m256d cvx = _mm256_sub_pd(_mm256_sub_pd(dvx, _mm256_mul_pd(vn, nx)),
+                                          _mm256_sub_pd(_mm256_mul_pd(wy, nz), _mm256_mul_pd(wz, ny)));
+        const __m256d cvy = _mm256_sub_pd(_mm256_sub_pd(dvy, _mm256_mul_pd(vn, ny)),
+                                          _mm256_sub_pd(_mm256_mul_pd(wz, nx), _mm256_mul_pd(wx, nz)));
+        const __m256d cvz = _mm256_sub_pd(_mm256_sub_pd(dvz, _mm256_mul_pd(vn, nz)),
+                                          _mm256_sub_pd(_mm256_mul_pd(wx, ny), _mm256_mul_pd(wy, nx)));
+        _mm_storeu_si128((__m128i *) (iv + Chunk::A * C + k), va);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::B * C + k), vb);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::SLOT * C + k), slot);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::MODEL * C + k), vmodel);
+        _mm256_storeu_pd(dv + Chunk::DELTA * C + k, delta);
+        _mm256_storeu_pd(dv + Chunk::MASS * C + k, meff);
+        _mm256_storeu_pd(dv + Chunk::RAD * C + k, reff);
+        _mm256_storeu_pd(dv + Chunk::RA * C + k, ra);
+        _mm256_storeu_pd(dv + Chunk::RB * C + k, rb);
+        _mm256_storeu_pd(dv + Chunk::RATE * C + k, _mm256_xor_pd(vn, sign));
+        store_rows3(dv + Chunk::NORM * C + 3 * k, nx, ny, nz);
+        store_rows3(dv + Chunk::VEL * C + 3 * k, cvx, cvy, cvz);
+    }
+}
+
+}    // namespace simd_geom
+}    // namespace dashpot_lmp
