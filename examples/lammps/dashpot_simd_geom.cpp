@@ -74,13 +74,17 @@ DASHPOT_AVX2 inline void store_rows3(double *p, __m256d X, __m256d Y, __m256d Z)
 
 }    // namespace
 
-DASHPOT_AVX2 int walk(const int *pairs, const double *x0, const double *radius, const unsigned char *touched, int k0,
-                      int k1, int *out, int *ended, int &nended)
+namespace {
+
+/* walk() with history records to check (HIST) or without */
+template <bool HIST>
+DASHPOT_AVX2 inline int walk_of(const int *pairs, const double *x0, const double *radius, const unsigned char *touched,
+                                int k0, int k1, int *out, int *ended, int &nended)
 {
-    int n = 0, nz = nended;
+    int *o = out, *z = ended + nended;
     int k = k0;
     const __m256i deal = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
-    const __m128i lane = _mm_setr_epi32(0, 1, 2, 3);
+    __m128i ks = _mm_add_epi32(_mm_set1_epi32(k0), _mm_setr_epi32(0, 1, 2, 3));
     for (; k + 4 <= k1; k += 4) {
         const __m256i ij =
             _mm256_permutevar8x32_epi32(_mm256_loadu_si256((const __m256i *) (pairs + 2 * k)), deal);
@@ -93,18 +97,18 @@ DASHPOT_AVX2 int walk(const int *pairs, const double *x0, const double *radius, 
             _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
         const __m256d radsum = _mm256_add_pd(_mm256_i32gather_pd(radius, vi, 8), _mm256_i32gather_pd(radius, vj, 8));
         const int touch = _mm256_movemask_pd(_mm256_cmp_pd(rsq, _mm256_mul_pd(radsum, radsum), _CMP_LT_OQ));
-        const __m128i ks = _mm_add_epi32(_mm_set1_epi32(k), lane);
-        _mm_storeu_si128((__m128i *) (out + n),
-                         _mm_shuffle_epi8(ks, _mm_load_si128((const __m128i *) pack_table.shuf[touch])));
-        n += __builtin_popcount(touch);
-        if (touched) {
+        // the touching slots packed to the front
+        _mm_storeu_si128((__m128i *) o, _mm_shuffle_epi8(ks, _mm_load_si128((const __m128i *) pack_table.shuf[touch])));
+        o += __builtin_popcount(touch);
+        ks = _mm_add_epi32(ks, _mm_set1_epi32(4));
+        if (HIST) {
             int t4;
             std::memcpy(&t4, touched + k, 4);
             // a record touched (its bytes are 0 or 1) whose pair no longer touches: rare
             const int tm = _mm_movemask_epi8(_mm_cmpgt_epi8(_mm_cvtsi32_si128(t4), _mm_setzero_si128())) & 0xF;
-            if (int gone = tm & ~touch)
+            if (const int gone = tm & ~touch)
                 for (int l = 0; l < 4; l++)
-                    if (gone >> l & 1) ended[nz++] = k + l;
+                    if (gone >> l & 1) *z++ = k + l;
         }
     }
     for (; k < k1; k++) {
@@ -114,21 +118,33 @@ DASHPOT_AVX2 int walk(const int *pairs, const double *x0, const double *radius, 
         const double rsq = dx * dx + dy * dy + dz * dz;
         const double radsum = radius[i] + radius[j];
         const int touch = rsq < radsum * radsum;
-        out[n] = k;
-        n += touch;
-        if (touched && touched[k] > touch) ended[nz++] = k;
+        *o = k;
+        o += touch;
+        if (HIST && touched[k] > touch) *z++ = k;
     }
-    nended = nz;
-    return n;
+    nended = (int) (z - ended);
+    return (int) (o - out);
 }
 
-DASHPOT_AVX2 void stage(const Atoms &at, const int *kq, int m, int model, int *iv, double *dv, int k)
+}    // namespace
+
+DASHPOT_AVX2 int walk(const int *pairs, const double *x0, const double *radius, const unsigned char *touched, int k0,
+                      int k1, int *out, int *ended, int &nended)
+{
+    if (touched) return walk_of<true>(pairs, x0, radius, touched, k0, k1, out, ended, nended);
+    return walk_of<false>(pairs, x0, radius, touched, k0, k1, out, ended, nended);
+}
+
+namespace {
+
+/* stage() with a freeze group or without (FROZEN): each column stored as soon as it is known,
+ * which keeps the lanes in the 16 registers */
+template <bool FROZEN>
+DASHPOT_AVX2 inline void stage_of(const Atoms &at, const int *kq, int m, int model, int *iv, double *dv, int k)
 {
     using Chunk = ContactEngine::Chunk;
     constexpr int C = ContactEngine::CHUNK;
     const __m256i deal = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
-    const __m256d sign = _mm256_set1_pd(-0.0), one = _mm256_set1_pd(1.0);
-    const __m128i vmodel = _mm_set1_epi32(model), frozen = _mm_set1_epi32(at.frozen);
     for (int q = 0; q < m; q += 4, k += 4) {
         const __m128i slot = _mm_loadu_si128((const __m128i *) (kq + q));
         const __m256i ij =
@@ -137,39 +153,59 @@ DASHPOT_AVX2 void stage(const Atoms &at, const int *kq, int m, int model, int *i
         // the same bits from either side: oriented from the atom of the lower tag
         const __m128i swap = _mm_cmplt_epi32(_mm_i32gather_epi32(at.tag, vj, 4), _mm_i32gather_epi32(at.tag, vi, 4));
         const __m128i va = _mm_blendv_epi8(vi, vj, swap), vb = _mm_blendv_epi8(vj, vi, swap);
-        const __m128i a3 = times3(va), b3 = times3(vb);
-        __m256d xa, ya, za, xb, yb, zb;
-        gather3(at.x0, a3, xa, ya, za);
-        gather3(at.x0, b3, xb, yb, zb);
-        const __m256d dx = _mm256_sub_pd(xa, xb), dy = _mm256_sub_pd(ya, yb), dz = _mm256_sub_pd(za, zb);
-        const __m256d rsq =
-            _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
-        const __m256d r = _mm256_sqrt_pd(rsq);
-        const __m256d rinv = _mm256_div_pd(one, r);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::A * C + k), va);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::B * C + k), vb);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::SLOT * C + k), slot);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::MODEL * C + k), _mm_set1_epi32(model));
         const __m256d ra = _mm256_i32gather_pd(at.radius, va, 8), rb = _mm256_i32gather_pd(at.radius, vb, 8);
         const __m256d radsum = _mm256_add_pd(ra, rb);
-        const __m256d ma = _mm256_i32gather_pd(at.rmass, va, 8), mb = _mm256_i32gather_pd(at.rmass, vb, 8);
-        __m256d meff = _mm256_div_pd(_mm256_mul_pd(ma, mb), _mm256_add_pd(ma, mb));
-        if (at.frozen) {
-            // all ones in the lanes whose body is not frozen (the scalar: a frozen a gives mb,
-            // then a frozen b gives ma)
-            const __m128i zero = _mm_setzero_si128();
-            const __m256d fa = _mm256_castsi256_pd(
-                _mm256_cvtepi32_epi64(_mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, va, 4), frozen), zero)));
-            const __m256d fb = _mm256_castsi256_pd(
-                _mm256_cvtepi32_epi64(_mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, vb, 4), frozen), zero)));
-            meff = _mm256_blendv_pd(mb, meff, fa);
-            meff = _mm256_blendv_pd(ma, meff, fb);
+        _mm256_storeu_pd(dv + Chunk::RA * C + k, ra);
+        _mm256_storeu_pd(dv + Chunk::RB * C + k, rb);
+        _mm256_storeu_pd(dv + Chunk::RAD * C + k, _mm256_div_pd(_mm256_mul_pd(ra, rb), radsum));
+        {
+            const __m256d ma = _mm256_i32gather_pd(at.rmass, va, 8), mb = _mm256_i32gather_pd(at.rmass, vb, 8);
+            __m256d meff = _mm256_div_pd(_mm256_mul_pd(ma, mb), _mm256_add_pd(ma, mb));
+            if (FROZEN) {
+                // all ones in the lanes whose body is not frozen (as the scalar code: a frozen a
+                // gives mb, then a frozen b gives ma)
+                const __m128i zero = _mm_setzero_si128(), frozen = _mm_set1_epi32(at.frozen);
+                const __m256d fa = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
+                    _mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, va, 4), frozen), zero)));
+                const __m256d fb = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
+                    _mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, vb, 4), frozen), zero)));
+                meff = _mm256_blendv_pd(mb, meff, fa);
+                meff = _mm256_blendv_pd(ma, meff, fb);
+            }
+            _mm256_storeu_pd(dv + Chunk::MASS * C + k, meff);
         }
-        __m256d vxa, vya, vza, vxb, vyb, vzb;
-        gather3(at.v0, a3, vxa, vya, vza);
-        gather3(at.v0, b3, vxb, vyb, vzb);
-        const __m256d dvx = _mm256_sub_pd(vxa, vxb), dvy = _mm256_sub_pd(vya, vyb), dvz = _mm256_sub_pd(vza, vzb);
-        const __m256d nx = _mm256_mul_pd(dx, rinv), ny = _mm256_mul_pd(dy, rinv), nz = _mm256_mul_pd(dz, rinv);
-        const __m256d delta = _mm256_sub_pd(radsum, r);
-        const __m256d reff = _mm256_div_pd(_mm256_mul_pd(ra, rb), radsum);
-        const __m256d vn =
-            _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dvx, nx), _mm256_mul_pd(dvy, ny)), _mm256_mul_pd(dvz, nz));
+        const __m128i a3 = times3(va), b3 = times3(vb);
+        __m256d nx, ny, nz;
+        {
+            __m256d xa, ya, za, xb, yb, zb;
+            gather3(at.x0, a3, xa, ya, za);
+            gather3(at.x0, b3, xb, yb, zb);
+            const __m256d dx = _mm256_sub_pd(xa, xb), dy = _mm256_sub_pd(ya, yb), dz = _mm256_sub_pd(za, zb);
+            const __m256d rsq =
+                _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+            const __m256d r = _mm256_sqrt_pd(rsq);
+            const __m256d rinv = _mm256_div_pd(_mm256_set1_pd(1.0), r);
+            _mm256_storeu_pd(dv + Chunk::DELTA * C + k, _mm256_sub_pd(radsum, r));
+            nx = _mm256_mul_pd(dx, rinv);
+            ny = _mm256_mul_pd(dy, rinv);
+            nz = _mm256_mul_pd(dz, rinv);
+            store_rows3(dv + Chunk::NORM * C + 3 * k, nx, ny, nz);
+        }
+        __m256d dvx, dvy, dvz, vn;
+        {
+            __m256d vxa, vya, vza, vxb, vyb, vzb;
+            gather3(at.v0, a3, vxa, vya, vza);
+            gather3(at.v0, b3, vxb, vyb, vzb);
+            dvx = _mm256_sub_pd(vxa, vxb);
+            dvy = _mm256_sub_pd(vya, vyb);
+            dvz = _mm256_sub_pd(vza, vzb);
+            vn = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dvx, nx), _mm256_mul_pd(dvy, ny)), _mm256_mul_pd(dvz, nz));
+            _mm256_storeu_pd(dv + Chunk::RATE * C + k, _mm256_xor_pd(vn, _mm256_set1_pd(-0.0)));
+        }
         __m256d wxa, wya, wza, wxb, wyb, wzb;
         gather3(at.w0, a3, wxa, wya, wza);
         gather3(at.w0, b3, wxb, wyb, wzb);
@@ -182,19 +218,18 @@ DASHPOT_AVX2 void stage(const Atoms &at, const int *kq, int m, int model, int *i
                                           _mm256_sub_pd(_mm256_mul_pd(wz, nx), _mm256_mul_pd(wx, nz)));
         const __m256d cvz = _mm256_sub_pd(_mm256_sub_pd(dvz, _mm256_mul_pd(vn, nz)),
                                           _mm256_sub_pd(_mm256_mul_pd(wx, ny), _mm256_mul_pd(wy, nx)));
-        _mm_storeu_si128((__m128i *) (iv + Chunk::A * C + k), va);
-        _mm_storeu_si128((__m128i *) (iv + Chunk::B * C + k), vb);
-        _mm_storeu_si128((__m128i *) (iv + Chunk::SLOT * C + k), slot);
-        _mm_storeu_si128((__m128i *) (iv + Chunk::MODEL * C + k), vmodel);
-        _mm256_storeu_pd(dv + Chunk::DELTA * C + k, delta);
-        _mm256_storeu_pd(dv + Chunk::MASS * C + k, meff);
-        _mm256_storeu_pd(dv + Chunk::RAD * C + k, reff);
-        _mm256_storeu_pd(dv + Chunk::RA * C + k, ra);
-        _mm256_storeu_pd(dv + Chunk::RB * C + k, rb);
-        _mm256_storeu_pd(dv + Chunk::RATE * C + k, _mm256_xor_pd(vn, sign));
-        store_rows3(dv + Chunk::NORM * C + 3 * k, nx, ny, nz);
         store_rows3(dv + Chunk::VEL * C + 3 * k, cvx, cvy, cvz);
     }
+}
+
+}    // namespace
+
+DASHPOT_AVX2 void stage(const Atoms &at, const int *kq, int m, int model, int *iv, double *dv, int k)
+{
+    if (at.frozen)
+        stage_of<true>(at, kq, m, model, iv, dv, k);
+    else
+        stage_of<false>(at, kq, m, model, iv, dv, k);
 }
 
 }    // namespace simd_geom
