@@ -76,11 +76,13 @@ DASHPOT_AVX2 inline void store_rows3(double *p, __m256d X, __m256d Y, __m256d Z)
 
 namespace {
 
-/* walk() with history records to check (HIST) or without */
-template <bool HIST>
-DASHPOT_AVX2 inline int walk_of(const int *pairs, const double *x0, const double *radius, const unsigned char *touched,
-                                int k0, int k1, int *out, int *ended, int &nended)
+/* walk() with history records to check (HIST) or without, with an adhesive law (ADH) */
+template <bool HIST, bool ADH>
+DASHPOT_AVX2 inline int walk_of(const Slots &s, int k0, int k1, int *out, int *ended, int &nended)
 {
+    const int *pairs = s.pairs;
+    const double *x0 = s.x0, *radius = s.radius, *reach = s.reach;
+    const unsigned char *touched = s.touched;
     int *o = out, *z = ended + nended;
     int k = k0;
     const __m256i deal = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
@@ -96,20 +98,30 @@ DASHPOT_AVX2 inline int walk_of(const int *pairs, const double *x0, const double
         const __m256d rsq =
             _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
         const __m256d radsum = _mm256_add_pd(_mm256_i32gather_pd(radius, vi, 8), _mm256_i32gather_pd(radius, vj, 8));
-        const int touch = _mm256_movemask_pd(_mm256_cmp_pd(rsq, _mm256_mul_pd(radsum, radsum), _CMP_LT_OQ));
+        int touch = _mm256_movemask_pd(_mm256_cmp_pd(rsq, _mm256_mul_pd(radsum, radsum), _CMP_LT_OQ));
+        int tm = 0;
+        if (HIST) {
+            int t4;
+            std::memcpy(&t4, touched + k, 4);
+            tm = _mm_movemask_epi8(_mm_cmpgt_epi8(_mm_cvtsi32_si128(t4), _mm_setzero_si128())) & 0xF;
+        }
+        if (ADH && (tm & ~touch)) {
+            // a touched record whose pair is apart: in contact while within its law's reach
+            alignas(32) double rs[4], rad[4];
+            _mm256_store_pd(rs, rsq);
+            _mm256_store_pd(rad, radsum);
+            for (int l = 0; l < 4; l++)
+                if ((tm & ~touch) >> l & 1 && std::sqrt(rs[l]) - rad[l] <= reach[k + l]) touch |= 1 << l;
+        }
         // the touching slots packed to the front
         _mm_storeu_si128((__m128i *) o, _mm_shuffle_epi8(ks, _mm_load_si128((const __m128i *) pack_table.shuf[touch])));
         o += __builtin_popcount(touch);
         ks = _mm_add_epi32(ks, _mm_set1_epi32(4));
-        if (HIST) {
-            int t4;
-            std::memcpy(&t4, touched + k, 4);
-            // a record touched (its bytes are 0 or 1) whose pair no longer touches: rare
-            const int tm = _mm_movemask_epi8(_mm_cmpgt_epi8(_mm_cvtsi32_si128(t4), _mm_setzero_si128())) & 0xF;
+        // a record touched whose pair no longer touches: rare
+        if (HIST)
             if (const int gone = tm & ~touch)
                 for (int l = 0; l < 4; l++)
                     if (gone >> l & 1) *z++ = k + l;
-        }
     }
     for (; k < k1; k++) {
         const int i = pairs[2 * k], j = pairs[2 * k + 1];
@@ -117,7 +129,8 @@ DASHPOT_AVX2 inline int walk_of(const int *pairs, const double *x0, const double
         const double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
         const double rsq = dx * dx + dy * dy + dz * dz;
         const double radsum = radius[i] + radius[j];
-        const int touch = rsq < radsum * radsum;
+        int touch = rsq < radsum * radsum;
+        if (ADH && touched[k] > touch) touch = std::sqrt(rsq) - radsum <= reach[k];
         *o = k;
         o += touch;
         if (HIST && touched[k] > touch) *z++ = k;
@@ -128,11 +141,11 @@ DASHPOT_AVX2 inline int walk_of(const int *pairs, const double *x0, const double
 
 }    // namespace
 
-DASHPOT_AVX2 int walk(const int *pairs, const double *x0, const double *radius, const unsigned char *touched, int k0,
-                      int k1, int *out, int *ended, int &nended)
+DASHPOT_AVX2 int walk(const Slots &s, int k0, int k1, int *out, int *ended, int &nended)
 {
-    if (touched) return walk_of<true>(pairs, x0, radius, touched, k0, k1, out, ended, nended);
-    return walk_of<false>(pairs, x0, radius, touched, k0, k1, out, ended, nended);
+    if (s.reach) return walk_of<true, true>(s, k0, k1, out, ended, nended);
+    if (s.touched) return walk_of<true, false>(s, k0, k1, out, ended, nended);
+    return walk_of<false, false>(s, k0, k1, out, ended, nended);
 }
 
 namespace {

@@ -15,14 +15,22 @@ namespace simd_geom {
  * once per process). */
 bool enabled();
 
-/* The slots k0 <= k < k1 of a list's pairs (pairs[2k], pairs[2k + 1]: the atoms i, j of slot k),
- * x0 the positions (3 per atom, contiguous), radius the radii: writes the slots of the touching
- * pairs (|x_i - x_j|^2 < (r_i + r_j)^2, the scalar walk's test) to `out` in slot order, and
- * returns their number; `out` has room for k1 - k0 + 3 values. With `touched` (history), also
- * the slots whose record was touched and whose pair no longer touches to `ended` (their number
- * in nended). */
-int walk(const int *pairs, const double *x0, const double *radius, const unsigned char *touched, int k0, int k1,
-         int *out, int *ended, int &nended);
+/* A list's slots as the walk reads them: pairs[2k], pairs[2k + 1] the atoms i, j of slot k, x0
+ * the positions (3 per atom, contiguous), radius the radii; with history, each slot's record's
+ * `touched` flag (0 or 1), and with an adhesive law the reach of its last call. */
+struct Slots {
+    const int *pairs;
+    const double *x0, *radius;
+    const unsigned char *touched;    // null: no history
+    const double *reach;             // null: no adhesive law (needs `touched`)
+};
+
+/* Walks the slots k0 <= k < k1: writes the slots of the touching pairs to `out` in slot order
+ * and returns their number (`out` has room for k1 - k0 + 3 values). A pair touches as in the
+ * scalar walk: |x_i - x_j|^2 < (r_i + r_j)^2, or with an adhesive law, a touched record and
+ * |x_i - x_j| - (r_i + r_j) <= its reach. With history, also appends the slots whose record was
+ * touched and whose pair no longer touches to `ended` (nended: their number). */
+int walk(const Slots &s, int k0, int k1, int *out, int *ended, int &nended);
 
 /* The atoms' arrays the staging reads (LAMMPS's, contiguous; tagint is int). */
 struct Atoms {

@@ -150,7 +150,7 @@ class PairDashpot : public Pair {
     void stage_pairs(int n) __attribute__((noinline));
     template <bool ONE> void stage_pairs_of(int n);
     template <bool ONE> struct PairGeometry;
-    void walk_stage_simd(bool hist);
+    template <bool ONE> void walk_stage_simd(bool hist, bool adh);
     int walk_pairs(const int *atoms, int natoms);
     template <bool ADH, bool HIST> int walk_slots();
     int find_slot(int i, int j) const;

@@ -223,11 +223,12 @@ template <bool ONE> void PairDashpot::stage_pairs_of(int n)
     }
 }
 
-/* The slots laid out for the list, walked and staged four at a time in AVX2 (one bound model,
- * neither an adhesive law nor the rolling and twisting columns, an AVX2 CPU): a block of slots'
- * touching pairs found, then staged at once, their atoms still in cache. The same candidates
- * in the same order, the same columns with the same bits, as walk_slots() and stage_pairs(). */
-void PairDashpot::walk_stage_simd(bool hist)
+/* The slots laid out for the list (with history or energy), walked four at a time in AVX2 (on
+ * an AVX2 CPU): a block of slots' touching pairs found, then staged at once, their atoms still
+ * in cache; with one bound model (ONE) and neither the rolling nor the twisting columns, staged
+ * four at a time in AVX2 too. The same candidates in the same order, the same columns with the
+ * same bits, as walk_slots() and stage_pairs(). */
+template <bool ONE> void PairDashpot::walk_stage_simd(bool hist, bool adh)
 {
     const int nslot = (int) pair_slots.size();
     if (nslot == 0) return;
@@ -237,12 +238,15 @@ void PairDashpot::walk_stage_simd(bool hist)
     static_assert(sizeof(SlotPair) == 2 * sizeof(int), "a slot's pair: two ints");
     static_assert(sizeof(tagint) == sizeof(int), "tags: ints (LAMMPS_SMALLBIG)");
     const int *pairs = reinterpret_cast<const int *>(slot_pairs.data());
-    const simd_geom::Atoms at = {pairs,        atom->x[0], atom->v[0], atom->omega[0], atom->radius,
-                                 atom->rmass,  atom->tag,  atom->mask, freeze_group_bit};
     HistoryStore &ps = pair_slots;
+    const simd_geom::Slots slots = {pairs, atom->x[0], atom->radius, hist ? ps.touched.data() : nullptr,
+                                    adh ? ps.reach.data() : nullptr};
+    const simd_geom::Atoms at = {pairs,       atom->x[0], atom->v[0], atom->omega[0], atom->radius,
+                                 atom->rmass, atom->tag,  atom->mask, freeze_group_bit};
     const int *kq = touching.data();
-    const PairGeometry<true> pg(*this);
-    // a block's last pairs (fewer than 4, or the rows that end a chunk): the scalar staging
+    const PairGeometry<ONE> pg(*this);
+    // the scalar staging: a block's last pairs (fewer than 4, or the rows that end a chunk), or
+    // all of them (several models, spin columns)
     auto geometry = [&](int q, ContactEngine::Geometry &g) __attribute__((always_inline))
     {
         const int k = kq[q], i = pairs[2 * k], j = pairs[2 * k + 1];
@@ -253,13 +257,12 @@ void PairDashpot::walk_stage_simd(bool hist)
     };
     for (int k0 = 0; k0 < nslot; k0 += BLOCK) {
         int nz = 0;
-        const int n = simd_geom::walk(pairs, at.x0, at.radius, hist ? ps.touched.data() : nullptr, k0,
-                                      std::min(nslot, k0 + BLOCK), touching.data(), ended.data(), nz);
+        const int n = simd_geom::walk(slots, k0, std::min(nslot, k0 + BLOCK), touching.data(), ended.data(), nz);
         for (int q = 0; q < nz; q++) ps.zero(ended[q]);
         for (int q = 0; q < n;) {
             int *iv, k;
             double *dv;
-            if (engine.columns(iv, dv, k)) {
+            if (ONE && engine.columns(iv, dv, k)) {
                 const int m = std::min(ContactEngine::CHUNK - k, n - q) & ~3;
                 if (m > 0) {
                     simd_geom::stage(at, kq + q, m, 0, iv, dv, k);
@@ -416,10 +419,12 @@ void PairDashpot::compute(int eflag, int vflag)
     // the walk skips the others (most atoms of a dilute flow), whose slots are none.
     int nc;
     walked_slots = hist || energy_flag;
-    if (walked_slots && !adh && simd_geom::enabled() && models.nmodels() == 1 && !engine.flags().rolling &&
-        !engine.flags().twisting) {
-        // four slots at a time, walked and staged (AVX2)
-        walk_stage_simd(hist);
+    if (walked_slots && simd_geom::enabled()) {
+        // four slots at a time (AVX2)
+        if (models.nmodels() == 1)
+            walk_stage_simd<true>(hist, adh);
+        else
+            walk_stage_simd<false>(hist, adh);
         nc = 0;
     } else if (walked_slots) {
         // the slots laid out for this list: one flat loop over their pairs
