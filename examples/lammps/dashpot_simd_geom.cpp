@@ -20,7 +20,7 @@ bool enabled()
 {
     static const bool on = [] {
         const char *s = std::getenv("DASHPOT_LMP_SIMD");
-        if (s && std::strcmp(s, "0") == 0) return false;
+        if (!s || std::strcmp(s, "1") != 0) return false;
         __builtin_cpu_init();
         return __builtin_cpu_supports("avx2") != 0;
     }();
