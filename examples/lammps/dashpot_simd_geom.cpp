@@ -10,8 +10,6 @@
 #include <cstring>
 #include <immintrin.h>
 
-// GCC 12's _mm256_undefined_pd() (the gathers' unused source) trips -Wmaybe-uninitialized
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 namespace dashpot_lmp {
 namespace simd_geom {
@@ -20,7 +18,7 @@ bool enabled()
 {
     static const bool on = [] {
         const char *s = std::getenv("DASHPOT_LMP_SIMD");
-        if (!s || std::strcmp(s, "1") != 0) return false;
+        if (s && std::strcmp(s, "0") == 0) return false;
         __builtin_cpu_init();
         return __builtin_cpu_supports("avx2") != 0;
     }();
@@ -50,15 +48,25 @@ constexpr PackTable pack_table;
 
 #define DASHPOT_AVX2 __attribute__((target("avx2")))
 
-/* x, y, z of the atoms idx (3 * index) from an array of 3 per atom */
-DASHPOT_AVX2 inline void gather3(const double *p, __m128i idx3, __m256d &x, __m256d &y, __m256d &z)
+/* x, y, z of the atoms idx[0..3] from an array of 3 per atom: two loads a row (x, y together)
+ * and a transpose, rather than gathers (slower here than the scalar loads they replace) */
+DASHPOT_AVX2 inline void rows3(const double *p, const int *idx, __m256d &X, __m256d &Y, __m256d &Z)
 {
-    x = _mm256_i32gather_pd(p, idx3, 8);
-    y = _mm256_i32gather_pd(p + 1, idx3, 8);
-    z = _mm256_i32gather_pd(p + 2, idx3, 8);
+    const double *p0 = p + 3 * (ptrdiff_t) idx[0], *p1 = p + 3 * (ptrdiff_t) idx[1];
+    const double *p2 = p + 3 * (ptrdiff_t) idx[2], *p3 = p + 3 * (ptrdiff_t) idx[3];
+    const __m256d t02 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p0)), _mm_loadu_pd(p2), 1);
+    const __m256d t13 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p1)), _mm_loadu_pd(p3), 1);
+    X = _mm256_unpacklo_pd(t02, t13);
+    Y = _mm256_unpackhi_pd(t02, t13);
+    const __m128d z01 = _mm_loadh_pd(_mm_load_sd(p0 + 2), p1 + 2), z23 = _mm_loadh_pd(_mm_load_sd(p2 + 2), p3 + 2);
+    Z = _mm256_insertf128_pd(_mm256_castpd128_pd256(z01), z23, 1);
 }
 
-DASHPOT_AVX2 inline __m128i times3(__m128i v) { return _mm_add_epi32(_mm_slli_epi32(v, 1), v); }
+/* v[idx[0..3]] */
+DASHPOT_AVX2 inline __m256d lanes(const double *v, const int *idx)
+{
+    return _mm256_setr_pd(v[idx[0]], v[idx[1]], v[idx[2]], v[idx[3]]);
+}
 
 /* stores the lanes of X, Y, Z as 4 rows of 3 (x0 y0 z0 x1 y1 z1 ...) at p */
 DASHPOT_AVX2 inline void store_rows3(double *p, __m256d X, __m256d Y, __m256d Z)
@@ -85,19 +93,17 @@ DASHPOT_AVX2 inline int walk_of(const Slots &s, int k0, int k1, int *out, int *e
     const unsigned char *touched = s.touched;
     int *o = out, *z = ended + nended;
     int k = k0;
-    const __m256i deal = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
     __m128i ks = _mm_add_epi32(_mm_set1_epi32(k0), _mm_setr_epi32(0, 1, 2, 3));
     for (; k + 4 <= k1; k += 4) {
-        const __m256i ij =
-            _mm256_permutevar8x32_epi32(_mm256_loadu_si256((const __m256i *) (pairs + 2 * k)), deal);
-        const __m128i vi = _mm256_castsi256_si128(ij), vj = _mm256_extracti128_si256(ij, 1);
+        const int *p = pairs + 2 * k;
+        const int I[4] = {p[0], p[2], p[4], p[6]}, J[4] = {p[1], p[3], p[5], p[7]};
         __m256d xi, yi, zi, xj, yj, zj;
-        gather3(x0, times3(vi), xi, yi, zi);
-        gather3(x0, times3(vj), xj, yj, zj);
+        rows3(x0, I, xi, yi, zi);
+        rows3(x0, J, xj, yj, zj);
         const __m256d dx = _mm256_sub_pd(xi, xj), dy = _mm256_sub_pd(yi, yj), dz = _mm256_sub_pd(zi, zj);
         const __m256d rsq =
             _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
-        const __m256d radsum = _mm256_add_pd(_mm256_i32gather_pd(radius, vi, 8), _mm256_i32gather_pd(radius, vj, 8));
+        const __m256d radsum = _mm256_add_pd(lanes(radius, I), lanes(radius, J));
         int touch = _mm256_movemask_pd(_mm256_cmp_pd(rsq, _mm256_mul_pd(radsum, radsum), _CMP_LT_OQ));
         int tm = 0;
         if (HIST) {
@@ -157,46 +163,46 @@ DASHPOT_AVX2 inline void stage_of(const Atoms &at, const int *kq, int m, int mod
 {
     using Chunk = ContactEngine::Chunk;
     constexpr int C = ContactEngine::CHUNK;
-    const __m256i deal = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
     for (int q = 0; q < m; q += 4, k += 4) {
-        const __m128i slot = _mm_loadu_si128((const __m128i *) (kq + q));
-        const __m256i ij =
-            _mm256_permutevar8x32_epi32(_mm256_i32gather_epi64((const long long *) at.pairs, slot, 8), deal);
-        const __m128i vi = _mm256_castsi256_si128(ij), vj = _mm256_extracti128_si256(ij, 1);
         // the same bits from either side: oriented from the atom of the lower tag
-        const __m128i swap = _mm_cmplt_epi32(_mm_i32gather_epi32(at.tag, vj, 4), _mm_i32gather_epi32(at.tag, vi, 4));
-        const __m128i va = _mm_blendv_epi8(vi, vj, swap), vb = _mm_blendv_epi8(vj, vi, swap);
+        int A[4], B[4];
+        for (int l = 0; l < 4; l++) {
+            const int s = kq[q + l], i = at.pairs[2 * s], j = at.pairs[2 * s + 1];
+            const bool swap = at.tag[j] < at.tag[i];
+            A[l] = swap ? j : i;
+            B[l] = swap ? i : j;
+        }
+        const __m128i va = _mm_loadu_si128((const __m128i *) A), vb = _mm_loadu_si128((const __m128i *) B);
         _mm_storeu_si128((__m128i *) (iv + Chunk::A * C + k), va);
         _mm_storeu_si128((__m128i *) (iv + Chunk::B * C + k), vb);
-        _mm_storeu_si128((__m128i *) (iv + Chunk::SLOT * C + k), slot);
+        _mm_storeu_si128((__m128i *) (iv + Chunk::SLOT * C + k), _mm_loadu_si128((const __m128i *) (kq + q)));
         _mm_storeu_si128((__m128i *) (iv + Chunk::MODEL * C + k), _mm_set1_epi32(model));
-        const __m256d ra = _mm256_i32gather_pd(at.radius, va, 8), rb = _mm256_i32gather_pd(at.radius, vb, 8);
+        const __m256d ra = lanes(at.radius, A), rb = lanes(at.radius, B);
         const __m256d radsum = _mm256_add_pd(ra, rb);
         _mm256_storeu_pd(dv + Chunk::RA * C + k, ra);
         _mm256_storeu_pd(dv + Chunk::RB * C + k, rb);
         _mm256_storeu_pd(dv + Chunk::RAD * C + k, _mm256_div_pd(_mm256_mul_pd(ra, rb), radsum));
         {
-            const __m256d ma = _mm256_i32gather_pd(at.rmass, va, 8), mb = _mm256_i32gather_pd(at.rmass, vb, 8);
+            const __m256d ma = lanes(at.rmass, A), mb = lanes(at.rmass, B);
             __m256d meff = _mm256_div_pd(_mm256_mul_pd(ma, mb), _mm256_add_pd(ma, mb));
             if (FROZEN) {
                 // all ones in the lanes whose body is not frozen (as the scalar code: a frozen a
                 // gives mb, then a frozen b gives ma)
-                const __m128i zero = _mm_setzero_si128(), frozen = _mm_set1_epi32(at.frozen);
-                const __m256d fa = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
-                    _mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, va, 4), frozen), zero)));
-                const __m256d fb = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(
-                    _mm_cmpeq_epi32(_mm_and_si128(_mm_i32gather_epi32(at.mask, vb, 4), frozen), zero)));
+                const int f = at.frozen, *mask = at.mask;
+                const __m256d fa = _mm256_castsi256_pd(_mm256_setr_epi64x(
+                    -!(mask[A[0]] & f), -!(mask[A[1]] & f), -!(mask[A[2]] & f), -!(mask[A[3]] & f)));
+                const __m256d fb = _mm256_castsi256_pd(_mm256_setr_epi64x(
+                    -!(mask[B[0]] & f), -!(mask[B[1]] & f), -!(mask[B[2]] & f), -!(mask[B[3]] & f)));
                 meff = _mm256_blendv_pd(mb, meff, fa);
                 meff = _mm256_blendv_pd(ma, meff, fb);
             }
             _mm256_storeu_pd(dv + Chunk::MASS * C + k, meff);
         }
-        const __m128i a3 = times3(va), b3 = times3(vb);
         __m256d nx, ny, nz;
         {
             __m256d xa, ya, za, xb, yb, zb;
-            gather3(at.x0, a3, xa, ya, za);
-            gather3(at.x0, b3, xb, yb, zb);
+            rows3(at.x0, A, xa, ya, za);
+            rows3(at.x0, B, xb, yb, zb);
             const __m256d dx = _mm256_sub_pd(xa, xb), dy = _mm256_sub_pd(ya, yb), dz = _mm256_sub_pd(za, zb);
             const __m256d rsq =
                 _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
@@ -211,8 +217,8 @@ DASHPOT_AVX2 inline void stage_of(const Atoms &at, const int *kq, int m, int mod
         __m256d dvx, dvy, dvz, vn;
         {
             __m256d vxa, vya, vza, vxb, vyb, vzb;
-            gather3(at.v0, a3, vxa, vya, vza);
-            gather3(at.v0, b3, vxb, vyb, vzb);
+            rows3(at.v0, A, vxa, vya, vza);
+            rows3(at.v0, B, vxb, vyb, vzb);
             dvx = _mm256_sub_pd(vxa, vxb);
             dvy = _mm256_sub_pd(vya, vyb);
             dvz = _mm256_sub_pd(vza, vzb);
@@ -220,8 +226,8 @@ DASHPOT_AVX2 inline void stage_of(const Atoms &at, const int *kq, int m, int mod
             _mm256_storeu_pd(dv + Chunk::RATE * C + k, _mm256_xor_pd(vn, _mm256_set1_pd(-0.0)));
         }
         __m256d wxa, wya, wza, wxb, wyb, wzb;
-        gather3(at.w0, a3, wxa, wya, wza);
-        gather3(at.w0, b3, wxb, wyb, wzb);
+        rows3(at.w0, A, wxa, wya, wza);
+        rows3(at.w0, B, wxb, wyb, wzb);
         const __m256d wx = _mm256_add_pd(_mm256_mul_pd(ra, wxa), _mm256_mul_pd(rb, wxb));
         const __m256d wy = _mm256_add_pd(_mm256_mul_pd(ra, wya), _mm256_mul_pd(rb, wyb));
         const __m256d wz = _mm256_add_pd(_mm256_mul_pd(ra, wza), _mm256_mul_pd(rb, wzb));

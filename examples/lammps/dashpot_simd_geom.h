@@ -1,21 +1,20 @@
 /* pair_style dashpot's walk of its history slots and staging of the touching pairs, four pairs
- * at a time in AVX2 (gathers of the atoms' positions, velocities, spins, radii and masses).
- * The plugin is built for portable x86-64: these functions are compiled for AVX2 alone (never
- * FMA: every result is rounded as the scalar code rounds it, operation for operation; square
- * roots and divisions are correctly rounded in both), and called only when the CPU has AVX2.
- * The results are the same bits as the scalar walk and staging (pair_dashpot_compute.cpp).
- * Opt-in, with DASHPOT_LMP_SIMD=1 in the environment: a third of the scalar code's instructions,
- * but on the Xeon measured (in.pour.2d's settled pile, steps alternating between the two paths
- * in one run) no faster: the staging's time goes to the atoms' data it loads, which is the same
- * in both. */
+ * at a time in AVX2. The plugin is built for portable x86-64: these functions are compiled for
+ * AVX2 alone (never FMA: every result is rounded as the scalar code rounds it, operation for
+ * operation; square roots and divisions are correctly rounded in both), and called only when
+ * the CPU has AVX2. The results are the same bits as the scalar walk and staging
+ * (pair_dashpot_compute.cpp); DASHPOT_LMP_SIMD=0 in the environment forces the scalar code.
+ * The atoms' rows are loaded two loads a row (x and y together, then z) and transposed into
+ * lanes: AVX2's gathers would execute fewer instructions but, on the Xeons measured, take
+ * longer than the scalar code, the staging then waiting on them. */
 #ifndef DASHPOT_SIMD_GEOM_H
 #define DASHPOT_SIMD_GEOM_H
 
 namespace dashpot_lmp {
 namespace simd_geom {
 
-/* Whether the AVX2 walk and staging run: DASHPOT_LMP_SIMD=1 and the CPU has AVX2 (read once per
- * process). */
+/* Whether the AVX2 walk and staging run: the CPU has AVX2 and DASHPOT_LMP_SIMD is not 0 (read
+ * once per process). */
 bool enabled();
 
 /* A list's slots as the walk reads them: pairs[2k], pairs[2k + 1] the atoms i, j of slot k, x0

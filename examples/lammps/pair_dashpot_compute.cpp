@@ -224,7 +224,7 @@ template <bool ONE> void PairDashpot::stage_pairs_of(int n)
 }
 
 /* The slots laid out for the list (with history or energy), walked four at a time in AVX2
- * (DASHPOT_LMP_SIMD=1, see dashpot_simd_geom.h): a block of slots' touching pairs found, then staged at once, their atoms still
+ * (see dashpot_simd_geom.h): a block of slots' touching pairs found, then staged at once, their atoms still
  * in cache; with one bound model (ONE) and neither the rolling nor the twisting columns, staged
  * four at a time in AVX2 too. The same candidates in the same order, the same columns with the
  * same bits, as walk_slots() and stage_pairs(). */
@@ -417,8 +417,8 @@ void PairDashpot::compute(int eflag, int vflag)
     // distances (square roots and divisions, independent of one another) and their staging.
     // With history (or energy), layout_slots() listed the atoms that have pairs, in list order:
     // the walk skips the others (most atoms of a dilute flow), whose slots are none.
-    // With DASHPOT_LMP_SIMD=1 on an AVX2 CPU, the slots are walked (and, with one model, staged)
-    // four at a time.
+    // On an AVX2 CPU (unless DASHPOT_LMP_SIMD=0), the slots are walked (and, with one model,
+    // staged) four at a time.
     int nc;
     walked_slots = hist || energy_flag;
     if (walked_slots && simd_geom::enabled()) {

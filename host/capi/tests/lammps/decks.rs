@@ -242,9 +242,8 @@ fn in_pour_2d_settles_as_with_granular() {
     deck_agrees(&v, &deck);
 }
 
-/// The pair's slots walked and staged four at a time in AVX2 (`dashpot_simd_geom.cpp`, taken with
-/// `DASHPOT_LMP_SIMD=1` on a CPU with AVX2) against the scalar walk and staging (the default,
-/// `DASHPOT_LMP_SIMD=0`): in.pour.2d
+/// The pair's slots walked and staged four at a time in AVX2 (`dashpot_simd_geom.cpp`, taken on
+/// a CPU with AVX2) against the scalar walk and staging (`DASHPOT_LMP_SIMD=0`): in.pour.2d
 /// (gran/hertz/history, poured into a dense pile), in.pour.chute (gran/hooke/history, a flowing
 /// layer) and in.pour.flatwall (three bound models, an adhesive JKR type, rolling and twisting:
 /// the vectorised walk with the scalar staging), each run on with its lowest atoms frozen (fix
