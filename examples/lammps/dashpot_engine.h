@@ -157,6 +157,27 @@ class ContactEngine {
      * columns' addresses and the engine's state stay in registers over the whole run. */
     template <class Geom> inline int stage_run(int first, int last, Geom &&geom) __attribute__((always_inline));
 
+    /* For a caller that writes the staging columns itself (the vectorised staging of
+     * dashpot_simd_geom.h): the bases of the staging chunk's int and double columns (see Chunk's
+     * IntColumn, DoubleColumn) and its first free row k; false when the engine stages otherwise
+     * (a chunk per model, or the rolling and twisting columns): then stage_run. staged(m, model)
+     * then takes the m rows written from row k on, all of bound model `model`. */
+    bool columns(int *&iv, double *&dv, int &k)
+    {
+        if (use_regions || fl.rolling || fl.twisting) return false;
+        iv = stage_.istore.data();
+        dv = stage_.dstore.data();
+        k = n;
+        return true;
+    }
+    void staged(int m, int model)
+    {
+        if (m == 0) return;
+        if (n == 0) model0 = model;
+        mixed |= model != model0;
+        n += m;
+    }
+
     /* Stages one contact; true when the chunk is full (evaluate, apply, reset before the next). */
     inline bool stage(int model, int a, int b, int slot, double nx, double ny, double nz, double delta, double ra,
                       double rb, double dvx, double dvy, double dvz, double meff, double reff, const double *wa,

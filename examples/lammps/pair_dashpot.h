@@ -135,6 +135,7 @@ class PairDashpot : public Pair {
     int dirty;              // a compute advanced the slots since history_to_atoms copied them
     std::vector<Candidate> candidates;    // compute(): the touching pairs not yet staged
     std::vector<int> ended;               // compute(): one block's slots whose contact ended
+    std::vector<int> touching;            // compute(), AVX2: one block's touching slots
     bool walked_slots = false;            // compute(): the candidates hold their slots only
 
     void allocate();
@@ -148,6 +149,8 @@ class PairDashpot : public Pair {
     void evaluate(dashpot_lmp::HistoryStore &store, bool wall, bool all);
     void stage_pairs(int n) __attribute__((noinline));
     template <bool ONE> void stage_pairs_of(int n);
+    template <bool ONE> struct PairGeometry;
+    template <bool ONE> void walk_stage_simd(bool hist, bool adh);
     int walk_pairs(const int *atoms, int natoms);
     template <bool ADH, bool HIST> int walk_slots();
     int find_slot(int i, int j) const;

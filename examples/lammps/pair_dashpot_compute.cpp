@@ -3,6 +3,7 @@
  * and bound model, then their forces, torques and history are applied. */
 #include "pair_dashpot.h"
 
+#include "dashpot_simd_geom.h"
 #include "fix_dashpot_history.h"
 
 #include "atom.h"
@@ -156,30 +157,29 @@ void PairDashpot::stage_pairs(int n)
         stage_pairs_of<false>(n);
 }
 
-template <bool ONE> void PairDashpot::stage_pairs_of(int n)
-{
-    const Candidate *__restrict cand = candidates.data();
-    const double *radius = atom->radius, *rmass = atom->rmass;
-    const int *type = atom->type, *mask = atom->mask;
-    const tagint *tag = atom->tag;
-    // LAMMPS's per-atom 2D arrays are contiguous: index them from their first row
-    const double *x0 = atom->x[0], *v0 = atom->v[0], *w0 = atom->omega[0];
-    const int *mof = model_of.data();
-    const int nt1 = atom->ntypes + 1;
-    const int frozen = freeze_group_bit;
-    // one run of contacts per chunk: the engine keeps its columns in registers over the run
-    auto geometry = [&](int q, ContactEngine::Geometry &g) __attribute__((always_inline))
+/* One touching pair's geometry as the engine stages it, from its atoms i, j, slot k, distance r
+ * and its inverse: oriented from the atom of the lower tag (the same bits from either side: x_b
+ * - x_a is exactly -(x_a - x_b)). ONE: one bound model, no lookup of the pair's types. */
+template <bool ONE> struct PairDashpot::PairGeometry {
+    const double *radius, *rmass, *x0, *v0, *w0;    // LAMMPS's per-atom 2D arrays are contiguous
+    const int *type, *mask, *mof;
+    const tagint *tag;
+    int nt1, frozen;
+    PairGeometry(const PairDashpot &p) :
+        radius(p.atom->radius), rmass(p.atom->rmass), x0(p.atom->x[0]), v0(p.atom->v[0]), w0(p.atom->omega[0]),
+        type(p.atom->type), mask(p.atom->mask), mof(p.model_of.data()), tag(p.atom->tag), nt1(p.atom->ntypes + 1),
+        frozen(p.freeze_group_bit)
     {
-        const Candidate &cq = cand[q];
-        const int i = cq.i, j = cq.j;
-        // the same bits from either side: x_b - x_a is exactly -(x_a - x_b)
+    }
+    inline void operator()(int i, int j, int k, double r, double rinv, ContactEngine::Geometry &g) const
+        __attribute__((always_inline))
+    {
         const bool swap = tag[j] < tag[i];
         const int a = swap ? j : i, b = swap ? i : j;
         const double *xa = x0 + 3 * a, *xb = x0 + 3 * b;
         const double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
         const double ra = radius[a], rb = radius[b];
         const double radsum = ra + rb;
-        const double r = cq.r, rinv = cq.rinv;
         const double ma = rmass[a], mb = rmass[b];
         double meff = ma * mb / (ma + mb);
         if (frozen) {
@@ -190,7 +190,7 @@ template <bool ONE> void PairDashpot::stage_pairs_of(int n)
         g.model = ONE ? 0 : mof[type[a] * nt1 + type[b]];
         g.a = a;
         g.b = b;
-        g.slot = cq.k;
+        g.slot = k;
         g.nx = dx * rinv;
         g.ny = dy * rinv;
         g.nz = dz * rinv;
@@ -204,10 +204,75 @@ template <bool ONE> void PairDashpot::stage_pairs_of(int n)
         g.reff = ra * rb / radsum;
         g.wa = w0 + 3 * a;
         g.wb = w0 + 3 * b;
+    }
+};
+
+template <bool ONE> void PairDashpot::stage_pairs_of(int n)
+{
+    const Candidate *__restrict cand = candidates.data();
+    const PairGeometry<ONE> pg(*this);
+    // one run of contacts per chunk: the engine keeps its columns in registers over the run
+    auto geometry = [&](int q, ContactEngine::Geometry &g) __attribute__((always_inline))
+    {
+        const Candidate &cq = cand[q];
+        pg(cq.i, cq.j, cq.k, cq.r, cq.rinv, g);
     };
     for (int q = 0; q < n;) {
         q = engine.stage_run(q, n, geometry);
         if (q < n || engine.size() == ContactEngine::CHUNK) evaluate(pair_slots, false, false);
+    }
+}
+
+/* The slots laid out for the list (with history or energy), walked four at a time in AVX2
+ * (see dashpot_simd_geom.h): a block of slots' touching pairs found, then staged at once, their atoms still
+ * in cache; with one bound model (ONE) and neither the rolling nor the twisting columns, staged
+ * four at a time in AVX2 too. The same candidates in the same order, the same columns with the
+ * same bits, as walk_slots() and stage_pairs(). */
+template <bool ONE> void PairDashpot::walk_stage_simd(bool hist, bool adh)
+{
+    const int nslot = (int) pair_slots.size();
+    if (nslot == 0) return;
+    constexpr int BLOCK = 512;
+    if (touching.size() < BLOCK + 4) touching.resize(BLOCK + 4);
+    if (ended.size() < BLOCK) ended.resize(BLOCK);
+    static_assert(sizeof(SlotPair) == 2 * sizeof(int), "a slot's pair: two ints");
+    static_assert(sizeof(tagint) == sizeof(int), "tags: ints (LAMMPS_SMALLBIG)");
+    const int *pairs = reinterpret_cast<const int *>(slot_pairs.data());
+    HistoryStore &ps = pair_slots;
+    const simd_geom::Slots slots = {pairs, atom->x[0], atom->radius, hist ? ps.touched.data() : nullptr,
+                                    adh ? ps.reach.data() : nullptr};
+    const simd_geom::Atoms at = {pairs,       atom->x[0], atom->v[0], atom->omega[0], atom->radius,
+                                 atom->rmass, atom->tag,  atom->mask, freeze_group_bit};
+    const int *kq = touching.data();
+    const PairGeometry<ONE> pg(*this);
+    // the scalar staging: a block's last pairs (fewer than 4, or the rows that end a chunk), or
+    // all of them (several models, spin columns)
+    auto geometry = [&](int q, ContactEngine::Geometry &g) __attribute__((always_inline))
+    {
+        const int k = kq[q], i = pairs[2 * k], j = pairs[2 * k + 1];
+        const double *xi = at.x0 + 3 * i, *xj = at.x0 + 3 * j;
+        const double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
+        const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        pg(i, j, k, r, 1.0 / r, g);
+    };
+    for (int k0 = 0; k0 < nslot; k0 += BLOCK) {
+        int nz = 0;
+        const int n = simd_geom::walk(slots, k0, std::min(nslot, k0 + BLOCK), touching.data(), ended.data(), nz);
+        for (int q = 0; q < nz; q++) ps.zero(ended[q]);
+        for (int q = 0; q < n;) {
+            int *iv, k;
+            double *dv;
+            if (ONE && engine.columns(iv, dv, k)) {
+                const int m = std::min(ContactEngine::CHUNK - k, n - q) & ~3;
+                if (m > 0) {
+                    simd_geom::stage(at, kq + q, m, 0, iv, dv, k);
+                    engine.staged(m, 0);
+                    q += m;
+                }
+            }
+            q = engine.stage_run(q, n, geometry);
+            if (q < n || engine.size() == ContactEngine::CHUNK) evaluate(pair_slots, false, false);
+        }
     }
 }
 
@@ -352,9 +417,18 @@ void PairDashpot::compute(int eflag, int vflag)
     // distances (square roots and divisions, independent of one another) and their staging.
     // With history (or energy), layout_slots() listed the atoms that have pairs, in list order:
     // the walk skips the others (most atoms of a dilute flow), whose slots are none.
+    // On an AVX2 CPU (unless DASHPOT_LMP_SIMD=0), the slots are walked (and, with one model,
+    // staged) four at a time.
     int nc;
     walked_slots = hist || energy_flag;
-    if (walked_slots) {
+    if (walked_slots && simd_geom::enabled()) {
+        // four slots at a time (AVX2)
+        if (models.nmodels() == 1)
+            walk_stage_simd<true>(hist, adh);
+        else
+            walk_stage_simd<false>(hist, adh);
+        nc = 0;
+    } else if (walked_slots) {
         // the slots laid out for this list: one flat loop over their pairs
         if (adh)
             nc = walk_slots<true, true>();
