@@ -1,5 +1,7 @@
 /* The contact engine: see dashpot_engine.h. */
 #include "dashpot_engine.h"
+#include "dashpot_simd.h"
+#include "dashpot_simd_torq.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,7 +67,8 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
     size_t per = NFIXED + lay.width[NORMAL] + lay.width[TANGENTIAL] + lay.width[ROLLING] + lay.width[TWISTING] +
         (fl.rolling ? 6 : 0) + (fl.twisting ? 2 : 0) + (lay.adhesive ? 1 : 0) + (fl.energy ? 2 * NFAMILY : 0) +
         (fl.context ? 3 : 0) + (fl.heat ? 3 : 0);
-    dstore.assign((size_t) C * per, 0.0);
+    // one double of padding past the last column: the AVX2 loops read each 3-vector 4 wide
+    dstore.assign((size_t) C * per + 1, 0.0);
     const std::pair<int **, IntColumn> icols[] = {{&a, A}, {&b, B}, {&slot, SLOT}, {&model, MODEL}};
     for (const auto &col : icols) *col.first = istore.data() + col.second * C;
     double *d = dstore.data();
@@ -473,6 +476,7 @@ void ContactEngine::torques(Chunk &c, int lo, int m, const Model &md, const Appl
 {
     const bool roll = md.rolling != nullptr, twst = md.twisting != nullptr;
     const bool half = md.arm == TorqueArm::CONTACT_POINT;
+    if (simd_avx2()) return torques_avx2(c, lo, m, roll, twst, half, direct);
     if (roll && twst)
         torques_arm<true, true>(c, lo, m, half, direct);
     else if (roll)

@@ -1,0 +1,154 @@
+/* The contact engine's forces and torques in AVX2: see dashpot_simd_torq.h. Only the functions
+ * below are compiled for AVX2 (a target attribute on each, after every header), so nothing the
+ * rest of the plugin links can carry an AVX2 instruction onto a CPU without it. */
+#include "dashpot_simd_torq.h"
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+
+namespace dashpot_lmp {
+
+namespace {
+
+#define DASHPOT_AVX2 __attribute__((target("avx2")))
+
+/* (v_y, v_z, v_x, v_4) */
+DASHPOT_AVX2 inline __m256d yzx(__m256d v)
+{
+    return _mm256_permute4x64_pd(v, _MM_SHUFFLE(3, 0, 2, 1));
+}
+
+/* n x v as the scalar loop computes it, component by component: (n_y v_z - n_z v_y, n_z v_x -
+ * n_x v_z, n_x v_y - n_y v_x), each product rounded, then the difference: u = n v.yzx - n.yzx v
+ * holds (z, x, y) of it, and u.yzx is the cross product. */
+DASHPOT_AVX2 inline __m256d cross(__m256d n, __m256d v)
+{
+    return yzx(_mm256_sub_pd(_mm256_mul_pd(n, yzx(v)), _mm256_mul_pd(yzx(n), v)));
+}
+
+/* two doubles of an atom's row, in place (LAMMPS's rows are 8-byte aligned) */
+typedef double pair_u __attribute__((vector_size(16), aligned(8)));
+
+/* p[0..2] += v's lanes 0..2 (lane 2 in hi's low lane): the scalar += of each component. The
+ * additions take p's doubles as their memory operand (GCC would otherwise load them first, to
+ * keep v in its register). */
+DASHPOT_AVX2 inline void add3(double *p, __m256d v, __m128d hi)
+{
+    __m128d xy, z;
+    asm("vaddpd %[m], %[v], %[r]" : [r] "=x"(xy) : [v] "x"(_mm256_castpd256_pd128(v)), [m] "m"(*(const pair_u *) p));
+    asm("vaddsd %[m], %[v], %[r]" : [r] "=x"(z) : [v] "x"(hi), [m] "m"(p[2]));
+    *(pair_u *) p = (pair_u) xy;
+    p[2] = _mm_cvtsd_f64(z);
+}
+
+/* p[0..2] -= v's lanes 0..2 */
+DASHPOT_AVX2 inline void sub3(double *p, __m256d v, __m128d hi)
+{
+    *(pair_u *) p -= (pair_u) _mm256_castpd256_pd128(v);
+    p[2] -= _mm_cvtsd_f64(hi);
+}
+
+/* p[0..2] = v's lanes 0..2 */
+DASHPOT_AVX2 inline void put3(double *p, __m256d v, __m128d hi)
+{
+    _mm_storeu_pd(p, _mm256_castpd256_pd128(v));
+    _mm_store_sd(p + 2, hi);
+}
+
+/* torques_of (dashpot_engine.cpp) a contact per register: F = fn n + F_t; c = n x F_t; the
+ * rolling moment reff (n x F_roll) and the twisting one 0 + M n (the scalar loop's m starts at
+ * 0.0: the same signed zeros); ta = m - arm_a c, tb = -m - arm_b c. The fourth lane carries
+ * whatever follows each 3-vector and is never stored. */
+template <bool ROLL, bool TWST, bool HALF, bool DIRECT>
+DASHPOT_AVX2 void torques_of(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
+{
+    using Ch = ContactEngine::Chunk;
+    constexpr int C = ContactEngine::CHUNK;
+    double *__restrict d = c.dstore.data();
+    const int *__restrict iv = c.istore.data();
+    const double *__restrict froll = c.froll, *__restrict mtw = c.mtwist;
+    double *__restrict f0 = DIRECT ? direct->f : nullptr, *__restrict t0 = DIRECT ? direct->torque : nullptr;
+    // newton's rule as one unsigned comparison: an atom takes its share when its index is below
+    // `owned` (every atom with newton on, the local ones without); a wall's b < 0 never
+    const unsigned owned = !DIRECT ? 0u : direct->newton ? ~0u >> 1 : (unsigned) direct->nlocal;
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    for (long k = lo; k < lo + m; k++) {
+        const __m256d n = _mm256_loadu_pd(d + Ch::NORM * C + 3 * k);
+        const __m256d ft = _mm256_loadu_pd(d + Ch::FT * C + 3 * k);
+        const __m256d F = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(d + Ch::FN * C + k), n), ft);
+        const __m256d cr = cross(n, ft);
+        __m256d mo = _mm256_setzero_pd();
+        if (ROLL)
+            mo = _mm256_mul_pd(_mm256_broadcast_sd(d + Ch::RAD * C + k), cross(n, _mm256_loadu_pd(froll + 3 * k)));
+        if (TWST) mo = _mm256_add_pd(mo, _mm256_mul_pd(_mm256_broadcast_sd(mtw + k), n));
+        const double ra = d[Ch::RA * C + k], rb = d[Ch::RB * C + k];
+        const double arm_a = HALF ? ra - 0.5 * d[Ch::DELTA * C + k] : ra;
+        const double arm_b = HALF ? rb - 0.5 * d[Ch::DELTA * C + k] : rb;
+        const __m256d ta = _mm256_sub_pd(mo, _mm256_mul_pd(_mm256_set1_pd(arm_a), cr));
+        const __m256d tb = _mm256_sub_pd(_mm256_xor_pd(mo, sign), _mm256_mul_pd(_mm256_set1_pd(arm_b), cr));
+        const __m128d Fz = _mm256_extractf128_pd(F, 1), taz = _mm256_extractf128_pd(ta, 1),
+                      tbz = _mm256_extractf128_pd(tb, 1);
+        if (!DIRECT) {
+            put3(d + Ch::FORCE * C + 3 * k, F, Fz);
+            put3(d + Ch::TA * C + 3 * k, ta, taz);
+            put3(d + Ch::TB * C + 3 * k, tb, tbz);
+            continue;
+        }
+        const long a = iv[Ch::A * C + k], b = iv[Ch::B * C + k];
+        if ((unsigned long) a < owned) {
+            add3(f0 + 3 * a, F, Fz);
+            add3(t0 + 3 * a, ta, taz);
+        }
+        if ((unsigned long) b < owned) {
+            sub3(f0 + 3 * b, F, Fz);
+            add3(t0 + 3 * b, tb, tbz);
+        }
+    }
+}
+
+template <bool ROLL, bool TWST, bool HALF>
+void torques_to(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
+{
+    if (direct)
+        torques_of<ROLL, TWST, HALF, true>(c, lo, m, direct);
+    else
+        torques_of<ROLL, TWST, HALF, false>(c, lo, m, direct);
+}
+
+template <bool ROLL, bool TWST>
+void torques_arm(ContactEngine::Chunk &c, int lo, int m, bool half, const ApplyTarget *direct)
+{
+    if (half)
+        torques_to<ROLL, TWST, true>(c, lo, m, direct);
+    else
+        torques_to<ROLL, TWST, false>(c, lo, m, direct);
+}
+
+#undef DASHPOT_AVX2
+
+}    // namespace
+
+void torques_avx2(ContactEngine::Chunk &c, int lo, int m, bool roll, bool twst, bool half,
+                  const ApplyTarget *direct)
+{
+    if (roll && twst)
+        torques_arm<true, true>(c, lo, m, half, direct);
+    else if (roll)
+        torques_arm<true, false>(c, lo, m, half, direct);
+    else if (twst)
+        torques_arm<false, true>(c, lo, m, half, direct);
+    else
+        torques_arm<false, false>(c, lo, m, half, direct);
+}
+
+}    // namespace dashpot_lmp
+
+#else
+
+namespace dashpot_lmp {
+
+void torques_avx2(ContactEngine::Chunk &, int, int, bool, bool, bool, const ApplyTarget *) {}
+
+}    // namespace dashpot_lmp
+
+#endif
