@@ -28,11 +28,26 @@ void HistoryStore::zero(size_t k)
     touched[k] = 0;
 }
 
+/* dst[0 .. w) = src[0 .. w): a record's family holds a few values (3 for a tangential or
+ * rolling spring), too few for a general loop's set-up to pay. */
+static inline void copy_values(double *__restrict dst, const double *__restrict src, int w)
+{
+    if (w == 3) {
+        dst[0] = src[0];
+        dst[1] = src[1];
+        dst[2] = src[2];
+        return;
+    }
+    for (int q = 0; q < w; q++) dst[q] = src[q];
+}
+
 void HistoryStore::get(size_t k, double *record) const
 {
     for (int f = 0; f < NFAMILY; f++) {
         const int w = layout.width[f];
-        for (int q = 0; q < w; q++) *record++ = fam[f][k * w + q];
+        if (w == 0) continue;
+        copy_values(record, fam[f].data() + k * w, w);
+        record += w;
     }
     if (!reach.empty()) *record = reach[k];
 }
@@ -41,7 +56,9 @@ void HistoryStore::set(size_t k, const double *record)
 {
     for (int f = 0; f < NFAMILY; f++) {
         const int w = layout.width[f];
-        for (int q = 0; q < w; q++) fam[f][k * w + q] = *record++;
+        if (w == 0) continue;
+        copy_values(fam[f].data() + k * w, record, w);
+        record += w;
     }
     if (!reach.empty()) reach[k] = *record;
     touched[k] = 1;
@@ -52,8 +69,9 @@ bool HistoryStore::nonzero(size_t k) const
     if (!touched[k]) return false;
     for (int f = 0; f < NFAMILY; f++) {
         const int w = layout.width[f];
+        const double *s = fam[f].data() + k * w;
         for (int q = 0; q < w; q++)
-            if (fam[f][k * w + q] != 0.0) return true;
+            if (s[q] != 0.0) return true;
     }
     return !reach.empty() && reach[k] != 0.0;
 }
