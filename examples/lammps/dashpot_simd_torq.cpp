@@ -26,26 +26,37 @@ DASHPOT_AVX2 inline __m256d cross(__m256d n, __m256d v)
     return yzx(_mm256_sub_pd(_mm256_mul_pd(n, yzx(v)), _mm256_mul_pd(yzx(n), v)));
 }
 
-/* two doubles of an atom's row, in place (LAMMPS's rows are 8-byte aligned) */
-typedef double pair_u __attribute__((vector_size(16), aligned(8)));
-
-/* p[0..2] += v's lanes 0..2 (lane 2 in hi's low lane): the scalar += of each component. The
- * additions take p's doubles as their memory operand (GCC would otherwise load them first, to
- * keep v in its register). */
-DASHPOT_AVX2 inline void add3(double *p, __m256d v, __m128d hi)
+/* row[3i .. 3i+2] += v's lanes 0..2 (lane 2 in hi's low lane), the scalar += of each component,
+ * in four instructions: the additions take the row's doubles as their memory operand, and every
+ * access is addressed from the array and the index (GCC would rather load the doubles first, to
+ * keep v in its register, and form each row's address apart). */
+DASHPOT_AVX2 inline void add3(double *row, long i, __m256d v, __m128d hi)
 {
-    __m128d xy, z;
-    asm("vaddpd %[m], %[v], %[r]" : [r] "=x"(xy) : [v] "x"(_mm256_castpd256_pd128(v)), [m] "m"(*(const pair_u *) p));
-    asm("vaddsd %[m], %[v], %[r]" : [r] "=x"(z) : [v] "x"(hi), [m] "m"(p[2]));
-    *(pair_u *) p = (pair_u) xy;
-    p[2] = _mm_cvtsd_f64(z);
+    __m128d t;
+    asm volatile(
+        "vaddpd (%[r],%[i],8), %x[v], %[t]\n\t"
+        "vmovupd %[t], (%[r],%[i],8)\n\t"
+        "vaddsd 16(%[r],%[i],8), %[h], %[t]\n\t"
+        "vmovsd %[t], 16(%[r],%[i],8)"
+        : [t] "=&x"(t)
+        : [r] "r"(row), [i] "r"(3 * i), [v] "x"(v), [h] "x"(hi)
+        : "memory");
 }
 
-/* p[0..2] -= v's lanes 0..2 */
-DASHPOT_AVX2 inline void sub3(double *p, __m256d v, __m128d hi)
+/* row[3i .. 3i+2] -= v's lanes 0..2 */
+DASHPOT_AVX2 inline void sub3(double *row, long i, __m256d v, __m128d hi)
 {
-    *(pair_u *) p -= (pair_u) _mm256_castpd256_pd128(v);
-    p[2] -= _mm_cvtsd_f64(hi);
+    __m128d t;
+    asm volatile(
+        "vmovupd (%[r],%[i],8), %[t]\n\t"
+        "vsubpd %x[v], %[t], %[t]\n\t"
+        "vmovupd %[t], (%[r],%[i],8)\n\t"
+        "vmovsd 16(%[r],%[i],8), %[t]\n\t"
+        "vsubsd %[h], %[t], %[t]\n\t"
+        "vmovsd %[t], 16(%[r],%[i],8)"
+        : [t] "=&x"(t)
+        : [r] "r"(row), [i] "r"(3 * i), [v] "x"(v), [h] "x"(hi)
+        : "memory");
 }
 
 /* p[0..2] = v's lanes 0..2 */
@@ -96,12 +107,12 @@ DASHPOT_AVX2 void torques_of(ContactEngine::Chunk &c, int lo, int m, const Apply
         }
         const long a = iv[Ch::A * C + k], b = iv[Ch::B * C + k];
         if ((unsigned long) a < owned) {
-            add3(f0 + 3 * a, F, Fz);
-            add3(t0 + 3 * a, ta, taz);
+            add3(f0, a, F, Fz);
+            add3(t0, a, ta, taz);
         }
         if ((unsigned long) b < owned) {
-            sub3(f0 + 3 * b, F, Fz);
-            add3(t0 + 3 * b, tb, tbz);
+            sub3(f0, b, F, Fz);
+            add3(t0, b, tb, tbz);
         }
     }
 }
