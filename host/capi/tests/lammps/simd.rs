@@ -34,7 +34,10 @@ fn final_state(v: &Path, deck: &str, ranks: u32, vars: &[(&str, &str)], simd: bo
     succeeded(&out, &format!("{name} {vars:?}"));
     let state = std::fs::read_to_string(&dump).expect("read the final dump");
     // the atoms' lines: past the header's 9 lines
-    assert!(state.lines().count() > 9 + 20, "{name}: too few atoms in\n{state}");
+    assert!(
+        state.lines().count() > 9 + 20,
+        "{name}: too few atoms in\n{state}"
+    );
     state
 }
 
@@ -57,14 +60,30 @@ fn same_bits(v: &Path, deck: &str, ranks: u32, vars: &[(&str, &str)]) {
 fn the_avx2_paths_give_the_scalar_bits() {
     let Some(v) = venv() else { return };
     let dashpot = ("style", "dashpot");
-    same_bits(&v, "in.pour.2d", 1, &[dashpot, ("walls", "dashpot"), ("n", "300"), ("nsteps", "11000")]);
+    same_bits(
+        &v,
+        "in.pour.2d",
+        1,
+        &[dashpot, ("walls", "dashpot"), ("n", "300"), ("nsteps", "11000")],
+    );
     for ranks in [1, 2] {
-        same_bits(&v, "in.pour.flatwall", ranks, &[dashpot, ("n", "200"), ("nsteps", "2000")]);
+        same_bits(
+            &v,
+            "in.pour.flatwall",
+            ranks,
+            &[dashpot, ("n", "200"), ("nsteps", "2000")],
+        );
     }
     same_bits(
         &v,
         "in.pour.drum",
         1,
-        &[dashpot, ("walls", "dashpot"), ("n", "200"), ("fill", "800"), ("spin", "800")],
+        &[
+            dashpot,
+            ("walls", "dashpot"),
+            ("n", "200"),
+            ("fill", "800"),
+            ("spin", "800"),
+        ],
     );
 }
