@@ -479,37 +479,22 @@ static void torques_of(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget
     }
 }
 
-template <bool ROLL, bool TWST, bool HALF>
-static void torques_to(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
-{
-    if (direct)
-        torques_of<ROLL, TWST, HALF, true>(c, lo, m, direct);
-    else
-        torques_of<ROLL, TWST, HALF, false>(c, lo, m, direct);
-}
-
-template <bool ROLL, bool TWST>
-static void torques_arm(ContactEngine::Chunk &c, int lo, int m, bool half, const ApplyTarget *direct)
-{
-    if (half)
-        torques_to<ROLL, TWST, true>(c, lo, m, direct);
-    else
-        torques_to<ROLL, TWST, false>(c, lo, m, direct);
-}
+/* The kernel for torques_dispatch (dashpot_simd_torq.h). */
+struct ScalarTorques {
+    template <bool ROLL, bool TWST, bool HALF, bool DIRECT>
+    static void run(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
+    {
+        torques_of<ROLL, TWST, HALF, DIRECT>(c, lo, m, direct);
+    }
+};
 
 void ContactEngine::torques(Chunk &c, int lo, int m, const Model &md, const ApplyTarget *direct)
 {
     const bool roll = md.rolling != nullptr, twst = md.twisting != nullptr;
     const bool half = md.arm == TorqueArm::CONTACT_POINT;
     if (simd_avx2()) return torques_avx2(c, lo, m, roll, twst, half, direct);
-    if (roll && twst)
-        torques_arm<true, true>(c, lo, m, half, direct);
-    else if (roll)
-        torques_arm<true, false>(c, lo, m, half, direct);
-    else if (twst)
-        torques_arm<false, true>(c, lo, m, half, direct);
-    else
-        torques_arm<false, false>(c, lo, m, half, direct);
+    const bool flags[4] = {roll, twst, half, direct != nullptr};
+    torques_dispatch<ScalarTorques>(c, lo, m, direct, flags);
 }
 
 ContactEngine::Chunk &ContactEngine::evaluate(HistoryStore &store, double dt, bool keep, const ApplyTarget *direct)

@@ -43,22 +43,6 @@ DASHPOT_AVX2 inline void add3(double *row, long i, __m256d v, __m128d hi)
         : "memory");
 }
 
-/* row[3i .. 3i+2] -= v's lanes 0..2 */
-DASHPOT_AVX2 inline void sub3(double *row, long i, __m256d v, __m128d hi)
-{
-    __m128d t;
-    asm volatile(
-        "vmovupd (%[r],%[i],8), %[t]\n\t"
-        "vsubpd %x[v], %[t], %[t]\n\t"
-        "vmovupd %[t], (%[r],%[i],8)\n\t"
-        "vmovsd 16(%[r],%[i],8), %[t]\n\t"
-        "vsubsd %[h], %[t], %[t]\n\t"
-        "vmovsd %[t], 16(%[r],%[i],8)"
-        : [t] "=&x"(t)
-        : [r] "r"(row), [i] "r"(3 * i), [v] "x"(v), [h] "x"(hi)
-        : "memory");
-}
-
 /* p[0..2] = v's lanes 0..2 */
 DASHPOT_AVX2 inline void put3(double *p, __m256d v, __m128d hi)
 {
@@ -73,67 +57,60 @@ DASHPOT_AVX2 inline void put3(double *p, __m256d v, __m128d hi)
 template <bool ROLL, bool TWST, bool HALF, bool DIRECT>
 DASHPOT_AVX2 void torques_of(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
 {
+    // each column at its constant offset from the chunk's double or int base (Chunk's
+    // DoubleColumn, IntColumn): two registers for them all
     using Ch = ContactEngine::Chunk;
-    constexpr int C = ContactEngine::CHUNK;
-    double *__restrict d = c.dstore.data();
-    const int *__restrict iv = c.istore.data();
-    const double *__restrict froll = c.froll, *__restrict mtw = c.mtwist;
-    double *__restrict f0 = DIRECT ? direct->f : nullptr, *__restrict t0 = DIRECT ? direct->torque : nullptr;
+    const double *dbase = c.dstore.data();
+    const int *ibase = c.istore.data();
+    auto col = [dbase](int column) { return dbase + column * ContactEngine::CHUNK; };
     // newton's rule as one unsigned comparison: an atom takes its share when its index is below
     // `owned` (every atom with newton on, the local ones without); a wall's b < 0 never
+    double *f = DIRECT ? direct->f : nullptr, *torque = DIRECT ? direct->torque : nullptr;
     const unsigned owned = !DIRECT ? 0u : direct->newton ? ~0u >> 1 : (unsigned) direct->nlocal;
     const __m256d sign = _mm256_set1_pd(-0.0);
     for (long k = lo; k < lo + m; k++) {
-        const __m256d n = _mm256_loadu_pd(d + Ch::NORM * C + 3 * k);
-        const __m256d ft = _mm256_loadu_pd(d + Ch::FT * C + 3 * k);
-        const __m256d F = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(d + Ch::FN * C + k), n), ft);
+        const __m256d n = _mm256_loadu_pd(col(Ch::NORM) + 3 * k), ft = _mm256_loadu_pd(col(Ch::FT) + 3 * k);
+        const __m256d F = _mm256_add_pd(_mm256_mul_pd(_mm256_broadcast_sd(col(Ch::FN) + k), n), ft);
         const __m256d cr = cross(n, ft);
         __m256d mo = _mm256_setzero_pd();
         if (ROLL)
-            mo = _mm256_mul_pd(_mm256_broadcast_sd(d + Ch::RAD * C + k), cross(n, _mm256_loadu_pd(froll + 3 * k)));
-        if (TWST) mo = _mm256_add_pd(mo, _mm256_mul_pd(_mm256_broadcast_sd(mtw + k), n));
-        const double ra = d[Ch::RA * C + k], rb = d[Ch::RB * C + k];
-        const double arm_a = HALF ? ra - 0.5 * d[Ch::DELTA * C + k] : ra;
-        const double arm_b = HALF ? rb - 0.5 * d[Ch::DELTA * C + k] : rb;
+            mo = _mm256_mul_pd(_mm256_broadcast_sd(col(Ch::RAD) + k), cross(n, _mm256_loadu_pd(c.froll + 3 * k)));
+        if (TWST) mo = _mm256_add_pd(mo, _mm256_mul_pd(_mm256_broadcast_sd(c.mtwist + k), n));
+        const double ra = col(Ch::RA)[k], rb = col(Ch::RB)[k], half_delta = HALF ? 0.5 * col(Ch::DELTA)[k] : 0.0;
+        const double arm_a = HALF ? ra - half_delta : ra, arm_b = HALF ? rb - half_delta : rb;
         const __m256d ta = _mm256_sub_pd(mo, _mm256_mul_pd(_mm256_set1_pd(arm_a), cr));
         const __m256d tb = _mm256_sub_pd(_mm256_xor_pd(mo, sign), _mm256_mul_pd(_mm256_set1_pd(arm_b), cr));
         const __m128d Fz = _mm256_extractf128_pd(F, 1), taz = _mm256_extractf128_pd(ta, 1),
                       tbz = _mm256_extractf128_pd(tb, 1);
         if (!DIRECT) {
-            put3(d + Ch::FORCE * C + 3 * k, F, Fz);
-            put3(d + Ch::TA * C + 3 * k, ta, taz);
-            put3(d + Ch::TB * C + 3 * k, tb, tbz);
+            put3(c.force + 3 * k, F, Fz);
+            put3(c.ta + 3 * k, ta, taz);
+            put3(c.tb + 3 * k, tb, tbz);
             continue;
         }
-        const long a = iv[Ch::A * C + k], b = iv[Ch::B * C + k];
+        const long a = ibase[Ch::A * ContactEngine::CHUNK + k], b = ibase[Ch::B * ContactEngine::CHUNK + k];
         if ((unsigned long) a < owned) {
-            add3(f0, a, F, Fz);
-            add3(t0, a, ta, taz);
+            add3(f, a, F, Fz);
+            add3(torque, a, ta, taz);
         }
         if ((unsigned long) b < owned) {
-            sub3(f0, b, F, Fz);
-            add3(t0, b, tb, tbz);
+            // f_b - F as f_b + (-F): the same bits (IEEE subtraction is the addition of the
+            // negated operand), with the row as the addition's memory operand
+            const __m256d mF = _mm256_xor_pd(F, sign);
+            add3(f, b, mF, _mm256_extractf128_pd(mF, 1));
+            add3(torque, b, tb, tbz);
         }
     }
 }
 
-template <bool ROLL, bool TWST, bool HALF>
-void torques_to(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
-{
-    if (direct)
-        torques_of<ROLL, TWST, HALF, true>(c, lo, m, direct);
-    else
-        torques_of<ROLL, TWST, HALF, false>(c, lo, m, direct);
-}
-
-template <bool ROLL, bool TWST>
-void torques_arm(ContactEngine::Chunk &c, int lo, int m, bool half, const ApplyTarget *direct)
-{
-    if (half)
-        torques_to<ROLL, TWST, true>(c, lo, m, direct);
-    else
-        torques_to<ROLL, TWST, false>(c, lo, m, direct);
-}
+/* The kernel for torques_dispatch: one instantiation per combination of the flags. */
+struct Avx2Torques {
+    template <bool ROLL, bool TWST, bool HALF, bool DIRECT>
+    static void run(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
+    {
+        torques_of<ROLL, TWST, HALF, DIRECT>(c, lo, m, direct);
+    }
+};
 
 #undef DASHPOT_AVX2
 
@@ -142,14 +119,8 @@ void torques_arm(ContactEngine::Chunk &c, int lo, int m, bool half, const ApplyT
 void torques_avx2(ContactEngine::Chunk &c, int lo, int m, bool roll, bool twst, bool half,
                   const ApplyTarget *direct)
 {
-    if (roll && twst)
-        torques_arm<true, true>(c, lo, m, half, direct);
-    else if (roll)
-        torques_arm<true, false>(c, lo, m, half, direct);
-    else if (twst)
-        torques_arm<false, true>(c, lo, m, half, direct);
-    else
-        torques_arm<false, false>(c, lo, m, half, direct);
+    const bool flags[4] = {roll, twst, half, direct != nullptr};
+    torques_dispatch<Avx2Torques>(c, lo, m, direct, flags);
 }
 
 }    // namespace dashpot_lmp

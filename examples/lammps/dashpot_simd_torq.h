@@ -9,6 +9,20 @@
 
 namespace dashpot_lmp {
 
+/* Kernel::run<ROLL, TWST, HALF, DIRECT>(c, lo, m, direct) with the four flags (rolling,
+ * twisting, granular's contact-point arm, straight to the atoms' arrays) as its template
+ * arguments: one loop per combination, with no test inside but newton's rule. */
+template <class Kernel, bool... B>
+inline void torques_dispatch(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct, const bool *flags)
+{
+    if constexpr (sizeof...(B) == 4)
+        Kernel::template run<B...>(c, lo, m, direct);
+    else if (flags[sizeof...(B)])
+        torques_dispatch<Kernel, B..., true>(c, lo, m, direct, flags);
+    else
+        torques_dispatch<Kernel, B..., false>(c, lo, m, direct, flags);
+}
+
 /* As ContactEngine::torques on contacts lo .. lo+m-1 of chunk c: rolling (roll), twisting
  * (twst), granular's contact-point arm (half); into the chunk's force, ta, tb columns or added to
  * `direct`'s arrays. The chunk's columns must be padded by one double past their last (reserve()
