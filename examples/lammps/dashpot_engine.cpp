@@ -69,12 +69,7 @@ bool HistoryStore::nonzero(size_t k) const
     if (!touched[k]) return false;
     for (int f = 0; f < NFAMILY; f++) {
         const int w = layout.width[f];
-        if (w == 0) continue;
         const double *s = fam[f].data() + k * w;
-        if (w == 3) {
-            if (s[0] != 0.0 || s[1] != 0.0 || s[2] != 0.0) return true;
-            continue;
-        }
         for (int q = 0; q < w; q++)
             if (s[q] != 0.0) return true;
     }
