@@ -25,7 +25,10 @@ inline bool simd_allowed()
 inline bool simd_avx2()
 {
 #if defined(__x86_64__) || defined(__i386__)
-    static const bool on = simd_allowed() && __builtin_cpu_supports("avx2");
+    static const bool on = [] {
+        __builtin_cpu_init();    // harmless if done: the CPU model may not be read yet in a plugin
+        return simd_allowed() && __builtin_cpu_supports("avx2");
+    }();
     return on;
 #else
     return false;
