@@ -69,9 +69,8 @@ bool HistoryStore::nonzero(size_t k) const
     if (!touched[k]) return false;
     for (int f = 0; f < NFAMILY; f++) {
         const int w = layout.width[f];
-        const double *s = fam[f].data() + k * w;
         for (int q = 0; q < w; q++)
-            if (s[q] != 0.0) return true;
+            if (fam[f][k * w + q] != 0.0) return true;
     }
     return !reach.empty() && reach[k] != 0.0;
 }
