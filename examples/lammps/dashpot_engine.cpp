@@ -1,5 +1,7 @@
 /* The contact engine: see dashpot_engine.h. */
 #include "dashpot_engine.h"
+#include "dashpot_simd.h"
+#include "dashpot_simd_torq.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,11 +28,26 @@ void HistoryStore::zero(size_t k)
     touched[k] = 0;
 }
 
+/* dst[0 .. w) = src[0 .. w): a record's family holds a few values (3 for a tangential or
+ * rolling spring), too few for a general loop's set-up to pay. */
+static inline void copy_values(double *__restrict dst, const double *__restrict src, int w)
+{
+    if (w == 3) {
+        dst[0] = src[0];
+        dst[1] = src[1];
+        dst[2] = src[2];
+        return;
+    }
+    for (int q = 0; q < w; q++) dst[q] = src[q];
+}
+
 void HistoryStore::get(size_t k, double *record) const
 {
     for (int f = 0; f < NFAMILY; f++) {
         const int w = layout.width[f];
-        for (int q = 0; q < w; q++) *record++ = fam[f][k * w + q];
+        if (w == 0) continue;
+        copy_values(record, fam[f].data() + k * w, w);
+        record += w;
     }
     if (!reach.empty()) *record = reach[k];
 }
@@ -39,7 +56,9 @@ void HistoryStore::set(size_t k, const double *record)
 {
     for (int f = 0; f < NFAMILY; f++) {
         const int w = layout.width[f];
-        for (int q = 0; q < w; q++) fam[f][k * w + q] = *record++;
+        if (w == 0) continue;
+        copy_values(fam[f].data() + k * w, record, w);
+        record += w;
     }
     if (!reach.empty()) reach[k] = *record;
     touched[k] = 1;
@@ -65,7 +84,8 @@ void ContactEngine::Chunk::reserve(const Layout &lay, const EngineFlags &fl)
     size_t per = NFIXED + lay.width[NORMAL] + lay.width[TANGENTIAL] + lay.width[ROLLING] + lay.width[TWISTING] +
         (fl.rolling ? 6 : 0) + (fl.twisting ? 2 : 0) + (lay.adhesive ? 1 : 0) + (fl.energy ? 2 * NFAMILY : 0) +
         (fl.context ? 3 : 0) + (fl.heat ? 3 : 0);
-    dstore.assign((size_t) C * per, 0.0);
+    // one double of padding past the last column: the AVX2 loops read each 3-vector 4 wide
+    dstore.assign((size_t) C * per + 1, 0.0);
     const std::pair<int **, IntColumn> icols[] = {{&a, A}, {&b, B}, {&slot, SLOT}, {&model, MODEL}};
     for (const auto &col : icols) *col.first = istore.data() + col.second * C;
     double *d = dstore.data();
@@ -174,6 +194,8 @@ static void copy_records(double *__restrict packed, double *__restrict store, co
                          int w, int W, unsigned char *__restrict touched)
 {
     const int width = WIDTH > 0 ? WIDTH : w;
+    // a few instructions a record: unrolled, the loop's own count and branch are shared
+#pragma GCC unroll 4
     for (int k = 0; k < m; k++) {
         const size_t sk = (size_t) slot[k];
         double *s = store + sk * W, *p = packed + (size_t) k * width;
@@ -451,36 +473,22 @@ static void torques_of(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget
     }
 }
 
-template <bool ROLL, bool TWST, bool HALF>
-static void torques_to(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
-{
-    if (direct)
-        torques_of<ROLL, TWST, HALF, true>(c, lo, m, direct);
-    else
-        torques_of<ROLL, TWST, HALF, false>(c, lo, m, direct);
-}
-
-template <bool ROLL, bool TWST>
-static void torques_arm(ContactEngine::Chunk &c, int lo, int m, bool half, const ApplyTarget *direct)
-{
-    if (half)
-        torques_to<ROLL, TWST, true>(c, lo, m, direct);
-    else
-        torques_to<ROLL, TWST, false>(c, lo, m, direct);
-}
+/* The kernel for torques_dispatch (dashpot_simd_torq.h). */
+struct ScalarTorques {
+    template <bool ROLL, bool TWST, bool HALF, bool DIRECT>
+    static void run(ContactEngine::Chunk &c, int lo, int m, const ApplyTarget *direct)
+    {
+        torques_of<ROLL, TWST, HALF, DIRECT>(c, lo, m, direct);
+    }
+};
 
 void ContactEngine::torques(Chunk &c, int lo, int m, const Model &md, const ApplyTarget *direct)
 {
     const bool roll = md.rolling != nullptr, twst = md.twisting != nullptr;
     const bool half = md.arm == TorqueArm::CONTACT_POINT;
-    if (roll && twst)
-        torques_arm<true, true>(c, lo, m, half, direct);
-    else if (roll)
-        torques_arm<true, false>(c, lo, m, half, direct);
-    else if (twst)
-        torques_arm<false, true>(c, lo, m, half, direct);
-    else
-        torques_arm<false, false>(c, lo, m, half, direct);
+    if (simd_avx2()) return torques_avx2(c, lo, m, roll, twst, half, direct);
+    const bool flags[4] = {roll, twst, half, direct != nullptr};
+    torques_dispatch<ScalarTorques>(c, lo, m, direct, flags);
 }
 
 ContactEngine::Chunk &ContactEngine::evaluate(HistoryStore &store, double dt, bool keep, const ApplyTarget *direct)

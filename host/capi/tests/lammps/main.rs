@@ -14,6 +14,7 @@ mod families;
 mod heat;
 #[path = "../../../../tests/lammps.rs"]
 mod lammps;
+mod simd;
 mod types;
 mod walls;
 mod walls_exact;
@@ -83,7 +84,13 @@ fn run_deck(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> Has
 
 /// Runs `lmp -in DECK -var plugin ... -var plugin_dir ... -var K V ...` on `ranks` MPI ranks.
 fn lmp(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)]) -> Output {
+    lmp_env(venv, deck, ranks, vars, &[])
+}
+
+/// As [`lmp`], with the environment variables `env` set for LAMMPS.
+fn lmp_env(venv: &Path, deck: &str, ranks: u32, vars: &[(&str, String)], env: &[(&str, &str)]) -> Output {
     let mut cmd = lmp_command(venv, ranks);
+    cmd.envs(env.iter().copied());
     cmd.args(["-log", "none", "-in"])
         .arg(lammps_dir().join(deck))
         .arg("-var")
