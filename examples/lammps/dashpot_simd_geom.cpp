@@ -4,9 +4,9 @@
 #include "dashpot_simd_geom.h"
 
 #include "dashpot_engine.h"
+#include "dashpot_simd.h"
 
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <immintrin.h>
 
@@ -16,13 +16,7 @@ namespace simd_geom {
 
 bool enabled()
 {
-    static const bool on = [] {
-        const char *s = std::getenv("DASHPOT_LMP_SIMD");
-        if (s && std::strcmp(s, "0") == 0) return false;
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") != 0;
-    }();
-    return on;
+    return simd_avx2();
 }
 
 namespace {

@@ -14,7 +14,7 @@ namespace dashpot_lmp {
 namespace simd_geom {
 
 /* Whether the AVX2 walk and staging run: the CPU has AVX2 and DASHPOT_LMP_SIMD is not 0 (read
- * once per process). */
+ * once per process: simd_avx2() of dashpot_simd.h, the switch every AVX2 path shares). */
 bool enabled();
 
 /* A list's slots as the walk reads them: pairs[2k], pairs[2k + 1] the atoms i, j of slot k, x0
